@@ -1,0 +1,3 @@
+"""crankdyn: dynamics of crank mechanisms."""
+
+__version__ = "0.1.0"

@@ -1,0 +1,165 @@
+"""Options and output shared by the commands."""
+
+from __future__ import annotations
+
+import math
+import shutil
+import sys
+from pathlib import Path
+
+import click
+import numpy as np
+from rich.console import Console
+from rich.table import Table as RichTable
+
+from crankdyn.engine import Engine
+from crankdyn.errors import InputError
+from crankdyn.io.engine_file import resolve_engine
+from crankdyn.io.output import write_text
+from crankdyn.io.units import parse_quantity
+from crankdyn.results import Result
+
+__all__ = [
+    "FORMATS",
+    "console",
+    "emit",
+    "engine_argument",
+    "format_option",
+    "load_engine_arg",
+    "option_quantity",
+    "output_options",
+    "print_summary",
+    "speed_of",
+]
+
+FORMATS = ("table", "csv", "json")
+
+
+def console(file=None) -> Console:
+    """A rich console wide enough for tables even when stdout is not a terminal."""
+    width = shutil.get_terminal_size((120, 24)).columns
+    return Console(file=file or sys.stdout, width=max(width, 120), soft_wrap=False, highlight=False)
+
+
+def engine_argument(f):
+    return click.argument("engine", metavar="ENGINE")(f)
+
+
+def format_option(default: str = "table"):
+    return click.option(
+        "--format",
+        "fmt",
+        type=click.Choice(FORMATS),
+        default=default,
+        show_default=True,
+        help="Output format.",
+    )
+
+
+def output_options(f):
+    f = click.option("--force", is_flag=True, help="Overwrite an existing output file.")(f)
+    return click.option(
+        "-o",
+        "--output",
+        type=str,
+        default=None,
+        metavar="FILE",
+        help="Write to FILE (atomically) instead of standard output.",
+    )(f)
+
+
+def option_quantity(value, kind: str, option: str, default_unit: str | None = None):
+    """Parse an option value with units; bare numbers in ``default_unit``. None passes through."""
+    if value is None:
+        return None
+    return parse_quantity(value, kind, key=option, default_unit=default_unit)
+
+
+def load_engine_arg(spec: str) -> Engine:
+    return resolve_engine(spec)
+
+
+def speed_of(engine: Engine, speed_option: str | None) -> float:
+    """The speed (rad/s) from --speed (rpm when bare) or the engine's [operating] speed."""
+    speed = option_quantity(speed_option, "speed", "--speed", "rpm")
+    if speed is None:
+        speed = engine.speed
+    if speed is None:
+        raise InputError(
+            "no speed: give --speed RPM or [operating] speed in the engine file", file=engine.source
+        )
+    if not speed > 0.0:
+        raise InputError("the speed must be positive", key="--speed", value=speed_option)
+    return speed
+
+
+def _fmt(value: float, scale: float = 0.0) -> str:
+    if not math.isfinite(value):
+        return "-"
+    if abs(value) <= 1e-12 * scale:
+        return "0"  # round-off next to the column's magnitude
+    return f"{value:.6g}"
+
+
+def render_table(result: Result, title: str | None = None) -> RichTable:
+    """A rich table of a result's columns."""
+    labels = result.column_labels()
+    table = RichTable(title=title, show_lines=False, header_style="bold")
+    for key in labels:
+        label, unit = labels[key]
+        table.add_column(f"{label}\n({unit})" if unit else label, justify="right")
+    cols = result.columns()
+    scales = [float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) for c in cols.values()]
+    for row in zip(*cols.values(), strict=True):
+        table.add_row(*(_fmt(v, s) for v, s in zip(row, scales, strict=True)))
+    return table
+
+
+def summary_table(result: Result, title: str = "Summary") -> RichTable:
+    """A rich table of a result's scalar figures."""
+    table = RichTable(title=title, header_style="bold")
+    table.add_column("Quantity", justify="left")
+    table.add_column("Value", justify="right")
+    table.add_column("Unit", justify="left")
+    for label, value, unit in result.summary_rows():
+        table.add_row(label, value, unit)
+    return table
+
+
+def print_summary(result: Result, title: str = "Summary", out: Console | None = None) -> None:
+    (out or console()).print(summary_table(result, title))
+
+
+def emit(
+    result: Result, fmt: str, output: str | None, force: bool, summary: Result | None = None
+) -> None:
+    """Write a result as a table, CSV or JSON to stdout or (atomically) to a file."""
+    if fmt == "json":
+        text = result.to_json() + "\n"
+    elif fmt == "csv":
+        text = result.to_csv()
+    else:
+        con = Console(record=True, width=160, file=_Null()) if output else console()
+        con.print(render_table(result, getattr(result, "title", None)))
+        if summary is not None:
+            con.print(summary_table(summary))
+        if not output:
+            return
+        text = con.export_text()
+    if output and output != "-":
+        path = write_text(output, text, force=force)
+        click.echo(f"wrote {path}", err=True)
+    else:
+        click.echo(text, nl=False)
+
+
+class _Null:
+    def write(self, _text):
+        return 0
+
+    def flush(self):
+        pass
+
+
+def resolve_output_dir(out: str | None, default: str) -> Path:
+    return Path(out or default)

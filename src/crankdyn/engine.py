@@ -1,0 +1,334 @@
+"""The engine: cylinders, crank arrangement, geometry, masses, pressure (domain objects).
+
+Conventions (docs/conventions.md; seed 000 sections 2.3): cylinders are numbered from the free end
+to the flywheel; the crankshaft turns clockwise seen from the free end; the crankshaft angle theta
+is 0 when cylinder 1 is at firing TDC; cylinder i's own crank angle is theta - psi_i where psi_i is
+its throw angle. V engines: bank A is the left bank seen from the free end, bank B the right; the
+bank axes lie at -gamma/2 (A) and +gamma/2 (B) from the vertical, measured clockwise, so on a shared
+throw the bank-B cylinder reaches TDC gamma after the bank-A cylinder.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from pathlib import Path
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.firing import (
+    CYCLE_ANGLE,
+    check_firing_order,
+    even_firing_throw_angles,
+    firing_angles,
+)
+from crankdyn.geometry import CrankGeometry, check_finite, check_positive
+from crankdyn.masses import Masses
+from crankdyn.pressure import ATMOSPHERE, PressureTrace
+
+__all__ = ["CYCLES", "LAYOUTS", "Cylinders", "Engine"]
+
+CYCLES = ("four-stroke", "two-stroke")
+LAYOUTS = ("inline", "V")
+TWO_PI = 2.0 * math.pi
+_ANGLE_TOL = 1e-7
+
+
+def _same_angle(a: float, b: float) -> bool:
+    d = math.remainder(a - b, TWO_PI)
+    return abs(d) < _ANGLE_TOL
+
+
+@dataclass(frozen=True)
+class Cylinders:
+    """Cylinder arrangement: count, layout, firing order and crank arrangement.
+
+    Parameters
+    ----------
+    count
+        Number of cylinders Z.
+    firing_order
+        Cylinder numbers in firing order (a permutation of 1..Z; rotated to start at 1).
+    cycle
+        ``"four-stroke"`` or ``"two-stroke"``.
+    throw_angles
+        Throw angle psi_i of every cylinder (rad): crankshaft rotation from cylinder 1's TDC to
+        cylinder i's TDC, 0 <= psi_i < 2 pi, psi_1 = 0. Derived for even firing from the firing
+        order when not given.
+    layout
+        ``"inline"`` or ``"V"``.
+    bank_angle
+        V angle gamma between the banks (rad); 0 for inline engines.
+    banks
+        Bank of every cylinder, ``"A"`` or ``"B"`` (V engines; default: the first half of the
+        cylinders on bank A, the second half on bank B).
+    throws
+        Crank throw (1-based, from the free end) of every cylinder (default: inline, cylinder i on
+        throw i; V, cylinders i and i + Z/2 on throw i).
+    pitch
+        Axial spacing of the throws (m), or None when unknown.
+    """
+
+    count: int
+    firing_order: tuple[int, ...]
+    cycle: str = "four-stroke"
+    throw_angles: tuple[float, ...] | None = None
+    layout: str = "inline"
+    bank_angle: float = 0.0
+    banks: tuple[str, ...] | None = None
+    throws: tuple[int, ...] | None = None
+    pitch: float | None = None
+
+    def __post_init__(self) -> None:
+        count = self.count
+        if isinstance(count, bool) or not isinstance(count, (int, np.integer)) or count < 1:
+            raise InputError(
+                "the cylinder count must be a whole number >= 1", key="count", value=count
+            )
+        count = int(count)
+        if self.cycle not in CYCLES:
+            raise InputError(f"expected one of {', '.join(CYCLES)}", key="cycle", value=self.cycle)
+        if self.layout not in LAYOUTS:
+            raise InputError(
+                f"expected one of {', '.join(LAYOUTS)}", key="layout", value=self.layout
+            )
+        order = check_firing_order(self.firing_order, count)
+        set_ = object.__setattr__
+        set_(self, "count", count)
+        set_(self, "firing_order", order)
+
+        # layout: banks, throws, bank angle
+        if self.layout == "inline":
+            if self.bank_angle not in (0, 0.0):
+                raise InputError(
+                    "an inline engine has no bank angle", key="bank_angle", value=self.bank_angle
+                )
+            banks = ("A",) * count if self.banks is None else tuple(self.banks)
+            if set(banks) != {"A"}:
+                raise InputError("an inline engine has one bank, A", key="banks", value=list(banks))
+            throws = tuple(range(1, count + 1)) if self.throws is None else tuple(self.throws)
+        else:
+            gamma = check_finite("bank_angle", self.bank_angle)
+            if not 0.0 < gamma < math.pi:
+                raise InputError(
+                    "the bank angle of a V engine must lie between 0 and 180 deg",
+                    key="bank_angle",
+                    value=self.bank_angle,
+                )
+            set_(self, "bank_angle", gamma)
+            if (self.banks is None or self.throws is None) and count % 2:
+                raise InputError(
+                    "a V engine with an odd number of cylinders needs banks and throws "
+                    "given cylinder by cylinder",
+                    key="banks" if self.banks is None else "throws",
+                )
+            half = count // 2
+            banks = ("A",) * half + ("B",) * half if self.banks is None else tuple(self.banks)
+            throws = (
+                tuple(list(range(1, half + 1)) * 2) if self.throws is None else tuple(self.throws)
+            )
+        if len(banks) != count or not set(banks) <= {"A", "B"}:
+            raise InputError(
+                f'expected {count} entries, each "A" or "B"', key="banks", value=list(banks)
+            )
+        try:
+            throws = tuple(int(t) for t in throws)
+        except (TypeError, ValueError):
+            raise InputError("expected throw numbers", key="throws", value=list(throws)) from None
+        if (
+            len(throws) != count
+            or min(throws) < 1
+            or sorted(set(throws)) != list(range(1, max(throws) + 1))
+        ):
+            raise InputError(
+                f"expected {count} throw numbers, using every throw from 1 up",
+                key="throws",
+                value=list(throws),
+            )
+        for t in set(throws):
+            on_throw = [banks[i] for i in range(count) if throws[i] == t]
+            if len(on_throw) != len(set(on_throw)):
+                raise InputError(
+                    f"throw {t} carries two cylinders of the same bank",
+                    key="throws",
+                    value=list(throws),
+                )
+        set_(self, "banks", banks)
+        set_(self, "throws", throws)
+
+        # throw angles
+        if self.throw_angles is None:
+            psi = even_firing_throw_angles(order, self.cycle)
+            derived = True
+        else:
+            psi = np.array([check_finite("throw_angles", a) for a in self.throw_angles])
+            derived = False
+            if psi.size != count:
+                raise InputError(
+                    f"expected {count} throw angles, one per cylinder",
+                    key="throw_angles",
+                    value=list(self.throw_angles),
+                )
+            bad = (psi < 0.0) | (psi >= TWO_PI)
+            if np.any(bad):
+                i = int(np.argmax(bad))
+                message = f"throw angles must lie in 0 <= psi < 360 deg (cylinder {i + 1})"
+                if psi[i] >= TWO_PI:
+                    message += f'; bare numbers are radians, did you mean "{psi[i]:g} deg"?'
+                raise InputError(message, key="throw_angles", value=list(self.throw_angles))
+            if abs(psi[0]) > _ANGLE_TOL:
+                raise InputError(
+                    "cylinder 1's throw angle must be 0 (angles are measured from its TDC)",
+                    key="throw_angles",
+                    value=list(self.throw_angles),
+                )
+        set_(self, "throw_angles", tuple(float(a) for a in psi))
+        firing_angles(order, psi, self.cycle)  # raises if the order does not fit
+
+        if self.pitch is not None:
+            set_(self, "pitch", check_positive("pitch", self.pitch, "the pitch"))
+
+        # V engines: cylinders on one throw must agree on the throw's position
+        positions = self._cylinder_throw_positions()
+        for t in set(throws):
+            idx = [i for i in range(count) if throws[i] == t]
+            for i in idx[1:]:
+                if not _same_angle(positions[i], positions[idx[0]]):
+                    a, b = idx[0], i
+                    hint = " (derived from the firing order; give throw_angles)" if derived else ""
+                    raise InputError(
+                        f"cylinders {a + 1} (bank {banks[a]}) and {b + 1} (bank {banks[b]}) share "
+                        f"throw {t}, so their TDCs must be {math.degrees(self.bank_angle):.6g} deg "
+                        f"apart{hint}",
+                        key="throw_angles",
+                        value=[round(math.degrees(x), 6) for x in psi],
+                    )
+
+    # ---- derived arrangement ------------------------------------------------------------------
+    @property
+    def bank_axis_angles(self) -> np.ndarray:
+        """Angle alpha_i of every cylinder's axis from the vertical (rad, clockwise seen from the
+        free end): 0 inline, -gamma/2 bank A, +gamma/2 bank B."""
+        if self.layout == "inline":
+            return np.zeros(self.count)
+        half = self.bank_angle / 2.0
+        return np.array([-half if b == "A" else half for b in self.banks])
+
+    def _cylinder_throw_positions(self) -> np.ndarray:
+        alpha = self.bank_axis_angles
+        return np.mod(alpha - np.asarray(self.throw_angles) - alpha[0], TWO_PI)
+
+    @property
+    def throw_count(self) -> int:
+        """Number of crank throws."""
+        return max(self.throws)
+
+    @property
+    def throw_positions(self) -> np.ndarray:
+        """Angular position of every throw at theta = 0 (rad, clockwise seen from the free end,
+        relative to throw of cylinder 1): the crank end view (seed 000 section 2.3)."""
+        positions = self._cylinder_throw_positions()
+        out = np.empty(self.throw_count)
+        for i, t in enumerate(self.throws):
+            out[t - 1] = positions[i]
+        return out
+
+    @cached_property
+    def firing_angles(self) -> np.ndarray:
+        """Firing angle Phi_i of every cylinder (rad), 0 <= Phi_i < cycle angle."""
+        return firing_angles(self.firing_order, self.throw_angles, self.cycle)
+
+    @property
+    def axial_positions(self) -> np.ndarray | None:
+        """Axial position of every cylinder's throw from throw 1 (m), or None without a pitch."""
+        if self.pitch is None:
+            return None
+        return (np.asarray(self.throws, dtype=float) - 1.0) * self.pitch
+
+
+@dataclass(frozen=True)
+class Engine:
+    """A reciprocating engine: identical cylinders on one crankshaft.
+
+    Parameters
+    ----------
+    name
+        Name for reports.
+    geometry
+        Crank geometry shared by all cylinders.
+    cylinders
+        Count, layout, firing order and crank arrangement (holds the cycle).
+    masses
+        Crank-train masses of one cylinder, or None.
+    pressure
+        Cylinder pressure over the cycle, or None.
+    crankcase_pressure
+        Pressure under the piston (Pa, absolute); the gas force is (p - p_crankcase) A.
+    speed
+        Operating speed (rad/s), or None.
+    source
+        The file the engine came from, for messages.
+    """
+
+    name: str
+    geometry: CrankGeometry
+    cylinders: Cylinders
+    masses: Masses | None = None
+    pressure: PressureTrace | None = None
+    crankcase_pressure: float = ATMOSPHERE
+    speed: float | None = None
+    source: str | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InputError("the engine needs a name", key="name", value=self.name)
+        if self.masses is not None:
+            self.masses.check_rod(self.geometry.rod_length)
+        check_finite("crankcase_pressure", self.crankcase_pressure)
+        if self.crankcase_pressure < 0.0:
+            raise InputError(
+                "an absolute pressure cannot be negative",
+                key="crankcase_pressure",
+                value=self.crankcase_pressure,
+            )
+        if self.speed is not None:
+            check_positive("speed", self.speed, "the speed")
+        if self.pressure is not None:
+            expected = CYCLE_ANGLE[self.cycle]
+            if abs(self.pressure.cycle_angle - expected) > 1e-9:
+                raise InputError(
+                    f"the pressure trace covers {math.degrees(self.pressure.cycle_angle):.0f} deg "
+                    f"but a {self.cycle} cycle is {math.degrees(expected):.0f} deg",
+                    key="file",
+                )
+
+    @property
+    def cycle(self) -> str:
+        """``"four-stroke"`` or ``"two-stroke"``."""
+        return self.cylinders.cycle
+
+    @property
+    def cycle_angle(self) -> float:
+        """Crank angle of one working cycle (rad): 4 pi four-stroke, 2 pi two-stroke."""
+        return CYCLE_ANGLE[self.cycle]
+
+    @property
+    def displacement(self) -> float:
+        """Total swept volume of all cylinders (m^3)."""
+        return self.cylinders.count * self.geometry.swept_volume
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> Engine:
+        """Load an engine description file (TOML; docs/engine-file.md)."""
+        from crankdyn.io.engine_file import load_engine  # boundary layer, imported on demand
+
+        return load_engine(path)
+
+    @classmethod
+    def example(cls, name: str) -> Engine:
+        """A built-in example engine by name (``crankdyn examples`` lists them)."""
+        from crankdyn.io.engine_file import load_example
+
+        return load_example(name)

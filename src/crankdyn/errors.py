@@ -1,0 +1,114 @@
+"""The one error type for user mistakes.
+
+Every mistake in user input (a file, a key, a value, a command-line option) raises
+:class:`InputError`. Its text is a single line that names where the mistake is (file, key) and
+what was found and expected, e.g.::
+
+    engine.toml: [geometry] bore = "76 kg": expected a length (e.g. "76 mm"), got a mass
+
+Domain objects raise it with ``key`` set to their field name; the file loaders add the file and
+the section (:meth:`InputError.within`). The command line prints it on one line and exits with
+status 2. Anything else that escapes is a bug and keeps its traceback.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["InputError", "format_value"]
+
+_MAX_VALUE_CHARS = 60
+
+
+def format_value(value: object) -> str:
+    """Render a user value as it would appear in a TOML file, shortened to one short line."""
+    if isinstance(value, str):
+        text = '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    elif isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, float):
+        text = repr(value) if math.isfinite(value) else str(value)
+    elif isinstance(value, (list, tuple)):
+        text = "[" + ", ".join(format_value(v) for v in value) + "]"
+    elif isinstance(value, dict):
+        text = "{" + ", ".join(f"{k} = {format_value(v)}" for k, v in value.items()) + "}"
+    else:
+        text = repr(value)
+    text = " ".join(text.split())  # no newlines, ever
+    if len(text) > _MAX_VALUE_CHARS:
+        text = text[: _MAX_VALUE_CHARS - 3] + "..."
+    return text
+
+
+_NO_VALUE = object()
+
+
+class InputError(ValueError):
+    """A mistake in user input, reported on one line.
+
+    Parameters
+    ----------
+    message
+        What is wrong and what was expected, e.g. ``"must be longer than the crank radius"``.
+    file
+        The file the value came from, if any.
+    key
+        The key (or command-line option) that holds the value, e.g. ``"[geometry] bore"``.
+    value
+        The offending value as the user wrote it.
+    """
+
+    def __init__(
+        self,
+        message: str,
+        *,
+        file: str | None = None,
+        key: str | None = None,
+        value: object = _NO_VALUE,
+    ) -> None:
+        self.message = " ".join(str(message).split())
+        self.file = None if file is None else str(file)
+        self.key = key
+        self.value = value
+        super().__init__(str(self))
+
+    @property
+    def has_value(self) -> bool:
+        return self.value is not _NO_VALUE
+
+    def within(self, *, file: str | None = None, section: str | None = None) -> InputError:
+        """Return this error with a file and a section prefix added where they are missing."""
+        key = self.key
+        if section and key and not key.startswith("["):
+            key = f"{section} {key}"
+        elif section and not key:
+            key = section
+        return InputError(
+            self.message,
+            file=self.file if self.file is not None else file,
+            key=key,
+            value=self.value,
+        )
+
+    def __str__(self) -> str:
+        where = []
+        if self.file:
+            where.append(self.file)
+        if self.key:
+            item = self.key
+            if self.has_value:
+                item += f" = {format_value(self.value)}"
+            where.append(item)
+        elif self.has_value:
+            where.append(format_value(self.value))
+        return ": ".join([*where, self.message])
+
+    def __reduce__(self):  # picklable for process pools (the sentinel is not)
+        value = self.value if self.has_value else None
+        return (_rebuild, (self.message, self.file, self.key, self.has_value, value))
+
+
+def _rebuild(message, file, key, has_value, value):
+    if has_value:
+        return InputError(message, file=file, key=key, value=value)
+    return InputError(message, file=file, key=key)

@@ -1,0 +1,146 @@
+"""Slider-crank geometry of one cylinder (domain object).
+
+Conventions (docs/conventions.md, seed 000 section 1): crank radius R, rod length L, crank-rod ratio
+lambda = R/L, offset (desaxe) e with k = e/R positive when the cylinder axis is shifted toward the
+side the crank pin moves to just after TDC, so that sin(beta) = lambda (sin(phi) - k).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from crankdyn.errors import InputError
+
+__all__ = ["CrankGeometry", "check_finite", "check_positive"]
+
+
+def check_finite(name: str, value: float) -> float:
+    """Return value as float or raise InputError if it is not a finite number."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise InputError("expected a number", key=name, value=value) from None
+    if not math.isfinite(number):
+        raise InputError("the value is not finite", key=name, value=value)
+    return number
+
+
+def check_positive(name: str, value: float, what: str = "") -> float:
+    """Return value as float or raise InputError unless it is finite and > 0."""
+    number = check_finite(name, value)
+    if number <= 0.0:
+        raise InputError(f"{what or 'the value'} must be positive", key=name, value=value)
+    return number
+
+
+@dataclass(frozen=True)
+class CrankGeometry:
+    """Geometry of a (central or offset) slider-crank.
+
+    Parameters
+    ----------
+    bore
+        Cylinder bore D (m).
+    crank_radius
+        Crank radius R (m); the nominal stroke is 2R.
+    rod_length
+        Connecting-rod length L between the pin centres (m); must exceed R + |e|.
+    offset
+        Offset (desaxe) e of the cylinder axis from the crank centre (m), sign as above.
+
+    Notes
+    -----
+    The crank turns through a full revolution only when the rod can reach the cylinder axis at
+    every crank angle: max |R sin(phi) - e| = R + |e| < L (seed 000 section 1.2).
+    """
+
+    bore: float
+    crank_radius: float
+    rod_length: float
+    offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        bore = check_positive("bore", self.bore, "the bore")
+        radius = check_positive("crank_radius", self.crank_radius, "the crank radius")
+        rod = check_positive("rod_length", self.rod_length, "the rod length")
+        offset = check_finite("offset", self.offset)
+        if rod <= radius:
+            raise InputError(
+                f"the rod ({rod * 1e3:.6g} mm) must be longer than the crank radius "
+                f"({radius * 1e3:.6g} mm)",
+                key="rod_length",
+                value=self.rod_length,
+            )
+        if abs(offset) >= rod - radius:
+            raise InputError(
+                f"the offset stops the crank from turning: |e| must be less than L - R = "
+                f"{(rod - radius) * 1e3:.6g} mm",
+                key="offset",
+                value=self.offset,
+            )
+        for name, value in (
+            ("bore", bore),
+            ("crank_radius", radius),
+            ("rod_length", rod),
+            ("offset", offset),
+        ):
+            object.__setattr__(self, name, value)
+
+    @classmethod
+    def from_stroke(
+        cls,
+        bore: float,
+        stroke: float,
+        rod_length: float | None = None,
+        *,
+        rod_ratio: float | None = None,
+        offset: float = 0.0,
+    ) -> CrankGeometry:
+        """Build from the nominal stroke S = 2R (m) and either L (m) or lambda = R/L."""
+        radius = check_positive("stroke", stroke, "the stroke") / 2.0
+        if (rod_length is None) == (rod_ratio is None):
+            raise InputError("give exactly one of rod_length and rod_ratio", key="rod_length")
+        if rod_length is None:
+            ratio = check_positive("rod_ratio", rod_ratio, "the rod ratio")
+            if ratio >= 1.0:
+                raise InputError(
+                    "the rod ratio R/L must be less than 1 (the rod must be longer than the crank)",
+                    key="rod_ratio",
+                    value=rod_ratio,
+                )
+            rod_length = radius / ratio
+        return cls(bore=bore, crank_radius=radius, rod_length=rod_length, offset=offset)
+
+    # ---- derived figures ----------------------------------------------------------------------
+    @property
+    def lam(self) -> float:
+        """Crank-rod ratio lambda = R/L (dimensionless)."""
+        return self.crank_radius / self.rod_length
+
+    @property
+    def k(self) -> float:
+        """Relative offset k = e/R (dimensionless)."""
+        return self.offset / self.crank_radius
+
+    @property
+    def nominal_stroke(self) -> float:
+        """Nominal stroke 2R (m)."""
+        return 2.0 * self.crank_radius
+
+    @property
+    def stroke(self) -> float:
+        """True stroke (m): sqrt((L+R)^2 - e^2) - sqrt((L-R)^2 - e^2) (seed 000 section 1.2)."""
+        from crankdyn.kinematics import dead_centres
+
+        return dead_centres(self.crank_radius, self.rod_length, self.offset)[2]
+
+    @property
+    def piston_area(self) -> float:
+        """Piston crown area pi D^2 / 4 (m^2)."""
+        return math.pi * self.bore**2 / 4.0
+
+    @property
+    def swept_volume(self) -> float:
+        """Swept (displaced) volume of one cylinder, piston area x true stroke (m^3)."""
+        return self.piston_area * self.stroke

@@ -1,0 +1,238 @@
+"""Engine description files (TOML) and the built-in examples; see docs/engine-file.md."""
+
+from __future__ import annotations
+
+import math
+from importlib import resources
+from pathlib import Path
+
+from crankdyn.engine import CYCLES, LAYOUTS, Cylinders, Engine
+from crankdyn.errors import InputError
+from crankdyn.geometry import CrankGeometry
+from crankdyn.io.files import display_name, load_toml
+from crankdyn.io.schema import Table, suggest
+from crankdyn.io.traces import read_pressure_trace
+from crankdyn.masses import Masses
+from crankdyn.pressure import ATMOSPHERE
+
+__all__ = [
+    "example_files",
+    "example_names",
+    "load_engine",
+    "load_example",
+    "parse_engine",
+    "resolve_engine",
+]
+
+_EXAMPLES = resources.files("crankdyn") / "examples"
+
+
+def example_names() -> list[str]:
+    """Names of the built-in example engines (the TOML files shipped with the package)."""
+    return sorted(p.name[:-5] for p in _EXAMPLES.iterdir() if p.name.endswith(".toml"))
+
+
+def example_files(name: str) -> list[Path]:
+    """The files of a built-in example: its TOML file and the files it refers to."""
+    path = _example_path(name)
+    data = load_toml(path)
+    files = [path]
+    trace = data.get("pressure", {}).get("file") if isinstance(data.get("pressure"), dict) else None
+    if isinstance(trace, str):
+        files.append(path.parent / trace)
+    return files
+
+
+def _example_path(name: str) -> Path:
+    names = example_names()
+    if name not in names:
+        raise InputError(
+            f"no built-in example of that name (examples: {', '.join(names)})"
+            + suggest(name, names),
+            key="example",
+            value=name,
+        )
+    return Path(str(_EXAMPLES / f"{name}.toml"))
+
+
+def load_example(name: str) -> Engine:
+    """Load a built-in example engine by name."""
+    path = _example_path(name)
+    return _load(path, f"{name} (built-in example)")
+
+
+def load_engine(path: str | Path) -> Engine:
+    """Load an engine description file."""
+    return _load(Path(path), display_name(path))
+
+
+def resolve_engine(spec: str) -> Engine:
+    """An ENGINE argument: a path to an engine file, or a built-in example name."""
+    p = Path(spec)
+    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+        return load_engine(p)
+    names = example_names()
+    if spec in names:
+        return load_example(spec)
+    raise InputError(
+        f"no such file or built-in example (examples: {', '.join(names)}){suggest(spec, names)}",
+        file=spec,
+    )
+
+
+def _load(path: Path, name: str) -> Engine:
+    data = load_toml(path, what="engine file")
+    return parse_engine(data, file=name, base_dir=path.parent)
+
+
+def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None = None) -> Engine:
+    """Build an Engine from a parsed engine document (a dict as from tomllib)."""
+    root = Table(data, file=file, base_dir=base_dir)
+    name = root.string("name")
+    cycle = root.string("cycle", "four-stroke", choices=CYCLES)
+    geometry = _geometry(root.table("geometry", required=True))
+    cylinders = _cylinders(root.table("cylinders"), cycle)
+    masses = _masses(root.table("masses"))
+    pressure, crankcase = _pressure(root.table("pressure"), cycle)
+    speed = _operating(root.table("operating"))
+    with root.context():
+        engine = Engine(
+            name=name,
+            geometry=geometry,
+            cylinders=cylinders,
+            masses=masses,
+            pressure=pressure,
+            crankcase_pressure=crankcase,
+            speed=speed,
+            source=file,
+        )
+    root.finish()
+    return engine
+
+
+def _geometry(t: Table) -> CrankGeometry:
+    bore = t.quantity("bore", "length", check="positive")
+    which = t.exclusive("stroke", "crank_radius")
+    radius = t.quantity(which, "length", check="positive") / (2.0 if which == "stroke" else 1.0)
+    rod_key = t.exclusive("rod_length", "rod_ratio")
+    offset = t.quantity("offset", "length", 0.0)
+    with t.context():
+        if rod_key == "rod_ratio":
+            ratio = t.number("rod_ratio", check="positive")
+            if ratio >= 1.0:
+                raise t.error(
+                    "rod_ratio",
+                    "the rod ratio R/L must be less than 1 (the rod must be longer than the crank)",
+                    ratio,
+                )
+            rod = radius / ratio
+        else:
+            rod = t.quantity("rod_length", "length", check="positive")
+        try:
+            geometry = CrankGeometry(bore=bore, crank_radius=radius, rod_length=rod, offset=offset)
+        except InputError as exc:
+            if exc.key == "rod_length":  # report against the key the user wrote
+                raise t.error(rod_key, exc.message, t.data[rod_key]) from None
+            if exc.key == "crank_radius":
+                raise t.error(which, exc.message, t.data[which]) from None
+            if exc.key in ("bore", "offset"):
+                raise t.error(exc.key, exc.message, t.data[exc.key]) from None
+            raise
+    t.finish()
+    return geometry
+
+
+def _cylinders(t: Table | None, cycle: str) -> Cylinders:
+    if t is None:
+        return Cylinders(count=1, firing_order=(1,), cycle=cycle)
+    count = t.integer("count", 1, minimum=1, maximum=64)
+    layout = t.string("layout", "inline", choices=LAYOUTS)
+    order = t.integer_list("firing_order", (1,) if count == 1 else None)
+    if order is None:
+        raise t.error(
+            "firing_order",
+            f"missing; expected the {count} cylinder numbers in firing order, e.g. [1, 3, 4, 2]",
+        )
+    throw_angles = t.quantity_list("throw_angles", "angle", None, length=count)
+    pitch = t.quantity("pitch", "length", None, check="positive")
+    bank_angle = t.quantity("bank_angle", "angle", None)
+    if layout == "V" and bank_angle is None:
+        raise t.error("bank_angle", 'missing; a V engine needs its bank angle, e.g. "90 deg"')
+    if layout == "inline" and bank_angle is not None:
+        raise t.error("bank_angle", "an inline engine has no bank angle", t.data["bank_angle"])
+    banks = t.string_list("banks", None, length=count, choices=("A", "B"))
+    throws = t.integer_list("throws", None, length=count)
+    with t.context():
+        cylinders = Cylinders(
+            count=count,
+            firing_order=order,
+            cycle=cycle,
+            throw_angles=throw_angles,
+            layout=layout,
+            bank_angle=bank_angle or 0.0,
+            banks=banks,
+            throws=throws,
+            pitch=pitch,
+        )
+    t.finish()
+    return cylinders
+
+
+def _masses(t: Table | None) -> Masses | None:
+    if t is None:
+        return None
+    values = {
+        key: t.quantity(key, "mass", None, check="nonnegative")
+        for key in ("piston_group", "rod", "crank_unbalance", "reciprocating", "rotating")
+    }
+    values["rod_cg_from_big_end"] = t.quantity(
+        "rod_cg_from_big_end", "length", None, check="positive"
+    )
+    values["rod_inertia"] = t.quantity("rod_inertia", "inertia", None, check="positive")
+    if values["crank_unbalance"] is None:
+        values["crank_unbalance"] = 0.0
+    with t.context():
+        masses = Masses(**values)
+    t.finish()
+    return masses
+
+
+def _pressure(t: Table | None, cycle: str):
+    if t is None:
+        return None, ATMOSPHERE
+    crankcase = t.quantity("crankcase_pressure", "pressure", ATMOSPHERE, check="nonnegative")
+    cycle_angle = 4.0 * math.pi if cycle == "four-stroke" else 2.0 * math.pi
+    firing_tdc = t.quantity("firing_tdc", "angle", 0.0)
+    trace_path = t.path("file")
+    if not trace_path.is_file():
+        raise t.error("file", f"no such pressure trace (looked for {trace_path})", t.data["file"])
+    with t.context():
+        trace = read_pressure_trace(
+            trace_path,
+            firing_tdc=firing_tdc,
+            cycle_angle=cycle_angle,
+            display=_display_path(trace_path),
+        )
+    t.finish()
+    return trace, crankcase
+
+
+def _display_path(path: Path) -> str:
+    """A file as the user knows it: by name for files that ship with the package, else relative
+    to the working folder when inside it, else as given."""
+    try:
+        return str(path.resolve().relative_to(Path(str(_EXAMPLES)).resolve()))
+    except ValueError:
+        pass
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
+def _operating(t: Table | None) -> float | None:
+    if t is None:
+        return None
+    speed = t.quantity("speed", "speed", None, check="positive")
+    t.finish()
+    return speed

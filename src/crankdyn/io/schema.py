@@ -1,0 +1,314 @@
+"""Declarative reading of TOML tables with one-line errors (shared by every file format).
+
+A :class:`Table` wraps one TOML table. Each accessor reads one key, converts it (quantities through
+:mod:`crankdyn.io.units`), checks it, and records the key as known; :meth:`Table.finish` then
+rejects any key that was never asked for, with a "did you mean" suggestion. Errors name the file,
+the key (with its section, e.g. ``[geometry] bore``) and the value.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+from crankdyn.errors import InputError
+from crankdyn.io.units import KINDS, parse_quantity
+
+__all__ = ["MISSING", "Table"]
+
+
+class _Missing:
+    def __repr__(self) -> str:
+        return "MISSING"
+
+
+MISSING: Any = _Missing()
+
+_CHECKS = {
+    None: (lambda v: True, ""),
+    "positive": (lambda v: v > 0.0, "must be positive"),
+    "nonnegative": (lambda v: v >= 0.0, "must not be negative"),
+}
+
+
+class Table:
+    """One table of a TOML document.
+
+    Parameters
+    ----------
+    data
+        The parsed table.
+    file
+        The file name for messages.
+    name
+        The section as the user wrote it, e.g. ``"[geometry]"``; ``""`` for the top level.
+    base_dir
+        Directory against which relative paths in the table are resolved.
+    """
+
+    def __init__(
+        self, data: Any, *, file: str | None, name: str = "", base_dir: Path | None = None
+    ):
+        if not isinstance(data, dict):
+            raise InputError("expected a table", file=file, key=name or None, value=data)
+        self.data = data
+        self.file = file
+        self.name = name
+        self.base_dir = base_dir
+        self._known: set[str] = set()
+
+    # ---- messages -----------------------------------------------------------------------------
+    def label(self, key: str) -> str:
+        """How a key is named in messages: ``[section] key``."""
+        return f"{self.name} {key}" if self.name else key
+
+    def error(self, key: str | None, message: str, value: Any = MISSING) -> InputError:
+        """An InputError for a key of this table (value omitted when MISSING)."""
+        label = self.label(key) if key else (self.name or None)
+        if value is MISSING:
+            return InputError(message, file=self.file, key=label)
+        return InputError(message, file=self.file, key=label, value=value)
+
+    @contextmanager
+    def context(self) -> Iterator[None]:
+        """Add this table's file and section to InputErrors raised inside (e.g. by domain
+        objects validating themselves, which name only their own field)."""
+        try:
+            yield
+        except InputError as exc:
+            raise exc.within(file=self.file, section=self.name or None) from None
+
+    # ---- presence -----------------------------------------------------------------------------
+    def has(self, key: str) -> bool:
+        """Whether the key is present (and records it as known)."""
+        self._known.add(key)
+        return key in self.data
+
+    def raw(self, key: str, default: Any = MISSING, *, expected: str = "a value") -> Any:
+        """The raw value, or default; a missing key without default is an error."""
+        self._known.add(key)
+        if key in self.data:
+            return self.data[key]
+        if default is MISSING:
+            raise self.error(key, f"missing; expected {expected}")
+        return default
+
+    def exclusive(self, *keys: str, required: bool = True) -> str | None:
+        """Which one of several alternative keys is given (e.g. stroke or crank_radius)."""
+        present = [k for k in keys if self.has(k)]
+        if len(present) > 1:
+            raise self.error(
+                present[1], f"give only one of {', '.join(keys)}", self.data[present[1]]
+            )
+        if not present:
+            if required:
+                raise self.error(keys[0], f"missing; give one of {', '.join(keys)}")
+            return None
+        return present[0]
+
+    # ---- typed accessors ----------------------------------------------------------------------
+    def quantity(self, key: str, kind: str, default: Any = MISSING, *, check: str | None = None):
+        """A physical quantity in SI (unit string or bare SI number); optional sign check."""
+        value = self.raw(
+            key, default, expected=f'{KINDS[kind].name} such as "{KINDS[kind].example}"'
+        )
+        if value is default and key not in self.data:
+            return value
+        number = parse_quantity(value, kind, key=self.label(key), file=self.file)
+        self._check(key, value, number, check)
+        return number
+
+    def quantity_list(
+        self,
+        key: str,
+        kind: str,
+        default: Any = MISSING,
+        *,
+        length: int | None = None,
+        check: str | None = None,
+    ):
+        """A list of quantities in SI."""
+        value = self.raw(key, default, expected=f"a list of {KINDS[kind].name}s")
+        if value is default and key not in self.data:
+            return value
+        if not isinstance(value, list) or not value:
+            raise self.error(key, f"expected a list of {KINDS[kind].name}s", value)
+        if length is not None and len(value) != length:
+            raise self.error(key, f"expected {length} values, got {len(value)}", value)
+        out = []
+        for item in value:
+            number = parse_quantity(item, kind, key=self.label(key), file=self.file)
+            self._check(key, value, number, check)
+            out.append(number)
+        return tuple(out)
+
+    def number(
+        self,
+        key: str,
+        default: Any = MISSING,
+        *,
+        check: str | None = None,
+        minimum: float | None = None,
+        maximum: float | None = None,
+        integer: bool = False,
+    ):
+        """A plain number (int or float in the file); optional range."""
+        what = "a whole number" if integer else "a number"
+        value = self.raw(key, default, expected=what)
+        if value is default and key not in self.data:
+            return value
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise self.error(key, f"expected {what}", value)
+        if integer and not isinstance(value, int):
+            raise self.error(key, f"expected {what}", value)
+        if not math.isfinite(value):
+            raise self.error(key, "the value is not finite", value)
+        self._check(key, value, float(value), check)
+        if minimum is not None and value < minimum:
+            raise self.error(key, f"must be at least {minimum:g}", value)
+        if maximum is not None and value > maximum:
+            raise self.error(key, f"must be at most {maximum:g}", value)
+        return int(value) if integer else float(value)
+
+    def integer(
+        self,
+        key: str,
+        default: Any = MISSING,
+        *,
+        minimum: int | None = None,
+        maximum: int | None = None,
+    ):
+        """A whole number."""
+        return self.number(key, default, minimum=minimum, maximum=maximum, integer=True)
+
+    def integer_list(self, key: str, default: Any = MISSING, *, length: int | None = None):
+        """A list of whole numbers."""
+        value = self.raw(key, default, expected="a list of whole numbers")
+        if value is default and key not in self.data:
+            return value
+        if (
+            not isinstance(value, list)
+            or not value
+            or any(isinstance(v, bool) or not isinstance(v, int) for v in value)
+        ):
+            raise self.error(key, "expected a list of whole numbers", value)
+        if length is not None and len(value) != length:
+            raise self.error(key, f"expected {length} numbers, got {len(value)}", value)
+        return tuple(value)
+
+    def string(self, key: str, default: Any = MISSING, *, choices: tuple[str, ...] | None = None):
+        """A string, optionally one of ``choices`` (with a suggestion for near misses)."""
+        expected = f"one of {', '.join(repr(c) for c in choices)}" if choices else "a string"
+        value = self.raw(key, default, expected=expected)
+        if value is default and key not in self.data:
+            return value
+        if not isinstance(value, str):
+            raise self.error(key, f"expected {expected}", value)
+        if choices and value not in choices:
+            raise self.error(key, f"expected {expected}{suggest(value, choices)}", value)
+        return value
+
+    def string_list(
+        self,
+        key: str,
+        default: Any = MISSING,
+        *,
+        length: int | None = None,
+        choices: tuple[str, ...] | None = None,
+    ):
+        """A list of strings."""
+        value = self.raw(key, default, expected="a list of strings")
+        if value is default and key not in self.data:
+            return value
+        if not isinstance(value, list) or any(not isinstance(v, str) for v in value):
+            raise self.error(key, "expected a list of strings", value)
+        if length is not None and len(value) != length:
+            raise self.error(key, f"expected {length} entries, got {len(value)}", value)
+        if choices:
+            for v in value:
+                if v not in choices:
+                    raise self.error(
+                        key,
+                        f"entries must be one of {', '.join(choices)}{suggest(v, choices)}",
+                        value,
+                    )
+        return tuple(value)
+
+    def boolean(self, key: str, default: Any = MISSING) -> bool:
+        """true or false."""
+        value = self.raw(key, default, expected="true or false")
+        if not isinstance(value, bool):
+            raise self.error(key, "expected true or false", value)
+        return value
+
+    def path(self, key: str, default: Any = MISSING) -> Path:
+        """A file path, resolved relative to the directory of the file that names it."""
+        value = self.string(key, default)
+        if value is default and key not in self.data:
+            return value
+        if not value.strip():
+            raise self.error(key, "expected a file name", value)
+        p = Path(value).expanduser()
+        if not p.is_absolute() and self.base_dir is not None:
+            p = self.base_dir / p
+        return p
+
+    def table(self, key: str, *, required: bool = False) -> Table | None:
+        """A sub-table ``[key]`` (None when absent and not required)."""
+        self._known.add(key)
+        if key not in self.data:
+            if required:
+                raise self.error(None, f"missing table [{self._sub(key)}]")
+            return None
+        name = f"[{self._sub(key)}]"
+        if not isinstance(self.data[key], dict):
+            raise InputError(
+                f"expected a table [{self._sub(key)}]",
+                file=self.file,
+                key=key,
+                value=self.data[key],
+            )
+        return Table(self.data[key], file=self.file, name=name, base_dir=self.base_dir)
+
+    def tables(self, key: str, *, required: bool = False) -> list[Table]:
+        """An array of tables ``[[key]]``; entries are named ``[[key]] #n`` in messages."""
+        self._known.add(key)
+        if key not in self.data:
+            if required:
+                raise self.error(None, f"missing [[{self._sub(key)}]] entries")
+            return []
+        items = self.data[key]
+        if not isinstance(items, list) or any(not isinstance(i, dict) for i in items):
+            raise InputError(
+                f"expected [[{self._sub(key)}]] tables", file=self.file, key=key, value=items
+            )
+        return [
+            Table(item, file=self.file, name=f"[[{self._sub(key)}]] #{n}", base_dir=self.base_dir)
+            for n, item in enumerate(items, start=1)
+        ]
+
+    def finish(self, *, also_known: tuple[str, ...] = ()) -> None:
+        """Reject keys that were never read, suggesting the nearest known key."""
+        known = self._known | set(also_known)
+        for key in self.data:
+            if key not in known:
+                raise self.error(key, f"unknown key{suggest(key, sorted(known))}", self.data[key])
+
+    # ---- helpers ------------------------------------------------------------------------------
+    def _sub(self, key: str) -> str:
+        inner = self.name.strip("[]").split(" ")[0] if self.name else ""
+        return f"{inner}.{key}" if inner else key
+
+    def _check(self, key: str, value: Any, number: float, check: str | None) -> None:
+        test, message = _CHECKS[check]
+        if not test(number):
+            raise self.error(key, message, value)
+
+
+def suggest(word: str, candidates) -> str:
+    match = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
+    return f' (did you mean "{match[0]}"?)' if match else ""

@@ -1,0 +1,246 @@
+"""Unit parsing at the boundary (the only module that imports pint).
+
+Files and command-line options accept a quantity as a unit string (``"76 mm"``, ``"4900 rpm"``,
+``"0.167 kg*m^2"``) or as a bare number. A bare number is taken in SI (m, kg, s, rad, rad/s, N,
+Pa...) unless the caller names a different default unit, as the command line does for options
+whose metavar names a unit (``--speed RPM``, ``--step DEG``). Everything below this layer works on
+SI floats.
+
+Notes on angles: pint treats the radian as dimensionless, so a bare 1/time unit cannot tell
+"rad/s" from "rev/s". crankdyn resolves it by kind: for a rotational ``speed`` a pure frequency
+(``Hz``, ``1/s``) means revolutions per second; for a ``frequency`` an angular unit (``rpm``,
+``rad/s``) is turned into cycles per second.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from functools import lru_cache
+
+from crankdyn.errors import InputError
+
+__all__ = ["KINDS", "Kind", "parse_quantity", "registry"]
+
+
+@dataclass(frozen=True)
+class Kind:
+    """A physical kind of quantity: its pint dimensionality, SI unit and an example."""
+
+    name: str  # "a length", used in messages
+    dimensionality: str  # pint dimensionality expression, e.g. "[length]"; "" = dimensionless
+    si_unit: str  # unit of the SI value crankdyn works in
+    example: str  # "76 mm"
+
+
+_T = "[time]"
+KINDS: dict[str, Kind] = {
+    "length": Kind("a length", "[length]", "m", "76 mm"),
+    "mass": Kind("a mass", "[mass]", "kg", "0.45 kg"),
+    "angle": Kind("an angle", "", "rad", "180 deg"),
+    "speed": Kind("a rotational speed", f"1/{_T}", "rad/s", "4900 rpm"),
+    "frequency": Kind("a frequency", f"1/{_T}", "Hz", "120 Hz"),
+    "time": Kind("a time", _T, "s", "0.1 s"),
+    "inertia": Kind("a moment of inertia", "[mass]*[length]**2", "kg*m^2", "0.167 kg*m^2"),
+    "torsional_stiffness": Kind(
+        "a torsional stiffness", f"[mass]*[length]**2/{_T}**2", "N*m/rad", "160 kN*m/rad"
+    ),
+    "torsional_damping": Kind(
+        "a torsional damping", f"[mass]*[length]**2/{_T}", "N*m*s/rad", "70 N*m*s/rad"
+    ),
+    "stiffness": Kind("a linear stiffness", f"[mass]/{_T}**2", "N/m", "2 MN/m"),
+    "damping": Kind("a linear damping", f"[mass]/{_T}", "N*s/m", "100 N*s/m"),
+    "pressure": Kind("a pressure", f"[mass]/[length]/{_T}**2", "Pa", "15 MPa"),
+    "force": Kind("a force", f"[mass]*[length]/{_T}**2", "N", "1200 N"),
+    "torque": Kind("a torque", f"[mass]*[length]**2/{_T}**2", "N*m", "250 N*m"),
+    "energy": Kind("an energy", f"[mass]*[length]**2/{_T}**2", "J", "1.2 kJ"),
+    "power": Kind("a power", f"[mass]*[length]**2/{_T}**3", "W", "95 kW"),
+    "density": Kind("a density", "[mass]/[length]**3", "kg/m^3", "7850 kg/m^3"),
+    "velocity": Kind("a velocity", f"[length]/{_T}", "m/s", "12 m/s"),
+    "acceleration": Kind("an acceleration", f"[length]/{_T}**2", "m/s^2", "9.81 m/s^2"),
+    "angular_acceleration": Kind("an angular acceleration", f"1/{_T}**2", "rad/s^2", "100 rad/s^2"),
+    "area": Kind("an area", "[length]**2", "m^2", "45 cm^2"),
+    "volume": Kind("a volume", "[length]**3", "m^3", "0.5 L"),
+    "ratio": Kind("a ratio", "", "", "0.26"),
+}
+# kinds used to name a wrong dimension in messages ("got a mass"), first match wins
+_DESCRIBE_ORDER = (
+    "length",
+    "mass",
+    "speed",
+    "time",
+    "inertia",
+    "torque",
+    "torsional_damping",
+    "stiffness",
+    "damping",
+    "pressure",
+    "force",
+    "power",
+    "density",
+    "velocity",
+    "acceleration",
+    "angular_acceleration",
+    "area",
+    "volume",
+)
+
+
+_NUMBER = re.compile(r"^\s*([-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
+_UNIT_TOKEN = re.compile(r"[A-Za-zµμΩ°%_]+|\d+(?:\.\d+)?|\*\*|[\^*/()\-\s.]")
+_SUPERSCRIPTS = str.maketrans({"²": "^2", "³": "^3", "·": "*", "⋅": "*", "−": "-"})
+_MAX_UNIT_CHARS = 40
+
+
+@lru_cache(maxsize=1)
+def registry():
+    """The shared pint registry (created on first use; creating it takes a fraction of a second)."""
+    import pint
+
+    ureg = pint.UnitRegistry()
+    ureg.define("r_per_min = revolution / minute")
+    return ureg
+
+
+@lru_cache(maxsize=64)
+def _dimensionality(expr: str):
+    ureg = registry()
+    if not expr:
+        return ureg.dimensionless.dimensionality
+    return ureg.get_dimensionality(expr)
+
+
+def _describe_dimension(dim) -> str:
+    if not dim:
+        return "a dimensionless number"
+    for key in _DESCRIBE_ORDER:
+        if _dimensionality(KINDS[key].dimensionality) == dim:
+            return KINDS[key].name
+    return f"a quantity of dimension {dim}"
+
+
+def _check_unit_text(text: str) -> bool:
+    """Accept only plain unit expressions: unit names, * / ^ ** ( ) and small literal exponents."""
+    if len(text) > _MAX_UNIT_CHARS:
+        return False
+    tokens = _UNIT_TOKEN.findall(text)
+    if "".join(tokens) != text:
+        return False
+    previous = ""
+    for i, tok in enumerate(tokens):
+        if tok[0].isdigit():
+            after_power = previous in ("^", "**") or (
+                previous == "-" and i >= 2 and tokens[i - 2] in ("^", "**")
+            )
+            one_over = tok == "1" and i + 1 < len(tokens) and tokens[i + 1].strip() in ("/", "")
+            if after_power:
+                if float(tok) > 12:
+                    return False
+            elif not one_over:
+                return False
+        if not tok.isspace():
+            previous = tok
+    return True
+
+
+def _unit_value(magnitude: float, unit_text: str, kind_key: str):
+    """Convert magnitude * unit to the SI value of kind; raise ValueError with a reason."""
+    ureg = registry()
+    kind = KINDS[kind_key]
+    try:
+        units = ureg.parse_units(unit_text)
+    except Exception as exc:  # pint raises several types (UndefinedUnitError, syntax errors)
+        raise ValueError(f"unknown unit {unit_text!r}") from exc
+    expected = _dimensionality(kind.dimensionality)
+    got = units.dimensionality
+    if got != expected:
+        raise ValueError(
+            f'expected {kind.name} (e.g. "{kind.example}"), got {_describe_dimension(got)}'
+        )
+    angular = "radian" in str(ureg.get_root_units(units)[1])
+    quantity = ureg.Quantity(magnitude, units)
+    if kind_key == "speed":
+        # a pure frequency (Hz, 1/s) for a rotational speed means revolutions per second
+        return (
+            quantity.to("rad/s").magnitude if angular else quantity.to("Hz").magnitude * 2 * math.pi
+        )
+    if kind_key == "frequency":
+        # an angular unit (rpm, rad/s) for a frequency is turned into cycles per second
+        return (
+            quantity.to("rad/s").magnitude / (2 * math.pi)
+            if angular
+            else quantity.to("Hz").magnitude
+        )
+    return float(quantity.to(kind.si_unit or "dimensionless").magnitude)
+
+
+def parse_quantity(
+    value: object,
+    kind: str,
+    *,
+    key: str | None = None,
+    file: str | None = None,
+    default_unit: str | None = None,
+) -> float:
+    """Parse a user quantity into an SI float.
+
+    Parameters
+    ----------
+    value
+        A number (taken in ``default_unit``, or SI when that is None) or a string such as
+        ``"76 mm"``; a string holding only a number is treated like a number.
+    kind
+        A key of :data:`KINDS` (``"length"``, ``"mass"``, ``"angle"``, ``"speed"``...).
+    key, file
+        Where the value came from, for the error message.
+    default_unit
+        Unit of bare numbers (e.g. ``"rpm"`` for a ``--speed`` option); SI when None.
+
+    Returns
+    -------
+    float
+        The value in the SI unit of ``kind`` (``KINDS[kind].si_unit``).
+
+    Raises
+    ------
+    InputError
+        For a value that is not a number or quantity, has an unknown unit, the wrong dimension,
+        or is not finite.
+    """
+    if kind not in KINDS:
+        raise KeyError(f"unknown quantity kind {kind!r}")
+    spec = KINDS[kind]
+
+    def fail(message: str) -> InputError:
+        return InputError(message, file=file, key=key, value=value)
+
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise fail(f'expected {spec.name} such as "{spec.example}"')
+    if isinstance(value, (int, float)):
+        magnitude, unit_text = float(value), ""
+    else:
+        text = value.translate(_SUPERSCRIPTS)
+        match = _NUMBER.match(text)
+        if not match:
+            raise fail(
+                f'expected a number with a unit, such as "{spec.example}"'
+                if text.strip()
+                else f'empty value; expected {spec.name} such as "{spec.example}"'
+            )
+        magnitude, unit_text = float(match.group(1)), match.group(2)
+    if not math.isfinite(magnitude):
+        raise fail("the value is not finite")
+    if not unit_text:
+        if default_unit is None:
+            return magnitude
+        unit_text = default_unit
+    elif not _check_unit_text(unit_text):
+        raise fail(f"unknown unit {unit_text!r}")
+    try:
+        result = _unit_value(magnitude, unit_text, kind)
+    except ValueError as exc:
+        raise fail(str(exc)) from None
+    if not math.isfinite(result):
+        raise fail("the value is not finite in SI units")
+    return result

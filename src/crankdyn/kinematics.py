@@ -1,0 +1,643 @@
+"""Slider-crank kinematics, central and offset: exact, second-order and Fourier-series forms.
+
+Numeric core: pure functions of SI floats and numpy arrays, vectorised over the crank angle.
+
+Sources
+-------
+- Seed 000 (course chapter "Dynamics of the crank-connecting-rod mechanism", section 1): exact and
+  approximate displacement, velocity, acceleration, rod angle and its rates, for the central and the
+  offset mechanism; dead-centre angles and true stroke of the offset mechanism.
+- Seed 002 (Makushev, Polyakova, Batrakov 2010, "Determining piston velocity and acceleration with
+  derivatives"): the exact coefficients A = x/R, B = v/(R w) = sin(phi+beta)/cos(beta) and
+  C = a/(R w^2) = cos(phi+beta)/cos(beta) + lambda cos^2(phi)/cos^3(beta) (its eqs. 3, 8 and 13);
+  the binomial (second-order) formulas (its eqs. 19-21); the mean-piston-speed classes (Table 1).
+
+Geometry (docs/conventions.md): crank centre at the origin, cylinder axis toward the head, the
+crank pin at R (sin phi, cos phi), the cylinder axis at lateral offset e, so that
+sin(beta) = lambda (sin(phi) - k) with lambda = R/L, k = e/R. The piston displacement x is measured
+from TDC toward the crank: x = y_TDC - (R cos(phi) + L cos(beta)), y_TDC = sqrt((R+L)^2 - e^2).
+Differentiating at constant w = dphi/dt (beta' = lambda cos(phi)/cos(beta)) gives
+
+    v = R w sin(phi + beta) / cos(beta)
+    a = R w^2 [cos(phi + beta)/cos(beta) + lambda cos^2(phi)/cos^3(beta)]
+    j = R w^3 [-sin(phi+beta)/cos(beta) - 3 lambda sin(phi) cos(phi)/cos^3(beta)
+               + 3 lambda^2 cos^3(phi) sin(beta)/cos^5(beta)]
+    w_L = w lambda cos(phi)/cos(beta)
+    e_L = w^2 [-lambda sin(phi)/cos(beta) + lambda^2 cos^2(phi) sin(beta)/cos^3(beta)]
+
+which for k = 0 reduce to seed 000's central forms, e.g. e_L = -lambda w^2 sin(phi) (1 - lambda^2)
+/ (1 - lambda^2 sin^2 phi)^(3/2).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import NamedTuple
+
+import numpy as np
+from scipy.optimize import brentq
+from scipy.special import binom
+
+from crankdyn.geometry import CrankGeometry
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = [
+    "METHODS",
+    "SPEED_CLASSES",
+    "CoefficientTable",
+    "Extremum",
+    "KinematicsResult",
+    "KinematicsSummary",
+    "SliderCrankMotion",
+    "coefficient_table",
+    "complex_step",
+    "dead_centres",
+    "local_extrema",
+    "piston_jerk",
+    "piston_kinematics",
+    "rod_angular_jerk",
+    "series_coefficients",
+    "slider_crank_approx",
+    "slider_crank_exact",
+    "slider_crank_series",
+    "speed_class",
+]
+
+
+def _angles(phi) -> np.ndarray:
+    """Crank angles as a float array; complex input is kept (complex-step differentiation)."""
+    arr = np.asarray(phi)
+    return arr if np.iscomplexobj(arr) else arr.astype(float)
+
+
+class SliderCrankMotion(NamedTuple):
+    """Piston and rod motion at a set of crank angles (SI arrays of the same shape)."""
+
+    displacement: np.ndarray  # x from TDC toward the crank (m)
+    velocity: np.ndarray  # dx/dt (m/s)
+    acceleration: np.ndarray  # d2x/dt2 (m/s^2)
+    rod_angle: np.ndarray  # beta (rad)
+    rod_angular_velocity: np.ndarray  # dbeta/dt (rad/s)
+    rod_angular_acceleration: np.ndarray  # d2beta/dt2 (rad/s^2)
+
+
+def dead_centres(crank_radius: float, rod_length: float, offset: float = 0.0):
+    """Crank angles of TDC and BDC and the true stroke of an (offset) slider-crank.
+
+    Seed 000 section 1.2: at TDC crank and rod are in line and extended, at BDC folded, so
+    sin(phi_TDC) = e/(L+R) and sin(phi_BDC - pi) = e/(L-R), i.e.
+    phi_TDC = arcsin(lambda k/(1+lambda)), phi_BDC = pi + arcsin(lambda k/(1-lambda)), and the
+    stroke S = sqrt((L+R)^2 - e^2) - sqrt((L-R)^2 - e^2) (>= 2R).
+
+    Parameters
+    ----------
+    crank_radius, rod_length, offset
+        R, L, e (m).
+
+    Returns
+    -------
+    tuple of float
+        phi_TDC (rad), phi_BDC (rad), stroke (m).
+    """
+    r, l, e = float(crank_radius), float(rod_length), float(offset)
+    phi_tdc = math.asin(e / (l + r))
+    phi_bdc = math.pi + math.asin(e / (l - r))
+    stroke = math.sqrt((l + r) ** 2 - e**2) - math.sqrt((l - r) ** 2 - e**2)
+    return phi_tdc, phi_bdc, stroke
+
+
+def slider_crank_exact(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> SliderCrankMotion:
+    """Exact piston and rod motion (seed 000 section 1, seed 002 eqs. 3, 8, 13).
+
+    Parameters
+    ----------
+    phi
+        Crank angle (rad) from the cylinder axis, positive in the direction of rotation; array.
+    crank_radius, rod_length, offset
+        R, L, e (m).
+    omega
+        Crank angular speed (rad/s), constant.
+
+    Returns
+    -------
+    SliderCrankMotion
+        Displacement (m), velocity (m/s), acceleration (m/s^2), rod angle (rad), rod angular
+        velocity (rad/s) and angular acceleration (rad/s^2).
+    """
+    phi = _angles(phi)
+    r, l, e, w = float(crank_radius), float(rod_length), float(offset), float(omega)
+    lam, k = r / l, e / r
+    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
+    sin_b = lam * (sin_phi - k)
+    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    beta = np.arcsin(sin_b)
+    y_tdc = math.sqrt((l + r) ** 2 - e * e)
+    x = y_tdc - (r * cos_phi + l * cos_b)
+    sin_pb = sin_phi * cos_b + cos_phi * sin_b  # sin(phi + beta)
+    cos_pb = cos_phi * cos_b - sin_phi * sin_b  # cos(phi + beta)
+    v = r * w * sin_pb / cos_b
+    a = r * w * w * (cos_pb / cos_b + lam * cos_phi**2 / cos_b**3)
+    w_rod = w * lam * cos_phi / cos_b
+    e_rod = w * w * (-lam * sin_phi / cos_b + lam * lam * cos_phi**2 * sin_b / cos_b**3)
+    return SliderCrankMotion(x, v, a, beta, w_rod, e_rod)
+
+
+def piston_jerk(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> np.ndarray:
+    """Exact piston jerk da/dt (m/s^3) at constant crank speed (derivative of seed 002 eq. 13)."""
+    phi = _angles(phi)
+    r, l, e, w = float(crank_radius), float(rod_length), float(offset), float(omega)
+    lam = r / l
+    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
+    sin_b = lam * (sin_phi - e / r)
+    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    sin_pb = sin_phi * cos_b + cos_phi * sin_b
+    return (
+        r
+        * w**3
+        * (
+            -sin_pb / cos_b
+            - 3.0 * lam * sin_phi * cos_phi / cos_b**3
+            + 3.0 * lam * lam * cos_phi**3 * sin_b / cos_b**5
+        )
+    )
+
+
+def rod_angular_jerk(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> np.ndarray:
+    """Time derivative of the rod angular acceleration (rad/s^3), exact, constant crank speed."""
+    phi = _angles(phi)
+    r, l, e, w = float(crank_radius), float(rod_length), float(offset), float(omega)
+    lam = r / l
+    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
+    sin_b = lam * (sin_phi - e / r)
+    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    db = lam * cos_phi / cos_b
+    return w**3 * (
+        -lam * cos_phi / cos_b
+        - lam * sin_phi * sin_b * db / cos_b**2
+        - 2.0 * lam * lam * cos_phi * sin_phi * sin_b / cos_b**3
+        + lam * lam * cos_phi**2 * db * (cos_b**2 + 3.0 * sin_b**2) / cos_b**4
+    )
+
+
+def slider_crank_approx(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> SliderCrankMotion:
+    """The seeds' approximate (second-order) formulas.
+
+    Central (seed 000 section 1.1; seed 002 eqs. 19-21), with the offset terms of seed 000
+    section 1.2 (u = lambda (sin phi - k)):
+
+        x = R [(1 - cos phi) + lambda/4 (1 - cos 2phi) - lambda k sin phi]
+        v = R w [sin phi + lambda/2 sin 2phi - lambda k cos phi]
+        a = R w^2 [cos phi + lambda cos 2phi + lambda k sin phi]
+        beta = u + u^3/6,   w_L = lambda w cos phi (1 + u^2/2),
+        e_L = lambda w^2 [-sin phi (1 + u^2/2) + lambda u cos^2 phi]
+
+    (the rod formulas are the Taylor expansions of arcsin and 1/cos beta; for k = 0,
+    e_L = -lambda w^2 sin phi [1 + lambda^2 (1 - 3 cos^2 phi)/2]).
+    """
+    phi = _angles(phi)
+    r, l, e, w = float(crank_radius), float(rod_length), float(offset), float(omega)
+    lam, k = r / l, e / r
+    s, c = np.sin(phi), np.cos(phi)
+    x = r * ((1.0 - c) + lam / 4.0 * (1.0 - np.cos(2 * phi)) - lam * k * s)
+    v = r * w * (s + lam / 2.0 * np.sin(2 * phi) - lam * k * c)
+    a = r * w * w * (c + lam * np.cos(2 * phi) + lam * k * s)
+    u = lam * (s - k)
+    beta = u + u**3 / 6.0
+    w_rod = lam * w * c * (1.0 + u * u / 2.0)
+    e_rod = lam * w * w * (-s * (1.0 + u * u / 2.0) + lam * u * c * c)
+    return SliderCrankMotion(x, v, a, beta, w_rod, e_rod)
+
+
+def series_coefficients(lam: float, k: float = 0.0, order: int = 2):
+    """Fourier coefficients of the piston displacement, consistently expanded in lambda.
+
+    The exact displacement is x/R = y_TDC/R - cos(phi) - cos(beta)/lambda with
+    cos(beta) = sqrt(1 - u^2) = sum_n c_n u^(2n), c_n = (-1)^n binom(1/2, n),
+    u = lambda (sin phi - k).
+    Truncating the binomial series after n = N = order/2 keeps every term up to lambda^(2N-1) and
+    harmonics up to 2N. For k = 0 only even harmonics remain and the acceleration is
+    a/(R w^2) = cos(phi) + A2 cos(2phi) + A4 cos(4phi) + ..., with the classical
+    A2 = lambda + lambda^3/4 + 15 lambda^5/128 + ..., A4 = -(lambda^3/4 + 3 lambda^5/16 + ...),
+    A6 = 9 lambda^5/128 + ...; order = 2 is the seeds' second-order formula
+    (seed 002 eq. 19, seed 000 section 1), and the series converges to the exact motion.
+
+    Parameters
+    ----------
+    lam, k
+        lambda = R/L and k = e/R (dimensionless).
+    order
+        Highest harmonic kept; an even number >= 2.
+
+    Returns
+    -------
+    cos_coeffs, sin_coeffs : numpy.ndarray
+        Arrays of length order + 1: x/R = sum_m cos_coeffs[m] cos(m phi) + sin_coeffs[m] sin(m phi)
+        (dimensionless; index m is the harmonic order, sin_coeffs[0] = 0).
+    """
+    if order < 2 or order % 2:
+        raise ValueError("order must be an even number >= 2")
+    n_max = order // 2
+    # Laurent polynomial of u/lambda = sin(phi) - k in z = exp(i phi), exponents -1, 0, 1
+    base = np.array([0.5j, -k, -0.5j], dtype=complex)
+    total = np.zeros(2 * order + 1, dtype=complex)  # exponents -order..order
+    power = np.array([1.0 + 0j])
+    for n in range(1, n_max + 1):
+        power = np.convolve(np.convolve(power, base), base)  # (sin phi - k)^(2n)
+        c_n = (-1.0) ** n * binom(0.5, n)
+        mid = (power.size - 1) // 2
+        total[order - mid : order + mid + 1] += c_n * lam ** (2 * n - 1) * power
+    # x/R = y_TDC/R - cos(phi) - [1/lambda + sum_n c_n lambda^(2n-1) (sin phi - k)^(2n)]
+    y_tdc = math.sqrt((1.0 + 1.0 / lam) ** 2 - k * k)
+    cos_coeffs = np.zeros(order + 1)
+    sin_coeffs = np.zeros(order + 1)
+    cos_coeffs[0] = y_tdc - 1.0 / lam - total[order].real
+    for m in range(1, order + 1):
+        s_m = total[order + m]
+        cos_coeffs[m] = -2.0 * s_m.real
+        sin_coeffs[m] = 2.0 * s_m.imag
+    cos_coeffs[1] -= 1.0
+    return cos_coeffs, sin_coeffs
+
+
+def slider_crank_series(
+    phi, crank_radius, rod_length, offset=0.0, omega=1.0, order=2
+) -> SliderCrankMotion:
+    """Piston motion from the lambda-series of :func:`series_coefficients`, to a given order.
+
+    Velocity and acceleration are the exact derivatives of the truncated series. The rod
+    quantities are the exact ones (the series concerns the piston motion).
+    """
+    phi = _angles(phi)
+    r, w = float(crank_radius), float(omega)
+    cos_c, sin_c = series_coefficients(r / float(rod_length), float(offset) / r, order)
+    m = np.arange(cos_c.size)
+    mphi = np.multiply.outer(phi, m)
+    cos_m, sin_m = np.cos(mphi), np.sin(mphi)
+    x = r * (cos_m @ cos_c + sin_m @ sin_c)
+    v = r * w * (-sin_m @ (m * cos_c) + cos_m @ (m * sin_c))
+    a = -r * w * w * (cos_m @ (m * m * cos_c) + sin_m @ (m * m * sin_c))
+    exact = slider_crank_exact(phi, crank_radius, rod_length, offset, omega)
+    return SliderCrankMotion(
+        x, v, a, exact.rod_angle, exact.rod_angular_velocity, exact.rod_angular_acceleration
+    )
+
+
+# ---- extrema ----------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Extremum:
+    """A local extremum of a periodic function of the crank angle."""
+
+    kind: str  # "max" or "min"
+    angle: float  # crank angle (rad), 0 <= angle < 2 pi
+    value: float  # function value (SI)
+
+
+def complex_step(f, h: float = 1e-30):
+    """Derivative of a real-analytic vectorised f by the complex step Im f(x + ih) / h.
+
+    Exact to machine precision (no subtractive cancellation); every core function here accepts
+    complex angles for this purpose (Squire and Trapp 1998, SIAM Review 40, 110-112).
+    """
+    return lambda x: np.imag(f(np.asarray(x, dtype=float) + 1j * h)) / h
+
+
+def local_extrema(f, df=None, n: int = 1440) -> list[Extremum]:
+    """Local extrema over one revolution of a smooth 2 pi-periodic f, from the zeros of df.
+
+    Sign changes of the derivative df on an n-point grid bracket the extrema; each is
+    refined with Brent's method to machine precision.
+
+    Parameters
+    ----------
+    f, df
+        Vectorised callables of the crank angle (rad); df defaults to the complex-step derivative
+        of f.
+    n
+        Grid points per revolution (the bracket width is 2 pi / n).
+
+    Returns
+    -------
+    list of Extremum, sorted by angle.
+    """
+    if df is None:
+        df = complex_step(f)
+    grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
+    d = df(grid)
+    out: list[Extremum] = []
+    for i in range(n):
+        d0, d1 = d[i], d[i + 1]
+        if d0 == 0.0:
+            root = grid[i]
+        elif d0 * d1 < 0.0:
+            root = brentq(lambda t: float(df(np.array([t]))[0]), grid[i], grid[i + 1], xtol=1e-14)
+        else:
+            continue
+        before = df(np.array([root - 1e-6]))[0]
+        after = df(np.array([root + 1e-6]))[0]
+        if before > 0.0 > after:
+            kind = "max"
+        elif before < 0.0 < after:
+            kind = "min"
+        else:
+            continue  # a stationary point that is not an extremum
+        angle = float(np.mod(root, 2.0 * math.pi))
+        if any(abs(angle - x.angle) < 1e-9 for x in out):
+            continue
+        out.append(Extremum(kind, angle, float(f(np.array([root]))[0])))
+    out.sort(key=lambda x: x.angle)
+    return out
+
+
+# ---- piston speed classes (seed 002 Table 1) -----------------------------------------------------
+
+SPEED_CLASSES: tuple[tuple[float, str], ...] = (
+    (6.0, "low-speed"),
+    (9.0, "medium-speed"),
+    (12.0, "high-speed"),
+    (math.inf, "very high-speed"),
+)
+"""Upper bounds (m/s) of the mean-piston-speed classes of seed 002 Table 1: low-speed 5-6 m/s,
+medium 6-9, high 9-12, very high above 12 (below 5 m/s is also classed low-speed)."""
+
+
+def speed_class(mean_piston_speed: float) -> str:
+    """Speed class of an engine from its mean piston speed c_m (m/s), seed 002 Table 1."""
+    for bound, name in SPEED_CLASSES:
+        if mean_piston_speed <= bound:
+            return name
+    return SPEED_CLASSES[-1][1]
+
+
+# ---- analysis: result objects --------------------------------------------------------------
+
+METHODS = ("exact", "approx", "series")
+
+
+def _motion_function(method: str, order: int):
+    if method == "exact":
+        return slider_crank_exact
+    if method == "approx":
+        return slider_crank_approx
+    if method == "series":
+        return lambda phi, r, l, e, w: slider_crank_series(phi, r, l, e, w, order)
+    raise ValueError(f"unknown method {method!r}; expected one of {', '.join(METHODS)}")
+
+
+@dataclass(frozen=True)
+class AccelerationExtremum(Result):
+    """One local extremum of the piston acceleration."""
+
+    kind: str = scalar("kind", "Extremum", "")
+    crank_angle: float = scalar("crank_angle_deg", "Crank angle", "deg", DEG)
+    acceleration: float = scalar("acceleration_m_s2", "Acceleration", "m/s²")
+
+
+@dataclass(frozen=True)
+class KinematicsSummary(Result):
+    """Summary figures of the slider-crank motion at one speed (seed 000 section 1, seed 002)."""
+
+    title = "Slider-crank kinematics"
+    method: str = scalar("method", "Method", "")
+    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    lam: float = scalar("lambda", "Crank-rod ratio λ = R/L", "", fmt=".5g")
+    k: float = scalar("offset_ratio", "Offset ratio k = e/R", "", fmt=".5g")
+    stroke: float = scalar("stroke_m", "Stroke", "m")
+    tdc_crank_angle: float = scalar("tdc_crank_angle_deg", "TDC crank angle", "deg", DEG)
+    bdc_crank_angle: float = scalar("bdc_crank_angle_deg", "BDC crank angle", "deg", DEG)
+    mean_piston_speed: float = scalar("mean_piston_speed_m_s", "Mean piston speed c_m", "m/s")
+    speed_class: str = scalar("speed_class", "Speed class (seed 002 Table 1)", "")
+    max_velocity: float = scalar("max_velocity_m_s", "Max piston speed", "m/s")
+    crank_angle_at_max_velocity: float = scalar(
+        "crank_angle_at_max_velocity_deg", "Crank angle at max speed", "deg", DEG
+    )
+    velocity_ratio: float = scalar("max_to_mean_velocity", "v_max / c_m", "", fmt=".4g")
+    min_velocity: float = scalar("min_velocity_m_s", "Min piston speed (return)", "m/s")
+    crank_angle_at_min_velocity: float = scalar(
+        "crank_angle_at_min_velocity_deg", "Crank angle at min speed", "deg", DEG
+    )
+    max_acceleration: float = scalar("max_acceleration_m_s2", "Max acceleration", "m/s²")
+    crank_angle_at_max_acceleration: float = scalar(
+        "crank_angle_at_max_acceleration_deg", "Crank angle at max acceleration", "deg", DEG
+    )
+    min_acceleration: float = scalar("min_acceleration_m_s2", "Min acceleration", "m/s²")
+    crank_angle_at_min_acceleration: float = scalar(
+        "crank_angle_at_min_acceleration_deg", "Crank angle at min acceleration", "deg", DEG
+    )
+    acceleration_extrema: tuple[AccelerationExtremum, ...] = scalar(
+        "acceleration_extrema", "Acceleration extrema", ""
+    )
+    max_rod_angle: float = scalar("max_rod_angle_deg", "Max rod angle", "deg", DEG)
+    min_rod_angle: float = scalar("min_rod_angle_deg", "Min rod angle", "deg", DEG)
+    max_rod_angular_velocity: float = scalar(
+        "max_rod_angular_velocity_rad_s", "Max rod angular velocity", "rad/s"
+    )
+    min_rod_angular_velocity: float = scalar(
+        "min_rod_angular_velocity_rad_s", "Min rod angular velocity", "rad/s"
+    )
+    max_rod_angular_acceleration: float = scalar(
+        "max_rod_angular_acceleration_rad_s2", "Max rod angular acceleration", "rad/s²"
+    )
+    min_rod_angular_acceleration: float = scalar(
+        "min_rod_angular_acceleration_rad_s2", "Min rod angular acceleration", "rad/s²"
+    )
+
+
+@dataclass(frozen=True)
+class KinematicsResult(Result):
+    """Piston and rod motion over one revolution, with its summary."""
+
+    title = "Slider-crank kinematics"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
+    displacement: np.ndarray = column("displacement_m", "Piston displacement", "m")
+    velocity: np.ndarray = column("velocity_m_s", "Piston velocity", "m/s")
+    acceleration: np.ndarray = column("acceleration_m_s2", "Piston acceleration", "m/s²")
+    rod_angle: np.ndarray = column("rod_angle_deg", "Rod angle", "deg", DEG)
+    rod_angular_velocity: np.ndarray = column(
+        "rod_angular_velocity_rad_s", "Rod angular velocity", "rad/s"
+    )
+    rod_angular_acceleration: np.ndarray = column(
+        "rod_angular_acceleration_rad_s2", "Rod angular acceleration", "rad/s²"
+    )
+    summary: KinematicsSummary = scalar("summary", "Summary", "")
+    geometry: CrankGeometry | None = field(default=None, repr=False)
+
+    def plot(self, fig=None):
+        """Piston and rod motion vs crank angle; returns the matplotlib Figure."""
+        from crankdyn.plots.kinematics import plot_kinematics
+
+        return plot_kinematics(self, fig=fig)
+
+
+def piston_kinematics(
+    geometry: CrankGeometry,
+    speed: float,
+    angles=None,
+    *,
+    step: float = math.radians(1.0),
+    method: str = "exact",
+    order: int = 2,
+) -> KinematicsResult:
+    """Slider-crank kinematics of one cylinder at a constant crank speed.
+
+    Parameters
+    ----------
+    geometry
+        The crank geometry (SI).
+    speed
+        Crank speed w (rad/s).
+    angles
+        Crank angles (rad); default 0 to 2 pi inclusive every ``step``.
+    step
+        Angle step (rad) of the default grid.
+    method
+        ``"exact"``, ``"approx"`` (seed 000/002 second-order formulas) or ``"series"`` (the
+        lambda-series to harmonic ``order``, :func:`series_coefficients`).
+    order
+        Series order (even, >= 2) for ``method="series"``.
+
+    Returns
+    -------
+    KinematicsResult
+        Arrays over the crank angle and the :class:`KinematicsSummary`; the summary's extrema
+        are those of the chosen method's formulas, found from the zeros of their exact
+        (complex-step) derivatives.
+    """
+    motion = _motion_function(method, order)
+    r, l, e, w = geometry.crank_radius, geometry.rod_length, geometry.offset, float(speed)
+    if angles is None:
+        count = round(2.0 * math.pi / step)
+        angles = np.linspace(0.0, 2.0 * math.pi, count + 1)
+    phi = np.asarray(angles, dtype=float)
+    m = motion(phi, r, l, e, w)
+    summary = _summary(motion, geometry, w, method)
+    return KinematicsResult(
+        crank_angle=freeze(phi),
+        displacement=freeze(m.displacement),
+        velocity=freeze(m.velocity),
+        acceleration=freeze(m.acceleration),
+        rod_angle=freeze(m.rod_angle),
+        rod_angular_velocity=freeze(m.rod_angular_velocity),
+        rod_angular_acceleration=freeze(m.rod_angular_acceleration),
+        summary=summary,
+        geometry=geometry,
+    )
+
+
+def _summary(motion, geometry: CrankGeometry, w: float, method: str) -> KinematicsSummary:
+    r, l, e = geometry.crank_radius, geometry.rod_length, geometry.offset
+    phi_tdc, phi_bdc, stroke = dead_centres(r, l, e)
+    mean_speed = stroke * abs(w) / math.pi  # c_m = S n / 30 (seed 002 eq. 9)
+
+    def quantity(index):
+        return lambda p: motion(p, r, l, e, w)[index]
+
+    def pick(extrema, kind):
+        # the largest maximum (smallest minimum); of equal ones (symmetry) the first by angle
+        chosen = [x for x in extrema if x.kind == kind]
+        best = (max if kind == "max" else min)(x.value for x in chosen)
+        scale = max(abs(x.value) for x in extrema) or 1.0
+        return next(x for x in chosen if abs(x.value - best) <= 1e-9 * scale)
+
+    v_ext = local_extrema(quantity(1))
+    a_ext = local_extrema(quantity(2))
+    vmax, vmin = pick(v_ext, "max"), pick(v_ext, "min")
+    amax, amin = pick(a_ext, "max"), pick(a_ext, "min")
+    rod_rate = local_extrema(quantity(4))
+    rod_acc = local_extrema(quantity(5))
+    beta = motion(np.array([math.pi / 2, 3 * math.pi / 2]), r, l, e, w).rod_angle
+    return KinematicsSummary(
+        method=method,
+        speed=w,
+        lam=geometry.lam,
+        k=geometry.k,
+        stroke=stroke,
+        tdc_crank_angle=phi_tdc,
+        bdc_crank_angle=phi_bdc,
+        mean_piston_speed=mean_speed,
+        speed_class=speed_class(mean_speed),
+        max_velocity=vmax.value,
+        crank_angle_at_max_velocity=vmax.angle,
+        velocity_ratio=vmax.value / mean_speed if mean_speed > 0 else math.nan,
+        min_velocity=vmin.value,
+        crank_angle_at_min_velocity=vmin.angle,
+        max_acceleration=amax.value,
+        crank_angle_at_max_acceleration=amax.angle,
+        min_acceleration=amin.value,
+        crank_angle_at_min_acceleration=amin.angle,
+        acceleration_extrema=tuple(AccelerationExtremum(x.kind, x.angle, x.value) for x in a_ext),
+        max_rod_angle=float(max(beta)),
+        min_rod_angle=float(min(beta)),
+        max_rod_angular_velocity=pick(rod_rate, "max").value,
+        min_rod_angular_velocity=pick(rod_rate, "min").value,
+        max_rod_angular_acceleration=pick(rod_acc, "max").value,
+        min_rod_angular_acceleration=pick(rod_acc, "min").value,
+    )
+
+
+@dataclass(frozen=True)
+class CoefficientTable(Result):
+    """Dimensionless piston-motion coefficients vs crank angle for several lambda values.
+
+    A = x/R, B = v/(R w), C = a/(R w^2) of seed 002 (eqs. 3, 8, 13) and seed 000 section 1; row i of
+    each 2-D array belongs to ``lambdas[i]``.
+    """
+
+    title = "Piston motion coefficients"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
+    displacement: np.ndarray = column("displacement_coefficient", "A = x/R", "")
+    velocity: np.ndarray = column("velocity_coefficient", "B = v/(Rω)", "")
+    acceleration: np.ndarray = column("acceleration_coefficient", "C = a/(Rω²)", "")
+    lambdas: np.ndarray = scalar("lambda", "λ = R/L", "", fmt=".5g")
+    method: str = scalar("method", "Method", "")
+
+    def columns(self):
+        """Columns named after their lambda: ``A_0.26``, ``B_0.26``, ``C_0.26``..."""
+        out = {"crank_angle_deg": self.crank_angle * DEG}
+        for letter, values in (
+            ("A", self.displacement),
+            ("B", self.velocity),
+            ("C", self.acceleration),
+        ):
+            for lam, row in zip(self.lambdas, values, strict=True):
+                out[f"{letter}_{lam:.5g}"] = row
+        return out
+
+    def column_labels(self):
+        labels = {"crank_angle_deg": ("Crank angle", "deg")}
+        for letter in "ABC":
+            for lam in self.lambdas:
+                labels[f"{letter}_{lam:.5g}"] = (f"{letter} (λ={lam:.4g})", "")
+        return labels
+
+
+def coefficient_table(
+    lambdas, angles, *, offset_ratio: float = 0.0, method: str = "exact", order: int = 2
+) -> CoefficientTable:
+    """The seeds' coefficient tables: A, B, C vs crank angle for each lambda (R = 1, w = 1).
+
+    Parameters
+    ----------
+    lambdas
+        Crank-rod ratios (dimensionless), each 0 < lambda < 1.
+    angles
+        Crank angles (rad).
+    offset_ratio
+        k = e/R (dimensionless), the same for every lambda.
+    method, order
+        As for :func:`piston_kinematics`.
+    """
+    motion = _motion_function(method, order)
+    phi = np.asarray(angles, dtype=float)
+    lam = np.atleast_1d(np.asarray(lambdas, dtype=float))
+    rows = [motion(phi, 1.0, 1.0 / x, offset_ratio, 1.0) for x in lam]
+    return CoefficientTable(
+        crank_angle=freeze(phi),
+        displacement=freeze([m.displacement for m in rows]),
+        velocity=freeze([m.velocity for m in rows]),
+        acceleration=freeze([m.acceleration for m in rows]),
+        lambdas=freeze(lam),
+        method=method,
+    )

@@ -1,0 +1,195 @@
+"""Result objects: named SI arrays with JSON/CSV export, an HTML summary and plots.
+
+A result is a frozen dataclass that mixes in :class:`Result`. Its public fields are declared with
+:func:`column` (an array over the main axis of the result, e.g. crank angle or speed),
+:func:`array` (any other array, e.g. one row per cylinder or a mode-shape matrix) or
+:func:`scalar` (a figure), each with its JSON key (unit in the key, DESIGN.md), a label and a unit
+for tables, and the factor from the SI value held in memory to the value written (1 except for
+angles, which are held in rad and written in deg under a ``_deg`` key). Fields without this
+metadata are internal and are not exported.
+
+Everything else follows: :meth:`Result.to_dict`, :meth:`Result.to_json`, :meth:`Result.to_csv`,
+:meth:`Result.summary_rows` and the notebook view :meth:`Result._repr_html_`.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+import json
+import math
+from dataclasses import field, fields
+from typing import Any
+
+import numpy as np
+
+__all__ = ["DEG", "Result", "array", "column", "freeze", "scalar"]
+
+DEG = 180.0 / math.pi  # scale for rad -> deg in exported keys
+
+
+def _meta(kind, key, label, unit, scale, **extra) -> dict:
+    return {"kind": kind, "key": key, "label": label, "unit": unit, "scale": scale, **extra}
+
+
+def column(key: str, label: str, unit: str, scale: float = 1.0, **kw):
+    """A field holding an array over the result's main axis (one CSV/table column per row)."""
+    return field(metadata=_meta("column", key, label, unit, scale), **kw)
+
+
+def array(key: str, label: str, unit: str, scale: float = 1.0, **kw):
+    """A field holding any other array (exported to JSON as nested lists)."""
+    return field(metadata=_meta("array", key, label, unit, scale), **kw)
+
+
+def scalar(key: str, label: str, unit: str, scale: float = 1.0, fmt: str = ".6g", **kw):
+    """A field holding a single figure (number, string, bool or a nested Result / list of them)."""
+    return field(metadata=_meta("scalar", key, label, unit, scale, fmt=fmt), **kw)
+
+
+def freeze(values, dtype=float) -> np.ndarray:
+    """A read-only copy of values as a numpy array (result arrays are immutable)."""
+    arr = np.array(values, dtype=dtype, copy=True)
+    arr.setflags(write=False)
+    return arr
+
+
+def _to_jsonable(value: Any, scale: float) -> Any:
+    if isinstance(value, Result):
+        return value.to_dict()
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in "fc":
+            out = value * scale if scale != 1.0 else value
+            return [_to_jsonable(v, 1.0) for v in out] if out.ndim > 1 else _clean(out.tolist())
+        if value.dtype.kind in "iub":
+            return value.tolist()
+        return [_to_jsonable(v, scale) for v in value.tolist()]
+    if isinstance(value, (list, tuple)):
+        return [_to_jsonable(v, scale) for v in value]
+    if isinstance(value, dict):
+        return {str(k): _to_jsonable(v, scale) for k, v in value.items()}
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        number = float(value) * scale
+        return number if math.isfinite(number) else None
+    return value
+
+
+def _clean(values: list) -> list:
+    """Replace NaN/inf by None so the JSON is strict."""
+    return [
+        (None if isinstance(v, float) and not math.isfinite(v) else v)
+        for v in (_clean(v) if isinstance(v, list) else v for v in values)
+    ]
+
+
+class Result:
+    """Mixin for result dataclasses; see the module docstring."""
+
+    # ---- field introspection ------------------------------------------------------------------
+    def _fields(self, *kinds: str):
+        for f in fields(self):  # type: ignore[arg-type]
+            meta = f.metadata
+            if meta.get("kind") in kinds:
+                yield f, meta, getattr(self, f.name)
+
+    # ---- export -------------------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict: SI values (degrees where the key says ``_deg``), unit in the key."""
+        out: dict[str, Any] = {}
+        for _f, meta, value in self._fields("column", "array", "scalar"):
+            if value is None:
+                continue
+            out[meta["key"]] = _to_jsonable(value, meta["scale"])
+        return out
+
+    def to_json(self, indent: int | None = 2) -> str:
+        """Strict JSON text of :meth:`to_dict` (NaN and inf written as null)."""
+        return json.dumps(self.to_dict(), indent=indent, allow_nan=False)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The column fields as {key: 1-D array} in export units; a 2-D column field of shape
+        (m, n) becomes m columns ``key_1`` ... ``key_m``."""
+        out: dict[str, np.ndarray] = {}
+        for _f, meta, value in self._fields("column"):
+            if value is None:
+                continue
+            arr = np.asarray(value, dtype=float) * meta["scale"]
+            if arr.ndim == 1:
+                out[meta["key"]] = arr
+            else:
+                for i, row in enumerate(arr.reshape(arr.shape[0], -1), start=1):
+                    out[f"{meta['key']}_{i}"] = row
+        return out
+
+    def column_labels(self) -> dict[str, tuple[str, str]]:
+        """{column key: (label, unit)} for the columns of :meth:`columns`."""
+        out: dict[str, tuple[str, str]] = {}
+        for _f, meta, value in self._fields("column"):
+            if value is None:
+                continue
+            arr = np.asarray(value)
+            if arr.ndim == 1:
+                out[meta["key"]] = (meta["label"], meta["unit"])
+            else:
+                for i in range(1, arr.shape[0] + 1):
+                    out[f"{meta['key']}_{i}"] = (f"{meta['label']} {i}", meta["unit"])
+        return out
+
+    def to_csv(self) -> str:
+        """CSV text of the column fields, one row per point, header = JSON keys."""
+        cols = self.columns()
+        buffer = io.StringIO()
+        writer = csv.writer(buffer, lineterminator="\n")
+        writer.writerow(list(cols))
+        if cols:
+            for row in zip(*cols.values(), strict=True):
+                writer.writerow([f"{v:.10g}" for v in row])
+        return buffer.getvalue()
+
+    def summary_rows(self) -> list[tuple[str, str, str]]:
+        """(label, formatted value, unit) for every scalar figure, nested results flattened."""
+        rows: list[tuple[str, str, str]] = []
+        for _f, meta, value in self._fields("scalar"):
+            if value is None:
+                continue
+            if isinstance(value, Result):
+                rows.extend(value.summary_rows())
+                continue
+            if isinstance(value, (list, tuple)) and value and isinstance(value[0], Result):
+                continue  # lists of sub-results are exported, not summarised
+            rows.append((meta["label"], _format(value, meta), meta["unit"]))
+        return rows
+
+    # ---- notebook view ------------------------------------------------------------------------
+    def _repr_html_(self) -> str:
+        title = html.escape(getattr(self, "title", type(self).__name__))
+        rows = "".join(
+            f"<tr><th style='text-align:left'>{html.escape(label)}</th>"
+            f"<td>{html.escape(value)}</td><td>{html.escape(unit)}</td></tr>"
+            for label, value, unit in self.summary_rows()
+        )
+        cols = self.column_labels()
+        shape = ""
+        if cols:
+            n = len(next(iter(self.columns().values())))
+            names = ", ".join(html.escape(k) for k in cols)
+            shape = f"<p>{n} points: {names}</p>"
+        return f"<div><strong>{title}</strong><table>{rows}</table>{shape}</div>"
+
+
+def _format(value: Any, meta: dict) -> str:
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    if isinstance(value, (int, np.integer)):
+        return str(int(value))
+    if isinstance(value, (float, np.floating)):
+        number = float(value) * meta["scale"]
+        return format(number, meta.get("fmt", ".6g")) if math.isfinite(number) else "-"
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return ", ".join(_format(v, meta) for v in value)
+    return str(value)
