@@ -49,29 +49,19 @@ class BearingLoads(Result):
     the cycle (module docstring for frames and signs)."""
 
     title = "Crank-pin and main-bearing loads"
-    crank_angle: np.ndarray = column(
-        "crank_angle_deg", "Crankshaft angle (0 at cylinder 1 firing TDC)", "deg", DEG
-    )
-    pin_load: np.ndarray = column("crank_pin_load_N", "Crank-pin load, throw", "N")
-    pin_load_angle: np.ndarray = column(
-        "crank_pin_load_angle_deg", "Crank-pin load direction, throw", "deg", DEG
-    )
-    pin_tangential: np.ndarray = column(
-        "crank_pin_load_tangential_N", "Crank-pin load tangential, throw", "N"
-    )
-    pin_radial: np.ndarray = column(
-        "crank_pin_load_radial_N", "Crank-pin load radial (to centre), throw", "N"
-    )
-    bearing_load: np.ndarray = column("main_bearing_load_N", "Main-bearing load, bearing", "N")
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    pin_load: np.ndarray = column("crank_pin_load_N", "Pin load", "N")
+    pin_load_angle: np.ndarray = column("crank_pin_load_angle_deg", "Pin load angle", "deg", DEG)
+    pin_tangential: np.ndarray = column("crank_pin_load_tangential_N", "Pin tangential", "N")
+    pin_radial: np.ndarray = column("crank_pin_load_radial_N", "Pin radial", "N")
+    bearing_load: np.ndarray = column("main_bearing_load_N", "Main bearing", "N")
     bearing_load_angle: np.ndarray = column(
-        "main_bearing_load_angle_deg", "Main-bearing load direction, bearing", "deg", DEG
+        "main_bearing_load_angle_deg", "Main bearing angle", "deg", DEG
     )
     bearing_horizontal: np.ndarray = column(
-        "main_bearing_load_horizontal_N", "Main-bearing load horizontal, bearing", "N"
+        "main_bearing_load_horizontal_N", "Main bearing horiz.", "N"
     )
-    bearing_vertical: np.ndarray = column(
-        "main_bearing_load_vertical_N", "Main-bearing load vertical, bearing", "N"
-    )
+    bearing_vertical: np.ndarray = column("main_bearing_load_vertical_N", "Main bearing vert.", "N")
     max_pin_load: np.ndarray = scalar("max_crank_pin_load_N", "Max crank-pin load per throw", "N")
     mean_pin_load: np.ndarray = scalar(
         "mean_crank_pin_load_N", "Mean crank-pin load per throw", "N"
@@ -84,7 +74,7 @@ class BearingLoads(Result):
     )
     speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
-    notes: tuple[str, ...] = scalar("notes", "Notes", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
     def plot(self, fig=None):
         """Polar diagrams of the crank-pin loads (crank frame) and main-bearing loads (engine
@@ -136,5 +126,5 @@ def bearing_loads(
         mean_bearing_load=freeze(bearing[:, body].mean(axis=1)),
         speed=train.speed,
         pressure_source=train.trace.source or "",
-        notes=tuple(notes),
+        notes=tuple(notes) or None,
     )

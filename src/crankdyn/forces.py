@@ -9,11 +9,11 @@ sin(beta) = lambda (sin(phi) - k):
   p_cc the crankcase pressure, A the piston area;
 - reciprocating inertia force P_j = -m_j a (a: exact piston acceleration, positive toward the
   crank); its 1st- and 2nd-order parts are the first two harmonics of the exact force,
-  P_jI = m_j R w^2 (c_1 cos(phi) + s_1 sin(phi)) and P_jII = 4 m_j R w^2 (c_2 cos(2 phi) +
-  s_2 sin(2 phi)) with the Fourier coefficients of x/R (:func:`crankdyn.kinematics.series_coefficients`,
-  taken to harmonic 24); for a central crank P_jI = -m_j R w^2 cos(phi) exactly and
-  P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...) cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi)
-  to first order in lambda;
+  P_jI = m_j R w^2 (c_1 cos(phi) + s_1 sin(phi)) and
+  P_jII = 4 m_j R w^2 (c_2 cos(2 phi) + s_2 sin(2 phi)) with the Fourier coefficients c_m, s_m
+  of x/R (:func:`crankdyn.kinematics.series_coefficients`, taken to harmonic 24); for a central
+  crank P_jI = -m_j R w^2 cos(phi) exactly and P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...)
+  cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi) to first order in lambda;
 - resultant along the cylinder axis P = P_g + P_j;
 - side force N = P tan(beta): the piston's push on the cylinder wall, positive toward the major
   thrust side (the side away from which the crank pin moves after TDC, which the piston presses
@@ -99,7 +99,9 @@ def _harmonics(lam: float, k: float):
     return float(cos_c[1]), float(sin_c[1]), float(cos_c[2]), float(sin_c[2])
 
 
-def inertia_harmonics(phi, mass: float, crank_radius: float, rod_length: float, offset=0.0, omega=1.0):
+def inertia_harmonics(
+    phi, mass: float, crank_radius: float, rod_length: float, offset=0.0, omega=1.0
+):
     """First- and second-order parts of the reciprocating inertia force -m_j a (N), the first two
     harmonics of the exact force (module docstring).
 
@@ -244,7 +246,8 @@ def crank_train(
     piston = gas + inertia
     side, rod, tangential, radial = rod_forces(piston, phi, g.lam, g.k)
     lever = rod_forces(  # sin(phi + beta)/cos(beta)
-        np.ones_like(phi), phi, g.lam, g.k)[2]
+        np.ones_like(phi), phi, g.lam, g.k
+    )[2]
     return CrankTrain(
         theta=theta,
         speed=float(speed),
@@ -280,43 +283,29 @@ class CylinderForces(Result):
     """Forces of one cylinder over the working cycle (module docstring for signs)."""
 
     title = "Cylinder forces"
-    crank_angle: np.ndarray = column(
-        "crank_angle_deg", "Crankshaft angle (0 at cylinder 1 firing TDC)", "deg", DEG
-    )
-    cylinder_angle: np.ndarray = column(
-        "cylinder_angle_deg", "Angle from this cylinder's firing TDC", "deg", DEG
-    )
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    cylinder_angle: np.ndarray = column("cylinder_angle_deg", "Cylinder angle", "deg", DEG)
     pressure: np.ndarray = column("pressure_Pa", "Cylinder pressure", "Pa")
     gas_force: np.ndarray = column("gas_force_N", "Gas force P_g", "N")
-    inertia_force: np.ndarray = column("inertia_force_N", "Reciprocating inertia force P_j", "N")
+    inertia_force: np.ndarray = column("inertia_force_N", "Inertia force P_j", "N")
     inertia_force_1: np.ndarray = column("inertia_force_1st_N", "P_j 1st order", "N")
     inertia_force_2: np.ndarray = column("inertia_force_2nd_N", "P_j 2nd order", "N")
-    piston_force: np.ndarray = column("piston_force_N", "Resultant along the axis P", "N")
+    piston_force: np.ndarray = column("piston_force_N", "Axial force P", "N")
     side_force: np.ndarray = column("side_force_N", "Side force N", "N")
     rod_force: np.ndarray = column("rod_force_N", "Rod force K", "N")
-    tangential_force: np.ndarray = column("tangential_force_N", "Tangential force T", "N")
-    radial_force: np.ndarray = column("radial_force_N", "Radial force Z", "N")
-    rotating_axial: np.ndarray = column(
-        "rotating_force_axial_N", "Rotating force along the cylinder axis", "N"
-    )
-    rotating_lateral: np.ndarray = column(
-        "rotating_force_lateral_N", "Rotating force across the cylinder axis", "N"
-    )
+    tangential_force: np.ndarray = column("tangential_force_N", "Tangential T", "N")
+    radial_force: np.ndarray = column("radial_force_N", "Radial Z", "N")
+    rotating_axial: np.ndarray = column("rotating_force_axial_N", "Rotating, axial", "N")
+    rotating_lateral: np.ndarray = column("rotating_force_lateral_N", "Rotating, lateral", "N")
     pin_load: np.ndarray = column("crank_pin_load_N", "Crank-pin load", "N")
-    pin_load_angle: np.ndarray = column(
-        "crank_pin_load_angle_deg", "Crank-pin load direction (crank frame)", "deg", DEG
-    )
-    pin_tangential: np.ndarray = column(
-        "crank_pin_load_tangential_N", "Crank-pin load, tangential", "N"
-    )
-    pin_radial: np.ndarray = column(
-        "crank_pin_load_radial_N", "Crank-pin load, radial (toward the centre)", "N"
-    )
-    torque: np.ndarray = column("torque_Nm", "Cylinder torque M = T R", "N·m")
+    pin_load_angle: np.ndarray = column("crank_pin_load_angle_deg", "Pin load angle", "deg", DEG)
+    pin_tangential: np.ndarray = column("crank_pin_load_tangential_N", "Pin load, tangential", "N")
+    pin_radial: np.ndarray = column("crank_pin_load_radial_N", "Pin load, radial", "N")
+    torque: np.ndarray = column("torque_Nm", "Torque M", "N·m")
     gas_torque: np.ndarray = column("gas_torque_Nm", "Gas torque", "N·m")
     inertia_torque: np.ndarray = column("inertia_torque_Nm", "Inertia torque", "N·m")
     inertia_torque_error: np.ndarray | None = column(
-        "rod_model_torque_error_Nm", "Two-mass minus three-mass inertia torque", "N·m"
+        "rod_model_torque_error_Nm", "Rod-model torque error", "N·m"
     )
     cylinder: int = scalar("cylinder", "Cylinder", "")
     bank: str = scalar("bank", "Bank", "")
@@ -338,7 +327,7 @@ class CylinderForces(Result):
         "max_rod_couple_error_Nm", "Two-mass rod couple error max |ΔI ε_L|", "N·m"
     )
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
-    notes: tuple[str, ...] = scalar("notes", "Notes", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
     def plot(self, fig=None):
         """Forces vs crank angle; returns the matplotlib Figure."""
@@ -457,5 +446,5 @@ def cylinder_forces(
         mean_pin_load=float(np.mean(pin[:-1] if angles is None else pin)),
         max_rod_couple_error=couple,
         pressure_source=train.trace.source or "",
-        notes=tuple(notes),
+        notes=tuple(notes) or None,
     )

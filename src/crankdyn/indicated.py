@@ -50,8 +50,8 @@ class PressureResult(Result):
     """Cylinder pressure over one cycle with its indicated figures."""
 
     title = "Cylinder pressure"
-    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle from firing TDC", "deg", DEG)
-    pressure: np.ndarray = column("pressure_Pa", "Cylinder pressure (absolute)", "Pa")
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
+    pressure: np.ndarray = column("pressure_Pa", "Pressure", "Pa")
     volume: np.ndarray = column("volume_m3", "Cylinder volume", "m³")
     indicated_work: float = scalar("indicated_work_J", "Indicated work per cylinder", "J")
     imep: float = scalar("imep_Pa", "IMEP", "Pa")
@@ -77,13 +77,15 @@ class PressureResult(Result):
 def pressure_analysis(
     trace: PressureTrace, geometry: CrankGeometry, step: float = math.radians(0.5)
 ) -> PressureResult:
-    """The pressure over one cycle (every ``step`` rad from firing TDC, periodic interpolation of
-    the trace) with the volume, indicated work, IMEP and peak pressure (module docstring).
+    """The pressure over one cycle (every ``step`` rad from half a cycle before firing TDC to
+    half a cycle after it, periodic interpolation of the trace) with the volume, indicated work,
+    IMEP and peak pressure (module docstring).
 
     The volume is V_c + A x when the trace knows the compression ratio, else the displaced
     volume A x (``volume_is_swept``)."""
     count = round(trace.cycle_angle / step)
-    theta = np.linspace(0.0, trace.cycle_angle, count + 1)
+    half = trace.cycle_angle / 2.0
+    theta = np.linspace(-half, half, count + 1)
     x = _displacement(theta, geometry)
     area = geometry.piston_area
     eps = trace.compression_ratio

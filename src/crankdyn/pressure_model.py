@@ -153,7 +153,9 @@ class WiebePressureModel:
         given = [k for k in LOAD_KEYS if getattr(self, k) is not None]
         if len(given) > 1:
             raise InputError(
-                f"give only one of {', '.join(LOAD_KEYS)}", key=given[1], value=getattr(self, given[1])
+                f"give only one of {', '.join(LOAD_KEYS)}",
+                key=given[1],
+                value=getattr(self, given[1]),
             )
         if self.fuel_energy is not None and check_finite("fuel_energy", self.fuel_energy) < 0.0:
             raise InputError("the fuel energy must not be negative", key="fuel_energy")
@@ -225,8 +227,10 @@ class WiebePressureModel:
         volume = cylinder_volume(theta, geometry, eps)
         n_c, n_e = float(self.compression_exponent), float(self.expansion_exponent)
         p_in = float(self.intake_pressure)
-        p_exh = p_in if (cycle == "two-stroke" or self.exhaust_pressure is None) else float(
-            self.exhaust_pressure
+        p_exh = (
+            p_in
+            if (cycle == "two-stroke" or self.exhaust_pressure is None)
+            else float(self.exhaust_pressure)
         )
         closes = -math.pi if cycle == "four-stroke" else -eo
         theta_s = float(self.combustion_start)
@@ -294,9 +298,7 @@ class WiebePressureModel:
                     raise InputError(
                         "the peak pressure cannot be reached", key="peak_pressure", value=target
                     )
-            return float(
-                brentq(lambda q: float(np.max(p0 + q * p1)) - target, 0.0, hi, xtol=1e-12)
-            )
+            return float(brentq(lambda q: float(np.max(p0 + q * p1)) - target, 0.0, hi, xtol=1e-12))
         imep = DEFAULT_IMEP if self.imep is None else float(self.imep)
         dv = np.diff(np.append(volume, volume[0]))
         w0 = float(np.sum(0.5 * (p0 + np.roll(p0, -1)) * dv))

@@ -278,7 +278,7 @@ _MODEL_KEYS = {
     "imep": ("pressure", "positive"),
     "peak_pressure": ("pressure", "positive"),
 }
-"""Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces-and-torque.md)."""
+"""Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
 
 
 def _display_path(path: Path) -> str:
