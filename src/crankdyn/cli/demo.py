@@ -11,7 +11,12 @@ from crankdyn.cli.common import console, summary_table
 from crankdyn.engine import Engine
 from crankdyn.io.engine_file import load_example
 from crankdyn.io.output import atomic_directory
+from crankdyn.bearings import bearing_loads
+from crankdyn.forces import cylinder_forces
+from crankdyn.indicated import pressure_analysis
 from crankdyn.kinematics import piston_kinematics
+from crankdyn.pressure_model import default_pressure
+from crankdyn.torque import engine_torque
 
 DEMO_ENGINE = "inline6-diesel"
 
@@ -68,15 +73,40 @@ def demo_command(out: str, force: bool) -> int:
     con.print(engine_table(engine))
     kin = piston_kinematics(engine.geometry, engine.speed)
     con.print(summary_table(kin.summary, "Kinematics"))
+    pressure = pressure_analysis(default_pressure(engine), engine.geometry)
+    forces = cylinder_forces(engine, engine.speed)
+    bearings = bearing_loads(engine, engine.speed)
+    torque = engine_torque(engine, engine.speed)
+    con.print(summary_table(torque, "Torque and power"))
+    results = {
+        "kinematics": kin,
+        "pressure": pressure,
+        "forces": forces,
+        "bearings": bearings,
+        "torque": torque,
+    }
+    figures = {
+        "kinematics": kin.plot,
+        "pressure": pressure.plot,
+        "forces": forces.plot,
+        "crank_pin_polar": forces.plot_pin_polar,
+        "bearings": bearings.plot,
+        "torque": torque.plot,
+    }
     with atomic_directory(out, force=force) as tmp:
         (tmp / "data").mkdir()
         (tmp / "plots").mkdir()
-        (tmp / "data" / "kinematics.csv").write_text(kin.to_csv(), encoding="utf-8")
-        (tmp / "kinematics.json").write_text(kin.to_json() + "\n", encoding="utf-8")
-        fig = kin.plot()
-        fig.savefig(tmp / "plots" / "kinematics.png", dpi=110)
-        fig.savefig(tmp / "plots" / "kinematics.svg")
-    con.print(f"Wrote {out}/: kinematics.json, data/kinematics.csv, plots/kinematics.png/.svg")
+        for name, result in results.items():
+            (tmp / "data" / f"{name}.csv").write_text(result.to_csv(), encoding="utf-8")
+            (tmp / f"{name}.json").write_text(result.to_json() + "\n", encoding="utf-8")
+        for name, make in figures.items():
+            fig = make()
+            fig.savefig(tmp / "plots" / f"{name}.png", dpi=110)
+            fig.savefig(tmp / "plots" / f"{name}.svg")
+    con.print(
+        f"Wrote {out}/: {', '.join(f'{n}.json' for n in results)}; data/*.csv; "
+        f"plots/{{{','.join(figures)}}}.png/.svg"
+    )
     return 0
 
 
