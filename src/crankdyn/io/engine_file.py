@@ -93,7 +93,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     cycle = root.string("cycle", "four-stroke", choices=CYCLES)
     geometry = _geometry(root.table("geometry", required=True))
     cylinders = _cylinders(root.table("cylinders"), cycle)
-    masses = _masses(root.table("masses"))
+    masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed = _operating(root.table("operating"))
     with root.context():
@@ -179,7 +179,7 @@ def _cylinders(t: Table | None, cycle: str) -> Cylinders:
     return cylinders
 
 
-def _masses(t: Table | None) -> Masses | None:
+def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
     if t is None:
         return None
     values = {
@@ -194,6 +194,12 @@ def _masses(t: Table | None) -> Masses | None:
         values["crank_unbalance"] = 0.0
     with t.context():
         masses = Masses(**values)
+    try:
+        masses.check_rod(geometry.rod_length)
+    except InputError as exc:
+        if exc.key in t.data:  # report against the key and value the user wrote
+            raise t.error(exc.key, exc.message, t.data[exc.key]) from None
+        raise
     t.finish()
     return masses
 
