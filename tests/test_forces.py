@@ -228,8 +228,8 @@ def test_engine_frame_throw_force_matches_crank_frame():
 def test_two_mass_torque_error_against_rigid_rod_energy():
     """The exact inertia torque of a rigid rod (mass m_C, CG at l_B from the big end, inertia I_C)
     is M = -dT/dphi with T the kinetic energy of piston and rod (w constant); the two-mass
-    torque less the reported rod-model error (two-mass minus exact) must equal it. Positions are differentiated
-    numerically, independently of the library's kinematics."""
+    torque less the reported rod-model error (two-mass minus exact) must equal it. Positions
+    are differentiated numerically, independently of the library's kinematics."""
     eng = Engine.example("single-cylinder")
     g, m = eng.geometry, eng.masses
     w = 300.0

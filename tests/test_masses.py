@@ -103,7 +103,7 @@ def _engine(masses: dict):
     [
         (
             {"piston_group": "0.4 kg", "rod": "0.5 kg", "rod_cg_from_big_end": "150 mm"},
-            'e.toml: [masses] rod_cg_from_big_end = "150 mm": the rod\'s centre of gravity must lie',
+            'e.toml: [masses] rod_cg_from_big_end = "150 mm": the rod\'s centre of gravity',
         ),
         (
             {"piston_group": "-0.4 kg", "rod": "0.5 kg", "rod_cg_from_big_end": "40 mm"},
