@@ -215,9 +215,12 @@ def _pressure(t: Table | None, cycle: str, geometry: CrankGeometry):
     which = t.exclusive("file", "model", required=False)
     given = [k for k in _MODEL_KEYS if k in t.data]
     if which == "file":
-        if given:
+        foreign = [k for k in given if k != "compression_ratio"]
+        if foreign:
             raise t.error(
-                given[0], 'is a parameter of the synthetic model (model = "wiebe"), not of a trace'
+                foreign[0],
+                'is a parameter of the synthetic model (model = "wiebe"), not of a trace',
+                t.data[foreign[0]],
             )
         firing_tdc = t.quantity("firing_tdc", "angle", 0.0)
         eps = t.number("compression_ratio", None)
