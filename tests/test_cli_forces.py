@@ -102,7 +102,7 @@ def test_bearings_and_pressure_commands(capsys, tmp_path):
 
 
 def _error(capsys, *args):
-    status, out, err = run(capsys, *args)
+    status, _out, err = run(capsys, *args)
     assert status == 2
     lines = err.strip().splitlines()
     assert len(lines) == 1, err

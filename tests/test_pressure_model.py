@@ -19,7 +19,7 @@ def test_motored_cycle_follows_polytropes():
     """With no heat release p V^n_c is constant from intake closing (BDC) to the start of
     combustion and p V^n_e after it until the exhaust opens."""
     m = WiebePressureModel(compression_ratio=11, fuel_energy=0.0)
-    theta, p0, p1, volume = m.components(GEOMETRY, "four-stroke")
+    theta, p0, _p1, volume = m.components(GEOMETRY, "four-stroke")
     comp = (theta >= -math.pi) & (theta <= m.combustion_start)
     pv = p0[comp] * volume[comp] ** m.compression_exponent
     np.testing.assert_allclose(pv, pv[0], rtol=1e-12)
@@ -91,7 +91,7 @@ def test_volume_and_exhaust_back_pressure():
     v = cylinder_volume(np.array([0.0, math.pi]), GEOMETRY, 10.0)
     assert v[1] / v[0] == pytest.approx(10.0, rel=1e-12)
     m = WiebePressureModel(intake_pressure=2e5, exhaust_pressure=2.5e5)
-    theta, p0, p1, _ = m.components(GEOMETRY, "four-stroke")
+    theta, p0, _p1, _ = m.components(GEOMETRY, "four-stroke")
     assert p0[np.argmin(np.abs(theta - 270 * DEG))] == pytest.approx(2.5e5)  # exhaust stroke
     assert p0[np.argmin(np.abs(theta + 270 * DEG))] == pytest.approx(2e5)  # intake stroke
     # the overlap blends exhaust into intake smoothly across gas-exchange TDC (the wrap-around)

@@ -7,13 +7,13 @@ import math
 import click
 from rich.table import Table as RichTable
 
+from crankdyn.bearings import bearing_loads
 from crankdyn.cli.common import console, summary_table
 from crankdyn.engine import Engine
-from crankdyn.io.engine_file import load_example
-from crankdyn.io.output import atomic_directory
-from crankdyn.bearings import bearing_loads
 from crankdyn.forces import cylinder_forces
 from crankdyn.indicated import pressure_analysis
+from crankdyn.io.engine_file import load_example
+from crankdyn.io.output import atomic_directory
 from crankdyn.kinematics import piston_kinematics
 from crankdyn.pressure_model import default_pressure
 from crankdyn.torque import engine_torque
