@@ -94,6 +94,13 @@ class Table:
         if key in self.data:
             return self.data[key]
         if default is MISSING:
+            # a near-miss spelling in the file is the likelier mistake than a missing key
+            others = [k for k in self.data if k not in self._known]
+            close = difflib.get_close_matches(key, others, n=1, cutoff=0.75)
+            if close:
+                raise self.error(
+                    close[0], f'unknown key (did you mean "{key}"?)', self.data[close[0]]
+                )
             raise self.error(key, f"missing; expected {expected}")
         return default
 
