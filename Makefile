@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-OUT    ?= demo-output
+OUT    ?= crankdyn-demo
 
 .PHONY: demo test lint bench fuzz clean
 
