@@ -24,6 +24,7 @@ demo: $(VENV)/.stamp-base
 
 ## make test: install with test extras, lint, run the whole suite
 test: $(VENV)/.stamp-test
+	@bash scripts/install-browser.sh
 	$(BIN)/ruff check src tests bench
 	$(BIN)/ruff format --check src tests bench
 	$(BIN)/python -m pytest -n 2 -q

@@ -207,7 +207,7 @@ def test_demo_writes_outputs(cli, tmp_path):
     out = tmp_path / "demo"
     run = cli("demo", "--out", out)
     assert run.status == 0, run
-    assert (out / "kinematics.json").exists()
+    assert (out / "index.html").exists() and (out / "summary.json").exists()
     assert (out / "data" / "kinematics.csv").exists()
     assert (out / "plots" / "kinematics.png").stat().st_size > 10_000
     again = cli("demo", "--out", out)
