@@ -24,7 +24,7 @@ a four-stroke cycle), the wrap-around from the last point to the first included:
 wider gap does not cover the cycle."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class PressureTrace:
     """Absolute cylinder pressure over one cycle, crank angle from firing TDC.
 
@@ -88,6 +88,17 @@ class PressureTrace:
             object.__setattr__(self, "compression_ratio", eps)
         object.__setattr__(self, "crank_angle", freeze(angle))
         object.__setattr__(self, "pressure", freeze(p))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PressureTrace):
+            return NotImplemented
+        return (
+            self.cycle_angle == other.cycle_angle
+            and np.array_equal(self.crank_angle, other.crank_angle)
+            and np.array_equal(self.pressure, other.pressure)
+        )
+
+    __hash__ = None  # mutable-looking contents: not hashable
 
     @classmethod
     def from_cycle_data(

@@ -164,3 +164,25 @@ class _Null:
 
 def resolve_output_dir(out: str | None, default: str) -> Path:
     return Path(out or default)
+
+
+def speed_range(text: str | None, option: str = "--speeds"):
+    """Parse A:B:STEP (rpm when bare, units allowed on each part) into speeds in rad/s."""
+    if text is None:
+        return None
+    parts = [p.strip() for p in text.split(":")]
+    if len(parts) != 3 or not all(parts):
+        raise InputError(
+            "expected START:STOP:STEP, e.g. 1000:2500:25 (rpm)", key=option, value=text
+        )
+    start, stop, step = (option_quantity(p, "speed", option, "rpm") for p in parts)
+    if start <= 0.0 or stop <= 0.0:
+        raise InputError("speeds must be positive", key=option, value=text)
+    if step <= 0.0:
+        raise InputError("the step must be positive", key=option, value=text)
+    if stop < start:
+        raise InputError("the range is empty: STOP is below START", key=option, value=text)
+    count = math.floor((stop - start) / step * (1 + 1e-12)) + 1
+    if count > 100_000:
+        raise InputError("too many speeds (more than 100000)", key=option, value=text)
+    return start + step * np.arange(count)
