@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from crankdyn.engine import Cylinders, Engine
 from crankdyn.errors import InputError
@@ -129,3 +131,34 @@ def test_bad_mechanical_efficiency(eta):
     eng = Engine.example("vaz2108")
     with pytest.raises(InputError, match="mechanical efficiency"):
         engine_torque(eng, 100.0, mechanical_efficiency=eta)
+
+
+@settings(max_examples=15, deadline=None)
+@given(
+    count=st.integers(1, 6),
+    lam=st.floats(0.15, 0.38),
+    peak=st.floats(4e6, 1.8e7),
+    m_j=st.floats(0.2, 3.0),
+    rpm=st.floats(800, 6000),
+    two_stroke=st.booleans(),
+)
+def test_random_engines_mean_torque_identity(count, lam, peak, m_j, rpm, two_stroke):
+    """Random even-firing inline engines with random synthetic pressure: mean torque x cycle
+    angle = Z W_i, and the inertia torque averages to zero."""
+    cycle = "two-stroke" if two_stroke else "four-stroke"
+    geometry = CrankGeometry(bore=0.09, crank_radius=0.045, rod_length=0.045 / lam)
+    trace = WiebePressureModel(compression_ratio=14, peak_pressure=peak).trace(
+        geometry, cycle, step=math.radians(0.5)
+    )
+    eng = Engine(
+        name="random",
+        geometry=geometry,
+        cylinders=Cylinders(count, tuple(range(1, count + 1)), cycle=cycle),
+        masses=Masses(reciprocating=m_j, rotating=1.0),
+        pressure=trace,
+    )
+    t = engine_torque(eng, rpm * math.pi / 30, step=math.radians(3))
+    work = indicated_work(trace, geometry)
+    assert t.mean_torque * eng.cycle_angle == pytest.approx(count * work, rel=2e-6)
+    amplitude = np.max(np.abs(t.inertia_torque)) + 1e-30
+    assert abs(np.mean(t.inertia_torque[:-1])) < 1e-10 * amplitude
