@@ -269,11 +269,19 @@ def test_inertia_torque_averages_to_zero():
 
 
 def test_pin_load_without_big_end_mass_says_so():
-    eng = Engine.example("inline6-diesel")
+    import dataclasses
+
+    from crankdyn.masses import Masses
+
+    base = Engine.example("inline6-diesel")
+    eng = dataclasses.replace(base, masses=Masses(reciprocating=2.521, rotating=3.2))
     f = cylinder_forces(eng, 230.0, step=math.radians(5))
     assert f.pin_rotating_force == 0.0
     assert any("big-end mass unknown" in n for n in f.notes)
     assert f.to_dict()["masses"]["reciprocating_kg"] == 2.521
+    # the example itself splits its rod: 3.6 kg x (207 - 62.1)/207 at the big end
+    full = cylinder_forces(base, 230.0, step=math.radians(5))
+    assert full.pin_rotating_force == pytest.approx(3.6 * (207 - 62.1) / 207 * 0.0685 * 230**2)
 
 
 def test_no_masses_is_a_clear_error():
