@@ -95,7 +95,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     cylinders = _cylinders(root.table("cylinders"), cycle)
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
-    speed = _operating(root.table("operating"))
+    speed, efficiency = _operating(root.table("operating"))
     with root.context():
         engine = Engine(
             name=name,
@@ -105,6 +105,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             pressure=pressure,
             crankcase_pressure=crankcase,
             speed=speed,
+            mechanical_efficiency=efficiency,
             source=file,
         )
     root.finish()
@@ -303,9 +304,10 @@ def _display_path(path: Path) -> str:
         return str(path)
 
 
-def _operating(t: Table | None) -> float | None:
+def _operating(t: Table | None) -> tuple[float | None, float | None]:
     if t is None:
-        return None
+        return None, None
     speed = t.quantity("speed", "speed", None, check="positive")
+    efficiency = t.number("mechanical_efficiency", None, check="positive", maximum=1.0)
     t.finish()
-    return speed
+    return speed, efficiency
