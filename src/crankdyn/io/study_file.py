@@ -1,0 +1,422 @@
+"""Study files (TOML) and the built-in example studies; see docs/study-file.md.
+
+A study file names a base engine, the keys of it to vary (by their TOML path, with values in the
+file's units), the analysis settings and the figures to keep. Reading it checks everything that
+can be checked before a case runs: the base parses, every key path fits the base document, the
+values of a parameter agree in unit, and a parameter does not name a key the engine file does
+not know (tried on the first case). Whether a particular variant is a valid engine is left to
+the case: a bad variant becomes a failed case with the engine file's own message.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.io.engine_file import example_files, example_names
+from crankdyn.io.files import display_name, load_toml
+from crankdyn.io.schema import Table, suggest
+from crankdyn.io.units import convert_magnitude, split_quantity
+from crankdyn.study.docpath import apply_values, check_path, parse_path, referenced_files
+from crankdyn.study.figures import FIGURES, SETTINGS, AnalysisSettings
+from crankdyn.study.spec import (
+    BASE_KINDS,
+    DISTRIBUTIONS,
+    SAMPLINGS,
+    Base,
+    Distribution,
+    Parameter,
+    StudySpec,
+    document_number,
+)
+
+__all__ = [
+    "load_study",
+    "parse_study",
+    "resolve_study",
+    "study_example_names",
+    "study_example_path",
+]
+
+_STUDIES = resources.files("crankdyn") / "examples" / "studies"
+MAX_RANGE_VALUES = 100_000
+
+
+# ---- built-in examples and resolution ---------------------------------------------------------
+
+
+def study_example_names() -> list[str]:
+    """Names of the built-in example studies."""
+    return sorted(p.name[:-5] for p in _STUDIES.iterdir() if p.name.endswith(".toml"))
+
+
+def study_example_path(name: str) -> Path:
+    """The file of a built-in example study."""
+    names = study_example_names()
+    if name not in names:
+        raise InputError(
+            f"no built-in example study of that name (examples: {', '.join(names)})"
+            + suggest(name, names),
+            key="study",
+            value=name,
+        )
+    return Path(str(_STUDIES / f"{name}.toml"))
+
+
+def resolve_study(spec: str) -> StudySpec:
+    """A STUDY argument: a path to a study file, or the name of a built-in example study."""
+    p = Path(spec)
+    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+        return load_study(p)
+    names = study_example_names()
+    if spec in names:
+        path = study_example_path(spec)
+        return _load(path, f"{spec} (built-in example study)")
+    raise InputError(
+        f"no such file or built-in example study (examples: {', '.join(names)})"
+        + suggest(spec, names),
+        file=spec,
+    )
+
+
+def load_study(path: str | Path) -> StudySpec:
+    """Load a study file."""
+    return _load(Path(path), display_name(path))
+
+
+def _load(path: Path, name: str) -> StudySpec:
+    data = load_toml(path, what="study file")
+    return parse_study(data, file=name, base_dir=path.parent, default_name=path.stem)
+
+
+# ---- the base ---------------------------------------------------------------------------------
+
+
+def _base(root: Table) -> Base:
+    kinds = tuple(BASE_KINDS)
+    kind = root.exclusive(*kinds)
+    spec = root.string(kind)
+    if not spec.strip():
+        raise root.error(kind, f"expected a {kind} file or a built-in example name", spec)
+    folder = root.base_dir or Path(".")
+    candidate = Path(spec).expanduser()
+    if not candidate.is_absolute():
+        candidate = folder / candidate
+    looks_like_path = spec.endswith(".toml") or "/" in spec or "\\" in spec
+    if kind == "engine" and not candidate.exists() and not looks_like_path:
+        names = example_names()
+        if spec not in names:
+            raise root.error(
+                kind,
+                f"no such file or built-in example (examples: {', '.join(names)})"
+                + suggest(spec, names),
+                spec,
+            )
+        candidate = example_files(spec)[0]
+        source = f"{spec} (built-in example)"
+    else:
+        if not candidate.is_file():
+            raise root.error(kind, f"no such {kind} file (looked for {candidate})", spec)
+        source = display_name(candidate if Path(spec).is_absolute() else Path(spec))
+        if root.base_dir is not None and not Path(spec).is_absolute():
+            source = _relative_display(candidate)
+    document = load_toml(candidate, what=f"{kind} file")
+    return Base(
+        kind=kind,
+        document=document,
+        source=source,
+        base_dir=candidate.parent,
+        files_digest=_files_digest(document, candidate.parent),
+    )
+
+
+def _relative_display(path: Path) -> str:
+    try:
+        return str(path.resolve().relative_to(Path.cwd().resolve()))
+    except ValueError:
+        return str(path)
+
+
+def _files_digest(document: dict, folder: Path) -> str:
+    """SHA-256 over the files the document names (crankdyn.study.docpath.referenced_files), so
+    that editing a pressure trace changes the study's fingerprint."""
+    digest = hashlib.sha256()
+    for text, path in referenced_files(document, folder):
+        try:
+            data = path.read_bytes()
+        except OSError:
+            continue
+        digest.update(text.encode("utf-8") + b"\0" + hashlib.sha256(data).digest())
+    return digest.hexdigest()
+
+
+# ---- parameters -------------------------------------------------------------------------------
+
+
+def _numeric(t: Table, key: str, items: list, *, unit: str | None = None):
+    """(magnitudes in a common unit, unit) of numeric items, or None when one is not numeric.
+    ``unit`` fixes the unit (else the first item's)."""
+    split = []
+    for item in items:
+        parsed = split_quantity(item, key=t.label(key), file=t.file)
+        if parsed is None:
+            return None
+        split.append((parsed, item))
+    if unit is None:
+        unit = split[0][0][1]
+    numbers = [
+        convert_magnitude(m, u, unit, key=t.label(key), file=t.file, value=item)
+        for (m, u), item in split
+    ]
+    return numbers, unit
+
+
+def _round(x: float) -> float:
+    return float(f"{x:.12g}")
+
+
+def _range(t: Table) -> Parameter | tuple:
+    bounds = t.raw("range")
+    if not isinstance(bounds, list) or len(bounds) != 2:
+        raise t.error("range", 'expected [low, high], e.g. ["120 mm", "150 mm"]', bounds)
+    numeric = _numeric(t, "range", bounds)
+    if numeric is None:
+        raise t.error(
+            "range", 'expected two numbers or quantities, e.g. ["120 mm", "150 mm"]', bounds
+        )
+    (low, high), unit = numeric
+    if not low < high:
+        raise t.error("range", "the first value must be below the second", bounds)
+    which = t.exclusive("steps", "step")
+    spacing = t.string("spacing", "linear", choices=("linear", "log"))
+    integer = all(isinstance(b, int) and not isinstance(b, bool) for b in bounds)
+    if which == "steps":
+        steps = t.integer("steps", minimum=2, maximum=MAX_RANGE_VALUES)
+        if spacing == "log":
+            if low <= 0.0:
+                raise t.error("spacing", "a log range needs positive bounds", spacing)
+            values = np.geomspace(low, high, steps)
+        else:
+            values = np.linspace(low, high, steps)
+        integer = integer and all(float(v).is_integer() for v in values)
+    else:
+        if spacing == "log":
+            raise t.error("spacing", "a log range takes steps (a count), not step", spacing)
+        raw_step = t.raw("step")
+        step_numeric = _numeric(t, "step", [raw_step], unit=unit)
+        if step_numeric is None:
+            raise t.error("step", "expected a number or a quantity like the range's", raw_step)
+        step = step_numeric[0][0]
+        if not step > 0.0:
+            raise t.error("step", "must be positive", raw_step)
+        count = math.floor((high - low) / step * (1 + 1e-12)) + 1
+        if count > MAX_RANGE_VALUES:
+            raise t.error("step", f"makes more than {MAX_RANGE_VALUES} values", raw_step)
+        if count < 2:
+            raise t.error("step", "is larger than the range", raw_step)
+        values = low + step * np.arange(count)
+        integer = integer and isinstance(raw_step, int) and not isinstance(raw_step, bool)
+    numbers = tuple(_round(v) for v in values)
+    return numbers, unit, integer
+
+
+def _parameter(t: Table, base_document: dict) -> Parameter:
+    path = parse_path(
+        t.raw("key", expected='a key path such as "geometry.rod_length"'),
+        file=t.file,
+        key=t.label("key"),
+    )
+    check_path(base_document, path, file=t.file, key=t.label("key"))
+    which = t.exclusive("values", "range", "distribution")
+    if which == "values":
+        items = t.raw("values")
+        if not isinstance(items, list) or not items:
+            raise t.error("values", "expected a non-empty list of values", items)
+        for i, item in enumerate(items):
+            if item in items[:i]:
+                raise t.error("values", "a value is given twice", item)
+        numeric = _numeric(t, "values", items)
+        t.finish()
+        if numeric is None:
+            return Parameter(path=path, values=tuple(items))
+        numbers, unit = numeric
+        return Parameter(path=path, values=tuple(items), numbers=tuple(numbers), unit=unit)
+    if which == "range":
+        numbers, unit, integer = _range(t)
+        t.finish()
+        values = tuple(document_number(n, unit, integer) for n in numbers)
+        return Parameter(path=path, values=values, numbers=numbers, unit=unit, integer=integer)
+    name = t.string("distribution", choices=tuple(DISTRIBUTIONS))
+    arg_names = DISTRIBUTIONS[name][0]
+    raw = [t.raw(a, expected="a number or a quantity") for a in arg_names]
+    numeric = _numeric(t, arg_names[0], raw)
+    if numeric is None:
+        bad = next(a for a, r in zip(arg_names, raw, strict=True) if split_quantity(r) is None)
+        raise t.error(bad, "expected a number or a quantity", t.data[bad])
+    args, unit = numeric
+    t.finish()
+    with t.context():
+        try:
+            distribution = Distribution(name, tuple(args))
+        except InputError as exc:
+            if exc.key in t.data:
+                raise t.error(exc.key, exc.message, t.data[exc.key]) from None
+            raise
+        return Parameter(path=path, unit=unit, distribution=distribution)
+
+
+# ---- the whole file ---------------------------------------------------------------------------
+
+
+def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
+    if t is None:
+        raise InputError(
+            'missing table [analysis]; it names the figures to keep, e.g. figures = ["mean_torque"]'
+        )
+    values = []
+    for name, setting in SETTINGS.items():
+        if setting.kind == "number":
+            value = t.number(name, None, check=setting.check)
+        else:
+            value = t.quantity(name, setting.kind, None, check=setting.check)
+        if value is not None:
+            values.append((name, value))
+    step = dict(values).get("step")
+    if step is not None:
+        count = 2.0 * math.pi / step
+        if abs(count - round(count)) > 1e-9 * count:
+            raise t.error("step", "must divide 360 deg (e.g. 0.5, 1, 2 or 5 deg)", t.data["step"])
+    names = t.string_list("figures")
+    if not names:
+        raise t.error("figures", "name at least one figure", names)
+    for i, name in enumerate(names):
+        if name not in FIGURES:
+            raise t.error(
+                "figures",
+                f"unknown figure{suggest(name, FIGURES)} (crankdyn study --list shows them)",
+                name,
+            )
+        if name in names[:i]:
+            raise t.error("figures", "a figure is named twice", name)
+    t.finish()
+    return AnalysisSettings(tuple(values)), tuple(names)
+
+
+def parse_study(
+    data: dict,
+    *,
+    file: str | None = None,
+    base_dir: Path | None = None,
+    default_name: str = "study",
+) -> StudySpec:
+    """Build a StudySpec from a parsed study document (module docstring for the checks)."""
+    root = Table(data, file=file, base_dir=base_dir)
+    name = root.string("name", default_name)
+    base = _base(root)
+    try:
+        base.parse()
+    except InputError as exc:
+        raise exc.within(file=base.source) from None
+    remove = tuple(
+        parse_path(text, file=file, key=root.label("remove"))
+        for text in root.string_list("remove", [])
+    )
+    for path in remove:
+        if path.parts[-1][1] is not None:
+            raise root.error("remove", "name a key, not an entry of an array", path.text)
+        check_path(base.document, path, must_exist=True, file=file, key=root.label("remove"))
+    trimmed = apply_values(base.document, {}, remove)
+    entries = root.tables("parameter", required=True)
+    parameters: list[Parameter] = []
+    for t in entries:
+        p = _parameter(t, trimmed)
+        if any(p.key == q.key for q in parameters):
+            raise t.error("key", "the key is varied twice", p.key)
+        parameters.append(p)
+    settings, figures = _settings(root.table("analysis"))
+    mc = root.table("monte_carlo")
+    samples = seed = None
+    sampling = "random"
+    if mc is not None:
+        samples = mc.integer("samples", minimum=1, maximum=1_000_000)
+        seed = mc.integer("seed", minimum=0)
+        sampling = mc.string("sampling", "random", choices=SAMPLINGS)
+        mc.finish()
+    random = [p for p in parameters if p.is_random]
+    if random and mc is None:
+        raise root.error(
+            None,
+            f"parameter {random[0].key} has a distribution: give [monte_carlo] samples and seed",
+        )
+    if mc is not None and not random:
+        raise mc.error(None, "no parameter has a distribution, so there is nothing to sample")
+    best = _best(root.table("best"), figures)
+    if settings.given("speed"):
+        for t, p in zip(entries, parameters, strict=True):
+            if p.key == "operating.speed":
+                raise t.error(
+                    "key",
+                    "the speed is varied here and fixed by [analysis] speed; keep one",
+                    p.key,
+                )
+    root.finish(also_known=tuple(BASE_KINDS))
+    with root.context():
+        spec = StudySpec(
+            name=name,
+            base=base,
+            parameters=tuple(parameters),
+            figures=figures,
+            settings=settings,
+            remove=remove,
+            samples=samples,
+            seed=seed,
+            sampling=sampling,
+            best=best,
+            source=file,
+        )
+    _probe(spec, entries)
+    return spec
+
+
+def _best(t: Table | None, figures: tuple[str, ...]) -> tuple[tuple[str, str], ...]:
+    if t is None:
+        return ()
+    out = []
+    for key in list(t.data):
+        if key not in figures:
+            raise t.error(key, f"is not among the figures kept{suggest(key, figures)}", t.data[key])
+        out.append((key, t.string(key, choices=("min", "max"))))
+    t.finish()
+    return tuple(out)
+
+
+def _probe(spec: StudySpec, entries: list[Table]) -> None:
+    """Stop before running when a parameter names a key the base file's reader does not know
+    (tried on the first case: every case would fail the same way)."""
+    first = {
+        p.path: p.values[0]
+        if p.values is not None
+        else p.document_value(p.distribution.quantile(0.5))
+        for p in spec.parameters
+    }
+    document = apply_values(spec.base.document, first, spec.remove)
+    try:
+        spec.base.parse(document)
+    except InputError as exc:
+        if not exc.message.startswith("unknown key"):
+            return  # a property of that variant, recorded when the case runs
+        for t, p in zip(entries, spec.parameters, strict=True):
+            name = p.path.parts[-1][0]
+            if exc.key and exc.key.split(" ")[-1].strip('"') == name:
+                raise t.error(
+                    "key", f"the {spec.base.kind} file has no such key ({exc.message})", p.key
+                ) from None
+        raise InputError(
+            f"a parameter names a key the {spec.base.kind} file does not know: {exc}",
+            file=spec.source,
+        ) from None

@@ -1,0 +1,452 @@
+"""The figures a study can keep per case: a registry of named scalar results.
+
+A *figure* is one number computed from one variant of the base engine (or model): mean torque,
+the largest main-bearing load, a natural frequency... Each is a :class:`Figure` in
+:data:`FIGURES`, registered with :func:`register_figure`; its function takes a
+:class:`CaseContext` (the variant ``ctx.subject``, the study's analysis settings
+``ctx.settings``) and returns a float in SI (NaN when undefined). Figures that share an analysis
+get it from ``ctx.analysis(name)``, computed once per case from :data:`ANALYSES`.
+
+Other capabilities extend the registry by adding entries (an analysis and its figures, and any
+setting their analyses need in the study file's ``[analysis]`` table, :data:`SETTINGS`). A figure
+defined in any importable module works on every worker: the worker imports the module that
+defines each figure before running a case.
+
+The figures here are thin views of validated analyses (``torque.engine_torque``,
+``bearings.bearing_loads``, ``forces.cylinder_forces``, ``kinematics.piston_kinematics``); the
+one formula of their own is the torque non-uniformity (M_max - M_min)/M_mean (seed 000 section
+2.4), the largest swing of the total torque over the cycle relative to its mean.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from crankdyn.errors import InputError
+
+__all__ = [
+    "ANALYSES",
+    "FIGURES",
+    "SETTINGS",
+    "AnalysisSettings",
+    "CaseContext",
+    "Figure",
+    "Setting",
+    "register_analysis",
+    "register_figure",
+    "register_setting",
+]
+
+SENSES = ("min", "max")
+
+
+# ---- analysis settings ([analysis] in the study file) -----------------------------------------
+
+
+@dataclass(frozen=True)
+class Setting:
+    """A key of the study file's ``[analysis]`` table.
+
+    ``kind`` is a quantity kind of :data:`crankdyn.io.units.KINDS` (read with units) or
+    ``"number"``; ``default`` is in SI (None: no default, the analyses fall back on the
+    engine's own value, e.g. its ``[operating] speed``).
+    """
+
+    name: str
+    kind: str
+    default: Any
+    help: str
+    check: str | None = "positive"
+
+
+SETTINGS: dict[str, Setting] = {}
+
+
+def register_setting(setting: Setting) -> Setting:
+    """Add an ``[analysis]`` key (error if the name is taken)."""
+    if setting.name in SETTINGS:
+        raise ValueError(f"setting {setting.name!r} is already registered")
+    SETTINGS[setting.name] = setting
+    return setting
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """The study's ``[analysis]`` values in SI; a missing key reads as its default."""
+
+    values: tuple[tuple[str, Any], ...] = ()
+
+    def __post_init__(self) -> None:
+        for name, _ in self.values:
+            if name not in SETTINGS:
+                raise InputError("unknown analysis setting", key=name)
+
+    def __getitem__(self, name: str) -> Any:
+        for key, value in self.values:
+            if key == name:
+                return value
+        return SETTINGS[name].default
+
+    def given(self, name: str) -> bool:
+        return any(key == name for key, _ in self.values)
+
+    def to_dict(self) -> dict[str, Any]:
+        return dict(self.values)
+
+
+register_setting(
+    Setting(
+        "speed",
+        "speed",
+        None,
+        "Crank speed of the analyses (default: each variant's [operating] speed).",
+    )
+)
+register_setting(
+    Setting(
+        "step",
+        "angle",
+        math.radians(1.0),
+        "Crank-angle step of the cycle analyses; must divide 360 deg (default 1 deg).",
+    )
+)
+
+
+# ---- analyses and figures ---------------------------------------------------------------------
+
+
+class CaseContext:
+    """One variant under evaluation: its subject (an Engine, or a model), the analysis settings,
+    and the analyses computed so far for it (:meth:`analysis`)."""
+
+    def __init__(self, subject: Any, settings: AnalysisSettings, kind: str = "engine"):
+        self.subject = subject
+        self.settings = settings
+        self.kind = kind
+        self._memo: dict[str, Any] = {}
+
+    def analysis(self, name: str) -> Any:
+        """The result of analysis ``name`` of :data:`ANALYSES` for this variant (computed once)."""
+        if name not in self._memo:
+            self._memo[name] = ANALYSES[name](self)
+        return self._memo[name]
+
+    @property
+    def speed(self) -> float:
+        """The crank speed (rad/s): ``[analysis] speed``, else the variant's operating speed."""
+        speed = self.settings["speed"]
+        if speed is None:
+            speed = getattr(self.subject, "speed", None)
+        if speed is None:
+            raise InputError(
+                "no speed: give [analysis] speed in the study file or [operating] speed in the "
+                "engine file",
+                file=getattr(self.subject, "source", None),
+            )
+        return speed
+
+
+ANALYSES: dict[str, Callable[[CaseContext], Any]] = {}
+
+
+def register_analysis(name: str, function: Callable[[CaseContext], Any]) -> None:
+    """Add a shared analysis (a function of the case context, result cached per case)."""
+    if name in ANALYSES:
+        raise ValueError(f"analysis {name!r} is already registered")
+    ANALYSES[name] = function
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A named scalar figure of a case.
+
+    Parameters
+    ----------
+    name
+        The name used in study files (``"max_main_bearing_load"``).
+    key
+        The results-table column: SI value, unit in the key (``"max_main_bearing_load_N"``).
+    label
+        For tables and plots.
+    unit, scale
+        Display unit and the factor from the SI value to it (``"kN"``, 1e-3).
+    si_unit
+        The unit of the SI value in the table (default ``unit`` when ``scale`` is 1).
+    better
+        ``"min"`` or ``"max"`` when smaller or larger is better (the summary's best cases), or
+        None.
+    function
+        ``function(ctx) -> float`` (SI; NaN when undefined for the variant).
+    subjects
+        The base kinds it applies to (``("engine",)``).
+    description
+        One line for ``crankdyn study --list``.
+    """
+
+    name: str
+    key: str
+    label: str
+    unit: str
+    function: Callable[[CaseContext], float] = field(repr=False)
+    scale: float = 1.0
+    better: str | None = None
+    si_unit: str | None = None
+    subjects: tuple[str, ...] = ("engine",)
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if self.better is not None and self.better not in SENSES:
+            raise ValueError(f"better must be one of {SENSES} or None")
+        if self.si_unit is None:
+            if self.scale != 1.0:
+                raise ValueError("a scaled figure needs its si_unit")
+            object.__setattr__(self, "si_unit", self.unit)
+
+    @property
+    def module(self) -> str:
+        """The module that defines the figure (imported by workers before a case runs)."""
+        return self.function.__module__
+
+    def evaluate(self, ctx: CaseContext) -> float | None:
+        """The figure of a case as a float, None when it is not finite."""
+        value = float(self.function(ctx))
+        return value if math.isfinite(value) else None
+
+
+FIGURES: dict[str, Figure] = {}
+
+
+def register_figure(figure: Figure) -> Figure:
+    """Add a figure to the registry (error if the name or the column key is taken)."""
+    if figure.name in FIGURES:
+        raise ValueError(f"figure {figure.name!r} is already registered")
+    if any(f.key == figure.key for f in FIGURES.values()):
+        raise ValueError(f"figure column {figure.key!r} is already used")
+    FIGURES[figure.name] = figure
+    return figure
+
+
+def _figure(name, key, label, unit, function, *, scale=1.0, si=None, better=None, description=""):
+    return register_figure(
+        Figure(
+            name=name,
+            key=key,
+            label=label,
+            unit=unit,
+            function=function,
+            scale=scale,
+            si_unit=si,
+            better=better,
+            description=description or label,
+        )
+    )
+
+
+# ---- engine analyses (main) -------------------------------------------------------------------
+
+
+def _torque(ctx: CaseContext):
+    from crankdyn.torque import engine_torque
+
+    return engine_torque(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _bearings(ctx: CaseContext):
+    from crankdyn.bearings import bearing_loads
+
+    return bearing_loads(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _cylinder(ctx: CaseContext):
+    from crankdyn.forces import cylinder_forces
+
+    return cylinder_forces(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _kinematics(ctx: CaseContext):
+    from crankdyn.kinematics import piston_kinematics
+
+    return piston_kinematics(ctx.subject.geometry, ctx.speed).summary
+
+
+register_analysis("torque", _torque)
+register_analysis("bearings", _bearings)
+register_analysis("cylinder_forces", _cylinder)
+register_analysis("kinematics", _kinematics)
+
+
+def torque_nonuniformity(max_torque: float, min_torque: float, mean_torque: float) -> float:
+    """Torque non-uniformity (M_max - M_min)/M_mean (dimensionless; seed 000 section 2.4), NaN
+    when the mean torque is zero."""
+    if mean_torque == 0.0:
+        return math.nan
+    return (max_torque - min_torque) / mean_torque
+
+
+_figure(
+    "mean_torque",
+    "mean_torque_Nm",
+    "Mean indicated torque",
+    "N·m",
+    lambda c: c.analysis("torque").mean_torque,
+    better="max",
+)
+_figure(
+    "indicated_power",
+    "indicated_power_W",
+    "Indicated power",
+    "kW",
+    lambda c: c.analysis("torque").indicated_power,
+    scale=1e-3,
+    si="W",
+    better="max",
+)
+_figure(
+    "imep",
+    "imep_Pa",
+    "IMEP",
+    "bar",
+    lambda c: c.analysis("torque").imep,
+    scale=1e-5,
+    si="Pa",
+    better="max",
+    description="Indicated mean effective pressure",
+)
+_figure(
+    "peak_pressure",
+    "peak_pressure_Pa",
+    "Peak cylinder pressure",
+    "bar",
+    lambda c: c.analysis("torque").peak_pressure,
+    scale=1e-5,
+    si="Pa",
+    better="min",
+)
+_figure(
+    "max_torque",
+    "max_torque_Nm",
+    "Max total torque",
+    "N·m",
+    lambda c: c.analysis("torque").max_torque,
+)
+_figure(
+    "min_torque",
+    "min_torque_Nm",
+    "Min total torque",
+    "N·m",
+    lambda c: c.analysis("torque").min_torque,
+)
+_figure(
+    "torque_nonuniformity",
+    "torque_nonuniformity",
+    "Torque non-uniformity (M_max − M_min)/M_mean",
+    "",
+    lambda c: torque_nonuniformity(
+        c.analysis("torque").max_torque,
+        c.analysis("torque").min_torque,
+        c.analysis("torque").mean_torque,
+    ),
+    better="min",
+)
+_figure(
+    "max_crank_pin_load",
+    "max_crank_pin_load_N",
+    "Max crank-pin load (largest of the throws)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").max_pin_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_mean_crank_pin_load",
+    "max_mean_crank_pin_load_N",
+    "Mean crank-pin load (largest of the throws)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").mean_pin_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_main_bearing_load",
+    "max_main_bearing_load_N",
+    "Max main-bearing load (largest of the bearings)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").max_bearing_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_mean_main_bearing_load",
+    "max_mean_main_bearing_load_N",
+    "Mean main-bearing load (largest of the bearings)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").mean_bearing_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_side_force",
+    "max_side_force_N",
+    "Max piston side force",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_side_force,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_rod_compression",
+    "max_rod_compression_N",
+    "Max rod compression",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_rod_compression,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_rod_tension",
+    "max_rod_tension_N",
+    "Max rod tension",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_rod_tension,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "mean_piston_speed",
+    "mean_piston_speed_m_s",
+    "Mean piston speed",
+    "m/s",
+    lambda c: c.analysis("kinematics").mean_piston_speed,
+    better="min",
+)
+_figure(
+    "max_piston_speed",
+    "max_piston_speed_m_s",
+    "Max piston speed |v|",
+    "m/s",
+    lambda c: max(
+        abs(c.analysis("kinematics").max_velocity), abs(c.analysis("kinematics").min_velocity)
+    ),
+    better="min",
+)
+_figure(
+    "max_piston_acceleration",
+    "max_piston_acceleration_m_s2",
+    "Max piston acceleration |a|",
+    "m/s²",
+    lambda c: max(
+        abs(c.analysis("kinematics").max_acceleration),
+        abs(c.analysis("kinematics").min_acceleration),
+    ),
+    better="min",
+)
