@@ -126,12 +126,14 @@ def _base(root: Table) -> Base:
         if root.base_dir is not None and not Path(spec).is_absolute():
             source = _relative_display(candidate)
     document = load_toml(candidate, what=f"{kind} file")
+    digest, files = _files(document, candidate.parent)
     return Base(
         kind=kind,
         document=document,
         source=source,
         base_dir=candidate.parent,
-        files_digest=_files_digest(document, candidate.parent),
+        files_digest=digest,
+        files=files,
     )
 
 
@@ -142,17 +144,21 @@ def _relative_display(path: Path) -> str:
         return str(path)
 
 
-def _files_digest(document: dict, folder: Path) -> str:
-    """SHA-256 over the files the document names (crankdyn.study.docpath.referenced_files), so
-    that editing a pressure trace changes the study's fingerprint."""
+def _files(document: dict, folder: Path) -> tuple[str, tuple[tuple[str, bytes], ...]]:
+    """The files the document names (crankdyn.study.docpath.referenced_files): the SHA-256
+    over all of them, so that editing a pressure trace changes the study's fingerprint, and
+    the contents of those named by relative paths, for workers on other machines."""
     digest = hashlib.sha256()
+    files = []
     for text, path in referenced_files(document, folder):
         try:
             data = path.read_bytes()
         except OSError:
             continue
         digest.update(text.encode("utf-8") + b"\0" + hashlib.sha256(data).digest())
-    return digest.hexdigest()
+        if not Path(text).expanduser().is_absolute():
+            files.append((text, data))
+    return digest.hexdigest(), tuple(files)
 
 
 # ---- parameters -------------------------------------------------------------------------------

@@ -9,10 +9,11 @@ Executors:
 
 - one process (``workers=1``): the cases run in the main process, one after the other;
 - a local pool (the default, ``workers`` processes, all cores when None):
-  :class:`concurrent.futures.ProcessPoolExecutor` with the ``forkserver`` start method on POSIX
-  (``spawn`` elsewhere); the study's shared data (base document, settings, figures) is sent once
-  per worker, each task carries only a case's parameter values; workers ignore SIGINT, so a
-  Ctrl-C reaches only the main process, which stops handing out cases and ends the workers;
+  :class:`concurrent.futures.ProcessPoolExecutor`, its workers forked from this process when it
+  runs a single thread (:func:`start_method`; else from a fork server, else spawned); the
+  study's shared data (base document, settings, figures) is sent once per worker, each task
+  carries only a case's parameter values; workers ignore SIGINT, so a Ctrl-C reaches only the
+  main process, which stops handing out cases and ends the workers;
 - a Dask cluster (``scheduler="tcp://host:8786"``): the shared data is scattered to the
   cluster once, with the contents of the files the base document names (pressure traces...),
   which the workers write to a temporary folder, so the workers need crankdyn (the same version)
@@ -29,6 +30,7 @@ import math
 import multiprocessing
 import os
 import signal
+import threading
 import time
 import uuid
 from collections.abc import Callable
@@ -40,13 +42,12 @@ from crankdyn import __version__
 from crankdyn.errors import InputError
 from crankdyn.results import Result, scalar
 from crankdyn.study.cases import Case, expand
-from crankdyn.study.docpath import referenced_files
 from crankdyn.study.figures import FIGURES
 from crankdyn.study.journal import Journal, StudyFolder
 from crankdyn.study.spec import StudySpec
 from crankdyn.study.worker import Payload, evaluate_case, prepare_worker
 
-__all__ = ["StudyRun", "payload_of", "run_study"]
+__all__ = ["StudyRun", "payload_of", "run_study", "start_method"]
 
 
 @dataclass(frozen=True)
@@ -75,13 +76,10 @@ class StudyRun(Result):
 
 
 def payload_of(spec: StudySpec, *, ship_files: bool = False) -> Payload:
-    """The data every case shares; ``ship_files`` includes the files the base document names
-    (for workers on other machines)."""
+    """The data every case shares; ``ship_files`` includes the contents of the files the base
+    document names, as read with the study (for workers on other machines)."""
     modules = tuple(sorted({FIGURES[name].module for name in spec.figures}))
     base_dir = None if spec.base.base_dir is None else str(spec.base.base_dir)
-    files: tuple[tuple[str, bytes], ...] = ()
-    if ship_files and spec.base.base_dir is not None:
-        files = _referenced_files(spec.base.document, spec.base.base_dir)
     return Payload(
         kind=spec.base.kind,
         document=spec.base.document,
@@ -92,16 +90,7 @@ def payload_of(spec: StudySpec, *, ship_files: bool = False) -> Payload:
         settings=spec.settings,
         figures=spec.figures,
         modules=modules,
-        files=files,
-    )
-
-
-def _referenced_files(document: dict, folder: Path) -> tuple[tuple[str, bytes], ...]:
-    """(relative path, bytes) of the files the document names by relative paths."""
-    return tuple(
-        (text, path.read_bytes())
-        for text, path in referenced_files(document, folder)
-        if not Path(text).expanduser().is_absolute()
+        files=spec.base.files if ship_files else (),
     )
 
 
@@ -146,22 +135,28 @@ def _run_local(case_id: str, params: dict[str, Any]) -> dict[str, Any]:
     return evaluate_case(_WORKER_PAYLOAD, case_id, params)
 
 
-_PRELOAD = [
-    "crankdyn.study.worker",
-    "crankdyn.io.engine_file",
-    "crankdyn.torque",
-    "crankdyn.bearings",
-    "crankdyn.kinematics",
-]
+def _noop() -> None:
+    return None
 
 
-def _mp_context():
+def start_method() -> str:
+    """How the local pool starts its workers: ``fork`` where the platform has it and this
+    process runs a single thread (the command line: the workers start at once, with everything
+    imported and the unit registry built), else ``forkserver`` (never fork a multi-threaded
+    process: a lock held by another thread would stay locked in the child), else ``spawn``."""
     methods = multiprocessing.get_all_start_methods()
+    if "fork" in methods and threading.active_count() == 1:
+        return "fork"
     if "forkserver" in methods:
-        ctx = multiprocessing.get_context("forkserver")
-        ctx.set_forkserver_preload(_PRELOAD)  # ignored once the server runs
-        return ctx
-    return multiprocessing.get_context("spawn")
+        return "forkserver"
+    return "spawn"
+
+
+def _mp_context(method: str):
+    ctx = multiprocessing.get_context(method)
+    if method == "forkserver":
+        ctx.set_forkserver_preload(["crankdyn.study.preload"])  # ignored once the server runs
+    return ctx
 
 
 class _LocalPool:
@@ -169,12 +164,15 @@ class _LocalPool:
         self.workers = workers
         self.capacity = 2 * workers
         self.description = f"local pool of {workers} processes"
+        method = start_method()
         self.pool = cf.ProcessPoolExecutor(
             max_workers=workers,
-            mp_context=_mp_context(),
+            mp_context=_mp_context(method),
             initializer=_init_local_worker,
             initargs=(payload,),
         )
+        if method == "fork":  # start every worker now, before this process starts a thread
+            self.pool.submit(_noop).result()
 
     def submit(self, case: Case) -> cf.Future:
         return self.pool.submit(_run_local, case.case_id, case.params)
@@ -439,6 +437,8 @@ def run_study(
             on_start(0, skipped, description)
         elapsed = time.perf_counter() - start
         ran = count[0]
+        if todo:  # the journal is the record (an interrupt may fall between write and count)
+            records, damaged = folder.records()
         table = CaseTable.build(spec, cases, records)
         write_outputs(spec, table, folder.path, summary=summary, run_info={"elapsed_s": elapsed})
         run = StudyRun(

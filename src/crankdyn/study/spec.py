@@ -94,6 +94,9 @@ class Base:
     files_digest
         SHA-256 of the files the document refers to (pressure traces...), so that the study's
         fingerprint changes when they do.
+    files
+        (relative path, contents) of the files the document names by relative paths, read
+        with the document: what workers on other machines receive.
     """
 
     kind: str
@@ -101,6 +104,7 @@ class Base:
     source: str
     base_dir: Path | None = None
     files_digest: str = ""
+    files: tuple[tuple[str, bytes], ...] = field(default=(), repr=False)
 
     def __post_init__(self) -> None:
         if self.kind not in BASE_KINDS:
