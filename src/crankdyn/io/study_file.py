@@ -99,6 +99,12 @@ def _load(path: Path, name: str) -> StudySpec:
 
 def _base(root: Table) -> Base:
     kinds = tuple(BASE_KINDS)
+    if not any(k in root.data for k in kinds):
+        raise root.error(
+            kinds[0],
+            f"missing; name the {' or '.join(kinds)} file to vary (or a built-in example), "
+            'e.g. engine = "engine.toml"',
+        )
     kind = root.exclusive(*kinds)
     spec = root.string(kind)
     if not spec.strip():

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib.ticker import MaxNLocator
 
 from crankdyn.plots.style import COLORS, new_figure
 from crankdyn.study.sensitivity import main_effect, negligible_spread, spearman
@@ -124,14 +125,16 @@ def plot_sensitivity(figures: list[Series], parameters: list[Series], fig=None):
             ax = axes[i, j]
             _panel(ax, y, p, legend=(i == 0 and j == 0), constant=constant)
             ax.ticklabel_format(axis="y", useOffset=False, style="plain")
-        if constant:
-            middle = float(finite.mean())
-            pad = 0.01 * abs(middle) or 1.0
-            axes[i, 0].set_ylim(middle - pad, middle + pad)
+            if p.numeric:
+                ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
             if j == 0:
                 ax.set_ylabel(_wrap(f.axis_label), fontsize=9)
             if i == nrows - 1:
                 ax.set_xlabel(p.axis_label)
+        if constant:
+            middle = float(finite.mean())
+            pad = 0.01 * abs(middle) or 1.0
+            axes[i, 0].set_ylim(middle - pad, middle + pad)
     fig.suptitle("Sensitivity of the figures to the parameters")
     return fig
 
@@ -150,7 +153,7 @@ def plot_distributions(figures: list[Series], fig=None, columns: int = 3):
     n = len(figures)
     ncols = min(n, columns)
     nrows = math.ceil(n / ncols)
-    fig, axes = new_figure(nrows, ncols, width=3.6 * ncols + 0.6, height=2.8 * nrows + 0.7, fig=fig)
+    fig, axes = new_figure(nrows, ncols, width=3.8 * ncols + 0.6, height=2.9 * nrows + 0.7, fig=fig)
     for ax, f in zip(axes.flat, figures, strict=False):
         values = np.asarray(f.values, dtype=float)
         values = values[np.isfinite(values)]
@@ -165,7 +168,9 @@ def plot_distributions(figures: list[Series], fig=None, columns: int = 3):
         ax.axvline(mean, color=COLORS[1], linewidth=1.6, label=f"mean {mean:.4g}")
         ax.axvline(low, color=COLORS[3], linewidth=1.0, linestyle="--", label="5 % / 95 %")
         ax.axvline(high, color=COLORS[3], linewidth=1.0, linestyle="--")
-        ax.set_xlabel(f.axis_label)
+        ax.ticklabel_format(axis="x", useOffset=False, style="plain")
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
+        ax.set_xlabel(_wrap(f.axis_label, 40))
         ax.set_ylabel("cases")
         ax.legend(fontsize=8, loc="best")
     for ax in list(axes.flat)[n:]:

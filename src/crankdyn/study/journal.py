@@ -125,6 +125,7 @@ class StudyFolder:
         self.path = Path(path)
         self.fingerprint = fingerprint
         self.resumed = False
+        self.created = False
         self._lock_handle = None
         self._open(force, info)
 
@@ -151,6 +152,7 @@ class StudyFolder:
             if not parent.is_dir():
                 raise InputError(f"the folder {parent} does not exist", file=shown)
             p.mkdir()
+            self.created = True
         self._lock()
         try:
             self._check(force)
@@ -209,6 +211,18 @@ class StudyFolder:
                     shutil.rmtree(target)
                 elif target.exists():
                     target.unlink()
+
+    def discard_if_unused(self) -> None:
+        """Undo the opening of a folder that received no case (e.g. the cluster could not be
+        reached): remove a new folder, or a manifest written into an empty one."""
+        if self.resumed or self.journal_path.exists():
+            return
+        self.close()
+        with contextlib.suppress(OSError):
+            self.manifest_path.unlink()
+            (self.path / LOCK).unlink()
+            if self.created:
+                self.path.rmdir()
 
     # ---- the lock ------------------------------------------------------------------------------
     def _lock(self) -> None:

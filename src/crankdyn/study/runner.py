@@ -205,6 +205,23 @@ class _PoolBroken(Exception):
     pass
 
 
+def _check_address(address: str) -> None:
+    """Refuse an address Dask cannot parse before a client is made (a client that fails in its
+    constructor cannot be closed and stalls the interpreter's exit)."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:
+        protocol, location = parse_address(address, strict=False)
+        if protocol in ("tcp", "tls", "ws", "wss"):
+            parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise InputError(
+            f"expected a Dask scheduler address such as tcp://10.0.0.5:8786 ({exc})",
+            key="--scheduler",
+            value=address,
+        ) from None
+
+
 def _evaluate_on_cluster(payload: Payload, case_id: str, params: dict[str, Any]):
     return evaluate_case(payload, case_id, params)
 
@@ -219,6 +236,7 @@ class _Dask:
                 key="--scheduler",
                 value=address,
             ) from None
+        _check_address(address)
         try:
             self.client = Client(address, timeout=10, set_as_default=False)
         except (OSError, TimeoutError, ValueError, TypeError) as exc:
@@ -418,7 +436,11 @@ def run_study(
             def payload_for(ship: bool) -> Payload:
                 return payload_of(spec, ship_files=ship)
 
-            executor = _executor(payload_for, workers, scheduler)
+            try:
+                executor = _executor(payload_for, workers, scheduler)
+            except BaseException:
+                folder.discard_if_unused()
+                raise
             description = executor.description
             if on_start is not None:
                 on_start(len(todo), skipped, description)
