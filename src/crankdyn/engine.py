@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from crankdyn.balance import BalanceInputs
 from crankdyn.errors import InputError
 from crankdyn.firing import (
     CYCLE_ANGLE,
@@ -24,6 +25,7 @@ from crankdyn.firing import (
     even_firing_throw_angles,
     firing_angles,
 )
+from crankdyn.flywheel import FlywheelInputs
 from crankdyn.geometry import CrankGeometry, check_finite, check_positive
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE, PressureTrace
@@ -268,6 +270,11 @@ class Engine:
         Pressure under the piston (Pa, absolute); the gas force is (p - p_crankcase) A.
     speed
         Operating speed (rad/s), or None.
+    balance
+        Counterweights, V rod offset and power for the balance analysis, or None.
+    flywheel
+        Target irregularity, flywheel, other inertias and material for the flywheel analysis,
+        or None.
     source
         The file the engine came from, for messages.
     """
@@ -279,6 +286,8 @@ class Engine:
     pressure: PressureTrace | None = None
     crankcase_pressure: float = ATMOSPHERE
     speed: float | None = None
+    balance: BalanceInputs | None = None
+    flywheel: FlywheelInputs | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
