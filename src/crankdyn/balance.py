@@ -283,7 +283,12 @@ class OrderBalance(Result):
     speed: float = field(default=1.0, repr=False, compare=False)
 
 
-def _order_balance(order, source, ph: Phasors, scale, unit_force, pitch, power) -> OrderBalance:
+def _order_balance(
+    order, source, ph: Phasors, scale, unit_force, pitch, power, floors
+) -> OrderBalance:
+    """One row of the balance table from scaled phasors; parts smaller than ``floors`` (force
+    and moment phasors, round-off of sums that vanish exactly) are set to zero."""
+    ph = _snap(ph, floors)
     f_amp = scale * float(phasor_amplitude(ph.x, ph.y))
     fwd, bwd = rotation_split(ph.x, ph.y)
     moment = vert = horiz = mfwd = mbwd = None
@@ -311,6 +316,19 @@ def _order_balance(order, source, ph: Phasors, scale, unit_force, pitch, power) 
         ),
         power_related_unbalance=moment / power if moment is not None and power else None,
         phasors=Phasors(*(None if p is None else scale * p for p in ph)),
+    )
+
+
+def _snap(ph: Phasors, floors) -> Phasors:
+    f_floor, m_floor = floors
+
+    def clean(p, floor):
+        if p is None:
+            return None
+        return complex(0.0) if abs(p) < floor else p
+
+    return Phasors(
+        clean(ph.x, f_floor), clean(ph.y, f_floor), clean(ph.xz, m_floor), clean(ph.yz, m_floor)
     )
 
 
@@ -551,13 +569,21 @@ def engine_balance(
     power = inputs.power
     coeff_c, coeff_s = piston_harmonics(geo.lam, geo.k, orders, method)
 
+    # round-off floor: sums that vanish exactly come out near 1e-16 of their terms
+    length = 1.0 if rod_z is None else max(float(np.max(np.abs(rod_z))), 1e-300)
+    total_mass = throws.size * m_j + float(per_cyl.sum() + per_throw.sum())
+    total_mass *= 1.0 + inputs.counterweight_ratio + inputs.reciprocating_balance_ratio
+    floors = (1e-12 * total_mass, 1e-12 * total_mass * length)
+
     def recip(n, c_n, s_n) -> Phasors:
         ph = harmonic_phasors(psi, alpha, m_j, n, rod_z)
         h = c_n - 1j * s_n
         return Phasors(*(None if p is None else h * p for p in ph))
 
     results = [
-        _order_balance(n, "reciprocating", recip(n, c_n, s_n), scale, unit_force, pitch, power)
+        _order_balance(
+            n, "reciprocating", recip(n, c_n, s_n), scale, unit_force, pitch, power, floors
+        )
         for n, c_n, s_n in zip(orders, coeff_c, coeff_s, strict=True)
     ]
 
@@ -579,7 +605,7 @@ def engine_balance(
         yz_rot = np.sum((per_throw - m_cw) * throw_z * e_t) + np.sum(per_cyl * rod_z * e_cyl)
     rot_ph = Phasors(-1j * y_rot, y_rot, None if yz_rot is None else -1j * yz_rot, yz_rot)
     rotating = replace(
-        _order_balance(1, "rotating", rot_ph, scale, unit_force, pitch, power),
+        _order_balance(1, "rotating", rot_ph, scale, unit_force, pitch, power, floors),
         force_coefficient=None,
         moment_coefficient=None,
     )
@@ -591,7 +617,9 @@ def engine_balance(
         None if rot_ph.xz is None else ph1.xz + rot_ph.xz,
         None if rot_ph.yz is None else ph1.yz + rot_ph.yz,
     )
-    total = _order_balance(1, "first order total", total_ph, scale, unit_force, pitch, power)
+    total = _order_balance(
+        1, "first order total", total_ph, scale, unit_force, pitch, power, floors
+    )
     overturning = None
     if torque is not None:
         overturning = overturning_moment(torque[0], torque[1], engine.cycle_angle)

@@ -331,7 +331,7 @@ def even_firing_schemes(throw_angles, cycle: str) -> FiringSchemes:
         rows = np.arange(count)[:, None]
         slot_of[rows, chosen] = key[None, :]
     firing = slot_of * interval
-    return FiringSchemes.from_firing(firing, psi, cycle)
+    return FiringSchemes.from_firing(firing, throw_angles_from_firing_angles(firing), cycle)
 
 
 def all_firing_schemes(throw_angles, cycle: str) -> FiringSchemes:
@@ -362,7 +362,9 @@ def all_firing_schemes(throw_angles, cycle: str) -> FiringSchemes:
     return FiringSchemes.from_firing(firing[ok], psi, cycle)
 
 
-def crankshaft_firing_schemes(throws, axis_angles, cycle: str) -> FiringSchemes:
+def crankshaft_firing_schemes(
+    throws, axis_angles, cycle: str, method: str | None = None
+) -> FiringSchemes:
     """Every even-firing scheme of every crankshaft a cylinder layout can have.
 
     The layout (the throw of each cylinder and its axis angle) is fixed; the crankshaft is free.
@@ -382,6 +384,9 @@ def crankshaft_firing_schemes(throws, axis_angles, cycle: str) -> FiringSchemes:
         Axis angle alpha_i of every cylinder (rad).
     cycle
         ``"four-stroke"`` or ``"two-stroke"``.
+    method
+        ``"crankshafts"`` for (a), ``"permutations"`` for (b); None picks the one with fewer
+        candidates.
     """
     throws = np.asarray(throws, dtype=int)
     alpha = np.asarray(axis_angles, dtype=float)
@@ -409,10 +414,14 @@ def crankshaft_firing_schemes(throws, axis_angles, cycle: str) -> FiringSchemes:
     candidates[throws[0] - 1] = np.array([0.0])  # cylinder 1's throw is the reference
     n_cranks = math.prod(len(c) for c in candidates)
     n_perms = math.factorial(z - 1)
-    if min(n_cranks, n_perms) > MAX_SCHEMES:
-        raise _too_many(min(n_cranks, n_perms), "crankshafts")
-    if n_perms <= n_cranks:
+    if method is None:
+        method = "permutations" if n_perms <= n_cranks else "crankshafts"
+    if method == "permutations":
+        if n_perms > MAX_SCHEMES:
+            raise _too_many(n_perms, "candidate firing orders")
         return _schemes_by_permutation(throws, alpha, cycle)
+    if n_cranks > MAX_SCHEMES:
+        raise _too_many(n_cranks, "candidate crankshafts")
     grids = np.meshgrid(*candidates, indexing="ij")
     positions = np.stack([g.ravel() for g in grids], axis=1)  # (n_cranks, T)
     psi_all = np.mod(alpha[None, :] - alpha[0] - positions[:, throws - 1], TWO_PI)

@@ -14,10 +14,13 @@ values, with the direction that is better. The built-in ones:
 
 - ``interval_deviation_deg``: the largest departure of a firing interval from the even
   interval (0 for even firing).
-- ``free_moment_1``, ``free_moment_2``: the first- and second-order free moments of the
-  reciprocating masses, per unit harmonic force and unit cylinder pitch (the moment amplitude
-  divided by m_j R w^2 A_n a, see :mod:`crankdyn.balance`), about the middle of the engine.
-  They depend on the crankshaft only, so they separate crankshafts, not orders.
+- ``free_force_1``, ``free_force_2``, ``free_moment_1``, ``free_moment_2``: the first- and
+  second-order free forces and moments of the reciprocating masses, per unit harmonic force
+  (the amplitude divided by m_j R w^2 A_n) and, for the moments, per unit cylinder pitch a,
+  about the middle of the engine (see :mod:`crankdyn.balance`). They depend on the crankshaft
+  only, so they separate crankshafts, not orders; forces come first since counterweights can
+  cancel a first-order moment but no crankshaft weight cancels a free force of the second
+  order.
 - ``adjacent_consecutive``: how many times in a cycle a cylinder fires right after an adjacent
   one (same bank, neighbouring throw), the cycle closing from the last cylinder to the first.
 - ``main_bearing_min_interval_deg``: for every main bearing between two throws, the shortest
@@ -190,12 +193,25 @@ def _bearing(s: FiringSchemes, layout: Layout) -> np.ndarray:
     return gaps.min(axis=1)
 
 
+def _snap(values, reference: float):
+    """Sums that vanish exactly come out near 1e-16 of their terms: set them to zero."""
+    return np.where(values < 1e-12 * reference, 0.0, values)
+
+
+def _free_force(order: int):
+    def evaluate(s: FiringSchemes, layout: Layout) -> np.ndarray:
+        ph = harmonic_phasors(s.throw_angles, layout.axis_angles, 1.0, order)
+        return _snap(phasor_amplitude(ph.x, ph.y), layout.count)
+
+    return evaluate
+
+
 def _free_moment(order: int):
     def evaluate(s: FiringSchemes, layout: Layout) -> np.ndarray:
         if layout.throw_count < 2:
             return np.zeros(len(s))
         ph = harmonic_phasors(s.throw_angles, layout.axis_angles, 1.0, order, layout.axial)
-        return phasor_amplitude(ph.xz, ph.yz)
+        return _snap(phasor_amplitude(ph.xz, ph.yz), layout.count * layout.throw_count)
 
     return evaluate
 
@@ -210,6 +226,20 @@ CRITERIA: dict[str, Criterion] = {
             _interval_deviation,
             decimals=6,
             scale=DEG,
+        ),
+        Criterion(
+            "free_force_1",
+            "1st-order free force / (m_j R ω²)",
+            "lower",
+            _free_force(1),
+            decimals=9,
+        ),
+        Criterion(
+            "free_force_2",
+            "2nd-order free force / (m_j R ω² A₂)",
+            "lower",
+            _free_force(2),
+            decimals=9,
         ),
         Criterion(
             "free_moment_1",
@@ -244,6 +274,8 @@ CRITERIA: dict[str, Criterion] = {
 }
 DEFAULT_PRIORITY = (
     "interval_deviation_deg",
+    "free_force_1",
+    "free_force_2",
     "free_moment_1",
     "free_moment_2",
     "adjacent_consecutive",
@@ -442,8 +474,13 @@ class FiringCandidate(Result):
     )
     adjacent_pairs: tuple[str, ...] = scalar("adjacent_pairs", "Adjacent pairs", "")
     main_bearing_min_interval: float | None = scalar(
-        "main_bearing_min_interval_deg", "Shortest firing interval next to a main bearing", "deg"
+        "main_bearing_min_interval_deg",
+        "Shortest firing interval next to a main bearing",
+        "deg",
+        DEG,
     )
+    free_force_1: float = scalar("free_force_1", "1st-order free force / (m_j R ω²)", "")
+    free_force_2: float = scalar("free_force_2", "2nd-order free force / (m_j R ω² A₂)", "")
     free_moment_1: float = scalar("free_moment_1", "1st-order free moment / (m_j R ω² a)", "")
     free_moment_2: float = scalar("free_moment_2", "2nd-order free moment / (m_j R ω² A₂ a)", "")
     v_scheme: str | None = scalar("v_scheme", "V firing scheme", "")
@@ -454,7 +491,7 @@ class FiringCandidate(Result):
         "torsional_vector_sums", "Torsional vector sums by order", ""
     )
     exhaust_min_interval: float | None = scalar(
-        "exhaust_min_interval_deg", "Shortest interval within an exhaust group", "deg"
+        "exhaust_min_interval_deg", "Shortest interval within an exhaust group", "deg", DEG
     )
     layout: Layout | None = field(default=None, repr=False, compare=False)
 
@@ -697,7 +734,9 @@ def _candidate(schemes, layout, values, row, rank, per_order, k) -> FiringCandid
         interval_deviation=float(values["interval_deviation_deg"][row]),
         adjacent_consecutive=int(values["adjacent_consecutive"][row]),
         adjacent_pairs=pairs,
-        main_bearing_min_interval=None if math.isnan(bearing) else float(bearing * DEG),
+        main_bearing_min_interval=None if math.isnan(bearing) else float(bearing),
+        free_force_1=float(values["free_force_1"][row]),
+        free_force_2=float(values["free_force_2"][row]),
         free_moment_1=float(values["free_moment_1"][row]),
         free_moment_2=float(values["free_moment_2"][row]),
         v_scheme=scheme,
@@ -706,7 +745,7 @@ def _candidate(schemes, layout, values, row, rank, per_order, k) -> FiringCandid
         ),
         torsional_vector_sums=sums,
         exhaust_min_interval=(
-            float(values["exhaust_min_interval_deg"][row] * DEG)
+            float(values["exhaust_min_interval_deg"][row])
             if "exhaust_min_interval_deg" in values
             else None
         ),
