@@ -6,9 +6,27 @@ import os
 
 import matplotlib
 import pytest
+from hypothesis import HealthCheck, settings
 
 matplotlib.use("Agg")
 os.environ.setdefault("COLUMNS", "160")
+
+# Hypothesis profiles: "ci" (default) keeps the normal suite bounded; "fuzz" is the long campaign
+# of `make fuzz` (docs/robustness.md). Tests that set max_examples themselves keep them in "ci".
+settings.register_profile("ci", deadline=None, suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile(
+    "fuzz",
+    max_examples=int(os.environ.get("CRANKDYN_FUZZ_EXAMPLES", "5000")),
+    deadline=None,
+    suppress_health_check=list(HealthCheck),
+)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
+FUZZ = os.environ.get("HYPOTHESIS_PROFILE") == "fuzz"
+
+
+def fuzz_examples(normal: int) -> int:
+    """Examples for a fuzz test: ``normal`` in the suite, the profile's count under make fuzz."""
+    return settings().max_examples if FUZZ else normal
 
 
 class CliRun:

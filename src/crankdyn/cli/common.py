@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 import numpy as np
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.engine import Engine
@@ -107,7 +108,7 @@ def render_table(result: Result, title: str | None = None) -> RichTable:
     table = RichTable(title=title, show_lines=False, header_style="bold")
     for key in labels:
         label, unit = labels[key]
-        table.add_column(f"{label}\n({unit})" if unit else label, justify="right")
+        table.add_column(escape(f"{label}\n({unit})" if unit else label), justify="right")
     cols = result.columns()
     scales = [float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) for c in cols.values()]
     for row in zip(*cols.values(), strict=True):
@@ -121,8 +122,8 @@ def summary_table(result: Result, title: str = "Summary") -> RichTable:
     table.add_column("Quantity", justify="left")
     table.add_column("Value", justify="right")
     table.add_column("Unit", justify="left")
-    for label, value, unit in result.summary_rows():
-        table.add_row(label, value, unit)
+    for label, value, unit in result.summary_rows():  # user text may hold [brackets]
+        table.add_row(escape(label), escape(value), escape(unit))
     return table
 
 

@@ -17,7 +17,7 @@ from crankdyn.engine import Engine
 
 __all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
 
-BUILDERS = ("kinematics",)
+BUILDERS = ("kinematics", "pressure", "forces", "torque")
 
 
 class NotApplicable(Exception):
