@@ -522,8 +522,11 @@ def engine_balance(
     inputs
         Counterweights, rod offset and power; default ``engine.balance`` or no counterweights.
     torque
-        (angles, torque) of the engine over one cycle (rad, N m), for the overturning moment;
-        None leaves it out.
+        The engine torque over one cycle, for the overturning moment: an
+        :class:`crankdyn.torque.EngineTorque` (whose power also serves the power-related
+        unbalance when ``inputs`` gives none: the effective power if the mechanical efficiency
+        is known, else the indicated power) or a pair (angles in rad, torque in N m); None
+        leaves it out.
 
     Returns
     -------
@@ -567,6 +570,22 @@ def engine_balance(
         notes.append("rod_offset applies to V engines only; ignored")
     pitch = cyl.pitch if cyl.pitch is not None else math.nan
     power = inputs.power
+    torque_curve = None
+    if torque is not None:
+        if hasattr(torque, "total_torque"):
+            torque_curve = (torque.crank_angle, torque.total_torque)
+            if power is None:
+                effective = getattr(torque, "effective_power", None)
+                power = effective if effective else torque.indicated_power
+                kind = "effective" if effective else "indicated"
+                notes.append(
+                    f"power-related unbalance per kW of {kind} power from the torque analysis "
+                    f"({power / 1e3:.4g} kW)"
+                )
+        else:
+            torque_curve = torque
+        if power is not None and not power > 0.0:
+            power = None
     coeff_c, coeff_s = piston_harmonics(geo.lam, geo.k, orders, method)
 
     # round-off floor: sums that vanish exactly come out near 1e-16 of their terms
@@ -621,8 +640,8 @@ def engine_balance(
         1, "first order total", total_ph, scale, unit_force, pitch, power, floors
     )
     overturning = None
-    if torque is not None:
-        overturning = overturning_moment(torque[0], torque[1], engine.cycle_angle)
+    if torque_curve is not None:
+        overturning = overturning_moment(torque_curve[0], torque_curve[1], engine.cycle_angle)
     return BalanceResult(
         engine=engine.name,
         speed=w,

@@ -47,6 +47,7 @@ __all__ = [
     "FlywheelResult",
     "G",
     "crank_train_inertia",
+    "engine_flywheel",
     "excess_work",
     "flywheel_analysis",
     "instantaneous_speed",
@@ -448,3 +449,64 @@ def _sizing(flywheel: float, inputs: FlywheelInputs, w: float, notes: list[str])
             inner_diameter=d2, rim_width=b, rim_mass=rho * b * math.pi * (d1 * d1 - d2 * d2) / 4.0
         )
     return out
+
+
+def engine_flywheel(
+    engine,
+    speed: float,
+    *,
+    delta: float | None = None,
+    inertia: float | None = None,
+    inputs: FlywheelInputs | None = None,
+    step: float = math.radians(0.5),
+    torque=None,
+) -> FlywheelResult:
+    """Speed fluctuation and flywheel of an engine at a speed (module docstring).
+
+    The torque is the engine's total (gas and inertia) torque over a cycle at constant speed
+    from :func:`crankdyn.torque.engine_torque` (the engine's pressure trace, or its synthetic
+    model); the load takes the mean torque.
+
+    Parameters
+    ----------
+    engine
+        The :class:`crankdyn.engine.Engine` (masses required for the torque).
+    speed
+        Mean crank speed (rad/s).
+    delta, inertia
+        Target degree of cyclic irregularity, or a given flywheel's inertia (kg m^2); they
+        override the engine's ``[flywheel]`` inputs.
+    inputs
+        Flywheel inputs; default ``engine.flywheel``.
+    step
+        Crank-angle step of the torque curve (rad).
+    torque
+        An :class:`crankdyn.torque.EngineTorque` already computed at this speed, to reuse.
+    """
+    from crankdyn.torque import engine_torque
+
+    if engine.masses is None:
+        raise InputError(
+            "the flywheel needs the engine torque, hence the crank-train masses: add [masses]",
+            file=engine.source,
+        )
+    if torque is None:
+        torque = engine_torque(engine, speed, step=step)
+    rotating, reciprocating = crank_train_inertia(
+        engine.masses, engine.geometry, engine.cylinders.throws
+    )
+    result = flywheel_analysis(
+        torque.crank_angle,
+        torque.total_torque,
+        speed,
+        engine.cycle_angle,
+        rotating_inertia=rotating,
+        reciprocating_inertia=reciprocating,
+        inputs=inputs if inputs is not None else (engine.flywheel or FlywheelInputs()),
+        delta=delta,
+        inertia=inertia,
+        engine=engine.name,
+    )
+    if torque.notes:
+        result = replace(result, notes=tuple(torque.notes) + result.notes)
+    return result

@@ -24,7 +24,9 @@ from crankdyn.cli.common import (
 )
 from crankdyn.errors import InputError
 from crankdyn.firing_search import CRITERIA, FiringOrderRanking, firing_order_search
+from crankdyn.flywheel import engine_flywheel
 from crankdyn.io.output import write_bytes, write_text
+from crankdyn.torque import engine_torque
 
 __all__ = ["register", "save_figure"]
 
@@ -417,6 +419,11 @@ def _balance_notes(result) -> list[str]:
     metavar="KW",
     help="Engine power for the power-related unbalance (kW, or with a unit).",
 )
+@click.option(
+    "--no-torque",
+    is_flag=True,
+    help="Leave out the overturning moment (and the power from the torque analysis).",
+)
 @_format_option
 @output_options
 @_plot_option
@@ -429,6 +436,7 @@ def balance_command(
     reciprocating_balance_ratio,
     rod_offset,
     power,
+    no_torque,
     fmt,
     output,
     force,
@@ -467,6 +475,7 @@ def balance_command(
         orders=order_list,
         method=method,
         inputs=inputs,
+        torque=None if no_torque else engine_torque(eng, w),
     )
     if fmt == "json":
         _write(result.to_json() + "\n", output, force)
@@ -481,6 +490,102 @@ def balance_command(
     return 0
 
 
+# ---- flywheel ---------------------------------------------------------------------------------
+
+
+def flywheel_table(result) -> RichTable:
+    """The flywheel figures as a rich table."""
+    table = RichTable(
+        title=f"{result.engine}: speed fluctuation and flywheel at "
+        f"{result.speed * 30 / math.pi:.0f} rpm",
+        header_style="bold",
+    )
+    table.add_column("Quantity")
+    table.add_column("Value", justify="right")
+    table.add_column("Unit")
+    for label, value, unit in result.summary_rows():
+        if label in ("Engine", "Notes"):
+            continue
+        table.add_row(escape(label), escape(value), escape(unit))
+    return table
+
+
+@click.command("flywheel")
+@engine_argument
+@click.option(
+    "--speed",
+    metavar="RPM",
+    default=None,
+    help="Mean crank speed (rpm, or with a unit); default: the engine's [operating] speed.",
+)
+@click.option(
+    "--delta",
+    default=None,
+    metavar="δ",
+    help="Target degree of cyclic irregularity (ω_max − ω_min)/ω_m, e.g. 0.01 or 1/150 "
+    "(default: the file's [flywheel] delta).",
+)
+@click.option(
+    "--inertia",
+    default=None,
+    metavar="KGM2",
+    help="A given flywheel's inertia (kg·m², or with a unit), to find the δ it gives.",
+)
+@click.option(
+    "--step",
+    metavar="DEG",
+    default="0.5",
+    show_default=True,
+    help="Crank-angle step of the torque curve (deg, or with a unit).",
+)
+@_format_option
+@output_options
+@_plot_option
+def flywheel_command(engine, speed, delta, inertia, step, fmt, output, force, plot_file) -> int:
+    """Speed fluctuation of ENGINE and the flywheel for a target δ (seed 000 §2.4)."""
+    eng = load_engine_arg(engine)
+    w = speed_of(eng, speed)
+    target = None if delta is None else _fraction(delta, "--delta")
+    if target is not None and not 0.0 < target < 1.0:
+        raise InputError("δ must lie between 0 and 1, e.g. 0.01", key="--delta", value=delta)
+    given = option_quantity(inertia, "inertia", "--inertia", "kg*m^2")
+    if given is not None and not given > 0.0:
+        raise InputError("the inertia must be positive", key="--inertia", value=inertia)
+    h = option_quantity(step, "angle", "--step", "deg")
+    cycle = eng.cycle_angle
+    if not 0.0 < h <= math.radians(10.0) or abs(round(cycle / h) * h - cycle) > 1e-9 * cycle:
+        raise InputError(
+            f"the step must divide {math.degrees(cycle):.0f} deg evenly and be at most 10 deg",
+            key="--step",
+            value=step,
+        )
+    result = engine_flywheel(eng, w, delta=target, inertia=given, step=h)
+    if fmt == "json":
+        data = result.to_dict()
+        _write(json.dumps(data, indent=2, allow_nan=False) + "\n", output, force)
+    elif fmt == "csv":
+        _write(result.to_csv(), output, force)
+    else:
+        notes = [n[0].upper() + n[1:] + "." for n in result.notes]
+        _print_or_record([flywheel_table(result), *(escape(n) for n in notes)], output, force)
+    if plot_file:
+        save_figure(result.plot(), plot_file, force)
+    return 0
+
+
+def _fraction(text: str, option: str) -> float:
+    try:
+        parts = [float(p) for p in text.split("/")]
+        if len(parts) > 2 or not all(math.isfinite(p) for p in parts):
+            raise ValueError
+        return parts[0] / parts[1] if len(parts) == 2 else parts[0]
+    except (ValueError, ZeroDivisionError):
+        raise InputError(
+            "expected a number or a fraction such as 1/150", key=option, value=text
+        ) from None
+
+
 def register(group: click.Group) -> None:
     group.add_command(firing_orders_command)
     group.add_command(balance_command)
+    group.add_command(flywheel_command)
