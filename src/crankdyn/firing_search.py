@@ -23,10 +23,13 @@ values, with the direction that is better. The built-in ones:
   order.
 - ``adjacent_consecutive``: how many times in a cycle a cylinder fires right after an adjacent
   one (same bank, neighbouring throw), the cycle closing from the last cylinder to the first.
+  Each bank of a V engine counts as the in-line engine it is: its cylinders' own firing
+  sequence is judged (in the engine's order a bank-B cylinder may stand between them).
 - ``main_bearing_min_interval_deg``: for every main bearing between two throws, the shortest
-  firing interval between two cylinders on the throws either side of it (both cylinders of a
-  V throw included); the smallest over the bearings. Two firings in quick succession next to
-  one bearing load it twice without a pause; larger is better.
+  firing interval between two cylinders on the throws either side of it (any banks); the
+  smallest over the bearings. Two firings in quick succession next to one bearing load it
+  twice without a pause; larger is better. (The two cylinders of one V throw are not paired:
+  their interval is set by the bank angle.)
 - ``torsional_vector_sum`` (given a mode shape, :func:`torsional_criterion`): the vector sum
   |sum_i beta_i exp(j n Phi_i)| of order n over the relative amplitudes beta_i of the mode at
   the cylinders, the largest over the minor orders (or over chosen orders). At a major order
@@ -126,12 +129,10 @@ class Layout:
         return out
 
     def bearing_pairs(self) -> np.ndarray:
-        """(P, 2) cylinder indices (0-based) on throws either side of a main bearing between
-        two throws (both cylinders of a V throw included); empty for a single throw."""
-        if self.throw_count < 2:
-            return np.zeros((0, 2), dtype=int)
+        """(P, 2) cylinder indices (0-based) on the two throws either side of a main bearing
+        between throws; empty for a single throw."""
         i, j = np.triu_indices(self.count, k=1)
-        near = np.abs(self.throws[i] - self.throws[j]) <= 1
+        near = np.abs(self.throws[i] - self.throws[j]) == 1
         return np.stack([i[near], j[near]], axis=1)
 
 
@@ -174,10 +175,22 @@ def _interval_deviation(s: FiringSchemes, layout: Layout) -> np.ndarray:
     return np.max(np.abs(s.intervals - even), axis=1)
 
 
+def _bank_sequences(orders: np.ndarray, layout: Layout):
+    """For each bank, the (n, k) firing sequence of its cylinders (each bank of a V engine
+    fires as an in-line engine)."""
+    banks = np.array(layout.banks)
+    for bank in sorted(set(layout.banks)):
+        mask = banks[orders - 1] == bank
+        yield orders[mask].reshape(orders.shape[0], -1)
+
+
 def _adjacent(s: FiringSchemes, layout: Layout) -> np.ndarray:
     adj = layout.adjacent()
-    nxt = np.roll(s.orders, -1, axis=1)
-    return adj[s.orders, nxt].sum(axis=1).astype(float)
+    total = np.zeros(len(s))
+    for seq in _bank_sequences(s.orders, layout):
+        if seq.shape[1] > 1:
+            total += adj[seq, np.roll(seq, -1, axis=1)].sum(axis=1)
+    return total
 
 
 def _cyclic_gap(a, b, cycle_angle):
@@ -713,7 +726,11 @@ def _candidate(schemes, layout, values, row, rank, per_order, k) -> FiringCandid
     psi = schemes.throw_angles[row]
     adj = layout.adjacent()
     pairs = tuple(
-        f"{a}-{b}" for a, b in zip(order, order[1:] + order[:1], strict=True) if adj[a, b]
+        f"{a}-{b}"
+        for seq in _bank_sequences(schemes.orders[row : row + 1], layout)
+        if seq.shape[1] > 1
+        for a, b in zip(seq[0], np.roll(seq[0], -1), strict=True)
+        if adj[a, b]
     )
     scheme = None
     if layout.layout == "V":

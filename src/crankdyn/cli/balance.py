@@ -168,8 +168,8 @@ def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> RichT
     shown = result.candidates if limit is None else result.candidates[:limit]
     for cand in shown:
         d = cand.to_dict()
-        mark = " ◀ engine" if result.engine_rank == cand.rank else ""
-        row = [str(cand.rank), cand.order_text + mark, _intervals_text(d["firing_intervals_deg"])]
+        mark = "*" if result.engine_rank == cand.rank else ""
+        row = [f"{cand.rank}{mark}", cand.order_text, _intervals_text(d["firing_intervals_deg"])]
         for c in crit:
             value = d.get(c)
             row.append(_fmt(value, ".4g" if isinstance(value, float) else ""))
@@ -186,7 +186,7 @@ def _ranking_notes(result: FiringOrderRanking, shown: int) -> list[str]:
     ]
     order = "-".join(str(c) for c in result.engine_order)
     if result.engine_rank is not None:
-        lines.append(f"The engine's firing order {order} ranks {result.engine_rank}.")
+        lines.append(f"* The engine's firing order {order} ranks {result.engine_rank}.")
     elif result.search == "crankshaft":
         lines.append(f"The engine's firing order {order} is not among them.")
     if shown < len(result.candidates):
