@@ -268,7 +268,7 @@ def _too_many(count: int, what: str) -> InputError:
     return InputError(
         f"{count:,} {what} are more than the {MAX_SCHEMES:,} crankdyn enumerates; give the "
         "crankshaft (throw_angles or throw_positions) or fewer cylinders",
-        key="firing-orders",
+        key="search",
     )
 
 

@@ -180,8 +180,9 @@ def _bank_sequences(orders: np.ndarray, layout: Layout):
     fires as an in-line engine)."""
     banks = np.array(layout.banks)
     for bank in sorted(set(layout.banks)):
+        size = layout.banks.count(bank)
         mask = banks[orders - 1] == bank
-        yield orders[mask].reshape(orders.shape[0], -1)
+        yield orders[mask].reshape(orders.shape[0], size)
 
 
 def _adjacent(s: FiringSchemes, layout: Layout) -> np.ndarray:
@@ -659,7 +660,7 @@ def firing_order_search(
                 )
                 raise InputError(
                     f"unknown or unavailable criterion{hint}; choose from {', '.join(available)}",
-                    key="rank-by",
+                    key="priority",
                     value=c,
                 )
         chosen += [c for c in DEFAULT_PRIORITY if c in available and c not in chosen]

@@ -126,21 +126,22 @@ def excess_work(angle, torque, period: float) -> ExcessWork:
 def instantaneous_speed(angle, work, period: float, inertia: float, mean_speed: float):
     """Crank speed w(theta) (rad/s) of a rigid crankshaft of inertia I (kg m^2) whose excess
     work is W(theta) (J): (1/2) I w^2 = (1/2) I w_0^2 + W, with w_0 such that the time-mean
-    speed Theta / integral dtheta/w is ``mean_speed`` (rad/s)."""
+    speed Theta / integral dtheta/w is ``mean_speed`` (rad/s). The time integral takes the
+    speed at the middle of each step (W linear between the points), which stays finite when
+    the slowest point nearly stops."""
     theta = np.asarray(angle, dtype=float)
     w_work = np.asarray(work, dtype=float)
     h = np.diff(np.append(theta, theta[0] + period))
+    w_mid = (w_work + np.roll(w_work, -1)) / 2.0
     lowest = -2.0 * float(w_work.min()) / inertia  # w_0^2 at which the slowest point stops
 
-    def speed(c):
-        return np.sqrt(np.maximum(c + 2.0 * w_work / inertia, 0.0))
+    def speed(c, values):
+        return np.sqrt(np.maximum(c + 2.0 * values / inertia, 0.0))
 
     def excess_mean(c):
-        w = speed(c)
-        inv = 1.0 / np.maximum(w, 1e-300)
-        return period / float(np.sum(h * (inv + np.roll(inv, -1))) / 2.0) - mean_speed
+        mid = np.maximum(speed(c, w_mid), 1e-300)
+        return period / float(np.sum(h / mid)) - mean_speed
 
-    top = mean_speed**2 + 4.0 * float(np.max(np.abs(w_work))) / inertia + 1.0
     if excess_mean(lowest) > 0.0:
         raise InputError(
             f"the inertia ({inertia:.4g} kg*m^2) is too small to carry the crankshaft through "
@@ -148,8 +149,9 @@ def instantaneous_speed(angle, work, period: float, inertia: float, mean_speed: 
             key="inertia",
             value=inertia,
         )
-    c = brentq(excess_mean, lowest, top, xtol=1e-14 * top, rtol=1e-15, maxiter=200)
-    return speed(c)
+    top = mean_speed**2 + 4.0 * float(np.max(np.abs(w_work))) / inertia + 1.0
+    c = brentq(excess_mean, lowest, top, xtol=1e-15 * top, rtol=1e-15, maxiter=200)
+    return speed(c, w_work)
 
 
 def crank_train_inertia(masses, geometry, throws) -> tuple[float, float]:

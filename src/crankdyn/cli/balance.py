@@ -202,6 +202,30 @@ def _ranking_notes(result: FiringOrderRanking, shown: int) -> list[str]:
     return lines
 
 
+_OPTION_OF = {
+    "priority": "--rank-by",
+    "mode_shape": "--mode-shape",
+    "orders": "--torsion-orders",
+    "exhaust_groups": "--exhaust-groups",
+}
+
+
+def _search(
+    eng, any_crankshaft, include_uneven, mode_shape, torsion_orders, exhaust_groups, priority, top
+) -> FiringOrderRanking:
+    return firing_order_search(
+        eng.cylinders,
+        search="any-crankshaft" if any_crankshaft else "crankshaft",
+        include_uneven=True if include_uneven else None,
+        mode_shape=_numbers(mode_shape, "--mode-shape"),
+        torsion_orders=_numbers(torsion_orders, "--torsion-orders"),
+        exhaust_groups=_groups(exhaust_groups),
+        priority=priority,
+        top=top,
+        name=eng.name,
+    )
+
+
 @click.command("firing-orders")
 @engine_argument
 @click.option(
@@ -268,17 +292,22 @@ def firing_orders_command(
         priority = [p.strip() for p in rank_by.split(",") if p.strip()]
         if not priority:
             raise InputError("expected criterion names", key="--rank-by", value=rank_by)
-    result = firing_order_search(
-        eng.cylinders,
-        search="any-crankshaft" if any_crankshaft else "crankshaft",
-        include_uneven=True if include_uneven else None,
-        mode_shape=_numbers(mode_shape, "--mode-shape"),
-        torsion_orders=_numbers(torsion_orders, "--torsion-orders"),
-        exhaust_groups=_groups(exhaust_groups),
-        priority=priority,
-        top=top,
-        name=eng.name,
-    )
+    try:
+        result = _search(
+            eng,
+            any_crankshaft,
+            include_uneven,
+            mode_shape,
+            torsion_orders,
+            exhaust_groups,
+            priority,
+            top,
+        )
+    except InputError as exc:
+        if exc.key in _OPTION_OF and exc.file is None:
+            extra = {"value": exc.value} if exc.has_value else {}
+            raise InputError(exc.message, key=_OPTION_OF[exc.key], **extra) from None
+        raise
     if fmt == "json":
         _write(json.dumps(result.ranked_list(), indent=2, allow_nan=False) + "\n", output, force)
     elif fmt == "csv":
