@@ -215,3 +215,59 @@ def test_scheme_batch_helpers():
     assert tuple(s.orders[0]) == (1, 3, 4, 2)
     assert len(s) == 1 and s.count == 4
     assert len(s.concat(FiringSchemes.empty(4, "four-stroke"))) == 1
+
+
+V6_FILE = """
+name = "V6"
+[geometry]
+bore = "96 mm"
+stroke = "86 mm"
+rod_length = "150 mm"
+[cylinders]
+count = 6
+layout = "V"
+bank_angle = "90 deg"
+firing_order = [1, 4, 2, 5, 3, 6]
+throw_positions = ["0 deg", "120 deg", "240 deg"]
+"""
+
+
+def test_throw_positions_in_the_engine_file(write):
+    from crankdyn.io.engine_file import load_engine
+
+    e = load_engine(write("v6.toml", V6_FILE))
+    np.testing.assert_allclose(np.degrees(e.cylinders.throw_positions), [0, 120, 240], atol=1e-9)
+    np.testing.assert_allclose(
+        np.degrees(e.cylinders.throw_angles), [0, 240, 120, 90, 330, 210], atol=1e-9
+    )
+    inline = V6_FILE.replace('layout = "V"\nbank_angle = "90 deg"\n', "").replace(
+        '["0 deg", "120 deg", "240 deg"]',
+        '["0 deg", "240 deg", "120 deg", "120 deg", "240 deg", "0 deg"]',
+    )
+    e = load_engine(write("i6.toml", inline.replace("[1, 4, 2, 5, 3, 6]", "[1, 5, 3, 6, 2, 4]")))
+    np.testing.assert_allclose(np.degrees(e.cylinders.throw_angles), [0, 120, 240, 240, 120, 0])
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "fragment"),
+    [
+        (
+            'throw_positions = ["0 deg", "120 deg", "240 deg"]',
+            'throw_positions = ["0 deg", "120 deg"]',
+            "expected 3 angles, one per throw",
+        ),
+        (
+            'throw_positions = ["0 deg", "120 deg", "240 deg"]',
+            'throw_positions = ["0 deg", "120 deg", "240 deg"]\n'
+            'throw_angles = ["0 deg", "240 deg", "120 deg", "90 deg", "330 deg", "210 deg"]',
+            "not both",
+        ),
+        ("[1, 4, 2, 5, 3, 6]", "[1, 2, 3, 4, 5, 6]", "does not fit the throw angles"),
+    ],
+)
+def test_throw_positions_errors(write, old, new, fragment):
+    from crankdyn.io.engine_file import load_engine
+
+    with pytest.raises(InputError) as info:
+        load_engine(write("v6.toml", V6_FILE.replace(old, new)))
+    assert fragment in str(info.value) and "[cylinders]" in str(info.value)
