@@ -58,7 +58,7 @@ from crankdyn.errors import InputError
 from crankdyn.firing import crank_end_view
 from crankdyn.geometry import check_finite
 from crankdyn.kinematics import series_coefficients
-from crankdyn.masses import equivalent_masses, rod_two_mass
+from crankdyn.masses import equivalent_mass_model, equivalent_masses
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -171,27 +171,17 @@ def rotation_split(x, y):
     )
 
 
-def rotating_masses(masses, rod_length: float, throws) -> tuple[np.ndarray, np.ndarray]:
-    """Rotating masses at the crank radius: the big-end share of every cylinder's rod and the
-    unbalance of every throw (kg).
-
-    Seed 000 section 2.1: m_r = m_k + m_CB per cylinder. On a V engine two rods share a throw,
-    whose own unbalance m_k counts once. A directly given ``rotating`` mass is taken per
-    cylinder as it stands (the throw's share included).
-
-    Returns
-    -------
-    per_cylinder, per_throw : numpy.ndarray
-        (Z,) and (T,) masses (kg).
-    """
-    throws = np.asarray(throws, dtype=int)
-    count, n_throws = throws.size, int(throws.max())
-    if masses.rotating is not None:
-        return np.full(count, masses.rotating), np.zeros(n_throws)
-    big = 0.0
-    if masses.rod and masses.rod_cg_from_big_end is not None:
-        big = rod_two_mass(masses.rod, rod_length, masses.rod_cg_from_big_end)[1]
-    return np.full(count, big), np.full(n_throws, masses.crank_unbalance)
+def rotating_masses(masses, rod_length: float, throws) -> np.ndarray:
+    """Rotating mass of every cylinder at the crank radius (kg), seed 000 section 2.1:
+    m_r = m_k / n + m_CB with n rods on the cylinder's throw (a V engine's throw carries its
+    unbalance m_k once, shared by its two rods), or the directly given ``rotating`` mass
+    (:func:`crankdyn.masses.equivalent_mass_model`). A throw's rotating mass is the sum over
+    its cylinders."""
+    throws = list(throws)
+    counts = {t: throws.count(t) for t in set(throws)}
+    return np.array(
+        [equivalent_mass_model(masses, rod_length, counts[t]).rotating for t in throws]
+    )
 
 
 # ---- domain inputs ----------------------------------------------------------------------------
@@ -552,7 +542,7 @@ def engine_balance(
     if not orders or any(n < 1 or n > 64 for n in orders):
         raise InputError("orders must be whole numbers from 1 to 64", key="orders", value=orders)
     m_j = equivalent_masses(engine.masses, geo.rod_length)[0]
-    per_cyl, per_throw = rotating_masses(engine.masses, geo.rod_length, cyl.throws)
+    m_rot = rotating_masses(engine.masses, geo.rod_length, cyl.throws)
     r = geo.crank_radius
     scale = r * w * w
     unit_force = m_j * scale
@@ -590,7 +580,7 @@ def engine_balance(
 
     # round-off floor: sums that vanish exactly come out near 1e-16 of their terms
     length = 1.0 if rod_z is None else max(float(np.max(np.abs(rod_z))), 1e-300)
-    total_mass = throws.size * m_j + float(per_cyl.sum() + per_throw.sum())
+    total_mass = throws.size * m_j + float(m_rot.sum())
     total_mass *= 1.0 + inputs.counterweight_ratio + inputs.reciprocating_balance_ratio
     floors = (1e-12 * total_mass, 1e-12 * total_mass * length)
 
@@ -610,18 +600,19 @@ def engine_balance(
     c_t = alpha[0] + crank_end_view(psi, throws, alpha)
     e_t = np.exp(1j * c_t)
     m_rec_throw = np.bincount(throws - 1, weights=np.full(throws.size, m_j))
-    m_big_throw = np.bincount(throws - 1, weights=per_cyl)
-    m_rot_throw = per_throw + m_big_throw
+    m_rot_throw = np.bincount(throws - 1, weights=m_rot)
     m_cw = (
-        inputs.counterweight_ratio * m_rot_throw + inputs.reciprocating_balance_ratio * m_rec_throw
+        inputs.counterweight_ratio * m_rot_throw
+        + inputs.reciprocating_balance_ratio * m_rec_throw
     )
-    # the rods' big ends sit at the rods' axial positions, the throw's own unbalance and its
-    # counterweight at the throw's middle
+    # the rotating masses at the rods' axial positions (the share of a V throw's own unbalance
+    # with each rod: symmetric about the throw's middle, so as if at the middle), the
+    # counterweights at the throw's middle
     e_cyl = e_t[throws - 1]
-    y_rot = np.sum((per_throw - m_cw) * e_t) + np.sum(per_cyl * e_cyl)
+    y_rot = np.sum(m_rot * e_cyl) - np.sum(m_cw * e_t)
     yz_rot = None
     if rod_z is not None:
-        yz_rot = np.sum((per_throw - m_cw) * throw_z * e_t) + np.sum(per_cyl * rod_z * e_cyl)
+        yz_rot = np.sum(m_rot * rod_z * e_cyl) - np.sum(m_cw * throw_z * e_t)
     rot_ph = Phasors(-1j * y_rot, y_rot, None if yz_rot is None else -1j * yz_rot, yz_rot)
     rotating = replace(
         _order_balance(1, "rotating", rot_ph, scale, unit_force, pitch, power, floors),

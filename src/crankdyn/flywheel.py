@@ -23,7 +23,8 @@ The instantaneous crank speed follows from the same energy equation without line
 (1/2) I w(theta)^2 = (1/2) I w_0^2 + W(theta), with w_0 set so that the time-mean speed
 Theta / integral dtheta / w equals the given speed. Its delta agrees with Delta E / (I w_m^2) to
 first order in delta. A thin rim turning at peripheral speed v carries the hoop stress rho v^2
-(Timoshenko and Goodier, *Theory of Elasticity*, 3rd ed., 1970, section 32).
+(Timoshenko and Goodier, *Theory of Elasticity*, 3rd ed., McGraw-Hill, 1970, rotating disks,
+in the thin-ring limit).
 """
 
 from __future__ import annotations
@@ -164,10 +165,9 @@ def crank_train_inertia(masses, geometry, throws) -> tuple[float, float]:
     rotating, reciprocating : float
     """
     r = geometry.crank_radius
-    per_cyl, per_throw = rotating_masses(masses, geometry.rod_length, throws)
+    m_rot = rotating_masses(masses, geometry.rod_length, throws)
     m_j = equivalent_masses(masses, geometry.rod_length)[0]
-    count = len(throws)
-    return float((per_cyl.sum() + per_throw.sum()) * r * r), count * m_j * r * r / 2.0
+    return float(m_rot.sum() * r * r), len(throws) * m_j * r * r / 2.0
 
 
 def rim_width(inertia: float, density: float, outer: float, inner: float = 0.0) -> float:
