@@ -27,6 +27,8 @@ from crankdyn.firing import (
 from crankdyn.geometry import CrankGeometry, check_finite, check_positive
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.torsion.equivalent import check_engine_cylinders
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["CYCLES", "LAYOUTS", "Cylinders", "Engine"]
 
@@ -268,6 +270,9 @@ class Engine:
         Pressure under the piston (Pa, absolute); the gas force is (p - p_crankcase) A.
     speed
         Operating speed (rad/s), or None.
+    torsion
+        Lumped torsional model of the shaft line (masses carrying cylinders numbered as the
+        engine's), or None.
     source
         The file the engine came from, for messages.
     """
@@ -279,6 +284,7 @@ class Engine:
     pressure: PressureTrace | None = None
     crankcase_pressure: float = ATMOSPHERE
     speed: float | None = None
+    torsion: TorsionModel | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
@@ -295,6 +301,8 @@ class Engine:
             )
         if self.speed is not None:
             check_positive("speed", self.speed, "the speed")
+        if self.torsion is not None:
+            check_engine_cylinders(self.torsion, self.cylinders)
         if self.pressure is not None:
             expected = CYCLE_ANGLE[self.cycle]
             if abs(self.pressure.cycle_angle - expected) > 1e-9:

@@ -1,7 +1,8 @@
 """Result objects: named SI arrays with JSON/CSV export, an HTML summary and plots.
 
 A result is a frozen dataclass that mixes in :class:`Result`. Its public fields are declared with
-:func:`column` (an array over the main axis of the result, e.g. crank angle or speed),
+:func:`column` (an array over the main axis of the result, e.g. crank angle or speed; numbers, or
+text such as mass names, which is exported as it is),
 :func:`array` (any other array, e.g. one row per cylinder or a mode-shape matrix) or
 :func:`scalar` (a figure), each with its JSON key (unit in the key, DESIGN.md), a label and a unit
 for tables, and the factor from the SI value held in memory to the value written (1 except for
@@ -118,7 +119,11 @@ class Result:
         for _f, meta, value in self._fields("column"):
             if value is None:
                 continue
-            arr = np.asarray(value, dtype=float) * meta["scale"]
+            arr = np.asarray(value)
+            if arr.dtype.kind in "OUS":  # a text column (e.g. names) is exported as it is
+                out[meta["key"]] = arr
+                continue
+            arr = arr.astype(float) * meta["scale"]
             if arr.ndim == 1:
                 out[meta["key"]] = arr
             else:
@@ -148,7 +153,7 @@ class Result:
         writer.writerow(list(cols))
         if cols:
             for row in zip(*cols.values(), strict=True):
-                writer.writerow([f"{v:.10g}" for v in row])
+                writer.writerow([_csv_cell(v) for v in row])
         return buffer.getvalue()
 
     def summary_rows(self) -> list[tuple[str, str, str]]:
@@ -180,6 +185,12 @@ class Result:
             names = ", ".join(html.escape(k) for k in cols)
             shape = f"<p>{n} points: {names}</p>"
         return f"<div><strong>{title}</strong><table>{rows}</table>{shape}</div>"
+
+
+def _csv_cell(value: Any) -> str:
+    if isinstance(value, (float, np.floating, int, np.integer)) and not isinstance(value, bool):
+        return f"{value:.10g}"
+    return str(value)
 
 
 def _format(value: Any, meta: dict) -> str:

@@ -11,6 +11,7 @@ from crankdyn.errors import InputError
 from crankdyn.geometry import CrankGeometry
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
+from crankdyn.io.torsion_file import parse_torsion_section
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE
@@ -95,6 +96,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     masses = _masses(root.table("masses"))
     pressure, crankcase = _pressure(root.table("pressure"), cycle)
     speed = _operating(root.table("operating"))
+    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
     with root.context():
         engine = Engine(
             name=name,
@@ -104,6 +106,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             pressure=pressure,
             crankcase_pressure=crankcase,
             speed=speed,
+            torsion=torsion,
             source=file,
         )
     root.finish()
@@ -228,6 +231,15 @@ def _display_path(path: Path) -> str:
         return str(path.resolve().relative_to(Path.cwd().resolve()))
     except ValueError:
         return str(path)
+
+
+def _torsion(t: Table | None, name: str, geometry, cylinders, masses):
+    """The [torsion] section: the lumped torsional model (docs/torsion-file.md)."""
+    if t is None:
+        return None
+    return parse_torsion_section(
+        t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
+    )
 
 
 def _operating(t: Table | None) -> float | None:
