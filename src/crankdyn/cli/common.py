@@ -107,10 +107,13 @@ def render_table(result: Result, title: str | None = None) -> RichTable:
     """A rich table of a result's columns."""
     labels = result.column_labels()
     table = RichTable(title=title, show_lines=False, header_style="bold")
+    cols = result.columns()
     for key in labels:
         label, unit = labels[key]
-        table.add_column(f"{label}\n({unit})" if unit else label, justify="right")
-    cols = result.columns()
+        text = cols[key].dtype.kind in "OUS"
+        table.add_column(
+            f"{label}\n({unit})" if unit else label, justify="left" if text else "right"
+        )
     scales = [
         float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) if c.dtype.kind in "fiu" else 0
         for c in cols.values()

@@ -85,7 +85,9 @@ def load_torsion_model(path: str | Path) -> TorsionModel:
         from crankdyn.io.engine_file import parse_engine  # avoids an import cycle
 
         return engine_torsion(parse_engine(data, file=name, base_dir=Path(path).parent))
-    return parse_torsion_model(data, file=name, base_dir=Path(path).parent)
+    return parse_torsion_model(
+        data, file=name, base_dir=Path(path).parent, default_name=Path(path).stem
+    )
 
 
 def engine_torsion(engine: Engine) -> TorsionModel:
@@ -120,11 +122,16 @@ def resolve_torsion(spec: str) -> TorsionModel:
 
 # ---- parsing ------------------------------------------------------------------------------------
 def parse_torsion_model(
-    data: dict, *, file: str | None = None, base_dir: Path | None = None
+    data: dict,
+    *,
+    file: str | None = None,
+    base_dir: Path | None = None,
+    default_name: str = "torsional model",
 ) -> TorsionModel:
-    """A TorsionModel from a parsed model file (a dict as from tomllib)."""
+    """A TorsionModel from a parsed model file (a dict as from tomllib); ``name`` defaults to
+    ``default_name``."""
     root = Table(data, file=file, base_dir=base_dir)
-    model = _read(root, default_name=None, engine=None)
+    model = _read(root, default_name=default_name, engine=None)
     root.finish()
     return model
 
@@ -143,10 +150,8 @@ def parse_torsion_section(
     return model
 
 
-def _read(t: Table, *, default_name: str | None, engine) -> TorsionModel:
+def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
     name = t.string("name", default_name)
-    if name is None:
-        raise t.error("name", "missing; expected the model's name")
     mass_tables = t.tables("mass")
     masses = [_mass(mt) for mt in mass_tables]
     throws_table = t.table("throws")
@@ -222,7 +227,7 @@ def _check_ends(t: Table, ends: tuple[str, str], known: list[str], *, allow_grou
             hint = suggest(end, known)
             if end == GROUND:
                 hint = f' ("{GROUND}" holds a shaft end fixed; a gear cannot mesh with it)'
-            raise t.error("between", f"no mass named {end!r}{hint}", list(ends))
+            raise t.error("between", f'no mass named "{end}"{hint}', list(ends))
 
 
 def _check_cylinders(tables, masses, cylinders: Cylinders, generated: bool) -> None:
@@ -298,9 +303,7 @@ def _shaft(t: Table) -> Shaft:
     if inner is not None and outer is None:
         raise t.error("outer_diameter", "missing; a bore needs the outer diameter")
     with t.context():
-        geometry = (
-            ShaftGeometry(outer, inner or 0.0, length, shear) if outer is not None else None
-        )
+        geometry = ShaftGeometry(outer, inner or 0.0, length, shear) if outer is not None else None
         shaft = Shaft(
             between=between,
             stiffness=stiffness,

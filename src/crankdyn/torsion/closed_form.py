@@ -118,9 +118,7 @@ def closed_form_modes(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
     if chain is not None and n == 1:
         if not grounded:
             return np.zeros(1), np.ones((1, 1))
-        return np.array([single_mass(chain.inertia[0], chain.ground_stiffness[0])]), np.ones(
-            (1, 1)
-        )
+        return np.array([single_mass(chain.inertia[0], chain.ground_stiffness[0])]), np.ones((1, 1))
     if chain is not None and not grounded and n in (2, 3):
         j = chain.inertia
         k = chain.stiffness

@@ -174,9 +174,7 @@ class ThrowSpec:
     def __post_init__(self) -> None:
         value = check_finite("inertia", self.crank_inertia)
         if value < 0.0:
-            raise InputError(
-                "the crank's inertia must not be negative", key="inertia", value=value
-            )
+            raise InputError("the crank's inertia must not be negative", key="inertia", value=value)
         object.__setattr__(self, "crank_inertia", value)
         if (self.stiffness is None) == (self.geometry is None):
             raise InputError(
@@ -287,7 +285,7 @@ def check_engine_cylinders(model: TorsionModel, cylinders: Cylinders) -> None:
         for c in m.cylinders:
             if c > cylinders.count:
                 raise InputError(
-                    f"mass {m.name!r} carries cylinder {c} but the engine has "
+                    f'mass "{m.name}" carries cylinder {c} but the engine has '
                     f"{cylinders.count} cylinders",
                     key="cylinders",
                     value=list(m.cylinders),
@@ -299,6 +297,6 @@ def check_engine_cylinders(model: TorsionModel, cylinders: Cylinders) -> None:
             if d != c and cylinders.throws[d - 1] == throw and owner.get(d, name) != name:
                 raise InputError(
                     f"cylinders {c} and {d} share crank throw {throw} but sit on the masses "
-                    f"{name!r} and {owner[d]!r}",
+                    f'"{name}" and "{owner[d]}"',
                     key="cylinders",
                 )

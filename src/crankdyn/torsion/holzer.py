@@ -189,9 +189,7 @@ class ResidualCurve(Result):
 
     title = "Holzer residual torque"
     frequency: np.ndarray = column("frequency_hz", "Trial frequency", "Hz", HZ)
-    residual_torque: np.ndarray = column(
-        "residual_torque_Nm_per_rad", "Residual torque", "N·m/rad"
-    )
+    residual_torque: np.ndarray = column("residual_torque_Nm_per_rad", "Residual torque", "N·m/rad")
     natural_frequencies: np.ndarray = scalar(
         "natural_frequencies_hz", "Natural frequencies (residual zeros)", "Hz", HZ
     )

@@ -66,9 +66,7 @@ class ModalResult(Result):
 
     title = "Natural frequencies"
     mode: np.ndarray = column("mode", "Mode", "")
-    natural_frequency: np.ndarray = column(
-        "natural_frequencies_hz", "Natural frequency", "Hz", HZ
-    )
+    natural_frequency: np.ndarray = column("natural_frequencies_hz", "Natural frequency", "Hz", HZ)
     node_count: np.ndarray = column("node_counts", "Nodes", "")
     modal_inertia: np.ndarray = column("modal_inertias_kg_m2", "Modal inertia", "kg·m²")
     modal_stiffness: np.ndarray = column(
@@ -143,9 +141,7 @@ def eigen_modes(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
         if chain.size == 1:
             lam, u = d.copy(), np.ones((1, 1))
         else:
-            lam, u = scipy.linalg.eigh_tridiagonal(
-                d, off / (s[:-1] * s[1:]), lapack_driver="stemr"
-            )
+            lam, u = scipy.linalg.eigh_tridiagonal(d, off / (s[:-1] * s[1:]), lapack_driver="stemr")
         phi = u / s[:, None]
     else:
         lam, phi = scipy.linalg.eigh(model.stiffness_matrix(), np.diag(J))
@@ -185,7 +181,7 @@ def _normalise(shapes: np.ndarray) -> np.ndarray:
     significant = np.abs(out) > _ZERO
     first = np.argmax(significant, axis=1)
     sign = np.sign(out[np.arange(out.shape[0]), first])
-    return out * np.where(sign == 0.0, 1.0, sign)[:, None]
+    return out * np.where(sign == 0.0, 1.0, sign)[:, None] + 0.0  # + 0.0: no negative zeros
 
 
 @dataclass(frozen=True)

@@ -168,9 +168,7 @@ class ShaftGeometry:
         object.__setattr__(self, "outer_diameter", outer)
         object.__setattr__(self, "inner_diameter", inner)
         if self.length is not None:
-            object.__setattr__(
-                self, "length", check_positive("length", self.length, "the length")
-            )
+            object.__setattr__(self, "length", check_positive("length", self.length, "the length"))
         if self.shear_modulus is not None:
             object.__setattr__(
                 self,
@@ -397,7 +395,7 @@ class TorsionModel:
         for i, m in enumerate(masses):
             if m.name in seen:
                 raise InputError(
-                    f"two masses are named {m.name!r} (masses {seen[m.name] + 1} and {i + 1})",
+                    f'two masses are named "{m.name}" (masses {seen[m.name] + 1} and {i + 1})',
                     key="name",
                     value=m.name,
                 )
@@ -407,7 +405,7 @@ class TorsionModel:
             for c in m.cylinders:
                 if c in owner:
                     raise InputError(
-                        f"cylinder {c} is on two masses ({owner[c]!r} and {m.name!r})",
+                        f'cylinder {c} is on two masses ("{owner[c]}" and "{m.name}")',
                         key="cylinders",
                         value=list(m.cylinders),
                     )
@@ -417,8 +415,8 @@ class TorsionModel:
                 for end in item.between:
                     if end != GROUND and end not in seen:
                         raise InputError(
-                            f"{what} {item.between[0]!r} - {item.between[1]!r}: "
-                            f"no mass named {end!r}{_suggest(end, seen)}",
+                            f'{what} "{item.between[0]}" - "{item.between[1]}": '
+                            f'no mass named "{end}"{_suggest(end, seen)}',
                             key="between",
                             value=list(item.between),
                         )
@@ -435,7 +433,7 @@ class TorsionModel:
             return self._index[name]
         except KeyError:
             raise InputError(
-                f"no mass named {name!r}{_suggest(name, self._index)}", key="mass", value=name
+                f'no mass named "{name}"{_suggest(name, self._index)}', key="mass", value=name
             ) from None
 
     @property
@@ -641,9 +639,7 @@ class TorsionModel:
             )
         names = [str(i + 1) for i in range(len(inertias))]
         masses = tuple(Mass(n, j) for n, j in zip(names, inertias, strict=True))
-        shafts = [
-            Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)
-        ]
+        shafts = [Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)]
         if ground_left is not None:
             shafts.insert(0, Shaft((GROUND, names[0]), ground_left))
         if ground_right is not None:
@@ -677,11 +673,11 @@ def _analyse(model: TorsionModel) -> _Structure:
         if s.grounded:
             continue
         a, b = index[s.between[0]], index[s.between[1]]
-        neighbours[a].append((b, 1.0, f"shaft {s.label!r}"))
-        neighbours[b].append((a, 1.0, f"shaft {s.label!r}"))
+        neighbours[a].append((b, 1.0, f'shaft "{s.label}"'))
+        neighbours[b].append((a, 1.0, f'shaft "{s.label}"'))
     for g in gears:
         a, b = index[g.between[0]], index[g.between[1]]
-        label = f"gear {g.between[0]!r} - {g.between[1]!r}"
+        label = f'gear "{g.between[0]}" - "{g.between[1]}"'
         neighbours[a].append((b, g.ratio, label))
         neighbours[b].append((a, 1.0 / g.ratio, label))
     ref = _reference(masses)
@@ -697,17 +693,16 @@ def _analyse(model: TorsionModel) -> _Structure:
                 queue.append(j)
             elif abs(ratio[j] - value) > _RATIO_TOL * max(ratio[j], value):
                 raise InputError(
-                    f"the speed of {masses[j].name!r} comes out as {ratio[j]:.6g} and as "
+                    f'the speed of "{masses[j].name}" comes out as {ratio[j]:.6g} and as '
                     f"{value:.6g} times the reference speed around a loop through the {label}: "
                     "the gear ratios disagree",
-                    key="gear",
                 )
     lost = [masses[i].name for i in range(n) if np.isnan(ratio[i])]
     if lost:
         more = f" and {len(lost) - 1} more" if len(lost) > 1 else ""
         raise InputError(
-            f"the model is disconnected: no shaft or gear joins {lost[0]!r}{more} to "
-            f"{masses[ref].name!r}",
+            f'the model is disconnected: no shaft or gear joins "{lost[0]}"{more} to '
+            f'"{masses[ref].name}"',
         )
 
     # degrees of freedom: masses tied by gear meshes are one
@@ -737,7 +732,7 @@ def _analyse(model: TorsionModel) -> _Structure:
         b = provisional[find(index[s.between[1]])]
         if a == b:
             raise InputError(
-                f"shaft {s.label!r} joins two masses that a gear mesh already ties together",
+                f'shaft "{s.label}" joins two masses that a gear mesh already ties together',
                 key="between",
                 value=list(s.between),
             )

@@ -29,7 +29,7 @@ def require_chain(model: TorsionModel, method: str) -> ChainArrays:
     """The model's chain arrays, or a one-line InputError for a branched model."""
     chain = model.chain
     if chain is None:
-        where = f" (it branches at {model.junction!r})" if model.junction else ""
+        where = f' (it branches at "{model.junction}")' if model.junction else ""
         raise InputError(
             f"{method} needs an unbranched chain of masses and this model is not one{where}; "
             "use the eigen solver",
