@@ -188,12 +188,12 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
     shafts = []
     for st in t.tables("shaft"):
         shaft = _shaft(st)
-        _check_ends(st, shaft.between, known, allow_ground=True)
+        _check_ends(st, shaft.between, known)
         shafts.append(shaft)
     gears = []
     for gt in t.tables("gear"):
         gear = _gear(gt)
-        _check_ends(gt, gear.between, known, allow_ground=False)
+        _check_ends(gt, gear.between, known)
         gears.append(gear)
 
     with t.context():
@@ -219,15 +219,10 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
         )
 
 
-def _check_ends(t: Table, ends: tuple[str, str], known: list[str], *, allow_ground: bool) -> None:
+def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
     for end in ends:
-        if end == GROUND and allow_ground:
-            continue
-        if end not in known:
-            hint = suggest(end, known)
-            if end == GROUND:
-                hint = f' ("{GROUND}" holds a shaft end fixed; a gear cannot mesh with it)'
-            raise t.error("between", f'no mass named "{end}"{hint}', list(ends))
+        if end != GROUND and end not in known:
+            raise t.error("between", f'no mass named "{end}"{suggest(end, known)}', list(ends))
 
 
 def _check_cylinders(tables, masses, cylinders: Cylinders, generated: bool) -> None:

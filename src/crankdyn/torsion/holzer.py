@@ -154,23 +154,54 @@ def _ratio_walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.nda
     return count, sign * np.sign(tau)
 
 
+def _walk_ratios(J, k, kg, lam: float) -> tuple[np.ndarray, np.ndarray]:
+    """One Holzer walk at lambda in ratio form: the carried torque per angle arriving at every
+    mass (T_{i-1} / theta_i) and the ratios rho_i = theta_{i+1} / theta_i."""
+    n = J.size
+    carry = np.zeros(n)
+    rho = np.ones(max(n - 1, 0))
+    c = 0.0
+    for i in range(n):
+        carry[i] = c
+        tau = c + J[i] * lam - kg[i]
+        if i < n - 1:
+            r = 1.0 - tau / k[i]
+            rho[i] = r if r != 0.0 else -_TINY
+            c = tau / rho[i]
+    return carry, rho
+
+
 def _amplitudes(chain: ChainArrays, lam: float) -> np.ndarray:
-    """Holzer's amplitudes theta_1 = 1, theta_2, ... at lambda (the mode shape at a root)."""
+    """The mode shape at an eigenvalue lambda from Holzer walks from both free ends.
+
+    A walk from one end alone loses accuracy where the mode dies away (the recurrence then
+    amplifies its rounding errors), so the walk from the left is used up to a joining mass m
+    and the walk from the right beyond it. At m the two walks' torques and mass m's inertia
+    torque balance, carry_left + carry_right + J_m lambda - k_g,m = gamma_m = 0 at an exact
+    eigenvalue; m is the mass with the smallest |gamma_m| (the twisted factorisation of
+    I. S. Dhillon and B. N. Parlett, Linear Algebra Appl. 387 (2004) 1-28, in Holzer's terms).
+    Scaled to theta_m = 1.
+    """
     J, k, kg = chain.inertia, chain.stiffness, chain.ground_stiffness
-    theta = np.empty(chain.size)
-    t, th = 0.0, 1.0
-    for i in range(chain.size):
-        theta[i] = th
-        t += (J[i] * lam - kg[i]) * th
-        if i < chain.size - 1:
-            th -= t / k[i]
+    n = chain.size
+    left_carry, left_rho = _walk_ratios(J, k, kg, lam)
+    right_carry, right_rho = _walk_ratios(J[::-1], k[::-1], kg[::-1], lam)
+    gamma = left_carry + right_carry[::-1] + J * lam - kg
+    m = int(np.argmin(np.abs(gamma)))
+    theta = np.empty(n)
+    theta[m] = 1.0
+    for i in range(m - 1, -1, -1):
+        theta[i] = theta[i + 1] / left_rho[i]
+    for i in range(m + 1, n):
+        theta[i] = theta[i - 1] / right_rho[n - 1 - i]
     return theta
 
 
 def holzer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
-    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode, theta_1 = 1
-    unless theta_1 is a node) of a chain by Holzer's method: every root of the residual torque,
-    isolated by the sign count of Holzer's amplitudes (:mod:`crankdyn.torsion.roots`)."""
+    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode) of a chain by
+    Holzer's method: every root of the residual torque, isolated by the sign count of Holzer's
+    amplitudes (:mod:`crankdyn.torsion.roots`); the shapes from Holzer walks from both ends
+    (:func:`_amplitudes`)."""
     chain = require_chain(model, "Holzer's method")
     lam = isolate_and_refine(
         lambda x: _ratio_walk(chain, x)[0],

@@ -91,10 +91,53 @@ def _walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return count, np.sign(torque)
 
 
+def _twisted_shape(chain: ChainArrays, lam: float) -> np.ndarray:
+    """The mode shape at an eigenvalue: the state carried from the left end up to a joining
+    mass m and from the right end (through the inverse matrices) beyond it, m being the mass
+    where the two carried torques balance best (smallest |gamma_m|, gamma_m = T^R/theta from
+    the right - T^L/theta from the left - (k_g - omega^2 J)); the twisted factorisation of
+    Dhillon and Parlett (2004) in transfer-matrix terms. Scaled to theta_m = 1."""
+    n = chain.size
+    point = chain.ground_stiffness - lam * chain.inertia
+    k = chain.stiffness
+    left = np.zeros(n)  # T^L / theta from the left
+    ratio_f = np.ones(max(n - 1, 0))  # theta_{i+1} / theta_i carried from the left
+    z = np.array([1.0, 0.0])
+    for i in range(n):
+        left[i] = z[1] / z[0]
+        z = np.array([[1.0, 0.0], [point[i], 1.0]]) @ z
+        if i < n - 1:
+            new = np.array([[1.0, 1.0 / k[i]], [0.0, 1.0]]) @ z
+            new[0] = new[0] if new[0] != 0.0 else -1e-300
+            ratio_f[i] = new[0] / z[0]
+            z = new / abs(new[0])
+    right = np.zeros(n)  # T^R / theta from the right
+    ratio_b = np.ones(max(n - 1, 0))  # theta_{i+1} / theta_i carried from the right
+    w = np.array([1.0, 0.0])
+    for i in range(n - 1, -1, -1):
+        right[i] = w[1] / w[0]
+        w = np.array([[1.0, 0.0], [-point[i], 1.0]]) @ w
+        if i > 0:
+            new = np.array([[1.0, -1.0 / k[i - 1]], [0.0, 1.0]]) @ w
+            new[0] = new[0] if new[0] != 0.0 else -1e-300
+            ratio_b[i - 1] = w[0] / new[0]
+            w = new / abs(new[0])
+    gamma = right - left - point
+    m = int(np.argmin(np.abs(gamma)))
+    theta = np.empty(n)
+    theta[m] = 1.0
+    for i in range(m - 1, -1, -1):
+        theta[i] = theta[i + 1] / ratio_f[i]
+    for i in range(m + 1, n):
+        theta[i] = theta[i - 1] * ratio_b[i - 1]
+    return theta
+
+
 def transfer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
-    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode, first
-    amplitude 1) of a chain by the transfer-matrix method: the roots of U_21(omega), isolated
-    by the sign count of the carried state (:mod:`crankdyn.torsion.roots`)."""
+    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode) of a chain
+    by the transfer-matrix method: the roots of U_21(omega), isolated by the sign count of the
+    carried state (:mod:`crankdyn.torsion.roots`); the shapes carried from both ends
+    (:func:`_twisted_shape`)."""
     chain = require_chain(model, "the transfer-matrix method")
     lam = isolate_and_refine(
         lambda x: _walk(chain, x)[0],
@@ -103,14 +146,5 @@ def transfer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
         eigenvalue_bound(chain),
         model.is_free,
     )
-    omega = np.sqrt(lam)
-    p, f = point_matrices(chain, omega)
-    z = np.zeros((omega.size, 2))
-    z[:, 0] = 1.0
-    shapes = np.empty((chain.size, omega.size))
-    for i in range(chain.size):
-        shapes[i] = z[:, 0]
-        z = np.einsum("mij,mj->mi", p[:, i], z)
-        if i < chain.size - 1:
-            z = np.einsum("mij,mj->mi", f[:, i], z)
-    return omega, shapes
+    shapes = np.column_stack([_twisted_shape(chain, x) for x in lam])
+    return np.sqrt(lam), shapes
