@@ -7,13 +7,14 @@ neighbouring throws one shaft.
 Inertia of a throw
     J_throw = sum over its cylinders of (m_r + m_j / 2) R^2 + J_crank,
     with the rotating mass m_r and reciprocating mass m_j of each cylinder (seed 000 section 2.1,
-    :func:`crankdyn.masses.equivalent_masses`), the crank radius R and the crank's own inertia
+    :func:`crankdyn.masses.equivalent_mass_model`), the crank radius R and the crank's own inertia
     J_crank (journal, webs and pin about the shaft axis). The reciprocating mass enters with the
     mean of m_j (dx/dphi)^2 over a revolution, m_j R^2 (1/2 + lambda^2/8); the lambda^2/8 term
-    (about 1 % of it) is dropped, as in the classical equivalent system (W. Ker Wilson,
-    *Practical Solution of Torsional Vibration Problems*, vol. 1, ch. 3; seed 003). On a V-engine
-    throw carrying two rods, the crank's unbalance m_k is counted once: when the masses are given
-    by components, m_r = m_k + m_CB per cylinder and the second cylinder adds only its m_CB.
+    (lambda^2/4 of the whole, 2-3 % for lambda near 0.3) is dropped, as in the classical
+    equivalent system (W. Ker Wilson, *Practical Solution of Torsional Vibration Problems*,
+    vol. 1, ch. 3; seed 003). On a V-engine
+    throw carrying two rods the crank's unbalance m_k is counted once: each cylinder's rotating
+    mass is m_k / 2 + m_CB (:func:`crankdyn.masses.equivalent_mass_model`).
 
 Stiffness of a crank span
     Given directly, or from the throw's dimensions by Carter's empirical formula for the length
@@ -28,8 +29,8 @@ Stiffness of a crank span
           = (pi G / 32) / [(l_j + 0.8 h)/(D_j^4 - d_j^4) + 0.75 l_p/(D_p^4 - d_p^4) + 1.5 R/(h b^3)]
 
     with the journal diameter D_j, bore d_j and length l_j, the pin diameter D_p, bore d_p and
-    length l_p, the web thickness h (axial) and width b, and the crank radius R. Carter states
-    an accuracy of a few per cent for conventional crankshafts.
+    length l_p, the web thickness h (axial) and width b, and the crank radius R. It is an
+    empirical estimate for conventional crankshafts; a measured or FE stiffness is better.
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ import numpy as np
 
 from crankdyn.errors import InputError
 from crankdyn.geometry import check_finite, check_positive
-from crankdyn.masses import equivalent_masses
+from crankdyn.masses import equivalent_mass_model
 from crankdyn.torsion.model import Gear, Mass, Shaft, ShaftGeometry, TorsionModel
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -204,15 +205,17 @@ def throw_inertias(
 ) -> np.ndarray:
     """Equivalent moment of inertia of every crank throw (kg m^2), throw 1 first.
 
-    J_t = R^2 [sum over the throw's cylinders of (m_r + m_j / 2) - (n_t - 1) m_k] + J_crank,
-    where n_t is the number of cylinders on throw t and m_k is subtracted only when m_r is
-    derived from the components (see the module docstring; seed 000 section 2.1, seed 003).
+    J_t = R^2 sum over the throw's n_t cylinders of (m_r + m_j / 2) + J_crank, with each
+    cylinder's m_j and m_r from :func:`crankdyn.masses.equivalent_mass_model` for n_t rods on the
+    throw (so the crank's unbalance m_k is counted once per throw; seed 000 section 2.1,
+    seed 003; see the module docstring).
     """
-    m_j, m_r = equivalent_masses(masses, geometry.rod_length)
-    shared_unbalance = masses.crank_unbalance if masses.rotating is None else 0.0
     counts = np.bincount(np.asarray(cylinders.throws) - 1, minlength=cylinders.throw_count)
-    radius2 = geometry.crank_radius**2
-    return radius2 * (counts * (m_r + m_j / 2.0) - (counts - 1) * shared_unbalance) + crank_inertia
+    out = np.empty(counts.size)
+    for t, n in enumerate(counts):
+        eq = equivalent_mass_model(masses, geometry.rod_length, rods_per_throw=int(n))
+        out[t] = n * (eq.rotating + eq.reciprocating / 2.0)
+    return geometry.crank_radius**2 * out + crank_inertia
 
 
 def equivalent_system(
