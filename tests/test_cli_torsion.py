@@ -187,3 +187,21 @@ def test_bad_model_file_is_one_line(tmp_path, capsys):
     path.write_text(branched, encoding="utf-8")
     line = one_line_error(capsys, "torsion", "holzer", str(path), "--frequency", "10")
     assert "needs an unbranched chain" in line and '(it branches at "a")' in line
+
+
+def test_names_with_brackets_are_shown_as_written(tmp_path, capsys):
+    path = tmp_path / "b.toml"
+    path.write_text(MODEL.replace('"b"', '"wheel [big]"'), encoding="utf-8")
+    status, out, _ = run(capsys, "torsion", "modes", str(path))
+    assert status == 0
+    assert "wheel [big]" in out and "a - wheel [big] at" in out
+    status, out, _ = run(capsys, "torsion", "holzer", str(path), "--frequency", "10")
+    assert status == 0 and "wheel [big]" in out
+
+
+def test_holzer_overflow_names_the_option(capsys):
+    line = one_line_error(capsys, "torsion", "holzer", "seed003-v6", "--frequency", "1e95")
+    assert line.endswith(
+        '--frequency = "1e95": the trial frequency is too high for this model: '
+        "Holzer's table overflows"
+    )

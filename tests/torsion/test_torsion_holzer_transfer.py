@@ -115,3 +115,17 @@ def test_damped_transfer_matrix_gives_the_dynamic_compliance():
         rhs[0] = 1.0
         theta = np.linalg.solve(z, rhs)
         assert theta_tm == pytest.approx(theta[0], rel=1e-10)
+
+
+def test_holzer_table_refuses_an_overflowing_trial_frequency():
+    with pytest.raises(InputError, match="Holzer's table overflows"):
+        holzer_table(model_with_ground(), 1e95)
+    with pytest.raises(InputError, match="too high"):
+        holzer_table(model_with_ground(), 1e150)
+
+
+def test_residual_of_a_long_chain_may_overflow_quietly():
+    model = TorsionModel.chain_of([1.0] * 400, [1.0] * 399)
+    curve = residual_curve(model, points=201)
+    assert np.isfinite(curve.residual_torque[:10]).all()
+    assert curve.to_json()  # infinite values are written as null

@@ -185,3 +185,8 @@ def test_single_free_mass_is_a_model():
 def test_chain_of_needs_matching_counts():
     with pytest.raises(InputError, match="needs 2 stiffnesses"):
         TorsionModel.chain_of([1, 1, 1], [1])
+
+
+def test_magnitudes_that_would_overflow_are_refused():
+    with pytest.raises(InputError, match="beyond 1e\\+50 rad/s; check their units"):
+        TorsionModel.chain_of([1e-200, 1.0], [1e200])

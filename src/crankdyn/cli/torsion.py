@@ -8,6 +8,7 @@ from pathlib import Path
 
 import click
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.cli.common import console, emit, format_option, option_quantity, output_options
@@ -69,7 +70,7 @@ def _g(value: float) -> str:
 
 
 def _modes_tables(result) -> list[RichTable]:
-    summary = RichTable(title=result.model_name, header_style="bold")
+    summary = RichTable(title=escape(result.model_name), header_style="bold")
     summary.add_column("Mode", justify="right")
     summary.add_column("Frequency\n(Hz)", justify="right")
     summary.add_column("ω\n(rad/s)", justify="right")
@@ -79,7 +80,9 @@ def _modes_tables(result) -> list[RichTable]:
     for r in range(result.mode.size):
         nodes = result.nodes[r]
         where = (
-            "rigid-body mode" if result.free and r == 0 else "; ".join(n.describe() for n in nodes)
+            "rigid-body mode"
+            if result.free and r == 0
+            else "; ".join(escape(n.describe()) for n in nodes)
         )
         summary.add_row(
             str(int(result.mode[r])),
@@ -93,14 +96,14 @@ def _modes_tables(result) -> list[RichTable]:
         f"{result.structure}, {'free' if result.free else 'grounded'}; solver: {result.solver}"
     )
     shapes = RichTable(title="Mode shapes", header_style="bold")
-    shapes.caption = "relative amplitudes, largest 1 in every mode"
+    shapes.caption = "largest amplitude 1"
     shapes.add_column("Mass", justify="left")
     for r in range(result.mode.size):
         shapes.add_column(
             f"{int(result.mode[r])}\n{result.frequencies_hz[r]:.4g} Hz", justify="right"
         )
     for i, name in enumerate(result.masses):
-        shapes.add_row(name, *(f"{v:.4f}" for v in result.mode_shapes[:, i]))
+        shapes.add_row(escape(name), *(f"{v:.4f}" for v in result.mode_shapes[:, i]))
     return [summary, shapes]
 
 
@@ -210,7 +213,12 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
         )
     _check_plot_path(plot_path, force)
     torsion = resolve_torsion(model)
-    table = holzer_table(torsion, 2.0 * math.pi * f)
+    try:
+        table = holzer_table(torsion, 2.0 * math.pi * f)
+    except InputError as exc:
+        if exc.key != "frequency":
+            raise
+        raise InputError(exc.message, key="--frequency", value=frequency) from None
     if plot_path:
         curve = residual_curve(torsion, None if f_max is None else 2.0 * math.pi * f_max)
         _save_figure(curve.plot(), plot_path, force)
@@ -227,8 +235,8 @@ def examples_command() -> int:
     for name in torsion_example_names():
         m = load_torsion_example(name)
         table.add_row(
-            name,
-            m.name,
+            escape(name),
+            escape(m.name),
             str(m.mass_count),
             "chain" if m.is_chain else "branched",
             "free" if m.is_free else "grounded",

@@ -74,6 +74,8 @@ def _trial_lambda(omega) -> np.ndarray:
     omega = np.asarray(omega, dtype=float)
     if np.any(~np.isfinite(omega)) or np.any(omega < 0.0):
         raise InputError("a trial frequency must be a finite number >= 0", key="frequency")
+    if np.any(omega > 1e100):
+        raise InputError("the trial frequency is too high (above 1e100 rad/s)", key="frequency")
     return omega * omega
 
 
@@ -89,16 +91,23 @@ def holzer_table(model: TorsionModel, omega: float) -> HolzerTable:
     accumulated = np.empty(n)
     twist = np.full(n, np.nan)
     t, th = 0.0, 1.0
-    for i in range(n):
-        theta[i] = th
-        inertia_torque[i] = J[i] * lam * th
-        ground_torque[i] = -kg[i] * th
-        t = t + inertia_torque[i] + ground_torque[i]
-        accumulated[i] = t
-        if i < n - 1:
-            twist[i] = t / k[i]
-            th = th - twist[i]
+    with np.errstate(all="ignore"):  # an overflow is reported below
+        for i in range(n):
+            theta[i] = th
+            inertia_torque[i] = J[i] * lam * th
+            ground_torque[i] = -kg[i] * th
+            t = t + inertia_torque[i] + ground_torque[i]
+            accumulated[i] = t
+            if i < n - 1:
+                twist[i] = t / k[i]
+                th = th - twist[i]
     stiffness = np.append(k, np.nan)
+    if not np.all(np.isfinite(accumulated)):
+        raise InputError(
+            "the trial frequency is too high for this model: Holzer's table overflows",
+            key="frequency",
+            value=float(omega) / (2.0 * math.pi),
+        )
     return HolzerTable(
         mass=freeze(model.dof_names, dtype=object),
         inertia=freeze(J),
@@ -124,10 +133,11 @@ def holzer_residual(model: TorsionModel, omega) -> np.ndarray:
     J, k, kg = chain.inertia, chain.stiffness, chain.ground_stiffness
     t = np.zeros_like(lam)
     th = np.ones_like(lam)
-    for i in range(chain.size):
-        t = t + (J[i] * lam - kg[i]) * th
-        if i < chain.size - 1:
-            th = th - t / k[i]
+    with np.errstate(over="ignore", invalid="ignore"):  # a long chain's residual may overflow
+        for i in range(chain.size):
+            t = t + (J[i] * lam - kg[i]) * th
+            if i < chain.size - 1:
+                th = th - t / k[i]
     return t
 
 

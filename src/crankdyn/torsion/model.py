@@ -55,6 +55,9 @@ GROUND = "ground"
 """Reserved mass name: a shaft ending at ``"ground"`` holds that end fixed."""
 
 _RATIO_TOL = 1e-9
+OMEGA2_LIMIT = 1e100
+"""Largest omega^2 bound (Gershgorin, rad^2/s^2) a model may have: keeps every product of the
+solvers (J omega^2 theta, determinants' ratios) far from overflow."""
 
 
 def _nonnegative(name: str, value: float, what: str) -> float:
@@ -421,6 +424,29 @@ class TorsionModel:
                             value=list(item.between),
                         )
         _ = self._structure  # validate the topology now
+        self._check_scale()
+
+    def _check_scale(self) -> None:
+        """Refuse magnitudes whose natural frequencies would overflow double precision (a unit
+        mistake, e.g. an inertia in kg mm^2 read as kg m^2 by orders of magnitude)."""
+        total = float(np.sum(self.dof_inertia))
+        k = self._shaft_values()[0]
+        ends = self.shaft_dofs
+        rows = np.zeros(self.dof_count)
+        if k.size:
+            grounded = (ends[:, 0] < 0) | (ends[:, 1] < 0)
+            for e in (0, 1):
+                inner = ~grounded
+                np.add.at(rows, ends[inner, e], 2.0 * k[inner])
+            g = np.where(ends[:, 0] < 0, ends[:, 1], ends[:, 0])[grounded]
+            np.add.at(rows, g, k[grounded])
+        with np.errstate(over="ignore"):
+            bound = float(np.max(rows / self.dof_inertia))
+        if not (math.isfinite(total) and bound <= OMEGA2_LIMIT):
+            raise InputError(
+                "the stiffnesses and inertias give natural frequencies beyond "
+                f"{math.sqrt(OMEGA2_LIMIT):.0e} rad/s; check their units",
+            )
 
     # ---- names and indices --------------------------------------------------------------------
     @cached_property
