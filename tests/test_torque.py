@@ -162,3 +162,13 @@ def test_random_engines_mean_torque_identity(count, lam, peak, m_j, rpm, two_str
     assert t.mean_torque * eng.cycle_angle == pytest.approx(count * work, rel=2e-6)
     amplitude = np.max(np.abs(t.inertia_torque)) + 1e-30
     assert abs(np.mean(t.inertia_torque[:-1])) < 1e-10 * amplitude
+
+
+def test_mechanical_efficiency_from_engine_file():
+    """[operating] mechanical_efficiency gives the effective torque; the option overrides it."""
+    eng = Engine.example("inline6-diesel")
+    assert eng.mechanical_efficiency == 0.85
+    t = engine_torque(eng, eng.speed, step=math.radians(5))
+    assert t.mean_effective_torque == pytest.approx(0.85 * t.mean_torque, rel=1e-12)
+    t2 = engine_torque(eng, eng.speed, step=math.radians(5), mechanical_efficiency=0.9)
+    assert t2.mean_effective_torque == pytest.approx(0.9 * t2.mean_torque, rel=1e-12)

@@ -273,6 +273,8 @@ class Engine:
     torsion
         Lumped torsional model of the shaft line (masses carrying cylinders numbered as the
         engine's), or None.
+    mechanical_efficiency
+        eta_m (0 < eta_m <= 1) for effective torque and power, or None.
     source
         The file the engine came from, for messages.
     """
@@ -285,6 +287,7 @@ class Engine:
     crankcase_pressure: float = ATMOSPHERE
     speed: float | None = None
     torsion: TorsionModel | None = None
+    mechanical_efficiency: float | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
@@ -303,6 +306,16 @@ class Engine:
             check_positive("speed", self.speed, "the speed")
         if self.torsion is not None:
             check_engine_cylinders(self.torsion, self.cylinders)
+        if self.mechanical_efficiency is not None:
+            eta = check_positive(
+                "mechanical_efficiency", self.mechanical_efficiency, "the mechanical efficiency"
+            )
+            if eta > 1.0:
+                raise InputError(
+                    "the mechanical efficiency must lie in 0 < eta <= 1",
+                    key="mechanical_efficiency",
+                    value=eta,
+                )
         if self.pressure is not None:
             expected = CYCLE_ANGLE[self.cycle]
             if abs(self.pressure.cycle_angle - expected) > 1e-9:

@@ -124,10 +124,13 @@ def engine_torque(
         cycle with the rectangle rule, which is exact for trigonometric polynomials of low
         enough order and second-order accurate otherwise).
     mechanical_efficiency
-        eta_m (0 < eta_m <= 1) for the effective torque and power; None leaves them out.
+        eta_m (0 < eta_m <= 1) for the effective torque and power; default the engine's
+        [operating] mechanical_efficiency; None there too leaves them out.
     pressure
         Pressure trace; default the engine's own or its synthetic model.
     """
+    if mechanical_efficiency is None:
+        mechanical_efficiency = engine.mechanical_efficiency
     if mechanical_efficiency is not None and not 0.0 < mechanical_efficiency <= 1.0:
         raise InputError(
             "the mechanical efficiency must lie in 0 < eta <= 1",

@@ -96,7 +96,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     cylinders = _cylinders(root.table("cylinders"), cycle)
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
-    speed = _operating(root.table("operating"))
+    speed, efficiency = _operating(root.table("operating"))
     torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
     with root.context():
         engine = Engine(
@@ -108,6 +108,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             crankcase_pressure=crankcase,
             speed=speed,
             torsion=torsion,
+            mechanical_efficiency=efficiency,
             source=file,
         )
     root.finish()
@@ -315,9 +316,10 @@ def _torsion(t: Table | None, name: str, geometry, cylinders, masses):
     )
 
 
-def _operating(t: Table | None) -> float | None:
+def _operating(t: Table | None) -> tuple[float | None, float | None]:
     if t is None:
-        return None
+        return None, None
     speed = t.quantity("speed", "speed", None, check="positive")
+    efficiency = t.number("mechanical_efficiency", None, check="positive", maximum=1.0)
     t.finish()
-    return speed
+    return speed, efficiency
