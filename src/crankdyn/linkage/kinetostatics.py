@@ -249,8 +249,8 @@ def build_system(motion: MechanismMotion, loads: KnownLoads | None = None) -> Ki
     else:
         r = motion.point(d.balancing_point, link=crank)
         mx, my = _cross_arm(r - G[crank])
-        u = (math.cos(d.balancing_direction), math.sin(d.balancing_direction))
-        put(crank, u[0], u[1], mx, my, col)
+        u = d.balancing_unit(motion.crank_angle)
+        put(crank, u[:, 0], u[:, 1], mx, my, col)
         unknowns.append("balancing force")
     equations = []
     for link in mech.links:
@@ -363,9 +363,9 @@ def driving_torque_of(motion: MechanismMotion, R: np.ndarray) -> tuple[np.ndarra
         return last, None
     pivot = motion.point(mech.joint(d.joint).point, link=mech.crank)
     r = motion.point(d.balancing_point, link=mech.crank)
-    u = np.array([math.cos(d.balancing_direction), math.sin(d.balancing_direction)])
+    u = d.balancing_unit(motion.crank_angle)
     arm = r - pivot
-    return last * (arm[:, 0] * u[1] - arm[:, 1] * u[0]), last
+    return last * (arm[:, 0] * u[:, 1] - arm[:, 1] * u[:, 0]), last
 
 
 def _work(torque, theta) -> float:

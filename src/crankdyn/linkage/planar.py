@@ -214,6 +214,9 @@ class Driver:
         Optional: balance the mechanism by a force at this crank point along this direction
         (rad) instead of a torque (seed 004's balancing force P_b); the driving torque is then
         its moment about the crank pivot.
+    balancing_relative
+        Whether ``balancing_direction`` is measured from the crank line (joint -> point) and
+        turns with the crank (e.g. 90 deg: perpendicular to the crank), instead of from x.
     """
 
     joint: str
@@ -223,6 +226,15 @@ class Driver:
     acceleration: float = 0.0
     balancing_point: str | None = None
     balancing_direction: float | None = None
+    balancing_relative: bool = False
+
+    def balancing_unit(self, crank_angle) -> np.ndarray:
+        """Unit vector(s) (N, 2) of the balancing force at crank angles (rad)."""
+        theta = np.atleast_1d(np.asarray(crank_angle, dtype=float))
+        ang = self.balancing_direction + (
+            self.zero + theta if self.balancing_relative else np.zeros_like(theta)
+        )
+        return np.stack([np.cos(ang), np.sin(ang)], axis=1)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "zero", check_finite("zero", self.zero))
@@ -564,23 +576,24 @@ class Mechanism:
         return degrees_of_freedom(len(self.links), len(self.joints))
 
     def link_groups(self) -> tuple[LinkGroup, ...]:
-        """Decompose the mechanism into the driver and statically determinate link groups
-        (Assur groups, seed 004: each satisfies 3n = 2 p_l), in the order they can be solved.
+        """Decompose the mechanism into statically determinate link groups (Assur groups, seed
+        004: each satisfies 3n = 2 p_l) and the driver, in the order of the force analysis.
 
-        Smallest groups first: a group is a connected set of unsolved links whose joints all
-        lead to solved links or to each other, with 3n equal to twice its joints.
+        Groups are peeled off from the end of the chain: a group is a connected set of links
+        (not the crank) whose joints, to each other and to the rest, number 3n/2; removing it
+        leaves a mechanism of the same mobility. Forces are then found group by group in this
+        order, starting from the group farthest from the crank (seed 004: the conveyor's group
+        4-5 before 2-3), and the kinematics in the reverse order.
         """
-        solved = {GROUND, self.crank}
-        groups = [LinkGroup((self.crank,), (self.driver.joint,), "driver")]
         remaining = [ln for ln in self.link_names if ln != self.crank]
+        joints = [j for j in self.joints if j.name != self.driver.joint]
+        groups = []
         while remaining:
             found = None
             for size in range(1, len(remaining) + 1):
                 for subset in itertools.combinations(remaining, size):
                     s = set(subset)
-                    touching = [j for j in self.joints if s & set(j.links)]
-                    if any(not set(j.links) <= (s | solved) for j in touching):
-                        continue
+                    touching = [j for j in joints if s & set(j.links)]
                     if is_statically_determinate(size, len(touching)) and _connected(s, touching):
                         found = (subset, touching)
                         break
@@ -594,8 +607,9 @@ class Mechanism:
             if len(subset) == 2:
                 kind = _dyad_class(subset, touching) + " dyad"
             groups.append(LinkGroup(tuple(subset), tuple(j.name for j in touching), kind))
-            solved |= set(subset)
-            remaining = [ln for ln in remaining if ln not in solved]
+            remaining = [ln for ln in remaining if ln not in subset]
+            joints = [j for j in joints if j not in touching]
+        groups.append(LinkGroup((self.crank,), (self.driver.joint,), "driver"))
         return tuple(groups)
 
     # ---- analyses ---------------------------------------------------------------------------------

@@ -20,8 +20,6 @@ mechanism and is not included.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from crankdyn.linkage.kinetostatics import KnownLoads
@@ -49,9 +47,10 @@ def virtual_power_driving_torque(motion: MechanismMotion, loads: KnownLoads):
     d = mech.driver
     if d.balancing_point is None:
         return total / crank_rate, None
-    u = np.array([math.cos(d.balancing_direction), math.sin(d.balancing_direction)])
+    u = d.balancing_unit(motion.crank_angle)
     v = motion.point(d.balancing_point, link=mech.crank, which="qp")
-    force = total / (v @ u)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        force = total / np.sum(v * u, axis=1)
     pivot = motion.point(mech.joint(d.joint).point, link=mech.crank)
     arm = motion.point(d.balancing_point, link=mech.crank) - pivot
-    return force * (arm[:, 0] * u[1] - arm[:, 1] * u[0]), force
+    return force * (arm[:, 0] * u[:, 1] - arm[:, 1] * u[:, 0]), force
