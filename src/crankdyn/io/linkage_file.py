@@ -85,7 +85,9 @@ def _pair(t: Table, key: str, kind: str, default=None):
     if value is default and key not in t.data:
         return default
     if not isinstance(value, list) or len(value) != 2:
-        raise t.error(key, f'expected a pair such as ["10 {_UNIT[kind]}", "0 {_UNIT[kind]}"]', value)
+        raise t.error(
+            key, f'expected a pair such as ["10 {_UNIT[kind]}", "0 {_UNIT[kind]}"]', value
+        )
     return tuple(parse_quantity(v, kind, key=t.label(key), file=t.file) for v in value)
 
 

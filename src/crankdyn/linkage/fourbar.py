@@ -346,7 +346,9 @@ class FourBar:
         for name in ("crank", "coupler", "rocker", "ground"):
             object.__setattr__(self, name, _length(name, getattr(self, name)))
         if self.branch not in BRANCHES:
-            raise InputError(f"expected one of {', '.join(BRANCHES)}", key="branch", value=self.branch)
+            raise InputError(
+                f"expected one of {', '.join(BRANCHES)}", key="branch", value=self.branch
+            )
         if self.coupler_point is not None:
             try:
                 p, q = (check_finite("coupler_point", v) for v in self.coupler_point)
@@ -422,7 +424,8 @@ class FourBar:
                 f"{abs(b - c) * 1e3:.6g} mm"
             )
         ranges = ", ".join(
-            f"{math.degrees(lo):.4g} to {math.degrees(hi):.4g} deg" for lo, hi in self.crank_ranges()
+            f"{math.degrees(lo):.4g} to {math.degrees(hi):.4g} deg"
+            for lo, hi in self.crank_ranges()
         )
         return InputError(
             f"the links cannot be assembled at crank angle {math.degrees(theta2):.6g} deg: "
@@ -460,7 +463,11 @@ class FourBar:
                 theta2 = math.remainder(theta2, TWO_PI) % TWO_PI
                 bx, by = a * math.cos(theta2), a * math.sin(theta2)
                 cross = (d - bx) * (cy - by) - (0.0 - by) * (x - bx)
-                s = float(_branch_sign(np.array([theta2]), 1.0 if self.branch == "open" else -1.0, sing)[0])
+                s = float(
+                    _branch_sign(np.array([theta2]), 1.0 if self.branch == "open" else -1.0, sing)[
+                        0
+                    ]
+                )
                 if cross * s < -1e-12 * max(a, b, c, d) ** 2:
                     continue  # this toggle belongs to the other branch
                 out.append((kind, theta2, math.atan2(cy, x - d)))
@@ -499,8 +506,13 @@ class FourBar:
             rocker_min, rocker_max = _angle_span(candidates)
             swing = rocker_max - rocker_min
         time_ratio = stroke = None
-        if rotates and not rocker_turns and len(toggles) == 2 and {k for k, _t, _r in toggles} == {"extended", "folded"}:
-            (k1, t1, r1), (k2, t2, r2) = toggles
+        if (
+            rotates
+            and not rocker_turns
+            and len(toggles) == 2
+            and {k for k, _t, _r in toggles} == {"extended", "folded"}
+        ):
+            (_k1, t1, r1), (_k2, t2, r2) = toggles
             # crank rotation (counter-clockwise) from the toggle at the max rocker angle to the
             # one at the min rocker angle
             t_at_max, t_at_min = (t1, t2) if math.remainder(r1 - r2, TWO_PI) > 0 else (t2, t1)
@@ -634,19 +646,23 @@ class FourBarResult(Result):
     rocker_angular_acceleration: np.ndarray = column(
         "rocker_angular_acceleration_rad_s2", "Rocker α4", "rad/s²"
     )
-    coupler_point_x: np.ndarray | None = column("coupler_point_x_m", "Coupler point x", "m")
-    coupler_point_y: np.ndarray | None = column("coupler_point_y_m", "Coupler point y", "m")
+    coupler_point_x: np.ndarray | None = column(
+        "coupler_point_x_m", "Coupler point x", "m", default=None
+    )
+    coupler_point_y: np.ndarray | None = column(
+        "coupler_point_y_m", "Coupler point y", "m", default=None
+    )
     coupler_point_vx: np.ndarray | None = column(
-        "coupler_point_velocity_x_m_s", "Coupler point vx", "m/s"
+        "coupler_point_velocity_x_m_s", "Coupler point vx", "m/s", default=None
     )
     coupler_point_vy: np.ndarray | None = column(
-        "coupler_point_velocity_y_m_s", "Coupler point vy", "m/s"
+        "coupler_point_velocity_y_m_s", "Coupler point vy", "m/s", default=None
     )
     coupler_point_ax: np.ndarray | None = column(
-        "coupler_point_acceleration_x_m_s2", "Coupler point ax", "m/s²"
+        "coupler_point_acceleration_x_m_s2", "Coupler point ax", "m/s²", default=None
     )
     coupler_point_ay: np.ndarray | None = column(
-        "coupler_point_acceleration_y_m_s2", "Coupler point ay", "m/s²"
+        "coupler_point_acceleration_y_m_s2", "Coupler point ay", "m/s²", default=None
     )
     linkage: FourBar | None = field(default=None, repr=False)
 

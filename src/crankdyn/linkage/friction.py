@@ -50,8 +50,7 @@ _MAX_ITER = 200
 def has_friction(mech: Mechanism) -> bool:
     """Whether any joint has friction (a prismatic f > 0, or a revolute f r > 0)."""
     return any(
-        j.friction > 0.0 and (j.kind == "prismatic" or j.journal_radius > 0.0)
-        for j in mech.joints
+        j.friction > 0.0 and (j.kind == "prismatic" or j.journal_radius > 0.0) for j in mech.joints
     )
 
 

@@ -40,6 +40,7 @@ import numpy as np
 
 from crankdyn.errors import InputError
 from crankdyn.geometry import check_finite
+from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
     "GROUND",
@@ -49,12 +50,14 @@ __all__ = [
     "Joint",
     "Link",
     "LinkGroup",
+    "LinkageKinematicsResult",
     "Mechanism",
     "MechanismMotion",
     "Torque",
     "degrees_of_freedom",
     "fourbar_mechanism",
     "is_statically_determinate",
+    "linkage_kinematics",
     "slider_crank_mechanism",
 ]
 
@@ -122,7 +125,9 @@ class Link:
         if not isinstance(self.name, str) or not self.name.strip():
             raise InputError("a link needs a name", key="name", value=self.name)
         if self.name == GROUND:
-            raise InputError('"ground" is the frame, not a moving link', key="name", value=self.name)
+            raise InputError(
+                '"ground" is the frame, not a moving link', key="name", value=self.name
+            )
         object.__setattr__(self, "points", tuple(self.points))
         if not self.points:
             raise InputError("a link needs at least one point", key="points", value=[])
@@ -505,7 +510,7 @@ class Mechanism:
                 key="points",
             )
 
-    # ---- derived structure ----------------------------------------------------------------------
+    # ---- derived structure --------------------------------------------------------------------
     @property
     def point_map(self) -> dict[str, np.ndarray]:
         """{point name: drawn position (m)}."""
@@ -553,7 +558,7 @@ class Mechanism:
         for link in self.links:
             for p in link.points:
                 owner.setdefault(p, link.name)
-        for n, _xy_ in self.points:
+        for n, _ in self.points:
             owner.setdefault(n, GROUND)
         return owner
 
@@ -569,7 +574,7 @@ class Mechanism:
     def _model(self) -> _Model:
         return _Model(self)
 
-    # ---- structure (seed 004) ---------------------------------------------------------------------
+    # ---- structure (seed 004) ------------------------------------------------------------------
     @property
     def degrees_of_freedom(self) -> int:
         """F = 3n - 2 p_l (all joints are lower pairs)."""
@@ -612,7 +617,7 @@ class Mechanism:
         groups.append(LinkGroup((self.crank,), (self.driver.joint,), "driver"))
         return tuple(groups)
 
-    # ---- analyses ---------------------------------------------------------------------------------
+    # ---- analyses ---------------------------------------------------------------------------
     def motion(self, crank_angles, speed: float | None = None, acceleration: float | None = None):
         """Positions, velocities and accelerations at crank angles (rad); speed (rad/s) and
         acceleration (rad/s^2) default to the driver's. Returns :class:`MechanismMotion`."""
@@ -676,7 +681,7 @@ def _dyad_class(subset, touching) -> str:
     return max(text, text[::-1])
 
 
-# ---- the numeric model -------------------------------------------------------------------------
+# ---- the numeric model -----------------------------------------------------------------------
 
 
 def _rot(phi):
@@ -960,7 +965,7 @@ class _Model:
         return qp, qpp
 
 
-# ---- motion result -------------------------------------------------------------------------------
+# ---- motion result ---------------------------------------------------------------------------
 
 
 @dataclass(frozen=True, eq=False)
@@ -1038,9 +1043,7 @@ class MechanismMotion:
         v = self.link_state(link, first)
         acc = self.link_state(link, which)
         w, e = v[:, 2], acc[:, 2]
-        return np.stack(
-            [acc[:, 0] - e * ay - w * w * ax, acc[:, 1] + e * ax - w * w * ay], axis=1
-        )
+        return np.stack([acc[:, 0] - e * ay - w * w * ax, acc[:, 1] + e * ax - w * w * ay], axis=1)
 
     def all_points(self, which: str = "q") -> dict[str, np.ndarray]:
         """{point: (N, 2)} for every named point."""
@@ -1053,7 +1056,7 @@ class MechanismMotion:
         return self.link_state(link, "qdd")[:, 2]
 
 
-# ---- constructors of common mechanisms --------------------------------------------------------------
+# ---- constructors of common mechanisms ----------------------------------------------------
 
 
 def fourbar_mechanism(
@@ -1178,4 +1181,62 @@ def slider_crank_mechanism(
         forces=tuple(forces),
         torques=tuple(torques),
         gravity=gravity,
+    )
+
+
+# ---- analysis result ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LinkageKinematicsResult(Result):
+    """Motion of every link and point over the crank angles (SI; angles exported in deg)."""
+
+    title = "Linkage kinematics"
+    mechanism_name: str = scalar("mechanism", "Mechanism", "")
+    crank_speed: float = scalar("crank_speed_rad_s", "Crank speed", "rad/s")
+    crank_acceleration: float = scalar("crank_acceleration_rad_s2", "Crank acceleration", "rad/s²")
+    degrees_of_freedom: int = scalar("degrees_of_freedom", "Degrees of freedom", "")
+    link_groups: tuple = scalar("link_groups", "Link groups (force-analysis order)", "")
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
+    link_angle: dict = column("link_angle_deg", "Angle", "deg", DEG)
+    link_angular_velocity: dict = column("link_angular_velocity_rad_s", "ω", "rad/s")
+    link_angular_acceleration: dict = column("link_angular_acceleration_rad_s2", "α", "rad/s²")
+    point_position: dict = column("point_position_m", "Position", "m")
+    point_velocity: dict = column("point_velocity_m_s", "Velocity", "m/s")
+    point_acceleration: dict = column("point_acceleration_m_s2", "Acceleration", "m/s²")
+    motion: MechanismMotion | None = field(default=None, repr=False)
+
+    def plot(self, fig=None):
+        """Paths (coupler curves) of the points with the mechanism drawn; returns the Figure."""
+        from crankdyn.plots.linkage import plot_paths
+
+        return plot_paths(self.motion, fig=fig)
+
+
+def linkage_kinematics(motion: MechanismMotion) -> LinkageKinematicsResult:
+    """Link angles, angular velocities and accelerations and point positions, velocities and
+    accelerations of a :class:`MechanismMotion` as a result object."""
+    mech = motion.mechanism
+    moving = [n for n, _xy in mech.points if mech.point_owner[n] != GROUND]
+
+    def xy(arr):
+        return {"x": freeze(arr[:, 0]), "y": freeze(arr[:, 1])}
+
+    groups = tuple(f"{g.kind}: {'-'.join(g.links)}" for g in mech.link_groups())
+    return LinkageKinematicsResult(
+        mechanism_name=mech.name,
+        crank_speed=motion.speed,
+        crank_acceleration=motion.acceleration,
+        degrees_of_freedom=mech.degrees_of_freedom,
+        link_groups=groups,
+        crank_angle=freeze(motion.crank_angle),
+        link_angle={n: freeze(motion.link_angle(n)) for n in mech.link_names},
+        link_angular_velocity={n: freeze(motion.angular_velocity(n)) for n in mech.link_names},
+        link_angular_acceleration={
+            n: freeze(motion.angular_acceleration(n)) for n in mech.link_names
+        },
+        point_position={n: xy(motion.point(n)) for n in moving},
+        point_velocity={n: xy(motion.point(n, which="qd")) for n in moving},
+        point_acceleration={n: xy(motion.point(n, which="qdd")) for n in moving},
+        motion=motion,
     )
