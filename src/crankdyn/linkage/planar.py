@@ -852,7 +852,7 @@ class _Model:
     # ---- solvers ------------------------------------------------------------------------------
     def _newton(self, q, theta, max_iter=12):
         """Newton-Raphson at one crank angle; returns (q, converged, iterations)."""
-        tol = 1e-12 * self.scale
+        tol = 1e-14 * self.scale
         for it in range(max_iter):
             phi = self.constraints(q[None, :], np.array([theta]))[0]
             if np.max(np.abs(phi)) <= tol:
