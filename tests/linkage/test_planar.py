@@ -30,7 +30,7 @@ def wrap(x):
     return np.remainder(np.asarray(x) + math.pi, 2 * math.pi) - math.pi
 
 
-def inverted_slider_crank(a=0.05, d=0.12, theta=math.radians(40.0), speed=3.0, **kw):
+def inverted_slider_crank(a=0.05, d=0.12, theta=0.7, speed=3.0, **kw):
     """Crank AB turns about A; the block at B slides on the bar pivoted at D (a Whitworth-type
     inverted slider-crank)."""
     b = np.array([a * math.cos(theta), a * math.sin(theta)])
@@ -78,7 +78,7 @@ def test_newton_solver_reproduces_the_closed_form_four_bar(branch):
     np.testing.assert_allclose(mm.angular_velocity("coupler"), m.omega3, atol=1e-9)
     np.testing.assert_allclose(mm.angular_acceleration("rocker"), m.alpha4, atol=1e-7)
     np.testing.assert_allclose(mm.angular_acceleration("coupler"), m.alpha3, atol=1e-7)
-    pos, vel, acc = fb.coupler_point_motion(m)
+    _pos, _vel, acc = fb.coupler_point_motion(m)
     p = mm.point("P", which="qdd")
     np.testing.assert_allclose(p[:, 0] + 1j * p[:, 1], acc, atol=1e-8)
 

@@ -116,8 +116,9 @@ def _friction_vector(motion, terms, R, n_eq):
 def solve_with_friction(
     motion: MechanismMotion, system: KinetostaticSystem, R0: np.ndarray, *, source=None
 ):
-    """Reactions with friction (N, 3n) and the instantaneous efficiency (N,), by fixed-point
-    iteration from the frictionless reactions R0 (module docstring)."""
+    """Reactions with friction (N, 3n), the instantaneous efficiency (N,) and the friction
+    forces of the prismatic joints (:func:`prismatic_friction_forces`), by fixed-point iteration
+    from the frictionless reactions R0 (module docstring)."""
     terms = _friction_terms(motion)
     n_eq = system.C.shape[1]
     c_inv = np.linalg.inv(system.C)
@@ -141,7 +142,18 @@ def solve_with_friction(
         )
     torque0, _f0 = driving_torque_of(motion, R0)
     torque, _f = driving_torque_of(motion, R)
-    return R, efficiency(torque0, torque, motion.speed)
+    return R, efficiency(torque0, torque, motion.speed), prismatic_friction_forces(terms, R)
+
+
+def prismatic_friction_forces(terms, R) -> dict:
+    """{prismatic joint: (N, 2) friction force of the guide on the slider (N)}: the part of the
+    total reaction along the guide, -f |N| sgn(v_rel) t."""
+    out = {}
+    for kind, joint, col, rel, _r, t in terms:
+        if kind == "prismatic":
+            mag = joint.friction * np.abs(R[:, col])
+            out[joint.name] = -(mag * rel)[:, None] * t
+    return out
 
 
 def efficiency(ideal, actual, speed: float = 1.0) -> np.ndarray:

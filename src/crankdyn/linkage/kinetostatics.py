@@ -338,9 +338,12 @@ class KinetostaticsResult(Result):
         return plot_kinetostatics(self, fig=fig)
 
 
-def _joint_outputs(system, motion, R):
+def _joint_outputs(system, motion, R, friction_forces=None):
+    """Total joint forces {joint: {"x", "y"}} (a prismatic joint's normal force plus its
+    friction force) and the prismatic joints' couples."""
     mech = motion.mechanism
     forces, moments = {}, {}
+    friction_forces = friction_forces or {}
     col = 0
     for joint in mech.joints:
         if joint.kind == "revolute":
@@ -348,6 +351,9 @@ def _joint_outputs(system, motion, R):
         else:
             _r, nrm, _t = _joint_geometry(motion, joint)
             fx, fy = R[:, col] * nrm[:, 0], R[:, col] * nrm[:, 1]
+            if joint.name in friction_forces:
+                fx = fx + friction_forces[joint.name][:, 0]
+                fy = fy + friction_forces[joint.name][:, 1]
             moments[joint.name] = freeze(R[:, col + 1])
         forces[joint.name] = {"x": freeze(fx), "y": freeze(fy)}
         col += 2
@@ -405,12 +411,13 @@ def kinetostatics(
     virtual, _vf = virtual_power_driving_torque(motion, system.loads)
     difference = float(np.max(np.abs(torque0 - virtual))) if torque0.size else 0.0
     use_friction = friction and has_friction(mech)
+    slide = None
     if use_friction:
-        R, efficiency = solve_with_friction(motion, system, R0, source=source)
+        R, efficiency, slide = solve_with_friction(motion, system, R0, source=source)
         torque, force = driving_torque_of(motion, R)
     else:
         R, efficiency, torque, force = R0, None, torque0, force0
-    forces, moments = _joint_outputs(system, motion, R)
+    forces, moments = _joint_outputs(system, motion, R, slide)
     mean_eff = None
     if efficiency is not None:
         work0, work = _work(torque0, motion.crank_angle), _work(torque, motion.crank_angle)

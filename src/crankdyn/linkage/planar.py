@@ -696,6 +696,14 @@ def _apply(c, s, v):
     return x, y
 
 
+class _Locked(Exception):
+    """The continuation cannot pass crank angle ``theta`` (a dead point); ``q`` is there."""
+
+    def __init__(self, q, theta):
+        super().__init__(theta)
+        self.q, self.theta = q, theta
+
+
 class _Model:
     """Index arrays and batched constraint functions of a Mechanism (internal)."""
 
@@ -899,7 +907,7 @@ class _Model:
                 step /= 2.0
                 remaining = None  # a halved step never lands on the target exactly
                 if abs(step) < _MIN_STEP:
-                    raise self._dead_point(q, theta, target)
+                    raise _Locked(q, theta)
             q, theta = new, new_theta
             size = min(_MAX_STEP, 2.0 * abs(step))
         return q
@@ -920,29 +928,98 @@ class _Model:
             file=self.mech.source,
         )
 
+    def _anchors(self, start: float, lo: float, hi: float):
+        """Continuation anchors every <= _MAX_STEP from start up to hi and down to lo."""
+        up = np.linspace(start, hi, max(math.ceil((hi - start) / _MAX_STEP), 0) + 1)
+        down = np.linspace(start, lo, max(math.ceil((start - lo) / _MAX_STEP), 0) + 1)
+        return up[1:] if hi > start else up[:0], down[1:] if lo < start else down[:0]
+
     def solve_positions(self, theta):
-        """q (N, nq) at crank angles theta (rad), continued from the drawn configuration: up
-        through the angles above it, then down through those below (angles are not reduced
-        modulo a turn: 0 and 360 deg are reached from opposite sides, a check of the branch)."""
+        """q (N, nq) at crank angles theta (rad), continued from the drawn configuration.
+
+        The branch is followed by marching (Newton-Raphson with a second-order predictor and
+        step halving) through anchors at most 3 deg apart, up from the drawn angle to the
+        largest requested angle and down to the smallest (angles are not reduced modulo a turn:
+        0 and 360 deg are reached from opposite sides). Every requested angle is then solved in
+        one batched Newton iteration from its nearest anchor's Taylor predictor, and accepted
+        under the same branch test; the few that fail it are marched to one by one.
+        """
         theta = np.asarray(theta, dtype=float)
-        out = np.empty((theta.size, self.nq))
-        order = np.argsort(theta, kind="stable")
-        start = self.theta0
         lo, hi = float(theta.min()), float(theta.max())
-        q_start = self.q0.copy()
+        start, q_start = self.theta0, self.q0.copy()
         if not lo <= start <= hi:  # begin at the drawn position moved by whole turns
             shifted = start + round(((lo + hi) / 2 - start) / TWO_PI) * TWO_PI
-            q_start = self._march(q_start, start, shifted)
+            q_start = self._march_or_raise(q_start, start, shifted, theta)
             start = shifted
-        up = [i for i in order if theta[i] >= start]
-        down = [i for i in order[::-1] if theta[i] < start]
+        up, down = self._anchors(start, lo, hi)
+        anchor_t, anchor_q = [start], [q_start]
         for seq in (up, down):
             q, t = q_start, start
-            for i in seq:
-                q = self._march(q, t, float(theta[i]))
-                t = float(theta[i])
-                out[i] = q
-        return out
+            for target in seq:
+                q = self._march_or_raise(q, t, float(target), theta)
+                t = float(target)
+                anchor_t.append(t)
+                anchor_q.append(q)
+        anchor_t = np.array(anchor_t)
+        anchor_q = np.array(anchor_q)
+        # batched Newton from the nearest anchor
+        nearest = np.argmin(np.abs(theta[:, None] - anchor_t[None, :]), axis=1)
+        q_a, t_a = anchor_q[nearest], anchor_t[nearest]
+        qp, qpp = self._batch_unit_rates(q_a)
+        dt = (theta - t_a)[:, None]
+        pred = q_a + qp * dt + 0.5 * qpp * dt * dt
+        q, ok = self._batch_newton(pred, theta)
+        correction = np.max(np.abs((q - pred) * self.weights), axis=1)
+        motion = np.max(np.abs((pred - q_a) * self.weights), axis=1)
+        ok &= correction <= 0.25 * motion + 1e-9 * self.scale
+        for i in np.flatnonzero(~ok):
+            q[i] = self._march_or_raise(q_a[i], float(t_a[i]), float(theta[i]), theta)
+        return q
+
+    def _march_or_raise(self, q, theta, target, requested):
+        try:
+            return self._march(q, theta, target)
+        except _Locked as lock:
+            # name the first requested angle beyond the lock, in the direction of the march
+            beyond = requested[(requested - lock.theta) * (target - theta) > 0]
+            first = beyond[np.argmin(np.abs(beyond - lock.theta))] if beyond.size else target
+            raise self._dead_point(lock.q, lock.theta, float(first)) from None
+
+    def _batch_unit_rates(self, q):
+        jac = self.jacobian(q)
+        rhs = np.zeros((q.shape[0], self.m, 1))
+        rhs[:, -1, 0] = 1.0
+        try:
+            qp = np.linalg.solve(jac, rhs)[..., 0]
+            qpp = np.linalg.solve(jac, self.gamma(q, qp)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return np.zeros_like(q), np.zeros_like(q)
+        return qp, qpp
+
+    def _batch_newton(self, q, theta, max_iter=8):
+        """Newton-Raphson at all angles at once; returns (q, converged mask)."""
+        tol = 1e-14 * self.scale
+        ok = np.zeros(q.shape[0], dtype=bool)
+        for _ in range(max_iter):
+            phi = self.constraints(q, theta)
+            ok = np.max(np.abs(phi), axis=1) <= tol
+            if np.all(ok):
+                break
+            jac = self.jacobian(q)
+            try:
+                dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                return q, np.zeros(q.shape[0], dtype=bool)
+            dq[ok] = 0.0
+            q = q + dq
+            bad = ~np.all(np.isfinite(q), axis=1)
+            if np.any(bad):
+                q[bad] = 0.0
+                ok &= ~bad
+        else:
+            phi = self.constraints(q, theta)
+            ok = np.max(np.abs(phi), axis=1) <= tol
+        return q, ok
 
     def rates(self, q, theta):
         """Unit-speed rates q' and q'' (N, nq), batched; raises InputError at singular
