@@ -218,7 +218,8 @@ def plot_fourbar(result, fig=None):
         ax.plot(
             result.coupler_point_x, result.coupler_point_y, color=COLORS[3], label="coupler curve"
         )
-    i = 0
+    # draw the linkage at the angle nearest 60 deg (a clear, open position)
+    i = int(np.argmin(np.abs(np.remainder(theta - math.pi / 3 + math.pi, 2 * math.pi) - math.pi)))
     ax.plot([0, bx[i]], [0, by[i]], color=COLORS[0], linewidth=3, label="crank AB")
     ax.plot([bx[i], cx[i]], [by[i], cy[i]], color=COLORS[2], linewidth=3, label="coupler BC")
     ax.plot([d, cx[i]], [0, cy[i]], color=COLORS[4], linewidth=3, label="rocker DC")
@@ -227,6 +228,8 @@ def plot_fourbar(result, fig=None):
         ax.add_patch(
             Polygon([(bx[i], by[i]), (cx[i], cy[i]), (px, py)], alpha=0.2, color=COLORS[2])
         )
+        ax.plot(px, py, "o", color=COLORS[3], zorder=5)
+        ax.annotate("P", (px, py), xytext=(5, 5), textcoords="offset points", fontsize=8)
     size = max(fb.lengths)
     for x in (0.0, d):
         _ground_mark(ax, (x, 0.0), 0.04 * size)
@@ -249,10 +252,11 @@ def plot_fourbar(result, fig=None):
         ax.axhline(math.degrees(v), color=COLORS[1], linewidth=0.8, linestyle="--")
         ax.annotate(
             f"{text} {math.degrees(v):.2f}°",
-            (deg[0], math.degrees(v)),
+            (0.5 * (deg[0] + deg[-1]), math.degrees(v)),
             fontsize=8,
-            xytext=(4, 3),
+            xytext=(0, 3),
             textcoords="offset points",
+            ha="center",
             color=COLORS[1],
         )
     ax.set_ylabel("Transmission angle μ (deg)")
