@@ -2,7 +2,7 @@
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
-OUT    ?= demo-output
+OUT    ?= crankdyn-demo
 
 .PHONY: demo test lint bench fuzz clean
 
@@ -24,13 +24,19 @@ demo: $(VENV)/.stamp-base
 
 ## make test: install with test extras, lint, run the whole suite
 test: $(VENV)/.stamp-test
-	$(BIN)/ruff check src tests bench
-	$(BIN)/ruff format --check src tests bench
+	@bash scripts/install-browser.sh
+	$(BIN)/ruff check src tests bench docs/examples
+	$(BIN)/ruff format --check src tests bench docs/examples
 	$(BIN)/python -m pytest -n 2 -q
 
+## make fuzz: the long property-based campaign over every input path (docs/robustness.md)
+FUZZ_EXAMPLES ?= 5000
+fuzz: $(VENV)/.stamp-test
+	HYPOTHESIS_PROFILE=fuzz CRANKDYN_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -n 2 -q -p no:cacheprovider tests/robustness
+
 lint: $(VENV)/.stamp-test
-	$(BIN)/ruff check src tests bench
-	$(BIN)/ruff format --check src tests bench
+	$(BIN)/ruff check src tests bench docs/examples
+	$(BIN)/ruff format --check src tests bench docs/examples
 
 clean:
 	rm -rf $(VENV) $(OUT) build .pytest_cache .ruff_cache .hypothesis

@@ -268,6 +268,8 @@ class Engine:
         Pressure under the piston (Pa, absolute); the gas force is (p - p_crankcase) A.
     speed
         Operating speed (rad/s), or None.
+    mechanical_efficiency
+        eta_m (0 < eta_m <= 1) for effective torque and power, or None.
     source
         The file the engine came from, for messages.
     """
@@ -279,6 +281,7 @@ class Engine:
     pressure: PressureTrace | None = None
     crankcase_pressure: float = ATMOSPHERE
     speed: float | None = None
+    mechanical_efficiency: float | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
@@ -295,6 +298,16 @@ class Engine:
             )
         if self.speed is not None:
             check_positive("speed", self.speed, "the speed")
+        if self.mechanical_efficiency is not None:
+            eta = check_positive(
+                "mechanical_efficiency", self.mechanical_efficiency, "the mechanical efficiency"
+            )
+            if eta > 1.0:
+                raise InputError(
+                    "the mechanical efficiency must lie in 0 < eta <= 1",
+                    key="mechanical_efficiency",
+                    value=eta,
+                )
         if self.pressure is not None:
             expected = CYCLE_ANGLE[self.cycle]
             if abs(self.pressure.cycle_angle - expected) > 1e-9:

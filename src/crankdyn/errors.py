@@ -34,13 +34,20 @@ def format_value(value: object) -> str:
         text = "{" + ", ".join(f"{k} = {format_value(v)}" for k, v in value.items()) + "}"
     else:
         text = repr(value)
-    text = " ".join(text.split())  # no newlines, ever
+    text = _one_line(text)  # no newlines, ever
     if len(text) > _MAX_VALUE_CHARS:
         text = text[: _MAX_VALUE_CHARS - 3] + "..."
     return text
 
 
 _NO_VALUE = object()
+
+
+def _one_line(text: str) -> str:
+    """Control characters shown escaped, so that a message is always one line."""
+    if text.isprintable():
+        return text
+    return "".join(ch if ch.isprintable() else repr(ch)[1:-1] for ch in text)
 
 
 class InputError(ValueError):
@@ -67,8 +74,8 @@ class InputError(ValueError):
         value: object = _NO_VALUE,
     ) -> None:
         self.message = " ".join(str(message).split())
-        self.file = None if file is None else str(file)
-        self.key = key
+        self.file = None if file is None else _one_line(str(file))
+        self.key = None if key is None else _one_line(str(key))
         self.value = value
         super().__init__(str(self))
 
@@ -79,6 +86,8 @@ class InputError(ValueError):
     def within(self, *, file: str | None = None, section: str | None = None) -> InputError:
         """Return this error with a file and a section prefix added where they are missing."""
         key = self.key
+        if self.file is not None and file is not None and self.file != file:
+            section = None  # the error belongs to another file (e.g. a trace named by this one)
         if section and key and not key.startswith("["):
             key = f"{section} {key}"
         elif section and not key:

@@ -87,6 +87,6 @@ def firing_angles(order, throw_angles, cycle: str, key: str = "firing_order") ->
             f"at {math.degrees(previous):.6g} deg, after the {math.degrees(cycle_angle):.0f} deg "
             "cycle",
             key=key,
-            value="-".join(str(c) for c in order),
+            value=list(order),
         )
     return phi

@@ -10,8 +10,16 @@ from dataclasses import dataclass
 
 from crankdyn.errors import InputError
 from crankdyn.geometry import check_finite, check_positive
+from crankdyn.results import Result, scalar
 
-__all__ = ["Masses", "equivalent_masses", "rod_two_mass"]
+__all__ = [
+    "EquivalentMasses",
+    "Masses",
+    "equivalent_mass_model",
+    "equivalent_masses",
+    "rod_three_mass",
+    "rod_two_mass",
+]
 
 
 def _nonnegative(name: str, value: float | None) -> float | None:
@@ -141,3 +149,134 @@ def equivalent_masses(masses: Masses, rod_length: float) -> tuple[float, float]:
     if m_r is None:
         m_r = masses.crank_unbalance + big
     return m_j, m_r
+
+
+def rod_three_mass(rod_mass: float, rod_length: float, cg_from_big_end: float, inertia: float):
+    """Three-mass rod model (seed 000 section 2.1): masses at the small end A, the big end B and
+    the centre of gravity G that keep the rod's mass, centre of gravity *and* moment of inertia:
+
+        m_A + m_B + m_G = m_C,   m_A l_A = m_B l_B,   m_A l_A^2 + m_B l_B^2 = I_C
+
+    whose solution is m_A = I_C / (l_A L), m_B = I_C / (l_B L), m_G = m_C - I_C / (l_A l_B).
+
+    Parameters
+    ----------
+    rod_mass
+        m_C (kg).
+    rod_length
+        L (m).
+    cg_from_big_end
+        l_B (m), 0 < l_B < L; l_A = L - l_B.
+    inertia
+        I_C about the centre of gravity (kg m^2), at most m_C l_A l_B (else m_G < 0).
+
+    Returns
+    -------
+    tuple of float
+        (m_A, m_B, m_G) in kg.
+    """
+    lb = float(cg_from_big_end)
+    la = float(rod_length) - lb
+    small = inertia / (la * rod_length)
+    big = inertia / (lb * rod_length)
+    return small, big, rod_mass - inertia / (la * lb)
+
+
+@dataclass(frozen=True)
+class EquivalentMasses(Result):
+    """Equivalent masses of one cylinder's crank train (seed 000 section 2.1), all in kg.
+
+    The two-mass rod model puts m_CA = m_C l_B / L at the small end and m_CB = m_C l_A / L at the
+    big end; then the reciprocating mass is m_j = m_p + m_CA and the rotating mass is
+    m_r = m_k + m_CB. On a throw that carries n rods (V engines) the crank's unbalance m_k is
+    shared: each cylinder's rotating mass is m_k / n + m_CB, so a throw's rotating mass is the sum
+    over its cylinders (m_k + n m_CB). The two-mass model has the rod moment of inertia
+    m_C l_A l_B instead of I_C; the rod's inertia couple is then too large by
+    dM_C = (m_CA l_A^2 + m_CB l_B^2 - I_C) eps_L = (m_C l_A l_B - I_C) eps_L (seed 000), which the
+    three-mass model (:func:`rod_three_mass`) removes.
+    """
+
+    title = "Equivalent masses"
+    reciprocating: float = scalar("reciprocating_kg", "Reciprocating mass m_j", "kg")
+    rotating: float = scalar("rotating_kg", "Rotating mass m_r (per cylinder)", "kg")
+    rod_small_end: float | None = scalar("rod_small_end_kg", "Rod small-end mass m_CA", "kg")
+    rod_big_end: float | None = scalar("rod_big_end_kg", "Rod big-end mass m_CB", "kg")
+    crank: float | None = scalar("crank_kg", "Crank unbalance m_k (per throw)", "kg")
+    inertia_error: float | None = scalar(
+        "rod_inertia_error_kg_m2", "Two-mass rod inertia error m_C l_A l_B - I_C", "kg·m²"
+    )
+    three_mass_small_end: float | None = scalar(
+        "three_mass_small_end_kg", "3-mass model: small end m_A", "kg"
+    )
+    three_mass_big_end: float | None = scalar(
+        "three_mass_big_end_kg", "3-mass model: big end m_B", "kg"
+    )
+    three_mass_centre: float | None = scalar(
+        "three_mass_centre_kg", "3-mass model: centre of gravity m_G", "kg"
+    )
+    source: str = scalar("source", "Masses from", "")
+
+    @property
+    def pin_mass_known(self) -> bool:
+        """Whether the rod's big-end mass m_CB (which loads the crank pin) is known."""
+        return self.rod_big_end is not None
+
+
+def equivalent_mass_model(
+    masses: Masses, rod_length: float, rods_per_throw: int = 1
+) -> EquivalentMasses:
+    """Equivalent masses of one cylinder from its :class:`Masses` (seed 000 section 2.1).
+
+    Parameters
+    ----------
+    masses
+        The crank-train masses of one cylinder.
+    rod_length
+        L (m).
+    rods_per_throw
+        Number of rods on the cylinder's throw (2 on a V engine's shared pin); the crank
+        unbalance is shared between them.
+
+    Returns
+    -------
+    EquivalentMasses
+        A directly given ``reciprocating`` or ``rotating`` mass takes precedence over the one
+        derived from the components; the rod split and the three-mass model are reported when
+        the rod's mass and centre of gravity (and its moment of inertia) are known.
+    """
+    masses.check_rod(rod_length)
+    small = big = None
+    three = (None, None, None)
+    error = None
+    if masses.rod is not None and masses.rod_cg_from_big_end is not None:
+        small, big = rod_two_mass(masses.rod, rod_length, masses.rod_cg_from_big_end)
+        if masses.rod_inertia is not None:
+            three = rod_three_mass(
+                masses.rod, rod_length, masses.rod_cg_from_big_end, masses.rod_inertia
+            )
+            lb = masses.rod_cg_from_big_end
+            error = masses.rod * (rod_length - lb) * lb - masses.rod_inertia
+    elif masses.rod == 0.0:
+        small = big = 0.0
+    m_j = masses.reciprocating
+    if m_j is None:
+        m_j = (masses.piston_group or 0.0) + (small or 0.0)
+    m_r = masses.rotating
+    crank = None
+    if m_r is None:
+        crank = masses.crank_unbalance
+        m_r = crank / rods_per_throw + (big or 0.0)
+    given = [k for k in ("reciprocating", "rotating") if getattr(masses, k) is not None]
+    source = "given " + " and ".join(given) if given else "components (two-mass rod model)"
+    return EquivalentMasses(
+        reciprocating=float(m_j),
+        rotating=float(m_r),
+        rod_small_end=small,
+        rod_big_end=big,
+        crank=crank,
+        inertia_error=error,
+        three_mass_small_end=three[0],
+        three_mass_big_end=three[1],
+        three_mass_centre=three[2],
+        source=source,
+    )

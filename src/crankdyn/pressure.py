@@ -24,7 +24,7 @@ a four-stroke cycle), the wrap-around from the last point to the first included:
 wider gap does not cover the cycle."""
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class PressureTrace:
     """Absolute cylinder pressure over one cycle, crank angle from firing TDC.
 
@@ -39,12 +39,17 @@ class PressureTrace:
         Length of the cycle (rad): 4 pi for a four-stroke engine, 2 pi for a two-stroke.
     source
         Where the trace came from (file name), for messages and reports.
+    compression_ratio
+        Compression ratio eps of the engine the trace belongs to (dimensionless, > 1), or None
+        when unknown; it fixes the clearance volume for p-V diagrams (the indicated work does
+        not need it).
     """
 
     crank_angle: np.ndarray
     pressure: np.ndarray
     cycle_angle: float = 4.0 * math.pi
     source: str | None = None
+    compression_ratio: float | None = None
 
     def __post_init__(self) -> None:
         angle = np.asarray(self.crank_angle, dtype=float)
@@ -72,8 +77,28 @@ class PressureTrace:
                 f"deg after {start:.6g} deg from firing TDC (at most "
                 f"{math.degrees(MAX_TRACE_GAP_FRACTION * self.cycle_angle):.4g} deg allowed)"
             )
+        if self.compression_ratio is not None:
+            eps = float(self.compression_ratio)
+            if not (math.isfinite(eps) and eps > 1.0):
+                raise InputError(
+                    "the compression ratio must exceed 1",
+                    key="compression_ratio",
+                    value=self.compression_ratio,
+                )
+            object.__setattr__(self, "compression_ratio", eps)
         object.__setattr__(self, "crank_angle", freeze(angle))
         object.__setattr__(self, "pressure", freeze(p))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, PressureTrace):
+            return NotImplemented
+        return (
+            self.cycle_angle == other.cycle_angle
+            and np.array_equal(self.crank_angle, other.crank_angle)
+            and np.array_equal(self.pressure, other.pressure)
+        )
+
+    __hash__ = None  # mutable-looking contents: not hashable
 
     @classmethod
     def from_cycle_data(
@@ -84,6 +109,7 @@ class PressureTrace:
         firing_tdc: float = 0.0,
         cycle_angle: float = 4.0 * math.pi,
         source: str | None = None,
+        compression_ratio: float | None = None,
     ) -> PressureTrace:
         """Build from angles as recorded (rad, any origin) with firing TDC at ``firing_tdc``.
 
@@ -107,7 +133,13 @@ class PressureTrace:
             )
         shifted = np.mod(angle - firing_tdc, cycle_angle)
         order = np.argsort(shifted, kind="stable")
-        return cls(shifted[order], p[order], cycle_angle=cycle_angle, source=source)
+        return cls(
+            shifted[order],
+            p[order],
+            cycle_angle=cycle_angle,
+            source=source,
+            compression_ratio=compression_ratio,
+        )
 
     def at(self, phi) -> np.ndarray:
         """Pressure (Pa) at crank angles phi (rad from firing TDC, any range), by periodic linear
@@ -125,5 +157,9 @@ class PressureTrace:
     def scaled(self, factor: float) -> PressureTrace:
         """The trace with every pressure multiplied by factor (> 0)."""
         return PressureTrace(
-            self.crank_angle, self.pressure * float(factor), self.cycle_angle, self.source
+            self.crank_angle,
+            self.pressure * float(factor),
+            self.cycle_angle,
+            self.source,
+            self.compression_ratio,
         )

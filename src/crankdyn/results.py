@@ -57,12 +57,21 @@ def freeze(values, dtype=float) -> np.ndarray:
     return arr
 
 
+def _scaled(value, scale: float):
+    """value x scale; angles converted to degrees are rounded to 1e-10 deg so that grid angles
+    read as the round numbers they are (30.0, not 29.999999999999996)."""
+    if scale == 1.0:
+        return value
+    out = value * scale
+    return np.round(out, 10) if scale == DEG else out
+
+
 def _to_jsonable(value: Any, scale: float) -> Any:
     if isinstance(value, Result):
         return value.to_dict()
     if isinstance(value, np.ndarray):
         if value.dtype.kind in "fc":
-            out = value * scale if scale != 1.0 else value
+            out = _scaled(value, scale)
             return [_to_jsonable(v, 1.0) for v in out] if out.ndim > 1 else _clean(out.tolist())
         if value.dtype.kind in "iub":
             return value.tolist()
@@ -76,7 +85,7 @@ def _to_jsonable(value: Any, scale: float) -> Any:
     if isinstance(value, (int, np.integer)):
         return int(value)
     if isinstance(value, (float, np.floating)):
-        number = float(value) * scale
+        number = float(_scaled(float(value), scale))
         return number if math.isfinite(number) else None
     return value
 
@@ -122,9 +131,9 @@ class Result:
                 continue
             if isinstance(value, dict):
                 for name, arr in _flatten(meta["key"], value):
-                    out[name] = np.asarray(arr, dtype=float) * meta["scale"]
+                    out[name] = _scaled(np.asarray(arr, dtype=float), meta["scale"])
                 continue
-            arr = np.asarray(value, dtype=float) * meta["scale"]
+            arr = _scaled(np.asarray(value, dtype=float), meta["scale"])
             if arr.ndim == 1:
                 out[meta["key"]] = arr
             else:

@@ -18,7 +18,7 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "demo", "linkage")
+COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "linkage")
 
 
 @click.group(

@@ -10,6 +10,7 @@ from pathlib import Path
 import click
 import numpy as np
 from rich.console import Console
+from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.engine import Engine
@@ -107,7 +108,7 @@ def render_table(result: Result, title: str | None = None) -> RichTable:
     table = RichTable(title=title, show_lines=False, header_style="bold")
     for key in labels:
         label, unit = labels[key]
-        table.add_column(f"{label}\n({unit})" if unit else label, justify="right")
+        table.add_column(escape(f"{label}\n({unit})" if unit else label), justify="right")
     cols = result.columns()
     scales = [float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) for c in cols.values()]
     for row in zip(*cols.values(), strict=True):
@@ -121,8 +122,8 @@ def summary_table(result: Result, title: str = "Summary") -> RichTable:
     table.add_column("Quantity", justify="left")
     table.add_column("Value", justify="right")
     table.add_column("Unit", justify="left")
-    for label, value, unit in result.summary_rows():
-        table.add_row(label, value, unit)
+    for label, value, unit in result.summary_rows():  # user text may hold [brackets]
+        table.add_row(escape(label), escape(value), escape(unit))
     return table
 
 
@@ -163,3 +164,25 @@ class _Null:
 
 def resolve_output_dir(out: str | None, default: str) -> Path:
     return Path(out or default)
+
+
+def speed_range(text: str | None, option: str = "--speeds"):
+    """Parse A:B:STEP (rpm when bare, units allowed on each part) into speeds in rad/s."""
+    if text is None:
+        return None
+    parts = [p.strip() for p in text.split(":")]
+    if len(parts) != 3 or not all(parts):
+        raise InputError(
+            "expected START:STOP:STEP, e.g. 1000:2500:25 (rpm)", key=option, value=text
+        )
+    start, stop, step = (option_quantity(p, "speed", option, "rpm") for p in parts)
+    if start <= 0.0 or stop <= 0.0:
+        raise InputError("speeds must be positive", key=option, value=text)
+    if step <= 0.0:
+        raise InputError("the step must be positive", key=option, value=text)
+    if stop < start:
+        raise InputError("the range is empty: STOP is below START", key=option, value=text)
+    count = math.floor((stop - start) / step * (1 + 1e-12)) + 1
+    if count > 100_000:
+        raise InputError("too many speeds (more than 100000)", key=option, value=text)
+    return start + step * np.arange(count)

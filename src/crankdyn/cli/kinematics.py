@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from fractions import Fraction
 
 import click
 import numpy as np
@@ -103,7 +102,10 @@ def kinematics_command(engine, speed, step, method, order, fmt, output, force) -
 
 def _parse_lambda(text: str) -> float:
     try:
-        value = float(Fraction(text.strip())) if "/" in text else float(text)
+        parts = [float(p) for p in text.split("/")]
+        if len(parts) > 2:
+            raise ValueError
+        value = parts[0] / parts[1] if len(parts) == 2 else parts[0]
     except (ValueError, ZeroDivisionError):
         raise InputError(
             "expected a number or a fraction such as 1/3.8", key="--lambda", value=text

@@ -13,7 +13,8 @@ from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.masses import Masses
-from crankdyn.pressure import ATMOSPHERE
+from crankdyn.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.pressure_model import LOAD_KEYS, WiebePressureModel
 
 __all__ = [
     "example_files",
@@ -92,9 +93,9 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     cycle = root.string("cycle", "four-stroke", choices=CYCLES)
     geometry = _geometry(root.table("geometry", required=True))
     cylinders = _cylinders(root.table("cylinders"), cycle)
-    masses = _masses(root.table("masses"))
-    pressure, crankcase = _pressure(root.table("pressure"), cycle)
-    speed = _operating(root.table("operating"))
+    masses = _masses(root.table("masses"), geometry)
+    pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
+    speed, efficiency = _operating(root.table("operating"))
     with root.context():
         engine = Engine(
             name=name,
@@ -104,6 +105,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             pressure=pressure,
             crankcase_pressure=crankcase,
             speed=speed,
+            mechanical_efficiency=efficiency,
             source=file,
         )
     root.finish()
@@ -178,7 +180,7 @@ def _cylinders(t: Table | None, cycle: str) -> Cylinders:
     return cylinders
 
 
-def _masses(t: Table | None) -> Masses | None:
+def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
     if t is None:
         return None
     values = {
@@ -193,28 +195,100 @@ def _masses(t: Table | None) -> Masses | None:
         values["crank_unbalance"] = 0.0
     with t.context():
         masses = Masses(**values)
+    try:
+        masses.check_rod(geometry.rod_length)
+    except InputError as exc:
+        if exc.key in t.data:  # report against the key and value the user wrote
+            raise t.error(exc.key, exc.message, t.data[exc.key]) from None
+        raise
     t.finish()
     return masses
 
 
-def _pressure(t: Table | None, cycle: str):
+def _pressure(t: Table | None, cycle: str, geometry: CrankGeometry):
+    """[pressure]: a trace (``file``) or the synthetic model (``model = "wiebe"`` and its
+    parameters); neither leaves the engine without a trace (the analyses then use the model
+    with every default)."""
     if t is None:
         return None, ATMOSPHERE
     crankcase = t.quantity("crankcase_pressure", "pressure", ATMOSPHERE, check="nonnegative")
     cycle_angle = 4.0 * math.pi if cycle == "four-stroke" else 2.0 * math.pi
-    firing_tdc = t.quantity("firing_tdc", "angle", 0.0)
-    trace_path = t.path("file")
-    if not trace_path.is_file():
-        raise t.error("file", f"no such pressure trace (looked for {trace_path})", t.data["file"])
-    with t.context():
-        trace = read_pressure_trace(
-            trace_path,
-            firing_tdc=firing_tdc,
-            cycle_angle=cycle_angle,
-            display=_display_path(trace_path),
-        )
+    which = t.exclusive("file", "model", required=False)
+    given = [k for k in _MODEL_KEYS if k in t.data]
+    if which == "file":
+        foreign = [k for k in given if k != "compression_ratio"]
+        if foreign:
+            raise t.error(
+                foreign[0],
+                'is a parameter of the synthetic model (model = "wiebe"), not of a trace',
+                t.data[foreign[0]],
+            )
+        firing_tdc = t.quantity("firing_tdc", "angle", 0.0)
+        eps = t.number("compression_ratio", None)
+        trace_path = t.path("file")
+        if not trace_path.is_file():
+            raise t.error(
+                "file", f"no such pressure trace (looked for {trace_path})", t.data["file"]
+            )
+        with t.context():
+            trace = read_pressure_trace(
+                trace_path,
+                firing_tdc=firing_tdc,
+                cycle_angle=cycle_angle,
+                display=_display_path(trace_path),
+            )
+            if eps is not None:
+                trace = PressureTrace(
+                    trace.crank_angle, trace.pressure, trace.cycle_angle, trace.source, eps
+                )
+        t.finish()
+        return trace, crankcase
+    if which is None and not given:
+        t.finish()
+        return None, crankcase
+    if which == "model":
+        t.string("model", choices=("wiebe",))
+    if "firing_tdc" in t.data:
+        raise t.error("firing_tdc", "applies to a pressure trace (file)", t.data["firing_tdc"])
+    values = {}
+    for key, (kind, check) in _MODEL_KEYS.items():
+        if kind == "number":
+            value = t.number(key, None)
+        else:
+            value = t.quantity(key, kind, None, check=check)
+        if value is not None:
+            values[key] = value
+    load = [k for k in LOAD_KEYS if k in values]
+    if len(load) > 1:
+        raise t.error(load[1], f"give only one of {', '.join(LOAD_KEYS)}", t.data[load[1]])
+    try:
+        model = WiebePressureModel(**values)
+        trace = model.trace(geometry, cycle)
+    except InputError as exc:
+        if exc.key in t.data:  # report the value as the user wrote it
+            raise t.error(exc.key, exc.message, t.data[exc.key]) from None
+        raise exc.within(file=t.file, section=t.name) from None
     t.finish()
     return trace, crankcase
+
+
+_MODEL_KEYS = {
+    "compression_ratio": ("number", None),
+    "combustion_start": ("angle", None),
+    "combustion_duration": ("angle", "positive"),
+    "wiebe_a": ("number", None),
+    "wiebe_m": ("number", None),
+    "compression_exponent": ("number", None),
+    "expansion_exponent": ("number", None),
+    "intake_pressure": ("pressure", "positive"),
+    "exhaust_pressure": ("pressure", "positive"),
+    "exhaust_opens": ("angle", None),
+    "valve_overlap": ("angle", "nonnegative"),
+    "fuel_energy": ("energy", "nonnegative"),
+    "imep": ("pressure", "positive"),
+    "peak_pressure": ("pressure", "positive"),
+}
+"""Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
 
 
 def _display_path(path: Path) -> str:
@@ -230,9 +304,10 @@ def _display_path(path: Path) -> str:
         return str(path)
 
 
-def _operating(t: Table | None) -> float | None:
+def _operating(t: Table | None) -> tuple[float | None, float | None]:
     if t is None:
-        return None
+        return None, None
     speed = t.quantity("speed", "speed", None, check="positive")
+    efficiency = t.number("mechanical_efficiency", None, check="positive", maximum=1.0)
     t.finish()
-    return speed
+    return speed, efficiency

@@ -9,7 +9,9 @@ the key (with its section, e.g. ``[geometry] bore``) and the value.
 from __future__ import annotations
 
 import difflib
+import json
 import math
+import re
 from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
@@ -27,6 +29,8 @@ class _Missing:
 
 
 MISSING: Any = _Missing()
+
+_BARE_KEY = re.compile(r"[A-Za-z0-9_-]+")
 
 _CHECKS = {
     None: (lambda v: True, ""),
@@ -63,8 +67,10 @@ class Table:
 
     # ---- messages -----------------------------------------------------------------------------
     def label(self, key: str) -> str:
-        """How a key is named in messages: ``[section] key``."""
-        return f"{self.name} {key}" if self.name else key
+        """How a key is named in messages: ``[section] key`` (quoted as TOML writes keys that
+        are not bare)."""
+        shown = key if _BARE_KEY.fullmatch(key) else json.dumps(key)
+        return f"{self.name} {shown}" if self.name else shown
 
     def error(self, key: str | None, message: str, value: Any = MISSING) -> InputError:
         """An InputError for a key of this table (value omitted when MISSING)."""
@@ -94,6 +100,13 @@ class Table:
         if key in self.data:
             return self.data[key]
         if default is MISSING:
+            # a near-miss spelling in the file is the likelier mistake than a missing key
+            others = [k for k in self.data if k not in self._known]
+            close = difflib.get_close_matches(key, others, n=1, cutoff=0.75)
+            if close:
+                raise self.error(
+                    close[0], f'unknown key (did you mean "{key}"?)', self.data[close[0]]
+                )
             raise self.error(key, f"missing; expected {expected}")
         return default
 

@@ -164,6 +164,20 @@ def read_pressure_trace(
                     value=cell,
                 )
             values.append(v)
+        if values[1] <= 0.0:
+            raise InputError(
+                "absolute pressure must be positive (traces hold absolute pressures)",
+                file=name,
+                key=f"line {number}",
+                value=row[i_press].strip(),
+            )
+        if angles and values[0] * angle_factor <= angles[-1]:
+            raise InputError(
+                "crank angles must increase from line to line",
+                file=name,
+                key=f"line {number}",
+                value=row[i_angle].strip(),
+            )
         angles.append(values[0] * angle_factor)
         pressures.append(values[1] * pressure_factor)
     try:

@@ -1,0 +1,5 @@
+"""``python -m crankdyn``: the command line."""
+
+from crankdyn.cli import run
+
+run()

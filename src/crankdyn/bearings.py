@@ -1,0 +1,130 @@
+"""Crank-pin and main-bearing loads of an engine (seed 000 section 2.2: R_B and R_K).
+
+Crank-pin load R_B of every throw: the force of its rod(s) on the pin plus the big ends'
+centrifugal force, in the crank frame (components along the crank toward the centre and
+tangential, positive in the direction of rotation); on a V engine's shared pin the two rods,
+each at its own bank's crank angle, are added in that frame.
+
+Main-bearing loads R_K: every throw is taken as a beam simply supported on the main bearings
+either side of it (a main bearing between every two throws and at both ends: throws + 1
+bearings, numbered from the free end), loaded at mid-span by its rods' forces and the
+centrifugal force of its rotating masses m_r R w^2, so each adjacent bearing carries half of
+it (the statically determinate "split crankshaft" method; e.g. Kolchin and Demidov, *Design of
+Automotive Engines*, Mir 1984, ch. on bearing loads). A bearing's load is the sum of the halves
+of its two throws, added as vectors in the engine frame (horizontal positive to the right seen
+from the free end, vertical positive toward the cylinder heads of an inline engine): the force
+of the journal on the bearing.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from crankdyn.engine import Engine
+from crankdyn.forces import crank_train, cycle_grid, load_angle
+from crankdyn.pressure import PressureTrace
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = ["BearingLoads", "bearing_loads", "main_bearing_loads"]
+
+
+def main_bearing_loads(throw_x, throw_y):
+    """Main-bearing loads from the throw forces by the simply supported split: bearing b
+    (0-based from the free end, throws + 1 of them) carries half of throw b - 1 and half of
+    throw b. Arrays of shape (throws, angles) in, (throws + 1, angles) out (N)."""
+    hx = np.asarray(throw_x, dtype=float)
+    hy = np.asarray(throw_y, dtype=float)
+    zero = np.zeros((1, hx.shape[1]))
+    bx = 0.5 * (np.vstack([hx, zero]) + np.vstack([zero, hx]))
+    by = 0.5 * (np.vstack([hy, zero]) + np.vstack([zero, hy]))
+    return bx, by
+
+
+@dataclass(frozen=True)
+class BearingLoads(Result):
+    """Crank-pin loads (one row per throw) and main-bearing loads (one row per bearing) over
+    the cycle (module docstring for frames and signs)."""
+
+    title = "Crank-pin and main-bearing loads"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    pin_load: np.ndarray = column("crank_pin_load_N", "Pin load", "N")
+    pin_load_angle: np.ndarray = column("crank_pin_load_angle_deg", "Pin load angle", "deg", DEG)
+    pin_tangential: np.ndarray = column("crank_pin_load_tangential_N", "Pin tangential", "N")
+    pin_radial: np.ndarray = column("crank_pin_load_radial_N", "Pin radial", "N")
+    bearing_load: np.ndarray = column("main_bearing_load_N", "Main bearing", "N")
+    bearing_load_angle: np.ndarray = column(
+        "main_bearing_load_angle_deg", "Main bearing angle", "deg", DEG
+    )
+    bearing_horizontal: np.ndarray = column(
+        "main_bearing_load_horizontal_N", "Main bearing horiz.", "N"
+    )
+    bearing_vertical: np.ndarray = column("main_bearing_load_vertical_N", "Main bearing vert.", "N")
+    max_pin_load: np.ndarray = scalar("max_crank_pin_load_N", "Max crank-pin load per throw", "N")
+    mean_pin_load: np.ndarray = scalar(
+        "mean_crank_pin_load_N", "Mean crank-pin load per throw", "N"
+    )
+    max_bearing_load: np.ndarray = scalar(
+        "max_main_bearing_load_N", "Max main-bearing load per bearing", "N"
+    )
+    mean_bearing_load: np.ndarray = scalar(
+        "mean_main_bearing_load_N", "Mean main-bearing load per bearing", "N"
+    )
+    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    pressure_source: str = scalar("pressure_source", "Pressure from", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+
+    def plot(self, fig=None):
+        """Polar diagrams of the crank-pin loads (crank frame) and main-bearing loads (engine
+        frame); returns the matplotlib Figure."""
+        from crankdyn.plots.forces import plot_bearing_polars
+
+        return plot_bearing_polars(self, fig=fig)
+
+
+def bearing_loads(
+    engine: Engine,
+    speed: float,
+    angles=None,
+    *,
+    step: float = math.radians(1.0),
+    pressure: PressureTrace | None = None,
+) -> BearingLoads:
+    """Crank-pin and main-bearing loads of an engine at speed w (rad/s) over one cycle (or at
+    the crankshaft ``angles``, rad); see the module docstring."""
+    theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
+    train = crank_train(engine, speed, theta, pressure=pressure)
+    t_pin, z_pin = train.pin_loads()
+    hx, hy = train.throw_forces()
+    bx, by = main_bearing_loads(hx, hy)
+    pin = np.hypot(t_pin, z_pin)
+    bearing = np.hypot(bx, by)
+    body = slice(0, -1) if angles is None else slice(None)  # the cycle's end repeats its start
+    notes = []
+    if not all(m.pin_mass_known for m in train.masses):
+        notes.append(
+            "rod big-end mass unknown: the crank-pin loads leave out its centrifugal force "
+            "(the main-bearing loads include the whole rotating mass)"
+        )
+    if engine.pressure is None:
+        notes.append("no pressure trace: synthetic Wiebe model with default parameters")
+    return BearingLoads(
+        crank_angle=freeze(theta),
+        pin_load=freeze(pin),
+        pin_load_angle=freeze(load_angle(-z_pin, t_pin)),
+        pin_tangential=freeze(t_pin),
+        pin_radial=freeze(z_pin),
+        bearing_load=freeze(bearing),
+        bearing_load_angle=freeze(load_angle(by, bx)),
+        bearing_horizontal=freeze(bx),
+        bearing_vertical=freeze(by),
+        max_pin_load=freeze(pin.max(axis=1)),
+        mean_pin_load=freeze(pin[:, body].mean(axis=1)),
+        max_bearing_load=freeze(bearing.max(axis=1)),
+        mean_bearing_load=freeze(bearing[:, body].mean(axis=1)),
+        speed=train.speed,
+        pressure_source=train.trace.source or "",
+        notes=tuple(notes) or None,
+    )

@@ -1,0 +1,450 @@
+"""Forces in the crank train: gas and inertia forces, rod, side, tangential and radial forces,
+crank-pin load (seed 000 section 2.2), vectorized over crank angle and cylinders.
+
+Conventions (docs/conventions.md, seed 000 section 2.2). For one cylinder at crank angle phi
+(rad from its cylinder axis, positive in the direction of rotation), rod angle beta with
+sin(beta) = lambda (sin(phi) - k):
+
+- gas force P_g = (p - p_cc) A, positive pushing the piston toward the crank; p absolute,
+  p_cc the crankcase pressure, A the piston area;
+- reciprocating inertia force P_j = -m_j a (a: exact piston acceleration, positive toward the
+  crank); its 1st- and 2nd-order parts are the first two harmonics of the exact force,
+  P_jI = m_j R w^2 (c_1 cos(phi) + s_1 sin(phi)) and
+  P_jII = 4 m_j R w^2 (c_2 cos(2 phi) + s_2 sin(2 phi)) with the Fourier coefficients c_m, s_m
+  of x/R (:func:`crankdyn.kinematics.series_coefficients`, taken to harmonic 24); for a central
+  crank P_jI = -m_j R w^2 cos(phi) exactly and P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...)
+  cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi) to first order in lambda;
+- resultant along the cylinder axis P = P_g + P_j;
+- side force N = P tan(beta): the piston's push on the cylinder wall, positive toward the major
+  thrust side (the side away from which the crank pin moves after TDC, which the piston presses
+  against during expansion);
+- rod force K = P / cos(beta), positive in compression;
+- tangential force T = P sin(phi + beta)/cos(beta), positive driving the crank; radial force
+  Z = P cos(phi + beta)/cos(beta), positive toward the crank centre; the cylinder's torque is
+  M = T R;
+- rotating inertia force P_r = m_r R w^2 along the crank, outward (of it m_CB R w^2 acts on the
+  crank pin through the rod's big end, the rest on the crank web);
+- crank-pin load: the force of the rod(s) on the pin in the crank frame, T and Z of every rod on
+  the pin less the big ends' centrifugal force m_CB R w^2 along Z (V engines: two rods, each at
+  its own bank's crank angle, combined in the crank frame).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import numpy as np
+
+from crankdyn.engine import Engine
+from crankdyn.errors import InputError
+from crankdyn.kinematics import series_coefficients, slider_crank_exact
+from crankdyn.masses import EquivalentMasses, equivalent_mass_model
+from crankdyn.pressure import PressureTrace
+from crankdyn.pressure_model import default_pressure
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = [
+    "CrankTrain",
+    "CylinderForces",
+    "crank_train",
+    "cylinder_forces",
+    "engine_masses",
+    "inertia_harmonics",
+    "load_angle",
+    "rod_forces",
+]
+
+_SERIES_ORDER = 24
+
+
+# ---- numeric core ------------------------------------------------------------------------------
+
+
+def rod_forces(piston_force, phi, lam: float, k: float = 0.0):
+    """Side, rod, tangential and radial forces from the force along the cylinder axis.
+
+    Parameters
+    ----------
+    piston_force
+        P (N), positive toward the crank; array broadcastable with phi.
+    phi
+        Crank angle (rad).
+    lam, k
+        lambda = R/L and k = e/R (dimensionless).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        Side force N = P tan(beta), rod force K = P/cos(beta), tangential force
+        T = P sin(phi + beta)/cos(beta), radial force Z = P cos(phi + beta)/cos(beta), all in N
+        (seed 000 section 2.2).
+    """
+    phi = np.asarray(phi, dtype=float)
+    p = np.asarray(piston_force, dtype=float)
+    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
+    sin_b = lam * (sin_phi - k)
+    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    rod = p / cos_b
+    side = rod * sin_b
+    tangential = rod * (sin_phi * cos_b + cos_phi * sin_b)
+    radial = rod * (cos_phi * cos_b - sin_phi * sin_b)
+    return side, rod, tangential, radial
+
+
+@lru_cache(maxsize=64)
+def _harmonics(lam: float, k: float):
+    cos_c, sin_c = series_coefficients(lam, k, _SERIES_ORDER)
+    return float(cos_c[1]), float(sin_c[1]), float(cos_c[2]), float(sin_c[2])
+
+
+def inertia_harmonics(
+    phi, mass: float, crank_radius: float, rod_length: float, offset=0.0, omega=1.0
+):
+    """First- and second-order parts of the reciprocating inertia force -m_j a (N), the first two
+    harmonics of the exact force (module docstring).
+
+    Parameters
+    ----------
+    phi
+        Crank angle (rad).
+    mass
+        Reciprocating mass m_j (kg).
+    crank_radius, rod_length, offset
+        R, L, e (m).
+    omega
+        Crank speed w (rad/s).
+    """
+    phi = np.asarray(phi, dtype=float)
+    c1, s1, c2, s2 = _harmonics(crank_radius / rod_length, offset / crank_radius)
+    scale = mass * crank_radius * omega * omega
+    first = scale * (c1 * np.cos(phi) + s1 * np.sin(phi))
+    second = 4.0 * scale * (c2 * np.cos(2 * phi) + s2 * np.sin(2 * phi))
+    return first, second
+
+
+def load_angle(along, across) -> np.ndarray:
+    """Direction (rad, 0 <= angle < 2 pi) of a load with components ``along`` a reference
+    direction and ``across`` it (the reference turned 90 deg in the direction of rotation)."""
+    return np.mod(np.arctan2(across, along), 2.0 * math.pi)
+
+
+# ---- the crank train of an engine ----------------------------------------------------------------
+
+
+def engine_masses(engine: Engine) -> list[EquivalentMasses]:
+    """Equivalent masses of every cylinder (a V engine's throws share the crank unbalance)."""
+    if engine.masses is None:
+        raise InputError(
+            "the engine has no [masses]: forces and torque need the reciprocating and rotating "
+            "masses (give reciprocating and rotating, or the components)",
+            file=engine.source,
+            key="[masses]",
+        )
+    throws = engine.cylinders.throws
+    counts = {t: throws.count(t) for t in set(throws)}
+    return [
+        equivalent_mass_model(engine.masses, engine.geometry.rod_length, counts[t]) for t in throws
+    ]
+
+
+@dataclass(frozen=True)
+class CrankTrain:
+    """Forces of every cylinder of an engine at a set of crankshaft angles (arrays of shape
+    (cylinders, angles), SI); the building block of the force, bearing and torque results."""
+
+    theta: np.ndarray  # crankshaft angle (rad), 0 at cylinder 1's firing TDC
+    speed: float  # w (rad/s)
+    phi: np.ndarray  # each cylinder's crank angle from its own TDC (rad)
+    cycle_phase: np.ndarray  # each cylinder's angle from its firing TDC, 0..cycle (rad)
+    pressure: np.ndarray  # absolute cylinder pressure (Pa)
+    gas: np.ndarray  # P_g (N)
+    inertia: np.ndarray  # P_j (N)
+    piston: np.ndarray  # P (N)
+    side: np.ndarray
+    rod: np.ndarray
+    tangential: np.ndarray
+    radial: np.ndarray
+    gas_tangential: np.ndarray
+    inertia_tangential: np.ndarray
+    masses: tuple[EquivalentMasses, ...]
+    trace: PressureTrace
+    engine: Engine = field(repr=False)
+
+    @property
+    def crank_radius(self) -> float:
+        return self.engine.geometry.crank_radius
+
+    @property
+    def throw_direction(self) -> np.ndarray:
+        """Direction of each cylinder's crank in the engine frame (rad from the vertical,
+        clockwise seen from the free end): alpha_i + phi_i."""
+        return self.engine.cylinders.bank_axis_angles[:, None] + self.phi
+
+    def pin_loads(self):
+        """Crank-pin load of every throw in the crank frame: (tangential, radial) arrays of
+        shape (throws, angles) in N, radial positive toward the crank centre."""
+        cyl = self.engine.cylinders
+        w2r = self.speed**2 * self.crank_radius
+        big_end = np.array([m.rod_big_end or 0.0 for m in self.masses])
+        radial = self.radial - (big_end * w2r)[:, None]
+        index = np.asarray(cyl.throws) - 1
+        t_pin = np.zeros((cyl.throw_count, self.theta.size))
+        z_pin = np.zeros_like(t_pin)
+        np.add.at(t_pin, index, self.tangential)
+        np.add.at(z_pin, index, radial)
+        return t_pin, z_pin
+
+    def throw_forces(self):
+        """Force of every throw on the crankshaft in the engine frame (rods plus the rotating
+        masses' centrifugal force): (horizontal, vertical) arrays of shape (throws, angles) in
+        N; horizontal positive to the right seen from the free end, vertical positive up."""
+        cyl = self.engine.cylinders
+        alpha = cyl.bank_axis_angles[:, None]
+        # rod force on the pin in the cylinder frame: side component N along +n, -P along +a
+        # with a = (sin alpha, cos alpha), n = (cos alpha, -sin alpha) in (horizontal, up)
+        fx = self.side * np.cos(alpha) - self.piston * np.sin(alpha)
+        fy = -self.side * np.sin(alpha) - self.piston * np.cos(alpha)
+        rotating = np.array([m.rotating for m in self.masses])[:, None]
+        centrifugal = rotating * self.crank_radius * self.speed**2
+        chi = self.throw_direction
+        fx = fx + centrifugal * np.sin(chi)
+        fy = fy + centrifugal * np.cos(chi)
+        index = np.asarray(cyl.throws) - 1
+        hx = np.zeros((cyl.throw_count, self.theta.size))
+        hy = np.zeros_like(hx)
+        np.add.at(hx, index, fx)
+        np.add.at(hy, index, fy)
+        return hx, hy
+
+
+def crank_train(
+    engine: Engine, speed: float, theta, *, pressure: PressureTrace | None = None
+) -> CrankTrain:
+    """Forces of every cylinder at crankshaft angles theta (rad) and speed w (rad/s).
+
+    Cylinder i's crank angle is phi_i = theta - psi_i (psi_i its throw angle) and its angle from
+    firing TDC is theta - Phi_i (Phi_i its firing angle); ``pressure`` defaults to the engine's
+    trace or the synthetic model (:func:`crankdyn.pressure_model.default_pressure`).
+    """
+    if not (math.isfinite(speed) and speed > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
+    masses = engine_masses(engine)
+    trace = default_pressure(engine) if pressure is None else pressure
+    g, cyl = engine.geometry, engine.cylinders
+    theta = np.asarray(theta, dtype=float)
+    psi = np.asarray(cyl.throw_angles)[:, None]
+    firing = np.asarray(cyl.firing_angles)[:, None]
+    phi = theta[None, :] - psi
+    phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
+    p = trace.at(phase)
+    gas = (p - engine.crankcase_pressure) * g.piston_area
+    motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed)
+    m_j = np.array([m.reciprocating for m in masses])[:, None]
+    inertia = -m_j * motion.acceleration
+    piston = gas + inertia
+    side, rod, tangential, radial = rod_forces(piston, phi, g.lam, g.k)
+    lever = rod_forces(  # sin(phi + beta)/cos(beta)
+        np.ones_like(phi), phi, g.lam, g.k
+    )[2]
+    return CrankTrain(
+        theta=theta,
+        speed=float(speed),
+        phi=phi,
+        cycle_phase=phase,
+        pressure=p,
+        gas=gas,
+        inertia=inertia,
+        piston=piston,
+        side=side,
+        rod=rod,
+        tangential=tangential,
+        radial=radial,
+        gas_tangential=gas * lever,
+        inertia_tangential=inertia * lever,
+        masses=tuple(masses),
+        trace=trace,
+        engine=engine,
+    )
+
+
+def cycle_grid(engine: Engine, step: float) -> np.ndarray:
+    """Crankshaft angles over one working cycle, 0..cycle inclusive, every ``step`` rad."""
+    count = max(round(engine.cycle_angle / step), 4)
+    return np.linspace(0.0, engine.cycle_angle, count + 1)
+
+
+# ---- one cylinder: result ------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class CylinderForces(Result):
+    """Forces of one cylinder over the working cycle (module docstring for signs)."""
+
+    title = "Cylinder forces"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    cylinder_angle: np.ndarray = column("cylinder_angle_deg", "Cylinder angle", "deg", DEG)
+    pressure: np.ndarray = column("pressure_Pa", "Cylinder pressure", "Pa")
+    gas_force: np.ndarray = column("gas_force_N", "Gas force P_g", "N")
+    inertia_force: np.ndarray = column("inertia_force_N", "Inertia force P_j", "N")
+    inertia_force_1: np.ndarray = column("inertia_force_1st_N", "P_j 1st order", "N")
+    inertia_force_2: np.ndarray = column("inertia_force_2nd_N", "P_j 2nd order", "N")
+    piston_force: np.ndarray = column("piston_force_N", "Axial force P", "N")
+    side_force: np.ndarray = column("side_force_N", "Side force N", "N")
+    rod_force: np.ndarray = column("rod_force_N", "Rod force K", "N")
+    tangential_force: np.ndarray = column("tangential_force_N", "Tangential T", "N")
+    radial_force: np.ndarray = column("radial_force_N", "Radial Z", "N")
+    rotating_axial: np.ndarray = column("rotating_force_axial_N", "Rotating, axial", "N")
+    rotating_lateral: np.ndarray = column("rotating_force_lateral_N", "Rotating, lateral", "N")
+    pin_load: np.ndarray = column("crank_pin_load_N", "Crank-pin load", "N")
+    pin_load_angle: np.ndarray = column("crank_pin_load_angle_deg", "Pin load angle", "deg", DEG)
+    pin_tangential: np.ndarray = column("crank_pin_load_tangential_N", "Pin load, tangential", "N")
+    pin_radial: np.ndarray = column("crank_pin_load_radial_N", "Pin load, radial", "N")
+    torque: np.ndarray = column("torque_Nm", "Torque M", "N·m")
+    gas_torque: np.ndarray = column("gas_torque_Nm", "Gas torque", "N·m")
+    inertia_torque: np.ndarray = column("inertia_torque_Nm", "Inertia torque", "N·m")
+    inertia_torque_error: np.ndarray | None = column(
+        "rod_model_torque_error_Nm", "Rod-model torque error", "N·m"
+    )
+    cylinder: int = scalar("cylinder", "Cylinder", "")
+    bank: str = scalar("bank", "Bank", "")
+    throw: int = scalar("throw", "Throw", "")
+    rods_on_pin: int = scalar("rods_on_pin", "Rods on the crank pin", "")
+    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    masses: EquivalentMasses = scalar("masses", "Masses", "")
+    rotating_force: float = scalar("rotating_force_N", "Rotating inertia force m_r R ω²", "N")
+    pin_rotating_force: float = scalar(
+        "pin_rotating_force_N", "Big-end centrifugal force on the pin m_CB R ω²", "N"
+    )
+    max_gas_force: float = scalar("max_gas_force_N", "Max gas force", "N")
+    max_side_force: float = scalar("max_side_force_N", "Max side force", "N")
+    max_rod_compression: float = scalar("max_rod_compression_N", "Max rod compression", "N")
+    max_rod_tension: float = scalar("max_rod_tension_N", "Max rod tension", "N")
+    max_pin_load: float = scalar("max_crank_pin_load_N", "Max crank-pin load", "N")
+    mean_pin_load: float = scalar("mean_crank_pin_load_N", "Mean crank-pin load", "N")
+    max_rod_couple_error: float | None = scalar(
+        "max_rod_couple_error_Nm", "Two-mass rod couple error max |ΔI ε_L|", "N·m"
+    )
+    pressure_source: str = scalar("pressure_source", "Pressure from", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+
+    def plot(self, fig=None):
+        """Forces vs crank angle; returns the matplotlib Figure."""
+        from crankdyn.plots.forces import plot_cylinder_forces
+
+        return plot_cylinder_forces(self, fig=fig)
+
+    def plot_pin_polar(self, fig=None):
+        """Polar diagram of the crank-pin load in the crank frame; returns the Figure."""
+        from crankdyn.plots.forces import plot_pin_polar
+
+        return plot_pin_polar(self, fig=fig)
+
+
+def cylinder_forces(
+    engine: Engine,
+    speed: float,
+    angles=None,
+    *,
+    cylinder: int = 1,
+    step: float = math.radians(1.0),
+    pressure: PressureTrace | None = None,
+) -> CylinderForces:
+    """Forces of cylinder ``cylinder`` (1-based, numbered from the free end) over the cycle.
+
+    Parameters
+    ----------
+    engine
+        The engine (its masses are required).
+    speed
+        Crank speed w (rad/s).
+    angles
+        Crankshaft angles (rad), 0 at cylinder 1's firing TDC; default one cycle every ``step``.
+    cylinder
+        Which cylinder.
+    pressure
+        Pressure trace; default the engine's own or its synthetic model.
+
+    Returns
+    -------
+    CylinderForces
+        The crank-pin load is that of the cylinder's throw (both rods of a V engine's shared
+        pin). The rod-model torque error (two-mass minus three-mass, -dI w_L eps_L / w with
+        dI = m_C l_A l_B - I_C, seed 000 section 2.1) is given when the rod's moment of inertia
+        is known.
+    """
+    cyl = engine.cylinders
+    if isinstance(cylinder, bool) or not isinstance(cylinder, (int, np.integer)):
+        raise InputError("expected a cylinder number", key="cylinder", value=cylinder)
+    if not 1 <= cylinder <= cyl.count:
+        raise InputError(
+            f"the engine has cylinders 1 to {cyl.count}", key="cylinder", value=cylinder
+        )
+    theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
+    train = crank_train(engine, speed, theta, pressure=pressure)
+    i = cylinder - 1
+    g = engine.geometry
+    r, w = g.crank_radius, train.speed
+    m = train.masses[i]
+    phi = train.phi[i]
+    first, second = inertia_harmonics(phi, m.reciprocating, r, g.rod_length, g.offset, w)
+    t_pin, z_pin = train.pin_loads()
+    t = cyl.throws[i] - 1
+    pin = np.hypot(t_pin[t], z_pin[t])
+    notes = []
+    error = None
+    couple = None
+    if m.inertia_error is not None:
+        motion = slider_crank_exact(phi, r, g.rod_length, g.offset, w)
+        error = -m.inertia_error * motion.rod_angular_velocity * motion.rod_angular_acceleration / w
+        couple = float(m.inertia_error * np.max(np.abs(motion.rod_angular_acceleration)))
+    if not m.pin_mass_known:
+        notes.append(
+            "rod big-end mass unknown (give [masses] rod and rod_cg_from_big_end): the crank-pin "
+            "load leaves out its centrifugal force"
+        )
+    if engine.pressure is None:
+        notes.append("no pressure trace: synthetic Wiebe model with default parameters")
+    rod = train.rod[i]
+    return CylinderForces(
+        crank_angle=freeze(theta),
+        cylinder_angle=freeze(train.cycle_phase[i]),
+        pressure=freeze(train.pressure[i]),
+        gas_force=freeze(train.gas[i]),
+        inertia_force=freeze(train.inertia[i]),
+        inertia_force_1=freeze(first),
+        inertia_force_2=freeze(second),
+        piston_force=freeze(train.piston[i]),
+        side_force=freeze(train.side[i]),
+        rod_force=freeze(rod),
+        tangential_force=freeze(train.tangential[i]),
+        radial_force=freeze(train.radial[i]),
+        rotating_axial=freeze(m.rotating * r * w * w * np.cos(phi)),
+        rotating_lateral=freeze(m.rotating * r * w * w * np.sin(phi)),
+        pin_load=freeze(pin),
+        pin_load_angle=freeze(load_angle(-z_pin[t], t_pin[t])),
+        pin_tangential=freeze(t_pin[t]),
+        pin_radial=freeze(z_pin[t]),
+        torque=freeze(train.tangential[i] * r),
+        gas_torque=freeze(train.gas_tangential[i] * r),
+        inertia_torque=freeze(train.inertia_tangential[i] * r),
+        inertia_torque_error=None if error is None else freeze(error),
+        cylinder=int(cylinder),
+        bank=cyl.banks[i],
+        throw=int(cyl.throws[i]),
+        rods_on_pin=int(cyl.throws.count(cyl.throws[i])),
+        speed=w,
+        masses=m,
+        rotating_force=m.rotating * r * w * w,
+        pin_rotating_force=(m.rod_big_end or 0.0) * r * w * w,
+        max_gas_force=float(np.max(train.gas[i])),
+        max_side_force=float(np.max(np.abs(train.side[i]))),
+        max_rod_compression=float(max(np.max(rod), 0.0)),
+        max_rod_tension=float(max(-np.min(rod), 0.0)),
+        max_pin_load=float(np.max(pin)),
+        mean_pin_load=float(np.mean(pin[:-1] if angles is None else pin)),
+        max_rod_couple_error=couple,
+        pressure_source=train.trace.source or "",
+        notes=tuple(notes) or None,
+    )

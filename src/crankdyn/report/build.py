@@ -1,0 +1,108 @@
+"""Run every section builder that applies to an engine."""
+
+from __future__ import annotations
+
+import datetime as _dt
+import math
+
+from crankdyn import __version__
+from crankdyn.engine import Engine
+from crankdyn.errors import InputError
+from crankdyn.report.model import Report
+from crankdyn.report.sections import Context, NotApplicable, builders
+
+__all__ = ["build_report", "engine_inputs"]
+
+
+def engine_inputs(engine: Engine) -> list[tuple[str, str]]:
+    """The input echoed with units, for the report's first table."""
+    g, c = engine.geometry, engine.cylinders
+    rows = [
+        ("Engine", engine.name),
+        ("Source", engine.source or "-"),
+        ("Cycle", engine.cycle),
+        (
+            "Cylinders",
+            f"{c.count} {c.layout}"
+            + (f", bank angle {math.degrees(c.bank_angle):g}°" if c.layout == "V" else ""),
+        ),
+        ("Firing order", "-".join(str(i) for i in c.firing_order)),
+        ("Throw angles", ", ".join(f"{math.degrees(a):g}°" for a in c.throw_angles)),
+        ("Bore", f"{g.bore * 1e3:.6g} mm"),
+        ("Stroke", f"{g.nominal_stroke * 1e3:.6g} mm (true {g.stroke * 1e3:.6g} mm)"),
+        ("Rod length", f"{g.rod_length * 1e3:.6g} mm (λ = {g.lam:.4f})"),
+        ("Offset", f"{g.offset * 1e3:.6g} mm"),
+        ("Displacement", f"{engine.displacement * 1e3:.4g} L"),
+    ]
+    if c.pitch is not None:
+        rows.append(("Cylinder pitch", f"{c.pitch * 1e3:.6g} mm"))
+    m = engine.masses
+    if m is not None:
+        for label, value in (
+            ("Piston group", m.piston_group),
+            ("Rod", m.rod),
+            ("Crank unbalance", m.crank_unbalance),
+            ("Reciprocating mass (given)", m.reciprocating),
+            ("Rotating mass (given)", m.rotating),
+        ):
+            if value is not None:
+                rows.append((label, f"{value:.6g} kg"))
+        if m.rod_cg_from_big_end is not None:
+            rows.append(("Rod CG from big end", f"{m.rod_cg_from_big_end * 1e3:.6g} mm"))
+        if m.rod_inertia is not None:
+            rows.append(("Rod moment of inertia", f"{m.rod_inertia:.6g} kg·m²"))
+    if engine.pressure is not None:
+        peak, at = engine.pressure.peak
+        rows.append(
+            (
+                "Pressure trace",
+                f"{engine.pressure.source} ({len(engine.pressure.pressure)}"
+                f" points, peak {peak / 1e6:.4g} MPa at {math.degrees(at):.1f}°)",
+            )
+        )
+        rows.append(("Crankcase pressure", f"{engine.crankcase_pressure / 1e3:.6g} kPa"))
+    if engine.speed is not None:
+        rows.append(("Operating speed", f"{engine.speed * 30 / math.pi:.6g} rpm"))
+    return rows
+
+
+def build_report(
+    engine: Engine, *, speed: float | None = None, speeds=None, progress=None
+) -> Report:
+    """Run every analysis that applies to ``engine``.
+
+    Parameters
+    ----------
+    engine
+        The engine.
+    speed
+        Operating speed (rad/s); default the engine's [operating] speed.
+    speeds
+        Speeds of the sweeps (rad/s array) for speed-dependent analyses, or None for their
+        defaults.
+    progress
+        Optional callable progress(name) called before each analysis.
+    """
+    speed = speed if speed is not None else engine.speed
+    if speed is None:
+        raise InputError(
+            "no speed: give --speed RPM or [operating] speed in the engine file", file=engine.source
+        )
+    ctx = Context(engine=engine, speed=speed, speeds=speeds)
+    sections, notes = [], []
+    for name, build in builders():
+        if progress is not None:
+            progress(name)
+        try:
+            sections.append(build(ctx))
+        except NotApplicable as why:
+            notes.append(f"{name}: {why}")
+    return Report(
+        title=engine.name,
+        inputs=engine_inputs(engine),
+        sections=sections,
+        source=engine.source,
+        version=__version__,
+        created=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
+        notes=notes,
+    )

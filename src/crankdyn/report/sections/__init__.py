@@ -1,0 +1,48 @@
+"""Section builders: one module per analysis, each with ``build(ctx) -> Section``.
+
+A builder raises :class:`NotApplicable` (with the reason) when its analysis does not apply to the
+engine (no pressure, no torsional model...); the reason is listed in the report. The order of
+:data:`BUILDERS` is the order of the report.
+"""
+
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from crankdyn.engine import Engine
+
+__all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
+
+BUILDERS = ("kinematics", "pressure", "forces", "torque")
+
+
+class NotApplicable(Exception):
+    """The analysis does not apply to this engine; the message says why."""
+
+
+@dataclass
+class Context:
+    """What the builders share: the engine, the speeds, and a cache of computed results."""
+
+    engine: Engine
+    speed: float  # rad/s, the operating point
+    speeds: np.ndarray | None = None  # rad/s, for speed sweeps (torsional response)
+    cache: dict[str, Any] = field(default_factory=dict)
+
+    def get(self, key: str, compute):
+        """The cached value for key, computed once."""
+        if key not in self.cache:
+            self.cache[key] = compute()
+        return self.cache[key]
+
+
+def builders():
+    """(name, build function) in report order."""
+    return [
+        (name, importlib.import_module(f"crankdyn.report.sections.{name}").build)
+        for name in BUILDERS
+    ]

@@ -1,0 +1,100 @@
+"""Report section: crank-train forces of cylinder 1, crank-pin and main-bearing loads."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from crankdyn.bearings import bearing_loads
+from crankdyn.forces import cylinder_forces
+from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.report.sections import NotApplicable
+
+
+def build(ctx) -> Section:
+    engine = ctx.engine
+    if engine.masses is None:
+        raise NotApplicable("forces and bearing loads: the engine file has no [masses]")
+    f = ctx.get("forces", lambda: cylinder_forces(engine, ctx.speed))
+    b = ctx.get("bearings", lambda: bearing_loads(engine, ctx.speed))
+    worst = int(np.argmax(b.max_bearing_load))
+    figures = [
+        KeyFigure(
+            "max_gas_force_N", "Max gas force", f.max_gas_force, f"{f.max_gas_force / 1e3:.4g} kN"
+        ),
+        KeyFigure(
+            "max_side_force_N",
+            "Max piston side force",
+            f.max_side_force,
+            f"{f.max_side_force / 1e3:.4g} kN",
+        ),
+        KeyFigure(
+            "max_rod_compression_N",
+            "Max rod compression",
+            f.max_rod_compression,
+            f"{f.max_rod_compression / 1e3:.4g} kN",
+        ),
+        KeyFigure(
+            "max_rod_tension_N",
+            "Max rod tension",
+            f.max_rod_tension,
+            f"{f.max_rod_tension / 1e3:.4g} kN",
+        ),
+        KeyFigure(
+            "max_crank_pin_load_N",
+            "Max crank-pin load",
+            float(b.max_pin_load.max()),
+            f"{b.max_pin_load.max() / 1e3:.4g} kN",
+        ),
+        KeyFigure(
+            "max_main_bearing_load_N",
+            "Max main-bearing load",
+            float(b.max_bearing_load[worst]),
+            f"{b.max_bearing_load[worst] / 1e3:.4g} kN (bearing {worst + 1})",
+        ),
+    ]
+    if f.max_rod_couple_error is not None:
+        figures.append(
+            KeyFigure(
+                "max_rod_couple_error_Nm",
+                "Two-mass rod model: inertia couple error",
+                f.max_rod_couple_error,
+                f"{f.max_rod_couple_error:.4g} N·m",
+                note="(m_C l_A l_B - I_C) ε_L, seed 000 §2.1",
+            )
+        )
+    m = f.masses
+    intro = (
+        f"Forces of cylinder 1 at {ctx.speed * 30 / math.pi:.0f} rpm (seed 000 §2.2): "
+        f"m_j = {m.reciprocating:.4g} kg, m_r = {m.rotating:.4g} kg per cylinder. Main bearings "
+        "carry half of each adjacent throw's load (simply supported throws)."
+    )
+    for note in f.notes or ():
+        intro += f" Note: {note}."
+    return Section(
+        key="forces",
+        title="Forces and bearing loads",
+        intro=intro,
+        figures=figures,
+        plots=[
+            Plot(
+                "forces",
+                "Cylinder 1 forces",
+                f.plot(),
+                "Gas and inertia forces, their orders, rod, side, tangential and radial forces, "
+                "torque and crank-pin load against crank angle.",
+            ),
+            Plot(
+                "bearing_polars",
+                "Bearing load polar diagrams",
+                b.plot(),
+                "Crank-pin loads in the crank frame and main-bearing loads in the engine frame.",
+            ),
+        ],
+        tables=[
+            Table("forces", "Cylinder 1 forces over the cycle", result=f, show=False),
+            Table("bearings", "Crank-pin and main-bearing loads", result=b, show=False),
+        ],
+        json={"masses": m.to_dict()},
+    )

@@ -1,0 +1,74 @@
+"""Write a report folder atomically: index.html, summary.json, data/*.csv, plots/*.png/.svg."""
+
+from __future__ import annotations
+
+import io
+import json
+from pathlib import Path
+
+from crankdyn.io.output import atomic_directory
+from crankdyn.report.html import render_html
+from crankdyn.report.model import Report
+
+__all__ = ["write_report"]
+
+
+def _png(figure) -> bytes:
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=110)
+    return buffer.getvalue()
+
+
+def write_report(report: Report, out: str | Path, *, force: bool = False, progress=None) -> Path:
+    """Write ``report`` into the folder ``out`` (built in a temporary sibling and moved into
+    place; an existing folder needs ``force``). ``progress(name)`` is called per plot."""
+    out = Path(out)
+    with atomic_directory(out, force=force) as tmp:
+        (tmp / "plots").mkdir()
+        (tmp / "data").mkdir()
+        images: dict[str, bytes] = {}
+        for section in report.sections:
+            for plot in section.plots:
+                if progress is not None:
+                    progress(plot.name)
+                png = _png(plot.figure)
+                images[plot.name] = png
+                (tmp / "plots" / f"{plot.name}.png").write_bytes(png)
+                plot.figure.savefig(tmp / "plots" / f"{plot.name}.svg", format="svg")
+            for table in section.tables:
+                (tmp / "data" / f"{table.name}.csv").write_text(table.csv_text(), encoding="utf-8")
+        summary = report.summary()
+        summary["sections"] = {s.key: s.json for s in report.sections if s.json}
+        (tmp / "summary.json").write_text(
+            json.dumps(_finite(summary), indent=2, allow_nan=False, default=_json_default) + "\n",
+            encoding="utf-8",
+        )
+        (tmp / "index.html").write_text(render_html(report, images), encoding="utf-8")
+    return out
+
+
+def _finite(value):
+    """NaN and inf become null: summary.json is strict JSON."""
+    import math
+
+    import numpy as np
+
+    if isinstance(value, dict):
+        return {k: _finite(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _finite(value.tolist())
+    if isinstance(value, (float, np.floating)):
+        return float(value) if math.isfinite(value) else None
+    return value
+
+
+def _json_default(value):
+    import numpy as np
+
+    if isinstance(value, np.generic):
+        return value.item()
+    if isinstance(value, np.ndarray):
+        return value.tolist()
+    raise TypeError(f"not JSON serialisable: {type(value).__name__}")

@@ -1,0 +1,183 @@
+"""Engine torque: single-cylinder, total, main-journal and crank-pin torques, mean torque and
+power (seed 000 sections 2.2-2.3).
+
+- Cylinder torque M_i = T_i R (gas part P_g and inertia part P_j; over a cycle at constant
+  speed the inertia part does no work, since oint -m_j a dx = -m_j [v^2/2] = 0, so it averages
+  to zero).
+- Total torque M(theta) = sum_i M_i, each cylinder at its own crank angle theta - psi_i and
+  cycle phase theta - Phi_i (throw angles and firing angles from the firing order, inline and
+  V engines).
+- Main-journal torques, accumulated from the free end (seed 000): the journal behind throw j
+  carries M_J,j = sum of the torques of throws 1..j; the last is the engine's output torque.
+- Crank-pin torques: with each throw simply supported on its two main bearings (half of its
+  tangential force reacted at each), the pin of throw j twists under
+  M_P,j = M_J,j-1 + M_throw,j / 2.
+- Mean indicated torque M_i = (1/Theta) oint M dtheta over the cycle angle Theta; since
+  M dtheta = P dx, M_i Theta = Z W_i (Z cylinders, W_i indicated work per cylinder and cycle).
+  Mean effective torque M_e = eta_m M_i with the mechanical efficiency eta_m; indicated and
+  effective power P = M w (seed 000: P = M n / 9550 in kW with n in rpm).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from crankdyn.engine import Engine
+from crankdyn.errors import InputError
+from crankdyn.forces import crank_train, cycle_grid
+from crankdyn.indicated import indicated_work
+from crankdyn.pressure import PressureTrace
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = ["EngineTorque", "engine_torque", "journal_torques"]
+
+
+_MEAN_STEP = math.radians(0.1)
+
+
+def _mean_torque(engine: Engine, train, step: float) -> float:
+    """Mean of the total torque over the cycle by the rectangle rule on the output grid, or on a
+    0.1 deg grid when the output grid is coarser (the trace's kinks make the rule second-order)."""
+    if step <= _MEAN_STEP * (1 + 1e-9):
+        return float(np.mean(train.tangential[:, :-1].sum(axis=0))) * engine.geometry.crank_radius
+    fine = cycle_grid(engine, _MEAN_STEP)[:-1]
+    dense = crank_train(engine, train.speed, fine, pressure=train.trace)
+    return float(np.mean(dense.tangential.sum(axis=0))) * engine.geometry.crank_radius
+
+
+def journal_torques(throw_torque):
+    """Main-journal and crank-pin torques from the throw torques (N m), both arrays of shape
+    (throws, angles): journal behind throw j = sum over throws 1..j; pin of throw j = journal
+    before it plus half of its own torque (module docstring)."""
+    m = np.asarray(throw_torque, dtype=float)
+    journal = np.cumsum(m, axis=0)
+    pin = journal - 0.5 * m
+    return journal, pin
+
+
+@dataclass(frozen=True)
+class EngineTorque(Result):
+    """Torque of every cylinder, the total, main-journal and crank-pin torques over one cycle,
+    with mean torque and power (module docstring)."""
+
+    title = "Engine torque"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    cylinder_torque: np.ndarray = column("cylinder_torque_Nm", "Cylinder", "N·m")
+    total_torque: np.ndarray = column("total_torque_Nm", "Total torque", "N·m")
+    gas_torque: np.ndarray = column("total_gas_torque_Nm", "Total gas torque", "N·m")
+    inertia_torque: np.ndarray = column("total_inertia_torque_Nm", "Total inertia torque", "N·m")
+    journal_torque: np.ndarray = column("journal_torque_Nm", "Journal behind throw", "N·m")
+    pin_torque: np.ndarray = column("crank_pin_torque_Nm", "Pin torque, throw", "N·m")
+    mean_torque: float = scalar("mean_torque_Nm", "Mean indicated torque", "N·m")
+    mean_effective_torque: float | None = scalar(
+        "mean_effective_torque_Nm", "Mean effective torque", "N·m"
+    )
+    mechanical_efficiency: float | None = scalar(
+        "mechanical_efficiency", "Mechanical efficiency", "", fmt=".4g"
+    )
+    indicated_power: float = scalar("indicated_power_kW", "Indicated power", "kW", 1e-3)
+    effective_power: float | None = scalar("effective_power_kW", "Effective power", "kW", 1e-3)
+    max_torque: float = scalar("max_torque_Nm", "Max total torque", "N·m")
+    min_torque: float = scalar("min_torque_Nm", "Min total torque", "N·m")
+    indicated_work: float = scalar("indicated_work_J", "Indicated work per cylinder", "J")
+    imep: float = scalar("imep_Pa", "IMEP", "Pa")
+    peak_pressure: float = scalar("peak_pressure_Pa", "Peak pressure", "Pa")
+    peak_angle: float = scalar(
+        "peak_pressure_angle_deg", "Peak pressure after firing TDC", "deg", DEG
+    )
+    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    cylinders: int = scalar("cylinders", "Cylinders", "")
+    firing_angles: np.ndarray = scalar("firing_angles_deg", "Firing angles", "deg", DEG, fmt=".5g")
+    pressure_source: str = scalar("pressure_source", "Pressure from", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+    cycle_angle: float = field(default=4.0 * math.pi, repr=False)
+    throws: tuple[int, ...] = field(default=(), repr=False)
+
+    def plot(self, fig=None):
+        """Single-cylinder and total torque, journal torques; returns the matplotlib Figure."""
+        from crankdyn.plots.forces import plot_torque
+
+        return plot_torque(self, fig=fig)
+
+
+def engine_torque(
+    engine: Engine,
+    speed: float,
+    *,
+    step: float = math.radians(1.0),
+    mechanical_efficiency: float | None = None,
+    pressure: PressureTrace | None = None,
+) -> EngineTorque:
+    """Torques of an engine at speed w (rad/s) over one cycle every ``step`` rad.
+
+    Parameters
+    ----------
+    engine
+        The engine (masses required).
+    speed
+        Crank speed w (rad/s).
+    step
+        Crank-angle step (rad); must divide the cycle angle (the mean is taken over the
+        cycle with the rectangle rule, which is exact for trigonometric polynomials of low
+        enough order and second-order accurate otherwise).
+    mechanical_efficiency
+        eta_m (0 < eta_m <= 1) for the effective torque and power; default the engine's
+        [operating] mechanical_efficiency; None there too leaves them out.
+    pressure
+        Pressure trace; default the engine's own or its synthetic model.
+    """
+    if mechanical_efficiency is None:
+        mechanical_efficiency = engine.mechanical_efficiency
+    if mechanical_efficiency is not None and not 0.0 < mechanical_efficiency <= 1.0:
+        raise InputError(
+            "the mechanical efficiency must lie in 0 < eta <= 1",
+            key="mechanical_efficiency",
+            value=mechanical_efficiency,
+        )
+    theta = cycle_grid(engine, step)
+    train = crank_train(engine, speed, theta, pressure=pressure)
+    r = engine.geometry.crank_radius
+    cyl = engine.cylinders
+    per_cylinder = train.tangential * r
+    index = np.asarray(cyl.throws) - 1
+    throw_torque = np.zeros((cyl.throw_count, theta.size))
+    np.add.at(throw_torque, index, per_cylinder)
+    journal, pin = journal_torques(throw_torque)
+    total = per_cylinder.sum(axis=0)
+    mean = _mean_torque(engine, train, step)
+    work = indicated_work(train.trace, engine.geometry)
+    peak, at = train.trace.peak
+    effective = None if mechanical_efficiency is None else mechanical_efficiency * mean
+    notes = []
+    if engine.pressure is None:
+        notes.append("no pressure trace: synthetic Wiebe model with default parameters")
+    return EngineTorque(
+        crank_angle=freeze(theta),
+        cylinder_torque=freeze(per_cylinder),
+        total_torque=freeze(total),
+        gas_torque=freeze((train.gas_tangential * r).sum(axis=0)),
+        inertia_torque=freeze((train.inertia_tangential * r).sum(axis=0)),
+        journal_torque=freeze(journal),
+        pin_torque=freeze(pin),
+        mean_torque=mean,
+        mean_effective_torque=effective,
+        mechanical_efficiency=mechanical_efficiency,
+        indicated_power=mean * train.speed,
+        effective_power=None if effective is None else effective * train.speed,
+        max_torque=float(total.max()),
+        min_torque=float(total.min()),
+        indicated_work=work,
+        imep=work / engine.geometry.swept_volume,
+        peak_pressure=peak,
+        peak_angle=at,
+        speed=train.speed,
+        cylinders=cyl.count,
+        firing_angles=freeze(cyl.firing_angles),
+        pressure_source=train.trace.source or "",
+        notes=tuple(notes) or None,
+        cycle_angle=engine.cycle_angle,
+        throws=tuple(cyl.throws),
+    )

@@ -1,0 +1,96 @@
+"""The HTML report: contents, safety, and a real headless browser."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from crankdyn.engine import Engine
+from crankdyn.io.engine_file import load_example
+from crankdyn.report.build import build_report
+from crankdyn.report.write import write_report
+
+HOSTILE = "<script>alert(1)</script>"
+
+
+@pytest.fixture(scope="module")
+def demo_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report") / "demo"
+    engine = load_example("inline6-diesel")
+    write_report(build_report(engine), out)
+    return out
+
+
+@pytest.fixture(scope="module")
+def hostile_report(tmp_path_factory):
+    base = load_example("vaz2108")
+    engine = Engine(
+        name=HOSTILE,
+        geometry=base.geometry,
+        cylinders=base.cylinders,
+        masses=base.masses,
+        speed=base.speed,
+        source="<b>file</b>.toml",
+    )
+    out = tmp_path_factory.mktemp("report") / "hostile"
+    write_report(build_report(engine), out)
+    return out
+
+
+def test_report_folder_contents(demo_report):
+    assert (demo_report / "index.html").stat().st_size > 10_000
+    summary = json.loads((demo_report / "summary.json").read_text())
+    figures = summary["key_figures"]
+    assert figures["stroke_m"] == pytest.approx(0.137)
+    assert figures["max_piston_acceleration_m_s2"] > 0
+    for png in (demo_report / "plots").glob("*.png"):
+        assert (demo_report / "plots" / f"{png.stem}.svg").exists()
+    assert (demo_report / "data" / "kinematics.csv").read_text().startswith("crank_angle_deg,")
+
+
+def test_report_is_self_contained(demo_report):
+    html = (demo_report / "index.html").read_text()
+    assert "http://" not in html and "https://" not in html
+    assert "<script" not in html.lower()
+    assert "data:image/png;base64," in html
+
+
+def test_user_text_is_escaped(hostile_report):
+    html = (hostile_report / "index.html").read_text()
+    assert HOSTILE not in html
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in html
+    assert "<b>file</b>" not in html
+
+
+def test_existing_report_not_overwritten(cli, demo_report):
+    run = cli("analyze", "inline6-diesel", "--out", demo_report)
+    assert run.status == 2 and "already exists" in run.err
+
+
+@pytest.mark.browser
+def test_report_in_browser(browser, demo_report):
+    browser.get((demo_report / "index.html").as_uri())
+    assert browser.title.startswith("crankdyn report")
+    images = browser.execute_script(
+        "return Array.from(document.images).map(i => [i.complete, i.naturalWidth, i.alt])"
+    )
+    assert images, "the report shows plots"
+    for complete, width, alt in images:
+        assert complete and width > 0, alt
+    assert browser.find_element("css selector", "table.figures").is_displayed()
+    rows = browser.find_elements("css selector", "#summary table.figures tbody tr")
+    assert len(rows) >= 5
+    errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+    assert not errors, errors
+
+
+@pytest.mark.browser
+def test_escaped_name_shows_as_text_in_browser(browser, hostile_report):
+    from selenium.common.exceptions import NoAlertPresentException
+
+    browser.get((hostile_report / "index.html").as_uri())
+    assert browser.find_element("css selector", "header h1").text == HOSTILE
+    with pytest.raises(NoAlertPresentException):
+        browser.switch_to.alert  # noqa: B018 - property access raises when no alert is open
+    assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]

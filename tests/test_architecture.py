@@ -1,0 +1,51 @@
+"""The layering of DESIGN.md: the numeric core and domain never import the boundary or pint."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import crankdyn
+
+PACKAGE = Path(crankdyn.__file__).parent
+BOUNDARY = ("crankdyn.io", "crankdyn.cli", "crankdyn.report", "pint", "click", "rich")
+ALLOWED_LAZY = {"from_file", "example"}  # documented alternate constructors import io lazily
+
+
+def _imports(path: Path):
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                yield node, alias.name
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            yield node, node.module
+
+
+def _enclosing_function(tree, target):
+    for node in ast.walk(tree):
+        if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            for child in ast.walk(node):
+                if child is target:
+                    return node.name
+    return None
+
+
+def test_core_and_domain_do_not_import_the_boundary():
+    boundary_dirs = {"io", "cli", "report"}
+    offenders = []
+    for path in PACKAGE.rglob("*.py"):
+        rel = path.relative_to(PACKAGE)
+        if rel.parts[0] in boundary_dirs or rel.name == "__main__.py":
+            continue
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node, module in _imports(path):
+            if module.startswith(BOUNDARY):
+                where = None
+                for n in ast.walk(tree):
+                    if isinstance(n, type(node)) and ast.dump(n) == ast.dump(node):
+                        where = _enclosing_function(tree, n)
+                        break
+                if where not in ALLOWED_LAZY:
+                    offenders.append(f"{rel}: {module}")
+    assert not offenders, offenders

@@ -1,0 +1,73 @@
+"""Unit parsing at the boundary."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from crankdyn.errors import InputError
+from crankdyn.io.units import KINDS, parse_quantity
+
+
+@pytest.mark.parametrize(
+    "text, kind, si",
+    [
+        ("76 mm", "length", 0.076),
+        ("73.4mm", "length", 0.0734),
+        ("4900 rpm", "speed", 4900 * math.pi / 30),
+        ("10rad/s", "speed", 10.0),
+        ("81.6667 Hz", "speed", 81.6667 * 2 * math.pi),  # Hz for a shaft speed: rev/s
+        ("4900 rpm", "frequency", 4900 / 60),
+        ("0.167 kg*m^2", "inertia", 0.167),
+        ("0.167 kg·m²", "inertia", 0.167),
+        ("160 kN*m/rad", "torsional_stiffness", 160e3),
+        ("70 N*m*s/rad", "torsional_damping", 70.0),
+        ("180 deg", "angle", math.pi),
+        ("15 MPa", "pressure", 15e6),
+        ("80 GPa", "pressure", 80e9),
+        ("2.1e-3 kg*m^2", "inertia", 2.1e-3),
+        (0.5, "length", 0.5),
+        ("0.5", "length", 0.5),
+        ("5 %", "ratio", 0.05),
+    ],
+)
+def test_parse(text, kind, si):
+    assert parse_quantity(text, kind) == pytest.approx(si, rel=1e-12)
+
+
+def test_every_kind_example_parses():
+    for key, kind in KINDS.items():
+        assert math.isfinite(parse_quantity(kind.example, key))
+
+
+def test_default_unit_for_bare_numbers():
+    assert parse_quantity("4900", "speed", default_unit="rpm") == pytest.approx(4900 * math.pi / 30)
+    assert parse_quantity(10, "angle", default_unit="deg") == pytest.approx(math.radians(10))
+    assert parse_quantity("1 rad", "angle", default_unit="deg") == 1.0
+
+
+@pytest.mark.parametrize(
+    "value, kind, fragment",
+    [
+        ("76 kg", "length", 'expected a length (e.g. "76 mm"), got a mass'),
+        ("1 rpm", "torque", "got a rotational speed"),
+        ("76 foo", "length", "unknown unit"),
+        ("9^9^9^9 m", "length", "unknown unit"),
+        ("2**99 m", "length", "unknown unit"),
+        ("__import__('os') m", "length", "expected a number with a unit"),
+        ("", "length", "empty value"),
+        (True, "length", "expected a length"),
+        ([1], "length", "expected a length"),
+        ("1e999 m", "length", "not finite"),
+        (float("nan"), "length", "not finite"),
+        ("12 m", "angle", "expected an angle"),
+    ],
+)
+def test_errors_are_one_line_with_key_and_value(value, kind, fragment):
+    with pytest.raises(InputError) as info:
+        parse_quantity(value, kind, key="[geometry] bore", file="e.toml")
+    text = str(info.value)
+    assert text.startswith("e.toml: [geometry] bore = ")
+    assert fragment in text
+    assert "\n" not in text
