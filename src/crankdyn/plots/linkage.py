@@ -339,18 +339,22 @@ def animate_mechanism(motion, forces=None, *, fps: int = 20, dpi: int = 80) -> b
         )
         scale = 0.35 * motion.mechanism.length_scale / peak if peak > 0 else None
     paths = {n: p for n, p in motion.all_points().items() if np.ptp(p[:, 0]) + np.ptp(p[:, 1]) > 0}
+    for p in paths.values():  # static: drawn once
+        ax.plot(p[:, 0], p[:, 1], color="#c8c8c8", linewidth=0.8, zorder=0)
+    static = (len(ax.lines), len(ax.patches), len(ax.texts))
     for i in range(motion.crank_angle.size):
-        ax.clear()
-        ax.grid(True, color="#d9d9d9", linewidth=0.6)
-        for p in paths.values():
-            ax.plot(p[:, 0], p[:, 1], color="#c8c8c8", linewidth=0.8, zorder=0)
+        for group, keep in zip((ax.lines, ax.patches, ax.texts), static, strict=True):
+            for artist in list(group)[keep:]:
+                artist.remove()
         draw_mechanism(ax, motion, i, forces=forces, labels=True, scale=scale)
         _frame_limits(ax, motion)
-        title = f"{motion.mechanism.name}\ncrank angle {math.degrees(motion.crank_angle[i]):6.1f}°"
+        title = f"{motion.mechanism.name}\ncrank angle {math.degrees(motion.crank_angle[i]):.1f}°"
         if forces is not None:
-            title += f", driving torque {forces.driving_torque[i]:8.3g} N·m"
+            title += f", driving torque {forces.driving_torque[i]:.4g} N·m"
         ax.set_title(title, fontsize=9)
         fig.canvas.draw()
+        if i == 0:
+            fig.set_layout_engine("none")  # keep the first frame's layout: steady, and faster
         rgba = np.asarray(fig.canvas.buffer_rgba())
         frames.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.ADAPTIVE))
     buffer = io.BytesIO()
