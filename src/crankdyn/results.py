@@ -35,7 +35,9 @@ def _meta(kind, key, label, unit, scale, **extra) -> dict:
 
 
 def column(key: str, label: str, unit: str, scale: float = 1.0, **kw):
-    """A field holding an array over the result's main axis (one CSV/table column per row)."""
+    """A field holding an array over the result's main axis (one CSV/table column per row), or
+    a (nested) dict of such arrays, e.g. {joint: {"x": ..., "y": ...}}: exported to JSON as
+    nested objects and to CSV as columns named ``key.joint.x``."""
     return field(metadata=_meta("column", key, label, unit, scale), **kw)
 
 
@@ -128,6 +130,10 @@ class Result:
         for _f, meta, value in self._fields("column"):
             if value is None:
                 continue
+            if isinstance(value, dict):
+                for name, arr in _flatten(meta["key"], value):
+                    out[name] = _scaled(np.asarray(arr, dtype=float), meta["scale"])
+                continue
             arr = np.asarray(value)
             if arr.dtype.kind in "OUS":  # a text column (e.g. names) is exported as it is
                 out[meta["key"]] = arr
@@ -145,6 +151,11 @@ class Result:
         out: dict[str, tuple[str, str]] = {}
         for _f, meta, value in self._fields("column"):
             if value is None:
+                continue
+            if isinstance(value, dict):
+                for name, _arr in _flatten(meta["key"], value):
+                    parts = name[len(meta["key"]) + 1 :].split(".")
+                    out[name] = (f"{meta['label']} {' '.join(parts)}", meta["unit"])
                 continue
             arr = np.asarray(value)
             if arr.ndim == 1:
@@ -200,6 +211,16 @@ def _csv_cell(value: Any) -> str:
     if isinstance(value, (float, np.floating, int, np.integer)) and not isinstance(value, bool):
         return f"{value:.10g}"
     return str(value)
+
+
+def _flatten(key: str, value: dict):
+    """(column name, 1-D array) pairs of a column field holding a (nested) dict of arrays, the
+    names joined with dots: ``joint_forces_N.B.x``."""
+    for name, sub in value.items():
+        if isinstance(sub, dict):
+            yield from _flatten(f"{key}.{name}", sub)
+        else:
+            yield f"{key}.{name}", sub
 
 
 def _format(value: Any, meta: dict) -> str:

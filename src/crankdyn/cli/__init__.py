@@ -18,7 +18,7 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion")
+COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion", "linkage")
 
 
 @click.group(
