@@ -179,9 +179,7 @@ def rotating_masses(masses, rod_length: float, throws) -> np.ndarray:
     its cylinders."""
     throws = list(throws)
     counts = {t: throws.count(t) for t in set(throws)}
-    return np.array(
-        [equivalent_mass_model(masses, rod_length, counts[t]).rotating for t in throws]
-    )
+    return np.array([equivalent_mass_model(masses, rod_length, counts[t]).rotating for t in throws])
 
 
 # ---- domain inputs ----------------------------------------------------------------------------
@@ -602,8 +600,7 @@ def engine_balance(
     m_rec_throw = np.bincount(throws - 1, weights=np.full(throws.size, m_j))
     m_rot_throw = np.bincount(throws - 1, weights=m_rot)
     m_cw = (
-        inputs.counterweight_ratio * m_rot_throw
-        + inputs.reciprocating_balance_ratio * m_rec_throw
+        inputs.counterweight_ratio * m_rot_throw + inputs.reciprocating_balance_ratio * m_rec_throw
     )
     # the rotating masses at the rods' axial positions (the share of a V throw's own unbalance
     # with each rod: symmetric about the throw's middle, so as if at the middle), the

@@ -14,6 +14,7 @@ from crankdyn.flywheel import FlywheelInputs
 from crankdyn.geometry import CrankGeometry
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
+from crankdyn.io.torsion_file import parse_torsion_section
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE, PressureTrace
@@ -99,6 +100,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
+    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
     with root.context():
@@ -110,6 +112,7 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             pressure=pressure,
             crankcase_pressure=crankcase,
             speed=speed,
+            torsion=torsion,
             mechanical_efficiency=efficiency,
             balance=balance,
             flywheel=flywheel,
@@ -314,6 +317,15 @@ def _display_path(path: Path) -> str:
         return str(path.resolve().relative_to(Path.cwd().resolve()))
     except ValueError:
         return str(path)
+
+
+def _torsion(t: Table | None, name: str, geometry, cylinders, masses):
+    """The [torsion] section: the lumped torsional model (docs/torsion-file.md)."""
+    if t is None:
+        return None
+    return parse_torsion_section(
+        t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
+    )
 
 
 def _from_positions(t: Table, positions, throw_angles, layout, bank_angle, banks, throws, count):
