@@ -3,6 +3,7 @@ exhaust grouping; priorities and bad input."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -156,3 +157,43 @@ def test_layout_helpers():
     assert all(abs(layout.throws[i] - layout.throws[j]) == 1 for i, j in pairs)
     s = FiringSchemes.empty(8, "four-stroke")
     assert len(s) == 0
+
+
+def test_first_mode_shape_from_a_torsional_model():
+    """Three equal discs on equal shafts, free-free, cylinders on the outer two: the first
+    elastic mode is (1, 0, -1) (closed form), so the cylinders' amplitudes are 1 and -1."""
+    from crankdyn.firing_search import first_mode_shape
+    from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+
+    model = TorsionModel(
+        masses=(
+            Mass("a", 1.0, cylinders=(1,)),
+            Mass("b", 1.0),
+            Mass("c", 1.0, cylinders=(2,)),
+        ),
+        shafts=(Shaft(("a", "b"), 1e4), Shaft(("b", "c"), 1e4)),
+    )
+    beta = first_mode_shape(model, 2)
+    assert abs(beta[0]) == pytest.approx(1.0) and beta[1] == pytest.approx(-beta[0])
+    two = Cylinders(count=2, firing_order=(1, 2))
+    result = firing_order_search(two, mode_shape=beta)
+    # 1 and 2 fire 360 deg apart: at order 0.5 the opposite amplitudes add (|1 - (-1)| = 2)
+    assert result.candidates[0].torsional_vector_sums["0.5"] == pytest.approx(2.0)
+
+
+def test_first_mode_shape_of_the_inline6_model(cli):
+    e = Engine.example("inline6-diesel")
+    from crankdyn.firing_search import first_mode_shape
+    from crankdyn.torsion.modal import natural_modes
+
+    beta = first_mode_shape(e.torsion, 6)
+    modes = natural_modes(e.torsion)
+    shape = modes.mode_shapes[1 if modes.free else 0]
+    for c in range(1, 7):
+        i = next(k for k, m in enumerate(e.torsion.masses) if c in m.cylinders)
+        assert beta[c - 1] == shape[i]
+    run = cli("firing-orders", "inline6-diesel", "--mode-shape", "torsion", "--format", "json")
+    assert run.status == 0, run
+    assert all("torsional_vector_sum" in d for d in json.loads(run.out))
+    run = cli("firing-orders", "vaz2108", "--mode-shape", "torsion")
+    assert run.status == 2 and "[torsion]" in run.err

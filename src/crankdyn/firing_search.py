@@ -70,6 +70,7 @@ from crankdyn.firing import (
     v_scheme,
 )
 from crankdyn.results import DEG, Result, freeze, scalar
+from crankdyn.torsion.modal import natural_modes
 
 __all__ = [
     "CRITERIA",
@@ -81,6 +82,7 @@ __all__ = [
     "arrangement",
     "exhaust_criterion",
     "firing_order_search",
+    "first_mode_shape",
     "torsional_criterion",
     "torsional_orders",
     "vector_sums",
@@ -363,6 +365,39 @@ def _mode_amplitudes(mode_shape, layout: Layout) -> np.ndarray:
             value=[float(b) for b in beta],
         )
     return out
+
+
+def first_mode_shape(model, count: int) -> np.ndarray:
+    """Relative amplitudes of a torsional model's first elastic mode at the cylinders.
+
+    Parameters
+    ----------
+    model
+        The :class:`crankdyn.torsion.model.TorsionModel` (an engine's ``[torsion]`` model), whose
+        masses name the cylinders acting on them.
+    count
+        Number of cylinders Z.
+
+    Returns
+    -------
+    numpy.ndarray
+        (Z,) the mode's amplitude at the mass carrying each cylinder (largest amplitude of the
+        mode 1; 0 for a cylinder on no mass), from :func:`crankdyn.torsion.modal.natural_modes`.
+    """
+    modes = natural_modes(model)
+    first = 1 if modes.free else 0
+    if first >= len(modes.mode):
+        raise InputError(
+            "the torsional model has no elastic mode (it needs two masses or a grounded shaft)",
+            key="mode_shape",
+        )
+    shape = np.asarray(modes.mode_shapes[first], dtype=float)
+    amplitudes = np.zeros(count)
+    for i, mass in enumerate(model.masses):
+        for c in mass.cylinders:
+            if c <= count:
+                amplitudes[c - 1] = shape[i]
+    return amplitudes
 
 
 def torsional_criterion(mode_shape, layout: Layout, orders=None) -> Criterion:

@@ -23,7 +23,12 @@ from crankdyn.cli.common import (
     speed_of,
 )
 from crankdyn.errors import InputError
-from crankdyn.firing_search import CRITERIA, FiringOrderRanking, firing_order_search
+from crankdyn.firing_search import (
+    CRITERIA,
+    FiringOrderRanking,
+    firing_order_search,
+    first_mode_shape,
+)
 from crankdyn.flywheel import engine_flywheel
 from crankdyn.io.output import write_bytes, write_text
 from crankdyn.torque import engine_torque
@@ -210,6 +215,19 @@ _OPTION_OF = {
 }
 
 
+def _mode_shape(eng, text: str | None):
+    if text is None or text.strip().lower() != "torsion":
+        return _numbers(text, "--mode-shape")
+    if eng.torsion is None:
+        raise InputError(
+            "the engine file has no [torsion] model to take the first mode from; give the "
+            "amplitudes",
+            key="--mode-shape",
+            value=text,
+        )
+    return first_mode_shape(eng.torsion, eng.cylinders.count)
+
+
 def _search(
     eng, any_crankshaft, include_uneven, mode_shape, torsion_orders, exhaust_groups, priority, top
 ) -> FiringOrderRanking:
@@ -217,7 +235,7 @@ def _search(
         eng.cylinders,
         search="any-crankshaft" if any_crankshaft else "crankshaft",
         include_uneven=True if include_uneven else None,
-        mode_shape=_numbers(mode_shape, "--mode-shape"),
+        mode_shape=_mode_shape(eng, mode_shape),
         torsion_orders=_numbers(torsion_orders, "--torsion-orders"),
         exhaust_groups=_groups(exhaust_groups),
         priority=priority,
@@ -244,7 +262,8 @@ def _search(
     default=None,
     metavar="LIST",
     help="Relative amplitudes of the first torsional mode at the cylinders (or throws), "
-    "comma-separated: ranks by the torsional vector sum.",
+    "comma-separated, or 'torsion' for the first mode of the engine's [torsion] model: ranks "
+    "by the torsional vector sum.",
 )
 @click.option(
     "--torsion-orders",

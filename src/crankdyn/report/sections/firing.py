@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.firing_search import arrangement, firing_order_search
+from crankdyn.firing_search import arrangement, firing_order_search, first_mode_shape
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 _COLUMNS = (
@@ -14,6 +14,7 @@ _COLUMNS = (
     "main_bearing_min_interval_deg",
     "free_moment_1",
     "free_moment_2",
+    "torsional_vector_sum",
 )
 
 
@@ -21,7 +22,12 @@ def build(ctx) -> Section:
     engine = ctx.engine
     cyl = engine.cylinders
     own = ctx.get("arrangement", lambda: arrangement(cyl))
-    ranking = ctx.get("firing_orders", lambda: firing_order_search(cyl, name=engine.name))
+    mode = None
+    if engine.torsion is not None:
+        mode = first_mode_shape(engine.torsion, cyl.count)
+    ranking = ctx.get(
+        "firing_orders", lambda: firing_order_search(cyl, name=engine.name, mode_shape=mode)
+    )
     gaps = sorted({round(math.degrees(g), 6) for g in own.firing_intervals})
     figures = [
         KeyFigure(
@@ -55,15 +61,16 @@ def build(ctx) -> Section:
                 f"{math.degrees(own.main_bearing_min_interval):g}°",
             )
         )
+    columns = [c for c in _COLUMNS if c != "torsional_vector_sum" or mode is not None]
     rows = []
     for c in ranking.candidates[:20]:
         d = c.to_dict()
         rows.append(
             [str(c.rank), c.order_text]
-            + [_cell(d.get(k)) for k in _COLUMNS]
+            + [_cell(d.get(k)) for k in columns]
             + ([c.v_scheme or ""] if cyl.layout == "V" else [])
         )
-    header = ["Rank", "Firing order", *_COLUMNS] + (["V scheme"] if cyl.layout == "V" else [])
+    header = ["Rank", "Firing order", *columns] + (["V scheme"] if cyl.layout == "V" else [])
     scheme = f", {own.v_scheme} scheme" if own.v_scheme else ""
     return Section(
         key="firing",
@@ -71,8 +78,13 @@ def build(ctx) -> Section:
         intro=(
             f"Firing order {own.order_text}{scheme}. {ranking.count} firing order(s) fit the "
             f"crankshaft ({ranking.even_count} evenly firing), ranked by the seed's criteria: "
-            "even intervals, balance, adjacent cylinders firing in a row, main-bearing loading "
-            "(seed 000 §2.3)."
+            "even intervals, balance, adjacent cylinders firing in a row, main-bearing loading"
+            + (
+                ", torsional vector sums over the first mode of the [torsion] model"
+                if mode is not None
+                else ""
+            )
+            + " (seed 000 §2.3)."
         ),
         figures=figures,
         plots=[
