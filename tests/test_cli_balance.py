@@ -195,3 +195,25 @@ rod_length = "150 mm"
     assert run.status == 2 and "[masses]" in run.err
     run = cli("flywheel", path, "--speed", "3000", "--delta", "0.01")
     assert run.status == 2 and "[masses]" in run.err
+
+
+def test_too_many_to_enumerate(cli, write):
+    path = write(
+        "i12.toml",
+        """
+name = "in-line twelve"
+[geometry]
+bore = "100 mm"
+stroke = "100 mm"
+rod_length = "200 mm"
+[cylinders]
+count = 12
+firing_order = [1, 12, 5, 8, 3, 10, 6, 7, 2, 11, 4, 9]
+""",
+    )
+    run = cli("firing-orders", path, "--any-crankshaft")
+    assert run.status == 2 and "--any-crankshaft" in run.err and "more than the" in run.err
+    # six pairs of cylinders share a TDC angle: the two of a pair must fire 360 deg apart, so of
+    # the 2^11 choices of firing TDC only 2^5 (cylinder 1's pair fixed) avoid firing together
+    run = cli("firing-orders", path, "--all", "--format", "json")
+    assert run.status == 0 and len(json.loads(run.out)) == 2**5

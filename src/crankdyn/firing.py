@@ -264,11 +264,17 @@ class FiringSchemes:
         )
 
 
-def _too_many(count: int, what: str) -> InputError:
+_ADVICE = {
+    "search": "search the engine's own crankshaft (throw_angles or throw_positions) instead",
+    "include_uneven": "list the evenly firing orders only",
+    "cylinders": "the crankshaft allows too many to list",
+}
+
+
+def _too_many(count: int, what: str, key: str = "search") -> InputError:
     return InputError(
-        f"{count:,} {what} are more than the {MAX_SCHEMES:,} crankdyn enumerates; give the "
-        "crankshaft (throw_angles or throw_positions) or fewer cylinders",
-        key="search",
+        f"{count:,} {what} are more than the {MAX_SCHEMES:,} crankdyn enumerates; {_ADVICE[key]}",
+        key=key,
     )
 
 
@@ -319,7 +325,7 @@ def even_firing_schemes(throw_angles, cycle: str) -> FiringSchemes:
     interval, groups = found
     count = math.prod(math.factorial(len(c)) for _, c in groups)
     if count > MAX_SCHEMES:
-        raise _too_many(count, "even firing orders")
+        raise _too_many(count, "even firing orders", "cylinders")
     slot_of = np.empty((count, z), dtype=int)
     per_group = [
         (np.array(key), np.array(list(itertools.permutations(cyls)), dtype=int))
@@ -349,7 +355,7 @@ def all_firing_schemes(throw_angles, cycle: str) -> FiringSchemes:
     else:
         count = 1 << (z - 1)
         if count > MAX_SCHEMES:
-            raise _too_many(count, "choices of firing TDC")
+            raise _too_many(count, "choices of firing TDC", "include_uneven")
         bits = (np.arange(count)[:, None] >> np.arange(z - 1)[None, :]) & 1
         firing = psi[None, :] + TWO_PI * np.concatenate(
             [np.zeros((count, 1), dtype=int), bits], axis=1

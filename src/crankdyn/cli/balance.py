@@ -212,6 +212,8 @@ _OPTION_OF = {
     "mode_shape": "--mode-shape",
     "orders": "--torsion-orders",
     "exhaust_groups": "--exhaust-groups",
+    "search": "--any-crankshaft",
+    "include_uneven": "--all",
 }
 
 

@@ -70,15 +70,11 @@ def plot_flywheel(result, fig=None):
     ax.axhline(result.speed * 30.0 / math.pi, color="#808080", linewidth=0.8, linestyle="--")
     ax.set_ylabel("Crank speed (rpm)")
     ax.ticklabel_format(axis="y", useOffset=False)
-    ax.text(
-        0.01,
-        0.92,
-        f"I = {result.total_inertia:.4g} kg·m² (flywheel {result.flywheel_inertia:.4g}), "
+    ax.set_title(
+        f"I = {result.total_inertia:.4g} kg·m² (flywheel {result.flywheel_inertia:.4g} kg·m²), "
         f"δ = {result.speed_fluctuation:.4g}",
-        transform=ax.transAxes,
-        fontsize=8,
-        va="top",
-        bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none"},
+        fontsize=9,
+        loc="left",
     )
     angle_axis(ax, theta, "Crankshaft angle θ (deg)")
     fig.suptitle(
