@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from crankdyn.balance import BalanceInputs
 from crankdyn.errors import InputError
 from crankdyn.firing import (
     CYCLE_ANGLE,
@@ -24,9 +25,12 @@ from crankdyn.firing import (
     even_firing_throw_angles,
     firing_angles,
 )
+from crankdyn.flywheel import FlywheelInputs
 from crankdyn.geometry import CrankGeometry, check_finite, check_positive
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.torsion.equivalent import check_engine_cylinders
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["CYCLES", "LAYOUTS", "Cylinders", "Engine"]
 
@@ -268,8 +272,16 @@ class Engine:
         Pressure under the piston (Pa, absolute); the gas force is (p - p_crankcase) A.
     speed
         Operating speed (rad/s), or None.
+    torsion
+        Lumped torsional model of the shaft line (masses carrying cylinders numbered as the
+        engine's), or None.
     mechanical_efficiency
         eta_m (0 < eta_m <= 1) for effective torque and power, or None.
+    balance
+        Counterweights, V rod offset and power for the balance analysis, or None.
+    flywheel
+        Target irregularity, flywheel, other inertias and material for the flywheel analysis,
+        or None.
     source
         The file the engine came from, for messages.
     """
@@ -281,7 +293,10 @@ class Engine:
     pressure: PressureTrace | None = None
     crankcase_pressure: float = ATMOSPHERE
     speed: float | None = None
+    torsion: TorsionModel | None = None
     mechanical_efficiency: float | None = None
+    balance: BalanceInputs | None = None
+    flywheel: FlywheelInputs | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:
@@ -298,6 +313,8 @@ class Engine:
             )
         if self.speed is not None:
             check_positive("speed", self.speed, "the speed")
+        if self.torsion is not None:
+            check_engine_cylinders(self.torsion, self.cylinders)
         if self.mechanical_efficiency is not None:
             eta = check_positive(
                 "mechanical_efficiency", self.mechanical_efficiency, "the mechanical efficiency"

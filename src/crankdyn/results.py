@@ -1,7 +1,8 @@
 """Result objects: named SI arrays with JSON/CSV export, an HTML summary and plots.
 
 A result is a frozen dataclass that mixes in :class:`Result`. Its public fields are declared with
-:func:`column` (an array over the main axis of the result, e.g. crank angle or speed),
+:func:`column` (an array over the main axis of the result, e.g. crank angle or speed; numbers, or
+text such as mass names, which is exported as it is),
 :func:`array` (any other array, e.g. one row per cylinder or a mode-shape matrix) or
 :func:`scalar` (a figure), each with its JSON key (unit in the key, DESIGN.md), a label and a unit
 for tables, and the factor from the SI value held in memory to the value written (1 except for
@@ -34,7 +35,9 @@ def _meta(kind, key, label, unit, scale, **extra) -> dict:
 
 
 def column(key: str, label: str, unit: str, scale: float = 1.0, **kw):
-    """A field holding an array over the result's main axis (one CSV/table column per row)."""
+    """A field holding an array over the result's main axis (one CSV/table column per row), or
+    a (nested) dict of such arrays, e.g. {joint: {"x": ..., "y": ...}}: exported to JSON as
+    nested objects and to CSV as columns named ``key.joint.x``."""
     return field(metadata=_meta("column", key, label, unit, scale), **kw)
 
 
@@ -127,7 +130,15 @@ class Result:
         for _f, meta, value in self._fields("column"):
             if value is None:
                 continue
-            arr = _scaled(np.asarray(value, dtype=float), meta["scale"])
+            if isinstance(value, dict):
+                for name, arr in _flatten(meta["key"], value):
+                    out[name] = _scaled(np.asarray(arr, dtype=float), meta["scale"])
+                continue
+            arr = np.asarray(value)
+            if arr.dtype.kind in "OUS":  # a text column (e.g. names) is exported as it is
+                out[meta["key"]] = arr
+                continue
+            arr = _scaled(arr.astype(float), meta["scale"])
             if arr.ndim == 1:
                 out[meta["key"]] = arr
             else:
@@ -140,6 +151,11 @@ class Result:
         out: dict[str, tuple[str, str]] = {}
         for _f, meta, value in self._fields("column"):
             if value is None:
+                continue
+            if isinstance(value, dict):
+                for name, _arr in _flatten(meta["key"], value):
+                    parts = name[len(meta["key"]) + 1 :].split(".")
+                    out[name] = (f"{meta['label']} {' '.join(parts)}", meta["unit"])
                 continue
             arr = np.asarray(value)
             if arr.ndim == 1:
@@ -157,7 +173,7 @@ class Result:
         writer.writerow(list(cols))
         if cols:
             for row in zip(*cols.values(), strict=True):
-                writer.writerow([f"{v:.10g}" for v in row])
+                writer.writerow([_csv_cell(v) for v in row])
         return buffer.getvalue()
 
     def summary_rows(self) -> list[tuple[str, str, str]]:
@@ -189,6 +205,22 @@ class Result:
             names = ", ".join(html.escape(k) for k in cols)
             shape = f"<p>{n} points: {names}</p>"
         return f"<div><strong>{title}</strong><table>{rows}</table>{shape}</div>"
+
+
+def _csv_cell(value: Any) -> str:
+    if isinstance(value, (float, np.floating, int, np.integer)) and not isinstance(value, bool):
+        return f"{value:.10g}"
+    return str(value)
+
+
+def _flatten(key: str, value: dict):
+    """(column name, 1-D array) pairs of a column field holding a (nested) dict of arrays, the
+    names joined with dots: ``joint_forces_N.B.x``."""
+    for name, sub in value.items():
+        if isinstance(sub, dict):
+            yield from _flatten(f"{key}.{name}", sub)
+        else:
+            yield f"{key}.{name}", sub
 
 
 def _format(value: Any, meta: dict) -> str:

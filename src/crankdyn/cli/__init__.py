@@ -18,7 +18,16 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "study")
+COMMAND_MODULES = (
+    "examples",
+    "kinematics",
+    "analyze",
+    "forces",
+    "torsion",
+    "linkage",
+    "balance",
+    "study",
+)
 
 
 @click.group(

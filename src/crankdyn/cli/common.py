@@ -95,6 +95,8 @@ def speed_of(engine: Engine, speed_option: str | None) -> float:
 
 
 def _fmt(value: float, scale: float = 0.0) -> str:
+    if isinstance(value, str):
+        return escape(value)  # user text (names) may hold [brackets]
     if not math.isfinite(value):
         return "-"
     if abs(value) <= 1e-12 * scale:
@@ -106,11 +108,17 @@ def render_table(result: Result, title: str | None = None) -> RichTable:
     """A rich table of a result's columns."""
     labels = result.column_labels()
     table = RichTable(title=title, show_lines=False, header_style="bold")
+    cols = result.columns()
     for key in labels:
         label, unit = labels[key]
-        table.add_column(escape(f"{label}\n({unit})" if unit else label), justify="right")
-    cols = result.columns()
-    scales = [float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) for c in cols.values()]
+        text = cols[key].dtype.kind in "OUS"
+        table.add_column(
+            escape(f"{label}\n({unit})" if unit else label), justify="left" if text else "right"
+        )
+    scales = [
+        float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) if c.dtype.kind in "fiu" else 0
+        for c in cols.values()
+    ]
     for row in zip(*cols.values(), strict=True):
         table.add_row(*(_fmt(v, s) for v, s in zip(row, scales, strict=True)))
     return table

@@ -1,0 +1,249 @@
+"""Linkage description files (TOML) and the built-in linkage examples; see docs/linkage-file.md."""
+
+from __future__ import annotations
+
+import math
+from importlib import resources
+from pathlib import Path
+
+from crankdyn.errors import InputError
+from crankdyn.io.files import display_name, load_toml
+from crankdyn.io.schema import Table, suggest
+from crankdyn.io.units import parse_quantity
+from crankdyn.linkage.planar import (
+    GROUND,
+    JOINT_KINDS,
+    Driver,
+    Force,
+    Joint,
+    Link,
+    Mechanism,
+    Torque,
+)
+
+__all__ = [
+    "linkage_example_names",
+    "linkage_example_path",
+    "load_linkage",
+    "load_linkage_example",
+    "parse_linkage",
+    "resolve_linkage",
+]
+
+_EXAMPLES = resources.files("crankdyn") / "examples" / "linkages"
+
+
+def linkage_example_names() -> list[str]:
+    """Names of the built-in example linkages."""
+    return sorted(p.name[:-5] for p in _EXAMPLES.iterdir() if p.name.endswith(".toml"))
+
+
+def linkage_example_path(name: str) -> Path:
+    names = linkage_example_names()
+    if name not in names:
+        raise InputError(
+            f"no built-in linkage of that name (examples: {', '.join(names)})"
+            + suggest(name, names),
+            key="example",
+            value=name,
+        )
+    return Path(str(_EXAMPLES / f"{name}.toml"))
+
+
+def load_linkage_example(name: str) -> Mechanism:
+    """Load a built-in example linkage by name."""
+    path = linkage_example_path(name)
+    return _load(path, f"{name} (built-in linkage)")
+
+
+def load_linkage(path: str | Path) -> Mechanism:
+    """Load a linkage file."""
+    return _load(Path(path), display_name(path))
+
+
+def resolve_linkage(spec: str) -> Mechanism:
+    """A LINKAGE argument: a path to a linkage file, or a built-in example name."""
+    p = Path(spec)
+    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+        return load_linkage(p)
+    names = linkage_example_names()
+    if spec in names:
+        return load_linkage_example(spec)
+    raise InputError(
+        f"no such file or built-in linkage (examples: {', '.join(names)}){suggest(spec, names)}",
+        file=spec,
+    )
+
+
+def _load(path: Path, name: str) -> Mechanism:
+    data = load_toml(path, what="linkage file")
+    return parse_linkage(data, file=name)
+
+
+def _pair(t: Table, key: str, kind: str, default=None):
+    value = t.raw(key, default, expected=f'a pair such as ["10 {_UNIT[kind]}", "0 {_UNIT[kind]}"]')
+    if value is default and key not in t.data:
+        return default
+    if not isinstance(value, list) or len(value) != 2:
+        raise t.error(
+            key, f'expected a pair such as ["10 {_UNIT[kind]}", "0 {_UNIT[kind]}"]', value
+        )
+    return tuple(parse_quantity(v, kind, key=t.label(key), file=t.file) for v in value)
+
+
+_UNIT = {"length": "mm", "force": "N", "acceleration": "m/s^2"}
+
+
+def parse_linkage(data: dict, *, file: str | None = None) -> Mechanism:
+    """Build a Mechanism from a parsed linkage document (a dict as from tomllib)."""
+    root = Table(data, file=file)
+    name = root.string("name")
+    gravity = _pair(root, "gravity", "acceleration", (0.0, 0.0))
+    pts = root.table("points", required=True)
+    points = {}
+    for key in list(pts.data):
+        points[key] = _pair(pts, key, "length")
+    if not points:
+        raise pts.error(None, "no points; give each point as NAME = [x, y]")
+    pts.finish()
+    links = [_link(t, points) for t in root.tables("links", required=True)]
+    joints = [_joint(t) for t in root.tables("joints", required=True)]
+    driver = _driver(root.table("driver", required=True), points)
+    forces = [_force(t) for t in root.tables("forces")]
+    torques = [_torque(t) for t in root.tables("torques")]
+    with root.context():
+        mechanism = Mechanism(
+            name=name,
+            points=points,
+            links=tuple(links),
+            joints=tuple(joints),
+            driver=driver,
+            forces=tuple(forces),
+            torques=tuple(torques),
+            gravity=gravity,
+            source=file,
+        )
+    root.finish()
+    return mechanism
+
+
+def _link(t: Table, points: dict) -> Link:
+    name = t.string("name")
+    pts = t.string_list("points")
+    mass = t.quantity("mass", "mass", 0.0, check="nonnegative")
+    inertia = t.quantity("inertia", "inertia", 0.0, check="nonnegative")
+    cg = None
+    if t.has("cg"):
+        raw = t.data["cg"]
+        if isinstance(raw, str):
+            if raw not in points:
+                raise t.error("cg", f"no point of that name{suggest(raw, points)}", raw)
+            cg = points[raw]
+        else:
+            cg = _pair(t, "cg", "length")
+    with t.context():
+        link = Link(name=name, points=pts, mass=mass, inertia=inertia, cg=cg)
+    t.finish()
+    return link
+
+
+def _joint(t: Table) -> Joint:
+    name = t.string("name")
+    kind = t.string("type", "revolute", choices=JOINT_KINDS)
+    links = t.string_list("links", length=2)
+    point = t.string("point", name)
+    axis = t.quantity("axis", "angle", None)
+    radius = t.quantity("journal_radius", "length", 0.0, check="nonnegative")
+    friction = t.number("friction", 0.0, check="nonnegative")
+    if kind == "prismatic" and axis is None:
+        raise t.error("axis", 'missing; a prismatic joint needs its guide direction, e.g. "0 deg"')
+    if kind == "revolute" and axis is not None:
+        raise t.error("axis", "only a prismatic joint has an axis", t.data["axis"])
+    if kind == "prismatic" and t.has("journal_radius"):
+        raise t.error(
+            "journal_radius", "a prismatic joint has no journal", t.data["journal_radius"]
+        )
+    with t.context():
+        joint = Joint(
+            name=name,
+            kind=kind,
+            links=links,
+            point=point,
+            axis=axis,
+            journal_radius=radius,
+            friction=friction,
+        )
+    t.finish()
+    return joint
+
+
+def _driver(t: Table, points: dict) -> Driver:
+    joint = t.string("joint")
+    point = t.string("point")
+    zero = 0.0
+    if t.has("zero"):
+        raw = t.data["zero"]
+        if isinstance(raw, str) and raw in points:
+            pivot_name = t.string("pivot", joint)
+            if pivot_name not in points:
+                raise t.error(
+                    "pivot", "no point of that name; give the crank pivot's point", pivot_name
+                )
+            p0, p1 = points[pivot_name], points[raw]
+            if p0 == p1:
+                raise t.error("zero", "the zero line needs a point away from the pivot", raw)
+            zero = math.atan2(p1[1] - p0[1], p1[0] - p0[0])
+        else:
+            zero = t.quantity("zero", "angle")
+    speed = t.quantity("speed", "speed", 1.0)
+    acceleration = t.quantity("acceleration", "angular_acceleration", 0.0)
+    bp = t.string("balancing_point", None)
+    bd = t.quantity("balancing_direction", "angle", None)
+    relative = t.boolean("balancing_relative_to_crank", False)
+    with t.context():
+        driver = Driver(
+            joint=joint,
+            point=point,
+            zero=zero,
+            speed=speed,
+            acceleration=acceleration,
+            balancing_point=bp,
+            balancing_direction=bd,
+            balancing_relative=relative,
+        )
+    t.finish(also_known=("pivot",))
+    return driver
+
+
+def _force(t: Table) -> Force:
+    link = t.string("link")
+    point = t.string("point")
+    if link == GROUND:
+        raise t.error("link", "a force on the ground does not load the mechanism", link)
+    force = _pair(t, "force", "force", None)
+    resistance = t.quantity("resistance", "force", None, check="nonnegative")
+    direction = t.quantity("working_direction", "angle", None)
+    if (force is None) == (resistance is None):
+        raise t.error("force", "give either force = [Fx, Fy] or resistance")
+    with t.context():
+        f = Force(
+            link=link,
+            point=point,
+            force=force,
+            resistance=resistance,
+            working_direction=direction,
+        )
+    t.finish()
+    return f
+
+
+def _torque(t: Table) -> Torque:
+    link = t.string("link")
+    torque = t.quantity("torque", "torque", None)
+    resistance = t.quantity("resistance", "torque", None, check="nonnegative")
+    if (torque is None) == (resistance is None):
+        raise t.error("torque", "give either torque or resistance")
+    with t.context():
+        out = Torque(link=link, torque=torque, resistance=resistance)
+    t.finish()
+    return out

@@ -1,0 +1,1319 @@
+"""General planar mechanisms: links, revolute and prismatic joints, a crank driver; positions by
+Newton-Raphson with branch control, velocities and accelerations from the constraint Jacobian.
+
+Formulation (absolute coordinates; Nikravesh 1988, Computer-Aided Analysis of Mechanical Systems,
+ch. 3-4; Haug 1989, Computer-Aided Kinematics and Dynamics of Mechanical Systems, ch. 3)
+---------------------------------------------------------------------------------------------
+Every moving link i carries the coordinates q_i = (x_i, y_i, phi_i): the position of its
+reference point G_i (its centre of gravity) and its rotation phi_i from the drawn configuration.
+A point with drawn position p on link i is at r = G_i + A(phi_i) s_i, s_i = p - G_i(drawn), with
+A the rotation matrix; B = dA/dphi = A R90. The ground is fixed (G = 0, phi = 0).
+
+- Revolute joint between links i and j at a point: two equations
+  Phi = G_i + A_i s_i - G_j - A_j s_j = 0,  gamma = A_i s_i phi_i'^2 - A_j s_j phi_j'^2.
+- Prismatic joint, the guide on link i (direction fixed in i, unit normal n' in i's frame), the
+  slider j: phi_i - phi_j = 0 and n_i . (G_j + A_j s_j - G_i) - n' . s_i = 0 with n_i = A_i n',
+  gamma = n_i.e phi_i'^2 - 2 (B_i n' phi_i').e' + n_i.(A_j s_j) phi_j'^2, e = G_j + A_j s_j - G_i.
+- Driver: phi_k = theta - theta_drawn for the crank k turning about a ground pivot.
+
+The mechanism has F = 3n - 2 p_l degrees of freedom (Gruebler-Chebyshev, seed 004: each lower
+pair removes two); crankdyn needs F = 1 so that the driver closes the system (3n equations).
+Positions: Newton-Raphson, Phi_q dq = -Phi, continued from the drawn configuration in small
+crank steps with a second-order predictor q + q' dtheta + q'' dtheta^2 / 2. **Branch control**:
+a step is accepted only when Newton converges quickly and its correction is small against the
+step's own motion; otherwise the step is halved. The assembly branch is therefore the one drawn,
+kept through the cycle; a mechanism that cannot reach a requested crank angle stops at its dead
+point with a message naming both angles. Velocities and accelerations then follow from batched
+linear solves over all positions: Phi_q q' = e_driver and Phi_q q'' = gamma(q, q'), per unit
+crank speed, so that q_dot = omega q' and q_ddot = omega^2 q'' + alpha q'.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.geometry import check_finite
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = [
+    "GROUND",
+    "JOINT_KINDS",
+    "Driver",
+    "Force",
+    "Joint",
+    "Link",
+    "LinkGroup",
+    "LinkageKinematicsResult",
+    "Mechanism",
+    "MechanismMotion",
+    "Torque",
+    "degrees_of_freedom",
+    "fourbar_mechanism",
+    "is_statically_determinate",
+    "linkage_kinematics",
+    "slider_crank_mechanism",
+]
+
+GROUND = "ground"
+JOINT_KINDS = ("revolute", "prismatic")
+TWO_PI = 2.0 * math.pi
+_MAX_STEP = math.radians(3.0)  # largest continuation step of the crank
+_MIN_STEP = 1e-9  # rad; below this a step that still fails marks a dead point
+_COND_LIMIT = 1e10  # condition number above which a matrix counts as singular
+
+
+def degrees_of_freedom(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
+    """Gruebler-Chebyshev mobility F = 3n - 2 p_l - p_h of a planar mechanism (seed 004)."""
+    return 3 * moving_links - 2 * lower_pairs - higher_pairs
+
+
+def is_statically_determinate(links: int, lower_pairs: int, higher_pairs: int = 0) -> bool:
+    """Static determinacy of a link group (seed 004, sec. 1 "构件组的静定条件"): its n links give
+    3n equilibrium equations and each lower pair brings two unknown reaction components (a
+    revolute: magnitude and direction; a prismatic: magnitude and point of application), each
+    higher pair one, so the group is determinate when 3n = 2 p_l + p_h."""
+    return 3 * links == 2 * lower_pairs + higher_pairs
+
+
+def _xy(name: str, value) -> tuple[float, float]:
+    try:
+        x, y = value
+    except (TypeError, ValueError):
+        raise InputError("expected a pair [x, y]", key=name, value=value) from None
+    return check_finite(name, x), check_finite(name, y)
+
+
+def _nonnegative(name: str, value: float, what: str) -> float:
+    number = check_finite(name, value)
+    if number < 0.0:
+        raise InputError(f"{what} must not be negative", key=name, value=value)
+    return number
+
+
+@dataclass(frozen=True)
+class Link:
+    """A rigid link (domain object).
+
+    Parameters
+    ----------
+    name
+        Unique name; ``"ground"`` is reserved for the frame.
+    points
+        Names of the points on the link (drawing, joint checks, centroid).
+    mass
+        Mass (kg), >= 0.
+    inertia
+        Moment of inertia about the centre of gravity (kg m^2), >= 0.
+    cg
+        Centre of gravity in the drawn configuration (m); default the centroid of the points.
+    """
+
+    name: str
+    points: tuple[str, ...]
+    mass: float = 0.0
+    inertia: float = 0.0
+    cg: tuple[float, float] | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InputError("a link needs a name", key="name", value=self.name)
+        if self.name == GROUND:
+            raise InputError(
+                '"ground" is the frame, not a moving link', key="name", value=self.name
+            )
+        object.__setattr__(self, "points", tuple(self.points))
+        if not self.points:
+            raise InputError("a link needs at least one point", key="points", value=[])
+        object.__setattr__(self, "mass", _nonnegative("mass", self.mass, "a mass"))
+        object.__setattr__(
+            self, "inertia", _nonnegative("inertia", self.inertia, "a moment of inertia")
+        )
+        if self.cg is not None:
+            object.__setattr__(self, "cg", _xy("cg", self.cg))
+
+
+@dataclass(frozen=True)
+class Joint:
+    """A lower pair between two links (domain object).
+
+    Parameters
+    ----------
+    name
+        Unique name (used for the reactions).
+    kind
+        ``"revolute"`` or ``"prismatic"``.
+    links
+        (first, second): the reaction reported is the force of the first link on the second
+        (seed 004's R_ij, the force of link i on link j). For a prismatic joint the guide is on
+        the first link, the slider is the second.
+    point
+        The joint's point: a revolute's pin centre; a prismatic joint's slider point, which lies
+        on the guide line in the drawn configuration.
+    axis
+        Prismatic only: direction of the guide in the drawn configuration (rad, counter-clockwise
+        from x), fixed to the first link.
+    journal_radius
+        Revolute: pin (journal) radius r (m) for the friction circle rho = f r.
+    friction
+        Friction coefficient f (dimensionless, >= 0): a revolute's journal coefficient (seed
+        004's f_v), a prismatic joint's Coulomb coefficient.
+    """
+
+    name: str
+    kind: str
+    links: tuple[str, str]
+    point: str
+    axis: float | None = None
+    journal_radius: float = 0.0
+    friction: float = 0.0
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name.strip():
+            raise InputError("a joint needs a name", key="name", value=self.name)
+        if self.kind not in JOINT_KINDS:
+            raise InputError(
+                f"expected one of {', '.join(JOINT_KINDS)}", key="type", value=self.kind
+            )
+        links = tuple(self.links)
+        if len(links) != 2 or links[0] == links[1]:
+            raise InputError("a joint connects two different links", key="links", value=list(links))
+        object.__setattr__(self, "links", links)
+        if self.kind == "prismatic":
+            if self.axis is None:
+                raise InputError("a prismatic joint needs the direction of its guide", key="axis")
+            object.__setattr__(self, "axis", check_finite("axis", self.axis))
+        elif self.axis is not None:
+            raise InputError("only a prismatic joint has an axis", key="axis", value=self.axis)
+        object.__setattr__(
+            self,
+            "journal_radius",
+            _nonnegative("journal_radius", self.journal_radius, "a journal radius"),
+        )
+        object.__setattr__(
+            self, "friction", _nonnegative("friction", self.friction, "a friction coefficient")
+        )
+
+
+@dataclass(frozen=True)
+class Driver:
+    """The input crank: a revolute joint to the ground, turned at a given speed.
+
+    Parameters
+    ----------
+    joint
+        The crank's revolute joint with the ground.
+    point
+        A point on the crank; the crank angle is the angle of the line joint -> point.
+    zero
+        Direction (rad, counter-clockwise from x) from which the crank angle is measured.
+    speed, acceleration
+        Crank angular velocity (rad/s, counter-clockwise positive) and acceleration (rad/s^2).
+    balancing_point, balancing_direction
+        Optional: balance the mechanism by a force at this crank point along this direction
+        (rad) instead of a torque (seed 004's balancing force P_b); the driving torque is then
+        its moment about the crank pivot.
+    balancing_relative
+        Whether ``balancing_direction`` is measured from the crank line (joint -> point) and
+        turns with the crank (e.g. 90 deg: perpendicular to the crank), instead of from x.
+    """
+
+    joint: str
+    point: str
+    zero: float = 0.0
+    speed: float = 1.0
+    acceleration: float = 0.0
+    balancing_point: str | None = None
+    balancing_direction: float | None = None
+    balancing_relative: bool = False
+
+    def balancing_unit(self, crank_angle) -> np.ndarray:
+        """Unit vector(s) (N, 2) of the balancing force at crank angles (rad)."""
+        theta = np.atleast_1d(np.asarray(crank_angle, dtype=float))
+        ang = self.balancing_direction + (
+            self.zero + theta if self.balancing_relative else np.zeros_like(theta)
+        )
+        return np.stack([np.cos(ang), np.sin(ang)], axis=1)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "zero", check_finite("zero", self.zero))
+        object.__setattr__(self, "speed", check_finite("speed", self.speed))
+        object.__setattr__(self, "acceleration", check_finite("acceleration", self.acceleration))
+        if (self.balancing_point is None) != (self.balancing_direction is None):
+            raise InputError(
+                "a balancing force needs both its point and its direction",
+                key="balancing_point" if self.balancing_point is None else "balancing_direction",
+            )
+        if self.balancing_direction is not None:
+            object.__setattr__(
+                self,
+                "balancing_direction",
+                check_finite("balancing_direction", self.balancing_direction),
+            )
+
+
+@dataclass(frozen=True)
+class Force:
+    """An external force on a link at one of its points.
+
+    Either a fixed ``force`` (Fx, Fy) in N in the ground frame, or a ``resistance`` (N): a force
+    of that magnitude opposing the point's velocity (a production resistance), acting only while
+    the point moves with a positive component along ``working_direction`` (rad) when given.
+    """
+
+    link: str
+    point: str
+    force: tuple[float, float] | None = None
+    resistance: float | None = None
+    working_direction: float | None = None
+
+    def __post_init__(self) -> None:
+        if (self.force is None) == (self.resistance is None):
+            raise InputError("give either force or resistance", key="force")
+        if self.force is not None:
+            object.__setattr__(self, "force", _xy("force", self.force))
+        if self.resistance is not None:
+            object.__setattr__(
+                self, "resistance", _nonnegative("resistance", self.resistance, "a resistance")
+            )
+        if self.working_direction is not None:
+            if self.resistance is None:
+                raise InputError(
+                    "working_direction applies to a resistance only", key="working_direction"
+                )
+            object.__setattr__(
+                self,
+                "working_direction",
+                check_finite("working_direction", self.working_direction),
+            )
+
+
+@dataclass(frozen=True)
+class Torque:
+    """An external couple on a link: a fixed ``torque`` (N m, counter-clockwise positive) or a
+    ``resistance`` (N m) opposing the link's angular velocity."""
+
+    link: str
+    torque: float | None = None
+    resistance: float | None = None
+
+    def __post_init__(self) -> None:
+        if (self.torque is None) == (self.resistance is None):
+            raise InputError("give either torque or resistance", key="torque")
+        if self.torque is not None:
+            object.__setattr__(self, "torque", check_finite("torque", self.torque))
+        if self.resistance is not None:
+            object.__setattr__(
+                self, "resistance", _nonnegative("resistance", self.resistance, "a resistance")
+            )
+
+
+@dataclass(frozen=True)
+class LinkGroup:
+    """A statically determinate link group (Assur group) of seed 004: links, joints, class."""
+
+    links: tuple[str, ...]
+    joints: tuple[str, ...]
+    kind: str  # "driver", "RRR dyad", "RRP dyad", ..., or "group of n links"
+
+
+def _key(kind: str, name: str, field_name: str) -> str:
+    return f'{kind} "{name}" {field_name}'
+
+
+@dataclass(frozen=True)
+class Mechanism:
+    """A planar mechanism of rigid links, revolute and prismatic joints and one crank driver.
+
+    Parameters
+    ----------
+    name
+        Name for reports.
+    points
+        Named points and their coordinates (m) in the drawn (assembled) configuration, as a
+        mapping or a sequence of (name, (x, y)) pairs. The drawing fixes every link's geometry
+        and the assembly branch.
+    links
+        The moving links.
+    joints
+        The joints (lower pairs).
+    driver
+        The input crank.
+    forces, torques
+        External loads.
+    gravity
+        Gravitational acceleration vector (m/s^2), e.g. (0, -9.81); (0, 0) ignores weight.
+    source
+        The file the mechanism came from, for messages.
+    """
+
+    name: str
+    points: tuple[tuple[str, tuple[float, float]], ...]
+    links: tuple[Link, ...]
+    joints: tuple[Joint, ...]
+    driver: Driver
+    forces: tuple[Force, ...] = ()
+    torques: tuple[Torque, ...] = ()
+    gravity: tuple[float, float] = (0.0, 0.0)
+    source: str | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        pts = self.points.items() if isinstance(self.points, Mapping) else self.points
+        points = tuple((str(n), _xy(f'point "{n}"', xy)) for n, xy in pts)
+        object.__setattr__(self, "points", points)
+        object.__setattr__(self, "links", tuple(self.links))
+        object.__setattr__(self, "joints", tuple(self.joints))
+        object.__setattr__(self, "forces", tuple(self.forces))
+        object.__setattr__(self, "torques", tuple(self.torques))
+        object.__setattr__(self, "gravity", _xy("gravity", self.gravity))
+        self._validate()
+
+    # ---- validation ---------------------------------------------------------------------------
+    def _validate(self) -> None:
+        names = [n for n, _xy_ in self.points]
+        if len(set(names)) != len(names):
+            dup = next(n for n in names if names.count(n) > 1)
+            raise InputError("a point is defined twice", key="points", value=dup)
+        point_set = set(names)
+        link_names = [link.name for link in self.links]
+        if not link_names:
+            raise InputError("the mechanism has no moving links", key="links")
+        if len(set(link_names)) != len(link_names):
+            dup = next(n for n in link_names if link_names.count(n) > 1)
+            raise InputError("two links have the same name", key="links", value=dup)
+        all_links = {*link_names, GROUND}
+        for link in self.links:
+            for p in link.points:
+                if p not in point_set:
+                    raise InputError(
+                        f"no point of that name{_did_you_mean(p, names)}",
+                        key=_key("link", link.name, "points"),
+                        value=p,
+                    )
+        joint_names = [j.name for j in self.joints]
+        if len(set(joint_names)) != len(joint_names):
+            dup = next(n for n in joint_names if joint_names.count(n) > 1)
+            raise InputError("two joints have the same name", key="joints", value=dup)
+        by_name = {link.name: link for link in self.links}
+        for j in self.joints:
+            for ln in j.links:
+                if ln not in all_links:
+                    raise InputError(
+                        f"no link of that name{_did_you_mean(ln, sorted(all_links))}",
+                        key=_key("joint", j.name, "links"),
+                        value=ln,
+                    )
+            if j.point not in point_set:
+                raise InputError(
+                    f"no point of that name{_did_you_mean(j.point, names)}",
+                    key=_key("joint", j.name, "point"),
+                    value=j.point,
+                )
+            on = j.links if j.kind == "revolute" else j.links[1:]
+            for ln in on:
+                if ln != GROUND and j.point not in by_name[ln].points:
+                    raise InputError(
+                        f'the joint\'s point "{j.point}" is not a point of link "{ln}"',
+                        key=_key("joint", j.name, "point"),
+                        value=j.point,
+                    )
+        # mobility
+        n, p = len(self.links), len(self.joints)
+        dof = degrees_of_freedom(n, p)
+        if dof != 1:
+            raise InputError(
+                f"the mechanism has F = 3n - 2p = 3*{n} - 2*{p} = {dof} degrees of freedom; "
+                "crankdyn analyses mechanisms with exactly one, driven by the crank",
+                key="joints",
+            )
+        connected = {GROUND}
+        changed = True
+        while changed:
+            changed = False
+            for j in self.joints:
+                a, b = j.links
+                if (a in connected) != (b in connected):
+                    connected |= {a, b}
+                    changed = True
+        loose = [ln for ln in link_names if ln not in connected]
+        if loose:
+            raise InputError(
+                "the link is not connected to the ground through joints",
+                key=_key("link", loose[0], "name"),
+                value=loose[0],
+            )
+        # driver
+        d = self.driver
+        joints = {j.name: j for j in self.joints}
+        if d.joint not in joints:
+            raise InputError(
+                f"no joint of that name{_did_you_mean(d.joint, joint_names)}",
+                key="driver joint",
+                value=d.joint,
+            )
+        dj = joints[d.joint]
+        if dj.kind != "revolute" or GROUND not in dj.links:
+            raise InputError(
+                "the driver must be a revolute joint between the ground and the crank "
+                "(linear actuators are not supported yet)",
+                key="driver joint",
+                value=d.joint,
+            )
+        crank = self.crank
+        if d.point not in by_name[crank].points or d.point == dj.point:
+            raise InputError(
+                f'expected a point of the crank "{crank}" other than its pivot "{dj.point}"',
+                key="driver point",
+                value=d.point,
+            )
+        if d.balancing_point is not None and d.balancing_point not in by_name[crank].points:
+            raise InputError(
+                f'expected a point of the crank "{crank}"',
+                key="driver balancing_point",
+                value=d.balancing_point,
+            )
+        for f in self.forces:
+            if f.link not in by_name:
+                raise InputError(
+                    f"no moving link of that name{_did_you_mean(f.link, link_names)}",
+                    key="force link",
+                    value=f.link,
+                )
+            if f.point not in by_name[f.link].points:
+                raise InputError(
+                    f'not a point of link "{f.link}"', key="force point", value=f.point
+                )
+        for t in self.torques:
+            if t.link not in by_name:
+                raise InputError(
+                    f"no moving link of that name{_did_you_mean(t.link, link_names)}",
+                    key="torque link",
+                    value=t.link,
+                )
+        # (a prismatic joint's guide is the line through its point along its axis, so the
+        # drawn configuration satisfies it by construction)
+        if self.length_scale <= 0.0:
+            raise InputError("all points coincide", key="points")
+        # the drawn configuration must not be singular
+        model = self._model
+        jac = model.jacobian(model.q0[None, :])[0]
+        if np.linalg.cond(jac) > _COND_LIMIT:
+            raise InputError(
+                "the drawn configuration is singular (links in line at a dead point, or "
+                "redundant joints); draw the mechanism at another crank angle",
+                key="points",
+            )
+
+    # ---- derived structure --------------------------------------------------------------------
+    @property
+    def point_map(self) -> dict[str, np.ndarray]:
+        """{point name: drawn position (m)}."""
+        return {n: np.array(xy) for n, xy in self.points}
+
+    @cached_property
+    def length_scale(self) -> float:
+        """Largest distance between two points (m): the scale of tolerances."""
+        xy = np.array([p for _n, p in self.points])
+        return float(np.max(np.ptp(xy, axis=0))) if len(xy) > 1 else 0.0
+
+    @property
+    def crank(self) -> str:
+        """Name of the driven crank link."""
+        j = next(j for j in self.joints if j.name == self.driver.joint)
+        return j.links[1] if j.links[0] == GROUND else j.links[0]
+
+    @property
+    def link_names(self) -> tuple[str, ...]:
+        return tuple(link.name for link in self.links)
+
+    def link(self, name: str) -> Link:
+        return next(link for link in self.links if link.name == name)
+
+    def joint(self, name: str) -> Joint:
+        return next(j for j in self.joints if j.name == name)
+
+    @cached_property
+    def cg_drawn(self) -> dict[str, np.ndarray]:
+        """Centre of gravity of every moving link in the drawn configuration (m)."""
+        pm = self.point_map
+        out = {}
+        for link in self.links:
+            if link.cg is not None:
+                out[link.name] = np.array(link.cg)
+            else:
+                out[link.name] = np.mean([pm[p] for p in link.points], axis=0)
+        return out
+
+    @cached_property
+    def point_owner(self) -> dict[str, str]:
+        """The link that carries each point (its motion is the point's motion); a point on no
+        moving link belongs to the ground."""
+        owner: dict[str, str] = {}
+        for link in self.links:
+            for p in link.points:
+                owner.setdefault(p, link.name)
+        for n, _ in self.points:
+            owner.setdefault(n, GROUND)
+        return owner
+
+    @cached_property
+    def crank_angle_drawn(self) -> float:
+        """Crank angle of the drawn configuration (rad), from the driver's zero line."""
+        pm = self.point_map
+        pivot = pm[self.joint(self.driver.joint).point]
+        v = pm[self.driver.point] - pivot
+        return math.atan2(v[1], v[0]) - self.driver.zero
+
+    @cached_property
+    def _model(self) -> _Model:
+        return _Model(self)
+
+    # ---- structure (seed 004) ------------------------------------------------------------------
+    @property
+    def degrees_of_freedom(self) -> int:
+        """F = 3n - 2 p_l (all joints are lower pairs)."""
+        return degrees_of_freedom(len(self.links), len(self.joints))
+
+    def link_groups(self) -> tuple[LinkGroup, ...]:
+        """Decompose the mechanism into statically determinate link groups (Assur groups, seed
+        004: each satisfies 3n = 2 p_l) and the driver, in the order of the force analysis.
+
+        Groups are peeled off from the end of the chain: a group is a connected set of links
+        (not the crank) whose joints, to each other and to the rest, number 3n/2; removing it
+        leaves a mechanism of the same mobility. Forces are then found group by group in this
+        order, starting from the group farthest from the crank (seed 004: the conveyor's group
+        4-5 before 2-3), and the kinematics in the reverse order.
+        """
+        remaining = [ln for ln in self.link_names if ln != self.crank]
+        joints = [j for j in self.joints if j.name != self.driver.joint]
+        groups = []
+        while remaining:
+            found = None
+            for size in range(1, len(remaining) + 1):
+                for subset in itertools.combinations(remaining, size):
+                    s = set(subset)
+                    touching = [j for j in joints if s & set(j.links)]
+                    if is_statically_determinate(size, len(touching)) and _connected(s, touching):
+                        found = (subset, touching)
+                        break
+                if found:
+                    break
+            if found is None:  # cannot happen for F = 1, but never loop forever
+                groups.append(LinkGroup(tuple(remaining), (), "indeterminate"))
+                break
+            subset, touching = found
+            kind = f"group of {len(subset)} links"
+            if len(subset) == 2:
+                kind = _dyad_class(subset, touching) + " dyad"
+            groups.append(LinkGroup(tuple(subset), tuple(j.name for j in touching), kind))
+            remaining = [ln for ln in remaining if ln not in subset]
+            joints = [j for j in joints if j not in touching]
+        groups.append(LinkGroup((self.crank,), (self.driver.joint,), "driver"))
+        return tuple(groups)
+
+    # ---- analyses ---------------------------------------------------------------------------
+    def motion(self, crank_angles, speed: float | None = None, acceleration: float | None = None):
+        """Positions, velocities and accelerations at crank angles (rad); speed (rad/s) and
+        acceleration (rad/s^2) default to the driver's. Returns :class:`MechanismMotion`."""
+        theta = np.atleast_1d(np.asarray(crank_angles, dtype=float))
+        w = self.driver.speed if speed is None else float(speed)
+        e = self.driver.acceleration if acceleration is None else float(acceleration)
+        model = self._model
+        q = model.solve_positions(theta)
+        qp, qpp = model.rates(q, theta)
+        return MechanismMotion(
+            mechanism=self, crank_angle=theta, speed=w, acceleration=e, q=q, qp=qp, qpp=qpp
+        )
+
+    @classmethod
+    def from_file(cls, path) -> Mechanism:
+        """Load a linkage file (TOML; docs/linkage-file.md)."""
+        from crankdyn.io.linkage_file import load_linkage
+
+        return load_linkage(path)
+
+    @classmethod
+    def example(cls, name: str) -> Mechanism:
+        """A built-in example linkage by name (``crankdyn linkage examples`` lists them)."""
+        from crankdyn.io.linkage_file import load_linkage_example
+
+        return load_linkage_example(name)
+
+
+def _did_you_mean(word: str, names) -> str:
+    import difflib
+
+    match = difflib.get_close_matches(str(word), list(names), n=1, cutoff=0.6)
+    return f' (did you mean "{match[0]}"?)' if match else ""
+
+
+def _connected(links: set[str], joints) -> bool:
+    if len(links) == 1:
+        return True
+    start = next(iter(links))
+    seen = {start}
+    changed = True
+    while changed:
+        changed = False
+        for j in joints:
+            a, b = j.links
+            if a in links and b in links and (a in seen) != (b in seen):
+                seen |= {a, b}
+                changed = True
+    return seen == links
+
+
+def _dyad_class(subset, touching) -> str:
+    a, b = subset
+    inner = [j for j in touching if set(j.links) == {a, b}]
+    outer_a = [j for j in touching if a in j.links and b not in j.links]
+    outer_b = [j for j in touching if b in j.links and a not in j.links]
+    if len(inner) != 1 or len(outer_a) != 1 or len(outer_b) != 1:
+        return "RRR"
+    letters = [j.kind[0].upper() for j in (outer_a[0], inner[0], outer_b[0])]
+    text = "".join(letters)
+    return max(text, text[::-1])
+
+
+# ---- the numeric model -----------------------------------------------------------------------
+
+
+def _rot(phi):
+    """cos, sin of rotation angles (arrays)."""
+    return np.cos(phi), np.sin(phi)
+
+
+def _apply(c, s, v):
+    """A(phi) v for arrays c, s of shape (N, k) and local vectors v of shape (k, 2)."""
+    x = c * v[:, 0] - s * v[:, 1]
+    y = s * v[:, 0] + c * v[:, 1]
+    return x, y
+
+
+class _Locked(Exception):
+    """The continuation cannot pass crank angle ``theta`` (a dead point); ``q`` is there."""
+
+    def __init__(self, q, theta):
+        super().__init__(theta)
+        self.q, self.theta = q, theta
+
+
+class _Model:
+    """Index arrays and batched constraint functions of a Mechanism (internal)."""
+
+    def __init__(self, mech: Mechanism) -> None:
+        self.mech = mech
+        names = list(mech.link_names)
+        self.index = {GROUND: 0, **{n: i + 1 for i, n in enumerate(names)}}
+        self.n = len(names)
+        pm = mech.point_map
+        cg = mech.cg_drawn
+        self.g0 = np.vstack([np.zeros(2), *[cg[n] for n in names]])  # (n+1, 2), ground = origin
+
+        def local(link_name: str, point: str) -> np.ndarray:
+            return pm[point] - self.g0[self.index[link_name]]
+
+        rev = [j for j in mech.joints if j.kind == "revolute"]
+        pri = [j for j in mech.joints if j.kind == "prismatic"]
+        self.rev_i = np.array([self.index[j.links[0]] for j in rev], dtype=int)
+        self.rev_j = np.array([self.index[j.links[1]] for j in rev], dtype=int)
+        self.rev_si = np.array([local(j.links[0], j.point) for j in rev]).reshape(-1, 2)
+        self.rev_sj = np.array([local(j.links[1], j.point) for j in rev]).reshape(-1, 2)
+        self.pri_i = np.array([self.index[j.links[0]] for j in pri], dtype=int)
+        self.pri_j = np.array([self.index[j.links[1]] for j in pri], dtype=int)
+        self.pri_si = np.array([local(j.links[0], j.point) for j in pri]).reshape(-1, 2)
+        self.pri_sj = np.array([local(j.links[1], j.point) for j in pri]).reshape(-1, 2)
+        self.pri_n = np.array([[-math.sin(j.axis), math.cos(j.axis)] for j in pri]).reshape(-1, 2)
+        self.rev_names = [j.name for j in rev]
+        self.pri_names = [j.name for j in pri]
+        self.crank = self.index[mech.crank]
+        self.m = 2 * len(rev) + 2 * len(pri) + 1
+        self.nq = 3 * self.n
+        self.q0 = np.concatenate([np.r_[self.g0[i], 0.0] for i in range(1, self.n + 1)])
+        self.theta0 = mech.crank_angle_drawn
+        self.scale = mech.length_scale
+        # weights for norms: rotations count as arcs of the mechanism's size
+        self.weights = np.tile([1.0, 1.0, self.scale], self.n)
+
+    # q (N, nq) -> bodies (N, n+1, 3) with the ground first
+    def bodies(self, q):
+        q = np.asarray(q)
+        out = np.zeros((q.shape[0], self.n + 1, 3), dtype=q.dtype)
+        out[:, 1:, :] = q.reshape(q.shape[0], self.n, 3)
+        out[:, 0, :2] = 0.0
+        return out
+
+    def constraints(self, q, theta):
+        """Phi (N, m)."""
+        b = self.bodies(q)
+        parts = []
+        if len(self.rev_i):
+            bi, bj = b[:, self.rev_i], b[:, self.rev_j]
+            xi, yi = _apply(*_rot(bi[..., 2]), self.rev_si)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.rev_sj)
+            parts += [bi[..., 0] + xi - bj[..., 0] - xj, bi[..., 1] + yi - bj[..., 1] - yj]
+        if len(self.pri_i):
+            bi, bj = b[:, self.pri_i], b[:, self.pri_j]
+            ci, si = _rot(bi[..., 2])
+            nx, ny = _apply(ci, si, self.pri_n)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.pri_sj)
+            ex, ey = bj[..., 0] + xj - bi[..., 0], bj[..., 1] + yj - bi[..., 1]
+            const = np.sum(self.pri_n * self.pri_si, axis=1)
+            parts += [bi[..., 2] - bj[..., 2], nx * ex + ny * ey - const]
+        drive = b[:, self.crank, 2] - (np.asarray(theta) - self.theta0)
+        return self._assemble(parts, drive)
+
+    def _assemble(self, parts, drive):
+        """Stack joint rows in the order: revolute (x, y) per joint, prismatic (angle, normal)
+        per joint, then the driver."""
+        cols = []
+        nr, npr = len(self.rev_i), len(self.pri_i)
+        if nr:
+            px, py = parts[0], parts[1]
+            cols.append(np.stack([px, py], axis=2).reshape(px.shape[0], 2 * nr))
+        if npr:
+            pa, pn = parts[-2], parts[-1]
+            cols.append(np.stack([pa, pn], axis=2).reshape(pa.shape[0], 2 * npr))
+        cols.append(drive[:, None])
+        return np.concatenate(cols, axis=1)
+
+    def jacobian(self, q):
+        """Phi_q (N, m, nq)."""
+        q = np.asarray(q)
+        N = q.shape[0]
+        b = self.bodies(q)
+        jac = np.zeros((N, self.m, 3 * (self.n + 1)))
+        nr = len(self.rev_i)
+        rows = np.arange(nr)
+        if nr:
+            bi, bj = b[:, self.rev_i], b[:, self.rev_j]
+            xi, yi = _apply(*_rot(bi[..., 2]), self.rev_si)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.rev_sj)
+            rx, ry = 2 * rows, 2 * rows + 1
+            ci, cj = 3 * self.rev_i, 3 * self.rev_j
+            jac[:, rx, ci] += 1.0
+            jac[:, ry, ci + 1] += 1.0
+            jac[:, rx, ci + 2] += -yi  # B s = (-y, x) of A s
+            jac[:, ry, ci + 2] += xi
+            jac[:, rx, cj] -= 1.0
+            jac[:, ry, cj + 1] -= 1.0
+            jac[:, rx, cj + 2] -= -yj
+            jac[:, ry, cj + 2] -= xj
+        npr = len(self.pri_i)
+        if npr:
+            prow = np.arange(npr)
+            ra, rn = 2 * nr + 2 * prow, 2 * nr + 2 * prow + 1
+            bi, bj = b[:, self.pri_i], b[:, self.pri_j]
+            ci_, si_ = _rot(bi[..., 2])
+            nx, ny = _apply(ci_, si_, self.pri_n)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.pri_sj)
+            ex, ey = bj[..., 0] + xj - bi[..., 0], bj[..., 1] + yj - bi[..., 1]
+            ci, cj = 3 * self.pri_i, 3 * self.pri_j
+            jac[:, ra, ci + 2] += 1.0
+            jac[:, ra, cj + 2] -= 1.0
+            jac[:, rn, ci] -= nx
+            jac[:, rn, ci + 1] -= ny
+            jac[:, rn, ci + 2] += -ny * ex + nx * ey  # (B_i n') . e, B n = (-ny, nx)
+            jac[:, rn, cj] += nx
+            jac[:, rn, cj + 1] += ny
+            jac[:, rn, cj + 2] += nx * -yj + ny * xj  # n . (B_j s_j)
+        jac[:, self.m - 1, 3 * self.crank + 2] = 1.0
+        return jac[:, :, 3:]  # drop the ground's columns
+
+    def gamma(self, q, qp):
+        """Right-hand side gamma (N, m) of Phi_q q'' = gamma for rates qp (driver row 0)."""
+        b = self.bodies(q)
+        v = self.bodies(qp)
+        v[:, 0, :] = 0.0
+        out = np.zeros((b.shape[0], self.m))
+        nr = len(self.rev_i)
+        if nr:
+            bi, bj = b[:, self.rev_i], b[:, self.rev_j]
+            wi, wj = v[:, self.rev_i, 2], v[:, self.rev_j, 2]
+            xi, yi = _apply(*_rot(bi[..., 2]), self.rev_si)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.rev_sj)
+            out[:, 0 : 2 * nr : 2] = xi * wi**2 - xj * wj**2
+            out[:, 1 : 2 * nr : 2] = yi * wi**2 - yj * wj**2
+        npr = len(self.pri_i)
+        if npr:
+            bi, bj = b[:, self.pri_i], b[:, self.pri_j]
+            vi, vj = v[:, self.pri_i], v[:, self.pri_j]
+            wi, wj = vi[..., 2], vj[..., 2]
+            ci_, si_ = _rot(bi[..., 2])
+            nx, ny = _apply(ci_, si_, self.pri_n)
+            xj, yj = _apply(*_rot(bj[..., 2]), self.pri_sj)
+            ex, ey = bj[..., 0] + xj - bi[..., 0], bj[..., 1] + yj - bi[..., 1]
+            dex = vj[..., 0] - yj * wj - vi[..., 0]
+            dey = vj[..., 1] + xj * wj - vi[..., 1]
+            ndot_x, ndot_y = -ny * wi, nx * wi
+            val = (nx * ex + ny * ey) * wi**2 - 2.0 * (ndot_x * dex + ndot_y * dey)
+            val += (nx * xj + ny * yj) * wj**2
+            out[:, 2 * nr + 1 : 2 * nr + 2 * npr : 2] = val
+        return out
+
+    # ---- solvers ------------------------------------------------------------------------------
+    def _newton(self, q, theta, max_iter=12):
+        """Newton-Raphson at one crank angle; returns (q, converged, iterations)."""
+        tol = 1e-14 * self.scale
+        for it in range(max_iter):
+            phi = self.constraints(q[None, :], np.array([theta]))[0]
+            if np.max(np.abs(phi)) <= tol:
+                return q, True, it
+            jac = self.jacobian(q[None, :])[0]
+            try:
+                dq = np.linalg.solve(jac, -phi)
+            except np.linalg.LinAlgError:
+                return q, False, it
+            q = q + dq
+            if not np.all(np.isfinite(q)):
+                return q, False, it
+        phi = self.constraints(q[None, :], np.array([theta]))[0]
+        return q, bool(np.max(np.abs(phi)) <= tol), max_iter
+
+    def _unit_rates(self, q):
+        """q' and q'' per unit crank speed at one configuration (for the predictor)."""
+        jac = self.jacobian(q[None, :])[0]
+        rhs = np.zeros(self.m)
+        rhs[-1] = 1.0
+        qp = np.linalg.solve(jac, rhs)
+        qpp = np.linalg.solve(jac, self.gamma(q[None, :], qp[None, :])[0])
+        return qp, qpp
+
+    def _march(self, q, theta, target, step0=_MAX_STEP):
+        """Continue from (q, theta) to target; return q at target or raise InputError."""
+        size = step0
+        while theta != target:
+            remaining = target - theta
+            step = math.copysign(min(size, abs(remaining)), remaining)
+            while True:
+                try:
+                    qp, qpp = self._unit_rates(q)
+                except np.linalg.LinAlgError:
+                    qp = qpp = np.zeros_like(q)
+                pred = q + qp * step + 0.5 * qpp * step * step
+                new_theta = target if step == remaining else theta + step
+                new, ok, _it = self._newton(pred, new_theta)
+                if ok:
+                    correction = np.max(np.abs((new - pred) * self.weights))
+                    motion = np.max(np.abs((pred - q) * self.weights))
+                    if correction <= 0.25 * motion + 1e-9 * self.scale:
+                        break
+                step /= 2.0
+                remaining = None  # a halved step never lands on the target exactly
+                if abs(step) < _MIN_STEP:
+                    raise _Locked(q, theta)
+            q, theta = new, new_theta
+            size = min(_MAX_STEP, 2.0 * abs(step))
+        return q
+
+    def _dead_point(self, q, theta, target) -> InputError:
+        jac = self.jacobian(q[None, :])[0]
+        cond = np.linalg.cond(jac)
+        where = (
+            f"the mechanism locks at crank angle {math.degrees(theta):.6g} deg, a dead point "
+            "(links in line)"
+            if cond > 1e3
+            else f"the position solver stopped at crank angle {math.degrees(theta):.6g} deg"
+        )
+        return InputError(
+            f"the links cannot be assembled at crank angle {math.degrees(target):.6g} deg: "
+            f"moving from the drawn position ({math.degrees(self.theta0):.6g} deg) on its "
+            f"branch, {where}",
+            file=self.mech.source,
+        )
+
+    def _anchors(self, start: float, lo: float, hi: float):
+        """Continuation anchors every <= _MAX_STEP from start up to hi and down to lo."""
+        up = np.linspace(start, hi, max(math.ceil((hi - start) / _MAX_STEP), 0) + 1)
+        down = np.linspace(start, lo, max(math.ceil((start - lo) / _MAX_STEP), 0) + 1)
+        return up[1:] if hi > start else up[:0], down[1:] if lo < start else down[:0]
+
+    def solve_positions(self, theta):
+        """q (N, nq) at crank angles theta (rad), continued from the drawn configuration.
+
+        The branch is followed by marching (Newton-Raphson with a second-order predictor and
+        step halving) through anchors at most 3 deg apart, up from the drawn angle to the
+        largest requested angle and down to the smallest (angles are not reduced modulo a turn:
+        0 and 360 deg are reached from opposite sides). Every requested angle is then solved in
+        one batched Newton iteration from its nearest anchor's Taylor predictor, and accepted
+        under the same branch test; the few that fail it are marched to one by one.
+        """
+        theta = np.asarray(theta, dtype=float)
+        lo, hi = float(theta.min()), float(theta.max())
+        start, q_start = self.theta0, self.q0.copy()
+        if not lo <= start <= hi:  # begin at the drawn position moved by whole turns
+            shifted = start + round(((lo + hi) / 2 - start) / TWO_PI) * TWO_PI
+            q_start = self._march_or_raise(q_start, start, shifted, theta)
+            start = shifted
+        up, down = self._anchors(start, lo, hi)
+        anchor_t, anchor_q = [start], [q_start]
+        for seq in (up, down):
+            q, t = q_start, start
+            for target in seq:
+                q = self._march_or_raise(q, t, float(target), theta)
+                t = float(target)
+                anchor_t.append(t)
+                anchor_q.append(q)
+        anchor_t = np.array(anchor_t)
+        anchor_q = np.array(anchor_q)
+        # batched Newton from the nearest anchor
+        nearest = np.argmin(np.abs(theta[:, None] - anchor_t[None, :]), axis=1)
+        q_a, t_a = anchor_q[nearest], anchor_t[nearest]
+        qp, qpp = self._batch_unit_rates(q_a)
+        dt = (theta - t_a)[:, None]
+        pred = q_a + qp * dt + 0.5 * qpp * dt * dt
+        q, ok = self._batch_newton(pred, theta)
+        correction = np.max(np.abs((q - pred) * self.weights), axis=1)
+        motion = np.max(np.abs((pred - q_a) * self.weights), axis=1)
+        ok &= correction <= 0.25 * motion + 1e-9 * self.scale
+        for i in np.flatnonzero(~ok):
+            q[i] = self._march_or_raise(q_a[i], float(t_a[i]), float(theta[i]), theta)
+        return q
+
+    def _march_or_raise(self, q, theta, target, requested):
+        try:
+            return self._march(q, theta, target)
+        except _Locked as lock:
+            # name the first requested angle beyond the lock, in the direction of the march
+            beyond = requested[(requested - lock.theta) * (target - theta) > 0]
+            first = beyond[np.argmin(np.abs(beyond - lock.theta))] if beyond.size else target
+            raise self._dead_point(lock.q, lock.theta, float(first)) from None
+
+    def _batch_unit_rates(self, q):
+        jac = self.jacobian(q)
+        rhs = np.zeros((q.shape[0], self.m, 1))
+        rhs[:, -1, 0] = 1.0
+        try:
+            qp = np.linalg.solve(jac, rhs)[..., 0]
+            qpp = np.linalg.solve(jac, self.gamma(q, qp)[..., None])[..., 0]
+        except np.linalg.LinAlgError:
+            return np.zeros_like(q), np.zeros_like(q)
+        return qp, qpp
+
+    def _batch_newton(self, q, theta, max_iter=8):
+        """Newton-Raphson at all angles at once; returns (q, converged mask)."""
+        tol = 1e-14 * self.scale
+        ok = np.zeros(q.shape[0], dtype=bool)
+        for _ in range(max_iter):
+            phi = self.constraints(q, theta)
+            ok = np.max(np.abs(phi), axis=1) <= tol
+            if np.all(ok):
+                break
+            jac = self.jacobian(q)
+            try:
+                dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
+            except np.linalg.LinAlgError:
+                return q, np.zeros(q.shape[0], dtype=bool)
+            dq[ok] = 0.0
+            q = q + dq
+            bad = ~np.all(np.isfinite(q), axis=1)
+            if np.any(bad):
+                q[bad] = 0.0
+                ok &= ~bad
+        else:
+            phi = self.constraints(q, theta)
+            ok = np.max(np.abs(phi), axis=1) <= tol
+        return q, ok
+
+    def rates(self, q, theta):
+        """Unit-speed rates q' and q'' (N, nq), batched; raises InputError at singular
+        positions."""
+        jac = self.jacobian(q)
+        cond = np.linalg.cond(jac)
+        bad = ~(cond < _COND_LIMIT)
+        if np.any(bad):
+            i = int(np.argmax(bad))
+            raise InputError(
+                f"the constraint Jacobian is singular at crank angle "
+                f"{math.degrees(theta[i]):.6g} deg (a dead point or change point: links in "
+                "line); velocities are indeterminate there",
+                file=self.mech.source,
+            )
+        rhs = np.zeros((q.shape[0], self.m, 1))
+        rhs[:, -1, 0] = 1.0
+        qp = np.linalg.solve(jac, rhs)[..., 0]
+        qpp = np.linalg.solve(jac, self.gamma(q, qp)[..., None])[..., 0]
+        return qp, qpp
+
+
+# ---- motion result ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, eq=False)
+class MechanismMotion:
+    """Motion of a mechanism at a set of crank angles (SI arrays; N positions).
+
+    ``q``, ``qp``, ``qpp`` hold (x_G, y_G, phi) of every moving link and their derivatives with
+    respect to the crank angle (per unit crank speed); time derivatives are
+    q_dot = omega q' and q_ddot = omega^2 q'' + alpha q'.
+    """
+
+    mechanism: Mechanism
+    crank_angle: np.ndarray
+    speed: float
+    acceleration: float
+    q: np.ndarray
+    qp: np.ndarray
+    qpp: np.ndarray
+
+    @property
+    def qd(self) -> np.ndarray:
+        """Time derivative of q (N, nq)."""
+        return self.speed * self.qp
+
+    @property
+    def qdd(self) -> np.ndarray:
+        """Second time derivative of q (N, nq)."""
+        return self.speed**2 * self.qpp + self.acceleration * self.qp
+
+    def _slot(self, link: str) -> int:
+        return 3 * (self.mechanism._model.index[link] - 1)
+
+    def link_state(self, link: str, which: str = "q") -> np.ndarray:
+        """(N, 3) array (x_G, y_G, phi) of a moving link, or its 'qd', 'qdd', 'qp', 'qpp'."""
+        k = self._slot(link)
+        return getattr(self, which)[:, k : k + 3]
+
+    def link_angle(self, link: str) -> np.ndarray:
+        """Absolute angle (rad) of a link: the drawn angle of the line from its first to its
+        second point (0 for a one-point link) plus its rotation."""
+        mech = self.mechanism
+        pts = mech.link(link).points
+        base = 0.0
+        if len(pts) >= 2:
+            pm = mech.point_map
+            v = pm[pts[1]] - pm[pts[0]]
+            base = math.atan2(v[1], v[0])
+        return base + self.link_state(link)[:, 2]
+
+    def point(self, name: str, link: str | None = None, which: str = "q") -> np.ndarray:
+        """Position (m), velocity ('qd', m/s), acceleration ('qdd', m/s^2) or the unit-speed
+        coefficients ('qp', 'qpp') of a named point, as (N, 2), carried by ``link`` (default
+        its owner)."""
+        mech = self.mechanism
+        link = link or mech.point_owner[name]
+        n = self.crank_angle.shape[0]
+        if link == GROUND:
+            p = mech.point_map[name]
+            return np.tile(p, (n, 1)) if which == "q" else np.zeros((n, 2))
+        s = mech.point_map[name] - mech.cg_drawn[link]
+        return self.body_point(link, s, which)
+
+    def body_point(self, link: str, s, which: str = "q") -> np.ndarray:
+        """Kinematics of the point with drawn offset s (m) from the link's centre of gravity."""
+        s = np.asarray(s, dtype=float)
+        q = self.link_state(link, "q")
+        c, si = np.cos(q[:, 2]), np.sin(q[:, 2])
+        ax, ay = c * s[0] - si * s[1], si * s[0] + c * s[1]  # A s
+        if which == "q":
+            return np.stack([q[:, 0] + ax, q[:, 1] + ay], axis=1)
+        if which in ("qd", "qp"):
+            v = self.link_state(link, which)
+            return np.stack([v[:, 0] - v[:, 2] * ay, v[:, 1] + v[:, 2] * ax], axis=1)
+        first = "qd" if which == "qdd" else "qp"
+        v = self.link_state(link, first)
+        acc = self.link_state(link, which)
+        w, e = v[:, 2], acc[:, 2]
+        return np.stack([acc[:, 0] - e * ay - w * w * ax, acc[:, 1] + e * ax - w * w * ay], axis=1)
+
+    def all_points(self, which: str = "q") -> dict[str, np.ndarray]:
+        """{point: (N, 2)} for every named point."""
+        return {n: self.point(n, which=which) for n, _xy in self.mechanism.points}
+
+    def angular_velocity(self, link: str) -> np.ndarray:
+        return self.link_state(link, "qd")[:, 2]
+
+    def angular_acceleration(self, link: str) -> np.ndarray:
+        return self.link_state(link, "qdd")[:, 2]
+
+
+# ---- constructors of common mechanisms ----------------------------------------------------
+
+
+def fourbar_mechanism(
+    fourbar,
+    theta2: float = math.radians(60.0),
+    *,
+    masses: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    inertias: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    cgs: tuple | None = None,
+    speed: float = 1.0,
+    acceleration: float = 0.0,
+    gravity=(0.0, 0.0),
+    forces=(),
+    torques=(),
+    name: str = "four-bar",
+) -> Mechanism:
+    """A :class:`~crankdyn.linkage.fourbar.FourBar` as a general Mechanism, drawn at crank angle
+    theta2 (rad) on its branch: points A (origin), B, C, D (ground, d, 0) and the coupler point P
+    if any; links crank (A, B), coupler (B, C[, P]), rocker (D, C); joints A, B, C, D.
+
+    ``cgs`` gives each link's centre of gravity as the fraction along its line (crank from A,
+    coupler from B, rocker from D), default the midpoints.
+    """
+    from crankdyn.linkage.fourbar import fourbar_positions
+
+    a, b, c, d = fourbar.lengths
+    t3, t4 = fourbar_positions(np.array([theta2]), a, b, c, d, fourbar.branch)
+    if not np.isfinite(t4[0]):
+        raise fourbar.assembly_error(theta2)
+    pa = np.array([0.0, 0.0])
+    pb = a * np.array([math.cos(theta2), math.sin(theta2)])
+    pd = np.array([d, 0.0])
+    pc = pd + c * np.array([math.cos(t4[0]), math.sin(t4[0])])
+    points = {"A": pa, "B": pb, "C": pc, "D": pd}
+    coupler_pts = ["B", "C"]
+    if fourbar.coupler_point is not None:
+        p, qq = fourbar.coupler_point
+        u = np.array([math.cos(t3[0]), math.sin(t3[0])])
+        points["P"] = pb + p * u + qq * np.array([-u[1], u[0]])
+        coupler_pts.append("P")
+    fr = cgs or (0.5, 0.5, 0.5)
+    ends = ((pa, pb), (pb, pc), (pd, pc))
+    cg = [tuple(s + f * (e - s)) for f, (s, e) in zip(fr, ends, strict=True)]
+    links = (
+        Link("crank", ("A", "B"), masses[0], inertias[0], cg[0]),
+        Link("coupler", tuple(coupler_pts), masses[1], inertias[1], cg[1]),
+        Link("rocker", ("D", "C"), masses[2], inertias[2], cg[2]),
+    )
+    joints = (
+        Joint("A", "revolute", (GROUND, "crank"), "A"),
+        Joint("B", "revolute", ("crank", "coupler"), "B"),
+        Joint("C", "revolute", ("coupler", "rocker"), "C"),
+        Joint("D", "revolute", (GROUND, "rocker"), "D"),
+    )
+    return Mechanism(
+        name=name,
+        points={k: tuple(v) for k, v in points.items()},
+        links=links,
+        joints=joints,
+        driver=Driver("A", "B", 0.0, speed, acceleration),
+        forces=tuple(forces),
+        torques=tuple(torques),
+        gravity=gravity,
+    )
+
+
+def slider_crank_mechanism(
+    crank: float,
+    rod: float,
+    offset: float = 0.0,
+    theta: float = math.radians(30.0),
+    *,
+    masses: tuple[float, float, float] = (0.0, 0.0, 0.0),
+    inertias: tuple[float, float] = (0.0, 0.0),
+    cg_fractions: tuple[float, float] = (0.5, 0.5),
+    speed: float = 1.0,
+    acceleration: float = 0.0,
+    gravity=(0.0, 0.0),
+    forces=(),
+    torques=(),
+    friction: Mapping[str, tuple[float, float]] | None = None,
+    name: str = "slider-crank",
+) -> Mechanism:
+    """An (offset) slider-crank drawn at crank angle theta (rad): crank pivot A at the origin,
+    the slider's guide along +x at height ``offset`` (m), crank AB = crank, rod BC = rod.
+    Links crank (A, B), rod (B, C), slider (C); joints A, B, C (revolute) and S (prismatic, on
+    the ground). ``friction`` maps joint names to (journal radius or 0, coefficient)."""
+    pb = crank * np.array([math.cos(theta), math.sin(theta)])
+    dy = offset - pb[1]
+    if abs(dy) >= rod:
+        raise InputError("the rod cannot reach the guide at this crank angle", key="rod")
+    pc = np.array([pb[0] + math.sqrt(rod * rod - dy * dy), offset])
+    fr = friction or {}
+
+    def jf(name):
+        r, f = fr.get(name, (0.0, 0.0))
+        return {"journal_radius": r, "friction": f}
+
+    links = (
+        Link("crank", ("A", "B"), masses[0], inertias[0], tuple(cg_fractions[0] * pb)),
+        Link(
+            "rod",
+            ("B", "C"),
+            masses[1],
+            inertias[1],
+            tuple(pb + cg_fractions[1] * (pc - pb)),
+        ),
+        Link("slider", ("C",), masses[2], 0.0, tuple(pc)),
+    )
+    joints = (
+        Joint("A", "revolute", (GROUND, "crank"), "A", **jf("A")),
+        Joint("B", "revolute", ("crank", "rod"), "B", **jf("B")),
+        Joint("C", "revolute", ("rod", "slider"), "C", **jf("C")),
+        Joint("S", "prismatic", (GROUND, "slider"), "C", axis=0.0, friction=jf("S")["friction"]),
+    )
+    return Mechanism(
+        name=name,
+        points={"A": (0.0, 0.0), "B": tuple(pb), "C": tuple(pc)},
+        links=links,
+        joints=joints,
+        driver=Driver("A", "B", 0.0, speed, acceleration),
+        forces=tuple(forces),
+        torques=tuple(torques),
+        gravity=gravity,
+    )
+
+
+# ---- analysis result ---------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LinkageKinematicsResult(Result):
+    """Motion of every link and point over the crank angles (SI; angles exported in deg)."""
+
+    title = "Linkage kinematics"
+    mechanism_name: str = scalar("mechanism", "Mechanism", "")
+    crank_speed: float = scalar("crank_speed_rad_s", "Crank speed", "rad/s")
+    crank_acceleration: float = scalar("crank_acceleration_rad_s2", "Crank acceleration", "rad/s²")
+    degrees_of_freedom: int = scalar("degrees_of_freedom", "Degrees of freedom", "")
+    link_groups: tuple = scalar("link_groups", "Link groups (force-analysis order)", "")
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
+    link_angle: dict = column("link_angle_deg", "Angle", "deg", DEG)
+    link_angular_velocity: dict = column("link_angular_velocity_rad_s", "ω", "rad/s")
+    link_angular_acceleration: dict = column("link_angular_acceleration_rad_s2", "α", "rad/s²")
+    point_position: dict = column("point_position_m", "Position", "m")
+    point_velocity: dict = column("point_velocity_m_s", "Velocity", "m/s")
+    point_acceleration: dict = column("point_acceleration_m_s2", "Acceleration", "m/s²")
+    motion: MechanismMotion | None = field(default=None, repr=False)
+
+    def plot(self, fig=None):
+        """Paths (coupler curves) of the points with the mechanism drawn; returns the Figure."""
+        from crankdyn.plots.linkage import plot_paths
+
+        return plot_paths(self.motion, fig=fig)
+
+
+def linkage_kinematics(motion: MechanismMotion) -> LinkageKinematicsResult:
+    """Link angles, angular velocities and accelerations and point positions, velocities and
+    accelerations of a :class:`MechanismMotion` as a result object."""
+    mech = motion.mechanism
+    moving = [n for n, _xy in mech.points if mech.point_owner[n] != GROUND]
+
+    def xy(arr):
+        return {"x": freeze(arr[:, 0]), "y": freeze(arr[:, 1])}
+
+    groups = tuple(f"{g.kind}: {'-'.join(g.links)}" for g in mech.link_groups())
+    return LinkageKinematicsResult(
+        mechanism_name=mech.name,
+        crank_speed=motion.speed,
+        crank_acceleration=motion.acceleration,
+        degrees_of_freedom=mech.degrees_of_freedom,
+        link_groups=groups,
+        crank_angle=freeze(motion.crank_angle),
+        link_angle={n: freeze(motion.link_angle(n)) for n in mech.link_names},
+        link_angular_velocity={n: freeze(motion.angular_velocity(n)) for n in mech.link_names},
+        link_angular_acceleration={
+            n: freeze(motion.angular_acceleration(n)) for n in mech.link_names
+        },
+        point_position={n: xy(motion.point(n)) for n in moving},
+        point_velocity={n: xy(motion.point(n, which="qd")) for n in moving},
+        point_acceleration={n: xy(motion.point(n, which="qdd")) for n in moving},
+        motion=motion,
+    )

@@ -1,0 +1,370 @@
+"""Plots of planar linkages: the mechanism with force vectors, coupler curves, transmission angle,
+driving torque over the cycle, and a GIF animation of a full cycle."""
+
+from __future__ import annotations
+
+import io
+import math
+
+import numpy as np
+from matplotlib.patches import Polygon, Rectangle
+
+from crankdyn.plots.style import COLORS, angle_axis, new_figure
+
+__all__ = [
+    "animate_mechanism",
+    "draw_mechanism",
+    "plot_fourbar",
+    "plot_kinetostatics",
+    "plot_mechanism",
+    "plot_paths",
+]
+
+_LINK_COLORS = COLORS[:6] + COLORS[7:]
+
+
+def _link_color(i: int) -> str:
+    return _LINK_COLORS[i % len(_LINK_COLORS)]
+
+
+def _ground_mark(ax, xy, size):
+    """A hatched ground symbol under a fixed pivot."""
+    x, y = xy
+    tri = Polygon(
+        [(x, y), (x - 0.6 * size, y - size), (x + 0.6 * size, y - size)],
+        closed=True,
+        facecolor="#e6e6e6",
+        edgecolor="#404040",
+        linewidth=0.8,
+        zorder=1,
+    )
+    ax.add_patch(tri)
+    ax.plot([x - size, x + size], [y - size, y - size], color="#404040", linewidth=1.0, zorder=1)
+
+
+def draw_mechanism(ax, motion, index: int = 0, *, forces=None, labels: bool = True, scale=None):
+    """Draw the mechanism of a :class:`~crankdyn.linkage.planar.MechanismMotion` at position
+    ``index`` on ``ax``: links, joints, fixed pivots, sliders and guides, centres of gravity, and,
+    with a :class:`~crankdyn.linkage.kinetostatics.KinetostaticsResult`, the joint forces on the
+    second link of each joint as arrows (scaled to the largest force of the cycle).
+    """
+    from crankdyn.linkage.planar import GROUND
+
+    mech = motion.mechanism
+    size = mech.length_scale
+    mark = 0.035 * size
+    pos = {n: p[index] for n, p in motion.all_points().items()}
+    for i, link in enumerate(mech.links):
+        color = _link_color(i)
+        pts = [motion.point(p, link=link.name)[index] for p in link.points]
+        if len(pts) >= 3:
+            ax.add_patch(
+                Polygon(pts, closed=True, facecolor=color, alpha=0.18, edgecolor=color, zorder=2)
+            )
+        if len(pts) >= 2:
+            xs, ys = zip(*(pts + ([pts[0]] if len(pts) >= 3 else [])), strict=True)
+            ax.plot(xs, ys, color=color, linewidth=3.0, solid_capstyle="round", zorder=3)
+        if len(pts) == 1:  # a slider block
+            angle = 0.0
+            for j in mech.joints:
+                if j.kind == "prismatic" and j.links[1] == link.name:
+                    rot = 0.0 if j.links[0] == GROUND else motion.link_state(j.links[0])[index, 2]
+                    angle = j.axis + rot
+            w, h = 2.4 * mark, 1.4 * mark
+            c, s = math.cos(angle), math.sin(angle)
+            x0, y0 = pts[0]
+            corner = (x0 - (w / 2) * c + (h / 2) * s, y0 - (w / 2) * s - (h / 2) * c)
+            ax.add_patch(
+                Rectangle(
+                    corner,
+                    w,
+                    h,
+                    angle=math.degrees(angle),
+                    facecolor=color,
+                    alpha=0.5,
+                    edgecolor=color,
+                    zorder=3,
+                )
+            )
+        g = motion.link_state(link.name)[index, :2]
+        if link.mass > 0.0:
+            ax.plot(*g, marker="o", markersize=5, markerfacecolor="white", color=color, zorder=5)
+    # guides of prismatic joints
+    for j in mech.joints:
+        if j.kind != "prismatic":
+            continue
+        r = motion.point(j.point, link=j.links[1])
+        rot = 0.0 if j.links[0] == GROUND else motion.link_state(j.links[0])[:, 2]
+        ang = j.axis + np.broadcast_to(rot, r.shape[:1])
+        t = np.stack([np.cos(ang), np.sin(ang)], axis=1)
+        along = np.sum((r - r[index]) * t[index], axis=1)
+        lo, hi = float(np.min(along)) - 2 * mark, float(np.max(along)) + 2 * mark
+        if j.links[0] != GROUND:
+            lo, hi = -1.5 * size * 0.3, 1.5 * size * 0.3
+        p0 = r[index] + lo * t[index]
+        p1 = r[index] + hi * t[index]
+        ax.plot([p0[0], p1[0]], [p0[1], p1[1]], color="#404040", linewidth=1.0, zorder=1)
+    # joints and fixed pivots
+    for j in mech.joints:
+        p = pos[j.point] if j.kind == "revolute" else None
+        if p is None:
+            continue
+        if GROUND in j.links:
+            _ground_mark(ax, p, mark)
+        ax.plot(*p, marker="o", markersize=6, markerfacecolor="white", color="#202020", zorder=6)
+    if labels:
+        for name, p in pos.items():
+            ax.annotate(
+                name,
+                p,
+                xytext=(5, 5),
+                textcoords="offset points",
+                fontsize=8,
+                color="#202020",
+                zorder=7,
+            )
+    if forces is not None:
+        peak = max(
+            (float(np.max(np.hypot(f["x"], f["y"]))) for f in forces.joint_forces.values()),
+            default=0.0,
+        )
+        scale = scale or (0.35 * size / peak if peak > 0 else 0.0)
+        for j in mech.joints:
+            f = forces.joint_forces[j.name]
+            fx, fy = float(f["x"][index]), float(f["y"][index])
+            p = motion.point(j.point, link=j.links[1])[index]
+            if math.hypot(fx, fy) * scale < 1e-3 * size:
+                continue
+            ax.annotate(
+                "",
+                xy=(p[0] + fx * scale, p[1] + fy * scale),
+                xytext=(p[0], p[1]),
+                arrowprops={"arrowstyle": "-|>", "color": COLORS[1], "linewidth": 1.4},
+                zorder=8,
+            )
+            ax.annotate(
+                f"{math.hypot(fx, fy):.4g} N",
+                (p[0] + fx * scale, p[1] + fy * scale),
+                fontsize=7,
+                color=COLORS[1],
+                xytext=(3, -9),
+                textcoords="offset points",
+                zorder=8,
+            )
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+
+
+def _frame_limits(ax, motion, margin=0.12):
+    xy = np.concatenate([p for p in motion.all_points().values()], axis=0)
+    lo, hi = xy.min(axis=0), xy.max(axis=0)
+    pad = margin * float(max(hi - lo))
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+
+
+def plot_mechanism(motion, index: int = 0, forces=None, fig=None):
+    """The mechanism at one position, with the paths of its points and (given a kinetostatics
+    result) the joint forces as arrows; returns the Figure."""
+    fig, axes = new_figure(1, 1, width=8.0, height=6.5, fig=fig)
+    ax = axes[0, 0]
+    for name, p in motion.all_points().items():
+        if np.ptp(p[:, 0]) + np.ptp(p[:, 1]) > 0:
+            ax.plot(p[:, 0], p[:, 1], color="#b0b0b0", linewidth=0.8, zorder=0)
+            del name
+    draw_mechanism(ax, motion, index, forces=forces)
+    _frame_limits(ax, motion)
+    theta = math.degrees(motion.crank_angle[index])
+    title = f"{motion.mechanism.name}: crank angle {theta:.4g}°"
+    if forces is not None:
+        title += f", driving torque {forces.driving_torque[index]:.4g} N·m"
+        ax.plot([], [], color=COLORS[1], label="joint force on the second link (N)")
+        ax.legend(loc="upper right", fontsize=8)
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
+def plot_paths(motion, fig=None):
+    """Paths (coupler curves) of every moving point over the crank angles; returns the Figure."""
+    fig, axes = new_figure(1, 1, width=8.0, height=6.5, fig=fig)
+    ax = axes[0, 0]
+    i = 0
+    for name, p in motion.all_points().items():
+        if np.ptp(p[:, 0]) + np.ptp(p[:, 1]) <= 1e-12:
+            continue
+        ax.plot(p[:, 0], p[:, 1], color=COLORS[i % len(COLORS)], linewidth=1.4, label=name)
+        i += 1
+    draw_mechanism(ax, motion, 0, labels=True)
+    _frame_limits(ax, motion)
+    ax.legend(loc="upper right", fontsize=8, title="Point paths")
+    ax.set_title(f"{motion.mechanism.name}: point paths (coupler curves)", fontsize=10)
+    return fig
+
+
+def plot_fourbar(result, fig=None):
+    """Four panels: the linkage at the first angle with the coupler curve, the transmission angle
+    with its extremes, the angular velocities and the angular accelerations; returns the
+    Figure."""
+    fig, axes = new_figure(2, 2, width=11.0, height=8.0, fig=fig)
+    fb = result.linkage
+    ax = axes[0, 0]
+    theta = result.crank_angle
+    a, _b, c, d = fb.lengths
+    bx, by = a * np.cos(theta), a * np.sin(theta)
+    cx, cy = d + c * np.cos(result.rocker_angle), c * np.sin(result.rocker_angle)
+    ax.plot(cx, cy, color="#b0b0b0", linewidth=0.9, label="path of C")
+    if result.coupler_point_x is not None:
+        ax.plot(
+            result.coupler_point_x, result.coupler_point_y, color=COLORS[3], label="coupler curve"
+        )
+    # draw the linkage at the angle nearest 60 deg (a clear, open position)
+    i = int(np.argmin(np.abs(np.remainder(theta - math.pi / 3 + math.pi, 2 * math.pi) - math.pi)))
+    ax.plot([0, bx[i]], [0, by[i]], color=COLORS[0], linewidth=3, label="crank AB")
+    ax.plot([bx[i], cx[i]], [by[i], cy[i]], color=COLORS[2], linewidth=3, label="coupler BC")
+    ax.plot([d, cx[i]], [0, cy[i]], color=COLORS[4], linewidth=3, label="rocker DC")
+    if result.coupler_point_x is not None:
+        px, py = result.coupler_point_x[i], result.coupler_point_y[i]
+        ax.add_patch(
+            Polygon([(bx[i], by[i]), (cx[i], cy[i]), (px, py)], alpha=0.2, color=COLORS[2])
+        )
+        ax.plot(px, py, "o", color=COLORS[3], zorder=5)
+        ax.annotate("P", (px, py), xytext=(5, 5), textcoords="offset points", fontsize=8)
+    size = max(fb.lengths)
+    for x in (0.0, d):
+        _ground_mark(ax, (x, 0.0), 0.04 * size)
+    for x, y, n in ((0, 0, "A"), (bx[i], by[i], "B"), (cx[i], cy[i], "C"), (d, 0, "D")):
+        ax.plot(x, y, "o", markerfacecolor="white", color="#202020", zorder=5)
+        ax.annotate(n, (x, y), xytext=(5, 5), textcoords="offset points", fontsize=8)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.legend(loc="best", fontsize=7)
+    ax.set_title(
+        f"{result.grashof_type}, {result.branch} branch, θ2 = {math.degrees(theta[i]):.4g}°",
+        fontsize=10,
+    )
+    deg = np.degrees(theta)
+    ax = axes[0, 1]
+    ax.plot(deg, np.degrees(result.transmission), color=COLORS[0], label="μ")
+    lim = result.limits
+    for v, text in ((lim.transmission_angle_min, "min"), (lim.transmission_angle_max, "max")):
+        ax.axhline(math.degrees(v), color=COLORS[1], linewidth=0.8, linestyle="--")
+        ax.annotate(
+            f"{text} {math.degrees(v):.2f}°",
+            (0.5 * (deg[0] + deg[-1]), math.degrees(v)),
+            fontsize=8,
+            xytext=(0, 3),
+            textcoords="offset points",
+            ha="center",
+            color=COLORS[1],
+        )
+    ax.set_ylabel("Transmission angle μ (deg)")
+    angle_axis(ax, deg)
+    ax = axes[1, 0]
+    ax.plot(deg, result.coupler_angular_velocity, color=COLORS[2], label="coupler ω3")
+    ax.plot(deg, result.rocker_angular_velocity, color=COLORS[4], label="rocker ω4")
+    ax.set_ylabel("Angular velocity (rad/s)")
+    ax.legend(loc="best", fontsize=8)
+    angle_axis(ax, deg)
+    ax = axes[1, 1]
+    ax.plot(deg, result.coupler_angular_acceleration, color=COLORS[2], label="coupler α3")
+    ax.plot(deg, result.rocker_angular_acceleration, color=COLORS[4], label="rocker α4")
+    ax.set_ylabel("Angular acceleration (rad/s²)")
+    ax.legend(loc="best", fontsize=8)
+    angle_axis(ax, deg)
+    fig.suptitle(
+        f"Four-bar a = {a * 1e3:.5g}, b = {fb.coupler * 1e3:.5g}, c = {c * 1e3:.5g}, "
+        f"d = {d * 1e3:.5g} mm; crank speed {result.crank_speed:.4g} rad/s"
+    )
+    return fig
+
+
+def plot_kinetostatics(result, fig=None):
+    """Driving torque over the cycle by the matrix method and by virtual work (and without
+    friction, with the efficiency), and the joint force magnitudes; returns the Figure."""
+    fig, axes = new_figure(2, 1, width=10.0, height=7.5, fig=fig, sharex=True)
+    deg = np.degrees(result.crank_angle)
+    ax = axes[0, 0]
+    ax.plot(
+        deg,
+        result.driving_torque,
+        color=COLORS[0],
+        linewidth=1.8,
+        label="matrix method [C]{R} = [D]{P}" + (" with friction" if result.with_friction else ""),
+    )
+    ax.plot(
+        deg,
+        result.driving_torque_virtual_work,
+        color=COLORS[1],
+        linewidth=1.0,
+        linestyle="--",
+        label="Zhukovsky lever / virtual work (no friction)",
+    )
+    ax.axhline(0.0, color="#808080", linewidth=0.6)
+    ax.set_ylabel("Driving torque (N·m)")
+    ax.legend(loc="upper left", fontsize=8)
+    if result.efficiency is not None:
+        twin = ax.twinx()
+        twin.plot(deg, result.efficiency, color=COLORS[2], linewidth=1.0, label="efficiency η")
+        twin.set_ylabel("Instantaneous efficiency η")
+        twin.set_ylim(0.0, 1.05)
+        twin.legend(loc="upper right", fontsize=8)
+    ax = axes[1, 0]
+    for i, (name, f) in enumerate(result.joint_forces.items()):
+        ax.plot(deg, np.hypot(f["x"], f["y"]), color=COLORS[i % len(COLORS)], label=name)
+    ax.set_ylabel("Joint force magnitude (N)")
+    ax.legend(loc="upper right", fontsize=8, ncol=2, title="Joint")
+    angle_axis(ax, deg)
+    fig.suptitle(f"{result.mechanism_name}: kinetostatics at {result.crank_speed:.4g} rad/s")
+    return fig
+
+
+def animate_mechanism(motion, forces=None, *, fps: int = 20, dpi: int = 80) -> bytes:
+    """A GIF of the mechanism moving through the positions of ``motion`` (one frame each), with
+    the joint forces when given; returns the GIF file's bytes (frames rendered with the Agg
+    canvas and assembled by Pillow, as matplotlib's PillowWriter does)."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from PIL import Image
+
+    frames = []
+    fig, axes = new_figure(1, 1, width=6.4, height=5.2)
+    FigureCanvasAgg(fig)
+    ax = axes[0, 0]
+    scale = None
+    if forces is not None:
+        peak = max(
+            (float(np.max(np.hypot(f["x"], f["y"]))) for f in forces.joint_forces.values()),
+            default=0.0,
+        )
+        scale = 0.35 * motion.mechanism.length_scale / peak if peak > 0 else None
+    paths = {n: p for n, p in motion.all_points().items() if np.ptp(p[:, 0]) + np.ptp(p[:, 1]) > 0}
+    for p in paths.values():  # static: drawn once
+        ax.plot(p[:, 0], p[:, 1], color="#c8c8c8", linewidth=0.8, zorder=0)
+    static = (len(ax.lines), len(ax.patches), len(ax.texts))
+    for i in range(motion.crank_angle.size):
+        for group, keep in zip((ax.lines, ax.patches, ax.texts), static, strict=True):
+            for artist in list(group)[keep:]:
+                artist.remove()
+        draw_mechanism(ax, motion, i, forces=forces, labels=True, scale=scale)
+        _frame_limits(ax, motion)
+        title = f"{motion.mechanism.name}\ncrank angle {math.degrees(motion.crank_angle[i]):.1f}°"
+        if forces is not None:
+            title += f", driving torque {forces.driving_torque[i]:.4g} N·m"
+        ax.set_title(title, fontsize=9)
+        fig.canvas.draw()
+        if i == 0:
+            fig.set_layout_engine("none")  # keep the first frame's layout: steady, and faster
+        rgba = np.asarray(fig.canvas.buffer_rgba())
+        frames.append(Image.fromarray(rgba[..., :3].copy()).convert("P", palette=Image.ADAPTIVE))
+    buffer = io.BytesIO()
+    frames[0].save(
+        buffer,
+        format="GIF",
+        save_all=True,
+        append_images=frames[1:],
+        duration=max(int(1000 / fps), 20),
+        loop=0,
+        disposal=2,
+    )
+    return buffer.getvalue()

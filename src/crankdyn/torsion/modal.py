@@ -1,0 +1,263 @@
+"""Natural frequencies and mode shapes of a torsional model (analysis and result).
+
+The undamped free vibration M theta'' + K theta = 0 with theta = phi sin(omega t) gives the
+symmetric-definite eigenproblem K phi = omega^2 M phi (seed 003, 多质量扭振系统: one equation
+per mass, eq. 4-13 generalised). M is diagonal, so with u = M^(1/2) phi it becomes the standard
+symmetric problem (M^-1/2 K M^-1/2) u = omega^2 u. For a chain that matrix is tridiagonal
+(d_i = K_ii / J_i, e_i = K_i,i+1 / sqrt(J_i J_i+1)) and is solved by LAPACK's tridiagonal
+solver (``scipy.linalg.eigh_tridiagonal``, O(n^2) with eigenvectors instead of O(n^3)); branched
+or looped models use the general symmetric-definite solver (``scipy.linalg.eigh(K, M)``).
+
+A free model (no grounded shaft) has exactly one rigid-body mode, omega = 0 with all masses
+turning together; it is reported as exactly 0.0 with the shape of ones.
+
+Other solvers give the same frequencies independently: Holzer's method
+(:mod:`crankdyn.torsion.holzer`), the transfer-matrix method (:mod:`crankdyn.torsion.transfer`)
+and the closed forms of seed 003 (:mod:`crankdyn.torsion.closed_form`).
+
+Reported per mode: the natural frequency, the mode shape (reflected amplitudes of the masses in
+listing order, normalised to a largest absolute amplitude of 1, the first non-zero amplitude
+positive), the nodes (where the amplitude passes through zero: at a fraction t = theta_a /
+(theta_a - theta_b) along a shaft from its first mass, the twist being uniform along a uniform
+shaft), and the modal inertia J_r = sum J_i phi_i^2 and stiffness omega_r^2 J_r of that
+normalisation.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+
+import numpy as np
+import scipy.linalg
+
+from crankdyn.errors import InputError
+from crankdyn.results import Result, array, column, freeze, scalar
+from crankdyn.torsion.model import TorsionModel
+
+__all__ = ["SOLVERS", "ModalResult", "Node", "eigen_modes", "natural_modes"]
+
+SOLVERS = ("eigen", "holzer", "transfer", "closed-form")
+HZ = 1.0 / (2.0 * math.pi)
+_ZERO = 1e-9  # amplitudes below this (of the largest) are nodes at a mass
+
+
+@dataclass(frozen=True)
+class Node(Result):
+    """A node of a mode: on a shaft (at a fraction of its length from its first mass) or at a
+    mass."""
+
+    shaft: tuple[str, str] | None = scalar("shaft", "Shaft", "", default=None)
+    mass: str | None = scalar("mass", "At mass", "", default=None)
+    fraction: float | None = scalar(
+        "fraction_from_first", "Position along the shaft from its first mass", "", default=None
+    )
+
+    def describe(self) -> str:
+        if self.mass is not None:
+            return f"at {self.mass}"
+        return f"{self.shaft[0]} - {self.shaft[1]} at {self.fraction:.3f}"
+
+
+@dataclass(frozen=True)
+class ModalResult(Result):
+    """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model."""
+
+    title = "Natural frequencies"
+    mode: np.ndarray = column("mode", "Mode", "")
+    natural_frequency: np.ndarray = column("natural_frequencies_hz", "Natural frequency", "Hz", HZ)
+    node_count: np.ndarray = column("node_counts", "Nodes", "")
+    modal_inertia: np.ndarray = column("modal_inertias_kg_m2", "Modal inertia", "kg·m²")
+    modal_stiffness: np.ndarray = column(
+        "modal_stiffnesses_Nm_per_rad", "Modal stiffness", "N·m/rad"
+    )
+    mode_shapes: np.ndarray = array("mode_shapes", "Mode shapes (largest amplitude 1)", "")
+    masses: tuple[str, ...] = scalar("masses", "Masses", "")
+    solver: str = scalar("solver", "Solver", "")
+    structure: str = scalar("structure", "Structure", "")
+    free: bool = scalar("free", "Free (rigid-body mode)", "")
+    model_name: str = scalar("model", "Model", "")
+    eigenvectors: np.ndarray | None = field(default=None, repr=False, compare=False)
+    model: TorsionModel | None = field(default=None, repr=False, compare=False)
+    node_arrays: _NodeArrays | None = field(default=None, repr=False, compare=False)
+
+    @cached_property
+    def nodes(self) -> tuple[tuple[Node, ...], ...]:
+        """The nodes of every mode (none for the rigid-body mode)."""
+        out: list[list[Node]] = [[] for _ in range(self.mode.size)]
+        if self.node_arrays is None or self.model is None:
+            return tuple(tuple(n) for n in out)
+        arrays = self.node_arrays
+        names = self.model.mass_names
+        for r, i in zip(arrays.mass_mode, arrays.mass, strict=True):
+            out[r].append(Node(mass=names[i]))
+        shafts = self.model.shafts
+        for r, s, t in zip(arrays.shaft_mode, arrays.shaft, arrays.fraction, strict=True):
+            out[r].append(Node(shaft=shafts[s].between, fraction=float(t)))
+        return tuple(tuple(n) for n in out)
+
+    def to_dict(self) -> dict:
+        """JSON-ready dict; ``nodes`` holds one list per mode of {shaft, fraction_from_first}
+        or {mass} entries."""
+        out = super().to_dict()
+        out["nodes"] = [[n.to_dict() for n in mode] for mode in self.nodes]
+        return out
+
+    @property
+    def frequencies_hz(self) -> np.ndarray:
+        """Natural frequencies (Hz)."""
+        return self.natural_frequency * HZ
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The per-mode columns, then one amplitude column per mass (``amplitude_<n>``)."""
+        out = super().columns()
+        for i in range(len(self.masses)):
+            out[f"amplitude_{i + 1}"] = np.asarray(self.mode_shapes[:, i], dtype=float)
+        return out
+
+    def column_labels(self) -> dict[str, tuple[str, str]]:
+        out = super().column_labels()
+        for i, name in enumerate(self.masses):
+            out[f"amplitude_{i + 1}"] = (f"Amplitude {name}", "")
+        return out
+
+    def plot(self, modes=None, fig=None):
+        """Mode shapes of the elastic modes (default: the first six); returns the Figure."""
+        from crankdyn.plots.torsion import plot_mode_shapes
+
+        return plot_mode_shapes(self, modes=modes, fig=fig)
+
+
+def eigen_modes(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
+    """omega^2 (ascending, rad^2/s^2) and mass-normalised eigenvectors (dof x mode,
+    phi^T M phi = I) by the structured symmetric solver (see the module docstring)."""
+    J = model.dof_inertia
+    chain = model.chain
+    if chain is not None:
+        diag, off = chain.stiffness_diagonals()
+        s = np.sqrt(J)
+        d = diag / J
+        if chain.size == 1:
+            lam, u = d.copy(), np.ones((1, 1))
+        else:
+            lam, u = scipy.linalg.eigh_tridiagonal(d, off / (s[:-1] * s[1:]), lapack_driver="stemr")
+        phi = u / s[:, None]
+    else:
+        lam, phi = scipy.linalg.eigh(model.stiffness_matrix(), np.diag(J))
+    lam = np.maximum(lam, 0.0)
+    if model.is_free:
+        lam[0] = 0.0
+        phi[:, 0] = 1.0 / math.sqrt(float(np.sum(J)))
+    return lam, phi
+
+
+def _solve(model: TorsionModel, solver: str) -> tuple[np.ndarray, np.ndarray]:
+    """(omega (rad/s), shapes (dof x mode)) by the named solver."""
+    if solver == "eigen":
+        lam, phi = eigen_modes(model)
+        return np.sqrt(lam), phi
+    if solver == "holzer":
+        from crankdyn.torsion.holzer import holzer_frequencies
+
+        return holzer_frequencies(model)
+    if solver == "transfer":
+        from crankdyn.torsion.transfer import transfer_frequencies
+
+        return transfer_frequencies(model)
+    if solver == "closed-form":
+        from crankdyn.torsion.closed_form import closed_form_modes
+
+        return closed_form_modes(model)
+    raise InputError(f"expected one of {', '.join(SOLVERS)}", key="solver", value=solver)
+
+
+def _normalise(shapes: np.ndarray) -> np.ndarray:
+    """Scale every row to a largest absolute amplitude of 1, first non-zero amplitude > 0."""
+    out = np.array(shapes, dtype=float)
+    peak = np.max(np.abs(out), axis=1, keepdims=True)
+    out /= np.where(peak > 0.0, peak, 1.0)
+    out[np.abs(out) < 1e-14] = 0.0
+    significant = np.abs(out) > _ZERO
+    first = np.argmax(significant, axis=1)
+    sign = np.sign(out[np.arange(out.shape[0]), first])
+    return out * np.where(sign == 0.0, 1.0, sign)[:, None] + 0.0  # + 0.0: no negative zeros
+
+
+@dataclass(frozen=True)
+class _NodeArrays:
+    """Nodes of all modes in compact form: crossings inside shafts and masses at rest."""
+
+    shaft_mode: np.ndarray  # mode index of every crossing
+    shaft: np.ndarray  # shaft index (model.shafts) of every crossing
+    fraction: np.ndarray  # position along that shaft from its first mass
+    mass_mode: np.ndarray  # mode index of every mass at rest
+    mass: np.ndarray  # mass index of every mass at rest
+
+    def counts(self, modes: int) -> np.ndarray:
+        return np.bincount(self.shaft_mode, minlength=modes) + np.bincount(
+            self.mass_mode, minlength=modes
+        )
+
+
+def _find_nodes(model: TorsionModel, shapes_dof: np.ndarray, free: bool) -> _NodeArrays:
+    """Nodes of every mode, for all modes at once (vectorised)."""
+    zero = np.abs(shapes_dof) <= _ZERO  # mode x dof
+    ends = model.shaft_dofs
+    inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
+    a, b = ends[inner, 0], ends[inner, 1]
+    ta, tb = shapes_dof[:, a], shapes_dof[:, b]  # mode x shaft
+    crossing = (ta * tb < 0.0) & ~zero[:, a] & ~zero[:, b]
+    if free:
+        zero[0] = False
+        crossing[0] = False
+    mode, s = np.nonzero(crossing)
+    fraction = ta[mode, s] / (ta[mode, s] - tb[mode, s])
+    at_rest = zero[:, model.mass_dof]  # mode x mass
+    mass_mode, mass = np.nonzero(at_rest)
+    return _NodeArrays(mode, inner[s], fraction, mass_mode, mass)
+
+
+def natural_modes(model: TorsionModel, solver: str = "eigen") -> ModalResult:
+    """Natural frequencies and mode shapes of a torsional model.
+
+    Parameters
+    ----------
+    model
+        The lumped model.
+    solver
+        ``"eigen"`` (structured symmetric eigen solver, any model), ``"holzer"`` (Holzer's
+        method), ``"transfer"`` (transfer-matrix method), both for chains, or ``"closed-form"``
+        (seed 003's one-, two- and three-mass formulas).
+
+    Returns
+    -------
+    ModalResult
+        Every mode, ascending (0.0 first for a free model).
+    """
+    omega, phi = _solve(model, solver)
+    omega = np.asarray(omega, dtype=float)
+    if model.is_free:
+        omega[0] = 0.0
+    shapes_dof = _normalise(np.asarray(phi, dtype=float).T)  # mode x dof
+    shapes = shapes_dof[:, model.mass_dof]  # mode x mass (listing order)
+    modal_inertia = np.sum(model.dof_inertia * shapes_dof**2, axis=1)
+    nodes = _find_nodes(model, shapes_dof, model.is_free)
+    # mass-normalised eigenvectors for later analyses (phi^T M phi = 1)
+    eigenvectors = shapes_dof.T / np.sqrt(modal_inertia)[None, :]
+    return ModalResult(
+        mode=freeze(np.arange(1, omega.size + 1), dtype=int),
+        natural_frequency=freeze(omega),
+        node_count=freeze(nodes.counts(omega.size), dtype=int),
+        modal_inertia=freeze(modal_inertia),
+        modal_stiffness=freeze(omega**2 * modal_inertia),
+        mode_shapes=freeze(shapes),
+        masses=model.mass_names,
+        node_arrays=nodes,
+        solver=solver,
+        structure="chain" if model.is_chain else "branched",
+        free=model.is_free,
+        model_name=model.name,
+        eigenvectors=freeze(eigenvectors),
+        model=model,
+    )

@@ -1,0 +1,81 @@
+"""Fuzzing torsional model files and the free-vibration solvers: the only outcomes allowed are a
+result with finite frequencies or the one-line InputError."""
+
+from __future__ import annotations
+
+import copy
+import math
+import tomllib
+from importlib import resources
+
+import numpy as np
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from crankdyn.errors import InputError
+from crankdyn.io.torsion_file import parse_torsion_model, torsion_example_names
+from crankdyn.torsion.holzer import holzer_table
+from crankdyn.torsion.modal import natural_modes
+from tests.conftest import fuzz_examples
+from tests.robustness.strategies import values
+
+EXAMPLES = resources.files("crankdyn") / "examples" / "torsion"
+BASES = [
+    tomllib.loads((EXAMPLES / f"{name}.toml").read_text(encoding="utf-8"))
+    for name in torsion_example_names()
+]
+KEYS = ["name", "inertia", "damping", "cylinders", "between", "stiffness", "length"]
+KEYS += ["outer_diameter", "inner_diameter", "shear_modulus", "loss_factor", "ratio", "ground"]
+
+
+@st.composite
+def mutated_model(draw):
+    doc = copy.deepcopy(draw(st.sampled_from(BASES)))
+    for _ in range(draw(st.integers(1, 4))):
+        table = draw(st.sampled_from(["mass", "shaft", "gear"]))
+        entries = doc.setdefault(table, [])
+        action = draw(st.sampled_from(["replace", "delete", "add", "drop", "copy", "magnitude"]))
+        if action == "add" or not entries:
+            entries.append({draw(st.sampled_from(KEYS)): draw(values) for _ in range(2)})
+            continue
+        entry = draw(st.sampled_from(entries))
+        key = draw(st.sampled_from([*entry, *KEYS]))
+        if action == "replace":
+            entry[key] = draw(values)
+        elif action == "delete":
+            entry.pop(key, None)
+        elif action == "drop":
+            entries.remove(entry)
+        elif action == "copy":
+            entries.append(copy.deepcopy(entry))
+        else:  # extreme but valid-looking magnitudes
+            exponent = draw(st.integers(-300, 300))
+            entry[key] = f"1e{exponent} {draw(st.sampled_from(['kg*m^2', 'N*m/rad', 'm', 'Pa']))}"
+    return doc
+
+
+def _solve(doc):
+    try:
+        model = parse_torsion_model(doc, file="fuzz.toml")
+    except InputError as exc:
+        text = str(exc)
+        assert text.startswith("fuzz.toml") and "\n" not in text, text
+        return
+    for solver in ("eigen", "holzer", "transfer"):
+        try:
+            result = natural_modes(model, solver)
+        except InputError as exc:
+            assert "\n" not in str(exc)
+            continue
+        assert np.all(np.isfinite(result.natural_frequency))
+        assert np.all(np.diff(result.natural_frequency) >= 0.0)
+    try:
+        holzer_table(model, 2 * math.pi * 100.0)
+    except InputError as exc:
+        assert "\n" not in str(exc)
+
+
+@settings(max_examples=fuzz_examples(80))
+@given(mutated_model())
+def test_fuzz_torsion_model_documents(doc):
+    _solve(doc)
