@@ -71,7 +71,8 @@ def test_another_study_in_the_folder_needs_force(cli, tmp_path):
         (
             ("inline4-rod-and-firng",),
             "inline4-rod-and-firng: no such file or built-in example study (examples: "
-            'inline4-rod-and-firing, inline6-tolerances) (did you mean "inline4-rod-and-firing"?)',
+            "inline4-rod-and-firing, inline6-flywheel-and-pulley-shaft, inline6-tolerances) "
+            '(did you mean "inline4-rod-and-firing"?)',
         ),
         (
             ("inline4-rod-and-firing", "--workers", "0"),

@@ -97,7 +97,7 @@ def test_a_case_without_a_speed_fails_with_one_line(tmp_path):
         source="vaz2108.toml",
         base_dir=str(path.parent),
         remove=(),
-        paths=(parse_path("masses.piston_group"),),
+        targets=(("masses.piston_group", (parse_path("masses.piston_group"),)),),
         settings=AnalysisSettings(),
         figures=("mean_torque",),
         modules=("crankdyn.study.figures",),
@@ -119,3 +119,115 @@ def test_the_registry():
         register_figure(FIGURES["mean_torque"])
     with pytest.raises(ValueError, match="needs its si_unit"):
         Figure("x", "x_kN", "x", "kN", function=lambda c: 0.0, scale=1e-3)
+
+
+def test_inline4_balance_figures_against_the_series():
+    """Inline-4 with a flat crank: first-order forces and all moments cancel; the second-order
+    free force is 4 m_j R w^2 times the second harmonic of the piston acceleration,
+    F_2 = m_j R w^2 (4 lam + lam^3 + 15 lam^5/32 + 35 lam^7/128 + 735 lam^9/4096 + ...): the
+    binomial series of sqrt(1 - lam^2 sin^2 phi) in the exact piston displacement, each
+    sin^2n phi contributing -C(2n, n-1)/2^(2n-1) cos 2 phi. Seed 000 gives the first term,
+    4 lam m_j R w^2; the first term left out, 0.127 lam^11, is 5e-8 of the sum at
+    lam = 0.26."""
+    from crankdyn.masses import equivalent_masses
+
+    engine = load_example("vaz2108")
+    names = ["free_force_1", "free_force_2", "free_moment_1", "free_moment_2", "free_force_4"]
+    got = figures_of(engine, names)
+    g, w = engine.geometry, engine.speed
+    m_j = equivalent_masses(engine.masses, g.rod_length)[0]
+    lam = g.lam
+    unit = m_j * g.crank_radius * w * w
+    series = 4 * lam + lam**3 + 15 * lam**5 / 32 + 35 * lam**7 / 128 + 735 * lam**9 / 4096
+    assert got["free_force_2"] == pytest.approx(unit * series, rel=1e-7)
+    assert got["free_force_1"] <= 1e-9 * unit
+    assert got["free_moment_1"] <= 1e-9 * unit and got["free_moment_2"] <= 1e-9 * unit
+    assert got["free_force_4"] > 0.0
+
+
+def test_flywheel_figures(vaz):
+    """For a target delta: the flywheel inertia is Delta E / (delta w^2) less the crank train's
+    own (seed 000 section 2.4), and the delta achieved with it (exact energy equation) equals
+    the target to first order in delta."""
+    from crankdyn.flywheel import crank_train_inertia
+
+    delta = 0.01
+    ctx = CaseContext(vaz, AnalysisSettings((("step", STEP), ("delta", delta))))
+    got = {
+        n: FIGURES[n].evaluate(ctx)
+        for n in ("excess_work", "flywheel_inertia", "cyclic_irregularity")
+    }
+    w = vaz.speed
+    rotating, reciprocating = crank_train_inertia(vaz.masses, vaz.geometry, vaz.cylinders.throws)
+    expected = got["excess_work"] / (delta * w * w) - rotating - reciprocating
+    assert got["flywheel_inertia"] == pytest.approx(expected, rel=1e-12)
+    assert got["cyclic_irregularity"] == pytest.approx(delta, rel=2 * delta)
+
+
+def test_natural_frequencies_of_a_two_mass_model_study(tmp_path):
+    """A study on a torsional model file: two discs on a shaft whose stiffness varies; the
+    only elastic mode is f = sqrt(k (J1 + J2)/(J1 J2)) / (2 pi) (seed 003, two-mass system),
+    and there is no second one."""
+    from crankdyn.io.study_file import load_study
+    from crankdyn.study.results import read_table
+    from crankdyn.study.runner import run_study
+
+    (tmp_path / "model.toml").write_text(
+        'name = "two discs"\n'
+        '[[mass]]\nname = "a"\ninertia = "2 kg*m^2"\n'
+        '[[mass]]\nname = "b"\ninertia = "6 kg*m^2"\n'
+        '[[shaft]]\nbetween = ["a", "b"]\nstiffness = "1e5 N*m/rad"\n',
+        encoding="utf-8",
+    )
+    (tmp_path / "study.toml").write_text(
+        'model = "model.toml"\n'
+        '[[parameter]]\nkey = "shaft[1].stiffness"\n'
+        'range = ["1 kN*m/rad", "1000 kN*m/rad"]\nsteps = 4\nspacing = "log"\n'
+        '[analysis]\nfigures = ["natural_frequency_1", "natural_frequency_2"]\n',
+        encoding="utf-8",
+    )
+    spec = load_study(tmp_path / "study.toml")
+    assert spec.base.kind == "model"
+    run = run_study(spec, tmp_path / "out", workers=1, summary=False)
+    assert run.ok == 4
+    data = read_table(tmp_path / "out" / "results.parquet").to_pydict()
+    k = np.asarray(data["shaft[1].stiffness_kN_m_per_rad"]) * 1e3
+    np.testing.assert_allclose(k, [1e3, 1e4, 1e5, 1e6], rtol=1e-12)
+    expected = np.sqrt(k * (2 + 6) / (2 * 6)) / (2 * math.pi)
+    np.testing.assert_allclose(data["natural_frequency_1_Hz"], expected, rtol=1e-10)
+    assert all(v is None or math.isnan(v) for v in data["natural_frequency_2_Hz"])
+
+
+def test_one_parameter_sets_two_keys(tmp_path):
+    """The built-in flywheel study sets the flywheel's inertia in the torsional model and in
+    [flywheel] with one parameter: the natural frequency and the speed fluctuation both move
+    (delta ~ 1 / (J_F + I_crank + I_other) at a fixed excess work)."""
+    from crankdyn.io.study_file import resolve_study
+    from crankdyn.study.cases import expand
+    from crankdyn.study.runner import payload_of
+
+    spec = resolve_study("inline6-flywheel-and-pulley-shaft")
+    flywheel = spec.parameters[0]
+    assert [p.text for p in flywheel.paths] == ["torsion.mass[9].inertia", "flywheel.inertia"]
+    payload = payload_of(spec)
+    cases = [
+        c
+        for c in expand(spec)
+        if c.params["torsion.shaft[1].stiffness"] == c.params["torsion.shaft[1].stiffness"]
+        and c.index % 4 == 0
+    ][:2]
+    records = [evaluate_case(payload, c.case_id, c.params) for c in cases]
+    assert [r["status"] for r in records] == ["ok", "ok"]
+    j = [c.numbers["torsion.mass[9].inertia"] for c in cases]
+    engine = load_example("inline6-diesel")
+    from crankdyn.flywheel import crank_train_inertia
+
+    crank = sum(crank_train_inertia(engine.masses, engine.geometry, engine.cylinders.throws))
+    crank += engine.flywheel.other_inertia
+    ratio = (
+        records[0]["figures"]["cyclic_irregularity"] / records[1]["figures"]["cyclic_irregularity"]
+    )
+    assert ratio == pytest.approx((j[1] + crank) / (j[0] + crank), rel=0.01)
+    assert (
+        records[0]["figures"]["natural_frequency_1"] != records[1]["figures"]["natural_frequency_1"]
+    )

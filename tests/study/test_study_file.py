@@ -86,7 +86,11 @@ def test_log_range_and_distributions(study):
 
 def test_built_in_examples():
     names = study_example_names()
-    assert {"inline4-rod-and-firing", "inline6-tolerances"} <= set(names)
+    assert names == [
+        "inline4-rod-and-firing",
+        "inline6-flywheel-and-pulley-shaft",
+        "inline6-tolerances",
+    ]
     grid = resolve_study("inline4-rod-and-firing")
     assert grid.case_count == 30 and grid.base.source == "vaz2108 (built-in example)"
     mc = resolve_study("inline6-tolerances")
@@ -112,7 +116,7 @@ P = '[[parameter]]\nkey = "geometry.rod_ratio"\nvalues = [0.25]\n'
     [
         (
             P + ANALYSIS,
-            "engine: missing; name the engine file to vary (or a built-in example), "
+            "engine: missing; name the engine or model file to vary (or a built-in example), "
             'e.g. engine = "engine.toml"',
         ),
         (

@@ -245,6 +245,7 @@ def _print_best(spec, folder: Path) -> None:
     """The best case of every figure with a sense of better, from the written table."""
     from crankdyn.study.figures import FIGURES
     from crankdyn.study.results import read_table
+    from crankdyn.study.sensitivity import negligible_spread
 
     data = read_table(folder / "results.parquet").to_pydict()
     ok = [i for i, s in enumerate(data["status"]) if s == "ok"]
@@ -260,6 +261,15 @@ def _print_best(spec, folder: Path) -> None:
         values = [(data[f.key][i], i) for i in ok if data[f.key][i] is not None]
         values = [(v, i) for v, i in values if math.isfinite(v)]
         if sense is None or not values:
+            continue
+        if negligible_spread([v for v, _ in values]):
+            table.add_row(
+                escape(f.label),
+                f"{values[0][0] * f.scale:.5g} {f.unit}".strip(),
+                "all",
+                "the same in every case",
+            )
+            rows += 1
             continue
         value, i = (min if sense == "min" else max)(values, key=lambda t: t[0])
         params = "; ".join(

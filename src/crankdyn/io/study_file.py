@@ -114,17 +114,18 @@ def _base(root: Table) -> Base:
     if not candidate.is_absolute():
         candidate = folder / candidate
     looks_like_path = spec.endswith(".toml") or "/" in spec or "\\" in spec
-    if kind == "engine" and not candidate.exists() and not looks_like_path:
-        names = example_names()
+    if not candidate.exists() and not looks_like_path:
+        names_of, file_of, what = _EXAMPLES_OF[kind]
+        names = names_of()
         if spec not in names:
             raise root.error(
                 kind,
-                f"no such file or built-in example (examples: {', '.join(names)})"
+                f"no such file or built-in {what} (examples: {', '.join(names)})"
                 + suggest(spec, names),
                 spec,
             )
-        candidate = example_files(spec)[0]
-        source = f"{spec} (built-in example)"
+        candidate = file_of(spec)
+        source = f"{spec} (built-in {what})"
     else:
         if not candidate.is_file():
             raise root.error(kind, f"no such {kind} file (looked for {candidate})", spec)
@@ -141,6 +142,22 @@ def _base(root: Table) -> Base:
         files_digest=digest,
         files=files,
     )
+
+
+def _torsion_examples():
+    from crankdyn.io.torsion_file import torsion_example_files, torsion_example_names
+
+    return torsion_example_names, torsion_example_files
+
+
+_EXAMPLES_OF = {
+    "engine": (example_names, lambda name: example_files(name)[0], "example"),
+    "model": (
+        lambda: _torsion_examples()[0](),
+        lambda name: _torsion_examples()[1](name),
+        "model",
+    ),
+}
 
 
 def _relative_display(path: Path) -> str:
@@ -238,12 +255,12 @@ def _range(t: Table) -> Parameter | tuple:
 
 
 def _parameter(t: Table, base_document: dict) -> Parameter:
-    path = parse_path(
-        t.raw("key", expected='a key path such as "geometry.rod_length"'),
-        file=t.file,
-        key=t.label("key"),
-    )
-    check_path(base_document, path, file=t.file, key=t.label("key"))
+    raw_key = t.raw("key", expected='a key path such as "geometry.rod_length"')
+    texts = raw_key if isinstance(raw_key, list) and raw_key else [raw_key]
+    paths = [parse_path(text, file=t.file, key=t.label("key")) for text in texts]
+    for path in paths:
+        check_path(base_document, path, file=t.file, key=t.label("key"))
+    path, also = paths[0], tuple(paths[1:])
     which = t.exclusive("values", "range", "distribution")
     if which == "values":
         items = t.raw("values")
@@ -255,14 +272,18 @@ def _parameter(t: Table, base_document: dict) -> Parameter:
         numeric = _numeric(t, "values", items)
         t.finish()
         if numeric is None:
-            return Parameter(path=path, values=tuple(items))
+            return Parameter(path=path, also=also, values=tuple(items))
         numbers, unit = numeric
-        return Parameter(path=path, values=tuple(items), numbers=tuple(numbers), unit=unit)
+        return Parameter(
+            path=path, also=also, values=tuple(items), numbers=tuple(numbers), unit=unit
+        )
     if which == "range":
         numbers, unit, integer = _range(t)
         t.finish()
         values = tuple(document_number(n, unit, integer) for n in numbers)
-        return Parameter(path=path, values=values, numbers=numbers, unit=unit, integer=integer)
+        return Parameter(
+            path=path, also=also, values=values, numbers=numbers, unit=unit, integer=integer
+        )
     name = t.string("distribution", choices=tuple(DISTRIBUTIONS))
     arg_names = DISTRIBUTIONS[name][0]
     raw = [t.raw(a, expected="a number or a quantity") for a in arg_names]
@@ -279,7 +300,7 @@ def _parameter(t: Table, base_document: dict) -> Parameter:
             if exc.key in t.data:
                 raise t.error(exc.key, exc.message, t.data[exc.key]) from None
             raise
-        return Parameter(path=path, unit=unit, distribution=distribution)
+        return Parameter(path=path, also=also, unit=unit, distribution=distribution)
 
 
 # ---- the whole file ---------------------------------------------------------------------------
@@ -347,8 +368,11 @@ def parse_study(
     parameters: list[Parameter] = []
     for t in entries:
         p = _parameter(t, trimmed)
-        if any(p.key == q.key for q in parameters):
-            raise t.error("key", "the key is varied twice", p.key)
+        taken = {path.text for q in parameters for path in q.paths}
+        mine = [path.text for path in p.paths]
+        for i, text in enumerate(mine):
+            if text in taken or text in mine[:i]:
+                raise t.error("key", "the key is varied twice", text)
         parameters.append(p)
     settings, figures = _settings(root.table("analysis"))
     mc = root.table("monte_carlo")
@@ -411,10 +435,11 @@ def _probe(spec: StudySpec, entries: list[Table]) -> None:
     """Stop before running when a parameter names a key the base file's reader does not know
     (tried on the first case: every case would fail the same way)."""
     first = {
-        p.path: p.values[0]
+        path: p.values[0]
         if p.values is not None
         else p.document_value(p.distribution.quantile(0.5))
         for p in spec.parameters
+        for path in p.paths
     }
     document = apply_values(spec.base.document, first, spec.remove)
     try:
@@ -423,11 +448,14 @@ def _probe(spec: StudySpec, entries: list[Table]) -> None:
         if not exc.message.startswith("unknown key"):
             return  # a property of that variant, recorded when the case runs
         for t, p in zip(entries, spec.parameters, strict=True):
-            name = p.path.parts[-1][0]
-            if exc.key and exc.key.split(" ")[-1].strip('"') == name:
-                raise t.error(
-                    "key", f"the {spec.base.kind} file has no such key ({exc.message})", p.key
-                ) from None
+            for path in p.paths:
+                name = path.parts[-1][0]
+                if exc.key and exc.key.split(" ")[-1].strip('"') == name:
+                    raise t.error(
+                        "key",
+                        f"the {spec.base.kind} file has no such key ({exc.message})",
+                        path.text,
+                    ) from None
         raise InputError(
             f"a parameter names a key the {spec.base.kind} file does not know: {exc}",
             file=spec.source,

@@ -25,6 +25,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -450,3 +452,176 @@ _figure(
     ),
     better="min",
 )
+
+
+# ---- balance and flywheel (crankdyn.balance, crankdyn.flywheel) ---------------------------------
+
+register_setting(
+    Setting(
+        "delta",
+        "number",
+        None,
+        "Target degree of cyclic irregularity for the flywheel figures (default: the engine's "
+        "[flywheel] delta or inertia).",
+    )
+)
+
+BALANCE_ORDERS = (1, 2, 4, 6)
+
+
+def _balance(ctx: CaseContext):
+    from crankdyn.balance import engine_balance
+
+    return engine_balance(ctx.subject, ctx.speed, orders=BALANCE_ORDERS)
+
+
+def _flywheel(ctx: CaseContext):
+    from crankdyn.flywheel import engine_flywheel
+
+    return engine_flywheel(
+        ctx.subject,
+        ctx.speed,
+        delta=ctx.settings["delta"],
+        step=ctx.settings["step"],
+        torque=ctx.analysis("torque"),
+    )
+
+
+register_analysis("balance", _balance)
+register_analysis("flywheel", _flywheel)
+
+
+def _order(ctx: CaseContext, order: int):
+    return next(o for o in ctx.analysis("balance").orders if o.order == order)
+
+
+def _nan_if_none(value) -> float:
+    return math.nan if value is None else float(value)
+
+
+for _n in BALANCE_ORDERS:
+    _figure(
+        f"free_force_{_n}",
+        f"free_force_{_n}_N",
+        f"Free force, order {_n} (reciprocating masses)",
+        "N",
+        lambda c, n=_n: _order(c, n).free_force,
+        better="min",
+        description=f"Largest free force of the reciprocating masses of order {_n} over a "
+        "revolution",
+    )
+    _figure(
+        f"free_moment_{_n}",
+        f"free_moment_{_n}_Nm",
+        f"Free moment, order {_n} (reciprocating masses)",
+        "N·m",
+        lambda c, n=_n: _nan_if_none(_order(c, n).free_moment),
+        better="min",
+        description=f"Largest free moment of the reciprocating masses of order {_n} about the "
+        "middle of the engine (needs [cylinders] pitch)",
+    )
+_figure(
+    "rotating_free_force",
+    "rotating_free_force_N",
+    "Free force of the rotating masses and counterweights",
+    "N",
+    lambda c: c.analysis("balance").rotating.free_force,
+    better="min",
+)
+_figure(
+    "rotating_free_moment",
+    "rotating_free_moment_Nm",
+    "Free moment of the rotating masses and counterweights",
+    "N·m",
+    lambda c: _nan_if_none(c.analysis("balance").rotating.free_moment),
+    better="min",
+)
+_figure(
+    "first_order_free_moment",
+    "first_order_free_moment_Nm",
+    "First-order free moment, reciprocating and rotating",
+    "N·m",
+    lambda c: _nan_if_none(c.analysis("balance").first_order_total.free_moment),
+    better="min",
+)
+_figure(
+    "excess_work",
+    "excess_work_J",
+    "Largest excess work ΔE",
+    "J",
+    lambda c: c.analysis("flywheel").excess_work,
+    better="min",
+    description="Energy swing of the torque curve (needs [flywheel] delta or inertia, or "
+    "[analysis] delta)",
+)
+_figure(
+    "excess_work_coefficient",
+    "excess_work_coefficient",
+    "Excess-work coefficient ξ = ΔE/(M_m Θ)",
+    "",
+    lambda c: _nan_if_none(c.analysis("flywheel").excess_work_coefficient),
+    better="min",
+)
+_figure(
+    "flywheel_inertia",
+    "flywheel_inertia_kgm2",
+    "Flywheel inertia for the target δ",
+    "kg·m²",
+    lambda c: c.analysis("flywheel").flywheel_inertia,
+    better="min",
+    description="Flywheel needed for the target degree of cyclic irregularity ([analysis] "
+    "delta or [flywheel] delta)",
+)
+_figure(
+    "cyclic_irregularity",
+    "cyclic_irregularity",
+    "Degree of cyclic irregularity δ",
+    "",
+    lambda c: c.analysis("flywheel").speed_fluctuation,
+    better="min",
+    description="δ = (ω_max − ω_min)/ω_m with the engine's flywheel ([flywheel] inertia) or "
+    "the one sized for the target δ",
+)
+
+
+# ---- torsional vibration (crankdyn.torsion) -----------------------------------------------------
+
+NATURAL_FREQUENCY_MODES = (1, 2, 3)
+
+
+def _modes(ctx: CaseContext):
+    from crankdyn.torsion.modal import natural_modes
+
+    model = ctx.subject
+    if ctx.kind == "engine":
+        from crankdyn.io.torsion_file import engine_torsion
+
+        model = engine_torsion(ctx.subject)
+    return natural_modes(model)
+
+
+register_analysis("modes", _modes)
+
+
+def natural_frequency(modes, n: int) -> float:
+    """The n-th elastic natural frequency (Hz; the rigid-body mode of a free model skipped),
+    NaN when the model has fewer modes."""
+    omega = np.asarray(modes.natural_frequency, dtype=float)
+    if modes.free:
+        omega = omega[1:]
+    return float(omega[n - 1]) / (2.0 * math.pi) if n <= omega.size else math.nan
+
+
+for _n in NATURAL_FREQUENCY_MODES:
+    register_figure(
+        Figure(
+            name=f"natural_frequency_{_n}",
+            key=f"natural_frequency_{_n}_Hz",
+            label=f"Natural frequency of elastic mode {_n}",
+            unit="Hz",
+            function=lambda c, n=_n: natural_frequency(c.analysis("modes"), n),
+            subjects=("engine", "model"),
+            description=f"Torsional natural frequency of the {_n}. elastic mode (engine: its "
+            "[torsion] model)",
+        )
+    )

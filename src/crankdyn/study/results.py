@@ -83,7 +83,7 @@ class CaseTable:
                     p.unit or "",
                     "parameter",
                     "float" if p.is_numeric else "str",
-                    p.key,
+                    ", ".join(q.text for q in p.paths),
                 )
             )
         for name in spec.figures:
@@ -487,7 +487,7 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]):
     if spec.remove:
         inputs.append(("Removed keys", ", ".join(p.text for p in spec.remove)))
     for p in spec.parameters:
-        inputs.append((f"Parameter {p.key}", _describe(p)))
+        inputs.append((f"Parameter {', '.join(q.text for q in p.paths)}", _describe(p)))
     for name, value in spec.settings.values:
         inputs.append((f"[analysis] {name}", _setting_text(SETTINGS[name], value)))
     inputs.append(("Figures", ", ".join(spec.figures)))

@@ -72,8 +72,15 @@ def _parse_engine(document: dict, *, file: str | None = None, base_dir: Path | N
     return parse_engine(document, file=file, base_dir=base_dir)
 
 
+def _parse_model(document: dict, *, file: str | None = None, base_dir: Path | None = None):
+    from crankdyn.io.torsion_file import parse_torsion_model
+
+    return parse_torsion_model(document, file=file, base_dir=base_dir)
+
+
 BASE_KINDS: dict[str, BaseKind] = {
     "engine": BaseKind("engine", _parse_engine, "docs/engine-file.md"),
+    "model": BaseKind("model", _parse_model, "docs/torsion-file.md"),
 }
 
 
@@ -194,6 +201,10 @@ class Parameter:
     ----------
     path
         The key path (:mod:`crankdyn.study.docpath`).
+    also
+        Further key paths set to the same value in every case (one quantity that appears in
+        two places of the file, e.g. a flywheel's inertia in ``[flywheel]`` and in the
+        torsional model).
     values
         The values of a grid parameter as written into the document (unit strings, numbers,
         lists, text), or None for a random parameter.
@@ -210,6 +221,7 @@ class Parameter:
 
     path: KeyPath
     values: tuple[Any, ...] | None = None
+    also: tuple[KeyPath, ...] = ()
     numbers: tuple[float, ...] | None = None
     unit: str | None = None
     distribution: Distribution | None = None
@@ -225,7 +237,13 @@ class Parameter:
 
     @property
     def key(self) -> str:
+        """The parameter's name: its (first) key path."""
         return self.path.text
+
+    @property
+    def paths(self) -> tuple[KeyPath, ...]:
+        """Every key path the parameter sets."""
+        return (self.path, *self.also)
 
     @property
     def is_random(self) -> bool:
@@ -293,7 +311,7 @@ class StudySpec:
     def __post_init__(self) -> None:
         if not self.parameters:
             raise InputError("a study needs at least one [[parameter]]", key="parameter")
-        keys = [p.key for p in self.parameters]
+        keys = [path.text for p in self.parameters for path in p.paths]
         for i, key in enumerate(keys):
             if key in keys[:i]:
                 raise InputError("the key is varied twice", key="parameter key", value=key)

@@ -38,7 +38,7 @@ class Payload:
     source: str
     base_dir: str | None
     remove: tuple[KeyPath, ...]
-    paths: tuple[KeyPath, ...]
+    targets: tuple[tuple[str, tuple[KeyPath, ...]], ...]  # (parameter key, paths it sets)
     settings: AnalysisSettings
     figures: tuple[str, ...]
     modules: tuple[str, ...]  # modules defining the figures (imported before a case runs)
@@ -91,7 +91,7 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
     error = None
     try:
         prepare_worker(payload)
-        values = {path: params[path.text] for path in payload.paths}
+        values = {path: params[key] for key, paths in payload.targets for path in paths}
         document = apply_values(payload.document, values, payload.remove)
         base_dir = _base_dir(payload)
         subject = BASE_KINDS[payload.kind].parse(document, file=payload.source, base_dir=base_dir)
