@@ -27,7 +27,7 @@ def _list() -> None:
         spec = resolve_study(name)
         examples.add_row(name, escape(spec.name), escape(spec.base.source), str(spec.case_count))
     out.print(examples)
-    figures = RichTable(title="Figures (names for [analysis] figures)", header_style="bold")
+    figures = RichTable(title=escape("Figures (names for [analysis] figures)"), header_style="bold")
     for col in ("Name", "Column (SI)", "Shown in", "Better", "Applies to", "Description"):
         figures.add_column(col)
     for f in FIGURES.values():
@@ -35,7 +35,7 @@ def _list() -> None:
             f.name, f.key, f.unit, f.better or "-", ", ".join(f.subjects), escape(f.description)
         )
     out.print(figures)
-    settings = RichTable(title="[analysis] settings", header_style="bold")
+    settings = RichTable(title=escape("[analysis] settings"), header_style="bold")
     for col in ("Key", "Kind", "Meaning"):
         settings.add_column(col)
     for s in SETTINGS.values():
