@@ -71,7 +71,7 @@ def study_example_path(name: str) -> Path:
 def resolve_study(spec: str) -> StudySpec:
     """A STUDY argument: a path to a study file, or the name of a built-in example study."""
     p = Path(spec)
-    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+    if _exists(p) or spec.endswith(".toml") or "/" in spec or "\\" in spec:
         return load_study(p)
     names = study_example_names()
     if spec in names:
@@ -108,13 +108,13 @@ def _base(root: Table) -> Base:
     kind = root.exclusive(*kinds)
     spec = root.string(kind)
     if not spec.strip():
-        raise root.error(kind, f"expected a {kind} file or a built-in example name", spec)
+        raise root.error(kind, f"expected the {kind} file's name or a built-in example's", spec)
     folder = root.base_dir or Path(".")
     candidate = Path(spec).expanduser()
     if not candidate.is_absolute():
         candidate = folder / candidate
     looks_like_path = spec.endswith(".toml") or "/" in spec or "\\" in spec
-    if not candidate.exists() and not looks_like_path:
+    if not _exists(candidate) and not looks_like_path:
         names_of, file_of, what = _EXAMPLES_OF[kind]
         names = names_of()
         if spec not in names:
@@ -127,8 +127,9 @@ def _base(root: Table) -> Base:
         candidate = file_of(spec)
         source = f"{spec} (built-in {what})"
     else:
-        if not candidate.is_file():
-            raise root.error(kind, f"no such {kind} file (looked for {candidate})", spec)
+        if not _exists(candidate, file=True):
+            shown = str(candidate) if str(candidate).isprintable() else ascii(str(candidate))
+            raise root.error(kind, f"no such {kind} file (looked for {shown})", spec)
         source = display_name(candidate if Path(spec).is_absolute() else Path(spec))
         if root.base_dir is not None and not Path(spec).is_absolute():
             source = _relative_display(candidate)
@@ -142,6 +143,15 @@ def _base(root: Table) -> Base:
         files_digest=digest,
         files=files,
     )
+
+
+def _exists(path: Path, *, file: bool = False) -> bool:
+    """Whether a user-named path exists (is a file); a name the system cannot take (too long,
+    a NUL byte) does not."""
+    try:
+        return path.is_file() if file else path.exists()
+    except (OSError, ValueError):
+        return False
 
 
 def _torsion_examples():

@@ -156,15 +156,19 @@ class StudyFolder:
     def _open(self, force: bool, info: dict[str, Any]) -> None:
         p = self.path
         shown = str(p)
-        if p.exists() and not p.is_dir():
-            raise InputError("exists and is not a folder", file=shown)
-        if not p.exists():
-            parent = p.parent if str(p.parent) else Path(".")
-            if not parent.is_dir():
-                raise InputError(f"the folder {parent} does not exist", file=shown)
-            p.mkdir()
-            self.created = True
-        self._lock()
+        try:
+            if p.exists() and not p.is_dir():
+                raise InputError("exists and is not a folder", file=shown)
+            if not p.exists():
+                parent = p.parent if str(p.parent) else Path(".")
+                if not parent.is_dir():
+                    raise InputError(f"the folder {parent} does not exist", file=shown)
+                p.mkdir()
+                self.created = True
+            self._lock()
+        except (OSError, ValueError) as exc:
+            reason = getattr(exc, "strerror", None) or str(exc)
+            raise InputError(f"cannot use the folder: {reason}", file=shown) from None
         try:
             self._check(force)
             if not self.resumed:
