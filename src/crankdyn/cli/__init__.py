@@ -18,7 +18,15 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion", "linkage")
+COMMAND_MODULES = (
+    "examples",
+    "kinematics",
+    "analyze",
+    "forces",
+    "torsion",
+    "linkage",
+    "torsion_response",
+)
 
 
 @click.group(

@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import dataclasses
 
-from crankdyn.errors import InputError
 from crankdyn.firing import CYCLE_ANGLE
 from crankdyn.io.schema import Table, suggest
 from crankdyn.torsion.campbell import OperatingRange
@@ -28,9 +27,7 @@ def read_response_sections(t: Table, model: TorsionModel, engine) -> TorsionMode
     operating = _operating(t.table("operating"))
     rules = _rules(t.table("rules"), model, operating)
     with t.context():
-        model = dataclasses.replace(
-            model, excitation=excitation, rules=rules, operating=operating
-        )
+        model = dataclasses.replace(model, excitation=excitation, rules=rules, operating=operating)
     dampers = tuple(_damper(dt, model) for dt in t.tables("damper"))
     if dampers:
         with t.context():
@@ -55,8 +52,11 @@ def _excitation(t: Table | None, model: TorsionModel, engine) -> ExcitationSpec 
         order = t.integer_list("firing_order", None)
         angles = t.quantity_list("firing_angles", "angle", None)
         if order is not None and angles is not None:
-            raise t.error("firing_angles", "give firing_order or firing_angles, not both",
-                          t.data["firing_angles"])
+            raise t.error(
+                "firing_angles",
+                "give firing_order or firing_angles, not both",
+                t.data["firing_angles"],
+            )
         torque = t.quantity("torque", "torque", None, check="positive")
         count = max(model.cylinder_dofs, default=0)
         if count == 0:
@@ -80,7 +80,7 @@ def _excitation(t: Table | None, model: TorsionModel, engine) -> ExcitationSpec 
             return ExcitationSpec(
                 cycle=cycle, firing_angles=angles, firing_order=order, torque=torque
             )
-    geometry, cylinders, _masses = engine
+    _geometry, cylinders, _masses = engine
     from crankdyn.io.engine_file import _display_path
     from crankdyn.io.torsion_tables import read_harmonic_table, read_load_curve
     from crankdyn.io.traces import read_pressure_trace
@@ -89,14 +89,16 @@ def _excitation(t: Table | None, model: TorsionModel, engine) -> ExcitationSpec 
     if t.has("load_curve"):
         path = t.path("load_curve")
         if not path.is_file():
-            raise t.error("load_curve", f"no such load curve (looked for {path})",
-                          t.data["load_curve"])
+            raise t.error(
+                "load_curve", f"no such load curve (looked for {path})", t.data["load_curve"]
+            )
         curve = read_load_curve(path, _display_path(path))
     if t.has("harmonics"):
         path = t.path("harmonics")
         if not path.is_file():
-            raise t.error("harmonics", f"no such harmonic table (looked for {path})",
-                          t.data["harmonics"])
+            raise t.error(
+                "harmonics", f"no such harmonic table (looked for {path})", t.data["harmonics"]
+            )
         table = read_harmonic_table(path, _display_path(path))
     imep = t.quantity("imep", "pressure", None, check="positive")
     misfire = t.integer_list("misfire", ())
@@ -143,8 +145,9 @@ def _operating(t: Table | None) -> OperatingRange | None:
     if pair is None:
         if rated is None:
             return None
-        raise t.error("speed_range", 'missing; give the operating range, e.g. ["1000 rpm", '
-                      '"2500 rpm"]')
+        raise t.error(
+            "speed_range", 'missing; give the operating range, e.g. ["1000 rpm", "2500 rpm"]'
+        )
     with t.context():
         return OperatingRange(pair[0], pair[1], rated)
 
@@ -163,8 +166,9 @@ def _rules(t: Table | None, model: TorsionModel, operating) -> RuleSet | None:
         if shaft is None:
             names = [f"{a} - {b}" for a, b in labels]
             text = f"{between[0]} - {between[1]}"
-            raise st.error("between", f"no shaft between these masses{suggest(text, names)}",
-                           list(between))
+            raise st.error(
+                "between", f"no shaft between these masses{suggest(text, names)}", list(between)
+            )
         if shaft.geometry is None:
             raise st.error(
                 "between",
@@ -194,13 +198,15 @@ def _damper(t: Table, model: TorsionModel) -> Damper:
     damping = t.quantity("damping", "torsional_damping", None, check="positive")
     loss = t.number("loss_factor", 0.0, check="nonnegative")
     if kind == "viscous" and stiffness is not None:
-        raise t.error("stiffness", "a viscous damper has no stiffness (kind = \"tuned\"?)",
-                      t.data["stiffness"])
+        raise t.error(
+            "stiffness", 'a viscous damper has no stiffness (kind = "tuned"?)', t.data["stiffness"]
+        )
     if mode is not None:
         for key, value in (("stiffness", stiffness), ("damping", damping)):
             if value is not None:
-                raise t.error(key, "is set by tune_mode (the optimum); give one or the other",
-                              t.data[key])
+                raise t.error(
+                    key, "is set by tune_mode (the optimum); give one or the other", t.data[key]
+                )
         with t.context():
             design = design_damper(model, at, mode, inertia, kind)
         stiffness, damping = design.stiffness, design.damping
@@ -208,8 +214,40 @@ def _damper(t: Table, model: TorsionModel) -> Damper:
         if damping is None and (kind == "viscous" or loss == 0.0):
             raise t.error("damping", "missing; give the damping, or tune_mode for the optimum")
         if kind == "tuned" and stiffness is None:
-            raise t.error("stiffness", "missing; give the rubber's stiffness, or tune_mode for "
-                          "the optimum")
+            raise t.error(
+                "stiffness", "missing; give the rubber's stiffness, or tune_mode for the optimum"
+            )
     t.finish()
     with t.context():
         return Damper(name, at, inertia, stiffness or 0.0, damping or 0.0, loss)
+
+
+def resolve_model_and_engine(spec: str):
+    """A MODEL_OR_ENGINE argument as (torsional model, engine or None): a model or engine file,
+    a built-in torsional model, or a built-in engine with a [torsion] section."""
+    from pathlib import Path
+
+    from crankdyn.io.engine_file import example_names, load_engine, load_example
+    from crankdyn.io.files import load_toml
+    from crankdyn.io.torsion_file import (
+        engine_torsion,
+        load_torsion_example,
+        load_torsion_model,
+        torsion_example_names,
+    )
+
+    p = Path(spec)
+    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+        data = load_toml(p, what="model file")
+        if "geometry" in data:
+            engine = load_engine(p)
+            return engine_torsion(engine), engine
+        return load_torsion_model(p), None
+    if spec in torsion_example_names():
+        return load_torsion_example(spec), None
+    if spec in example_names():
+        engine = load_example(spec)
+        return engine_torsion(engine), engine
+    from crankdyn.io.torsion_file import resolve_torsion
+
+    return resolve_torsion(spec), None  # raises the one-line error with suggestions

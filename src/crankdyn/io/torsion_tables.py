@@ -86,7 +86,10 @@ def _numbers(rows, index: int, header_cell: str, name: str) -> np.ndarray:
             value = float(cell)
         except ValueError:
             raise InputError(
-                f"not a number in column {header_cell!r}", file=name, key=f"line {number}", value=cell
+                f"not a number in column {header_cell!r}",
+                file=name,
+                key=f"line {number}",
+                value=cell,
             ) from None
         if not math.isfinite(value):
             raise InputError(
@@ -108,7 +111,10 @@ def read_load_curve(path: str | Path, display: str | None = None) -> LoadCurve:
     speed_key = next((k for k in cols if k.startswith("speed") or k in ("n", "rpm")), None)
     if speed_key is None:
         raise InputError(
-            "expected a speed column, e.g. speed_rpm", file=name, key="header", value=",".join(header)
+            "expected a speed column, e.g. speed_rpm",
+            file=name,
+            key="header",
+            value=",".join(header),
         )
     kinds = {"peak_pressure": "pressure", "imep": "pressure", "load_factor": "ratio"}
     value_key = next((k for k in kinds if k in cols), None)

@@ -103,7 +103,9 @@ class Damper:
             )
         if self.stiffness == 0.0 and self.loss_factor > 0.0:
             raise InputError(
-                "a loss factor needs the rubber's stiffness", key="loss_factor", value=self.loss_factor
+                "a loss factor needs the rubber's stiffness",
+                key="loss_factor",
+                value=self.loss_factor,
             )
 
     @property
@@ -129,7 +131,11 @@ def optimum_tuned(mass_ratio: float) -> tuple[float, float, float]:
     omega_d/omega_r = 1/(1+mu), damping ratio c/(2 J_d omega_r) = sqrt(3 mu/(8 (1+mu)^3)),
     largest magnification sqrt(1 + 2/mu))."""
     mu = check_positive("mass_ratio", mass_ratio, "the mass ratio")
-    return 1.0 / (1.0 + mu), math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3)), math.sqrt(1.0 + 2.0 / mu)
+    return (
+        1.0 / (1.0 + mu),
+        math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3)),
+        math.sqrt(1.0 + 2.0 / mu),
+    )
 
 
 def optimum_viscous(mass_ratio: float) -> tuple[float, float, float]:
@@ -208,8 +214,9 @@ class DamperDesign(Result):
         return Damper(name, self.at, self.ring_inertia, self.stiffness, self.damping)
 
 
-def design_damper(model, at: str, mode: int, ring_inertia: float, kind: str = "tuned",
-                  modes=None) -> DamperDesign:
+def design_damper(
+    model, at: str, mode: int, ring_inertia: float, kind: str = "tuned", modes=None
+) -> DamperDesign:
     """Optimum tuned or viscous damper of ring inertia J_d (kg m^2) on mass ``at`` for mode
     ``mode`` of ``model`` (module docstring: Den Hartog)."""
     if kind not in ("tuned", "viscous"):

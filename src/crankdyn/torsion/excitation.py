@@ -51,7 +51,7 @@ heat release), which needs the compression ratio.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
@@ -108,8 +108,7 @@ def check_orders(orders, cycle: str = "four-stroke", *, key: str = "orders") -> 
     off = np.abs(m - np.round(m)) > _ORDER_TOL * np.maximum(m, 1.0)
     if np.any(off):
         raise InputError(
-            f"order {q[off][0]:g} does not fit the {cycle} cycle: orders are multiples of "
-            f"{base:g}",
+            f"order {q[off][0]:g} does not fit the {cycle} cycle: orders are multiples of {base:g}",
             key=key,
             value=float(q[off][0]),
         )
@@ -537,9 +536,10 @@ class EngineExcitation:
             s = np.asarray(speeds)
             if np.any(s < w[0] * (1 - 1e-9)) or np.any(s > w[-1] * (1 + 1e-9)):
                 out.append("speeds outside the traces' speeds use the nearest trace")
-        if self.engine.pressure is None and (self.spec is None or not self.spec.traces):
-            if self.spec is None or self.spec.harmonics is None:
-                out.append("no pressure trace: synthetic Wiebe model with default parameters")
+        if self.engine.pressure is None and (
+            self.spec is None or (not self.spec.traces and self.spec.harmonics is None)
+        ):
+            out.append("no pressure trace: synthetic Wiebe model with default parameters")
         table = self.spec.harmonics if self.spec else None
         if table is not None and table.phase is None:
             out.append(
@@ -802,9 +802,7 @@ class HarmonicResult(Result):
     phase: np.ndarray = array("phase_deg", "Phase from firing TDC", "deg", 180.0 / math.pi)
     phase_sum: np.ndarray = array("phase_vector_sum", "Phase-vector sum |Σ e^(-iqΦ)|", "")
     major: np.ndarray = array("major", "Major order", "")
-    engine_amplitude: np.ndarray = array(
-        "engine_amplitude_Nm", "All cylinders |Σ c|", "N·m"
-    )
+    engine_amplitude: np.ndarray = array("engine_amplitude_Nm", "All cylinders |Σ c|", "N·m")
     relative_amplitude_sums: np.ndarray | None = array(
         "relative_amplitude_sums", "Relative amplitude sums (mode x order)", ""
     )
@@ -884,6 +882,3 @@ def _cylinder_amplitudes(modes, model, count: int) -> np.ndarray:
                 out[:, c - 1] = shapes[:, i]
     peak = np.max(np.abs(out), axis=1, keepdims=True)
     return out / np.where(peak > 0.0, peak, 1.0)
-
-
-_ = field  # re-exported dataclass helper kept for subclasses

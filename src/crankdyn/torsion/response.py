@@ -57,9 +57,9 @@ from crankdyn.torsion.excitation import check_orders, harmonic_index, major_orde
 from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "LinearSystem",
     "RelativeAngle",
     "ResponseResult",
-    "LinearSystem",
     "forced_response",
     "half_range",
     "linear_system",
@@ -133,12 +133,14 @@ def solve_tridiagonal(lower, diag, upper, rhs) -> np.ndarray:
         x = np.empty_like(b)
         x[..., n - 1, :] = b[..., n - 1, :] / d[..., n - 1, None]
         if n >= 2:
-            x[..., n - 2, :] = (
-                b[..., n - 2, :] - du[..., n - 2, None] * x[..., n - 1, :]
-            ) / d[..., n - 2, None]
+            x[..., n - 2, :] = (b[..., n - 2, :] - du[..., n - 2, None] * x[..., n - 1, :]) / d[
+                ..., n - 2, None
+            ]
         for i in range(n - 3, -1, -1):
             x[..., i, :] = (
-                b[..., i, :] - du[..., i, None] * x[..., i + 1, :] - du2[..., i, None] * x[..., i + 2, :]
+                b[..., i, :]
+                - du[..., i, None] * x[..., i + 1, :]
+                - du2[..., i, None] * x[..., i + 2, :]
             ) / d[..., i, None]
     return x[..., 0] if vector else x
 
@@ -474,9 +476,7 @@ class ResponseResult(Result):
         from crankdyn.torsion.model import _suggest
 
         text = " - ".join(parts)
-        raise InputError(
-            f'no shaft "{text}"{_suggest(text, labels)}', key="shaft", value=text
-        )
+        raise InputError(f'no shaft "{text}"{_suggest(text, labels)}', key="shaft", value=text)
 
     def relative_angle(self, a: str, b: str) -> RelativeAngle:
         """Relative angle theta_a - theta_b per order and synthesised (rad)."""
@@ -637,9 +637,9 @@ def forced_response(
     n_shafts = len(model.shafts)
     power = None
     if system.dampers:
-        coupling = np.stack(
-            [d.complex_stiffness(omega) for d in system.dampers], axis=-1
-        ) * (system.element_ratio[n_shafts:] ** 2 / system.element_ratio[n_shafts:])
+        coupling = np.stack([d.complex_stiffness(omega) for d in system.dampers], axis=-1) * (
+            system.element_ratio[n_shafts:] ** 2 / system.element_ratio[n_shafts:]
+        )
         torque[:, :, n_shafts:] = coupling * twist[:, :, n_shafts:]
         actual_twist = twist[:, :, n_shafts:] * system.element_ratio[n_shafts:]
         power = np.sum(

@@ -201,9 +201,7 @@ def check_rules(result, rules: RuleSet, model=None, rated_speed: float | None = 
                 value=list(limit.between),
             )
         diameter = model.shafts[s].geometry.outer_diameter if model is not None else None
-        tau_c = permissible_continuous(
-            lam, limit.tensile_strength, limit.design_factor, diameter
-        )
+        tau_c = permissible_continuous(lam, limit.tensile_strength, limit.design_factor, diameter)
         columns.append(result.synthesized_shaft_stress[:, s])
         limits_c.append(tau_c)
         limits_t.append(permissible_transient(lam, tau_c, limit.design_factor))
