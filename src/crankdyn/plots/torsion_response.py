@@ -174,15 +174,15 @@ def plot_campbell(result, fig=None, max_speed: float | None = None):
             zorder=1,
         )
         end = min(top_speed, f_top * 60.0 / q)
-        if end > 0.25 * top_speed:
+        if (major or float(q).is_integer()) and end > 0.2 * top_speed:
             ax.annotate(
                 f"{q:g}",
                 (end, q * end / 60.0),
                 fontsize=7,
                 color="#404040",
-                xytext=(2, 2),
+                xytext=(-3, -10),
                 textcoords="offset points",
-                clip_on=True,
+                ha="right",
             )
     for k, (mode, f) in enumerate(zip(result.modes, f_nat, strict=True)):
         if f > f_top:

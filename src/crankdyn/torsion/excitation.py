@@ -14,7 +14,7 @@ cycle Theta. Computed over the crankshaft angle, the coefficient already carries
 phase: a cylinder firing at Phi_i has c_q,i = c_q exp(-i q Phi_i), c_q being the coefficient of the
 torque measured from its own firing TDC (phase-vector rule, seed 003 section 4.2
 "多拐曲轴上第k阶力矩谐量的相位关系"). The integral is evaluated with the FFT of the torque sampled
-at 8192 equally spaced angles over the cycle (trapezoidal rule, exact for a periodic
+at 7200 equally spaced angles over the cycle (0.1 deg for a four-stroke cycle, so that firing angles in tenths of a degree fall on the grid) (trapezoidal rule, exact for a periodic
 trigonometric polynomial; error of order h^2 at the kinks of the interpolated trace, ~1e-5).
 
 Dependence on speed. The inertia part -m_j a R sin(phi + beta)/cos(beta) scales with Omega^2
@@ -81,7 +81,7 @@ __all__ = [
 ]
 
 CYCLES = ("four-stroke", "two-stroke")
-SAMPLES = 8192
+SAMPLES = 7200
 """Samples per cycle for the harmonic analysis (FFT length)."""
 _ORDER_TOL = 1e-9
 _MAJOR_TOL = 1e-6
