@@ -67,7 +67,7 @@ def test_den_hartog_viscous_optimum(mu):
     for f in (0.6, 1.6):
         other = Damper("d", "m", mu * J, 0.0, f * design.damping)
         assert _peak(other, (0.3, 1.5)) > peak * 0.999
-    ratio, zeta, mag = optimum_viscous(mu)
+    ratio, zeta, _ = optimum_viscous(mu)
     assert ratio == pytest.approx(math.sqrt(2 / (2 + mu)))
     assert zeta == pytest.approx(1 / math.sqrt(2 * (1 + mu) * (2 + mu)))
     assert optimum_tuned(mu)[2] == pytest.approx(math.sqrt(1 + 2 / mu))

@@ -129,7 +129,7 @@ def test_harmonic_table_interpolates_in_imep(diesel):
             0.1e6 * area_r * np.exp(1j * (0.5 - math.pi / 2)),
         ]
     )
-    with pytest.raises(InputError, match="order 1.5 is not in the harmonic table"):
+    with pytest.raises(InputError, match=r"order 1\.5 is not in the harmonic table"):
         ex.parts([2000 * RPM], [1.5])
     with pytest.raises(InputError, match="needs the mean indicated pressure"):
         EngineExcitation(engine, ExcitationSpec(harmonics=table))

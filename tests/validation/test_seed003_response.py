@@ -63,7 +63,7 @@ def _paper_matrix(w):
     """Eq. 2 of the paper: the 9 x 9 dynamic stiffness at w, from Table 2 by hand."""
     j, k = TABLE2["J"], TABLE2["K"]
     d = np.zeros((9, 9), dtype=complex)
-    links = [k[0] + 1j * w * TABLE2["Cd"]] + list(k[1:])
+    links = [k[0] + 1j * w * TABLE2["Cd"], *k[1:]]
     for i, kk in enumerate(links):
         d[i, i] += kk
         d[i + 1, i + 1] += kk

@@ -32,26 +32,22 @@ def parse_orders(text: str | None, cycle: str, option: str = "--orders") -> np.n
     base = fundamental_order(cycle)
     if text is None:
         return order_grid(base, 12.0, base, cycle)
+    ranged = ":" in text
     try:
-        if ":" in text:
-            parts = [float(p) for p in text.split(":")]
-            if len(parts) not in (2, 3):
-                raise ValueError
-            first, last = parts[0], parts[1]
-            step = parts[2] if len(parts) == 3 else base
-            try:
-                return order_grid(first, last, step, cycle)
-            except InputError as exc:
-                raise InputError(exc.message, key=option, value=text) from None
-        values = [float(p) for p in text.split(",") if p.strip()]
+        parts = [float(p) for p in (text.split(":") if ranged else text.split(",")) if p.strip()]
     except ValueError:
+        parts = []
+    if not parts or (ranged and len(parts) not in (2, 3)):
         raise InputError(
             "expected FIRST:LAST[:STEP] or a list of orders, e.g. 0.5:12 or 1.5,3,4.5,6",
             key=option,
             value=text,
-        ) from None
+        )
     try:
-        return check_orders(values, cycle, key=option)
+        if ranged:
+            step = parts[2] if len(parts) == 3 else base
+            return order_grid(parts[0], parts[1], step, cycle)
+        return check_orders(parts, cycle, key=option)
     except InputError as exc:
         raise InputError(exc.message, key=option, value=text) from None
 

@@ -25,6 +25,8 @@ from crankdyn.torsion.excitation import HarmonicTable, LoadCurve
 
 __all__ = ["read_harmonic_table", "read_load_curve"]
 
+_PLAIN = ("load_factor", "order")
+
 
 def _read(path: Path, name: str, what: str):
     try:
@@ -44,6 +46,10 @@ def _read(path: Path, name: str, what: str):
 def _columns(header: list[str], name: str) -> dict[str, tuple[int, str | None]]:
     out = {}
     for i, cell in enumerate(header):
+        whole = cell.strip().lower().replace(" ", "_")
+        if whole in _PLAIN:  # a unit-less column whose name holds an underscore
+            out[whole] = (i, None)
+            continue
         base, unit = split_header_unit(cell)
         key = base.strip().lower().replace(" ", "_")
         if key:

@@ -14,8 +14,9 @@ cycle Theta. Computed over the crankshaft angle, the coefficient already carries
 phase: a cylinder firing at Phi_i has c_q,i = c_q exp(-i q Phi_i), c_q being the coefficient of the
 torque measured from its own firing TDC (phase-vector rule, seed 003 section 4.2
 "多拐曲轴上第k阶力矩谐量的相位关系"). The integral is evaluated with the FFT of the torque sampled
-at 7200 equally spaced angles over the cycle (0.1 deg for a four-stroke cycle, so that firing angles in tenths of a degree fall on the grid) (trapezoidal rule, exact for a periodic
-trigonometric polynomial; error of order h^2 at the kinks of the interpolated trace, ~1e-5).
+at 7200 equally spaced angles over the cycle (0.1 deg for a four-stroke cycle, so that firing
+angles in tenths of a degree fall on the grid; the trapezoidal rule, exact for a periodic
+trigonometric polynomial, with an error of order h^2 at the kinks of the interpolated trace).
 
 Dependence on speed. The inertia part -m_j a R sin(phi + beta)/cos(beta) scales with Omega^2
 (a = R Omega^2 f(phi) at constant speed), so its harmonics are Omega^2 times those at 1 rad/s.
