@@ -157,12 +157,12 @@ def test_campbell_json(capsys, tmp_path):
     assert status == 0 and fig.exists()
     data = json.loads(out)
     rows = data["critical_speeds"]
-    sixth = [r for r in rows if r["order"] == 6.0][0]
+    sixth = next(r for r in rows if r["order"] == 6.0)
     assert sixth["speed_rpm"] == pytest.approx(2165.8, abs=0.1)
     assert sixth["major"] is True and sixth["mode"] == 2
     assert {r["major"] for r in rows if r["order"] == 5.5} == {False}
     status, out, _ = run(capsys, "torsion", "campbell", "seed003-v6", "--range", "1000:2000")
-    assert status == 0 and "Critical" in out or "critical" in out
+    assert (status == 0 and "Critical" in out) or "critical" in out
 
 
 def test_damper_excitation_transient(capsys, tmp_path):

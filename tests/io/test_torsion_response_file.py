@@ -179,7 +179,7 @@ def test_load_curve_and_table_files(tmp_path):
         ("speed_rpm,peak_pressure_MPa\n", "at least one row"),
     ]:
         p.write_text(text, encoding="utf-8")
-        with pytest.raises(InputError, match="c.csv"):
+        with pytest.raises(InputError, match=r"c\.csv"):
             read_load_curve(p)
         with pytest.raises(InputError, match=message.replace("(", r"\(")):
             read_load_curve(p)

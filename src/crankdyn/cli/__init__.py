@@ -25,6 +25,7 @@ COMMAND_MODULES = (
     "forces",
     "torsion",
     "linkage",
+    "balance",
     "torsion_response",
 )
 
