@@ -222,6 +222,17 @@ class LoadCurve:
         object.__setattr__(self, "speed", freeze(w))
         object.__setattr__(self, "value", freeze(v))
 
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, LoadCurve):
+            return NotImplemented
+        return (
+            self.kind == other.kind
+            and np.array_equal(self.speed, other.speed)
+            and np.array_equal(self.value, other.value)
+        )
+
+    __hash__ = None  # array contents: not hashable
+
     def at(self, speeds) -> np.ndarray:
         """The value at speeds (rad/s)."""
         return np.interp(np.asarray(speeds, dtype=float), self.speed, self.value)
@@ -287,6 +298,23 @@ class HarmonicTable:
             if ph.shape != q.shape or not np.all(np.isfinite(ph)):
                 raise InputError("the harmonic table's phases must be finite, one per row")
             object.__setattr__(self, "phase", freeze(ph))
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, HarmonicTable):
+            return NotImplemented
+        same_phase = (self.phase is None and other.phase is None) or (
+            self.phase is not None
+            and other.phase is not None
+            and np.array_equal(self.phase, other.phase)
+        )
+        return (
+            same_phase
+            and np.array_equal(self.order, other.order)
+            and np.array_equal(self.imep, other.imep)
+            and np.array_equal(self.amplitude, other.amplitude)
+        )
+
+    __hash__ = None  # array contents: not hashable
 
     @property
     def orders(self) -> np.ndarray:
