@@ -292,13 +292,19 @@ def response_command(
 
     result = forced_response(torsion, ex, w, order_list, dampers=() if no_dampers else None)
     rel = None
-    if pair is not None:
-        rel = result.relative_angle(*pair)
-    if item is not None:
-        if (plot_quantity or "torque") in ("torque", "stress"):
-            result.shaft_index(item)
-        else:
-            result.mass_index(item)
+    try:
+        if pair is not None:
+            rel = result.relative_angle(*pair)
+    except InputError as exc:
+        raise InputError(exc.message, key="--relative", value=relative) from None
+    try:
+        if item is not None:
+            if (plot_quantity or "torque") in ("torque", "stress"):
+                result.shaft_index(item)
+            else:
+                result.mass_index(item)
+    except InputError as exc:
+        raise InputError(exc.message, key="--item", value=item) from None
     if stress_path and result.rule_check is None:
         raise InputError(
             "the model has no [rules] (docs/torsion-file.md): nothing to plot",

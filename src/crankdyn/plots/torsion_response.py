@@ -238,6 +238,7 @@ def plot_stress_limits(result, fig=None):
     count = len(check.shafts)
     fig, axes = new_figure(count, 1, width=9.5, height=3.4 * count + 0.8, fig=fig)
     n = np.asarray(check.speed) * RPM
+    half_step = 0.5 * float(np.min(np.diff(n))) if n.size > 1 else 0.0
     for j, ax in enumerate(axes[:, 0]):
         a, b = check.shafts[j]
         ax.plot(
@@ -260,8 +261,8 @@ def plot_stress_limits(result, fig=None):
             if tuple(barred.shaft) != (a, b):
                 continue
             ax.axvspan(
-                barred.start * RPM,
-                barred.end * RPM,
+                barred.start * RPM - half_step,
+                barred.end * RPM + half_step,
                 color="#f4c7c3" if not barred.permitted else "#fbe5c8",
                 zorder=0,
             )
