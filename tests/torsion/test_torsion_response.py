@@ -232,3 +232,20 @@ def test_bad_inputs():
     r = forced_response(model, ex, [100.0], [1.0])
     with pytest.raises(InputError, match='no mass named "flywhel" \\(did you mean "flywheel"'):
         r.relative_angle("pulley", "flywhel")
+
+
+def test_chain_solve_falls_back_to_pivoting_at_a_zero_pivot():
+    """Undamped chain at omega^2 = k/J_1: the first pivot k - omega^2 J vanishes, so elimination
+    without interchanges breaks down; the pivoting solver takes over for that frequency."""
+    model = TorsionModel.chain_of([1.0, 2.0, 3.0], [1.0, 1.0])
+    system = linear_system(model)
+    w = np.array([0.3, 1.0, 1.5])
+    f = np.array([[0.0, 1.0, 0.0]] * 3, dtype=complex)
+    x = system.solve(w, f)
+    d = system.matrix(w)
+    assert np.all(np.isfinite(x))
+    assert np.allclose(np.einsum("fij,fj->fi", d, x), f, atol=1e-12)
+    # several right-hand sides at once give the columns of the receptance
+    eye = np.broadcast_to(np.eye(3, dtype=complex), (3, 3, 3))
+    receptance = system.solve(w, eye)
+    assert np.allclose(receptance, np.linalg.inv(d), atol=1e-12)

@@ -194,8 +194,7 @@ class LinearSystem:
         omega = np.asarray(omega, dtype=float)
         f = np.asarray(forcing, dtype=complex)
         if self.chain is not None:
-            lower, diag, upper = self.diagonals(omega, hysteretic_frequency)
-            return solve_tridiagonal(lower, diag, upper, f)
+            return self._solve_chain(omega, f, hysteretic_frequency)
         a = self.matrix(omega, hysteretic_frequency)
         vector = f.ndim == omega.ndim + 1
         b = f[..., None] if vector else f
@@ -204,6 +203,61 @@ class LinearSystem:
                 x = np.linalg.solve(a, b)
             except np.linalg.LinAlgError:  # an undamped system exactly at resonance
                 x = np.full(np.broadcast_shapes(a.shape[:-2], b.shape[:-2]) + b.shape[-2:], np.nan)
+        return x[..., 0] if vector else x
+
+    def _solve_chain(self, omega, f, hysteretic_frequency):
+        """The chain's symmetric tridiagonal systems for all frequencies at once, laid out with
+        the chain along the first axis (contiguous rows): elimination without interchanges
+        (the Thomas algorithm), then the pivoting solver for the few systems whose pivots came
+        out small relative to their rows (where elimination without interchanges can lose
+        accuracy)."""
+        kb, cb, hb, kg, cg, hg = self.chain
+        n = self.size
+        batch = omega.shape
+        nd = omega.ndim
+        vector = f.ndim == nd + 1
+        w = omega.reshape(-1)
+        count = w.size
+        fb = f[..., None] if vector else f
+        r = fb.shape[-1]
+        # right-hand sides laid out (n, r, B): every row operation runs over the whole batch
+        rhs = np.empty((n, r, *batch), dtype=complex)
+        rhs[...] = np.moveaxis(np.broadcast_to(fb, (*batch, n, r)), (nd, nd + 1), (0, 1))
+        rhs = rhs.reshape(n, r, count)
+        factor = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
+        off = np.empty((max(n - 1, 0), count), dtype=complex)
+        off.real = kb[:, None]
+        off.imag = w * cb[:, None] + hb[:, None] * factor
+        diag = np.empty((n, count), dtype=complex)
+        diag.real = kg[:, None] - (w * w) * self.inertia[:, None]
+        diag.imag = w * cg[:, None] + hg[:, None] * factor
+        diag[:-1] += off
+        diag[1:] += off
+        d = diag.copy()
+        b = rhs.copy()
+        growth = np.zeros(count, dtype=bool)
+        tmp = np.empty(count, dtype=complex)
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            for i in range(1, n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
+                m = off[i - 1] / d[i - 1]
+                np.multiply(m, off[i - 1], out=tmp)
+                d[i] -= tmp
+                b[i] += m * b[i - 1]
+                # a multiplier above 1e8: a small pivot, elimination may lose accuracy
+                growth |= ~(m.real * m.real + m.imag * m.imag <= 1e16)
+            inv = 1.0 / d
+            x = np.empty_like(b)
+            x[n - 1] = b[n - 1] * inv[n - 1]
+            for i in range(n - 2, -1, -1):
+                x[i] = (b[i] + off[i] * x[i + 1]) * inv[i]
+        if np.any(growth):  # rare: a leading part of the chain at its own resonance
+            idx = np.flatnonzero(growth)
+            lower = -off[:, idx].T
+            solved = solve_tridiagonal(
+                lower, diag[:, idx].T, lower, np.moveaxis(rhs[:, :, idx], 2, 0)
+            )  # (k, n, r)
+            x[:, :, idx] = np.moveaxis(solved, 0, 2)
+        x = np.moveaxis(x.reshape(n, r, *batch), (0, 1), (-2, -1))
         return x[..., 0] if vector else x
 
 
