@@ -19,11 +19,13 @@ Mendes et al. 2008 use c = 0.035 k/omega). A single damped mass gives seed 003's
 2n = c/J, p^2 = k/J, h = T/J, the amplitude B = h / sqrt((p^2 - omega^2)^2 + 4 n^2 omega^2) and
 the lag psi = arctan(2 n omega / (p^2 - omega^2)) (seed 003, "单质量有阻尼强迫扭转振动").
 
-Solving it fast. For a chain (the usual crank train) D is tridiagonal; all speeds x orders are
-solved at once by Gaussian elimination with partial pivoting along the chain (LAPACK's
-``gtsv`` algorithm, vectorised in numpy over every frequency and right-hand side: O(n) per
-frequency, the Python loop runs over the chain's length only). Branched models use numpy's
-batched dense solve. No loop over speeds or orders.
+Solving it fast. For a chain (the usual crank train) D is symmetric tridiagonal; all speeds x
+orders are solved at once with the chain along the rows of the arrays: elimination without
+interchanges (the Thomas algorithm), and for the rare frequencies with a multiplier above 1e8 (a
+small pivot) elimination with partial pivoting (LAPACK's ``gtsv`` algorithm,
+:func:`solve_tridiagonal`), both vectorised over every frequency and right-hand side, the Python
+loop running over the chain's length only. Branched models use numpy's batched dense solve. No
+loop over speeds or orders.
 
 Outputs. Per speed, order and mass the complex amplitude (the actual angle of a geared mass is
 its reflected angle times its speed ratio); the vibratory torque of every shaft, the elastic
