@@ -26,6 +26,7 @@ COMMAND_MODULES = (
     "torsion",
     "linkage",
     "balance",
+    "torsion_response",
     "study",
 )
 
