@@ -4,11 +4,13 @@ independent computations for the torque and load figures."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from crankdyn.bearings import bearing_loads
+from crankdyn.errors import InputError
 from crankdyn.io.engine_file import example_files, load_example
 from crankdyn.io.files import load_toml
 from crankdyn.study.docpath import parse_path
@@ -231,3 +233,77 @@ def test_one_parameter_sets_two_keys(tmp_path):
     assert (
         records[0]["figures"]["natural_frequency_1"] != records[1]["figures"]["natural_frequency_1"]
     )
+
+
+SHAFT_LINE = Path(__file__).parent / "data" / "shaft-line.toml"
+
+
+def test_forced_response_figures_of_an_engine():
+    """The inline-6's response figures are those of the torsion response at the model's
+    operating range every 25 rpm and orders 0.5 to 12 (as `crankdyn torsion response`), the
+    relative angle between the first and the last mass (pulley and flywheel) by default."""
+    from crankdyn.torsion.excitation import excitation_for
+    from crankdyn.torsion.response import forced_response
+
+    engine = load_example("inline6-diesel")
+    got = figures_of(engine, ["max_relative_angle", "max_free_end_amplitude", "max_shaft_torque"])
+    model = engine.torsion
+    speeds = np.arange(1000, 2501, 25) * math.pi / 30
+    result = forced_response(model, excitation_for(model, engine), speeds, np.arange(1, 25) * 0.5)
+    relative = result.relative_angle("pulley", "flywheel").synthesized
+    assert got["max_relative_angle"] == pytest.approx(relative.max(), rel=1e-12)
+    assert got["max_free_end_amplitude"] == pytest.approx(
+        result.synthesized_amplitude[:, 0].max(), rel=1e-12
+    )
+    assert got["max_shaft_torque"] == pytest.approx(
+        result.synthesized_shaft_torque.max(), rel=1e-12
+    )
+
+
+def test_shaft_stress_rules_and_damper_figures_of_a_model():
+    """A shaft line with a 50 mm solid shaft: the nominal shear stress is the torque over the
+    polar section modulus pi D^3 / 16 (Timoshenko, Strength of Materials), the rule figure is
+    the stress over tau_C, and a viscous damper dissipates power."""
+    from crankdyn.io.torsion_file import load_torsion_model
+
+    model = load_torsion_model(SHAFT_LINE)
+    ctx = CaseContext(model, AnalysisSettings(), "model")
+    names = ["max_shaft_torque", "max_shaft_stress", "max_stress_ratio", "max_damper_power"]
+    got = {n: FIGURES[n].evaluate(ctx) for n in names}
+    assert got["max_shaft_stress"] == pytest.approx(
+        got["max_shaft_torque"] / (math.pi * 0.05**3 / 16), rel=1e-12
+    )
+    result, _ = ctx.analysis("response")
+    check = result.rule_check
+    assert got["max_stress_ratio"] == pytest.approx(np.max(check.stress / check.tau_c), rel=1e-12)
+    assert got["max_damper_power"] > 0.0
+    ranged = CaseContext(
+        model,
+        AnalysisSettings((("speed_range", (100.0, 120.0)), ("speed_step", 10.0))),
+        "model",
+    )
+    ranged.analysis("response")
+    np.testing.assert_allclose(ranged.analysis("response")[0].speed, [100.0, 110.0, 120.0])
+
+
+@pytest.mark.parametrize(
+    ("figure", "message"),
+    [
+        ("max_shaft_stress", "no shaft of the torsional model has diameters"),
+        ("max_stress_ratio", "the torsional model has no [rules]"),
+        ("max_damper_power", "the torsional model has no damper"),
+    ],
+)
+def test_response_figures_a_model_cannot_give(figure, message):
+    engine = load_example("inline6-diesel")
+    ctx = CaseContext(engine, AnalysisSettings((("step", STEP),)))
+    with pytest.raises(InputError, match=message.replace("[", r"\[")):
+        FIGURES[figure].evaluate(ctx)
+
+
+def test_relative_angle_between_unknown_masses():
+    engine = load_example("inline6-diesel")
+    ctx = CaseContext(engine, AnalysisSettings((("relative", ("pulley", "flywhel")),)))
+    with pytest.raises(InputError) as info:
+        FIGURES["max_relative_angle"].evaluate(ctx)
+    assert str(info.value).startswith('[analysis] relative = ["pulley", "flywhel"]: no mass')

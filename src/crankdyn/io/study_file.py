@@ -325,6 +325,12 @@ def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
     for name, setting in SETTINGS.items():
         if setting.kind == "number":
             value = t.number(name, None, check=setting.check)
+        elif setting.kind == "strings":
+            value = t.string_list(name, None, length=setting.length)
+        elif setting.kind.startswith("list:"):
+            value = t.quantity_list(
+                name, setting.kind[5:], None, length=setting.length, check=setting.check
+            )
         else:
             value = t.quantity(name, setting.kind, None, check=setting.check)
         if value is not None:

@@ -52,9 +52,11 @@ SENSES = ("min", "max")
 class Setting:
     """A key of the study file's ``[analysis]`` table.
 
-    ``kind`` is a quantity kind of :data:`crankdyn.io.units.KINDS` (read with units) or
-    ``"number"``; ``default`` is in SI (None: no default, the analyses fall back on the
-    engine's own value, e.g. its ``[operating] speed``).
+    ``kind`` is a quantity kind of :data:`crankdyn.io.units.KINDS` (read with units),
+    ``"number"``, ``"strings"`` (a list of text) or ``"list:<quantity kind>"`` (a list of
+    quantities); ``length`` fixes the length of a list. ``default`` is in SI (None: no default,
+    the analyses fall back on the engine's or the model's own value, e.g. its
+    ``[operating] speed``).
     """
 
     name: str
@@ -62,6 +64,7 @@ class Setting:
     default: Any
     help: str
     check: str | None = "positive"
+    length: int | None = None
 
 
 SETTINGS: dict[str, Setting] = {}
@@ -623,5 +626,232 @@ for _n in NATURAL_FREQUENCY_MODES:
             subjects=("engine", "model"),
             description=f"Torsional natural frequency of the {_n}. elastic mode (engine: its "
             "[torsion] model)",
+        )
+    )
+
+
+# ---- forced torsional response (crankdyn.torsion.response) --------------------------------------
+
+register_setting(
+    Setting(
+        "speed_range",
+        "list:speed",
+        None,
+        "Speed range [low, high] of the forced-response figures (default: the torsional "
+        "model's [operating] speed_range).",
+        length=2,
+    )
+)
+register_setting(
+    Setting(
+        "speed_step",
+        "speed",
+        25.0 * math.pi / 30.0,
+        "Speed step of the forced-response figures (default 25 rpm).",
+    )
+)
+register_setting(
+    Setting(
+        "max_order",
+        "number",
+        12.0,
+        "Highest excitation order of the forced response (default 12; from the cycle's lowest "
+        "order, 0.5 four-stroke, 1 two-stroke).",
+    )
+)
+register_setting(
+    Setting(
+        "relative",
+        "strings",
+        None,
+        "The two masses of the relative-angle figure (default: the first and the last mass "
+        'of the torsional model, e.g. ["pulley", "flywheel"]).',
+        check=None,
+        length=2,
+    )
+)
+
+
+def _torsion_model(ctx: CaseContext):
+    """(torsional model, engine or None) of a case."""
+    if ctx.kind == "engine":
+        from crankdyn.io.torsion_file import engine_torsion
+
+        return engine_torsion(ctx.subject), ctx.subject
+    return ctx.subject, None
+
+
+def speed_grid(low: float, high: float, step: float) -> np.ndarray:
+    """Speeds low, low + step, ... up to high (rad/s)."""
+    count = math.floor((high - low) / step * (1 + 1e-12)) + 1
+    if count > 100_000:
+        raise InputError("too many speeds (more than 100000)", key="[analysis] speed_step")
+    return low + step * np.arange(count)
+
+
+def _response(ctx: CaseContext):
+    from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
+    from crankdyn.torsion.response import forced_response
+
+    model, engine = _torsion_model(ctx)
+    excitation = excitation_for(model, engine)
+    given = ctx.settings["speed_range"]
+    if given is not None:
+        low, high = given
+    elif model.operating is not None:
+        low, high = model.operating.low, model.operating.high
+    else:
+        raise InputError(
+            "no speed range for the forced response: give [analysis] speed_range in the study "
+            "file or [operating] speed_range in the torsional model",
+            file=getattr(model, "source", None),
+        )
+    if not high > low:
+        raise InputError(
+            "the speed range is empty: its end is not above its start",
+            key="[analysis] speed_range",
+        )
+    base = fundamental_order(excitation.cycle)
+    orders = order_grid(base, ctx.settings["max_order"], base, excitation.cycle)
+    speeds = speed_grid(low, high, ctx.settings["speed_step"])
+    result = forced_response(model, excitation, speeds, orders)
+    return result, model
+
+
+register_analysis("response", _response)
+
+
+def _relative_pair(ctx: CaseContext, model) -> tuple[str, str]:
+    pair = ctx.settings["relative"]
+    if pair is None:
+        names = model.mass_names
+        return names[0], names[-1]
+    return tuple(pair)
+
+
+def max_relative_angle(ctx: CaseContext) -> float:
+    """Largest synthesised (half-range) relative angle between the two masses over the speed
+    range (rad)."""
+    result, model = ctx.analysis("response")
+    a, b = _relative_pair(ctx, model)
+    try:
+        relative = result.relative_angle(a, b)
+    except InputError as exc:
+        raise InputError(exc.message, key="[analysis] relative", value=[a, b]) from None
+    return float(np.max(relative.synthesized))
+
+
+def _model_shafts(ctx: CaseContext) -> slice:
+    _, model = ctx.analysis("response")
+    return slice(0, len(model.shafts))  # the damper couplings follow the shafts
+
+
+def max_shaft_stress(ctx: CaseContext) -> float:
+    """Largest synthesised nominal shear stress over the speed range and the shafts with
+    diameters (Pa)."""
+    result, _ = ctx.analysis("response")
+    stress = np.asarray(result.synthesized_shaft_stress)[:, _model_shafts(ctx)]
+    known = np.isfinite(stress).all(axis=0)
+    if not known.any():
+        raise InputError(
+            "no shaft of the torsional model has diameters (outer_diameter): no stress",
+            key="max_shaft_stress",
+        )
+    return float(np.max(stress[:, known]))
+
+
+def max_stress_ratio(ctx: CaseContext) -> float:
+    """Largest synthesised stress over the permissible continuous stress tau_C of the rule
+    check (IACS UR M68), over the speeds and the checked shafts (dimensionless)."""
+    result, _ = ctx.analysis("response")
+    check = result.rule_check
+    if check is None:
+        raise InputError(
+            "the torsional model has no [rules] (docs/torsion-file.md): no rule check",
+            key="max_stress_ratio",
+        )
+    return float(np.max(np.asarray(check.stress) / np.asarray(check.tau_c)))
+
+
+def max_damper_power(ctx: CaseContext) -> float:
+    """Largest power dissipated in a damper over the speed range (W)."""
+    result, _ = ctx.analysis("response")
+    if result.damper_power is None:
+        raise InputError("the torsional model has no damper", key="max_damper_power")
+    return float(np.max(result.damper_power))
+
+
+for _name, _key, _label, _unit, _function, _scale, _si in (
+    (
+        "max_relative_angle",
+        "max_relative_angle_rad",
+        "Largest relative angle (synthesised)",
+        "mrad",
+        max_relative_angle,
+        1e3,
+        "rad",
+    ),
+    (
+        "max_free_end_amplitude",
+        "max_free_end_amplitude_rad",
+        "Largest amplitude of the first mass (synthesised)",
+        "mrad",
+        lambda c: float(np.max(np.asarray(c.analysis("response")[0].synthesized_amplitude)[:, 0])),
+        1e3,
+        "rad",
+    ),
+    (
+        "max_shaft_torque",
+        "max_shaft_torque_Nm",
+        "Largest vibratory shaft torque (synthesised)",
+        "N·m",
+        lambda c: float(
+            np.max(
+                np.asarray(c.analysis("response")[0].synthesized_shaft_torque)[:, _model_shafts(c)]
+            )
+        ),
+        1.0,
+        "N·m",
+    ),
+    (
+        "max_shaft_stress",
+        "max_shaft_stress_Pa",
+        "Largest shaft shear stress (synthesised)",
+        "MPa",
+        max_shaft_stress,
+        1e-6,
+        "Pa",
+    ),
+    (
+        "max_stress_ratio",
+        "max_stress_ratio",
+        "Largest shaft stress / permissible τ_C (IACS UR M68)",
+        "",
+        max_stress_ratio,
+        1.0,
+        "",
+    ),
+    (
+        "max_damper_power",
+        "max_damper_power_W",
+        "Largest damper power",
+        "W",
+        max_damper_power,
+        1.0,
+        "W",
+    ),
+):
+    register_figure(
+        Figure(
+            name=_name,
+            key=_key,
+            label=_label,
+            unit=_unit,
+            function=_function,
+            scale=_scale,
+            si_unit=_si,
+            better="min",
+            subjects=("engine", "model"),
+            description=_label + " over the speed range (forced torsional response)",
         )
     )

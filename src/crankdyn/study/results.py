@@ -519,6 +519,11 @@ def _describe(p) -> str:
 
 
 def _setting_text(setting, value: Any) -> str:
+    if isinstance(value, (tuple, list)):
+        from types import SimpleNamespace
+
+        inner = SimpleNamespace(kind=setting.kind.removeprefix("list:"))
+        return ", ".join(str(v) if isinstance(v, str) else _setting_text(inner, v) for v in value)
     if setting.kind == "speed":
         return f"{value * 30.0 / math.pi:.6g} rpm"
     if setting.kind == "angle":
