@@ -97,3 +97,21 @@ def test_errors(cli, tmp_path, monkeypatch, args, message):
     assert result.err.startswith(f"crankdyn: error: {message}"), result.err
     assert result.err.count("\n") == 1
     assert list(tmp_path.iterdir()) == []  # nothing written
+
+
+def test_ctrl_c_while_the_tables_are_written_keeps_the_journal(cli, tmp_path, monkeypatch):
+    import crankdyn.study.results
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    study = write_study(tmp_path / "files", ratios=(0.26,))
+    monkeypatch.setattr(crankdyn.study.results, "write_outputs", interrupted)
+    result = cli("study", study, "--out", tmp_path / "out", "--workers", "1")
+    assert result.status == 130
+    assert "interrupted; the finished cases are kept in" in result.err
+    assert (tmp_path / "out" / "journal.jsonl").read_text().count("\n") == 2
+    monkeypatch.undo()
+    again = cli("study", study, "--out", tmp_path / "out", "--workers", "1", "--no-summary")
+    assert again.status == 0 and (tmp_path / "out" / "results.csv").is_file()
+    assert "2 cases finished in an earlier run are kept" in again.err

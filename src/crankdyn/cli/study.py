@@ -218,6 +218,16 @@ def study_command(
             progress=bar.update,
             on_start=bar.start,
         )
+    except KeyboardInterrupt:  # a second Ctrl-C while the tables or the summary were written
+        bar.stop()
+        if not (folder / "journal.jsonl").exists():
+            raise
+        click.echo(
+            f"crankdyn: interrupted; the finished cases are kept in {folder / 'journal.jsonl'} "
+            "(run the same command again to resume and write the tables)",
+            err=True,
+        )
+        return 130
     finally:
         bar.stop()
     if fmt == "json":
