@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import contextlib
-import importlib.metadata
 import math
 import multiprocessing
 import os
@@ -45,7 +44,7 @@ from crankdyn.study.cases import Case, expand
 from crankdyn.study.figures import FIGURES
 from crankdyn.study.journal import Journal, StudyFolder
 from crankdyn.study.spec import StudySpec
-from crankdyn.study.worker import Payload, evaluate_case, prepare_worker
+from crankdyn.study.worker import Payload, evaluate_case, prepare_worker, warm_up
 
 __all__ = ["StudyRun", "payload_of", "run_study", "start_method"]
 
@@ -247,7 +246,7 @@ class _Dask:
         try:
             self._check_workers(address)
             threads = sum(self.client.nthreads().values())
-            self.capacity = max(8, 2 * threads)
+            self.capacity = max(16, 4 * threads)
             workers = len(self.client.nthreads())
             self.description = f"Dask cluster at {address} ({workers} workers, {threads} threads)"
             self.payload = self.client.scatter(payload, hash=False)
@@ -258,7 +257,7 @@ class _Dask:
 
     def _check_workers(self, address: str) -> None:
         try:
-            versions = self.client.run(importlib.metadata.version, "crankdyn")
+            versions = self.client.run(warm_up)
         except Exception as exc:
             raise InputError(
                 "a Dask worker has no crankdyn installed (install the same crankdyn "

@@ -26,7 +26,7 @@ from crankdyn.study.docpath import KeyPath, apply_values
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
 from crankdyn.study.spec import BASE_KINDS
 
-__all__ = ["Payload", "evaluate_case", "prepare_worker"]
+__all__ = ["Payload", "evaluate_case", "prepare_worker", "warm_up"]
 
 
 @dataclass(frozen=True)
@@ -43,6 +43,15 @@ class Payload:
     figures: tuple[str, ...]
     modules: tuple[str, ...]  # modules defining the figures (imported before a case runs)
     files: tuple[tuple[str, bytes], ...] = ()  # (relative path, bytes) for remote workers
+
+
+def warm_up() -> str:
+    """Import the analyses and build the unit registry in this process (run on every Dask
+    worker before the first case); returns the crankdyn version, checked against the client's."""
+    import crankdyn.study.preload  # noqa: F401
+    from crankdyn import __version__
+
+    return __version__
 
 
 def prepare_worker(payload: Payload) -> None:
