@@ -97,7 +97,7 @@ def test_the_summary(grid):
     for text in (
         "Study: test grid",
         "Best cases",
-        "Lowest max main-bearing load",
+        "Max main-bearing load (largest of the bearings): lowest",
         "Sensitivity",
         "Failed cases",
         "rod ratio R/L must be less than 1",

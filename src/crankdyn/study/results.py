@@ -355,8 +355,7 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]):
         best.figures.append(
             KeyFigure(
                 f"best_{figure.key}",
-                f"{'Lowest' if sense == 'min' else 'Highest'} {figure.label[0].lower()}"
-                f"{figure.label[1:]}",
+                f"{figure.label}: {'lowest' if sense == 'min' else 'highest'}",
                 float(values[first]),
                 _display(float(values[first]), figure),
                 note=f"case {table.data['case'][first]}: {_parameter_text(table, first)}",
@@ -378,7 +377,7 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]):
         best.tables.append(
             ReportTable(
                 name=f"best_{name}",
-                title=f"{'Lowest' if sense == 'min' else 'Highest'}: {figure.label}",
+                title=f"{figure.label}: the {top.size} {'lowest' if sense == 'min' else 'highest'}",
                 header=header,
                 rows=rows,
             )
