@@ -10,7 +10,13 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table as RichTable
 
-from crankdyn.cli.common import console, load_engine_arg, option_quantity, speed_range
+from crankdyn.cli.common import (
+    console,
+    load_engine_arg,
+    option_quantity,
+    speed_option,
+    speed_range,
+)
 from crankdyn.engine import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import load_example
@@ -73,12 +79,7 @@ def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force:
 @click.option(
     "--out", default=None, metavar="DIR", help="Report folder (default: <engine name>-report)."
 )
-@click.option(
-    "--speed",
-    metavar="RPM",
-    default=None,
-    help="Operating speed (rpm or with a unit); default: the engine's [operating] speed.",
-)
+@speed_option("Operating speed (rpm or with a unit); default: the engine's [operating] speed.")
 @click.option(
     "--speeds",
     metavar="A:B:STEP",

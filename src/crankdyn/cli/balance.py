@@ -21,6 +21,7 @@ from crankdyn.cli.common import (
     option_quantity,
     output_options,
     speed_of,
+    speed_option,
 )
 from crankdyn.errors import InputError
 from crankdyn.firing_search import (
@@ -424,12 +425,7 @@ def _balance_notes(result) -> list[str]:
 
 @click.command("balance")
 @engine_argument
-@click.option(
-    "--speed",
-    metavar="RPM",
-    default=None,
-    help="Crank speed (rpm, or with a unit); default: the engine's [operating] speed.",
-)
+@speed_option("Crank speed (rpm, or with a unit); default: the engine's [operating] speed.")
 @click.option(
     "--orders",
     default=None,
@@ -562,12 +558,7 @@ def flywheel_table(result) -> RichTable:
 
 @click.command("flywheel")
 @engine_argument
-@click.option(
-    "--speed",
-    metavar="RPM",
-    default=None,
-    help="Mean crank speed (rpm, or with a unit); default: the engine's [operating] speed.",
-)
+@speed_option("Mean crank speed (rpm, or with a unit); default: the engine's [operating] speed.")
 @click.option(
     "--delta",
     default=None,

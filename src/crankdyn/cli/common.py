@@ -22,6 +22,7 @@ from crankdyn.results import Result
 
 __all__ = [
     "FORMATS",
+    "angle_grid",
     "console",
     "emit",
     "engine_argument",
@@ -31,6 +32,8 @@ __all__ = [
     "output_options",
     "print_summary",
     "speed_of",
+    "speed_option",
+    "step_option",
 ]
 
 FORMATS = ("table", "csv", "json")
@@ -40,6 +43,60 @@ def console(file=None) -> Console:
     """A rich console wide enough for tables even when stdout is not a terminal."""
     width = shutil.get_terminal_size((120, 24)).columns
     return Console(file=file or sys.stdout, width=max(width, 120), soft_wrap=False, highlight=False)
+
+
+_SPEED_HELP = "Crank speed (rpm, or with a unit); default: the engine's [operating] speed."
+_STEP_HELP = "Crank-angle step (deg, or with a unit); default 10 for tables, 1 otherwise."
+
+
+def speed_option(help: str = _SPEED_HELP):
+    """The --speed RPM option (rpm for bare numbers; the engine's speed when absent)."""
+    return click.option("--speed", metavar="RPM", default=None, help=help)
+
+
+def step_option(help: str = _STEP_HELP, default: str | None = None):
+    """The --step DEG option (degrees for bare numbers)."""
+    return click.option(
+        "--step", metavar="DEG", default=default, help=help, show_default=default is not None
+    )
+
+
+def angle_grid(
+    step_option: str | None,
+    fmt: str,
+    span: float = 2 * math.pi,
+    default_table: float = 10.0,
+    default_data: float = 1.0,
+    *,
+    start: float = 0.0,
+    max_points: int = 1_000_000,
+) -> np.ndarray:
+    """Crank angles start..start+span every --step (deg when bare; the default step is coarser
+    for tables); the step must divide the span."""
+    default = default_table if fmt == "table" else default_data
+    step = option_quantity(
+        step_option if step_option is not None else default, "angle", "--step", "deg"
+    )
+    if not step > 0.0 or step > span:
+        raise InputError(
+            f"the step must lie between 0 and {math.degrees(span):g} deg",
+            key="--step",
+            value=step_option,
+        )
+    count = round(span / step)
+    if abs(count * step - span) > 1e-9 * span:
+        raise InputError(
+            f"the step must divide {math.degrees(span):g} deg evenly",
+            key="--step",
+            value=step_option,
+        )
+    if count > max_points:
+        raise InputError(
+            f"the step is too small (more than {max_points} points)",
+            key="--step",
+            value=step_option,
+        )
+    return start + np.linspace(0.0, span, count + 1)
 
 
 def engine_argument(f):

@@ -9,14 +9,16 @@ import click
 
 from crankdyn.bearings import bearing_loads
 from crankdyn.cli.common import (
+    angle_grid,
     emit,
     engine_argument,
     format_option,
     load_engine_arg,
     output_options,
     speed_of,
+    speed_option,
+    step_option,
 )
-from crankdyn.cli.kinematics import angle_grid
 from crankdyn.errors import InputError
 from crankdyn.forces import cylinder_forces
 from crankdyn.indicated import pressure_analysis
@@ -55,18 +57,10 @@ def _step(engine, step, fmt) -> float:
     return float(grid[1] - grid[0])
 
 
-_SPEED = click.option(
-    "--speed",
-    metavar="RPM",
-    default=None,
-    help="Crank speed (rpm, or with a unit); default: the engine's [operating] speed.",
-)
-_STEP = click.option(
-    "--step",
-    metavar="DEG",
-    default=None,
-    help="Crank-angle step (deg, or with a unit); must divide the cycle; "
-    "default 10 for tables, 1 otherwise.",
+_SPEED = speed_option()
+_STEP = step_option(
+    "Crank-angle step (deg, or with a unit); must divide the cycle; "
+    "default 10 for tables, 1 otherwise."
 )
 
 FORCE_TABLE = (

@@ -5,51 +5,20 @@ from __future__ import annotations
 import math
 
 import click
-import numpy as np
 
 from crankdyn.cli.common import (
+    angle_grid,
     emit,
     engine_argument,
     format_option,
     load_engine_arg,
-    option_quantity,
     output_options,
     speed_of,
+    speed_option,
+    step_option,
 )
 from crankdyn.errors import InputError
 from crankdyn.kinematics import METHODS, coefficient_table, piston_kinematics
-
-
-def angle_grid(
-    step_option: str | None,
-    fmt: str,
-    span: float = 2 * math.pi,
-    default_table: float = 10.0,
-    default_data: float = 1.0,
-) -> np.ndarray:
-    """Crank angles 0..span every --step (deg when bare); the default step is coarser for tables."""
-    default = default_table if fmt == "table" else default_data
-    step = option_quantity(
-        step_option if step_option is not None else default, "angle", "--step", "deg"
-    )
-    if not step > 0.0 or step > span:
-        raise InputError(
-            f"the step must lie between 0 and {math.degrees(span):g} deg",
-            key="--step",
-            value=step_option,
-        )
-    count = round(span / step)
-    if abs(count * step - span) > 1e-9 * span:
-        raise InputError(
-            f"the step must divide {math.degrees(span):g} deg evenly",
-            key="--step",
-            value=step_option,
-        )
-    if count > 1_000_000:
-        raise InputError(
-            "the step is too small (more than a million points)", key="--step", value=step_option
-        )
-    return np.linspace(0.0, span, count + 1)
 
 
 def check_order(method: str, order: int) -> None:
@@ -61,18 +30,8 @@ def check_order(method: str, order: int) -> None:
 
 @click.command("kinematics")
 @engine_argument
-@click.option(
-    "--speed",
-    metavar="RPM",
-    default=None,
-    help="Crank speed (rpm, or with a unit); default: the engine's [operating] speed.",
-)
-@click.option(
-    "--step",
-    metavar="DEG",
-    default=None,
-    help="Crank-angle step (deg, or with a unit); default 10 for tables, 1 otherwise.",
-)
+@speed_option()
+@step_option()
 @click.option(
     "--method",
     type=click.Choice(METHODS),

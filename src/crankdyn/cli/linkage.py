@@ -10,7 +10,14 @@ import click
 import numpy as np
 from rich.table import Table as RichTable
 
-from crankdyn.cli.common import console, emit, format_option, option_quantity, output_options
+from crankdyn.cli.common import (
+    angle_grid,
+    console,
+    emit,
+    format_option,
+    option_quantity,
+    output_options,
+)
 from crankdyn.errors import InputError
 from crankdyn.io.linkage_file import (
     linkage_example_names,
@@ -32,18 +39,7 @@ def _angles(angle: str | None, step: str | None, fmt: str, start: float = 0.0) -
         raise InputError("give --angle or --step, not both", key="--angle", value=angle)
     if angle is not None:
         return np.array([option_quantity(angle, "angle", "--angle", "deg")])
-    default = 10.0 if fmt == "table" else 1.0
-    value = option_quantity(step if step is not None else default, "angle", "--step", "deg")
-    if not 0.0 < value <= TWO_PI:
-        raise InputError("the step must lie between 0 and 360 deg", key="--step", value=step)
-    count = round(TWO_PI / value)
-    if abs(count * value - TWO_PI) > 1e-9:
-        raise InputError("the step must divide 360 deg evenly", key="--step", value=step)
-    if count > 100_000:
-        raise InputError(
-            "the step is too small (more than 100000 positions)", key="--step", value=step
-        )
-    return start + np.linspace(0.0, TWO_PI, count + 1)
+    return angle_grid(step, fmt, TWO_PI, start=start, max_points=100_000)
 
 
 def _single(data: dict, keys) -> dict:
