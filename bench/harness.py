@@ -61,11 +61,13 @@ class Deviation:
 @dataclass(frozen=True)
 class Target:
     """A speed target: crankdyn at least ``ratio`` times faster than ``peer`` (ratio 1.0: not
-    slower; ratio 0.5: within 2x of it)."""
+    slower; ratio 0.5: within 2x of it), or, with ``peer`` None, crankdyn's median under
+    ``seconds``."""
 
-    peer: str
+    peer: str | None
     ratio: float
     text: str
+    seconds: float | None = None
 
 
 @dataclass(frozen=True)
@@ -85,6 +87,7 @@ class Case:
     targets: tuple[Target, ...] = ()
     repeats: int = 7
     notes: tuple[str, ...] = ()
+    extra: Callable[[Any], dict[str, Any]] | None = None  # figures from crankdyn's output
 
 
 @dataclass(frozen=True)
@@ -101,6 +104,7 @@ class CaseResult:
     case: Case
     timings: dict[str, Timing]
     deviations: dict[str, Deviation] = field(default_factory=dict)
+    extra: dict[str, Any] = field(default_factory=dict)  # e.g. peak memory of a process case
 
     @property
     def crankdyn(self) -> Timing:
@@ -114,6 +118,9 @@ class CaseResult:
         return theirs / mine
 
     def target_met(self, target: Target) -> bool | None:
+        if target.peer is None:
+            mine = self.crankdyn.median
+            return None if mine is None else mine < float(target.seconds)
         ratio = self.ratio(target.peer)
         return None if ratio is None else ratio >= target.ratio
 
@@ -121,11 +128,16 @@ class CaseResult:
 def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, float, int]:
     """Warm-up call (output kept), then up to ``repeats`` timed calls; stops early once the
     timed calls have used ``budget`` seconds (at least three calls when a call is quicker than
-    the budget). Returns (output, median seconds, timed calls)."""
+    the budget). Returns (output, median seconds, timed calls). ``repeats`` 0 (the tests' smoke
+    runs): the single call's time, warm-up included."""
+    start = time.perf_counter()
     output = run()
+    first = time.perf_counter() - start
+    if repeats <= 0:
+        return output, first, 1
     times: list[float] = []
     spent = 0.0
-    for _ in range(max(repeats, 1)):
+    for _ in range(repeats):
         start = time.perf_counter()
         run()
         elapsed = time.perf_counter() - start
@@ -172,7 +184,10 @@ def run_case(
                 f"{k}: {d.value:.3g} > {d.tolerance:.3g} ({d.what})" for k, d in bad.items()
             )
             raise AgreementError(f"{case.title} [{case.size}]: results disagree: {text}")
-    return CaseResult(case, timings, deviations)
+    extra = {}
+    if case.extra is not None and CRANKDYN in outputs:
+        extra = case.extra(outputs[CRANKDYN])
+    return CaseResult(case, timings, deviations, extra)
 
 
 def relative_deviation(value, reference, scale=None) -> float:
