@@ -36,8 +36,6 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq
-from scipy.special import binom
 
 from crankdyn.geometry import CrankGeometry
 from crankdyn.results import DEG, Result, column, freeze, scalar
@@ -264,6 +262,8 @@ def series_coefficients(lam: float, k: float = 0.0, order: int = 2):
     """
     if order < 2 or order % 2:
         raise ValueError("order must be an even number >= 2")
+    from scipy.special import binom  # imported here: keeps `import crankdyn` light
+
     n_max = order // 2
     # Laurent polynomial of u/lambda = sin(phi) - k in z = exp(i phi), exponents -1, 0, 1
     base = np.array([0.5j, -k, -0.5j], dtype=complex)
@@ -349,6 +349,8 @@ def local_extrema(f, df=None, n: int = 1440) -> list[Extremum]:
     -------
     list of Extremum, sorted by angle.
     """
+    from scipy.optimize import brentq  # imported here: keeps `import crankdyn` light
+
     if df is None:
         df = complex_step(f)
     grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
