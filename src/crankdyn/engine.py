@@ -17,6 +17,7 @@ from pathlib import Path
 
 import numpy as np
 
+from crankdyn.balance import BalanceInputs
 from crankdyn.errors import InputError
 from crankdyn.firing import (
     CYCLE_ANGLE,
@@ -24,6 +25,7 @@ from crankdyn.firing import (
     even_firing_throw_angles,
     firing_angles,
 )
+from crankdyn.flywheel import FlywheelInputs
 from crankdyn.geometry import CrankGeometry, check_finite, check_positive
 from crankdyn.masses import Masses
 from crankdyn.pressure import ATMOSPHERE, PressureTrace
@@ -275,6 +277,11 @@ class Engine:
         engine's), or None.
     mechanical_efficiency
         eta_m (0 < eta_m <= 1) for effective torque and power, or None.
+    balance
+        Counterweights, V rod offset and power for the balance analysis, or None.
+    flywheel
+        Target irregularity, flywheel, other inertias and material for the flywheel analysis,
+        or None.
     source
         The file the engine came from, for messages.
     """
@@ -288,6 +295,8 @@ class Engine:
     speed: float | None = None
     torsion: TorsionModel | None = None
     mechanical_efficiency: float | None = None
+    balance: BalanceInputs | None = None
+    flywheel: FlywheelInputs | None = None
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:

@@ -12,7 +12,11 @@ from dataclasses import dataclass
 
 from crankdyn.errors import InputError
 
-__all__ = ["CrankGeometry", "check_finite", "check_positive"]
+__all__ = ["LENGTH_RANGE", "CrankGeometry", "check_finite", "check_length", "check_positive"]
+
+LENGTH_RANGE = (1e-6, 1e3)
+"""Lengths crankdyn accepts (m): 1 micrometre to 1 km. Outside it the input is a unit mistake,
+and squares and products of such lengths would leave the range of floating point."""
 
 
 def check_finite(name: str, value: float) -> float:
@@ -31,6 +35,20 @@ def check_positive(name: str, value: float, what: str = "") -> float:
     number = check_finite(name, value)
     if number <= 0.0:
         raise InputError(f"{what or 'the value'} must be positive", key=name, value=value)
+    return number
+
+
+def check_length(name: str, value: float, what: str = "") -> float:
+    """Return value as float or raise InputError unless it is a length in LENGTH_RANGE (m)."""
+    number = check_positive(name, value, what)
+    low, high = LENGTH_RANGE
+    if not low <= number <= high:
+        raise InputError(
+            f"{what or 'the length'} lies outside the range crankdyn computes with "
+            f"(1 micrometre to 1 km); check the unit",
+            key=name,
+            value=value,
+        )
     return number
 
 
@@ -61,9 +79,9 @@ class CrankGeometry:
     offset: float = 0.0
 
     def __post_init__(self) -> None:
-        bore = check_positive("bore", self.bore, "the bore")
-        radius = check_positive("crank_radius", self.crank_radius, "the crank radius")
-        rod = check_positive("rod_length", self.rod_length, "the rod length")
+        bore = check_length("bore", self.bore, "the bore")
+        radius = check_length("crank_radius", self.crank_radius, "the crank radius")
+        rod = check_length("rod_length", self.rod_length, "the rod length")
         offset = check_finite("offset", self.offset)
         if rod <= radius:
             raise InputError(

@@ -44,6 +44,13 @@ def test_report_folder_contents(demo_report):
     figures = summary["key_figures"]
     assert figures["stroke_m"] == pytest.approx(0.137)
     assert figures["max_piston_acceleration_m_s2"] > 0
+    # the Mendes 2008 9-mass model: first elastic mode 216.6 Hz (6th order at about 2166 rpm)
+    assert figures["natural_frequency_1_hz"] == pytest.approx(216.58, abs=0.01)
+    assert all(c["passed"] for c in summary["checks"])
+    assert {"kinematics", "pressure", "forces", "torque", "torsion-modes"} <= set(
+        summary["sections"]
+    )
+    assert len(summary["checks"]) >= 3
     for png in (demo_report / "plots").glob("*.png"):
         assert (demo_report / "plots" / f"{png.stem}.svg").exists()
     assert (demo_report / "data" / "kinematics.csv").read_text().startswith("crank_angle_deg,")

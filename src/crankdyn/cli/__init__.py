@@ -18,7 +18,7 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion", "linkage")
+COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion", "linkage", "balance")
 
 
 @click.group(

@@ -6,8 +6,11 @@ import math
 from importlib import resources
 from pathlib import Path
 
+from crankdyn.balance import BalanceInputs
 from crankdyn.engine import CYCLES, LAYOUTS, Cylinders, Engine
 from crankdyn.errors import InputError
+from crankdyn.firing import throw_angles_from_positions
+from crankdyn.flywheel import FlywheelInputs
 from crankdyn.geometry import CrankGeometry
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
@@ -98,6 +101,8 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
     torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
+    balance = _balance(root.table("balance"))
+    flywheel = _flywheel(root.table("flywheel"))
     with root.context():
         engine = Engine(
             name=name,
@@ -109,6 +114,8 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             speed=speed,
             torsion=torsion,
             mechanical_efficiency=efficiency,
+            balance=balance,
+            flywheel=flywheel,
             source=file,
         )
     root.finish()
@@ -159,6 +166,7 @@ def _cylinders(t: Table | None, cycle: str) -> Cylinders:
             f"missing; expected the {count} cylinder numbers in firing order, e.g. [1, 3, 4, 2]",
         )
     throw_angles = t.quantity_list("throw_angles", "angle", None, length=count)
+    throw_positions = t.quantity_list("throw_positions", "angle", None)
     pitch = t.quantity("pitch", "length", None, check="positive")
     bank_angle = t.quantity("bank_angle", "angle", None)
     if layout == "V" and bank_angle is None:
@@ -167,6 +175,10 @@ def _cylinders(t: Table | None, cycle: str) -> Cylinders:
         raise t.error("bank_angle", "an inline engine has no bank angle", t.data["bank_angle"])
     banks = t.string_list("banks", None, length=count, choices=("A", "B"))
     throws = t.integer_list("throws", None, length=count)
+    if throw_positions is not None:
+        throw_angles = _from_positions(
+            t, throw_positions, throw_angles, layout, bank_angle, banks, throws, count
+        )
     with t.context():
         cylinders = Cylinders(
             count=count,
@@ -314,6 +326,70 @@ def _torsion(t: Table | None, name: str, geometry, cylinders, masses):
     return parse_torsion_section(
         t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
     )
+
+
+def _from_positions(t: Table, positions, throw_angles, layout, bank_angle, banks, throws, count):
+    """Throw angles from the crank end view ``throw_positions`` (one angle per throw); None when
+    the layout itself is wrong (Cylinders then reports it)."""
+    if throw_angles is not None:
+        raise t.error(
+            "throw_positions",
+            "give throw_angles or throw_positions, not both",
+            t.data["throw_positions"],
+        )
+    half = count // 2
+    if layout == "inline":
+        banks, throws = ("A",) * count, throws or tuple(range(1, count + 1))
+    elif count % 2 == 0 or (banks and throws):
+        banks = banks or ("A",) * half + ("B",) * half
+        throws = throws or tuple(list(range(1, half + 1)) * 2)
+    else:
+        return None
+    if min(throws) < 1 or sorted(set(throws)) != list(range(1, max(throws) + 1)):
+        return None
+    gamma = bank_angle or 0.0
+    alpha = [0.0 if layout == "inline" else (-gamma if b == "A" else gamma) / 2.0 for b in banks]
+    if len(positions) != max(throws):
+        raise t.error(
+            "throw_positions",
+            f"expected {max(throws)} angles, one per throw",
+            t.data["throw_positions"],
+        )
+    return tuple(float(a) for a in throw_angles_from_positions(positions, throws, alpha))
+
+
+def _balance(t: Table | None) -> BalanceInputs | None:
+    if t is None:
+        return None
+    values = {
+        "counterweight_ratio": t.number("counterweight_ratio", 0.0, check="nonnegative"),
+        "reciprocating_balance_ratio": t.number(
+            "reciprocating_balance_ratio", 0.0, check="nonnegative"
+        ),
+        "rod_offset": t.quantity("rod_offset", "length", 0.0),
+        "power": t.quantity("power", "power", None, check="positive"),
+    }
+    with t.context():
+        inputs = BalanceInputs(**values)
+    t.finish()
+    return inputs
+
+
+def _flywheel(t: Table | None) -> FlywheelInputs | None:
+    if t is None:
+        return None
+    values = {
+        "delta": t.number("delta", None, check="positive"),
+        "inertia": t.quantity("inertia", "inertia", None, check="positive"),
+        "other_inertia": t.quantity("other_inertia", "inertia", 0.0, check="nonnegative"),
+        "density": t.quantity("density", "density", None, check="positive"),
+        "max_diameter": t.quantity("max_diameter", "length", None, check="positive"),
+        "inner_diameter": t.quantity("inner_diameter", "length", None, check="positive"),
+    }
+    with t.context():
+        inputs = FlywheelInputs(**values)
+    t.finish()
+    return inputs
 
 
 def _operating(t: Table | None) -> tuple[float | None, float | None]:

@@ -63,7 +63,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite
+from crankdyn.geometry import check_finite, check_length
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -178,16 +178,17 @@ def fourbar_positions(theta2, a: float, b: float, c: float, d: float, branch: st
     bx, by = a * np.cos(theta2), a * np.sin(theta2)
     ux, uy = d - bx, -by
     f = np.hypot(ux, uy)
-    with np.errstate(invalid="ignore", divide="ignore"):
+    # B on D (f -> 0) makes g overflow: no intersection there unless b = c, reported as NaN
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         ux, uy = ux / f, uy / f
         g = (b * b - c * c + f * f) / (2.0 * f)
         h2 = b * b - g * g
-    tol = 4 * _REL_TOL * max(a, b, c, d) ** 2
-    h = np.where(h2 >= -tol, np.sqrt(np.maximum(h2, 0.0)), np.nan)
-    cx = bx + g * ux - s * h * uy
-    cy = by + g * uy + s * h * ux
-    theta3 = np.arctan2(cy - by, cx - bx)
-    theta4 = np.arctan2(cy, cx - d)
+        tol = 4 * _REL_TOL * max(a, b, c, d) ** 2
+        h = np.where(h2 >= -tol, np.sqrt(np.maximum(h2, 0.0)), np.nan)
+        cx = bx + g * ux - s * h * uy
+        cy = by + g * uy + s * h * ux
+        theta3 = np.arctan2(cy - by, cx - bx)
+        theta4 = np.arctan2(cy, cx - d)
     bad = ~np.isfinite(h)
     theta3[bad] = np.nan
     theta4[bad] = np.nan
@@ -279,7 +280,7 @@ def _length(name: str, value: float) -> float:
     number = check_finite(name, value)
     if number <= 0.0:
         raise InputError("a link length must be positive", key=name, value=value)
-    return number
+    return check_length(name, number, "a link length")
 
 
 @dataclass(frozen=True)

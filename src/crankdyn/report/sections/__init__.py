@@ -17,7 +17,16 @@ from crankdyn.engine import Engine
 
 __all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
 
-BUILDERS = ("kinematics", "pressure", "forces", "torque")
+BUILDERS = (
+    "kinematics",
+    "pressure",
+    "forces",
+    "torque",
+    "firing",
+    "balance",
+    "flywheel",
+    "torsion_modes",
+)
 
 
 class NotApplicable(Exception):

@@ -1,0 +1,514 @@
+"""Speed fluctuation and flywheel sizing (seed 000 section 2.4).
+
+Seed 000 section 2.4, with the crankshaft taken as rigid and the load torque steady and equal to
+the engine's mean torque M_m:
+
+- torque non-uniformity mu = (M_max - M_min) / M_m;
+- the excess work W(theta) = integral from theta_0 to theta of (M - M_m) dtheta; the largest
+  excess work (energy swing) Delta E = max W - min W is the work done between the slowest and
+  the fastest crank position; the excess-work coefficient xi = Delta E / E, E = M_m Theta the
+  work of one cycle (Theta = 720 deg four-stroke, 360 deg two-stroke);
+- with I dw/dt = M - M_m and dw/dt = w dw/dtheta, (1/2) I (w_max^2 - w_min^2) = Delta E, i.e.
+  I w_m^2 delta = Delta E with w_m = (w_max + w_min)/2: the degree of cyclic irregularity
+  delta = (w_max - w_min)/w_m = Delta E / (I w_m^2), and for a target delta the total inertia
+  I_0 = Delta E / (delta w_m^2);
+- I_0 = I_F + Z (I_1 + I_2) + I_3: the flywheel I_F, the rotating masses m_r R^2 and the
+  reciprocating masses m_j R^2 / 2 of each cylinder (the mean of m_j (dx/dphi)^2), and any other
+  parts turning with the crankshaft I_3 (damper, pulley, gears);
+- the flywheel moment GD^2 = 4 g I_F (N m^2); a rim of width b between the diameters D_1 and D_2
+  of a material of density rho has I = pi rho b (D_1^4 - D_2^4) / 32, i.e.
+  GD^2 = pi rho g b (D_1^4 - D_2^4) / 8 (a solid disc: D_2 = 0).
+
+The instantaneous crank speed follows from the same energy equation without linearising:
+(1/2) I w(theta)^2 = (1/2) I w_0^2 + W(theta), with w_0 set so that the time-mean speed
+Theta / integral dtheta / w equals the given speed. Its delta agrees with Delta E / (I w_m^2) to
+first order in delta. A thin rim turning at peripheral speed v carries the hoop stress rho v^2
+(Timoshenko and Goodier, *Theory of Elasticity*, 3rd ed., McGraw-Hill, 1970, rotating disks,
+in the thin-ring limit).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import NamedTuple
+
+import numpy as np
+from scipy.optimize import brentq
+
+from crankdyn.balance import rotating_masses
+from crankdyn.errors import InputError
+from crankdyn.geometry import check_finite
+from crankdyn.masses import equivalent_masses
+from crankdyn.results import DEG, Result, column, freeze, scalar
+
+__all__ = [
+    "ExcessWork",
+    "FlywheelInputs",
+    "FlywheelResult",
+    "G",
+    "crank_train_inertia",
+    "engine_flywheel",
+    "excess_work",
+    "flywheel_analysis",
+    "instantaneous_speed",
+    "rim_width",
+]
+
+G = 9.80665  # m/s^2, standard gravity (GD^2 = 4 g I)
+RPM = 30.0 / math.pi
+
+
+# ---- numeric core -------------------------------------------------------------------------------
+
+
+class ExcessWork(NamedTuple):
+    """Excess work over one cycle of a torque curve (SI)."""
+
+    angle: np.ndarray  # rad, the grid (one cycle, no closing point)
+    work: np.ndarray  # J, W(theta) = integral of (M - M_m) from the first angle
+    mean_torque: float  # N m
+    swing: float  # J, Delta E = max W - min W
+    angle_of_min: float  # rad, slowest crank position
+    angle_of_max: float  # rad, fastest crank position
+
+
+def _cycle_grid(angle, torque, period: float):
+    theta = np.asarray(angle, dtype=float)
+    m = np.asarray(torque, dtype=float)
+    if theta.ndim != 1 or theta.shape != m.shape or theta.size < 4:
+        raise InputError("expected matching 1-D arrays of angle and torque (4 points or more)")
+    if not (np.all(np.isfinite(theta)) and np.all(np.isfinite(m))):
+        raise InputError("the torque curve holds values that are not finite")
+    if not (math.isfinite(period) and period > 0.0):
+        raise InputError("the cycle angle must be positive", key="period", value=period)
+    if abs(theta[-1] - theta[0] - period) < 1e-9 * period:
+        theta, m = theta[:-1], m[:-1]  # a closing point one cycle on repeats the first
+    if np.any(np.diff(theta) <= 0.0) or theta[-1] - theta[0] >= period:
+        raise InputError("the torque curve's angles must increase within one cycle")
+    return theta, m
+
+
+def excess_work(angle, torque, period: float) -> ExcessWork:
+    """Excess work of a periodic torque curve (module docstring).
+
+    The curve is taken as linear between its points and periodic (the last point joins the
+    first one cycle later), so the mean torque and W(theta) are the trapezoid-rule integrals,
+    exact for that curve; W returns to 0 after one cycle.
+
+    Parameters
+    ----------
+    angle
+        Crankshaft angles (rad), increasing, within one cycle (a closing point one cycle after
+        the first is allowed and dropped).
+    torque
+        Engine torque M at those angles (N m).
+    period
+        Cycle angle Theta (rad).
+    """
+    theta, m = _cycle_grid(angle, torque, period)
+    h = np.diff(np.append(theta, theta[0] + period))
+    nxt = np.roll(m, -1)
+    mean = float(np.sum(h * (m + nxt)) / (2.0 * period))
+    f = m - mean
+    steps = h * (f + np.roll(f, -1)) / 2.0
+    work = np.concatenate([[0.0], np.cumsum(steps[:-1])])
+    i_min, i_max = int(np.argmin(work)), int(np.argmax(work))
+    return ExcessWork(
+        angle=theta,
+        work=work,
+        mean_torque=mean,
+        swing=float(work[i_max] - work[i_min]),
+        angle_of_min=float(theta[i_min]),
+        angle_of_max=float(theta[i_max]),
+    )
+
+
+def instantaneous_speed(angle, work, period: float, inertia: float, mean_speed: float):
+    """Crank speed w(theta) (rad/s) of a rigid crankshaft of inertia I (kg m^2) whose excess
+    work is W(theta) (J): (1/2) I w^2 = (1/2) I w_0^2 + W, with w_0 such that the time-mean
+    speed Theta / integral dtheta/w is ``mean_speed`` (rad/s). The time integral takes the
+    speed at the middle of each step (W linear between the points), which stays finite when
+    the slowest point nearly stops."""
+    theta = np.asarray(angle, dtype=float)
+    w_work = np.asarray(work, dtype=float)
+    h = np.diff(np.append(theta, theta[0] + period))
+    w_mid = (w_work + np.roll(w_work, -1)) / 2.0
+    lowest = -2.0 * float(w_work.min()) / inertia  # w_0^2 at which the slowest point stops
+
+    def speed(c, values):
+        return np.sqrt(np.maximum(c + 2.0 * values / inertia, 0.0))
+
+    def excess_mean(c):
+        mid = np.maximum(speed(c, w_mid), 1e-300)
+        return period / float(np.sum(h / mid)) - mean_speed
+
+    if excess_mean(lowest) > 0.0:
+        raise InputError(
+            f"the inertia ({inertia:.4g} kg*m^2) is too small to carry the crankshaft through "
+            "the cycle at this speed: it would stop",
+            key="inertia",
+            value=inertia,
+        )
+    top = mean_speed**2 + 4.0 * float(np.max(np.abs(w_work))) / inertia + 1.0
+    c = brentq(excess_mean, lowest, top, xtol=1e-15 * top, rtol=1e-15, maxiter=200)
+    return speed(c, w_work)
+
+
+def crank_train_inertia(masses, geometry, throws) -> tuple[float, float]:
+    """Inertias of the crank train about the crankshaft axis (kg m^2), seed 000 section 2.4:
+    the rotating masses sum m_r R^2 (big ends of the rods, and the throws' unbalance once per
+    throw) and the reciprocating masses sum m_j R^2 / 2.
+
+    Returns
+    -------
+    rotating, reciprocating : float
+    """
+    r = geometry.crank_radius
+    m_rot = rotating_masses(masses, geometry.rod_length, throws)
+    m_j = equivalent_masses(masses, geometry.rod_length)[0]
+    return float(m_rot.sum() * r * r), len(throws) * m_j * r * r / 2.0
+
+
+def rim_width(inertia: float, density: float, outer: float, inner: float = 0.0) -> float:
+    """Width b (m) of a rim (or a solid disc, inner = 0) of density rho (kg/m^3) between the
+    diameters D_1 = outer and D_2 = inner (m) with the moment of inertia I (kg m^2):
+    b = 32 I / (pi rho (D_1^4 - D_2^4)) (module docstring)."""
+    return 32.0 * inertia / (math.pi * density * (outer**4 - inner**4))
+
+
+# ---- domain inputs ------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FlywheelInputs:
+    """Flywheel inputs of an engine (the ``[flywheel]`` table of the engine file).
+
+    Parameters
+    ----------
+    delta
+        Target degree of cyclic irregularity (dimensionless), or None.
+    inertia
+        Moment of inertia of an existing flywheel (kg m^2), to find the delta it gives, or None.
+    other_inertia
+        I_3: other parts turning with the crankshaft (damper, pulley, gears, clutch) (kg m^2).
+    density
+        Flywheel material density (kg/m^3), for the sizing; None to skip it.
+    max_diameter
+        Largest outer diameter the flywheel may have (m); None to skip the sizing.
+    inner_diameter
+        Inner diameter of the rim (m), for a rim-type flywheel; None sizes a solid disc only.
+    """
+
+    delta: float | None = None
+    inertia: float | None = None
+    other_inertia: float = 0.0
+    density: float | None = None
+    max_diameter: float | None = None
+    inner_diameter: float | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("delta", "inertia", "density", "max_diameter", "inner_diameter"):
+            value = getattr(self, name)
+            if value is None:
+                continue
+            number = check_finite(name, value)
+            if number <= 0.0:
+                raise InputError("must be positive", key=name, value=value)
+            object.__setattr__(self, name, number)
+        if self.delta is not None and self.delta >= 1.0:
+            raise InputError(
+                "the degree of cyclic irregularity is a small fraction (e.g. 0.01 or 1/100)",
+                key="delta",
+                value=self.delta,
+            )
+        other = check_finite("other_inertia", self.other_inertia)
+        if other < 0.0:
+            raise InputError("must not be negative", key="other_inertia", value=other)
+        object.__setattr__(self, "other_inertia", other)
+        if (
+            self.inner_diameter is not None
+            and self.max_diameter is not None
+            and self.inner_diameter >= self.max_diameter
+        ):
+            raise InputError(
+                "the rim's inner diameter must be smaller than max_diameter",
+                key="inner_diameter",
+                value=self.inner_diameter,
+            )
+
+
+# ---- result -------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class FlywheelResult(Result):
+    """Speed fluctuation of an engine and the flywheel it needs (module docstring)."""
+
+    title = "Speed fluctuation and flywheel"
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
+    torque: np.ndarray = column("torque_Nm", "Engine torque M", "N·m")
+    excess_work_curve: np.ndarray = column(
+        "excess_work_curve_J", "Excess work W = ∫(M − M_m)dθ", "J"
+    )
+    crank_speed: np.ndarray = column("crank_speed_rpm", "Crank speed", "rpm", RPM)
+    engine: str = scalar("engine", "Engine", "")
+    speed: float = scalar("speed_rpm", "Mean speed", "rpm", RPM)
+    mean_torque: float = scalar("mean_torque_Nm", "Mean torque M_m", "N·m")
+    max_torque: float = scalar("max_torque_Nm", "Max torque", "N·m")
+    min_torque: float = scalar("min_torque_Nm", "Min torque", "N·m")
+    torque_nonuniformity: float | None = scalar(
+        "torque_nonuniformity", "Torque non-uniformity μ = (M_max − M_min)/M_m", "", fmt=".4g"
+    )
+    excess_work: float = scalar("excess_work_J", "Largest excess work ΔE", "J")
+    excess_work_coefficient: float | None = scalar(
+        "excess_work_coefficient", "Excess-work coefficient ξ = ΔE/(M_m Θ)", "", fmt=".4g"
+    )
+    angle_of_min_speed: float = scalar("angle_of_min_speed_deg", "Slowest at θ", "deg", DEG)
+    angle_of_max_speed: float = scalar("angle_of_max_speed_deg", "Fastest at θ", "deg", DEG)
+    rotating_inertia: float = scalar("rotating_inertia_kgm2", "Rotating masses Σ m_r R²", "kg·m²")
+    reciprocating_inertia: float = scalar(
+        "reciprocating_inertia_kgm2", "Reciprocating masses Σ m_j R²/2", "kg·m²"
+    )
+    other_inertia: float = scalar("other_inertia_kgm2", "Other inertias I₃", "kg·m²")
+    target_delta: float | None = scalar("target_delta", "Target δ", "", fmt=".4g")
+    required_inertia: float | None = scalar(
+        "required_inertia_kgm2", "Required total inertia I₀ = ΔE/(δ ω²)", "kg·m²"
+    )
+    flywheel_inertia: float = scalar("flywheel_inertia_kgm2", "Flywheel inertia I_F", "kg·m²")
+    total_inertia: float = scalar("total_inertia_kgm2", "Total inertia", "kg·m²")
+    gd2: float = scalar("gd2_Nm2", "Flywheel moment GD² = 4 g I_F", "N·m²")
+    speed_fluctuation: float = scalar(
+        "speed_fluctuation", "δ = (ω_max − ω_min)/ω_m achieved", "", fmt=".5g"
+    )
+    speed_fluctuation_linear: float = scalar(
+        "speed_fluctuation_linear", "δ = ΔE/(I ω_m²)", "", fmt=".5g"
+    )
+    min_speed: float = scalar("min_speed_rpm", "Min speed", "rpm", RPM)
+    max_speed: float = scalar("max_speed_rpm", "Max speed", "rpm", RPM)
+    density: float | None = scalar("density_kg_m3", "Flywheel density", "kg/m³")
+    outer_diameter: float | None = scalar("outer_diameter_m", "Outer diameter D₁", "m")
+    disc_width: float | None = scalar("disc_width_m", "Solid disc: width", "m")
+    disc_mass: float | None = scalar("disc_mass_kg", "Solid disc: mass", "kg")
+    inner_diameter: float | None = scalar("inner_diameter_m", "Rim: inner diameter D₂", "m")
+    rim_width: float | None = scalar("rim_width_m", "Rim: width", "m")
+    rim_mass: float | None = scalar("rim_mass_kg", "Rim: mass", "kg")
+    rim_speed: float | None = scalar("rim_speed_m_s", "Peripheral speed at D₁", "m/s")
+    hoop_stress: float | None = scalar("rim_hoop_stress_Pa", "Thin-rim hoop stress ρv²", "Pa")
+    notes: tuple[str, ...] = scalar("notes", "Notes", "")
+    cycle_angle: float = field(default=4.0 * math.pi, repr=False)
+
+    def plot(self, fig=None):
+        """Torque, excess work (energy swing) and instantaneous speed; returns the Figure."""
+        from crankdyn.plots.flywheel import plot_flywheel
+
+        return plot_flywheel(self, fig=fig)
+
+
+def flywheel_analysis(
+    angle,
+    torque,
+    speed: float,
+    cycle_angle: float,
+    *,
+    rotating_inertia: float = 0.0,
+    reciprocating_inertia: float = 0.0,
+    inputs: FlywheelInputs | None = None,
+    delta: float | None = None,
+    inertia: float | None = None,
+    engine: str = "",
+) -> FlywheelResult:
+    """Speed fluctuation and flywheel from a torque curve (module docstring).
+
+    Parameters
+    ----------
+    angle, torque
+        The engine torque over one cycle (rad, N m), at constant speed.
+    speed
+        Mean crank speed w_m (rad/s).
+    cycle_angle
+        Theta (rad): 4 pi four-stroke, 2 pi two-stroke.
+    rotating_inertia, reciprocating_inertia
+        Z m_r R^2 and Z m_j R^2 / 2 of the crank train (kg m^2), :func:`crank_train_inertia`.
+    inputs
+        Flywheel inputs (target delta, given flywheel, other inertias, material, diameters).
+    delta
+        Target degree of cyclic irregularity; overrides ``inputs.delta``.
+    inertia
+        A given flywheel's inertia (kg m^2), to find its delta; overrides ``inputs.inertia``.
+        With both a target delta and a flywheel, the flywheel for the target is sized and the
+        given one ignored.
+    engine
+        Name for the result.
+    """
+    inputs = inputs or FlywheelInputs()
+    w = float(speed)
+    if not (math.isfinite(w) and w > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
+    if delta is not None:
+        inputs = replace(inputs, delta=delta)
+    if inertia is not None:
+        inputs = replace(inputs, inertia=inertia)
+    if inputs.delta is None and inputs.inertia is None:
+        raise InputError(
+            "give a target degree of cyclic irregularity (--delta or [flywheel] delta) or a "
+            "flywheel inertia (--inertia or [flywheel] inertia)",
+            key="delta",
+        )
+    ew = excess_work(angle, torque, cycle_angle)
+    m = np.asarray(torque, dtype=float)[: ew.angle.size]
+    notes: list[str] = []
+    mean = ew.mean_torque
+    crank = rotating_inertia + reciprocating_inertia + inputs.other_inertia
+    if inputs.delta is not None:
+        required = ew.swing / (inputs.delta * w * w)
+        flywheel = required - crank
+        if flywheel <= 0.0:
+            notes.append(
+                f"the crank train's own inertia ({crank:.4g} kg*m^2) already meets the target "
+                "delta: no flywheel needed"
+            )
+            flywheel = 0.0
+        if inputs.inertia is not None:
+            notes.append("a target delta is given: the flywheel is sized, the given one ignored")
+    else:
+        required = None
+        flywheel = inputs.inertia
+    total = flywheel + crank
+    if total <= 0.0:
+        raise InputError(
+            "no inertia at all: give the masses, other_inertia or a flywheel", key="inertia"
+        )
+    omega = instantaneous_speed(ew.angle, ew.work, cycle_angle, total, w)
+    nonuniformity = coefficient = None
+    if mean > 0.0:
+        nonuniformity = float((m.max() - m.min()) / mean)
+        coefficient = ew.swing / (mean * cycle_angle)
+    else:
+        notes.append("mean torque not positive: no non-uniformity or excess-work coefficient")
+    sizing = _sizing(flywheel, inputs, w, notes)
+    return FlywheelResult(
+        crank_angle=freeze(ew.angle),
+        torque=freeze(m),
+        excess_work_curve=freeze(ew.work),
+        crank_speed=freeze(omega),
+        engine=engine,
+        speed=w,
+        mean_torque=mean,
+        max_torque=float(m.max()),
+        min_torque=float(m.min()),
+        torque_nonuniformity=nonuniformity,
+        excess_work=ew.swing,
+        excess_work_coefficient=coefficient,
+        angle_of_min_speed=ew.angle_of_min,
+        angle_of_max_speed=ew.angle_of_max,
+        rotating_inertia=rotating_inertia,
+        reciprocating_inertia=reciprocating_inertia,
+        other_inertia=inputs.other_inertia,
+        target_delta=inputs.delta,
+        required_inertia=required,
+        flywheel_inertia=flywheel,
+        total_inertia=total,
+        gd2=4.0 * G * flywheel,
+        speed_fluctuation=float((omega.max() - omega.min()) / w),
+        speed_fluctuation_linear=ew.swing / (total * w * w),
+        min_speed=float(omega.min()),
+        max_speed=float(omega.max()),
+        notes=tuple(notes),
+        cycle_angle=cycle_angle,
+        **sizing,
+    )
+
+
+def _sizing(flywheel: float, inputs: FlywheelInputs, w: float, notes: list[str]) -> dict:
+    out = dict.fromkeys(
+        (
+            "density",
+            "outer_diameter",
+            "disc_width",
+            "disc_mass",
+            "inner_diameter",
+            "rim_width",
+            "rim_mass",
+            "rim_speed",
+            "hoop_stress",
+        )
+    )
+    rho, d1, d2 = inputs.density, inputs.max_diameter, inputs.inner_diameter
+    if rho is None or d1 is None:
+        if flywheel > 0.0:
+            notes.append("no [flywheel] density and max_diameter: the flywheel is not sized")
+        return out
+    if flywheel <= 0.0:
+        return out
+    v = w * d1 / 2.0
+    out.update(density=rho, outer_diameter=d1, rim_speed=v, hoop_stress=rho * v * v)
+    b = rim_width(flywheel, rho, d1)
+    out.update(disc_width=b, disc_mass=rho * b * math.pi * d1 * d1 / 4.0)
+    if d2 is not None:
+        b = rim_width(flywheel, rho, d1, d2)
+        out.update(
+            inner_diameter=d2, rim_width=b, rim_mass=rho * b * math.pi * (d1 * d1 - d2 * d2) / 4.0
+        )
+    return out
+
+
+def engine_flywheel(
+    engine,
+    speed: float,
+    *,
+    delta: float | None = None,
+    inertia: float | None = None,
+    inputs: FlywheelInputs | None = None,
+    step: float = math.radians(0.5),
+    torque=None,
+) -> FlywheelResult:
+    """Speed fluctuation and flywheel of an engine at a speed (module docstring).
+
+    The torque is the engine's total (gas and inertia) torque over a cycle at constant speed
+    from :func:`crankdyn.torque.engine_torque` (the engine's pressure trace, or its synthetic
+    model); the load takes the mean torque.
+
+    Parameters
+    ----------
+    engine
+        The :class:`crankdyn.engine.Engine` (masses required for the torque).
+    speed
+        Mean crank speed (rad/s).
+    delta, inertia
+        Target degree of cyclic irregularity, or a given flywheel's inertia (kg m^2); they
+        override the engine's ``[flywheel]`` inputs.
+    inputs
+        Flywheel inputs; default ``engine.flywheel``.
+    step
+        Crank-angle step of the torque curve (rad).
+    torque
+        An :class:`crankdyn.torque.EngineTorque` already computed at this speed, to reuse.
+    """
+    from crankdyn.torque import engine_torque
+
+    if engine.masses is None:
+        raise InputError(
+            "the flywheel needs the engine torque, hence the crank-train masses: add [masses]",
+            file=engine.source,
+        )
+    if torque is None:
+        torque = engine_torque(engine, speed, step=step)
+    rotating, reciprocating = crank_train_inertia(
+        engine.masses, engine.geometry, engine.cylinders.throws
+    )
+    result = flywheel_analysis(
+        torque.crank_angle,
+        torque.total_torque,
+        speed,
+        engine.cycle_angle,
+        rotating_inertia=rotating,
+        reciprocating_inertia=reciprocating,
+        inputs=inputs if inputs is not None else (engine.flywheel or FlywheelInputs()),
+        delta=delta,
+        inertia=inertia,
+        engine=engine.name,
+    )
+    if torque.notes:
+        result = replace(result, notes=tuple(torque.notes) + result.notes)
+    return result

@@ -1,0 +1,122 @@
+"""Report section: free forces and moments, counterweights, overturning moment (seed 000 §2.2)."""
+
+from __future__ import annotations
+
+from crankdyn.balance import engine_balance
+from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.report.sections import NotApplicable
+from crankdyn.torque import engine_torque
+
+
+def _row_name(row) -> str:
+    if row.source == "reciprocating":
+        return f"order {row.order}"
+    return "1st order, rotating" if row.source == "rotating" else "1st order, total"
+
+
+def build(ctx) -> Section:
+    engine = ctx.engine
+    if engine.masses is None:
+        raise NotApplicable("balance: the engine file has no [masses]")
+    torque = ctx.get("torque", lambda: engine_torque(engine, ctx.speed))
+    b = ctx.get("balance", lambda: engine_balance(engine, ctx.speed, torque=torque))
+    rows = b.rows()
+    worst_f = max(rows, key=lambda r: r.free_force)
+    figures = [
+        KeyFigure(
+            "max_free_force_N",
+            "Largest free force",
+            worst_f.free_force,
+            "0 (balanced)"
+            if worst_f.free_force == 0.0
+            else f"{worst_f.free_force:.4g} N ({_row_name(worst_f)})",
+        )
+    ]
+    if engine.cylinders.pitch is not None:
+        worst_m = max(rows, key=lambda r: r.free_moment or 0.0)
+        figures.append(
+            KeyFigure(
+                "max_free_moment_Nm",
+                "Largest free moment",
+                worst_m.free_moment,
+                "0 (balanced)"
+                if not worst_m.free_moment
+                else f"{worst_m.free_moment:.4g} N·m ({_row_name(worst_m)})",
+            )
+        )
+        if b.power:
+            prp = max((r.power_related_unbalance or 0.0) for r in b.orders) * 1e3
+            figures.append(
+                KeyFigure(
+                    "power_related_unbalance_Nm_kW",
+                    "Power-related unbalance (reciprocating orders)",
+                    prp,
+                    f"{prp:.3g} N·m/kW",
+                )
+            )
+    if b.overturning is not None:
+        figures.append(
+            KeyFigure(
+                "overturning_moment_amplitude_Nm",
+                "Overturning moment fluctuation",
+                b.overturning.amplitude,
+                f"±{b.overturning.amplitude:.4g} N·m about {b.overturning.mean:.4g} N·m",
+            )
+        )
+    header = [
+        "Order",
+        "Free force (N)",
+        "vertical (N)",
+        "horizontal (N)",
+        "Free moment (N·m)",
+        "vertical plane (N·m)",
+        "horizontal plane (N·m)",
+    ]
+    table_rows = [
+        [
+            _row_name(r),
+            *(
+                _cell(v)
+                for v in (
+                    r.free_force,
+                    r.free_force_vertical,
+                    r.free_force_horizontal,
+                    r.free_moment,
+                    r.free_moment_vertical,
+                    r.free_moment_horizontal,
+                )
+            ),
+        ]
+        for r in rows
+    ]
+    intro = (
+        f"Free forces and moments of the mass forces at {b.speed * 30 / 3.141592653589793:.0f} "
+        f"rpm, by order (largest magnitude over a revolution; moments about the middle of the "
+        f"engine); counterweights c = {b.counterweight_ratio:g}, "
+        f"b = {b.reciprocating_balance_ratio:g} (seed 000 §2.2)."
+    )
+    for note in b.notes:
+        intro += f" Note: {note}."
+    return Section(
+        key="balance",
+        title="Balance",
+        intro=intro,
+        figures=figures,
+        plots=[
+            Plot(
+                "balance",
+                "Free forces and moments by order",
+                b.plot(),
+                "Path of the free-force vector (seen from the free end) and of the free-moment "
+                "vector over one revolution, order by order; the arrow marks theta = 0.",
+            )
+        ],
+        tables=[Table("balance", "Free forces and moments", header=header, rows=table_rows)],
+        json={"balance": b.to_dict()},
+    )
+
+
+def _cell(value) -> str:
+    if value is None:
+        return "-"
+    return "0" if value == 0.0 else f"{value:.5g}"

@@ -1,0 +1,111 @@
+"""Report section: crank arrangement and firing order, and the firing orders the crankshaft
+allows, ranked (seed 000 section 2.3)."""
+
+from __future__ import annotations
+
+import math
+
+from crankdyn.firing_search import arrangement, firing_order_search, first_mode_shape
+from crankdyn.report.model import KeyFigure, Plot, Section, Table
+
+_COLUMNS = (
+    "interval_deviation_deg",
+    "adjacent_consecutive",
+    "main_bearing_min_interval_deg",
+    "free_moment_1",
+    "free_moment_2",
+    "torsional_vector_sum",
+)
+
+
+def build(ctx) -> Section:
+    engine = ctx.engine
+    cyl = engine.cylinders
+    own = ctx.get("arrangement", lambda: arrangement(cyl))
+    mode = None
+    if engine.torsion is not None:
+        mode = first_mode_shape(engine.torsion, cyl.count)
+    ranking = ctx.get(
+        "firing_orders", lambda: firing_order_search(cyl, name=engine.name, mode_shape=mode)
+    )
+    gaps = sorted({round(math.degrees(g), 6) for g in own.firing_intervals})
+    figures = [
+        KeyFigure(
+            "firing_intervals_deg",
+            "Firing intervals",
+            [round(math.degrees(g), 9) for g in own.firing_intervals],
+            " / ".join(f"{g:g}°" for g in gaps),
+            status="pass" if own.even_firing else "warn",
+            note="even firing" if own.even_firing else "uneven firing",
+        ),
+        KeyFigure(
+            "adjacent_consecutive",
+            "Adjacent cylinders firing in a row",
+            own.adjacent_consecutive,
+            str(own.adjacent_consecutive)
+            + (f" ({', '.join(own.adjacent_pairs)})" if own.adjacent_pairs else ""),
+        ),
+        KeyFigure(
+            "firing_order_rank",
+            "Rank of the firing order among those the crankshaft allows",
+            ranking.engine_rank,
+            f"{ranking.engine_rank} of {ranking.count}" if ranking.engine_rank else "-",
+        ),
+    ]
+    if own.main_bearing_min_interval is not None:
+        figures.append(
+            KeyFigure(
+                "main_bearing_min_interval_deg",
+                "Shortest firing interval next to a main bearing",
+                math.degrees(own.main_bearing_min_interval),
+                f"{math.degrees(own.main_bearing_min_interval):g}°",
+            )
+        )
+    columns = [c for c in _COLUMNS if c != "torsional_vector_sum" or mode is not None]
+    rows = []
+    for c in ranking.candidates[:20]:
+        d = c.to_dict()
+        rows.append(
+            [str(c.rank), c.order_text]
+            + [_cell(d.get(k)) for k in columns]
+            + ([c.v_scheme or ""] if cyl.layout == "V" else [])
+        )
+    header = ["Rank", "Firing order", *columns] + (["V scheme"] if cyl.layout == "V" else [])
+    scheme = f", {own.v_scheme} scheme" if own.v_scheme else ""
+    return Section(
+        key="firing",
+        title="Crank arrangement and firing order",
+        intro=(
+            f"Firing order {own.order_text}{scheme}. {ranking.count} firing order(s) fit the "
+            f"crankshaft ({ranking.even_count} evenly firing), ranked by the seed's criteria: "
+            "even intervals, balance, adjacent cylinders firing in a row, main-bearing loading"
+            + (
+                ", torsional vector sums over the first mode of the [torsion] model"
+                if mode is not None
+                else ""
+            )
+            + " (seed 000 §2.3)."
+        ),
+        figures=figures,
+        plots=[
+            Plot(
+                "firing",
+                "Crank end view and firing diagram",
+                own.plot(),
+                "Throws seen from the free end at cylinder 1's firing TDC, with the cylinders "
+                "on each; expansion strokes of every cylinder over the cycle.",
+            )
+        ],
+        tables=[
+            Table("firing_orders", "Firing orders the crankshaft allows", header=header, rows=rows)
+        ],
+        json={"firing_orders": ranking.ranked_list()[:20]},
+    )
+
+
+def _cell(value) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        return "0" if value == 0.0 else f"{value:.4g}"
+    return str(value)

@@ -1,0 +1,86 @@
+"""Report section: speed fluctuation and flywheel (seed 000 §2.4)."""
+
+from __future__ import annotations
+
+from crankdyn.flywheel import FlywheelInputs, engine_flywheel
+from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.report.sections import NotApplicable
+from crankdyn.torque import engine_torque
+
+DEFAULT_DELTA = 0.01
+"""Target degree of cyclic irregularity when the engine file gives none (seed 000 §2.4)."""
+
+
+def build(ctx) -> Section:
+    engine = ctx.engine
+    if engine.masses is None:
+        raise NotApplicable("flywheel: the engine file has no [masses]")
+    inputs = engine.flywheel or FlywheelInputs()
+    delta = None
+    if inputs.delta is None and inputs.inertia is None:
+        delta = DEFAULT_DELTA
+    torque = ctx.get("torque", lambda: engine_torque(engine, ctx.speed))
+    r = ctx.get(
+        "flywheel",
+        lambda: engine_flywheel(engine, ctx.speed, delta=delta, inputs=inputs, torque=torque),
+    )
+    figures = [
+        KeyFigure(
+            "torque_nonuniformity",
+            "Torque non-uniformity μ",
+            r.torque_nonuniformity,
+            "-" if r.torque_nonuniformity is None else f"{r.torque_nonuniformity:.3g}",
+        ),
+        KeyFigure(
+            "excess_work_J", "Largest excess work ΔE", r.excess_work, f"{r.excess_work:.4g} J"
+        ),
+        KeyFigure(
+            "flywheel_inertia_kgm2",
+            "Flywheel inertia",
+            r.flywheel_inertia,
+            f"{r.flywheel_inertia:.4g} kg·m² (GD² {r.gd2:.4g} N·m²)",
+        ),
+        KeyFigure(
+            "speed_fluctuation",
+            "Degree of cyclic irregularity δ",
+            r.speed_fluctuation,
+            f"{r.speed_fluctuation:.4g}",
+        ),
+    ]
+    if r.disc_width is not None:
+        figures.append(
+            KeyFigure(
+                "disc_width_m",
+                "Flywheel disc width",
+                r.disc_width,
+                f"{r.disc_width * 1e3:.3g} mm at ⌀{r.outer_diameter * 1e3:.0f} mm "
+                f"({r.rim_speed:.0f} m/s at the rim)",
+            )
+        )
+    target = (
+        f"target δ = {r.target_delta:.4g}" + (" (default)" if delta is not None else "")
+        if r.target_delta is not None
+        else f"the given flywheel ({r.flywheel_inertia:.4g} kg·m²)"
+    )
+    intro = (
+        f"Rigid crankshaft, steady load torque equal to the mean torque; {target} (seed 000 §2.4)."
+    )
+    for note in r.notes:
+        intro += f" Note: {note}."
+    return Section(
+        key="flywheel",
+        title="Speed fluctuation and flywheel",
+        intro=intro,
+        figures=figures,
+        plots=[
+            Plot(
+                "flywheel",
+                "Energy swing and crank speed",
+                r.plot(),
+                "Engine torque and its mean, the excess work ∫(M − M_m)dθ whose swing ΔE sizes "
+                "the flywheel, and the instantaneous crank speed with it.",
+            )
+        ],
+        tables=[Table("flywheel", "Torque, excess work and speed", result=r, show=False)],
+        json={"flywheel": {k: v for k, v in r.to_dict().items() if not isinstance(v, list)}},
+    )
