@@ -68,7 +68,7 @@ __all__ = [
 def _angles(phi) -> np.ndarray:
     """Crank angles as a float array; complex input is kept (complex-step differentiation)."""
     arr = np.asarray(phi)
-    return arr if np.iscomplexobj(arr) else arr.astype(float)
+    return arr if np.iscomplexobj(arr) else np.asarray(arr, dtype=float)  # no copy if float
 
 
 class SliderCrankMotion(NamedTuple):
