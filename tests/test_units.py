@@ -71,3 +71,17 @@ def test_errors_are_one_line_with_key_and_value(value, kind, fragment):
     assert text.startswith("e.toml: [geometry] bore = ")
     assert fragment in text
     assert "\n" not in text
+
+
+@pytest.mark.parametrize("value", ["1e16 mm", "1e-16 m", 1e200, "5e20 N*m/rad", -1e-300])
+def test_values_outside_the_computable_range(value):
+    """Beyond 1e-12..1e12 in SI a value is a unit mistake (and would overflow later)."""
+    kind = "torsional_stiffness" if "rad" in str(value) else "length"
+    with pytest.raises(InputError, match="outside the range crankdyn computes with"):
+        parse_quantity(value, kind, key="k")
+
+
+def test_zero_and_ordinary_extremes_pass():
+    assert parse_quantity(0, "length") == 0.0
+    assert parse_quantity("2e11 Pa", "pressure") == 2e11
+    assert parse_quantity("1e-8 kg*m^2", "inertia") == pytest.approx(1e-8)

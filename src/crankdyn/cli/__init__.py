@@ -18,7 +18,16 @@ from crankdyn.errors import InputError
 
 __all__ = ["cli", "main", "run"]
 
-COMMAND_MODULES = ("examples", "kinematics", "analyze", "forces", "torsion", "linkage", "balance")
+COMMAND_MODULES = (
+    "examples",
+    "kinematics",
+    "analyze",
+    "forces",
+    "torsion",
+    "linkage",
+    "balance",
+    "torsion_response",
+)
 
 
 @click.group(

@@ -45,6 +45,11 @@ def example_files(name: str) -> list[Path]:
     trace = data.get("pressure", {}).get("file") if isinstance(data.get("pressure"), dict) else None
     if isinstance(trace, str):
         files.append(path.parent / trace)
+    torsion = data.get("torsion") if isinstance(data.get("torsion"), dict) else {}
+    excitation = torsion.get("excitation") if isinstance(torsion.get("excitation"), dict) else {}
+    named = [excitation.get("load_curve"), excitation.get("harmonics")]
+    named += [t.get("file") for t in excitation.get("trace", []) if isinstance(t, dict)]
+    files += [path.parent / f for f in named if isinstance(f, str)]
     return files
 
 

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from crankdyn.errors import InputError
-from crankdyn.io.units import KINDS, parse_quantity
+from crankdyn.io.units import KINDS, check_si_range, parse_quantity
 
 __all__ = ["MISSING", "Table"]
 
@@ -180,6 +180,10 @@ class Table:
             raise self.error(key, f"expected {what}", value)
         if not math.isfinite(value):
             raise self.error(key, "the value is not finite", value)
+        if not integer and not check_si_range(float(value)):
+            raise self.error(
+                key, "lies outside the range crankdyn computes with (1e-12 to 1e12)", value
+            )
         self._check(key, value, float(value), check)
         if minimum is not None and value < minimum:
             raise self.error(key, f"must be at least {minimum:g}", value)

@@ -199,7 +199,7 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
     with t.context():
         if spec is not None:
             geometry, cylinders, engine_masses = engine
-            return equivalent_system(
+            model = equivalent_system(
                 geometry,
                 cylinders,
                 engine_masses,
@@ -210,13 +210,18 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
                 name=name,
                 source=t.file,
             )
-        return TorsionModel(
-            masses=tuple(masses),
-            shafts=tuple(shafts),
-            gears=tuple(gears),
-            name=name,
-            source=t.file,
-        )
+        else:
+            model = TorsionModel(
+                masses=tuple(masses),
+                shafts=tuple(shafts),
+                gears=tuple(gears),
+                name=name,
+                source=t.file,
+            )
+    # forced-response data (docs/torsion-file.md): excitation, dampers, rules, operating range
+    from crankdyn.io.torsion_response_file import read_response_sections
+
+    return read_response_sections(t, model, engine)
 
 
 def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:

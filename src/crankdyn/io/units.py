@@ -87,6 +87,19 @@ _DESCRIBE_ORDER = (
 )
 
 
+SI_RANGE = (1e-12, 1e12)
+"""Magnitudes crankdyn accepts for a quantity in SI units (besides exactly 0): from 1e-12 to 1e12
+covers every engineering value (a marine shaft's 1e10 N*m/rad, a steel's 2e11 Pa, a gear's
+1e-6 kg*m^2); beyond it the input is a unit mistake, and products of such values would leave
+the range of floating point."""
+
+
+def check_si_range(value: float) -> bool:
+    """Whether a finite SI value lies in SI_RANGE (or is 0)."""
+    magnitude = abs(value)
+    return magnitude == 0.0 or SI_RANGE[0] <= magnitude <= SI_RANGE[1]
+
+
 _NUMBER = re.compile(r"^\s*([-+]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][-+]?\d+)?)\s*(.*?)\s*$")
 _UNIT_TOKEN = re.compile(r"[A-Za-zµμΩ°%_]+|\d+(?:\.\d+)?|\*\*|[\^*/()\-\s.]")
 _SUPERSCRIPTS = str.maketrans({"²": "^2", "³": "^3", "·": "*", "⋅": "*", "−": "-"})
@@ -233,6 +246,11 @@ def parse_quantity(
         raise fail("the value is not finite")
     if not unit_text:
         if default_unit is None:
+            if not check_si_range(magnitude):
+                raise fail(
+                    f"{magnitude:.3g} {spec.si_unit} lies outside the range crankdyn computes "
+                    "with (1e-12 to 1e12 in SI units); check the unit"
+                )
             return magnitude
         unit_text = default_unit
     elif not _check_unit_text(unit_text):
@@ -243,4 +261,9 @@ def parse_quantity(
         raise fail(str(exc)) from None
     if not math.isfinite(result):
         raise fail("the value is not finite in SI units")
+    if not check_si_range(result):
+        raise fail(
+            f"{result:.3g} {spec.si_unit} lies outside the range crankdyn computes with "
+            "(1e-12 to 1e12 in SI units); check the unit"
+        )
     return result

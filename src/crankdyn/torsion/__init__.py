@@ -1,4 +1,4 @@
-"""Crankshaft torsional vibration: lumped models and free vibration.
+"""Crankshaft torsional vibration: lumped models, free and forced vibration.
 
 - :mod:`crankdyn.torsion.model`: the lumped model (masses, shafts, gears, ends) and its matrices;
 - :mod:`crankdyn.torsion.equivalent`: the equivalent system of an engine's crank throws;
@@ -6,6 +6,12 @@
 - :mod:`crankdyn.torsion.holzer`: Holzer's method (table, residual curve, frequencies);
 - :mod:`crankdyn.torsion.transfer`: the transfer-matrix method for chains;
 - :mod:`crankdyn.torsion.closed_form`: closed forms for one, two, three and N equal masses.
+- :mod:`crankdyn.torsion.excitation`: engine excitation, harmonic analysis, major orders;
+- :mod:`crankdyn.torsion.response`: steady-state forced response (batched chain solves);
+- :mod:`crankdyn.torsion.dampers`: viscous and tuned dampers, Den Hartog's optima;
+- :mod:`crankdyn.torsion.campbell`: critical speeds and the Campbell diagram;
+- :mod:`crankdyn.torsion.rules`: permissible stresses after IACS UR M68;
+- :mod:`crankdyn.torsion.transient`: time-domain response (constant speed, run-up).
 """
 
 from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel

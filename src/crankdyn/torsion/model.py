@@ -373,6 +373,17 @@ class TorsionModel:
         Name for reports.
     source
         The file the model came from, for messages.
+    excitation
+        How the model is excited in a forced response
+        (:class:`crankdyn.torsion.excitation.ExcitationSpec`), or None.
+    dampers
+        Vibration dampers (:class:`crankdyn.torsion.dampers.Damper`) added by the forced
+        response; not part of the matrices above (model a tuned damper as a mass and a shaft to
+        see it in the natural frequencies, or use :func:`crankdyn.torsion.campbell.with_dampers`).
+    rules
+        Rule-check inputs (:class:`crankdyn.torsion.rules.RuleSet`), or None.
+    operating
+        Operating speed range (:class:`crankdyn.torsion.campbell.OperatingRange`), or None.
 
     Raises
     ------
@@ -387,8 +398,13 @@ class TorsionModel:
     gears: tuple[Gear, ...] = ()
     name: str = "torsional model"
     source: str | None = field(default=None, compare=False)
+    excitation: object = None
+    dampers: tuple = ()
+    rules: object = None
+    operating: object = None
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "dampers", tuple(self.dampers))
         masses = tuple(self.masses)
         if not masses:
             raise InputError("a torsional model needs at least one mass", key="mass")
@@ -426,6 +442,21 @@ class TorsionModel:
                             key="between",
                             value=list(item.between),
                         )
+        for d in self.dampers:
+            if d.at not in seen:
+                raise InputError(
+                    f'damper "{d.name}": no mass named "{d.at}"{_suggest(d.at, seen)}',
+                    key="at",
+                    value=d.at,
+                )
+            if d.name in seen or d.name == GROUND:
+                raise InputError(
+                    f'damper "{d.name}": a mass has this name already; name the ring otherwise',
+                    key="name",
+                    value=d.name,
+                )
+        if len({d.name for d in self.dampers}) != len(self.dampers):
+            raise InputError("two dampers have the same name", key="name")
         _ = self._structure  # validate the topology now
         self._check_scale()
 

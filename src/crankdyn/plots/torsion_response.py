@@ -1,0 +1,324 @@
+"""Plots of the forced torsional response: response against speed per order and synthesised,
+the Campbell diagram, shaft stress against the rule limits, the torque harmonics, damper
+comparisons and time-domain runs."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from crankdyn.plots.style import COLORS, new_figure
+
+__all__ = [
+    "plot_campbell",
+    "plot_damper_comparison",
+    "plot_harmonics",
+    "plot_response",
+    "plot_stress_limits",
+    "plot_transient",
+]
+
+RPM = 30.0 / math.pi
+_SHOWN_ORDERS = 8
+
+
+def _quantity(result, what: str, item):
+    """(per-order amplitudes (S, Q), order sum (S,), synthesised (S,), label, unit, scale)."""
+    if what == "amplitude":
+        i = 0 if item is None else result.mass_index(item)
+        name = result.masses[i]
+        return (
+            result.amplitude[:, :, i],
+            result.order_sum_amplitude[:, i],
+            result.synthesized_amplitude[:, i],
+            f"Angular amplitude at {name}",
+            "mrad",
+            1e3,
+        )
+    if what == "relative":
+        a, b = item if item is not None else (result.masses[0], result.masses[-1])
+        rel = result.relative_angle(a, b)
+        return (
+            rel.amplitude,
+            rel.order_sum,
+            rel.synthesized,
+            f"Relative angle {a} - {b}",
+            "mrad",
+            1e3,
+        )
+    if what in ("torque", "stress"):
+        if item is None:
+            s = int(np.argmax(np.max(result.shaft_torque, axis=0)))
+        else:
+            s = result.shaft_index(item)
+        a, b = result.shafts[s]
+        if what == "torque":
+            return (
+                result.order_shaft_torque[:, :, s],
+                result.shaft_torque[:, s],
+                result.synthesized_shaft_torque[:, s],
+                f"Vibratory torque, shaft {a} - {b}",
+                "kN·m",
+                1e-3,
+            )
+        modulus = result.section_modulus[s]
+        if not np.isfinite(modulus):
+            raise ValueError(f"shaft {a} - {b} has no diameters: no stress")
+        return (
+            result.order_shaft_torque[:, :, s] / modulus,
+            result.shaft_stress[:, s],
+            result.synthesized_shaft_stress[:, s],
+            f"Nominal shear stress, shaft {a} - {b}",
+            "MPa",
+            1e-6,
+        )
+    raise ValueError(f"unknown quantity {what!r}: amplitude, relative, torque or stress")
+
+
+def plot_response(
+    result, what: str = "amplitude", item=None, fig=None, orders=None, log: bool = False
+):
+    """Response against speed: the largest orders (major orders solid and thicker, minor
+    dashed), the sum of the order amplitudes and the synthesised half-range amplitude.
+    ``orders``: the orders to draw (default the eight with the largest peaks)."""
+    per_order, total, synth, label, unit, scale = _quantity(result, what, item)
+    fig, axes = new_figure(1, 1, width=9.5, height=5.2, fig=fig)
+    ax = axes[0, 0]
+    n = np.asarray(result.speed) * RPM
+    q = np.asarray(result.orders)
+    if orders is None:
+        peaks = np.max(per_order, axis=0)
+        chosen = np.sort(np.argsort(peaks)[::-1][:_SHOWN_ORDERS])
+    else:
+        chosen = [int(np.argmin(np.abs(q - o))) for o in orders]
+    for k, j in enumerate(chosen):
+        major = bool(result.major[j])
+        ax.plot(
+            n,
+            per_order[:, j] * scale,
+            color=COLORS[k % len(COLORS)],
+            linewidth=1.6 if major else 1.0,
+            linestyle="-" if major else "--",
+            label=f"order {q[j]:g}" + (" (major)" if major else ""),
+        )
+    ax.plot(
+        n,
+        total * scale,
+        color="black",
+        linewidth=1.2,
+        linestyle=":",
+        label="sum of order amplitudes",
+    )
+    ax.plot(n, synth * scale, color="black", linewidth=2.0, label="synthesised (half range)")
+    if log:
+        ax.set_yscale("log")
+    else:
+        ax.set_ylim(bottom=0.0)
+    ax.set_xlim(float(n[0]), float(n[-1]))
+    ax.set_xlabel("Engine speed (rpm)")
+    ax.set_ylabel(f"{label} ({unit})")
+    ax.set_title(f"{label}: {result.model_name}", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8, ncol=2)
+    return fig
+
+
+def plot_damper_comparison(with_damper, without, what: str = "amplitude", item=None, fig=None):
+    """Synthesised response with and without the damper(s) against speed."""
+    fig, axes = new_figure(1, 1, width=9.5, height=5.0, fig=fig)
+    ax = axes[0, 0]
+    for result, color, text in (
+        (without, COLORS[1], "without damper"),
+        (with_damper, COLORS[0], "with damper"),
+    ):
+        _, total, synth, label, unit, scale = _quantity(result, what, item)
+        n = np.asarray(result.speed) * RPM
+        ax.plot(n, synth * scale, color=color, linewidth=1.8, label=f"{text}, synthesised")
+        ax.plot(
+            n,
+            total * scale,
+            color=color,
+            linewidth=1.0,
+            linestyle=":",
+            label=f"{text}, sum of orders",
+        )
+    ax.set_ylim(bottom=0.0)
+    ax.set_xlim(float(n[0]), float(n[-1]))
+    ax.set_xlabel("Engine speed (rpm)")
+    ax.set_ylabel(f"{label} ({unit})")
+    ax.set_title(f"{label} with and without damper: {with_damper.model_name}", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8)
+    return fig
+
+
+def plot_campbell(result, fig=None, max_speed: float | None = None):
+    """Campbell diagram: excitation frequency of every order against speed (major orders solid),
+    natural frequencies as horizontal lines, the operating range shaded and the critical speeds
+    inside it marked (filled: major orders)."""
+    fig, axes = new_figure(1, 1, width=9.5, height=6.0, fig=fig)
+    ax = axes[0, 0]
+    top_speed = (max_speed or result.high * 1.15) * RPM
+    f_nat = np.asarray(result.natural_frequency) / (2.0 * math.pi)
+    shown = f_nat[f_nat <= np.max(result.orders) * top_speed / 60.0 * 1.05]
+    f_top = 1.1 * max(
+        float(shown.max()) if shown.size else 0.0, float(np.min(result.orders)) * top_speed / 60.0
+    )
+    n = np.array([0.0, top_speed])
+    for j, q in enumerate(result.orders):
+        major = result.major is not None and bool(result.major[j])
+        ax.plot(
+            n,
+            q * n / 60.0,
+            color="#404040" if major else "#a0a0a0",
+            linewidth=1.1 if major else 0.6,
+            zorder=1,
+        )
+        end = min(top_speed, f_top * 60.0 / q)
+        if (major or float(q).is_integer()) and end > 0.2 * top_speed:
+            ax.annotate(
+                f"{q:g}",
+                (end, q * end / 60.0),
+                fontsize=7,
+                color="#404040",
+                xytext=(-3, -10),
+                textcoords="offset points",
+                ha="right",
+            )
+    for k, (mode, f) in enumerate(zip(result.modes, f_nat, strict=True)):
+        if f > f_top:
+            continue
+        ax.axhline(
+            f,
+            color=COLORS[k % len(COLORS)],
+            linewidth=1.2,
+            zorder=2,
+            label=f"mode {int(mode)}: {f:.4g} Hz",
+        )
+    ax.axvspan(
+        result.low * RPM, result.high * RPM, color="#dde8f3", zorder=0, label="operating range"
+    )
+    major_pts = [c for c in result.critical_speeds if c.major]
+    minor_pts = [c for c in result.critical_speeds if not c.major]
+    if major_pts:
+        ax.plot(
+            [c.speed * RPM for c in major_pts],
+            [c.frequency / (2 * math.pi) for c in major_pts],
+            "o",
+            color="black",
+            markersize=6,
+            zorder=3,
+            label="critical speed, major order",
+        )
+    if minor_pts:
+        ax.plot(
+            [c.speed * RPM for c in minor_pts],
+            [c.frequency / (2 * math.pi) for c in minor_pts],
+            "o",
+            markerfacecolor="white",
+            markeredgecolor="black",
+            markersize=5,
+            zorder=3,
+            label="critical speed, minor order",
+        )
+    ax.set_xlim(0.0, top_speed)
+    ax.set_ylim(0.0, f_top)
+    ax.set_xlabel("Engine speed (rpm)")
+    ax.set_ylabel("Frequency (Hz)")
+    ax.set_title(f"Campbell diagram: {result.model_name}", fontsize=10)
+    ax.legend(loc="upper left", fontsize=8, framealpha=0.95)
+    return fig
+
+
+def plot_stress_limits(result, fig=None):
+    """Synthesised shear stress of every checked shaft against tau_C and tau_T (IACS UR M68),
+    barred speed ranges shaded (red where not permitted)."""
+    check = result.rule_check
+    if check is None:
+        raise ValueError("the result has no rule check")
+    count = len(check.shafts)
+    fig, axes = new_figure(count, 1, width=9.5, height=3.4 * count + 0.8, fig=fig)
+    n = np.asarray(check.speed) * RPM
+    half_step = 0.5 * float(np.min(np.diff(n))) if n.size > 1 else 0.0
+    for j, ax in enumerate(axes[:, 0]):
+        a, b = check.shafts[j]
+        ax.plot(
+            n,
+            check.stress[:, j] * 1e-6,
+            color=COLORS[0],
+            linewidth=1.8,
+            label="synthesised stress (half range)",
+        )
+        ax.plot(n, check.tau_c[:, j] * 1e-6, color=COLORS[2], linewidth=1.3, label="τ_C continuous")
+        ax.plot(
+            n,
+            check.tau_t[:, j] * 1e-6,
+            color=COLORS[1],
+            linewidth=1.3,
+            linestyle="--",
+            label="τ_T transient (λ ≤ 0.8)",
+        )
+        for barred in check.barred_ranges:
+            if tuple(barred.shaft) != (a, b):
+                continue
+            ax.axvspan(
+                barred.start * RPM - half_step,
+                barred.end * RPM + half_step,
+                color="#f4c7c3" if not barred.permitted else "#fbe5c8",
+                zorder=0,
+            )
+        ax.set_xlim(float(n[0]), float(n[-1]))
+        ax.set_ylim(bottom=0.0)
+        ax.set_ylabel("Shear stress (MPa)")
+        ax.set_title(f"Shaft {a} - {b}", fontsize=10)
+        ax.legend(loc="upper left", fontsize=8)
+    axes[-1, 0].set_xlabel("Engine speed (rpm)")
+    fig.suptitle(f"Torsional stress against {check.rule}", fontsize=11)
+    return fig
+
+
+def plot_harmonics(result, fig=None):
+    """Single-cylinder harmonic amplitudes per order: gas, inertia and total; major orders
+    marked."""
+    fig, axes = new_figure(1, 1, width=9.5, height=4.6, fig=fig)
+    ax = axes[0, 0]
+    q = np.asarray(result.orders)
+    width = 0.8 * (q[1] - q[0] if q.size > 1 else 0.5) / 3.0
+    ax.bar(q - width, result.gas_amplitude, width, color=COLORS[1], label="gas part")
+    ax.bar(q, result.inertia_amplitude, width, color=COLORS[2], label="inertia part")
+    ax.bar(q + width, result.amplitude, width, color=COLORS[0], label="total")
+    for j in np.flatnonzero(result.major):
+        ax.annotate(
+            "major",
+            (q[j], result.amplitude[j]),
+            fontsize=7,
+            ha="center",
+            xytext=(0, 3),
+            textcoords="offset points",
+        )
+    ax.set_xlabel("Order")
+    ax.set_ylabel("Harmonic torque amplitude (N·m)")
+    ax.set_title(f"Single-cylinder torque harmonics at {result.speed * RPM:.0f} rpm", fontsize=10)
+    ax.legend(loc="upper right", fontsize=8)
+    return fig
+
+
+def plot_transient(result, shaft=None, fig=None):
+    """Shaft torque against time (a run-up also against speed, on a second axis)."""
+    if shaft is None:
+        s = int(np.argmax(np.max(np.abs(result.shaft_torque), axis=0)))
+    else:
+        s = next(i for i, label in enumerate(result.shafts) if tuple(label) == tuple(shaft))
+    a, b = result.shafts[s]
+    fig, axes = new_figure(1, 1, width=9.5, height=4.6, fig=fig)
+    ax = axes[0, 0]
+    ax.plot(result.time, result.shaft_torque[:, s] * 1e-3, color=COLORS[0], linewidth=0.7)
+    ax.set_xlabel("Time (s)")
+    ax.set_ylabel(f"Torque, shaft {a} - {b} (kN·m)")
+    ax.set_xlim(float(result.time[0]), float(result.time[-1]))
+    speed = np.asarray(result.speed) * RPM
+    if np.ptp(speed) > 0.0:
+        twin = ax.twinx()
+        twin.plot(result.time, speed, color=COLORS[1], linewidth=1.0)
+        twin.set_ylabel("Speed (rpm)", color=COLORS[1])
+    ax.set_title(f"Time-domain response: {result.model_name}", fontsize=10)
+    return fig

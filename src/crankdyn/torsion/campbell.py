@@ -1,0 +1,211 @@
+"""Critical speeds and the Campbell diagram (analysis).
+
+A critical speed is a crankshaft speed at which an order q of the excitation meets a natural
+frequency f_r of the shaft line: q n_c / 60 = f_r, so n_c = 60 f_r / q (rpm) (seed 003, 第5章
+"临界转速"; Ker Wilson vol. 2). The Campbell (interference) diagram plots the excitation
+frequency q n / 60 of every order against the speed n with the natural frequencies as horizontal
+lines; its crossings are the critical speeds. Each crossing is marked *major* when the order is
+a major order of the engine (all cylinders' phase vectors of that order line up,
+:func:`crankdyn.torsion.excitation.major_orders`) and carries the relative amplitude sum of the
+order over that mode's shape (how strongly the order excites the mode).
+
+Natural frequencies are those of the undamped model (:func:`crankdyn.torsion.modal.natural_modes`);
+tuned dampers of the model are included as a mass and a shaft, viscous dampers' rings are left
+out (undamped, a viscous ring is decoupled).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.geometry import check_positive
+from crankdyn.results import Result, array, freeze, scalar
+from crankdyn.torsion.excitation import (
+    _cylinder_amplitudes,
+    check_orders,
+    major_orders,
+    relative_amplitude_sums,
+)
+from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+
+__all__ = [
+    "CampbellResult",
+    "CriticalSpeed",
+    "OperatingRange",
+    "campbell",
+    "with_dampers",
+]
+
+RPM = 30.0 / math.pi
+HZ = 1.0 / (2.0 * math.pi)
+
+
+@dataclass(frozen=True)
+class OperatingRange:
+    """The operating speed range (rad/s) and the rated speed n_0 (rad/s, or None)."""
+
+    low: float
+    high: float
+    rated: float | None = None
+
+    def __post_init__(self) -> None:
+        low = check_positive("speed_range", self.low, "the lowest speed")
+        high = check_positive("speed_range", self.high, "the highest speed")
+        if high <= low:
+            raise InputError(
+                "the speed range is empty: its end is not above its start",
+                key="speed_range",
+                value=[low * RPM, high * RPM],
+            )
+        object.__setattr__(self, "low", low)
+        object.__setattr__(self, "high", high)
+        if self.rated is not None:
+            object.__setattr__(
+                self, "rated", check_positive("rated_speed", self.rated, "the rated speed")
+            )
+
+
+def with_dampers(model: TorsionModel) -> TorsionModel:
+    """The model with its tuned dampers as masses and shafts (for natural frequencies); viscous
+    dampers are left out (module docstring)."""
+    tuned = [d for d in model.dampers if d.kind == "tuned"]
+    if not tuned:
+        return model
+    masses = list(model.masses)
+    shafts = list(model.shafts)
+    for d in tuned:
+        masses.append(Mass(d.name, d.inertia))
+        shafts.append(Shaft((d.at, d.name), d.stiffness, d.damping, d.loss_factor))
+    return dataclasses.replace(model, masses=tuple(masses), shafts=tuple(shafts), dampers=())
+
+
+@dataclass(frozen=True)
+class CriticalSpeed(Result):
+    """One resonance: a mode met by an order at a speed."""
+
+    mode: int = scalar("mode", "Mode", "")
+    nodes: int = scalar("nodes", "Nodes", "")
+    order: float = scalar("order", "Order", "", fmt=".4g")
+    speed: float = scalar("speed_rpm", "Critical speed", "rpm", RPM, fmt=".6g")
+    frequency: float = scalar("frequency_hz", "Natural frequency", "Hz", HZ)
+    major: bool | None = scalar("major", "Major order", "")
+    relative_amplitude_sum: float | None = scalar(
+        "relative_amplitude_sum", "Relative amplitude sum", "", fmt=".4g"
+    )
+
+
+@dataclass(frozen=True)
+class CampbellResult(Result):
+    """Critical speeds in the operating range and the data of the Campbell diagram."""
+
+    title = "Critical speeds"
+    critical_speeds: tuple[CriticalSpeed, ...] = scalar("critical_speeds", "Critical speeds", "")
+    modes: np.ndarray = array("modes", "Elastic modes", "")
+    natural_frequency: np.ndarray = array("natural_frequencies_hz", "Natural frequencies", "Hz", HZ)
+    orders: np.ndarray = array("orders", "Orders", "")
+    major: np.ndarray | None = array("major_orders", "Major order", "")
+    low: float = scalar("speed_min_rpm", "Operating range from", "rpm", RPM)
+    high: float = scalar("speed_max_rpm", "Operating range to", "rpm", RPM)
+    model_name: str = scalar("model", "Model", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+
+    def plot(self, fig=None, max_speed: float | None = None):
+        """The Campbell diagram; returns the Figure."""
+        from crankdyn.plots.torsion_response import plot_campbell
+
+        return plot_campbell(self, fig=fig, max_speed=max_speed)
+
+
+def campbell(
+    model: TorsionModel,
+    orders,
+    speed_range: tuple[float, float] | None = None,
+    *,
+    excitation=None,
+    cycle: str | None = None,
+) -> CampbellResult:
+    """Critical speeds of ``model`` for ``orders`` inside a speed range (rad/s).
+
+    Parameters
+    ----------
+    model
+        The torsional model (its tuned dampers are included).
+    orders
+        The orders to consider.
+    speed_range
+        (low, high) in rad/s; default the model's operating range.
+    excitation
+        An excitation (for the firing angles: major orders and relative amplitude sums); default
+        :func:`~crankdyn.torsion.excitation.excitation_for` of the model when it has excitation
+        points.
+    cycle
+        The working cycle when there is no excitation (default four-stroke).
+    """
+    from crankdyn.torsion.excitation import excitation_for
+    from crankdyn.torsion.modal import natural_modes
+
+    notes = []
+    if speed_range is None:
+        if model.operating is None:
+            raise InputError(
+                "no speed range: give the operating range ([operating] speed_range in the "
+                "model) or the range option",
+                file=model.source,
+                key="speed_range",
+            )
+        speed_range = (model.operating.low, model.operating.high)
+    rng = OperatingRange(*speed_range)
+    if excitation is None and model.cylinder_dofs:
+        excitation = excitation_for(model, None)
+    if excitation is not None:
+        cycle = excitation.cycle
+    cycle = cycle or "four-stroke"
+    orders = np.sort(check_orders(orders, cycle))
+    full = with_dampers(model)
+    modes = natural_modes(full)
+    elastic = np.flatnonzero(modes.natural_frequency > 0.0)
+    omega = modes.natural_frequency[elastic]
+    major = rel = None
+    if excitation is not None:
+        angles = excitation.firing_angles
+        major = major_orders(angles, orders)
+        beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
+        rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
+        note = getattr(excitation, "note", "")
+        if note:
+            notes.append(note)
+    else:
+        notes.append("no excitation points: major orders not marked")
+    # every (mode, order) pair at once
+    speed = omega[:, None] / orders[None, :]
+    inside = (speed >= rng.low * (1 - 1e-12)) & (speed <= rng.high * (1 + 1e-12))
+    rows = []
+    for r, q in zip(*np.nonzero(inside), strict=True):  # only the crossings found
+        rows.append(
+            CriticalSpeed(
+                mode=int(modes.mode[elastic[r]]),
+                nodes=int(modes.node_count[elastic[r]]),
+                order=float(orders[q]),
+                speed=float(speed[r, q]),
+                frequency=float(omega[r]),
+                major=None if major is None else bool(major[q]),
+                relative_amplitude_sum=None if rel is None else float(rel[r, q]),
+            )
+        )
+    rows.sort(key=lambda c: (c.speed, c.mode))
+    return CampbellResult(
+        critical_speeds=tuple(rows),
+        modes=freeze(modes.mode[elastic], dtype=int),
+        natural_frequency=freeze(omega),
+        orders=freeze(orders),
+        major=None if major is None else freeze(major, dtype=bool),
+        low=rng.low,
+        high=rng.high,
+        model_name=model.name,
+        notes=tuple(notes) or None,
+    )

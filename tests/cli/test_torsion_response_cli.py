@@ -1,0 +1,250 @@
+"""``crankdyn torsion response | campbell | damper | excitation | transient`` in process."""
+
+import json
+
+import numpy as np
+import pytest
+
+from crankdyn.cli import main
+
+MODEL = """
+name = "engine and propeller"
+
+[excitation]
+cycle = "two-stroke"
+torque = "60 N*m"
+
+[operating]
+speed_range = ["300 rpm", "1000 rpm"]
+rated_speed = "1000 rpm"
+
+[[mass]]
+name = "engine"
+inertia = "2 kg*m^2"
+damping = "5 N*m*s/rad"
+cylinders = [1]
+
+[[mass]]
+name = "propeller"
+inertia = "6 kg*m^2"
+
+[[shaft]]
+between = ["engine", "propeller"]
+stiffness = "53 kN*m/rad"
+outer_diameter = "60 mm"
+
+[rules]
+[[rules.shaft]]
+between = ["engine", "propeller"]
+tensile_strength = "600 MPa"
+design_factor = 1.0
+"""
+
+
+def run(capsys, *args):
+    status = main(list(args))
+    out, err = capsys.readouterr()
+    return status, out, err
+
+
+def one_line_error(capsys, *args):
+    status, out, err = run(capsys, *args)
+    assert status == 2, err
+    assert out == ""
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("crankdyn: error: "), err
+    return lines[0]
+
+
+def test_response_json_keys_and_shapes(capsys):
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "response",
+        "inline6-diesel",
+        "--speeds",
+        "1000:2500:25",
+        "--orders",
+        "0.5:12",
+        "--format",
+        "json",
+    )
+    assert status == 0
+    data = json.loads(out)
+    s, q, m = 61, 24, 9
+    assert data["speed_rpm"] == pytest.approx(np.arange(1000, 2501, 25))
+    assert data["orders"] == pytest.approx(np.arange(1, 25) * 0.5)
+    assert np.shape(data["amplitude_rad"]) == (s, q, m)
+    assert np.shape(data["synthesized_amplitude_rad"]) == (s, m)
+    assert np.shape(data["shaft_torque_Nm"]) == (s, 8)
+    assert np.shape(data["shaft_stress_Pa"]) == (s, 8)
+    assert data["shaft_stress_Pa"][0][0] is None  # no diameters in the Mendes model
+    torque = np.array(data["shaft_torque_Nm"])
+    assert torque[:, 7].max() == pytest.approx(9.5e3, rel=0.05)
+    assert data["masses"][0] == "pulley" and data["shafts"][7] == ["cylinder 6", "flywheel"]
+
+
+def test_response_with_rules_relative_angle_and_plots(tmp_path, capsys):
+    path = tmp_path / "m.toml"
+    path.write_text(MODEL, encoding="utf-8")
+    fig, stress = tmp_path / "r.png", tmp_path / "s.png"
+    status, out, err = run(
+        capsys,
+        "torsion",
+        "response",
+        str(path),
+        "--speeds",
+        "300:1000:5",
+        "--orders",
+        "1:6",
+        "--relative",
+        "engine,propeller",
+        "--format",
+        "json",
+        "--plot",
+        str(fig),
+        "--plot-quantity",
+        "stress",
+        "--plot-stress",
+        str(stress),
+    )
+    assert status == 0, err
+    data = json.loads(out)
+    check = data["rule_check"]
+    assert check["rule"].startswith("IACS UR M68")
+    assert check["barred_speed_ranges"][0]["permitted"] is True
+    assert data["relative_angle"]["between"] == ["engine", "propeller"]
+    assert all(v is not None for v in data["shaft_stress_Pa"][0])
+    assert fig.stat().st_size > 10_000 and stress.stat().st_size > 10_000
+    status, out, _ = run(capsys, "torsion", "response", str(path), "--orders", "1:6")
+    assert status == 0 and "IACS UR M68" in out and "Barred range" in out
+
+
+def test_response_table_and_csv(capsys):
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "response",
+        "seed003-v6",
+        "--speeds",
+        "1000:2000:100",
+        "--orders",
+        "1.5,3,4.5,6",
+    )
+    assert status == 0 and "Vibratory torque" in out and "in phase" in out
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "response",
+        "seed003-v6",
+        "--speeds",
+        "1000:2000:100",
+        "--orders",
+        "1.5,3",
+        "--format",
+        "csv",
+    )
+    lines = out.strip().splitlines()
+    assert status == 0 and len(lines) == 12
+    assert lines[0].startswith("speed_rpm,synthesized_amplitude_rad.damper ring")
+
+
+def test_campbell_json(capsys, tmp_path):
+    fig = tmp_path / "c.png"
+    status, out, _ = run(
+        capsys, "torsion", "campbell", "inline6-diesel", "--format", "json", "--plot", str(fig)
+    )
+    assert status == 0 and fig.exists()
+    data = json.loads(out)
+    rows = data["critical_speeds"]
+    sixth = next(r for r in rows if r["order"] == 6.0)
+    assert sixth["speed_rpm"] == pytest.approx(2165.8, abs=0.1)
+    assert sixth["major"] is True and sixth["mode"] == 2
+    assert {r["major"] for r in rows if r["order"] == 5.5} == {False}
+    status, out, _ = run(capsys, "torsion", "campbell", "seed003-v6", "--range", "1000:2000")
+    assert (status == 0 and "Critical" in out) or "critical" in out
+
+
+def test_damper_excitation_transient(capsys, tmp_path):
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "damper",
+        "inline6-diesel",
+        "--at",
+        "pulley",
+        "--mode",
+        "2",
+        "--inertia",
+        "0.01 kg*m^2",
+        "--speeds",
+        "1800:2500:10",
+        "--plot",
+        str(tmp_path / "d.png"),
+    )
+    assert status == 0 and "with damper" in out and (tmp_path / "d.png").exists()
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "damper",
+        "inline6-diesel",
+        "--at",
+        "pulley",
+        "--mode",
+        "2",
+        "--inertia",
+        "0.01",
+        "--format",
+        "json",
+    )
+    design = json.loads(out)
+    assert design["kind"] == "tuned" and design["mass_ratio"] > 0
+    status, out, _ = run(
+        capsys, "torsion", "excitation", "inline6-diesel", "--speed", "2000", "--orders", "0.5:6"
+    )
+    assert status == 0 and "Major" in out
+    status, out, _ = run(
+        capsys,
+        "torsion",
+        "transient",
+        "seed003-v6",
+        "--speed",
+        "1500",
+        "--cycles",
+        "3",
+        "--orders",
+        "3,6",
+        "--format",
+        "csv",
+    )
+    assert status == 0 and out.startswith("time_s,speed_rpm,crank_angle_deg")
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["--speeds", "2500:1000:25"], "the range is empty"),
+        (["--speeds", "-100:1000:25"], "speeds must be positive"),
+        (["--orders", "0.25:12"], "does not fit the four-stroke cycle"),
+        (["--orders", "0.5:12:0.3"], "does not fit the four-stroke cycle"),
+        (["--relative", "pulley,flywhel"], 'no mass named "flywhel" (did you mean "flywheel"?)'),
+        (["--misfire", "9"], "the engine has cylinders 1 to 6"),
+        (["--misfire", "3"], "compression ratio"),
+    ],
+)
+def test_response_bad_input_one_line(capsys, args, message):
+    line = one_line_error(capsys, "torsion", "response", "inline6-diesel", *args)
+    assert message in line
+
+
+def test_model_without_excitation_point(capsys, tmp_path):
+    path = tmp_path / "bare.toml"
+    path.write_text(
+        '[[mass]]\nname = "a"\ninertia = 1.0\n[[mass]]\nname = "b"\ninertia = 2.0\n'
+        '[[shaft]]\nbetween = ["a", "b"]\nstiffness = 1e5\n',
+        encoding="utf-8",
+    )
+    line = one_line_error(capsys, "torsion", "response", str(path), "--speeds", "100:200:10")
+    assert "no excitation point" in line
+    line = one_line_error(capsys, "torsion", "response", "seed003-v6")
+    assert "no speeds" in line

@@ -1,0 +1,180 @@
+"""Dampers (Den Hartog's optima), the M68 limits, critical speeds, and the time domain."""
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from crankdyn.errors import InputError
+from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+from crankdyn.torsion.campbell import campbell, with_dampers
+from crankdyn.torsion.dampers import (
+    Damper,
+    design_damper,
+    equivalent_single_mass,
+    optimum_tuned,
+    optimum_viscous,
+)
+from crankdyn.torsion.excitation import UniformExcitation
+from crankdyn.torsion.modal import natural_modes
+from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.rules import (
+    RuleSet,
+    ShaftLimit,
+    permissible_continuous,
+    permissible_transient,
+    size_factor,
+)
+
+J, K = 1.0, 1.0e6  # the main system: one mass on a grounded shaft
+
+
+def _main():
+    return TorsionModel(masses=(Mass("m", J, cylinders=(1,)),), shafts=(Shaft(("ground", "m"), K),))
+
+
+def _peak(damper, span=(0.6, 1.4)):
+    w0 = math.sqrt(K / J)
+    w = np.linspace(span[0] * w0, span[1] * w0, 4001)
+    r = forced_response(
+        _main(), UniformExcitation(1.0, [0.0], "two-stroke"), w, [1.0], dampers=(damper,)
+    )
+    return np.max(r.amplitude[:, 0, 0]) * K  # magnification x / x_static
+
+
+@pytest.mark.parametrize("mu", [0.05, 0.2])
+def test_den_hartog_tuned_optimum(mu):
+    """At the optimum the peak is sqrt(1 + 2/mu) (Den Hartog 1956, section 3.9), and damping
+    10 % off the optimum raises it."""
+    design = design_damper(_main(), "m", 1, mu * J, "tuned")
+    assert design.tuning_ratio == pytest.approx(1 / (1 + mu))
+    peak = _peak(design.damper())
+    assert peak == pytest.approx(math.sqrt(1 + 2 / mu), rel=0.02)
+    for f in (0.7, 1.4):
+        other = Damper("d", "m", mu * J, design.stiffness, f * design.damping)
+        assert _peak(other) > peak
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.5])
+def test_den_hartog_viscous_optimum(mu):
+    """Untuned viscous damper: the optimum c gives the flattest curve through the fixed point,
+    magnification 1 + 2/mu (Den Hartog 1956, section 3.10)."""
+    design = design_damper(_main(), "m", 1, mu * J, "viscous")
+    assert design.stiffness == 0.0
+    peak = _peak(design.damper(), (0.3, 1.5))
+    assert peak == pytest.approx(1 + 2 / mu, rel=0.02)
+    for f in (0.6, 1.6):
+        other = Damper("d", "m", mu * J, 0.0, f * design.damping)
+        assert _peak(other, (0.3, 1.5)) > peak * 0.999
+    ratio, zeta, _ = optimum_viscous(mu)
+    assert ratio == pytest.approx(math.sqrt(2 / (2 + mu)))
+    assert zeta == pytest.approx(1 / math.sqrt(2 * (1 + mu) * (2 + mu)))
+    assert optimum_tuned(mu)[2] == pytest.approx(math.sqrt(1 + 2 / mu))
+
+
+def test_equivalent_single_mass_of_a_two_mass_system():
+    """Two free masses: mode 2 seen at mass 1 has J_e = J1 + J2 (J1/J2)^2."""
+    model = TorsionModel.chain_of([2.0, 0.5], [1e5])
+    j_e, omega = equivalent_single_mass(model, "1", 2)
+    assert j_e == pytest.approx(2.0 + 0.5 * (2.0 / 0.5) ** 2)
+    assert omega == pytest.approx(math.sqrt(1e5 * 2.5 / 1.0))
+    with pytest.raises(InputError, match="rigid-body mode"):
+        equivalent_single_mass(model, "1", 1)
+
+
+def test_damper_validation():
+    with pytest.raises(InputError, match="needs damping"):
+        Damper("d", "m", 0.1)
+    with pytest.raises(InputError, match='no mass named "pully"'):
+        TorsionModel(masses=(Mass("pulley", 1.0),), dampers=(Damper("d", "pully", 0.1, damping=1),))
+
+
+def test_tuned_damper_in_the_natural_frequencies():
+    base = TorsionModel.example("seed003-v6")
+    model = TorsionModel(masses=base.masses[1:], shafts=base.shafts[1:])
+    ring = Damper("damper ring", "pulley", 0.1670, 160e3, 70.0)
+    full = with_dampers(dataclasses.replace(model, dampers=(ring,)))
+    assert natural_modes(full).natural_frequency == pytest.approx(
+        natural_modes(base).natural_frequency, rel=1e-9, abs=1e-6
+    )
+
+
+def test_m68_formulas_by_hand():
+    """sigma_B = 600 N/mm^2, d = 200 mm, C_K = 1: C_D = 0.35 + 0.93 * 200^-0.2 = 0.6190...,
+    tau_C(0.5) = 760/18 * C_D * 2.5, tau_C(1.0) = 760/18 * C_D * 1.38, tau_T = 1.7 tau_C."""
+    c_d = 0.35 + 0.93 * 200**-0.2
+    assert size_factor(0.2) == pytest.approx(c_d)
+    tau = permissible_continuous(np.array([0.5, 0.95, 1.0, 1.1]), 600e6, 1.0, 0.2)
+    assert tau[0] == pytest.approx(760 / 18 * c_d * 2.5 * 1e6)
+    assert tau[1] == tau[2] == pytest.approx(760 / 18 * c_d * 1.38 * 1e6)
+    assert math.isnan(tau[3])
+    t = permissible_transient(np.array([0.5, 0.85]), tau[:2], 0.6)
+    assert t[0] == pytest.approx(1.7 * tau[0] / math.sqrt(0.6))
+    assert math.isnan(t[1])
+    with pytest.raises(InputError, match="0 < C_K <= 1"):
+        ShaftLimit(("a", "b"), 600e6, 1.2)
+
+
+@pytest.mark.parametrize(("torque", "permitted"), [(60.0, True), (100.0, False)])
+def test_rule_check_flags_barred_ranges(torque, permitted):
+    """An engine and a propeller on a 60 mm shaft with its order-3 resonance at 598 rpm =
+    0.6 n_0: the stress passes tau_C there, a barred range; permitted while the stress stays
+    under tau_T, not once it exceeds it."""
+    masses = (Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0))
+    shafts = (Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),)
+    model = TorsionModel(masses=masses, shafts=shafts)
+    limit = ShaftLimit(("engine", "propeller"), 600e6)
+    rules = RuleSet(rated_speed=1000 * math.pi / 30, shafts=(limit,))
+    ex = UniformExcitation(torque, [0.0], "two-stroke")
+    w = np.linspace(200, 1050, 400) * math.pi / 30
+    r = forced_response(model, ex, w, [3.0], rules=rules)
+    check = r.rule_check
+    assert check.stress[:, 0] == pytest.approx(r.synthesized_shaft_stress[:, 0])
+    critical = math.sqrt(5.3e4 * 8.0 / 12.0) / 3 * 30 / math.pi  # rpm
+    assert len(check.barred_ranges) == 1
+    barred = check.barred_ranges[0]
+    assert barred.start * 30 / math.pi < critical < barred.end * 30 / math.pi
+    assert barred.permitted is permitted
+    assert check.passed is permitted
+    inside = (w >= barred.start) & (w <= barred.end)
+    assert np.all(check.stress[inside, 0] > check.tau_c[inside, 0])
+    assert np.all(check.stress[~inside, 0] <= check.tau_c[~inside, 0])
+
+
+def test_critical_speeds_are_natural_frequency_over_order():
+    model = TorsionModel.example("seed003-v6")
+    modes = natural_modes(model)
+    result = campbell(model, [1.5, 3.0, 4.5, 6.0], (1000 * math.pi / 30, 2000 * math.pi / 30))
+    assert result.critical_speeds
+    for c in result.critical_speeds:
+        assert c.speed == pytest.approx(modes.natural_frequency[c.mode - 1] / c.order)
+        assert 1000 <= c.speed * 30 / math.pi <= 2000
+    speeds = [c.speed for c in result.critical_speeds]
+    assert speeds == sorted(speeds)
+    d = result.to_dict()["critical_speeds"][0]
+    assert set(d) >= {"mode", "order", "speed_rpm", "major"}
+    with pytest.raises(InputError, match="no speed range"):
+        campbell(model, [3.0])
+
+
+def test_time_domain_steady_state_matches_the_frequency_domain():
+    """Two masses with viscous and hysteretic damping at constant speed: after the transient
+    has decayed, the last cycle equals the sum of the orders' steady states."""
+    from crankdyn.torsion.transient import transient_response
+
+    model = TorsionModel(
+        masses=(Mass("a", 0.4, damping=20.0, cylinders=(1,)), Mass("b", 1.2, damping=5.0)),
+        shafts=(Shaft(("a", "b"), 2e5, damping=15.0, loss_factor=0.05),),
+    )
+    ex = UniformExcitation(50.0, [0.0])
+    orders = [0.5, 1.0, 3.0, 4.5]
+    w = 1500 * math.pi / 30
+    run = transient_response(model, ex, orders, speed=w, cycles=25, rtol=1e-9, atol=1e-13)
+    steady = forced_response(model, ex, [w], orders, hysteretic_frequency=run.hysteretic_frequency)
+    last = run.last_cycle(4 * math.pi)
+    phi = run.crank_angle[last]
+    expected = np.real(np.exp(1j * np.outer(phi, orders)) @ steady.mass_response[0])
+    assert run.angle[last] == pytest.approx(expected, abs=1e-6 * np.abs(expected).max())
+    torque = np.real(np.exp(1j * np.outer(phi, orders)) @ steady.shaft_response[0])
+    assert run.shaft_torque[last] == pytest.approx(torque, abs=1e-6 * np.abs(torque).max())
