@@ -49,7 +49,7 @@ def test_peers_agree_where_installed(case, results):
     for name, dev in result.deviations.items():
         assert dev.ok, f"{name}: {dev.value:.3g} > {dev.tolerance:.3g}"
     if missing:
-        pytest.skip("; ".join(missing))
+        pytest.skip("; ".join(dict.fromkeys(missing)))
 
 
 def test_agreement_failure_is_loud():
