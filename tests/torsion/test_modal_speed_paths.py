@@ -103,3 +103,27 @@ def test_result_arrays_are_read_only():
     for arr in (r.mode_shapes, r.eigenvectors, r.shapes_dof, r.natural_frequency):
         with pytest.raises(ValueError):
             arr[0] = 1.0
+
+
+def test_chain_of_builds_the_same_objects_as_the_constructors():
+    model = TorsionModel.chain_of([1.5, 2, np.float64(0.25)], [1e5, np.int64(300000)])
+    assert model.masses == (Mass("1", 1.5), Mass("2", 2.0), Mass("3", 0.25))
+    assert model.shafts == (Shaft(("1", "2"), 1e5), Shaft(("2", "3"), 3e5))
+    assert all(type(m.inertia) is float for m in model.masses)
+    assert all(type(s.stiffness) is float for s in model.shafts)
+
+
+@pytest.mark.parametrize(
+    ("inertias", "stiffnesses", "message"),
+    [
+        ([1.0, -2.0], [1e5], "inertia.*must be positive"),
+        ([1.0, float("nan")], [1e5], "inertia.*not finite"),
+        ([1.0, 2.0], [0.0], "stiffness.*must be positive"),
+        ([1.0, "2 kg"], [1e5], "inertia.*expected a number"),
+    ],
+)
+def test_chain_of_reports_a_bad_value_as_the_constructors_do(inertias, stiffnesses, message):
+    from crankdyn.errors import InputError
+
+    with pytest.raises(InputError, match=message):
+        TorsionModel.chain_of(inertias, stiffnesses)

@@ -140,6 +140,16 @@ class Mass:
             )
         object.__setattr__(self, "cylinders", cylinders)
 
+    @classmethod
+    def _checked(cls, name: str, inertia: float) -> Mass:
+        """A mass from a name and an inertia the caller has already validated (a positive
+        finite float; no damping, no cylinders), without validating them again."""
+        mass = object.__new__(cls)
+        for key, value in (("name", name), ("inertia", inertia), ("damping", 0.0)):
+            object.__setattr__(mass, key, value)
+        object.__setattr__(mass, "cylinders", ())
+        return mass
+
 
 @dataclass(frozen=True)
 class ShaftGeometry:
@@ -259,6 +269,21 @@ class Shaft:
             _nonnegative("loss_factor", self.loss_factor, "the loss factor"),
         )
 
+    @classmethod
+    def _checked(cls, between: tuple[str, str], stiffness: float) -> Shaft:
+        """A shaft between two distinct masses (not ground) with a stiffness the caller has
+        already validated (a positive finite float), without validating them again."""
+        shaft = object.__new__(cls)
+        for key, value in (
+            ("between", between),
+            ("stiffness", stiffness),
+            ("damping", 0.0),
+            ("loss_factor", 0.0),
+            ("geometry", None),
+        ):
+            object.__setattr__(shaft, key, value)
+        return shaft
+
     @property
     def grounded(self) -> bool:
         """Whether one end is ``"ground"``."""
@@ -339,6 +364,20 @@ class ChainArrays:
         diag[:-1] += k
         diag[1:] += k
         return diag, -k
+
+
+def _positive_numbers(values: list) -> list[float] | None:
+    """The values as floats when every one is a real number (not bool), finite and > 0, else
+    None (so that the caller lets the constructors report the offending value)."""
+    if any(
+        isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating))
+        for v in values
+    ):
+        return None
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != 1 or not (np.all(np.isfinite(arr)) and np.all(arr > 0.0)):
+        return None
+    return arr.tolist()
 
 
 def _frozen(values, dtype=float) -> np.ndarray:
@@ -694,8 +733,15 @@ class TorsionModel:
                 value=len(stiffnesses),
             )
         names = [str(i + 1) for i in range(len(inertias))]
-        masses = tuple(Mass(n, j) for n, j in zip(names, inertias, strict=True))
-        shafts = [Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)]
+        values = _positive_numbers(inertias), _positive_numbers(stiffnesses)
+        if values[0] is not None and values[1] is not None:
+            # plain positive finite numbers, checked at once: what Mass and Shaft would accept
+            masses = tuple(Mass._checked(n, j) for n, j in zip(names, values[0], strict=True))
+            pairs = zip(names[:-1], names[1:], values[1], strict=True)
+            shafts = [Shaft._checked((a, b), k) for a, b, k in pairs]
+        else:  # the constructors name the offending value
+            masses = tuple(Mass(n, j) for n, j in zip(names, inertias, strict=True))
+            shafts = [Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)]
         if ground_left is not None:
             shafts.insert(0, Shaft((GROUND, names[0]), ground_left))
         if ground_right is not None:
@@ -782,18 +828,23 @@ def _analyse(model: TorsionModel) -> _Structure:
         a, b = find(index[g.between[0]]), find(index[g.between[1]])
         if a != b:
             parent[max(a, b)] = min(a, b)
-    roots = sorted({find(i) for i in range(n)})
-    provisional = {r: k for k, r in enumerate(roots)}
-    groups = [[] for _ in roots]
-    for i in range(n):
-        groups[provisional[find(i)]].append(i)
+    if gears:
+        roots = sorted({find(i) for i in range(n)})
+        provisional = {r: k for k, r in enumerate(roots)}
+        group_of = [provisional[find(i)] for i in range(n)]
+        groups: list[list[int]] = [[] for _ in roots]
+        for i in range(n):
+            groups[group_of[i]].append(i)
+    else:  # every mass is its own degree of freedom
+        group_of = list(range(n))
+        groups = [[i] for i in range(n)]
 
     edges: set[tuple[int, int]] = set()
     for s in shafts:
         if s.grounded:
             continue
-        a = provisional[find(index[s.between[0]])]
-        b = provisional[find(index[s.between[1]])]
+        a = group_of[index[s.between[0]]]
+        b = group_of[index[s.between[1]]]
         if a == b:
             raise InputError(
                 f'shaft "{s.label}" joins two masses that a gear mesh already ties together',
@@ -802,17 +853,17 @@ def _analyse(model: TorsionModel) -> _Structure:
             )
         edges.add((min(a, b), max(a, b)))
     m = len(groups)
-    degree = np.zeros(m, dtype=int)
+    degree = [0] * m
     adjacency: list[list[int]] = [[] for _ in range(m)]
     for a, b in sorted(edges):
         degree[a] += 1
         degree[b] += 1
         adjacency[a].append(b)
         adjacency[b].append(a)
-    is_chain = m == 1 or (len(edges) == m - 1 and int(degree.max()) <= 2)
+    is_chain = m == 1 or (len(edges) == m - 1 and max(degree) <= 2)
     junction = None
     if is_chain and m > 1:
-        start = min(i for i in range(m) if degree[i] == 1)
+        start = degree.index(1)  # the first end of the chain
         order = [start]
         previous = -1
         while len(order) < m:
@@ -823,7 +874,7 @@ def _analyse(model: TorsionModel) -> _Structure:
     else:
         order = list(range(m))
         if m > 1:
-            branch = int(np.argmax(degree))
+            branch = degree.index(max(degree))
             junction = masses[groups[branch][0]].name if degree[branch] > 2 else None
     dofs = tuple(tuple(groups[old]) for old in order)
     dof_of = [0] * n
