@@ -51,6 +51,12 @@ def test_report_folder_contents(demo_report):
         summary["sections"]
     )
     assert len(summary["checks"]) >= 3
+    # forced response: the 6th-order resonance of the first mode (2166 rpm) is flagged
+    assert "torsion-response" in summary["sections"]
+    crit = summary["sections"]["torsion-response"]["critical_speeds"]
+    sixth = [c for c in crit if c["order"] == 6.0 and c["major"]]
+    assert sixth and sixth[0]["speed_rpm"] == pytest.approx(2165.8, abs=1.0)
+    assert summary["status"]["major_critical_speeds_in_range"] == "warn"
     for png in (demo_report / "plots").glob("*.png"):
         assert (demo_report / "plots" / f"{png.stem}.svg").exists()
     assert (demo_report / "data" / "kinematics.csv").read_text().startswith("crank_angle_deg,")

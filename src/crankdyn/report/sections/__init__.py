@@ -26,6 +26,7 @@ BUILDERS = (
     "balance",
     "flywheel",
     "torsion_modes",
+    "torsion_response",
 )
 
 

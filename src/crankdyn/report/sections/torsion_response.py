@@ -1,0 +1,154 @@
+"""Report section: forced torsional response, critical speeds and the rule check."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.report.sections import NotApplicable
+from crankdyn.torsion.campbell import campbell
+from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
+from crankdyn.torsion.response import forced_response
+
+RPM = 30.0 / math.pi
+STEP = 10.0 / RPM  # default speed step of the sweep: 10 rpm
+
+
+def _speeds(ctx, model) -> np.ndarray:
+    if ctx.speeds is not None:
+        return np.asarray(ctx.speeds, dtype=float)
+    if model.operating is None:
+        raise NotApplicable(
+            "no speed range for the forced response: give --speeds or "
+            "[torsion.operating] speed_range"
+        )
+    low, high = model.operating.low, model.operating.high
+    return low + STEP * np.arange(math.floor((high - low) / STEP * (1 + 1e-12)) + 1)
+
+
+def build(ctx) -> Section:
+    engine = ctx.engine
+    model = engine.torsion
+    if model is None:
+        raise NotApplicable("the engine file has no [torsion] model")
+    if not model.cylinder_dofs:
+        raise NotApplicable("the [torsion] model has no mass carrying a cylinder")
+    speeds = _speeds(ctx, model)
+    excitation = excitation_for(model, engine)
+    base = fundamental_order(excitation.cycle)
+    orders = order_grid(base, 12.0, base, excitation.cycle)
+    result = ctx.get("torsion_response", lambda: forced_response(model, excitation, speeds, orders))
+    crit = campbell(model, orders, (float(speeds[0]), float(speeds[-1])), excitation=excitation)
+
+    torque = np.asarray(result.synthesized_shaft_torque)  # speed x shaft
+    s_idx = int(np.argmax(np.max(torque, axis=0)))
+    v_idx = int(np.argmax(torque[:, s_idx]))
+    shaft = " - ".join(result.shafts[s_idx])
+    first, last = result.masses[0], result.masses[-1]
+    rel = result.relative_angle(first, last)
+    r_idx = int(np.argmax(rel.synthesized))
+    figures = [
+        KeyFigure(
+            "max_vibratory_shaft_torque_Nm",
+            "Max vibratory shaft torque (synthesised)",
+            float(torque[v_idx, s_idx]),
+            f"{torque[v_idx, s_idx] / 1e3:.3g} kN·m in {shaft} at {speeds[v_idx] * RPM:.0f} rpm",
+        ),
+        KeyFigure(
+            "max_relative_angle_rad",
+            f"Max relative angle {first} - {last}",
+            float(rel.synthesized[r_idx]),
+            f"{math.degrees(rel.synthesized[r_idx]):.3g}° at {speeds[r_idx] * RPM:.0f} rpm",
+        ),
+    ]
+    majors = [c for c in crit.critical_speeds if c.major]
+    figures.append(
+        KeyFigure(
+            "major_critical_speeds_in_range",
+            "Major-order critical speeds in the range",
+            len(majors),
+            ", ".join(f"order {c.order:g} at {c.speed * RPM:.0f} rpm" for c in majors[:4])
+            or "none",
+            status="warn" if majors else "pass",
+            note="resonances of major orders inside the operating range",
+        )
+    )
+    plots = [
+        Plot(
+            "torsion_response",
+            f"Vibratory torque in {shaft}",
+            result.plot(what="torque", item=result.shafts[s_idx]),
+            "Per order and synthesised over all orders (sum of order amplitudes and half the "
+            "time-domain peak-to-peak).",
+        ),
+        Plot(
+            "relative_angle",
+            f"Relative angle {first} - {last}",
+            result.plot(what="relative", item=(first, last)),
+            "The relative angle between the ends of the shaft line, per order and synthesised.",
+        ),
+        Plot(
+            "campbell",
+            "Campbell diagram",
+            crit.plot(),
+            "Natural frequencies against engine orders; crossings in the range are the critical "
+            "speeds (major orders marked).",
+        ),
+    ]
+    check = result.rule_check
+    if check is not None:
+        figures.append(
+            KeyFigure(
+                "rule_check_passed",
+                f"Shaft stresses vs {check.rule}",
+                bool(check.passed),
+                "within the limits" if check.passed else "above the permissible stress",
+                status="pass" if check.passed else "fail",
+                note="; ".join(
+                    f"barred {b.low * RPM:.0f}-{b.high * RPM:.0f} rpm" for b in check.barred_ranges
+                )
+                if check.barred_ranges
+                else "",
+            )
+        )
+        plots.append(
+            Plot(
+                "shaft_stress_limits",
+                "Shaft stress against the rule limits",
+                result.plot_stress_limits(),
+                check.rule,
+            )
+        )
+    rows = [
+        [
+            str(c.mode),
+            f"{c.order:g}",
+            f"{c.speed * RPM:.0f}",
+            f"{c.frequency / (2 * math.pi):.2f}",
+            "major" if c.major else "minor",
+        ]
+        for c in crit.critical_speeds
+    ]
+    return Section(
+        key="torsion-response",
+        title="Forced torsional vibration",
+        intro=(
+            f"Steady-state response from {speeds[0] * RPM:.0f} to {speeds[-1] * RPM:.0f} rpm, "
+            f"orders {orders[0]:g} to {orders[-1]:g}, excitation: {result.excitation}. Damping "
+            "as in the model (absolute, relative and loss factors)."
+        ),
+        figures=figures,
+        plots=plots,
+        tables=[
+            Table(
+                "critical_speeds",
+                "Critical speeds in the range",
+                header=["Mode", "Order", "Speed (rpm)", "Frequency (Hz)", "Order class"],
+                rows=rows,
+            ),
+            Table("torsion_response", "Response against speed", result=result, show=False),
+        ],
+        json={"critical_speeds": [c.to_dict() for c in crit.critical_speeds]},
+    )
