@@ -4,12 +4,14 @@ A :class:`Case` is one row group of the table: a problem (e.g. "free chain, N = 
 crankdyn and by one or more peers (:class:`Contender`). Every contender is called once as a
 warm-up (its output is kept for the agreement check; imports, JIT compilation and caches happen
 here), then ``repeats`` more times under :func:`time.perf_counter`; the table reports the median.
+Garbage collection runs before, and is disabled during, each timed call (as :mod:`timeit` does).
 The agreement check compares the peers' outputs with crankdyn's and raises
 :class:`AgreementError` (the run stops, loudly) when a deviation exceeds the case's tolerance.
 """
 
 from __future__ import annotations
 
+import gc
 import statistics
 import time
 from collections.abc import Callable
@@ -138,9 +140,14 @@ def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, flo
     times: list[float] = []
     spent = 0.0
     for _ in range(repeats):
-        start = time.perf_counter()
-        run()
-        elapsed = time.perf_counter() - start
+        gc.collect()  # garbage of earlier calls is not charged to this one
+        gc.disable()  # as timeit does: no collector pass over unrelated objects in the timing
+        try:
+            start = time.perf_counter()
+            run()
+            elapsed = time.perf_counter() - start
+        finally:
+            gc.enable()
         times.append(elapsed)
         spent += elapsed
         if spent > budget and len(times) >= 3:

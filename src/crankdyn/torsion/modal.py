@@ -193,23 +193,22 @@ def _solve(model: TorsionModel, solver: str) -> tuple[np.ndarray, np.ndarray]:
     raise InputError(f"expected one of {', '.join(SOLVERS)}", key="solver", value=solver)
 
 
-def _normalise(shapes: np.ndarray) -> np.ndarray:
+def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Scale every row to a largest absolute amplitude of 1, first non-zero amplitude > 0.
 
-    Returns a new array (a few passes over the data: this runs on n x n shapes)."""
+    Returns the new array and its absolute values before amplitudes below 1e-14 are set to 0
+    (six passes over the data: this runs on n x n shapes)."""
     shapes = np.asarray(shapes, dtype=float)
     size = np.abs(shapes)
     peak = np.max(size, axis=1, keepdims=True)
     peak = np.where(peak > 0.0, peak, 1.0)
-    out = shapes / peak
     size /= peak  # |shapes / peak|, exactly (peak > 0)
-    out[size < 1e-14] = 0.0
-    first = np.argmax(size > _ZERO, axis=1)
-    sign = np.sign(out[np.arange(out.shape[0]), first])
+    first = np.argmax(size > _ZERO, axis=1)  # the first amplitude that counts
+    sign = np.sign(shapes[np.arange(shapes.shape[0]), first])
     sign[sign == 0.0] = 1.0
-    out *= sign[:, None]
-    out += 0.0  # no negative zeros
-    return out
+    out = shapes / (peak * sign[:, None])  # exactly sign * (shapes / peak)
+    out[size < 1e-14] = 0.0  # round-off to 0 (a positive 0: no negative zeros)
+    return out, size
 
 
 def _readonly(arr: np.ndarray) -> np.ndarray:
@@ -233,10 +232,13 @@ def _shaft_ends(model: TorsionModel, shapes_dof: np.ndarray):
     return inner, shapes_dof[:, sa], shapes_dof[:, sb], sa, sb
 
 
-def _node_counts(model: TorsionModel, shapes_dof: np.ndarray, free: bool) -> np.ndarray:
+def _node_counts(
+    model: TorsionModel, shapes_dof: np.ndarray, free: bool, size: np.ndarray | None = None
+) -> np.ndarray:
     """Number of nodes of every mode (crossings inside shafts plus masses at rest), as
-    :func:`_find_nodes` locates them, without locating them."""
-    zero = np.abs(shapes_dof) <= _ZERO  # mode x dof
+    :func:`_find_nodes` locates them, without locating them (``size``: |shapes_dof| where it is
+    above 1e-14, when the caller has it)."""
+    zero = (np.abs(shapes_dof) if size is None else size) <= _ZERO  # mode x dof
     moving = ~zero
     negative = np.signbit(shapes_dof)
     _inner, _ta, _tb, sa, sb = _shaft_ends(model, shapes_dof)
@@ -304,12 +306,16 @@ def natural_modes(model: TorsionModel, solver: str = "eigen") -> ModalResult:
     omega = np.asarray(omega, dtype=float)
     if model.is_free:
         omega[0] = 0.0
-    shapes_dof = _normalise(np.asarray(phi, dtype=float).T)  # mode x dof
+    shapes_dof, size = _normalise(np.asarray(phi, dtype=float).T)  # mode x dof
     dof = model.mass_dof
     in_order = dof.size == shapes_dof.shape[1] and np.array_equal(dof, np.arange(dof.size))
     shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
-    modal_inertia = np.sum(model.dof_inertia * shapes_dof**2, axis=1)
-    counts = _node_counts(model, shapes_dof, model.is_free)
+    counts = _node_counts(model, shapes_dof, model.is_free, size)
+    del size
+    square = shapes_dof * shapes_dof
+    square *= model.dof_inertia
+    modal_inertia = np.sum(square, axis=1)  # sum of J_i phi_i^2
+    del square
     # mass-normalised eigenvectors for later analyses (phi^T M phi = 1)
     eigenvectors = shapes_dof.T / np.sqrt(modal_inertia)[None, :]
     return ModalResult(
