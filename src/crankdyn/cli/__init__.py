@@ -27,6 +27,7 @@ COMMAND_MODULES = (
     "linkage",
     "balance",
     "torsion_response",
+    "study",
 )
 
 

@@ -119,6 +119,14 @@ class Table:
             )
         if not present:
             if required:
+                # as in raw(): a near-miss spelling is the likelier mistake than a missing key
+                others = [k for k in self.data if k not in self._known]
+                for key in keys:
+                    close = difflib.get_close_matches(key, others, n=1, cutoff=0.75)
+                    if close:
+                        raise self.error(
+                            close[0], f'unknown key (did you mean "{key}"?)', self.data[close[0]]
+                        )
                 raise self.error(keys[0], f"missing; give one of {', '.join(keys)}")
             return None
         return present[0]

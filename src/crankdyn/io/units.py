@@ -21,7 +21,7 @@ from functools import lru_cache
 
 from crankdyn.errors import InputError
 
-__all__ = ["KINDS", "Kind", "parse_quantity", "registry"]
+__all__ = ["KINDS", "Kind", "convert_magnitude", "parse_quantity", "registry", "split_quantity"]
 
 
 @dataclass(frozen=True)
@@ -267,3 +267,82 @@ def parse_quantity(
             "(1e-12 to 1e12 in SI units); check the unit"
         )
     return result
+
+
+def split_quantity(value: object, *, key: str | None = None, file: str | None = None):
+    """A number, or a number with a unit of any dimension, as ``(magnitude, unit_text)``.
+
+    ``unit_text`` is ``""`` for a bare number (or a string holding only a number). Used where
+    the kind of a quantity is not known in advance (the parameters of a study file, whose
+    values are checked later by the file they are written into). Returns None for a value that
+    is not a number or a number-with-unit string (a bool, a list, other text).
+
+    Raises
+    ------
+    InputError
+        For a number-with-unit string whose unit is not known, or a non-finite number.
+    """
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        return None
+    if isinstance(value, (int, float)):
+        magnitude, unit_text = float(value), ""
+    else:
+        match = _NUMBER.match(value.translate(_SUPERSCRIPTS))
+        if not match:
+            return None
+        magnitude, unit_text = float(match.group(1)), match.group(2)
+    if not math.isfinite(magnitude):
+        raise InputError("the value is not finite", file=file, key=key, value=value)
+    if unit_text:
+        if not _check_unit_text(unit_text):
+            raise InputError(f"unknown unit {unit_text!r}", file=file, key=key, value=value)
+        try:
+            registry().parse_units(unit_text)
+        except Exception:  # pint raises several types (UndefinedUnitError, syntax errors)
+            raise InputError(
+                f"unknown unit {unit_text!r}", file=file, key=key, value=value
+            ) from None
+    return magnitude, unit_text
+
+
+def convert_magnitude(
+    magnitude: float,
+    from_unit: str,
+    to_unit: str,
+    *,
+    key: str | None = None,
+    file: str | None = None,
+    value: object = None,
+) -> float:
+    """``magnitude`` in ``from_unit`` expressed in ``to_unit`` (units as accepted by
+    :func:`split_quantity`; ``""`` for a bare number, which converts only to itself).
+
+    Units of the same dimension convert; an angular unit (rpm, rad/s, deg) and a non-angular
+    one (Hz, 1/s, a bare ratio) do not, because crankdyn reads a bare frequency as revolutions
+    per second for a speed but pint as radians per second (module docstring).
+
+    Raises
+    ------
+    InputError
+        When the units differ in dimension or in being angular.
+    """
+    if from_unit == to_unit:
+        return float(magnitude)
+
+    def fail(reason: str) -> InputError:
+        shown = value if value is not None else f"{magnitude:g} {from_unit}".strip()
+        return InputError(reason, file=file, key=key, value=shown)
+
+    if not from_unit or not to_unit:
+        raise fail(
+            f"give every value with a unit, as {to_unit!r}"
+            if to_unit
+            else "give every value as a bare number, as the first one"
+        )
+    ureg = registry()
+    a, b = ureg.parse_units(from_unit), ureg.parse_units(to_unit)
+    angular_a = "radian" in str(ureg.get_root_units(a)[1])
+    angular_b = "radian" in str(ureg.get_root_units(b)[1])
+    if a.dimensionality != b.dimensionality or angular_a != angular_b:
+        raise fail(f"{from_unit!r} does not convert to {to_unit!r}, the unit of the first value")
+    return float(ureg.Quantity(magnitude, a).to(b).magnitude)

@@ -1,0 +1,303 @@
+"""``crankdyn study``: run a parameter study (docs/study-file.md)."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import click
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table as RichTable
+
+from crankdyn.cli.common import console, summary_table
+from crankdyn.errors import InputError
+
+
+def _list() -> None:
+    from crankdyn.io.study_file import resolve_study, study_example_names
+    from crankdyn.study.figures import FIGURES, SETTINGS
+
+    out = console()
+    examples = RichTable(title="Built-in example studies", header_style="bold")
+    for col in ("Name", "Study", "Base", "Cases"):
+        examples.add_column(col)
+    for name in study_example_names():
+        spec = resolve_study(name)
+        examples.add_row(name, escape(spec.name), escape(spec.base.source), str(spec.case_count))
+    out.print(examples)
+    figures = RichTable(title=escape("Figures (names for [analysis] figures)"), header_style="bold")
+    for col in ("Name", "Column (SI)", "Shown in", "Better", "Applies to", "Description"):
+        figures.add_column(col)
+    for f in FIGURES.values():
+        figures.add_row(
+            f.name, f.key, f.unit, f.better or "-", ", ".join(f.subjects), escape(f.description)
+        )
+    out.print(figures)
+    settings = RichTable(title=escape("[analysis] settings"), header_style="bold")
+    for col in ("Key", "Kind", "Meaning"):
+        settings.add_column(col)
+    for s in SETTINGS.values():
+        settings.add_row(s.name, s.kind, escape(s.help))
+    out.print(settings)
+
+
+def _dry_run(spec) -> None:
+    from crankdyn.study.cases import expand
+
+    out = console()
+    cases = expand(spec)
+    table = RichTable(title=escape(f"Study: {spec.name}"), header_style="bold")
+    table.add_column("Parameter")
+    table.add_column("Varies as")
+    table.add_column("Values", justify="right")
+    for p in spec.parameters:
+        if p.is_random:
+            how = f"{p.distribution.name} {list(p.distribution.args)} {p.unit}".rstrip()
+            count = f"{spec.samples} draws"
+        else:
+            shown = ", ".join(str(v) for v in p.values[:6])
+            how = shown + (", ..." if len(p.values) > 6 else "")
+            count = str(len(p.values))
+        table.add_row(escape(p.key), escape(how), count)
+    out.print(table)
+    out.print(
+        f"base {escape(spec.base.kind)}: {escape(spec.base.source)}; "
+        f"{len(cases)} cases; figures: {', '.join(spec.figures)}"
+    )
+    first = RichTable(title="First cases", header_style="bold")
+    first.add_column("Case", justify="right")
+    first.add_column("Id")
+    for p in spec.parameters:
+        first.add_column(escape(p.key), justify="right")
+    for case in cases[:5]:
+        first.add_row(
+            str(case.index + 1),
+            case.case_id,
+            *(escape(_shown(case.params[p.key])) for p in spec.parameters),
+        )
+    out.print(first)
+
+
+def _shown(value) -> str:
+    from crankdyn.study.cases import label
+
+    return label(value)
+
+
+def _default_out(study: str) -> Path:
+    stem = Path(study).stem if study.endswith(".toml") or "/" in study else study
+    return Path(f"{stem}-results")
+
+
+class _Bar:
+    """A rich progress bar on stderr (only when stderr is a terminal)."""
+
+    def __init__(self):
+        self.console = Console(file=sys.stderr)
+        self.progress = None
+        self.task = None
+        self.failed = 0
+
+    def start(self, to_run: int, skipped: int, executor: str) -> None:
+        if skipped:
+            click.echo(f"{skipped} cases finished in an earlier run are kept", err=True)
+        if not to_run:
+            return
+        click.echo(f"running {to_run} cases on a {executor}", err=True)
+        if not self.console.is_terminal:
+            return
+        from rich.progress import (
+            BarColumn,
+            MofNCompleteColumn,
+            Progress,
+            TextColumn,
+            TimeElapsedColumn,
+            TimeRemainingColumn,
+        )
+
+        self.progress = Progress(
+            TextColumn("cases"),
+            BarColumn(),
+            MofNCompleteColumn(),
+            TextColumn("[red]{task.fields[failed]} failed"),
+            TimeElapsedColumn(),
+            TextColumn("eta"),
+            TimeRemainingColumn(),
+            console=self.console,
+            transient=False,
+        )
+        self.progress.start()
+        self.task = self.progress.add_task("cases", total=to_run, failed=0)
+
+    def update(self, done: int, total: int, record: dict) -> None:
+        if record.get("status") == "failed":
+            self.failed += 1
+        if self.progress is not None:
+            self.progress.update(self.task, completed=done, failed=self.failed)
+
+    def stop(self) -> None:
+        if self.progress is not None:
+            self.progress.stop()
+            self.progress = None
+
+
+@click.command("study")
+@click.argument("study", metavar="STUDY", required=False)
+@click.option(
+    "--workers",
+    type=int,
+    default=None,
+    metavar="N",
+    help="Processes of the local pool (default: all cores; 1 runs in this process).",
+)
+@click.option(
+    "--scheduler",
+    default=None,
+    metavar="ADDRESS",
+    help="Run on the Dask distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786).",
+)
+@click.option(
+    "--out",
+    default=None,
+    metavar="DIR",
+    help="Output folder (default: STUDY-results); a rerun into it resumes the study.",
+)
+@click.option(
+    "--force", is_flag=True, help="Discard the results DIR holds and start the study over."
+)
+@click.option("--retry-failed", is_flag=True, help="Run the cases that failed before again.")
+@click.option("--no-summary", is_flag=True, help="Write the tables only, not the HTML summary.")
+@click.option("--dry-run", is_flag=True, help="Show the parameters and the first cases; run none.")
+@click.option(
+    "--list", "list_", is_flag=True, help="List the example studies, figures and settings."
+)
+@click.option(
+    "--format",
+    "fmt",
+    type=click.Choice(("table", "json")),
+    default="table",
+    show_default=True,
+    help="How to print the run's summary.",
+)
+def study_command(
+    study, workers, scheduler, out, force, retry_failed, no_summary, dry_run, list_, fmt
+) -> int:
+    """Run the parameter study STUDY (a study file, or a built-in example study; --list shows
+    them): every case on a local process pool (all cores) or, with --scheduler, on a Dask
+    cluster. Results go to DIR: results.parquet and results.csv (one row per case),
+    summary/index.html. Finished cases are kept as they finish; a rerun into the same DIR
+    skips them, so an interrupted study resumes."""
+    if list_:
+        _list()
+        return 0
+    if study is None:
+        raise click.UsageError("missing argument STUDY (or give --list)")
+    from crankdyn.io.study_file import resolve_study
+
+    spec = resolve_study(study)
+    if dry_run:
+        _dry_run(spec)
+        return 0
+    if workers is not None and workers < 1:
+        raise InputError("expected a number of processes >= 1", key="--workers", value=workers)
+    folder = Path(out) if out else _default_out(study)
+    from crankdyn.study.runner import run_study
+
+    bar = _Bar()
+    try:
+        run = run_study(
+            spec,
+            folder,
+            workers=workers,
+            scheduler=scheduler,
+            force=force,
+            retry_failed=retry_failed,
+            summary=not no_summary,
+            progress=bar.update,
+            on_start=bar.start,
+        )
+    except KeyboardInterrupt:  # a second Ctrl-C while the tables or the summary were written
+        bar.stop()
+        if not (folder / "journal.jsonl").exists():
+            raise
+        click.echo(
+            f"crankdyn: interrupted; the finished cases are kept in {folder / 'journal.jsonl'} "
+            "(run the same command again to resume and write the tables)",
+            err=True,
+        )
+        return 130
+    finally:
+        bar.stop()
+    if fmt == "json":
+        click.echo(run.to_json())
+    else:
+        console().print(summary_table(run, f"Study: {escape(spec.name)}"))
+        _print_best(spec, folder)
+    for text, count in run.errors:
+        click.echo(f"failed ({count} cases): {text}", err=True)
+    written = [folder / "results.parquet", folder / "results.csv"]
+    if not no_summary:
+        written.append(folder / "summary" / "index.html")
+    click.echo("wrote " + ", ".join(str(p) for p in written), err=True)
+    if run.interrupted:
+        click.echo(
+            f"crankdyn: interrupted; the {run.finished} finished cases are kept in {folder} "
+            "(run the same command again to resume)",
+            err=True,
+        )
+        return 130
+    return 0
+
+
+def _print_best(spec, folder: Path) -> None:
+    """The best case of every figure with a sense of better, from the written table."""
+    from crankdyn.study.figures import FIGURES
+    from crankdyn.study.results import read_table
+    from crankdyn.study.sensitivity import negligible_spread
+
+    data = read_table(folder / "results.parquet").to_pydict()
+    ok = [i for i, s in enumerate(data["status"]) if s == "ok"]
+    table = RichTable(title="Best cases", header_style="bold")
+    table.add_column("Figure")
+    table.add_column("Best", justify="right")
+    table.add_column("Case", justify="right")
+    table.add_column("Parameters")
+    rows = 0
+    for name in spec.figures:
+        f = FIGURES[name]
+        sense = spec.better(name)
+        values = [(data[f.key][i], i) for i in ok if data[f.key][i] is not None]
+        values = [(v, i) for v, i in values if math.isfinite(v)]
+        if sense is None or not values:
+            continue
+        if negligible_spread([v for v, _ in values]):
+            table.add_row(
+                escape(f.label),
+                f"{values[0][0] * f.scale:.5g} {f.unit}".strip(),
+                "all",
+                "the same in every case",
+            )
+            rows += 1
+            continue
+        value, i = (min if sense == "min" else max)(values, key=lambda t: t[0])
+        params = "; ".join(
+            f"{p.key} = {data[p.column][i]:.6g} {p.unit}".rstrip()
+            if p.is_numeric
+            else f"{p.key} = {data[p.column][i]}"
+            for p in spec.parameters
+        )
+        table.add_row(
+            escape(f.label),
+            f"{value * f.scale:.5g} {f.unit}".strip(),
+            str(data["case"][i]),
+            escape(params),
+        )
+        rows += 1
+    if rows:
+        console().print(table)
+
+
+def register(group: click.Group) -> None:
+    group.add_command(study_command)

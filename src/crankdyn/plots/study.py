@@ -1,0 +1,179 @@
+"""Plots of parameter studies: sensitivity (figure against each parameter, with the main
+effect) and the distributions of the figures over the cases."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from matplotlib.ticker import MaxNLocator
+
+from crankdyn.plots.style import COLORS, new_figure
+from crankdyn.study.sensitivity import main_effect, negligible_spread, spearman
+
+__all__ = ["Series", "plot_distributions", "plot_sensitivity"]
+
+
+@dataclass(frozen=True)
+class Series:
+    """Values over the cases with their label and display unit (numbers already scaled to it,
+    or text for a categorical parameter)."""
+
+    label: str
+    unit: str
+    values: np.ndarray
+    numeric: bool = True
+
+    @property
+    def axis_label(self) -> str:
+        return f"{self.label} ({self.unit})" if self.unit else self.label
+
+
+def _short(text: str, limit: int = 16) -> str:
+    text = str(text)
+    return text if len(text) <= limit else text[: limit - 1] + "…"
+
+
+def _panel(ax, y: np.ndarray, p: Series, legend: bool, constant: bool) -> None:
+    effect = main_effect(p.values, y, numeric=p.numeric)
+    if p.numeric:
+        x = np.asarray(p.values, dtype=float)
+        ax.plot(x, y, "o", color=COLORS[0], alpha=0.35, markersize=3.5, label="cases")
+        ax.plot(
+            np.asarray(effect.levels, dtype=float),
+            effect.means,
+            "-s" if effect.binned else "-o",
+            color=COLORS[1],
+            linewidth=1.6,
+            markersize=4,
+            label="mean per bin" if effect.binned else "mean per value",
+        )
+        rho = math.nan if constant else spearman(x, y)
+        note = f"ρ = {rho:+.2f}" if math.isfinite(rho) else "ρ undefined"
+    else:
+        labels = [str(v) for v in effect.levels]
+        where = {label: i for i, label in enumerate(labels)}
+        x = np.array([where.get(str(v), -1) for v in p.values], dtype=float)
+        keep = x >= 0
+        jitter = (np.arange(x.size) % 7 - 3) * 0.03
+        ax.plot(
+            x[keep] + jitter[keep],
+            y[keep],
+            "o",
+            color=COLORS[0],
+            alpha=0.35,
+            markersize=3.5,
+            label="cases",
+        )
+        ax.plot(
+            np.arange(len(labels)),
+            effect.means,
+            "-o",
+            color=COLORS[1],
+            linewidth=1.6,
+            markersize=4,
+            label="mean per value",
+        )
+        ax.set_xticks(np.arange(len(labels)))
+        slanted = max((len(s) for s in labels), default=0) > 6 or len(labels) > 4
+        ax.set_xticklabels(
+            [_short(s) for s in labels],
+            rotation=20 if slanted else 0,
+            ha="right" if slanted else "center",
+            fontsize=8,
+        )
+        ax.set_xlim(-0.5, len(labels) - 0.5)
+        note = ""
+    if constant:
+        note = "the same in every case"
+    if note:
+        ax.text(
+            0.03,
+            0.95,
+            note,
+            transform=ax.transAxes,
+            ha="left",
+            va="top",
+            fontsize=8,
+            bbox={"boxstyle": "round,pad=0.2", "facecolor": "white", "edgecolor": "#d9d9d9"},
+        )
+    if legend:
+        ax.legend(fontsize=7, loc="lower right")
+
+
+def plot_sensitivity(figures: list[Series], parameters: list[Series], fig=None):
+    """A grid of panels, one row per figure and one column per parameter: the figure of every
+    finished case against the parameter (points) and its main effect, the mean per value or bin
+    (line; crankdyn.study.sensitivity), with Spearman's rho for numeric parameters. Rows share
+    their y axis, columns their x axis. Returns the Figure."""
+    nrows, ncols = len(figures), len(parameters)
+    fig, axes = new_figure(
+        nrows,
+        ncols,
+        width=min(3.3 * ncols + 0.9, 16.0),
+        height=2.3 * nrows + 0.8,
+        fig=fig,
+        sharex="col",
+        sharey="row",
+    )
+    for i, f in enumerate(figures):
+        y = np.asarray(f.values, dtype=float)
+        finite = y[np.isfinite(y)]
+        constant = negligible_spread(finite)
+        for j, p in enumerate(parameters):
+            ax = axes[i, j]
+            _panel(ax, y, p, legend=(i == 0 and j == 0), constant=constant)
+            ax.ticklabel_format(axis="y", useOffset=False, style="plain")
+            if p.numeric:
+                ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
+            if j == 0:
+                ax.set_ylabel(_wrap(f.axis_label), fontsize=9)
+            if i == nrows - 1:
+                ax.set_xlabel(p.axis_label)
+        if constant:
+            middle = float(finite.mean())
+            pad = 0.01 * abs(middle) or 1.0
+            axes[i, 0].set_ylim(middle - pad, middle + pad)
+    fig.suptitle("Sensitivity of the figures to the parameters")
+    return fig
+
+
+def _wrap(text: str, width: int = 26) -> str:
+    """Break a long axis label onto two lines at a space near the middle."""
+    if len(text) <= width:
+        return text
+    cut = text.rfind(" ", 0, len(text) // 2 + 6)
+    return text if cut <= 0 else text[:cut] + "\n" + text[cut + 1 :]
+
+
+def plot_distributions(figures: list[Series], fig=None, columns: int = 3):
+    """Histogram of every figure over the finished cases (a Monte Carlo study's output
+    distributions), with the mean and the 5 % and 95 % quantiles marked. Returns the Figure."""
+    n = len(figures)
+    ncols = min(n, columns)
+    nrows = math.ceil(n / ncols)
+    fig, axes = new_figure(nrows, ncols, width=3.8 * ncols + 0.6, height=2.9 * nrows + 0.7, fig=fig)
+    for ax, f in zip(axes.flat, figures, strict=False):
+        values = np.asarray(f.values, dtype=float)
+        values = values[np.isfinite(values)]
+        if values.size == 0:
+            ax.text(0.5, 0.5, "no finite values", ha="center", va="center", transform=ax.transAxes)
+            ax.set_xlabel(f.axis_label)
+            continue
+        bins = int(np.clip(np.sqrt(values.size), 5, 40))
+        ax.hist(values, bins=bins, color=COLORS[0], alpha=0.8)
+        mean = float(values.mean())
+        low, high = np.quantile(values, [0.05, 0.95])
+        ax.axvline(mean, color=COLORS[1], linewidth=1.6, label=f"mean {mean:.4g}")
+        ax.axvline(low, color=COLORS[3], linewidth=1.0, linestyle="--", label="5 % / 95 %")
+        ax.axvline(high, color=COLORS[3], linewidth=1.0, linestyle="--")
+        ax.ticklabel_format(axis="x", useOffset=False, style="plain")
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=4))
+        ax.set_xlabel(_wrap(f.axis_label, 40))
+        ax.set_ylabel("cases")
+        ax.legend(fontsize=8, loc="best")
+    for ax in list(axes.flat)[n:]:
+        ax.set_visible(False)
+    fig.suptitle("Distribution of the figures over the cases")
+    return fig

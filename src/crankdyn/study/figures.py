@@ -1,0 +1,857 @@
+"""The figures a study can keep per case: a registry of named scalar results.
+
+A *figure* is one number computed from one variant of the base engine (or model): mean torque,
+the largest main-bearing load, a natural frequency... Each is a :class:`Figure` in
+:data:`FIGURES`, registered with :func:`register_figure`; its function takes a
+:class:`CaseContext` (the variant ``ctx.subject``, the study's analysis settings
+``ctx.settings``) and returns a float in SI (NaN when undefined). Figures that share an analysis
+get it from ``ctx.analysis(name)``, computed once per case from :data:`ANALYSES`.
+
+Other capabilities extend the registry by adding entries (an analysis and its figures, and any
+setting their analyses need in the study file's ``[analysis]`` table, :data:`SETTINGS`). A figure
+defined in any importable module works on every worker: the worker imports the module that
+defines each figure before running a case.
+
+The figures here are thin views of validated analyses (``torque.engine_torque``,
+``bearings.bearing_loads``, ``forces.cylinder_forces``, ``kinematics.piston_kinematics``); the
+one formula of their own is the torque non-uniformity (M_max - M_min)/M_mean (seed 000 section
+2.4), the largest swing of the total torque over the cycle relative to its mean.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from crankdyn.errors import InputError
+
+__all__ = [
+    "ANALYSES",
+    "FIGURES",
+    "SETTINGS",
+    "AnalysisSettings",
+    "CaseContext",
+    "Figure",
+    "Setting",
+    "register_analysis",
+    "register_figure",
+    "register_setting",
+]
+
+SENSES = ("min", "max")
+
+
+# ---- analysis settings ([analysis] in the study file) -----------------------------------------
+
+
+@dataclass(frozen=True)
+class Setting:
+    """A key of the study file's ``[analysis]`` table.
+
+    ``kind`` is a quantity kind of :data:`crankdyn.io.units.KINDS` (read with units),
+    ``"number"``, ``"strings"`` (a list of text) or ``"list:<quantity kind>"`` (a list of
+    quantities); ``length`` fixes the length of a list. ``default`` is in SI (None: no default,
+    the analyses fall back on the engine's or the model's own value, e.g. its
+    ``[operating] speed``).
+    """
+
+    name: str
+    kind: str
+    default: Any
+    help: str
+    check: str | None = "positive"
+    length: int | None = None
+
+
+SETTINGS: dict[str, Setting] = {}
+
+
+def register_setting(setting: Setting) -> Setting:
+    """Add an ``[analysis]`` key (error if the name is taken)."""
+    if setting.name in SETTINGS:
+        raise ValueError(f"setting {setting.name!r} is already registered")
+    SETTINGS[setting.name] = setting
+    return setting
+
+
+@dataclass(frozen=True)
+class AnalysisSettings:
+    """The study's ``[analysis]`` values in SI; a missing key reads as its default."""
+
+    values: tuple[tuple[str, Any], ...] = ()
+
+    def __post_init__(self) -> None:
+        for name, _ in self.values:
+            if name not in SETTINGS:
+                raise InputError("unknown analysis setting", key=name)
+
+    def __getitem__(self, name: str) -> Any:
+        for key, value in self.values:
+            if key == name:
+                return value
+        return SETTINGS[name].default
+
+    def given(self, name: str) -> bool:
+        return any(key == name for key, _ in self.values)
+
+    def to_dict(self) -> dict[str, Any]:
+        return dict(self.values)
+
+
+register_setting(
+    Setting(
+        "speed",
+        "speed",
+        None,
+        "Crank speed of the analyses (default: each variant's [operating] speed).",
+    )
+)
+register_setting(
+    Setting(
+        "step",
+        "angle",
+        math.radians(1.0),
+        "Crank-angle step of the cycle analyses; must divide 360 deg (default 1 deg).",
+    )
+)
+
+
+# ---- analyses and figures ---------------------------------------------------------------------
+
+
+class CaseContext:
+    """One variant under evaluation: its subject (an Engine, or a model), the analysis settings,
+    and the analyses computed so far for it (:meth:`analysis`)."""
+
+    def __init__(self, subject: Any, settings: AnalysisSettings, kind: str = "engine"):
+        self.subject = subject
+        self.settings = settings
+        self.kind = kind
+        self._memo: dict[str, Any] = {}
+
+    def analysis(self, name: str) -> Any:
+        """The result of analysis ``name`` of :data:`ANALYSES` for this variant (computed once)."""
+        if name not in self._memo:
+            self._memo[name] = ANALYSES[name](self)
+        return self._memo[name]
+
+    @property
+    def speed(self) -> float:
+        """The crank speed (rad/s): ``[analysis] speed``, else the variant's operating speed."""
+        speed = self.settings["speed"]
+        if speed is None:
+            speed = getattr(self.subject, "speed", None)
+        if speed is None:
+            raise InputError(
+                "no speed: give [analysis] speed in the study file or [operating] speed in the "
+                "engine file",
+                file=getattr(self.subject, "source", None),
+            )
+        return speed
+
+
+ANALYSES: dict[str, Callable[[CaseContext], Any]] = {}
+
+
+def register_analysis(name: str, function: Callable[[CaseContext], Any]) -> None:
+    """Add a shared analysis (a function of the case context, result cached per case)."""
+    if name in ANALYSES:
+        raise ValueError(f"analysis {name!r} is already registered")
+    ANALYSES[name] = function
+
+
+@dataclass(frozen=True)
+class Figure:
+    """A named scalar figure of a case.
+
+    Parameters
+    ----------
+    name
+        The name used in study files (``"max_main_bearing_load"``).
+    key
+        The results-table column: SI value, unit in the key (``"max_main_bearing_load_N"``).
+    label
+        For tables and plots.
+    unit, scale
+        Display unit and the factor from the SI value to it (``"kN"``, 1e-3).
+    si_unit
+        The unit of the SI value in the table (default ``unit`` when ``scale`` is 1).
+    better
+        ``"min"`` or ``"max"`` when smaller or larger is better (the summary's best cases), or
+        None.
+    function
+        ``function(ctx) -> float`` (SI; NaN when undefined for the variant).
+    subjects
+        The base kinds it applies to (``("engine",)``).
+    description
+        One line for ``crankdyn study --list``.
+    """
+
+    name: str
+    key: str
+    label: str
+    unit: str
+    function: Callable[[CaseContext], float] = field(repr=False)
+    scale: float = 1.0
+    better: str | None = None
+    si_unit: str | None = None
+    subjects: tuple[str, ...] = ("engine",)
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if self.better is not None and self.better not in SENSES:
+            raise ValueError(f"better must be one of {SENSES} or None")
+        if self.si_unit is None:
+            if self.scale != 1.0:
+                raise ValueError("a scaled figure needs its si_unit")
+            object.__setattr__(self, "si_unit", self.unit)
+
+    @property
+    def module(self) -> str:
+        """The module that defines the figure (imported by workers before a case runs)."""
+        return self.function.__module__
+
+    def evaluate(self, ctx: CaseContext) -> float | None:
+        """The figure of a case as a float, None when it is not finite."""
+        value = float(self.function(ctx))
+        return value if math.isfinite(value) else None
+
+
+FIGURES: dict[str, Figure] = {}
+
+
+def register_figure(figure: Figure) -> Figure:
+    """Add a figure to the registry (error if the name or the column key is taken)."""
+    if figure.name in FIGURES:
+        raise ValueError(f"figure {figure.name!r} is already registered")
+    if any(f.key == figure.key for f in FIGURES.values()):
+        raise ValueError(f"figure column {figure.key!r} is already used")
+    FIGURES[figure.name] = figure
+    return figure
+
+
+def _figure(name, key, label, unit, function, *, scale=1.0, si=None, better=None, description=""):
+    return register_figure(
+        Figure(
+            name=name,
+            key=key,
+            label=label,
+            unit=unit,
+            function=function,
+            scale=scale,
+            si_unit=si,
+            better=better,
+            description=description or label,
+        )
+    )
+
+
+# ---- engine analyses (main) -------------------------------------------------------------------
+
+
+def _torque(ctx: CaseContext):
+    from crankdyn.torque import engine_torque
+
+    return engine_torque(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _bearings(ctx: CaseContext):
+    from crankdyn.bearings import bearing_loads
+
+    return bearing_loads(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _cylinder(ctx: CaseContext):
+    from crankdyn.forces import cylinder_forces
+
+    return cylinder_forces(ctx.subject, ctx.speed, step=ctx.settings["step"])
+
+
+def _kinematics(ctx: CaseContext):
+    from crankdyn.kinematics import piston_kinematics
+
+    return piston_kinematics(ctx.subject.geometry, ctx.speed).summary
+
+
+register_analysis("torque", _torque)
+register_analysis("bearings", _bearings)
+register_analysis("cylinder_forces", _cylinder)
+register_analysis("kinematics", _kinematics)
+
+
+def torque_nonuniformity(max_torque: float, min_torque: float, mean_torque: float) -> float:
+    """Torque non-uniformity (M_max - M_min)/M_mean (dimensionless; seed 000 section 2.4), NaN
+    when the mean torque is zero."""
+    if mean_torque == 0.0:
+        return math.nan
+    return (max_torque - min_torque) / mean_torque
+
+
+_figure(
+    "mean_torque",
+    "mean_torque_Nm",
+    "Mean indicated torque",
+    "N·m",
+    lambda c: c.analysis("torque").mean_torque,
+    better="max",
+)
+_figure(
+    "indicated_power",
+    "indicated_power_W",
+    "Indicated power",
+    "kW",
+    lambda c: c.analysis("torque").indicated_power,
+    scale=1e-3,
+    si="W",
+    better="max",
+)
+_figure(
+    "imep",
+    "imep_Pa",
+    "IMEP",
+    "bar",
+    lambda c: c.analysis("torque").imep,
+    scale=1e-5,
+    si="Pa",
+    better="max",
+    description="Indicated mean effective pressure",
+)
+_figure(
+    "peak_pressure",
+    "peak_pressure_Pa",
+    "Peak cylinder pressure",
+    "bar",
+    lambda c: c.analysis("torque").peak_pressure,
+    scale=1e-5,
+    si="Pa",
+    better="min",
+)
+_figure(
+    "max_torque",
+    "max_torque_Nm",
+    "Max total torque",
+    "N·m",
+    lambda c: c.analysis("torque").max_torque,
+)
+_figure(
+    "min_torque",
+    "min_torque_Nm",
+    "Min total torque",
+    "N·m",
+    lambda c: c.analysis("torque").min_torque,
+)
+_figure(
+    "torque_nonuniformity",
+    "torque_nonuniformity",
+    "Torque non-uniformity (M_max − M_min)/M_mean",
+    "",
+    lambda c: torque_nonuniformity(
+        c.analysis("torque").max_torque,
+        c.analysis("torque").min_torque,
+        c.analysis("torque").mean_torque,
+    ),
+    better="min",
+)
+_figure(
+    "max_crank_pin_load",
+    "max_crank_pin_load_N",
+    "Max crank-pin load (largest of the throws)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").max_pin_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_mean_crank_pin_load",
+    "max_mean_crank_pin_load_N",
+    "Mean crank-pin load (largest of the throws)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").mean_pin_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_main_bearing_load",
+    "max_main_bearing_load_N",
+    "Max main-bearing load (largest of the bearings)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").max_bearing_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_mean_main_bearing_load",
+    "max_mean_main_bearing_load_N",
+    "Mean main-bearing load (largest of the bearings)",
+    "kN",
+    lambda c: float(max(c.analysis("bearings").mean_bearing_load)),
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_side_force",
+    "max_side_force_N",
+    "Max piston side force",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_side_force,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_rod_compression",
+    "max_rod_compression_N",
+    "Max rod compression",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_rod_compression,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "max_rod_tension",
+    "max_rod_tension_N",
+    "Max rod tension",
+    "kN",
+    lambda c: c.analysis("cylinder_forces").max_rod_tension,
+    scale=1e-3,
+    si="N",
+    better="min",
+)
+_figure(
+    "mean_piston_speed",
+    "mean_piston_speed_m_s",
+    "Mean piston speed",
+    "m/s",
+    lambda c: c.analysis("kinematics").mean_piston_speed,
+    better="min",
+)
+_figure(
+    "max_piston_speed",
+    "max_piston_speed_m_s",
+    "Max piston speed |v|",
+    "m/s",
+    lambda c: max(
+        abs(c.analysis("kinematics").max_velocity), abs(c.analysis("kinematics").min_velocity)
+    ),
+    better="min",
+)
+_figure(
+    "max_piston_acceleration",
+    "max_piston_acceleration_m_s2",
+    "Max piston acceleration |a|",
+    "m/s²",
+    lambda c: max(
+        abs(c.analysis("kinematics").max_acceleration),
+        abs(c.analysis("kinematics").min_acceleration),
+    ),
+    better="min",
+)
+
+
+# ---- balance and flywheel (crankdyn.balance, crankdyn.flywheel) ---------------------------------
+
+register_setting(
+    Setting(
+        "delta",
+        "number",
+        None,
+        "Target degree of cyclic irregularity for the flywheel figures (default: the engine's "
+        "[flywheel] delta or inertia).",
+    )
+)
+
+BALANCE_ORDERS = (1, 2, 4, 6)
+
+
+def _balance(ctx: CaseContext):
+    from crankdyn.balance import engine_balance
+
+    return engine_balance(ctx.subject, ctx.speed, orders=BALANCE_ORDERS)
+
+
+def _flywheel(ctx: CaseContext):
+    from crankdyn.flywheel import engine_flywheel
+
+    return engine_flywheel(
+        ctx.subject,
+        ctx.speed,
+        delta=ctx.settings["delta"],
+        step=ctx.settings["step"],
+        torque=ctx.analysis("torque"),
+    )
+
+
+register_analysis("balance", _balance)
+register_analysis("flywheel", _flywheel)
+
+
+def _order(ctx: CaseContext, order: int):
+    return next(o for o in ctx.analysis("balance").orders if o.order == order)
+
+
+def _nan_if_none(value) -> float:
+    return math.nan if value is None else float(value)
+
+
+for _n in BALANCE_ORDERS:
+    _figure(
+        f"free_force_{_n}",
+        f"free_force_{_n}_N",
+        f"Free force, order {_n} (reciprocating masses)",
+        "N",
+        lambda c, n=_n: _order(c, n).free_force,
+        better="min",
+        description=f"Largest free force of the reciprocating masses of order {_n} over a "
+        "revolution",
+    )
+    _figure(
+        f"free_moment_{_n}",
+        f"free_moment_{_n}_Nm",
+        f"Free moment, order {_n} (reciprocating masses)",
+        "N·m",
+        lambda c, n=_n: _nan_if_none(_order(c, n).free_moment),
+        better="min",
+        description=f"Largest free moment of the reciprocating masses of order {_n} about the "
+        "middle of the engine (needs [cylinders] pitch)",
+    )
+_figure(
+    "rotating_free_force",
+    "rotating_free_force_N",
+    "Free force of the rotating masses and counterweights",
+    "N",
+    lambda c: c.analysis("balance").rotating.free_force,
+    better="min",
+)
+_figure(
+    "rotating_free_moment",
+    "rotating_free_moment_Nm",
+    "Free moment of the rotating masses and counterweights",
+    "N·m",
+    lambda c: _nan_if_none(c.analysis("balance").rotating.free_moment),
+    better="min",
+)
+_figure(
+    "first_order_free_moment",
+    "first_order_free_moment_Nm",
+    "First-order free moment, reciprocating and rotating",
+    "N·m",
+    lambda c: _nan_if_none(c.analysis("balance").first_order_total.free_moment),
+    better="min",
+)
+_figure(
+    "excess_work",
+    "excess_work_J",
+    "Largest excess work ΔE",
+    "J",
+    lambda c: c.analysis("flywheel").excess_work,
+    better="min",
+    description="Energy swing of the torque curve (needs [flywheel] delta or inertia, or "
+    "[analysis] delta)",
+)
+_figure(
+    "excess_work_coefficient",
+    "excess_work_coefficient",
+    "Excess-work coefficient ξ = ΔE/(M_m Θ)",
+    "",
+    lambda c: _nan_if_none(c.analysis("flywheel").excess_work_coefficient),
+    better="min",
+)
+_figure(
+    "flywheel_inertia",
+    "flywheel_inertia_kgm2",
+    "Flywheel inertia for the target δ",
+    "kg·m²",
+    lambda c: c.analysis("flywheel").flywheel_inertia,
+    better="min",
+    description="Flywheel needed for the target degree of cyclic irregularity ([analysis] "
+    "delta or [flywheel] delta)",
+)
+_figure(
+    "cyclic_irregularity",
+    "cyclic_irregularity",
+    "Degree of cyclic irregularity δ",
+    "",
+    lambda c: c.analysis("flywheel").speed_fluctuation,
+    better="min",
+    description="δ = (ω_max − ω_min)/ω_m with the engine's flywheel ([flywheel] inertia) or "
+    "the one sized for the target δ",
+)
+
+
+# ---- torsional vibration (crankdyn.torsion) -----------------------------------------------------
+
+NATURAL_FREQUENCY_MODES = (1, 2, 3)
+
+
+def _modes(ctx: CaseContext):
+    from crankdyn.torsion.modal import natural_modes
+
+    model = ctx.subject
+    if ctx.kind == "engine":
+        from crankdyn.io.torsion_file import engine_torsion
+
+        model = engine_torsion(ctx.subject)
+    return natural_modes(model)
+
+
+register_analysis("modes", _modes)
+
+
+def natural_frequency(modes, n: int) -> float:
+    """The n-th elastic natural frequency (Hz; the rigid-body mode of a free model skipped),
+    NaN when the model has fewer modes."""
+    omega = np.asarray(modes.natural_frequency, dtype=float)
+    if modes.free:
+        omega = omega[1:]
+    return float(omega[n - 1]) / (2.0 * math.pi) if n <= omega.size else math.nan
+
+
+for _n in NATURAL_FREQUENCY_MODES:
+    register_figure(
+        Figure(
+            name=f"natural_frequency_{_n}",
+            key=f"natural_frequency_{_n}_Hz",
+            label=f"Natural frequency of elastic mode {_n}",
+            unit="Hz",
+            function=lambda c, n=_n: natural_frequency(c.analysis("modes"), n),
+            subjects=("engine", "model"),
+            description=f"Torsional natural frequency of the {_n}. elastic mode (engine: its "
+            "[torsion] model)",
+        )
+    )
+
+
+# ---- forced torsional response (crankdyn.torsion.response) --------------------------------------
+
+register_setting(
+    Setting(
+        "speed_range",
+        "list:speed",
+        None,
+        "Speed range [low, high] of the forced-response figures (default: the torsional "
+        "model's [operating] speed_range).",
+        length=2,
+    )
+)
+register_setting(
+    Setting(
+        "speed_step",
+        "speed",
+        25.0 * math.pi / 30.0,
+        "Speed step of the forced-response figures (default 25 rpm).",
+    )
+)
+register_setting(
+    Setting(
+        "max_order",
+        "number",
+        12.0,
+        "Highest excitation order of the forced response (default 12; from the cycle's lowest "
+        "order, 0.5 four-stroke, 1 two-stroke).",
+    )
+)
+register_setting(
+    Setting(
+        "relative",
+        "strings",
+        None,
+        "The two masses of the relative-angle figure (default: the first and the last mass "
+        'of the torsional model, e.g. ["pulley", "flywheel"]).',
+        check=None,
+        length=2,
+    )
+)
+
+
+def _torsion_model(ctx: CaseContext):
+    """(torsional model, engine or None) of a case."""
+    if ctx.kind == "engine":
+        from crankdyn.io.torsion_file import engine_torsion
+
+        return engine_torsion(ctx.subject), ctx.subject
+    return ctx.subject, None
+
+
+def speed_grid(low: float, high: float, step: float) -> np.ndarray:
+    """Speeds low, low + step, ... up to high (rad/s)."""
+    count = math.floor((high - low) / step * (1 + 1e-12)) + 1
+    if count > 100_000:
+        raise InputError("too many speeds (more than 100000)", key="[analysis] speed_step")
+    return low + step * np.arange(count)
+
+
+def _response(ctx: CaseContext):
+    from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
+    from crankdyn.torsion.response import forced_response
+
+    model, engine = _torsion_model(ctx)
+    excitation = excitation_for(model, engine)
+    given = ctx.settings["speed_range"]
+    if given is not None:
+        low, high = given
+    elif model.operating is not None:
+        low, high = model.operating.low, model.operating.high
+    else:
+        raise InputError(
+            "no speed range for the forced response: give [analysis] speed_range in the study "
+            "file or [operating] speed_range in the torsional model",
+            file=getattr(model, "source", None),
+        )
+    if not high > low:
+        raise InputError(
+            "the speed range is empty: its end is not above its start",
+            key="[analysis] speed_range",
+        )
+    base = fundamental_order(excitation.cycle)
+    orders = order_grid(base, ctx.settings["max_order"], base, excitation.cycle)
+    speeds = speed_grid(low, high, ctx.settings["speed_step"])
+    result = forced_response(model, excitation, speeds, orders)
+    return result, model
+
+
+register_analysis("response", _response)
+
+
+def _relative_pair(ctx: CaseContext, model) -> tuple[str, str]:
+    pair = ctx.settings["relative"]
+    if pair is None:
+        names = model.mass_names
+        return names[0], names[-1]
+    return tuple(pair)
+
+
+def max_relative_angle(ctx: CaseContext) -> float:
+    """Largest synthesised (half-range) relative angle between the two masses over the speed
+    range (rad)."""
+    result, model = ctx.analysis("response")
+    a, b = _relative_pair(ctx, model)
+    try:
+        relative = result.relative_angle(a, b)
+    except InputError as exc:
+        raise InputError(exc.message, key="[analysis] relative", value=[a, b]) from None
+    return float(np.max(relative.synthesized))
+
+
+def _model_shafts(ctx: CaseContext) -> slice:
+    _, model = ctx.analysis("response")
+    return slice(0, len(model.shafts))  # the damper couplings follow the shafts
+
+
+def max_shaft_stress(ctx: CaseContext) -> float:
+    """Largest synthesised nominal shear stress over the speed range and the shafts with
+    diameters (Pa)."""
+    result, _ = ctx.analysis("response")
+    stress = np.asarray(result.synthesized_shaft_stress)[:, _model_shafts(ctx)]
+    known = np.isfinite(stress).all(axis=0)
+    if not known.any():
+        raise InputError(
+            "no shaft of the torsional model has diameters (outer_diameter): no stress",
+            key="max_shaft_stress",
+        )
+    return float(np.max(stress[:, known]))
+
+
+def max_stress_ratio(ctx: CaseContext) -> float:
+    """Largest synthesised stress over the permissible continuous stress tau_C of the rule
+    check (IACS UR M68), over the speeds and the checked shafts (dimensionless)."""
+    result, _ = ctx.analysis("response")
+    check = result.rule_check
+    if check is None:
+        raise InputError(
+            "the torsional model has no [rules] (docs/torsion-file.md): no rule check",
+            key="max_stress_ratio",
+        )
+    return float(np.max(np.asarray(check.stress) / np.asarray(check.tau_c)))
+
+
+def max_damper_power(ctx: CaseContext) -> float:
+    """Largest power dissipated in a damper over the speed range (W)."""
+    result, _ = ctx.analysis("response")
+    if result.damper_power is None:
+        raise InputError("the torsional model has no damper", key="max_damper_power")
+    return float(np.max(result.damper_power))
+
+
+for _name, _key, _label, _unit, _function, _scale, _si in (
+    (
+        "max_relative_angle",
+        "max_relative_angle_rad",
+        "Largest relative angle (synthesised)",
+        "mrad",
+        max_relative_angle,
+        1e3,
+        "rad",
+    ),
+    (
+        "max_free_end_amplitude",
+        "max_free_end_amplitude_rad",
+        "Largest amplitude of the first mass (synthesised)",
+        "mrad",
+        lambda c: float(np.max(np.asarray(c.analysis("response")[0].synthesized_amplitude)[:, 0])),
+        1e3,
+        "rad",
+    ),
+    (
+        "max_shaft_torque",
+        "max_shaft_torque_Nm",
+        "Largest vibratory shaft torque (synthesised)",
+        "N·m",
+        lambda c: float(
+            np.max(
+                np.asarray(c.analysis("response")[0].synthesized_shaft_torque)[:, _model_shafts(c)]
+            )
+        ),
+        1.0,
+        "N·m",
+    ),
+    (
+        "max_shaft_stress",
+        "max_shaft_stress_Pa",
+        "Largest shaft shear stress (synthesised)",
+        "MPa",
+        max_shaft_stress,
+        1e-6,
+        "Pa",
+    ),
+    (
+        "max_stress_ratio",
+        "max_stress_ratio",
+        "Largest shaft stress / permissible τ_C (IACS UR M68)",
+        "",
+        max_stress_ratio,
+        1.0,
+        "",
+    ),
+    (
+        "max_damper_power",
+        "max_damper_power_W",
+        "Largest damper power",
+        "W",
+        max_damper_power,
+        1.0,
+        "W",
+    ),
+):
+    register_figure(
+        Figure(
+            name=_name,
+            key=_key,
+            label=_label,
+            unit=_unit,
+            function=_function,
+            scale=_scale,
+            si_unit=_si,
+            better="min",
+            subjects=("engine", "model"),
+            description=_label + " over the speed range (forced torsional response)",
+        )
+    )

@@ -1,0 +1,15 @@
+"""Warm-up for the local pool's fork server: imported by the server before it forks the
+workers, so that each worker starts with the analyses imported and the unit registry built (a
+second and more of work that every worker would otherwise repeat)."""
+
+from __future__ import annotations
+
+import crankdyn.bearings
+import crankdyn.forces
+import crankdyn.io.engine_file
+import crankdyn.kinematics
+import crankdyn.study.worker
+import crankdyn.torque  # noqa: F401
+from crankdyn.io.units import registry
+
+registry()

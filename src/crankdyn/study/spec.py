@@ -1,0 +1,377 @@
+"""The study as a domain object: the base document, the parameters and how they vary, the
+analysis settings and the figures to keep (read from a study file by
+:mod:`crankdyn.io.study_file`; docs/study-file.md).
+
+Monte Carlo draws use inverse-transform sampling (e.g. Devroye, *Non-Uniform Random Variate
+Generation*, Springer 1986, section 2.1): a uniform number u in (0, 1) from the seeded PCG64
+generator of numpy (``Generator.random``, whose stream numpy keeps stable) is mapped through the
+distribution's quantile function F^-1(u):
+
+- uniform on [a, b]: a + u (b - a);
+- normal N(mu, sigma): mu + sigma Phi^-1(u), Phi^-1 the standard normal quantile
+  (``scipy.special.ndtri``);
+- triangular (a, c, b) with mode c: a + sqrt(u (b - a)(c - a)) for u < (c - a)/(b - a), else
+  b - sqrt((1 - u)(b - a)(b - c)).
+
+Latin hypercube sampling (McKay, Beckman and Conover, Technometrics 21 (1979) 239-245) puts
+one of n samples in each of the n equal-probability strata of every parameter:
+u_ij = (pi_j(i) + v_ij)/n with an independent random permutation pi_j per parameter and v
+uniform in [0, 1).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from scipy.special import ndtri
+
+from crankdyn.errors import InputError
+from crankdyn.study.docpath import KeyPath
+from crankdyn.study.figures import FIGURES, AnalysisSettings
+
+__all__ = [
+    "BASE_KINDS",
+    "DISTRIBUTIONS",
+    "SAMPLINGS",
+    "Base",
+    "BaseKind",
+    "Distribution",
+    "Parameter",
+    "StudySpec",
+    "column_suffix",
+    "document_number",
+]
+
+SAMPLINGS = ("random", "latin-hypercube")
+
+
+# ---- what a study varies: the base ------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class BaseKind:
+    """A kind of base file a study can vary: its key in the study file (``engine = ...``), the
+    reader that turns a parsed document into the analysed object (called with the document and
+    ``file=``, ``base_dir=`` keywords), and where its format is documented."""
+
+    name: str
+    parse: Callable[..., Any]
+    docs: str
+
+
+def _parse_engine(document: dict, *, file: str | None = None, base_dir: Path | None = None):
+    from crankdyn.io.engine_file import parse_engine
+
+    return parse_engine(document, file=file, base_dir=base_dir)
+
+
+def _parse_model(document: dict, *, file: str | None = None, base_dir: Path | None = None):
+    from crankdyn.io.torsion_file import parse_torsion_model
+
+    return parse_torsion_model(document, file=file, base_dir=base_dir)
+
+
+BASE_KINDS: dict[str, BaseKind] = {
+    "engine": BaseKind("engine", _parse_engine, "docs/engine-file.md"),
+    "model": BaseKind("model", _parse_model, "docs/torsion-file.md"),
+}
+
+
+@dataclass(frozen=True)
+class Base:
+    """The base file of a study, parsed but not interpreted.
+
+    Parameters
+    ----------
+    kind
+        A key of :data:`BASE_KINDS`.
+    document
+        The parsed TOML document (never modified: cases edit deep copies).
+    source
+        How the file is named in messages (``"engine.toml"``, ``"vaz2108 (built-in example)"``).
+    base_dir
+        Folder against which the document's relative paths resolve.
+    files_digest
+        SHA-256 of the files the document refers to (pressure traces...), so that the study's
+        fingerprint changes when they do.
+    files
+        (relative path, contents) of the files the document names by relative paths, read
+        with the document: what workers on other machines receive.
+    """
+
+    kind: str
+    document: dict = field(repr=False)
+    source: str
+    base_dir: Path | None = None
+    files_digest: str = ""
+    files: tuple[tuple[str, bytes], ...] = field(default=(), repr=False)
+
+    def __post_init__(self) -> None:
+        if self.kind not in BASE_KINDS:
+            raise InputError(
+                f"expected one of {', '.join(BASE_KINDS)}", key="base kind", value=self.kind
+            )
+
+    def parse(self, document: dict | None = None) -> Any:
+        """The analysed object (Engine...) of ``document`` (default the base itself)."""
+        return BASE_KINDS[self.kind].parse(
+            self.document if document is None else document,
+            file=self.source,
+            base_dir=self.base_dir,
+        )
+
+
+# ---- how a parameter varies -------------------------------------------------------------------
+
+
+def _triangular_ppf(u, a: float, c: float, b: float):
+    u = np.asarray(u, dtype=float)
+    split = (c - a) / (b - a)
+    low = a + np.sqrt(u * (b - a) * (c - a))
+    high = b - np.sqrt((1.0 - u) * (b - a) * (b - c))
+    return np.where(u < split, low, high)
+
+
+DISTRIBUTIONS: dict[str, tuple[tuple[str, ...], Callable]] = {
+    "uniform": (("low", "high"), lambda u, a, b: a + np.asarray(u) * (b - a)),
+    "normal": (("mean", "std"), lambda u, mu, sigma: mu + sigma * ndtri(np.asarray(u))),
+    "triangular": (("low", "mode", "high"), _triangular_ppf),
+}
+"""Distribution name -> (argument names, quantile function F^-1(u, *args))."""
+
+
+@dataclass(frozen=True)
+class Distribution:
+    """A random distribution of a numeric parameter; ``args`` in the parameter's unit."""
+
+    name: str
+    args: tuple[float, ...]
+
+    def __post_init__(self) -> None:
+        if self.name not in DISTRIBUTIONS:
+            raise InputError(
+                f"expected one of {', '.join(DISTRIBUTIONS)}", key="distribution", value=self.name
+            )
+        names, _ = DISTRIBUTIONS[self.name]
+        if len(self.args) != len(names):
+            raise InputError(f"expected {', '.join(names)}", key="distribution", value=self.name)
+        if not all(math.isfinite(a) for a in self.args):
+            raise InputError("the arguments must be finite", key=self.name, value=list(self.args))
+        if self.name == "uniform" and not self.args[0] < self.args[1]:
+            raise InputError("low must be below high", key="high", value=self.args[1])
+        if self.name == "normal" and not self.args[1] > 0.0:
+            raise InputError("std must be positive", key="std", value=self.args[1])
+        if self.name == "triangular":
+            a, c, b = self.args
+            if not (a < b and a <= c <= b):
+                raise InputError("expected low <= mode <= high, low < high", key="mode", value=c)
+
+    def quantile(self, u) -> np.ndarray:
+        """F^-1(u) for uniform numbers u in [0, 1) (module docstring)."""
+        return DISTRIBUTIONS[self.name][1](u, *self.args)
+
+
+def column_suffix(unit: str) -> str:
+    """The unit part of a column name: ``"mm"`` -> ``"mm"``, ``"kg*m^2"`` -> ``"kg_m2"``,
+    ``"N*m/rad"`` -> ``"N_m_per_rad"``; ``""`` for a bare number."""
+    text = unit.replace("**", "^").replace(" ", "")
+    text = text.replace("*", "_").replace("·", "_").replace("/", "_per_").replace("^", "")
+    return "".join(ch for ch in text if ch.isalnum() or ch in "_-%°µ")
+
+
+def document_number(number: float, unit: str, integer: bool = False) -> Any:
+    """A generated magnitude as written into a document: ``"136.25 mm"``, or a bare number
+    (a whole number when ``integer``)."""
+    value: Any = round(float(number)) if integer else float(number)
+    return f"{value!r} {unit}" if unit else value
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One varied key of the base document.
+
+    Parameters
+    ----------
+    path
+        The key path (:mod:`crankdyn.study.docpath`).
+    also
+        Further key paths set to the same value in every case (one quantity that appears in
+        two places of the file, e.g. a flywheel's inertia in ``[flywheel]`` and in the
+        torsional model).
+    values
+        The values of a grid parameter as written into the document (unit strings, numbers,
+        lists, text), or None for a random parameter.
+    numbers
+        For a numeric parameter, its values' magnitudes in ``unit`` (the grid values, or None
+        for a random one); None for a categorical parameter.
+    unit
+        The unit of a numeric parameter (``""`` for bare numbers); None when categorical.
+    distribution
+        The distribution of a random (Monte Carlo) parameter.
+    integer
+        Write generated values as whole numbers (a range of whole numbers).
+    """
+
+    path: KeyPath
+    values: tuple[Any, ...] | None = None
+    also: tuple[KeyPath, ...] = ()
+    numbers: tuple[float, ...] | None = None
+    unit: str | None = None
+    distribution: Distribution | None = None
+    integer: bool = False
+
+    def __post_init__(self) -> None:
+        if (self.values is None) == (self.distribution is None):
+            raise InputError(
+                "give either values (a list or a range) or a distribution", key=self.path.text
+            )
+        if self.distribution is not None and self.unit is None:
+            raise InputError("a distribution needs a numeric parameter", key=self.path.text)
+
+    @property
+    def key(self) -> str:
+        """The parameter's name: its (first) key path."""
+        return self.path.text
+
+    @property
+    def paths(self) -> tuple[KeyPath, ...]:
+        """Every key path the parameter sets."""
+        return (self.path, *self.also)
+
+    @property
+    def is_random(self) -> bool:
+        return self.distribution is not None
+
+    @property
+    def is_numeric(self) -> bool:
+        return self.unit is not None
+
+    @property
+    def column(self) -> str:
+        """Results-table column: the key, with the unit appended (``geometry.rod_length_mm``)."""
+        if self.unit:
+            return f"{self.key}_{column_suffix(self.unit)}"
+        return self.key
+
+    def document_value(self, number: float) -> Any:
+        """A generated magnitude as written into the document (:func:`document_number`)."""
+        return document_number(number, self.unit or "", self.integer)
+
+
+# ---- the study --------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A parameter study (docs/study-file.md).
+
+    Parameters
+    ----------
+    name
+        For reports.
+    base
+        The base file varied.
+    parameters
+        The varied keys, in file order: the grid parameters span a Cartesian product; the
+        random ones are drawn ``samples`` times, the same draws for every grid point.
+    figures
+        Names of :data:`crankdyn.study.figures.FIGURES` kept per case.
+    settings
+        The ``[analysis]`` values.
+    remove
+        Keys deleted from the base document before the parameters are applied.
+    samples, seed, sampling
+        Monte Carlo: number of draws, the generator's seed, ``"random"`` or
+        ``"latin-hypercube"``.
+    best
+        (figure, "min" or "max") overriding a figure's own sense of better.
+    source
+        The study file, for messages.
+    """
+
+    name: str
+    base: Base
+    parameters: tuple[Parameter, ...]
+    figures: tuple[str, ...]
+    settings: AnalysisSettings = AnalysisSettings()
+    remove: tuple[KeyPath, ...] = ()
+    samples: int | None = None
+    seed: int | None = None
+    sampling: str = "random"
+    best: tuple[tuple[str, str], ...] = ()
+    source: str | None = field(default=None, compare=False)
+
+    def __post_init__(self) -> None:
+        if not self.parameters:
+            raise InputError("a study needs at least one [[parameter]]", key="parameter")
+        keys = [path.text for p in self.parameters for path in p.paths]
+        for i, key in enumerate(keys):
+            if key in keys[:i]:
+                raise InputError("the key is varied twice", key="parameter key", value=key)
+        if not self.figures:
+            raise InputError("name at least one figure", key="figures")
+        for name in self.figures:
+            if name not in FIGURES:
+                raise InputError("unknown figure", key="figures", value=name)
+            if self.base.kind not in FIGURES[name].subjects:
+                raise InputError(
+                    f"the figure does not apply to a base {self.base.kind}",
+                    key="figures",
+                    value=name,
+                )
+        if self.random_parameters:
+            if self.samples is None or self.samples < 1:
+                raise InputError("a Monte Carlo study needs samples >= 1", key="samples")
+            if self.seed is None:
+                raise InputError("a Monte Carlo study needs a seed", key="seed")
+        if self.sampling not in SAMPLINGS:
+            raise InputError(
+                f"expected one of {', '.join(SAMPLINGS)}", key="sampling", value=self.sampling
+            )
+
+    @property
+    def grid_parameters(self) -> tuple[Parameter, ...]:
+        return tuple(p for p in self.parameters if not p.is_random)
+
+    @property
+    def random_parameters(self) -> tuple[Parameter, ...]:
+        return tuple(p for p in self.parameters if p.is_random)
+
+    @property
+    def case_count(self) -> int:
+        """Number of cases: grid points x Monte Carlo samples."""
+        count = math.prod(len(p.values) for p in self.grid_parameters)
+        return count * (self.samples if self.random_parameters else 1)
+
+    def better(self, figure: str) -> str | None:
+        """Whether smaller (``"min"``) or larger (``"max"``) values of a figure are better."""
+        for name, sense in self.best:
+            if name == figure:
+                return sense
+        return FIGURES[figure].better
+
+    def fingerprint(self) -> str:
+        """SHA-256 of everything a case's figures depend on besides its parameter values: the
+        base document and the files it names, the removed keys, the analysis settings, the
+        figures and the crankdyn version. Two runs with the same fingerprint may share finished
+        cases (a case is identified by its parameter values)."""
+        from crankdyn import __version__
+
+        content = {
+            "kind": self.base.kind,
+            "document": self.base.document,
+            "files": self.base.files_digest,
+            "remove": [p.text for p in self.remove],
+            "settings": self.settings.to_dict(),
+            "figures": list(self.figures),
+            "crankdyn": __version__,
+        }
+        text = json.dumps(content, sort_keys=True, default=str, separators=(",", ":"))
+        return hashlib.sha256(text.encode("utf-8")).hexdigest()
