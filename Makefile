@@ -34,6 +34,21 @@ FUZZ_EXAMPLES ?= 5000
 fuzz: $(VENV)/.stamp-test
 	HYPOTHESIS_PROFILE=fuzz CRANKDYN_FUZZ_EXAMPLES=$(FUZZ_EXAMPLES) $(BIN)/python -m pytest -n 2 -q -p no:cacheprovider tests/robustness
 
+## make bench: side-by-side benchmarks against openTorsion and pylinkage in their own environment
+## (docs/benchmarks.md); `make bench BENCH_ARGS=--write-docs` also rewrites the doc's table
+BENCH_VENV := .venv-bench
+BENCH_ARGS ?=
+
+$(BENCH_VENV)/.stamp: pyproject.toml bench/requirements.txt
+	$(PYTHON) -m venv $(BENCH_VENV)
+	$(BENCH_VENV)/bin/python -m pip install -q --upgrade pip
+	$(BENCH_VENV)/bin/python -m pip install -q -e . -r bench/requirements.txt
+	$(BENCH_VENV)/bin/python -m pip install -q numba || echo "bench: numba did not install; pylinkage's compiled path is reported as not measured"
+	@touch $@
+
+bench: $(BENCH_VENV)/.stamp
+	$(BENCH_VENV)/bin/python -m bench.run $(BENCH_ARGS)
+
 lint: $(VENV)/.stamp-test
 	$(BIN)/ruff check src tests bench docs/examples
 	$(BIN)/ruff format --check src tests bench docs/examples

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from crankdyn.engine import Engine
-from crankdyn.forces import crank_train, cycle_grid, load_angle
+from crankdyn.forces import CrankTrain, cycle_grid, load_angle, reuse_train
 from crankdyn.pressure import PressureTrace
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
@@ -91,11 +91,14 @@ def bearing_loads(
     *,
     step: float = math.radians(1.0),
     pressure: PressureTrace | None = None,
+    train: CrankTrain | None = None,
 ) -> BearingLoads:
     """Crank-pin and main-bearing loads of an engine at speed w (rad/s) over one cycle (or at
-    the crankshaft ``angles``, rad); see the module docstring."""
+    the crankshaft ``angles``, rad); see the module docstring. ``train``: the crank train at
+    exactly these angles, speed and pressure when already computed (e.g. shared with
+    :func:`crankdyn.torque.engine_torque`); default: evaluated here."""
     theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
-    train = crank_train(engine, speed, theta, pressure=pressure)
+    train = reuse_train(train, engine, speed, theta, pressure)
     t_pin, z_pin = train.pin_loads()
     hx, hy = train.throw_forces()
     bx, by = main_bearing_loads(hx, hy)

@@ -39,7 +39,13 @@ import numpy as np
 
 from crankdyn.engine import Engine
 from crankdyn.errors import InputError
-from crankdyn.kinematics import series_coefficients, slider_crank_exact
+from crankdyn.kinematics import (
+    CrankTerms,
+    SliderCrankMotion,
+    crank_terms,
+    series_coefficients,
+    slider_crank_exact,
+)
 from crankdyn.masses import EquivalentMasses, equivalent_mass_model
 from crankdyn.pressure import PressureTrace
 from crankdyn.pressure_model import default_pressure
@@ -49,10 +55,12 @@ __all__ = [
     "CrankTrain",
     "CylinderForces",
     "crank_train",
+    "cycle_grid",
     "cylinder_forces",
     "engine_masses",
     "inertia_harmonics",
     "load_angle",
+    "reuse_train",
     "rod_forces",
 ]
 
@@ -62,7 +70,7 @@ _SERIES_ORDER = 24
 # ---- numeric core ------------------------------------------------------------------------------
 
 
-def rod_forces(piston_force, phi, lam: float, k: float = 0.0):
+def rod_forces(piston_force, phi, lam: float, k: float = 0.0, *, terms: CrankTerms | None = None):
     """Side, rod, tangential and radial forces from the force along the cylinder axis.
 
     Parameters
@@ -73,6 +81,8 @@ def rod_forces(piston_force, phi, lam: float, k: float = 0.0):
         Crank angle (rad).
     lam, k
         lambda = R/L and k = e/R (dimensionless).
+    terms
+        :func:`crankdyn.kinematics.crank_terms` at phi for lam and k, when already computed.
 
     Returns
     -------
@@ -81,15 +91,13 @@ def rod_forces(piston_force, phi, lam: float, k: float = 0.0):
         T = P sin(phi + beta)/cos(beta), radial force Z = P cos(phi + beta)/cos(beta), all in N
         (seed 000 section 2.2).
     """
-    phi = np.asarray(phi, dtype=float)
     p = np.asarray(piston_force, dtype=float)
-    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
-    sin_b = lam * (sin_phi - k)
-    cos_b = np.sqrt(1.0 - sin_b * sin_b)
-    rod = p / cos_b
-    side = rod * sin_b
-    tangential = rod * (sin_phi * cos_b + cos_phi * sin_b)
-    radial = rod * (cos_phi * cos_b - sin_phi * sin_b)
+    if terms is None:
+        terms = crank_terms(np.asarray(phi, dtype=float), lam, k)
+    rod = p / terms.cos_beta
+    side = rod * terms.sin_beta
+    tangential = rod * terms.sin_phi_beta
+    radial = rod * terms.cos_phi_beta
     return side, rod, tangential, radial
 
 
@@ -171,6 +179,8 @@ class CrankTrain:
     masses: tuple[EquivalentMasses, ...]
     trace: PressureTrace
     engine: Engine = field(repr=False)
+    motion: SliderCrankMotion | None = field(default=None, repr=False)
+    """Piston and rod kinematics of every cylinder (arrays of shape (cylinders, angles))."""
 
     @property
     def crank_radius(self) -> float:
@@ -222,7 +232,8 @@ class CrankTrain:
 def crank_train(
     engine: Engine, speed: float, theta, *, pressure: PressureTrace | None = None
 ) -> CrankTrain:
-    """Forces of every cylinder at crankshaft angles theta (rad) and speed w (rad/s).
+    """Kinematics and forces of every cylinder at crankshaft angles theta (rad) and speed w
+    (rad/s).
 
     Cylinder i's crank angle is phi_i = theta - psi_i (psi_i its throw angle) and its angle from
     firing TDC is theta - Phi_i (Phi_i its firing angle); ``pressure`` defaults to the engine's
@@ -240,14 +251,13 @@ def crank_train(
     phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
     p = trace.at(phase)
     gas = (p - engine.crankcase_pressure) * g.piston_area
-    motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed)
+    terms = crank_terms(phi, g.lam, g.k)  # shared by the kinematics and the forces
+    motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed, terms=terms)
     m_j = np.array([m.reciprocating for m in masses])[:, None]
     inertia = -m_j * motion.acceleration
     piston = gas + inertia
-    side, rod, tangential, radial = rod_forces(piston, phi, g.lam, g.k)
-    lever = rod_forces(  # sin(phi + beta)/cos(beta)
-        np.ones_like(phi), phi, g.lam, g.k
-    )[2]
+    side, rod, tangential, radial = rod_forces(piston, phi, g.lam, g.k, terms=terms)
+    lever = (1.0 / terms.cos_beta) * terms.sin_phi_beta  # sin(phi + beta)/cos(beta)
     return CrankTrain(
         theta=theta,
         speed=float(speed),
@@ -266,6 +276,7 @@ def crank_train(
         masses=tuple(masses),
         trace=trace,
         engine=engine,
+        motion=motion,
     )
 
 
@@ -273,6 +284,38 @@ def cycle_grid(engine: Engine, step: float) -> np.ndarray:
     """Crankshaft angles over one working cycle, 0..cycle inclusive, every ``step`` rad."""
     count = max(round(engine.cycle_angle / step), 4)
     return np.linspace(0.0, engine.cycle_angle, count + 1)
+
+
+def reuse_train(
+    train: CrankTrain | None,
+    engine: Engine,
+    speed: float,
+    theta: np.ndarray,
+    pressure: PressureTrace | None,
+) -> CrankTrain:
+    """The crank train at (engine, speed, theta, pressure): ``train`` when one was computed
+    already for exactly these (so that the torque and bearing analyses of one cycle share a
+    single evaluation), else a new one.
+
+    Raises
+    ------
+    ValueError
+        When ``train`` was computed for another engine, speed, pressure or set of angles (a
+        programming error, not an input error).
+    """
+    if train is None:
+        return crank_train(engine, speed, theta, pressure=pressure)
+    trace = engine.pressure if pressure is None else pressure  # None: the synthetic default
+    if (
+        train.engine is not engine
+        or train.speed != float(speed)
+        or not (trace is None or train.trace is trace or train.trace == trace)
+        or not np.array_equal(train.theta, theta)
+    ):
+        raise ValueError(
+            "the crank train was computed for another engine, speed, pressure or angle grid"
+        )
+    return train
 
 
 # ---- one cylinder: result ------------------------------------------------------------------------

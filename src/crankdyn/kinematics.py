@@ -36,8 +36,6 @@ from dataclasses import dataclass, field
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq
-from scipy.special import binom
 
 from crankdyn.geometry import CrankGeometry
 from crankdyn.results import DEG, Result, column, freeze, scalar
@@ -46,12 +44,14 @@ __all__ = [
     "METHODS",
     "SPEED_CLASSES",
     "CoefficientTable",
+    "CrankTerms",
     "Extremum",
     "KinematicsResult",
     "KinematicsSummary",
     "SliderCrankMotion",
     "coefficient_table",
     "complex_step",
+    "crank_terms",
     "dead_centres",
     "local_extrema",
     "piston_jerk",
@@ -68,7 +68,7 @@ __all__ = [
 def _angles(phi) -> np.ndarray:
     """Crank angles as a float array; complex input is kept (complex-step differentiation)."""
     arr = np.asarray(phi)
-    return arr if np.iscomplexobj(arr) else arr.astype(float)
+    return arr if np.iscomplexobj(arr) else np.asarray(arr, dtype=float)  # no copy if float
 
 
 class SliderCrankMotion(NamedTuple):
@@ -107,7 +107,33 @@ def dead_centres(crank_radius: float, rod_length: float, offset: float = 0.0):
     return phi_tdc, phi_bdc, stroke
 
 
-def slider_crank_exact(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> SliderCrankMotion:
+class CrankTerms(NamedTuple):
+    """Sines and cosines of the crank angle phi, the rod angle beta and phi + beta at a set of
+    crank angles (dimensionless arrays of one shape), shared by the kinematics and the forces."""
+
+    sin_phi: np.ndarray
+    cos_phi: np.ndarray
+    sin_beta: np.ndarray  # lambda (sin(phi) - k)
+    cos_beta: np.ndarray
+    sin_phi_beta: np.ndarray  # sin(phi + beta)
+    cos_phi_beta: np.ndarray  # cos(phi + beta)
+
+
+def crank_terms(phi, lam: float, k: float = 0.0) -> CrankTerms:
+    """The :class:`CrankTerms` at crank angles phi (rad) for lambda = R/L and k = e/R:
+    sin(beta) = lambda (sin(phi) - k) (module docstring), sums of angles expanded."""
+    phi = _angles(phi)
+    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
+    sin_b = lam * (sin_phi - k)
+    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    sin_pb = sin_phi * cos_b + cos_phi * sin_b  # sin(phi + beta)
+    cos_pb = cos_phi * cos_b - sin_phi * sin_b  # cos(phi + beta)
+    return CrankTerms(sin_phi, cos_phi, sin_b, cos_b, sin_pb, cos_pb)
+
+
+def slider_crank_exact(
+    phi, crank_radius, rod_length, offset=0.0, omega=1.0, *, terms: CrankTerms | None = None
+) -> SliderCrankMotion:
     """Exact piston and rod motion (seed 000 section 1, seed 002 eqs. 3, 8, 13).
 
     Parameters
@@ -118,6 +144,8 @@ def slider_crank_exact(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> 
         R, L, e (m).
     omega
         Crank angular speed (rad/s), constant.
+    terms
+        :func:`crank_terms` at these angles for R/L and e/R, when the caller has them already.
 
     Returns
     -------
@@ -125,17 +153,14 @@ def slider_crank_exact(phi, crank_radius, rod_length, offset=0.0, omega=1.0) -> 
         Displacement (m), velocity (m/s), acceleration (m/s^2), rod angle (rad), rod angular
         velocity (rad/s) and angular acceleration (rad/s^2).
     """
-    phi = _angles(phi)
     r, l, e, w = float(crank_radius), float(rod_length), float(offset), float(omega)
     lam, k = r / l, e / r
-    sin_phi, cos_phi = np.sin(phi), np.cos(phi)
-    sin_b = lam * (sin_phi - k)
-    cos_b = np.sqrt(1.0 - sin_b * sin_b)
+    if terms is None:
+        terms = crank_terms(phi, lam, k)
+    sin_phi, cos_phi, sin_b, cos_b, sin_pb, cos_pb = terms
     beta = np.arcsin(sin_b)
     y_tdc = math.sqrt((l + r) ** 2 - e * e)
     x = y_tdc - (r * cos_phi + l * cos_b)
-    sin_pb = sin_phi * cos_b + cos_phi * sin_b  # sin(phi + beta)
-    cos_pb = cos_phi * cos_b - sin_phi * sin_b  # cos(phi + beta)
     v = r * w * sin_pb / cos_b
     a = r * w * w * (cos_pb / cos_b + lam * cos_phi**2 / cos_b**3)
     w_rod = w * lam * cos_phi / cos_b
@@ -237,6 +262,8 @@ def series_coefficients(lam: float, k: float = 0.0, order: int = 2):
     """
     if order < 2 or order % 2:
         raise ValueError("order must be an even number >= 2")
+    from scipy.special import binom  # imported here: keeps `import crankdyn` light
+
     n_max = order // 2
     # Laurent polynomial of u/lambda = sin(phi) - k in z = exp(i phi), exponents -1, 0, 1
     base = np.array([0.5j, -k, -0.5j], dtype=complex)
@@ -322,6 +349,8 @@ def local_extrema(f, df=None, n: int = 1440) -> list[Extremum]:
     -------
     list of Extremum, sorted by angle.
     """
+    from scipy.optimize import brentq  # imported here: keeps `import crankdyn` light
+
     if df is None:
         df = complex_step(f)
     grid = np.linspace(0.0, 2.0 * math.pi, n + 1)

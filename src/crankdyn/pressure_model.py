@@ -39,7 +39,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from crankdyn.errors import InputError
 from crankdyn.firing import CYCLE_ANGLE
@@ -298,6 +297,8 @@ class WiebePressureModel:
                     raise InputError(
                         "the peak pressure cannot be reached", key="peak_pressure", value=target
                     )
+            from scipy.optimize import brentq  # imported here: keeps `import crankdyn` light
+
             return float(brentq(lambda q: float(np.max(p0 + q * p1)) - target, 0.0, hi, xtol=1e-12))
         imep = DEFAULT_IMEP if self.imep is None else float(self.imep)
         dv = np.diff(np.append(volume, volume[0]))

@@ -27,7 +27,7 @@ import numpy as np
 
 from crankdyn.engine import Engine
 from crankdyn.errors import InputError
-from crankdyn.forces import crank_train, cycle_grid
+from crankdyn.forces import CrankTrain, crank_train, cycle_grid, reuse_train
 from crankdyn.indicated import indicated_work
 from crankdyn.pressure import PressureTrace
 from crankdyn.results import DEG, Result, column, freeze, scalar
@@ -110,6 +110,7 @@ def engine_torque(
     step: float = math.radians(1.0),
     mechanical_efficiency: float | None = None,
     pressure: PressureTrace | None = None,
+    train: CrankTrain | None = None,
 ) -> EngineTorque:
     """Torques of an engine at speed w (rad/s) over one cycle every ``step`` rad.
 
@@ -128,6 +129,10 @@ def engine_torque(
         [operating] mechanical_efficiency; None there too leaves them out.
     pressure
         Pressure trace; default the engine's own or its synthetic model.
+    train
+        The crank train of this engine at this speed over the same cycle grid
+        (``crank_train(engine, speed, cycle_grid(engine, step))``), when already computed, e.g.
+        for :func:`crankdyn.bearings.bearing_loads`; default: evaluated here.
     """
     if mechanical_efficiency is None:
         mechanical_efficiency = engine.mechanical_efficiency
@@ -138,7 +143,7 @@ def engine_torque(
             value=mechanical_efficiency,
         )
     theta = cycle_grid(engine, step)
-    train = crank_train(engine, speed, theta, pressure=pressure)
+    train = reuse_train(train, engine, speed, theta, pressure)
     r = engine.geometry.crank_radius
     cyl = engine.cylinders
     per_cylinder = train.tangential * r

@@ -128,6 +128,9 @@ class Mass:
         )
         object.__setattr__(self, "damping", _nonnegative("damping", self.damping, "damping"))
         cylinders = tuple(self.cylinders)
+        if not cylinders:
+            object.__setattr__(self, "cylinders", ())
+            return
         if any(isinstance(c, bool) or not isinstance(c, (int, np.integer)) for c in cylinders):
             raise InputError("expected cylinder numbers", key="cylinders", value=list(cylinders))
         cylinders = tuple(int(c) for c in cylinders)
@@ -136,6 +139,16 @@ class Mass:
                 "expected distinct cylinder numbers from 1 up", key="cylinders", value=cylinders
             )
         object.__setattr__(self, "cylinders", cylinders)
+
+    @classmethod
+    def _checked(cls, name: str, inertia: float) -> Mass:
+        """A mass from a name and an inertia the caller has already validated (a positive
+        finite float; no damping, no cylinders), without validating them again."""
+        mass = object.__new__(cls)
+        for key, value in (("name", name), ("inertia", inertia), ("damping", 0.0)):
+            object.__setattr__(mass, key, value)
+        object.__setattr__(mass, "cylinders", ())
+        return mass
 
 
 @dataclass(frozen=True)
@@ -256,6 +269,21 @@ class Shaft:
             _nonnegative("loss_factor", self.loss_factor, "the loss factor"),
         )
 
+    @classmethod
+    def _checked(cls, between: tuple[str, str], stiffness: float) -> Shaft:
+        """A shaft between two distinct masses (not ground) with a stiffness the caller has
+        already validated (a positive finite float), without validating them again."""
+        shaft = object.__new__(cls)
+        for key, value in (
+            ("between", between),
+            ("stiffness", stiffness),
+            ("damping", 0.0),
+            ("loss_factor", 0.0),
+            ("geometry", None),
+        ):
+            object.__setattr__(shaft, key, value)
+        return shaft
+
     @property
     def grounded(self) -> bool:
         """Whether one end is ``"ground"``."""
@@ -336,6 +364,20 @@ class ChainArrays:
         diag[:-1] += k
         diag[1:] += k
         return diag, -k
+
+
+def _positive_numbers(values: list) -> list[float] | None:
+    """The values as floats when every one is a real number (not bool), finite and > 0, else
+    None (so that the caller lets the constructors report the offending value)."""
+    if any(
+        isinstance(v, bool) or not isinstance(v, (int, float, np.integer, np.floating))
+        for v in values
+    ):
+        return None
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != 1 or not (np.all(np.isfinite(arr)) and np.all(arr > 0.0)):
+        return None
+    return arr.tolist()
 
 
 def _frozen(values, dtype=float) -> np.ndarray:
@@ -578,19 +620,20 @@ class TorsionModel:
         np.add.at(out, self.mass_dof, np.array([m.damping for m in self.masses]) * r2)
         return out
 
-    def _shaft_values(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """Reflected stiffness, viscous damping and eta*k of every shaft."""
+    @cached_property
+    def _shaft_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         ratios = self.speed_ratios
-        r2 = np.array(
-            [
-                ratios[self.index(s.between[0] if s.between[0] != GROUND else s.between[1])] ** 2
-                for s in self.shafts
-            ]
-        )
+        index = self._index
+        first = [index[b[0] if b[0] != GROUND else b[1]] for b in (s.between for s in self.shafts)]
+        r2 = ratios[np.array(first, dtype=int)] ** 2
         k = np.array([s.stiffness for s in self.shafts], dtype=float) * r2
         c = np.array([s.damping for s in self.shafts], dtype=float) * r2
         eta = np.array([s.loss_factor for s in self.shafts], dtype=float)
-        return k, c, eta * k
+        return _frozen(k), _frozen(c), _frozen(eta * k)
+
+    def _shaft_values(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Reflected stiffness, viscous damping and eta*k of every shaft (read-only arrays)."""
+        return self._shaft_arrays
 
     def _assemble(self, values: np.ndarray, diagonal: np.ndarray | None = None) -> np.ndarray:
         n = self.dof_count
@@ -635,20 +678,15 @@ class TorsionModel:
         if not self.is_chain:
             return None
         n = self.dof_count
-        k, c, h = self._shaft_values()
+        values = np.stack(self._shaft_values())  # (3, shafts): k, c, eta k
         ends = self.shaft_dofs
-        between = [np.zeros(max(n - 1, 0)) for _ in range(3)]
-        ground = [np.zeros(n) for _ in range(3)]
-        for s in range(len(self.shafts)):
-            a, b = int(ends[s, 0]), int(ends[s, 1])
-            if a < 0 or b < 0:
-                g = b if a < 0 else a
-                for arr, v in zip(ground, (k[s], c[s], h[s]), strict=True):
-                    arr[g] += v
-            else:
-                i = min(a, b)
-                for arr, v in zip(between, (k[s], c[s], h[s]), strict=True):
-                    arr[i] += v
+        grounded = (ends[:, 0] < 0) | (ends[:, 1] < 0)
+        between = np.zeros((3, max(n - 1, 0)))
+        ground = np.zeros((3, n))
+        inner = ~grounded
+        np.add.at(between.T, np.minimum(ends[inner, 0], ends[inner, 1]), values[:, inner].T)
+        g = np.maximum(ends[grounded, 0], ends[grounded, 1])
+        np.add.at(ground.T, g, values[:, grounded].T)
         return ChainArrays(
             inertia=self.dof_inertia,
             stiffness=_frozen(between[0]),
@@ -695,8 +733,15 @@ class TorsionModel:
                 value=len(stiffnesses),
             )
         names = [str(i + 1) for i in range(len(inertias))]
-        masses = tuple(Mass(n, j) for n, j in zip(names, inertias, strict=True))
-        shafts = [Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)]
+        values = _positive_numbers(inertias), _positive_numbers(stiffnesses)
+        if values[0] is not None and values[1] is not None:
+            # plain positive finite numbers, checked at once: what Mass and Shaft would accept
+            masses = tuple(Mass._checked(n, j) for n, j in zip(names, values[0], strict=True))
+            pairs = zip(names[:-1], names[1:], values[1], strict=True)
+            shafts = [Shaft._checked((a, b), k) for a, b, k in pairs]
+        else:  # the constructors name the offending value
+            masses = tuple(Mass(n, j) for n, j in zip(names, inertias, strict=True))
+            shafts = [Shaft((names[i], names[i + 1]), k) for i, k in enumerate(stiffnesses)]
         if ground_left is not None:
             shafts.insert(0, Shaft((GROUND, names[0]), ground_left))
         if ground_right is not None:
@@ -724,37 +769,45 @@ def _analyse(model: TorsionModel) -> _Structure:
     n = len(masses)
     index = {m.name: i for i, m in enumerate(masses)}
 
-    # speed ratios by a breadth-first walk over shafts (ratio 1) and gears (ratio r)
-    neighbours: list[list[tuple[int, float, str]]] = [[] for _ in range(n)]
-    for s in shafts:
+    # speed ratios by a breadth-first walk over shafts (ratio 1) and gears (ratio r); the
+    # neighbour lists name the joining element by (kind, index) and its label is written only
+    # for a message
+    neighbours: list[list[tuple[int, float, str, int]]] = [[] for _ in range(n)]
+    for i_s, s in enumerate(shafts):
         if s.grounded:
             continue
         a, b = index[s.between[0]], index[s.between[1]]
-        neighbours[a].append((b, 1.0, f'shaft "{s.label}"'))
-        neighbours[b].append((a, 1.0, f'shaft "{s.label}"'))
-    for g in gears:
+        neighbours[a].append((b, 1.0, "shaft", i_s))
+        neighbours[b].append((a, 1.0, "shaft", i_s))
+    for i_g, g in enumerate(gears):
         a, b = index[g.between[0]], index[g.between[1]]
-        label = f'gear "{g.between[0]}" - "{g.between[1]}"'
-        neighbours[a].append((b, g.ratio, label))
-        neighbours[b].append((a, 1.0 / g.ratio, label))
+        neighbours[a].append((b, g.ratio, "gear", i_g))
+        neighbours[b].append((a, 1.0 / g.ratio, "gear", i_g))
     ref = _reference(masses)
-    ratio = np.full(n, np.nan)
-    ratio[ref] = 1.0
+    found: list[float | None] = [None] * n
+    found[ref] = 1.0
     queue = deque([ref])
     while queue:
         i = queue.popleft()
-        for j, r, label in neighbours[i]:
-            value = ratio[i] * r
-            if np.isnan(ratio[j]):
-                ratio[j] = value
+        here = found[i]
+        for j, r, kind, k in neighbours[i]:
+            value = here * r
+            there = found[j]
+            if there is None:
+                found[j] = value
                 queue.append(j)
-            elif abs(ratio[j] - value) > _RATIO_TOL * max(ratio[j], value):
+            elif abs(there - value) > _RATIO_TOL * max(there, value):
+                if kind == "shaft":
+                    label = f'shaft "{shafts[k].label}"'
+                else:
+                    label = f'gear "{gears[k].between[0]}" - "{gears[k].between[1]}"'
                 raise InputError(
-                    f'the speed of "{masses[j].name}" comes out as {ratio[j]:.6g} and as '
+                    f'the speed of "{masses[j].name}" comes out as {there:.6g} and as '
                     f"{value:.6g} times the reference speed around a loop through the {label}: "
                     "the gear ratios disagree",
                 )
-    lost = [masses[i].name for i in range(n) if np.isnan(ratio[i])]
+    ratio = np.array([np.nan if r is None else r for r in found], dtype=float)
+    lost = [masses[i].name for i in range(n) if found[i] is None]
     if lost:
         more = f" and {len(lost) - 1} more" if len(lost) > 1 else ""
         raise InputError(
@@ -775,18 +828,23 @@ def _analyse(model: TorsionModel) -> _Structure:
         a, b = find(index[g.between[0]]), find(index[g.between[1]])
         if a != b:
             parent[max(a, b)] = min(a, b)
-    roots = sorted({find(i) for i in range(n)})
-    provisional = {r: k for k, r in enumerate(roots)}
-    groups = [[] for _ in roots]
-    for i in range(n):
-        groups[provisional[find(i)]].append(i)
+    if gears:
+        roots = sorted({find(i) for i in range(n)})
+        provisional = {r: k for k, r in enumerate(roots)}
+        group_of = [provisional[find(i)] for i in range(n)]
+        groups: list[list[int]] = [[] for _ in roots]
+        for i in range(n):
+            groups[group_of[i]].append(i)
+    else:  # every mass is its own degree of freedom
+        group_of = list(range(n))
+        groups = [[i] for i in range(n)]
 
     edges: set[tuple[int, int]] = set()
     for s in shafts:
         if s.grounded:
             continue
-        a = provisional[find(index[s.between[0]])]
-        b = provisional[find(index[s.between[1]])]
+        a = group_of[index[s.between[0]]]
+        b = group_of[index[s.between[1]]]
         if a == b:
             raise InputError(
                 f'shaft "{s.label}" joins two masses that a gear mesh already ties together',
@@ -795,17 +853,17 @@ def _analyse(model: TorsionModel) -> _Structure:
             )
         edges.add((min(a, b), max(a, b)))
     m = len(groups)
-    degree = np.zeros(m, dtype=int)
+    degree = [0] * m
     adjacency: list[list[int]] = [[] for _ in range(m)]
     for a, b in sorted(edges):
         degree[a] += 1
         degree[b] += 1
         adjacency[a].append(b)
         adjacency[b].append(a)
-    is_chain = m == 1 or (len(edges) == m - 1 and int(degree.max()) <= 2)
+    is_chain = m == 1 or (len(edges) == m - 1 and max(degree) <= 2)
     junction = None
     if is_chain and m > 1:
-        start = min(i for i in range(m) if degree[i] == 1)
+        start = degree.index(1)  # the first end of the chain
         order = [start]
         previous = -1
         while len(order) < m:
@@ -816,17 +874,18 @@ def _analyse(model: TorsionModel) -> _Structure:
     else:
         order = list(range(m))
         if m > 1:
-            branch = int(np.argmax(degree))
+            branch = degree.index(max(degree))
             junction = masses[groups[branch][0]].name if degree[branch] > 2 else None
     dofs = tuple(tuple(groups[old]) for old in order)
-    mass_dof = np.empty(n, dtype=int)
+    dof_of = [0] * n
     for d, members in enumerate(dofs):
-        mass_dof[list(members)] = d
-    shaft_dofs = np.full((len(shafts), 2), -1, dtype=int)
-    for s_i, s in enumerate(shafts):
-        for e, end in enumerate(s.between):
-            if end != GROUND:
-                shaft_dofs[s_i, e] = mass_dof[index[end]]
+        for i in members:
+            dof_of[i] = d
+    mass_dof = np.array(dof_of, dtype=int)
+    shaft_dofs = np.array(
+        [[-1 if end == GROUND else dof_of[index[end]] for end in s.between] for s in shafts],
+        dtype=int,
+    ).reshape(len(shafts), 2)
     mass_dof.setflags(write=False)
     shaft_dofs.setflags(write=False)
     ratio.setflags(write=False)

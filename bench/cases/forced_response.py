@@ -1,0 +1,146 @@
+"""Case: forced response of the seed 003 V6 model over a speed sweep.
+
+The seed 003 V6 engine model (nine masses from the damper ring to the flywheel, Yu Xuehua 2008,
+Table 2; crankdyn's example ``seed003-v6``: absolute damping at the six throws, the damper's
+rubber as a damped shaft), 500..6000 rpm every 1 rpm (5501 speeds), orders 0.5..12 in steps of
+0.5 (24 orders): 132,024 excitation frequencies omega = q Omega, with a unit torque (1 N m, all
+in phase) at every throw.
+
+crankdyn: ``crankdyn.torsion.response.steady_state`` (the complex amplitudes of every mass at
+every frequency: the dynamic stiffness D(omega) = K - omega^2 M + i omega C of the chain solved
+for all frequencies at once by a batched tridiagonal elimination). openTorsion 0.3.2: the same
+chain as ``Disk`` and ``Shaft`` elements with the same damping, ``Assembly.ss_response`` fed
+the same frequencies and excitation (it inverts the 9 x 9 receptance at each frequency in a
+Python loop). Both start from a built model; crankdyn's time includes assembling its linear
+system.
+
+Agreement: the complex amplitudes to 1e-9 of the largest amplitude at each frequency.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from bench.harness import CRANKDYN, AgreementError, Case, Contender, Deviation, Target
+
+KEY = "response"
+TITLE = "Forced response, seed 003 V6 (9 masses)"
+SIZES = {"full": (500.0, 6000.0, 1.0), "tiny": (500.0, 6000.0, 250.0)}  # rpm: start, stop, step
+ORDERS = np.arange(1, 25) * 0.5
+TOLERANCE = 1e-9
+OPENTORSION = "openTorsion Assembly.ss_response"
+MODEL = "seed003-v6"
+
+
+def _steady_state():
+    try:
+        from crankdyn.torsion.response import steady_state
+    except ImportError:
+        return None
+    return steady_state
+
+
+def problem(size: str):
+    """(model, omega (speeds x orders, rad/s), forcing (dofs,) N m)."""
+    from crankdyn.torsion.model import TorsionModel
+
+    model = TorsionModel.example(MODEL)
+    start, stop, step = SIZES[size]
+    rpm = np.arange(start, stop + step / 2, step)
+    omega = (rpm * math.pi / 30.0)[:, None] * ORDERS[None, :]
+    forcing = np.zeros(model.dof_count)
+    for dof in model.cylinder_dofs.values():
+        forcing[dof] = 1.0
+    return model, omega, forcing
+
+
+def opentorsion_assembly(model):
+    """The model as openTorsion elements (a chain in dof order, no gears)."""
+    import opentorsion as ot
+
+    chain = model.chain
+    n = chain.size
+    disks = [
+        ot.Disk(i, float(chain.inertia[i]), c=float(chain.ground_damping[i])) for i in range(n)
+    ]
+    shafts = [
+        ot.Shaft(i, i + 1, k=float(chain.stiffness[i]), c=float(chain.damping[i]))
+        for i in range(n - 1)
+    ]
+    if np.any(chain.ground_stiffness) or np.any(chain.hysteretic):
+        raise ValueError("the benchmark model has no grounded shafts and no loss factors")
+    return ot.Assembly(shafts, disk_elements=disks)
+
+
+def _check(outputs: dict) -> dict[str, Deviation]:
+    mine = np.asarray(outputs[CRANKDYN])
+    if not np.all(np.isfinite(mine)):
+        raise AgreementError("crankdyn: the response holds values that are not finite")
+    out = {}
+    for name, value in outputs.items():
+        if name == CRANKDYN:
+            continue
+        theirs = np.asarray(value[0]).T.reshape(mine.shape)  # (dofs, freqs) -> (.., dofs)
+        scale = np.max(np.abs(theirs), axis=-1)
+        dev = float(np.max(np.max(np.abs(mine - theirs), axis=-1) / scale))
+        out[name] = Deviation(dev, TOLERANCE, "complex amplitudes, relative to the peak")
+    return out
+
+
+def _check_crankdyn(model, omega, forcing, x) -> None:
+    """Independent check of crankdyn's amplitudes at a few frequencies: the residual of the
+    dense dynamic-stiffness equation (K - w^2 M + i w C) X = F."""
+    k, m, c = model.stiffness_matrix(), model.mass_matrix(), model.damping_matrix()
+    flat_w = omega.reshape(-1)
+    flat_x = x.reshape(-1, x.shape[-1])
+    for j in np.linspace(0, flat_w.size - 1, 25).astype(int):
+        w = flat_w[j]
+        residual = (k - w * w * m + 1j * w * c) @ flat_x[j] - forcing
+        if np.max(np.abs(residual)) > 1e-8 * np.max(np.abs(forcing)):
+            raise AgreementError(f"crankdyn: response residual {np.max(np.abs(residual)):.3g}")
+
+
+def cases(size: str = "full") -> list[Case]:
+    steady_state = _steady_state()
+    model, omega, forcing = problem(size)
+    n_speeds = omega.shape[0]
+    label = f"{n_speeds} speeds x {ORDERS.size} orders"
+    if steady_state is None:
+        missing = "crankdyn.torsion.response not in this checkout (issue 6)"
+        return [Case(KEY, TITLE, label, (Contender(CRANKDYN, None, missing=missing),), repeats=0)]
+    try:
+        assembly = opentorsion_assembly(model)
+        ot_missing = None
+    except ImportError:
+        assembly, ot_missing = None, "opentorsion not installed"
+    flat = omega.reshape(-1)
+    excitation = np.broadcast_to(forcing[:, None], (forcing.size, flat.size)).astype(complex)
+    full = np.broadcast_to(forcing, (*omega.shape, forcing.size))
+
+    def crankdyn_run():
+        return steady_state(model, omega, full)
+
+    def check(outputs: dict) -> dict[str, Deviation]:
+        _check_crankdyn(model, omega, forcing, np.asarray(outputs[CRANKDYN]))
+        return _check(outputs)
+
+    return [
+        Case(
+            key=KEY,
+            title=TITLE,
+            size=label,
+            contenders=(
+                Contender(CRANKDYN, crankdyn_run),
+                Contender(
+                    OPENTORSION,
+                    (lambda: assembly.ss_response(excitation, flat)) if assembly else None,
+                    missing=ot_missing,
+                ),
+            ),
+            check=check,
+            targets=(Target(OPENTORSION, 30.0, ">= 30x openTorsion"),),
+            repeats=5,
+        )
+    ]

@@ -1,0 +1,84 @@
+"""Peak memory of one analysis, measured in a fresh process.
+
+``python -m bench.memory PROBE`` runs one probe (imports, then the analysis) and prints a JSON
+line: the process's peak resident set size (``VmHWM`` of /proc/self/status, see
+:mod:`bench.peak`: the interpreter, numpy, scipy and crankdyn's imports included), the same after
+the imports alone, and the peak of Python-tracked allocations during the analysis
+(``tracemalloc``, which numpy's array buffers report to). :func:`measure` runs a probe that way
+from the benchmark.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import tracemalloc
+from pathlib import Path
+
+__all__ = ["PROBES", "measure"]
+
+
+def _chain(n: int):
+    from bench.cases.chain_modes import chain_values, crankdyn_modes
+
+    inertia, stiffness = chain_values(n)
+    return lambda: crankdyn_modes(inertia, stiffness)
+
+
+PROBES = {
+    "chain-1000": (
+        "natural frequencies and mode shapes, free chain N = 1000",
+        lambda: _chain(1000),
+    ),
+    "chain-40": ("natural frequencies and mode shapes, free chain N = 40", lambda: _chain(40)),
+}
+
+
+def _rss_mb() -> float:
+    from bench.peak import peak_rss_mb
+
+    return peak_rss_mb()
+
+
+def main(argv: list[str]) -> int:
+    name = argv[0]
+    _what, prepare = PROBES[name]
+    run = prepare()  # imports and inputs
+    after_imports = _rss_mb()
+    tracemalloc.start()
+    result = run()
+    _current, peak = tracemalloc.get_traced_memory()
+    tracemalloc.stop()
+    del result
+    print(
+        json.dumps(
+            {
+                "probe": name,
+                "peak_rss_mb": _rss_mb(),
+                "imports_rss_mb": after_imports,
+                "traced_peak_mb": peak / 2**20,
+            }
+        )
+    )
+    return 0
+
+
+def measure(name: str) -> dict:
+    """Run probe ``name`` in a fresh interpreter; its figures (MB)."""
+    proc = subprocess.run(
+        [sys.executable, "-m", "bench.memory", name],
+        capture_output=True,
+        text=True,
+        check=False,
+        cwd=Path(__file__).resolve().parents[1],
+    )
+    if proc.returncode != 0:
+        raise RuntimeError(f"memory probe {name} failed: {proc.stderr.strip()[-500:]}")
+    figures = json.loads(proc.stdout.strip().splitlines()[-1])
+    figures["what"] = PROBES[name][0]
+    return figures
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
