@@ -46,6 +46,9 @@ def build(ctx) -> Section:
     s_idx = int(np.argmax(np.max(torque, axis=0)))
     v_idx = int(np.argmax(torque[:, s_idx]))
     shaft = " - ".join(result.shafts[s_idx])
+    out_sum = np.asarray(result.shaft_torque)[:, -1]  # sum of order amplitudes, output-end shaft
+    o_idx = int(np.argmax(out_sum))
+    out_shaft = " - ".join(result.shafts[-1])
     first, last = result.masses[0], result.masses[-1]
     rel = result.relative_angle(first, last)
     r_idx = int(np.argmax(rel.synthesized))
@@ -55,6 +58,12 @@ def build(ctx) -> Section:
             "Max vibratory shaft torque (synthesised)",
             float(torque[v_idx, s_idx]),
             f"{torque[v_idx, s_idx] / 1e3:.3g} kN·m in {shaft} at {speeds[v_idx] * RPM:.0f} rpm",
+        ),
+        KeyFigure(
+            "max_output_shaft_torque_order_sum_Nm",
+            "Vibratory torque at the output end (sum of order amplitudes)",
+            float(out_sum[o_idx]),
+            f"{out_sum[o_idx] / 1e3:.3g} kN·m in {out_shaft} at {speeds[o_idx] * RPM:.0f} rpm",
         ),
         KeyFigure(
             "max_relative_angle_rad",
