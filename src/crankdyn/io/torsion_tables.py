@@ -11,36 +11,17 @@ Both are CSV files with a header that names every column and its unit (as pressu
 
 from __future__ import annotations
 
-import csv
-import math
 from pathlib import Path
 
 import numpy as np
 
 from crankdyn.errors import InputError
-from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_text
-from crankdyn.io.traces import split_header_unit
-from crankdyn.io.units import parse_quantity
+from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
 from crankdyn.torsion.excitation import HarmonicTable, LoadCurve
 
 __all__ = ["read_harmonic_table", "read_load_curve"]
 
 _PLAIN = ("load_factor", "order")
-
-
-def _read(path: Path, name: str, what: str):
-    try:
-        text = read_text(path, limit=MAX_CSV_BYTES, what=what)
-    except InputError as exc:
-        raise InputError(exc.message, file=name) from None
-    rows = [
-        (number, [c.strip() for c in row])
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")
-    ]
-    if len(rows) < 2:
-        raise InputError(f"the {what} needs a header line and at least one row", file=name)
-    return rows
 
 
 def _columns(header: list[str], name: str) -> dict[str, tuple[int, str | None]]:
@@ -62,57 +43,32 @@ def _factor(unit: str | None, kind: str, cell: str, name: str) -> float:
         if unit:
             raise InputError("this column takes no unit", file=name, key="header", value=cell)
         return 1.0
-    if not unit:
-        raise InputError(
-            "the column must name its unit, e.g. speed_rpm or peak_pressure_MPa",
-            file=name,
-            key="header",
-            value=cell,
-        )
-    try:
-        return parse_quantity(f"1 {unit}", kind, key="header", file=name)
-    except InputError:
-        if kind == "angle" and unit.lower() in ("deg", "degree", "degrees"):
-            return math.pi / 180.0
-        raise InputError(f"unknown unit {unit!r}", file=name, key="header", value=cell) from None
+    return unit_factor(
+        cell,
+        unit,
+        kind,
+        name,
+        missing="the column must name its unit, e.g. speed_rpm or peak_pressure_MPa",
+        unknown="unknown unit {unit}",
+    )
 
 
-def _numbers(rows, index: int, header_cell: str, name: str) -> np.ndarray:
-    out = []
-    for number, row in rows:
-        if index >= len(row):
-            raise InputError(
-                f"expected a value in column {header_cell!r}",
-                file=name,
-                key=f"line {number}",
-                value=",".join(row),
-            )
-        cell = row[index]
-        try:
-            value = float(cell)
-        except ValueError:
-            raise InputError(
-                f"not a number in column {header_cell!r}",
-                file=name,
-                key=f"line {number}",
-                value=cell,
-            ) from None
-        if not math.isfinite(value):
-            raise InputError(
-                f"not a finite number in column {header_cell!r}",
-                file=name,
-                key=f"line {number}",
-                value=cell,
-            )
-        out.append(value)
-    return np.array(out)
+def _table(path, display, what):
+    table = read_csv_table(
+        path,
+        display=display,
+        what=what,
+        empty=f"the {what} needs a header line and at least one row",
+    )
+    if not table.rows:
+        raise InputError(f"the {what} needs a header line and at least one row", file=table.name)
+    return table
 
 
 def read_load_curve(path: str | Path, display: str | None = None) -> LoadCurve:
     """A load curve CSV (module docstring)."""
-    name = display or display_name(path)
-    rows = _read(Path(path), name, "load curve")
-    header = rows[0][1]
+    table = _table(path, display, "load curve")
+    name, header = table.name, table.header
     cols = _columns(header, name)
     speed_key = next((k for k in cols if k.startswith("speed") or k in ("n", "rpm")), None)
     if speed_key is None:
@@ -133,10 +89,8 @@ def read_load_curve(path: str | Path, display: str | None = None) -> LoadCurve:
         )
     i_s, unit_s = cols[speed_key]
     i_v, unit_v = cols[value_key]
-    speed = _numbers(rows[1:], i_s, header[i_s], name) * _factor(unit_s, "speed", header[i_s], name)
-    value = _numbers(rows[1:], i_v, header[i_v], name) * _factor(
-        unit_v, kinds[value_key], header[i_v], name
-    )
+    speed = table.column(i_s) * _factor(unit_s, "speed", header[i_s], name)
+    value = table.column(i_v) * _factor(unit_v, kinds[value_key], header[i_v], name)
     order = np.argsort(speed, kind="stable")
     try:
         return LoadCurve(speed[order], value[order], value_key, name)
@@ -146,9 +100,8 @@ def read_load_curve(path: str | Path, display: str | None = None) -> LoadCurve:
 
 def read_harmonic_table(path: str | Path, display: str | None = None) -> HarmonicTable:
     """A harmonic-coefficient table CSV (module docstring)."""
-    name = display or display_name(path)
-    rows = _read(Path(path), name, "harmonic table")
-    header = rows[0][1]
+    table = _table(path, display, "harmonic table")
+    name, header = table.name, table.header
     cols = _columns(header, name)
     for key in ("order", "imep", "amplitude"):
         if key not in cols:
@@ -161,11 +114,11 @@ def read_harmonic_table(path: str | Path, display: str | None = None) -> Harmoni
     values = {}
     for key, kind in (("order", "ratio"), ("imep", "pressure"), ("amplitude", "pressure")):
         i, unit = cols[key]
-        values[key] = _numbers(rows[1:], i, header[i], name) * _factor(unit, kind, header[i], name)
+        values[key] = table.column(i) * _factor(unit, kind, header[i], name)
     phase = None
     if "phase" in cols:
         i, unit = cols["phase"]
-        phase = _numbers(rows[1:], i, header[i], name) * _factor(unit, "angle", header[i], name)
+        phase = table.column(i) * _factor(unit, "angle", header[i], name)
     try:
         return HarmonicTable(values["order"], values["imep"], values["amplitude"], phase, name)
     except InputError as exc:

@@ -1,0 +1,141 @@
+"""Unit-annotated CSV tables: the shared reader behind pressure traces, load curves and
+harmonic-coefficient tables.
+
+A table has a header line naming every column and its unit (after the last underscore:
+``pressure_MPa``; in brackets: ``pressure [bar]``; or in parentheses: ``p (kPa)``), then one row
+per point. Lines starting with ``#`` and blank lines are skipped. Every error names the file, the
+line and the cell as written.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_text
+from crankdyn.io.units import parse_quantity
+
+__all__ = ["CsvTable", "read_csv_table", "split_header_unit", "unit_factor"]
+
+_BRACKETED = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*$")
+_DEGREES = ("deg", "degree", "degrees")
+
+
+def split_header_unit(cell: str) -> tuple[str, str | None]:
+    """Split a header cell into (name, unit): ``pressure_MPa``, ``pressure [MPa]``,
+    ``p (MPa)``; unit None when the cell names none."""
+    cell = cell.strip()
+    m = _BRACKETED.match(cell)
+    if m:
+        return m.group(1).strip(), m.group(2).strip()
+    if "_" in cell:
+        name, unit = cell.rsplit("_", 1)
+        return name, unit
+    return cell, None
+
+
+def unit_factor(
+    cell: str, unit: str | None, kind: str, file: str, *, missing: str, unknown: str
+) -> float:
+    """SI factor of a column's unit; ``missing`` and ``unknown`` are the messages for a column
+    without a unit and with one crankdyn does not know (``{unit}`` is filled in)."""
+    if not unit:
+        raise InputError(missing, file=file, key="header", value=cell)
+    try:
+        return parse_quantity(f"1 {unit}", kind, key="header", file=file)
+    except InputError:
+        if kind == "angle" and unit.lower() in _DEGREES:
+            return math.pi / 180.0
+        raise InputError(
+            unknown.format(unit=repr(unit)), file=file, key="header", value=cell
+        ) from None
+
+
+def _is_number(text: str) -> bool:
+    try:
+        float(text)
+    except ValueError:
+        return False
+    return True
+
+
+@dataclass
+class CsvTable:
+    """The header and the data rows of a CSV table, with their line numbers."""
+
+    name: str  # the file as named in messages
+    header_line: int
+    header: list[str]
+    rows: list[tuple[int, list[str]]]  # (line number, cells)
+
+    @property
+    def header_is_numeric(self) -> bool:
+        """Whether the first line holds numbers (a table without a header)."""
+        return bool(self.header) and _is_number(self.header[0])
+
+    def column(self, index: int) -> np.ndarray:
+        """The values of column ``index`` as floats; a missing, non-numeric or non-finite cell
+        is an error naming its line."""
+        label = self.header[index].strip() if index < len(self.header) else str(index + 1)
+        out = np.empty(len(self.rows))
+        for k, (number, row) in enumerate(self.rows):
+            if index >= len(row):
+                raise InputError(
+                    f"expected a value in column {label!r}",
+                    file=self.name,
+                    key=f"line {number}",
+                    value=",".join(row),
+                )
+            cell = row[index].strip()
+            try:
+                value = float(cell)
+            except ValueError:
+                raise InputError(
+                    f"not a number in column {label!r}",
+                    file=self.name,
+                    key=f"line {number}",
+                    value=cell,
+                ) from None
+            if not math.isfinite(value):
+                raise InputError(
+                    f"not a finite number in column {label!r}",
+                    file=self.name,
+                    key=f"line {number}",
+                    value=cell,
+                )
+            out[k] = value
+        return out
+
+    def cell(self, row: int, index: int) -> tuple[int, str]:
+        """(line number, cell text) of data row ``row``, column ``index``."""
+        number, cells = self.rows[row]
+        return number, cells[index].strip()
+
+
+def read_csv_table(
+    path: str | Path, *, display: str | None = None, what: str = "table", empty: str | None = None
+) -> CsvTable:
+    """Read a CSV table (bounded, UTF-8): header and data rows, comments and blanks skipped.
+
+    ``empty`` is the message for a file with no header and no data (default: "the <what> is
+    empty")."""
+    name = display or display_name(path)
+    try:
+        text = read_text(path, limit=MAX_CSV_BYTES, what=what)
+    except InputError as exc:
+        raise InputError(exc.message, file=name) from None
+    rows = [
+        (number, [c.strip() for c in row])
+        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
+        if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")
+    ]
+    if not rows:
+        raise InputError(empty or f"the {what} is empty", file=name)
+    (header_line, header), data = rows[0], rows[1:]
+    return CsvTable(name, header_line, header, data)
