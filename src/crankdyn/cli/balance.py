@@ -6,7 +6,6 @@ import io
 import json
 import math
 from dataclasses import replace
-from pathlib import Path
 
 import click
 from rich.markup import escape
@@ -20,6 +19,8 @@ from crankdyn.cli.common import (
     load_engine_arg,
     option_quantity,
     output_options,
+    plot_option,
+    save_figure,
     speed_of,
     speed_option,
 )
@@ -31,28 +32,10 @@ from crankdyn.firing_search import (
     first_mode_shape,
 )
 from crankdyn.flywheel import engine_flywheel
-from crankdyn.io.output import write_bytes, write_text
+from crankdyn.io.output import write_text
 from crankdyn.torque import engine_torque
 
-__all__ = ["register", "save_figure"]
-
-_FIGURE_FORMATS = ("png", "svg", "pdf")
-
-
-def save_figure(fig, path: str, force: bool) -> Path:
-    """Write a matplotlib figure atomically; the format follows the suffix (png, svg, pdf)."""
-    suffix = Path(path).suffix.lower().lstrip(".")
-    if suffix not in _FIGURE_FORMATS:
-        raise InputError(
-            f"the plot file must end in {', '.join('.' + f for f in _FIGURE_FORMATS)}",
-            key="--plot",
-            value=path,
-        )
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=suffix, dpi=120)
-    written = write_bytes(path, buffer.getvalue(), force=force)
-    click.echo(f"wrote {written}", err=True)
-    return written
+__all__ = ["register"]
 
 
 def _format_option(f):
@@ -66,14 +49,7 @@ def _format_option(f):
     )(f)
 
 
-def _plot_option(f):
-    return click.option(
-        "--plot",
-        "plot_file",
-        default=None,
-        metavar="FILE",
-        help="Also write the plot to FILE (.png, .svg or .pdf).",
-    )(f)
+_plot_option = plot_option("Also write the plot to FILE (.png, .svg or .pdf).", "plot_file")
 
 
 def _write(text: str, output: str | None, force: bool) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import math
 import shutil
 import sys
@@ -16,13 +17,15 @@ from rich.table import Table as RichTable
 from crankdyn.engine import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import resolve_engine
-from crankdyn.io.output import write_text
+from crankdyn.io.output import check_writable, write_bytes, write_text
 from crankdyn.io.units import parse_quantity
 from crankdyn.results import Result
 
 __all__ = [
+    "FIGURE_FORMATS",
     "FORMATS",
     "angle_grid",
+    "check_plot_path",
     "console",
     "emit",
     "engine_argument",
@@ -30,7 +33,9 @@ __all__ = [
     "load_engine_arg",
     "option_quantity",
     "output_options",
+    "plot_option",
     "print_summary",
+    "save_figure",
     "speed_of",
     "speed_option",
     "step_option",
@@ -59,6 +64,40 @@ def step_option(help: str = _STEP_HELP, default: str | None = None):
     return click.option(
         "--step", metavar="DEG", default=default, help=help, show_default=default is not None
     )
+
+
+FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+def check_plot_path(path: str | None, force: bool, option: str = "--plot") -> None:
+    """Refuse a figure path with an unknown format or an existing file (without --force) before
+    any work is done."""
+    if path is None:
+        return
+    suffix = Path(path).suffix.lower().lstrip(".")
+    if suffix not in FIGURE_FORMATS:
+        raise InputError(
+            f"the plot file must end in {', '.join('.' + f for f in FIGURE_FORMATS)}",
+            key=option,
+            value=path,
+        )
+    check_writable(path, force=force)
+
+
+def save_figure(fig, path: str, force: bool, option: str = "--plot", dpi: int = 120) -> Path:
+    """Write a matplotlib figure atomically; the format follows the suffix (png, svg, pdf)."""
+    check_plot_path(path, force, option)
+    buffer = io.BytesIO()
+    fig.savefig(buffer, format=Path(path).suffix.lower().lstrip("."), dpi=dpi)
+    written = write_bytes(path, buffer.getvalue(), force=force)
+    click.echo(f"wrote {written}", err=True)
+    return written
+
+
+def plot_option(help: str, param: str = "plot_path"):
+    """The --plot FILE option: write a figure (.png, .svg or .pdf), never over an existing file
+    without --force."""
+    return click.option("--plot", param, default=None, metavar="FILE", help=help)
 
 
 def angle_grid(

@@ -17,6 +17,8 @@ from crankdyn.cli.common import (
     format_option,
     option_quantity,
     output_options,
+    plot_option,
+    save_figure,
 )
 from crankdyn.errors import InputError
 from crankdyn.io.linkage_file import (
@@ -72,20 +74,6 @@ def _emit(result, fmt, output, force, *, single: bool, summary=None, extra=None)
             click.echo(text, nl=False)
         return
     emit(result, fmt, output, force, summary=summary)
-
-
-def _save_figure(fig, path: str, force: bool) -> None:
-    """Save a figure to PNG/SVG/PDF atomically (never over a file without --force)."""
-    import io
-
-    p = check_writable(path, force=force, option="--force")
-    kind = p.suffix.lower().lstrip(".")
-    if kind not in ("png", "svg", "pdf"):
-        raise InputError("the plot file must end in .png, .svg or .pdf", key="--plot", value=path)
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=kind, dpi=110)
-    write_bytes(p, buffer.getvalue(), force=force)
-    click.echo(f"wrote {p}", err=True)
 
 
 def _length(value: str, option: str) -> float:
@@ -144,13 +132,7 @@ def linkage_group() -> None:
     metavar="P,Q",
     help="Coupler point: P along B->C and Q to its left (mm), e.g. 60mm,40mm.",
 )
-@click.option(
-    "--plot",
-    "plot_file",
-    default=None,
-    metavar="FILE",
-    help="Also write the four-bar plot (PNG, SVG or PDF).",
-)
+@plot_option("Also write the four-bar plot (PNG, SVG or PDF).", "plot_file")
 @format_option()
 @output_options
 def fourbar_command(
@@ -227,9 +209,9 @@ def fourbar_command(
                 if fb.crank_rotates
                 else result
             )
-            _save_figure(full.plot(), plot_file, force)
+            save_figure(full.plot(), plot_file, force)
         else:
-            _save_figure(result.plot(), plot_file, force)
+            save_figure(result.plot(), plot_file, force)
     return 0
 
 
@@ -270,13 +252,7 @@ def kinematics_command(linkage, angle, step, speed, fmt, output, force) -> int:
     is_flag=True,
     help="Add the matrices C, D and P of [C]{R} = [D]{P} at every position (JSON).",
 )
-@click.option(
-    "--plot",
-    "plot_file",
-    default=None,
-    metavar="FILE",
-    help="Also write the driving-torque and joint-force plot (PNG, SVG or PDF).",
-)
+@plot_option("Also write the driving-torque and joint-force plot (PNG, SVG or PDF).", "plot_file")
 @format_option()
 @output_options
 def forces_command(
@@ -299,7 +275,7 @@ def forces_command(
     else:
         _emit(result, fmt, output, force, single=angle is not None, extra=extra)
     if plot_file:
-        _save_figure(result.plot(), plot_file, force)
+        save_figure(result.plot(), plot_file, force)
     return 0
 
 
@@ -395,7 +371,7 @@ def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> in
     else:
         result = kinetostatics(motion) if show_forces else None
         fig = plot_mechanism(motion, 0, forces=result)
-    _save_figure(fig, output, force)
+    save_figure(fig, output, force)
     return 0
 
 

@@ -4,21 +4,28 @@ from __future__ import annotations
 
 import io
 import math
-from pathlib import Path
 
 import click
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table as RichTable
 
-from crankdyn.cli.common import console, emit, format_option, option_quantity, output_options
+from crankdyn.cli.common import (
+    check_plot_path,
+    console,
+    emit,
+    format_option,
+    option_quantity,
+    output_options,
+    plot_option,
+    save_figure,
+)
 from crankdyn.errors import InputError
-from crankdyn.io.output import check_writable, write_bytes, write_text
+from crankdyn.io.output import write_text
 from crankdyn.io.torsion_file import load_torsion_example, resolve_torsion, torsion_example_names
 from crankdyn.torsion.holzer import holzer_table, residual_curve
 from crankdyn.torsion.modal import SOLVERS, natural_modes
 
-_PLOT_FORMATS = (".png", ".svg", ".pdf")
 _MODEL_HELP = (
     "MODEL_OR_ENGINE is a torsional model file, an engine file with a [torsion] section, the "
     "name of a built-in model (`crankdyn torsion examples`) or of a built-in engine."
@@ -31,25 +38,6 @@ def torsion_group() -> None:
 
     Models are TOML files of masses, shafts and gears (docs/torsion-file.md).
     """
-
-
-def _check_plot_path(path: str | None, force: bool) -> None:
-    if path is None:
-        return
-    if Path(path).suffix.lower() not in _PLOT_FORMATS:
-        raise InputError(
-            f"the figure's file name must end in {', '.join(_PLOT_FORMATS)}",
-            key="--plot",
-            value=path,
-        )
-    check_writable(path, force=force)
-
-
-def _save_figure(fig, path: str, force: bool) -> None:
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format=Path(path).suffix.lower()[1:], dpi=120)
-    write_bytes(path, buffer.getvalue(), force=force)
-    click.echo(f"wrote {path}", err=True)
 
 
 def _print_tables(tables: list[RichTable], output: str | None, force: bool) -> None:
@@ -117,13 +105,7 @@ def _modes_tables(result) -> list[RichTable]:
     help="Structured eigen solver (any model); Holzer or transfer matrices (chains); the closed "
     "forms (one grounded mass, two or three free masses).",
 )
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Also write the mode-shape figure (.png, .svg or .pdf).",
-)
+@plot_option("Also write the mode-shape figure (.png, .svg or .pdf).")
 @click.option(
     "--plot-modes",
     default=None,
@@ -139,7 +121,7 @@ def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> i
     normalised to a largest absolute amplitude of 1.
     """
     chosen = _mode_list(plot_modes)
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     torsion = resolve_torsion(model)
     result = natural_modes(torsion, solver)
     if chosen is not None:
@@ -149,7 +131,7 @@ def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> i
                 f"the model has modes 1..{result.mode.size}", key="--plot-modes", value=plot_modes
             )
     if plot_path:
-        _save_figure(result.plot(modes=chosen), plot_path, force)
+        save_figure(result.plot(modes=chosen), plot_path, force)
     if fmt == "table":
         _print_tables(_modes_tables(result), output, force)
     else:
@@ -181,13 +163,7 @@ def _mode_list(text: str | None) -> list[int] | None:
     metavar="HZ",
     help="Trial frequency (Hz, or with a unit: '120 Hz', '7200 rpm').",
 )
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Also write the residual-torque curve with its zeros (.png, .svg or .pdf).",
-)
+@plot_option("Also write the residual-torque curve with its zeros (.png, .svg or .pdf).")
 @click.option(
     "--max-frequency",
     default=None,
@@ -211,7 +187,7 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
         raise InputError(
             "the frequency must be positive", key="--max-frequency", value=max_frequency
         )
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     torsion = resolve_torsion(model)
     try:
         table = holzer_table(torsion, 2.0 * math.pi * f)
@@ -221,7 +197,7 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
         raise InputError(exc.message, key="--frequency", value=frequency) from None
     if plot_path:
         curve = residual_curve(torsion, None if f_max is None else 2.0 * math.pi * f_max)
-        _save_figure(curve.plot(), plot_path, force)
+        save_figure(curve.plot(), plot_path, force)
     emit(table, fmt, output, force, summary=table)
     return 0
 

@@ -10,8 +10,17 @@ import numpy as np
 from rich.markup import escape
 from rich.table import Table as RichTable
 
-from crankdyn.cli.common import emit, format_option, option_quantity, output_options, speed_range
-from crankdyn.cli.torsion import _check_plot_path, _print_tables, _save_figure, torsion_group
+from crankdyn.cli.common import (
+    check_plot_path,
+    emit,
+    format_option,
+    option_quantity,
+    output_options,
+    plot_option,
+    save_figure,
+    speed_range,
+)
+from crankdyn.cli.torsion import _print_tables, torsion_group
 from crankdyn.errors import InputError
 from crankdyn.io.torsion_response_file import resolve_model_and_engine
 from crankdyn.torsion.excitation import (
@@ -50,6 +59,16 @@ def parse_orders(text: str | None, cycle: str, option: str = "--orders") -> np.n
         return check_orders(parts, cycle, key=option)
     except InputError as exc:
         raise InputError(exc.message, key=option, value=text) from None
+
+
+def _orders_option():
+    """The --orders option shared by the response commands."""
+    return click.option(
+        "--orders",
+        default=None,
+        metavar="FIRST:LAST[:STEP]|LIST",
+        help="Orders, e.g. 0.5:12 or 1.5,3,4.5,6 (default 0.5:12 four-stroke, 1:12 two-stroke).",
+    )
 
 
 def _pair(text: str | None, option: str) -> tuple[str, str] | None:
@@ -204,12 +223,7 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
     help="Speed range (rpm for bare numbers), e.g. 1000:2500:25; default the model's "
     "operating range every 25 rpm.",
 )
-@click.option(
-    "--orders",
-    default=None,
-    metavar="FIRST:LAST[:STEP]|LIST",
-    help="Orders, e.g. 0.5:12 or 1.5,3,4.5,6 (default 0.5:12 four-stroke, 1:12 two-stroke).",
-)
+@_orders_option()
 @click.option(
     "--relative",
     default=None,
@@ -229,13 +243,7 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
     help="Uniform harmonic torque per order at every cylinder instead of the engine's.",
 )
 @click.option("--no-dampers", is_flag=True, help="Leave out the model's [[damper]] entries.")
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Write the response against speed per order and synthesised.",
-)
+@plot_option("Write the response against speed per order and synthesised.")
 @click.option(
     "--plot-quantity",
     type=click.Choice(_QUANTITIES),
@@ -282,8 +290,8 @@ def response_command(
     """
     pair = _pair(relative, "--relative")
     cylinders = _int_list(misfire, "--misfire")
-    _check_plot_path(plot_path, force)
-    _check_plot_path(stress_path, force)
+    check_plot_path(plot_path, force)
+    check_plot_path(stress_path, force)
     torsion, engine = resolve_model_and_engine(model)
     ex = _excitation(torsion, engine, cylinders, torque)
     order_list = parse_orders(orders, ex.cycle)
@@ -323,9 +331,9 @@ def response_command(
             target = result.shafts[
                 int(finite[np.argmax(np.max(result.synthesized_shaft_stress[:, finite], axis=0))])
             ]
-        _save_figure(result.plot(what, target), plot_path, force)
+        save_figure(result.plot(what, target), plot_path, force)
     if stress_path:
-        _save_figure(result.plot_stress_limits(), stress_path, force)
+        save_figure(result.plot_stress_limits(), stress_path, force)
     if fmt == "table":
         _print_tables(_response_tables(result, rel), output, force)
         return 0
@@ -360,25 +368,14 @@ def _write(text: str, output: str | None, force: bool) -> None:
     metavar="LOW:HIGH",
     help="Operating speed range (rpm), e.g. 1000:2500; default the model's.",
 )
-@click.option(
-    "--orders",
-    default=None,
-    metavar="FIRST:LAST[:STEP]|LIST",
-    help="Orders (default 0.5:12 four-stroke, 1:12 two-stroke).",
-)
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Write the Campbell diagram (.png, .svg or .pdf).",
-)
+@_orders_option()
+@plot_option("Write the Campbell diagram (.png, .svg or .pdf).")
 @format_option()
 @output_options
 def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -> int:
     """Critical speeds (mode x order -> speed) of MODEL_OR_ENGINE in the operating range, with
     major orders marked, and the Campbell diagram."""
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     torsion, engine = resolve_model_and_engine(model)
     from crankdyn.torsion.campbell import campbell
 
@@ -387,7 +384,7 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
     order_list = parse_orders(orders, cycle)
     result = campbell(torsion, order_list, _range(speed_span, torsion), excitation=ex, cycle=cycle)
     if plot_path:
-        _save_figure(result.plot(), plot_path, force)
+        save_figure(result.plot(), plot_path, force)
     if fmt == "table":
         table = RichTable(
             title=escape(
@@ -449,14 +446,8 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
     metavar="START:STOP:STEP",
     help="Also the response with and without the damper over this speed range (rpm).",
 )
-@click.option("--orders", default=None, metavar="FIRST:LAST[:STEP]|LIST", help="Orders.")
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Write the synthesised response with and without the damper (needs --speeds).",
-)
+@_orders_option()
+@plot_option("Write the synthesised response with and without the damper (needs --speeds).")
 @format_option()
 @output_options
 def damper_command(
@@ -464,7 +455,7 @@ def damper_command(
 ) -> int:
     """Optimum damper (Den Hartog) on a mass of MODEL_OR_ENGINE for one mode, and the response
     with and without it."""
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     if plot_path and speeds is None:
         raise InputError("a plot needs --speeds", key="--plot", value=plot_path)
     j = option_quantity(inertia, "inertia", "--inertia", "kg*m^2")
@@ -489,9 +480,7 @@ def damper_command(
         if plot_path:
             from crankdyn.plots.torsion_response import plot_damper_comparison
 
-            _save_figure(
-                plot_damper_comparison(with_d, without, "amplitude", hub), plot_path, force
-            )
+            save_figure(plot_damper_comparison(with_d, without, "amplitude", hub), plot_path, force)
     if fmt == "table":
         from crankdyn.cli.common import summary_table
 
@@ -535,22 +524,16 @@ def _ring_name(model) -> str:
 @torsion_group.command("excitation")
 @click.argument("model", metavar="ENGINE")
 @click.option("--speed", required=True, metavar="RPM", help="Engine speed (rpm for bare numbers).")
-@click.option("--orders", default=None, metavar="FIRST:LAST[:STEP]|LIST", help="Orders.")
+@_orders_option()
 @click.option("--misfire", default=None, metavar="LIST", help="Misfiring cylinders (motored).")
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Write the bar chart of the harmonics.",
-)
+@plot_option("Write the bar chart of the harmonics.")
 @format_option()
 @output_options
 def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, force) -> int:
     """Harmonic analysis of the cylinder torque of ENGINE at one speed: per order the gas,
     inertia and total amplitude, the phase-vector sum over the cylinders (major orders), and,
     with a [torsion] section, the relative amplitude sums over its modes."""
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     w = option_quantity(speed, "speed", "--speed", "rpm")
     if not w > 0.0:
         raise InputError("the speed must be positive", key="--speed", value=speed)
@@ -568,7 +551,7 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, fo
         modes = natural_modes(engine.torsion)
     result = harmonic_analysis(ex, w, order_list, modes, engine.torsion)
     if plot_path:
-        _save_figure(result.plot(), plot_path, force)
+        save_figure(result.plot(), plot_path, force)
     if fmt == "table":
         table = RichTable(
             title=escape(f"{engine.name}: torque harmonics at {w * RPM:.0f} rpm"),
@@ -627,14 +610,8 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, fo
     metavar="N",
     help="Working cycles at constant speed (default 30).",
 )
-@click.option("--orders", default=None, metavar="FIRST:LAST[:STEP]|LIST", help="Orders.")
-@click.option(
-    "--plot",
-    "plot_path",
-    default=None,
-    metavar="FILE",
-    help="Write the torque of the most loaded shaft against time.",
-)
+@_orders_option()
+@plot_option("Write the torque of the most loaded shaft against time.")
 @format_option()
 @output_options
 def transient_command(
@@ -642,7 +619,7 @@ def transient_command(
 ) -> int:
     """Time-domain response of MODEL_OR_ENGINE to the engine torque (scipy's solve_ivp), at a
     constant speed or in a run-up."""
-    _check_plot_path(plot_path, force)
+    check_plot_path(plot_path, force)
     w = option_quantity(speed, "speed", "--speed", "rpm")
     t_end = option_quantity(duration, "time", "--duration", "s")
     if (w is None) == (run_up is None):
@@ -678,7 +655,7 @@ def transient_command(
         cycles=None if t_end is not None else (cycles or 30.0),
     )
     if plot_path:
-        _save_figure(result.plot(), plot_path, force)
+        save_figure(result.plot(), plot_path, force)
     if fmt == "table":
         cycle_angle = 4.0 * math.pi if ex.cycle == "four-stroke" else 2.0 * math.pi
         last = result.last_cycle(cycle_angle)
