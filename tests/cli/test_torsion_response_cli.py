@@ -229,7 +229,6 @@ def test_damper_excitation_transient(capsys, tmp_path):
         (["--orders", "0.5:12:0.3"], "does not fit the four-stroke cycle"),
         (["--relative", "pulley,flywhel"], 'no mass named "flywhel" (did you mean "flywheel"?)'),
         (["--misfire", "9"], "the engine has cylinders 1 to 6"),
-        (["--misfire", "3"], "compression ratio"),
     ],
 )
 def test_response_bad_input_one_line(capsys, args, message):
@@ -248,3 +247,27 @@ def test_model_without_excitation_point(capsys, tmp_path):
     assert "no excitation point" in line
     line = one_line_error(capsys, "torsion", "response", "seed003-v6")
     assert "no speeds" in line
+
+
+def test_misfire_without_compression_ratio_is_one_line(tmp_path, capsys):
+    """A trace without [pressure] compression_ratio cannot give a misfiring cylinder's motored
+    pressure: one clear line."""
+    import shutil
+
+    from crankdyn.cli import main
+    from crankdyn.io.engine_file import example_files
+
+    for f in example_files("inline6-diesel"):
+        shutil.copy(f, tmp_path / f.name)
+    engine = tmp_path / "inline6-diesel.toml"
+    text = engine.read_text(encoding="utf-8")
+    engine.write_text(
+        "\n".join(line for line in text.splitlines() if not line.startswith("compression_ratio")),
+        encoding="utf-8",
+    )
+    capsys.readouterr()
+    status = main(
+        ["torsion", "response", str(engine), "--misfire", "3", "--speeds", "2000:2100:100"]
+    )
+    err = capsys.readouterr().err.strip().splitlines()
+    assert status == 2 and len(err) == 1 and "compression ratio" in err[0]
