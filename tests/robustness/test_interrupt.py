@@ -54,6 +54,9 @@ def test_sigint_to_the_process_mid_write(tmp_path):
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # a background job starts with SIGINT ignored and its children inherit that: the test
+        # sets the disposition it tests
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     deadline = time.monotonic() + 60
     while time.monotonic() < deadline and proc.poll() is None:

@@ -225,6 +225,9 @@ def test_ctrl_c_keeps_the_finished_cases(tmp_path):
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        # a background job starts with SIGINT ignored and its children inherit that: the test
+        # sets the disposition it tests
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     journal = out / "journal.jsonl"
     deadline = time.monotonic() + 60

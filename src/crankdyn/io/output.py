@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import secrets
 import shutil
 import tempfile
 from collections.abc import Iterator
@@ -71,8 +72,11 @@ def atomic_directory(path: str | Path, *, force: bool = False) -> Iterator[Path]
     parent = target.parent if str(target.parent) else Path(".")
     if not parent.is_dir():
         raise InputError(f"the folder {parent} does not exist", file=str(path))
-    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent))
+    # the name is known before the folder exists, so an interrupt at any point (even inside the
+    # mkdir) is cleaned up by the handler below
+    tmp = parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
     try:
+        tmp.mkdir()
         yield tmp
         if target.exists():
             old = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".old", dir=parent))
