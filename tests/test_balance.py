@@ -8,7 +8,10 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.balance import (
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.crank.masses import Masses
+from crankdyn.engine.balance import (
     BalanceInputs,
     engine_balance,
     harmonic_phasors,
@@ -16,12 +19,9 @@ from crankdyn.balance import (
     phasor_amplitude,
     piston_harmonics,
 )
-from crankdyn.engine import Cylinders, Engine
+from crankdyn.engine.model import Cylinders, Engine
 from crankdyn.errors import InputError
-from crankdyn.geometry import CrankGeometry
 from crankdyn.io.engine_file import load_engine
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.masses import Masses
 
 R, L, PITCH = 0.04, 0.14, 0.1
 LAM = R / L
@@ -377,7 +377,7 @@ def test_overturning_moment_of_a_closed_form_torque():
 
 
 def test_engine_balance_with_the_torque_analysis():
-    from crankdyn.torque import engine_torque
+    from crankdyn.engine.torque import engine_torque
 
     e = Engine.example("inline6-diesel")
     t = engine_torque(e, e.speed)

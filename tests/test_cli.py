@@ -8,8 +8,8 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import dead_centres, slider_crank_exact
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import dead_centres, slider_crank_exact
 
 KIN_KEYS = (
     "crank_angle_deg",

@@ -9,11 +9,11 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.bearings import bearing_loads
-from crankdyn.engine import Engine
-from crankdyn.forces import crank_train, cycle_grid
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.torque import engine_torque
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import crank_train, cycle_grid
+from crankdyn.engine.model import Engine
+from crankdyn.engine.torque import engine_torque
 
 
 @pytest.fixture(scope="module")

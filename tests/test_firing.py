@@ -10,9 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankdyn.engine import Cylinders
-from crankdyn.errors import InputError
-from crankdyn.firing import (
+from crankdyn.engine.firing import (
     CYCLE_ANGLE,
     FiringSchemes,
     all_firing_schemes,
@@ -28,6 +26,8 @@ from crankdyn.firing import (
     v_alternating,
     v_scheme,
 )
+from crankdyn.engine.model import Cylinders
+from crankdyn.errors import InputError
 
 DEG = math.pi / 180
 

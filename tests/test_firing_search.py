@@ -9,10 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Cylinders, Engine
-from crankdyn.errors import InputError
-from crankdyn.firing import FiringSchemes
-from crankdyn.firing_search import (
+from crankdyn.engine.firing import FiringSchemes
+from crankdyn.engine.firing_search import (
     Layout,
     arrangement,
     firing_order_search,
@@ -20,6 +18,8 @@ from crankdyn.firing_search import (
     torsional_orders,
     vector_sums,
 )
+from crankdyn.engine.model import Cylinders, Engine
+from crankdyn.errors import InputError
 
 INLINE6 = Cylinders(count=6, firing_order=(1, 5, 3, 6, 2, 4), pitch=0.12)
 LINEAR_MODE = [1.0, 0.9, 0.78, 0.64, 0.48, 0.3]  # a first-mode-like shape, node past cylinder 6
@@ -162,7 +162,7 @@ def test_layout_helpers():
 def test_first_mode_shape_from_a_torsional_model():
     """Three equal discs on equal shafts, free-free, cylinders on the outer two: the first
     elastic mode is (1, 0, -1) (closed form), so the cylinders' amplitudes are 1 and -1."""
-    from crankdyn.firing_search import first_mode_shape
+    from crankdyn.engine.firing_search import first_mode_shape
     from crankdyn.torsion.model import Mass, Shaft, TorsionModel
 
     model = TorsionModel(
@@ -183,7 +183,7 @@ def test_first_mode_shape_from_a_torsional_model():
 
 def test_first_mode_shape_of_the_inline6_model(cli):
     e = Engine.example("inline6-diesel")
-    from crankdyn.firing_search import first_mode_shape
+    from crankdyn.engine.firing_search import first_mode_shape
     from crankdyn.torsion.modal import natural_modes
 
     beta = first_mode_shape(e.torsion, 6)

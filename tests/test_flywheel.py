@@ -8,9 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
-from crankdyn.errors import InputError
-from crankdyn.flywheel import (
+from crankdyn.engine.flywheel import (
     FlywheelInputs,
     G,
     crank_train_inertia,
@@ -20,6 +18,8 @@ from crankdyn.flywheel import (
     instantaneous_speed,
     rim_width,
 )
+from crankdyn.engine.model import Engine
+from crankdyn.errors import InputError
 from crankdyn.io.engine_file import load_engine
 
 FOUR = 4 * math.pi
@@ -162,7 +162,7 @@ def test_crank_train_inertia_seed_formula():
 
 
 def test_engine_flywheel_uses_the_engine_torque():
-    from crankdyn.torque import engine_torque
+    from crankdyn.engine.torque import engine_torque
 
     e = Engine.example("inline6-diesel")
     t = engine_torque(e, e.speed, step=math.radians(0.5))

@@ -7,14 +7,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankdyn.bearings import bearing_loads
-from crankdyn.engine import Cylinders, Engine
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.crank.masses import Masses
+from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import crank_train, cylinder_forces, inertia_harmonics, rod_forces
+from crankdyn.engine.model import Cylinders, Engine
 from crankdyn.errors import InputError
-from crankdyn.forces import crank_train, cylinder_forces, inertia_harmonics, rod_forces
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.masses import Masses
-from crankdyn.pressure import ATMOSPHERE, PressureTrace
 
 
 def hand_forces(p_axial, phi, r, length, e):
@@ -271,7 +271,7 @@ def test_inertia_torque_averages_to_zero():
 def test_pin_load_without_big_end_mass_says_so():
     import dataclasses
 
-    from crankdyn.masses import Masses
+    from crankdyn.crank.masses import Masses
 
     base = Engine.example("inline6-diesel")
     eng = dataclasses.replace(base, masses=Masses(reciprocating=2.521, rotating=3.2))
@@ -314,7 +314,7 @@ def test_random_engines_identities(lam, k, m_j, m_r, rpm, peak):
     offset = k * r
     if abs(offset) >= r / lam - r:
         return
-    from crankdyn.pressure_model import WiebePressureModel
+    from crankdyn.crank.pressure_model import WiebePressureModel
 
     geometry = CrankGeometry(bore=0.085, crank_radius=r, rod_length=r / lam, offset=offset)
     trace = WiebePressureModel(peak_pressure=peak, compression_ratio=12).trace(

@@ -10,8 +10,8 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import (
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import (
     complex_step,
     dead_centres,
     piston_jerk,

@@ -7,11 +7,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.crank.masses import Masses, equivalent_mass_model, rod_three_mass, rod_two_mass
 from crankdyn.errors import InputError
-from crankdyn.geometry import CrankGeometry
 from crankdyn.io.engine_file import parse_engine
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.masses import Masses, equivalent_mass_model, rod_three_mass, rod_two_mass
 
 
 def test_two_mass_keeps_mass_and_centre_of_gravity():

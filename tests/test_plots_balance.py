@@ -7,10 +7,10 @@ import math
 import numpy as np
 from matplotlib.figure import Figure
 
-from crankdyn.balance import engine_balance
-from crankdyn.engine import Engine
-from crankdyn.firing_search import arrangement, firing_order_search
-from crankdyn.flywheel import flywheel_analysis
+from crankdyn.engine.balance import engine_balance
+from crankdyn.engine.firing_search import arrangement, firing_order_search
+from crankdyn.engine.flywheel import flywheel_analysis
+from crankdyn.engine.model import Engine
 
 
 def _labelled(fig: Figure) -> None:

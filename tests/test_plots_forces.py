@@ -6,12 +6,12 @@ import sys
 import pytest
 from matplotlib.figure import Figure
 
-from crankdyn.bearings import bearing_loads
-from crankdyn.engine import Engine
-from crankdyn.forces import cylinder_forces
-from crankdyn.indicated import pressure_analysis
-from crankdyn.pressure_model import default_pressure
-from crankdyn.torque import engine_torque
+from crankdyn.crank.indicated import pressure_analysis
+from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import cylinder_forces
+from crankdyn.engine.model import Engine
+from crankdyn.engine.torque import engine_torque
 
 
 def _check(fig):

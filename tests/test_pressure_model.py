@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.indicated import indicated_work, pressure_analysis
+from crankdyn.crank.pressure_model import WiebePressureModel, cylinder_volume, default_pressure
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.geometry import CrankGeometry
-from crankdyn.indicated import indicated_work, pressure_analysis
-from crankdyn.pressure_model import WiebePressureModel, cylinder_volume, default_pressure
 
 GEOMETRY = CrankGeometry(bore=0.085, crank_radius=0.044, rod_length=0.145)
 DEG = math.pi / 180

@@ -7,14 +7,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankdyn.engine import Cylinders, Engine
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.indicated import indicated_work
+from crankdyn.crank.masses import Masses
+from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.crank.pressure_model import WiebePressureModel, default_pressure
+from crankdyn.engine.model import Cylinders, Engine
+from crankdyn.engine.torque import engine_torque, journal_torques
 from crankdyn.errors import InputError
-from crankdyn.geometry import CrankGeometry
-from crankdyn.indicated import indicated_work
-from crankdyn.masses import Masses
-from crankdyn.pressure import ATMOSPHERE, PressureTrace
-from crankdyn.pressure_model import WiebePressureModel, default_pressure
-from crankdyn.torque import engine_torque, journal_torques
 
 
 @pytest.mark.parametrize("name", ["inline6-diesel", "vaz2108", "v8-crossplane", "single-cylinder"])

@@ -24,13 +24,13 @@ import math
 import numpy as np
 
 from bench.harness import CRANKDYN, AgreementError, Case, Contender, Deviation, Target
-from crankdyn.bearings import bearing_loads
-from crankdyn.engine import Cylinders, Engine
-from crankdyn.forces import crank_train, cycle_grid, engine_masses
-from crankdyn.geometry import CrankGeometry
-from crankdyn.masses import Masses
-from crankdyn.pressure_model import WiebePressureModel
-from crankdyn.torque import engine_torque
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.masses import Masses
+from crankdyn.crank.pressure_model import WiebePressureModel
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import crank_train, cycle_grid, engine_masses
+from crankdyn.engine.model import Cylinders, Engine
+from crankdyn.engine.torque import engine_torque
 
 KEY = "engine"
 TITLE = "V12 engine cycle: kinematics, forces, torques, bearing loads"
@@ -142,7 +142,7 @@ def bare_cycle(d: dict) -> dict:
     pin_torque = journal - 0.5 * throw_torque
     if cycle / d["count"] <= math.radians(0.1) * (1 + 1e-9):
         mean = float(np.mean(tangential[:, :-1].sum(axis=0))) * r
-    else:  # the mean on a 0.1 deg grid when the output grid is coarser (crankdyn.torque)
+    else:  # the mean on a 0.1 deg grid when the output grid is coarser (crankdyn.engine.torque)
         fine_count = round(cycle / math.radians(0.1))
         fine_d = {**d, "count": fine_count}
         mean = float(np.mean(_tangential(fine_d)[:, :-1].sum(axis=0))) * r

@@ -10,8 +10,8 @@ import math
 import sys
 from pathlib import Path
 
-from crankdyn.engine import Engine
-from crankdyn.kinematics import coefficient_table, piston_kinematics
+from crankdyn.crank.kinematics import coefficient_table, piston_kinematics
+from crankdyn.engine.model import Engine
 
 
 def main(out: Path) -> None:

@@ -11,7 +11,7 @@ import math
 import sys
 from pathlib import Path
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.torsion import TorsionModel
 from crankdyn.torsion.holzer import holzer_table, residual_curve
 from crankdyn.torsion.modal import natural_modes

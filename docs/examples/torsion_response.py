@@ -10,7 +10,7 @@ from pathlib import Path
 
 import numpy as np
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.response import forced_response

@@ -27,7 +27,7 @@ import numpy as np
 
 __all__ = ["DEG", "Result", "array", "column", "freeze", "scalar"]
 
-DEG = 180.0 / math.pi  # scale for rad -> deg in exported keys
+from crankdyn.constants import DEG
 
 
 def _meta(kind, key, label, unit, scale, **extra) -> dict:

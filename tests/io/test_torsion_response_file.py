@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.torsion_file import load_torsion_model
 from crankdyn.io.torsion_tables import read_harmonic_table, read_load_curve

@@ -6,8 +6,8 @@ import re
 import numpy as np
 import pytest
 
+from crankdyn.crank.kinematics import slider_crank_exact
 from crankdyn.errors import InputError
-from crankdyn.kinematics import slider_crank_exact
 from crankdyn.linkage.fourbar import FourBar
 from crankdyn.linkage.planar import (
     GROUND,

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for, harmonic_analysis

@@ -9,7 +9,7 @@ import json
 import pytest
 
 import crankdyn.report.sections as sections
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import Context, NotApplicable
 from crankdyn.report.write import write_report

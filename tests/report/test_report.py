@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.io.engine_file import load_example
 from crankdyn.report.build import build_report
 from crankdyn.report.write import write_report

@@ -10,11 +10,11 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import piston_kinematics, slider_crank_exact
-from crankdyn.pressure import PressureTrace
-from crankdyn.torque import engine_torque
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import piston_kinematics, slider_crank_exact
+from crankdyn.crank.pressure import PressureTrace
+from crankdyn.engine.model import Engine
+from crankdyn.engine.torque import engine_torque
 from crankdyn.torsion.modal import natural_modes
 from crankdyn.torsion.model import Mass, Shaft, TorsionModel
 from crankdyn.torsion.response import steady_state

@@ -11,7 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import example_names, parse_engine
 from tests.conftest import fuzz_examples

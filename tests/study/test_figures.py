@@ -9,14 +9,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankdyn.bearings import bearing_loads
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.torque import engine_torque
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import example_files, load_example
 from crankdyn.io.files import load_toml
 from crankdyn.study.docpath import parse_path
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext, Figure, register_figure
 from crankdyn.study.worker import Payload, evaluate_case
-from crankdyn.torque import engine_torque
 
 STEP = math.radians(1.0)
 
@@ -131,7 +131,7 @@ def test_inline4_balance_figures_against_the_series():
     sin^2n phi contributing -C(2n, n-1)/2^(2n-1) cos 2 phi. Seed 000 gives the first term,
     4 lam m_j R w^2; the first term left out, 0.127 lam^11, is 5e-8 of the sum at
     lam = 0.26."""
-    from crankdyn.masses import equivalent_masses
+    from crankdyn.crank.masses import equivalent_masses
 
     engine = load_example("vaz2108")
     names = ["free_force_1", "free_force_2", "free_moment_1", "free_moment_2", "free_force_4"]
@@ -151,7 +151,7 @@ def test_flywheel_figures(vaz):
     """For a target delta: the flywheel inertia is Delta E / (delta w^2) less the crank train's
     own (seed 000 section 2.4), and the delta achieved with it (exact energy equation) equals
     the target to first order in delta."""
-    from crankdyn.flywheel import crank_train_inertia
+    from crankdyn.engine.flywheel import crank_train_inertia
 
     delta = 0.01
     ctx = CaseContext(vaz, AnalysisSettings((("step", STEP), ("delta", delta))))
@@ -222,7 +222,7 @@ def test_one_parameter_sets_two_keys(tmp_path):
     assert [r["status"] for r in records] == ["ok", "ok"]
     j = [c.numbers["torsion.mass[9].inertia"] for c in cases]
     engine = load_example("inline6-diesel")
-    from crankdyn.flywheel import crank_train_inertia
+    from crankdyn.engine.flywheel import crank_train_inertia
 
     crank = sum(crank_train_inertia(engine.masses, engine.geometry, engine.cylinders.throws))
     crank += engine.flywheel.other_inertia

@@ -5,10 +5,10 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Cylinders, Engine
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.masses import Masses, equivalent_masses
+from crankdyn.engine.model import Cylinders, Engine
 from crankdyn.errors import InputError
-from crankdyn.geometry import CrankGeometry
-from crankdyn.masses import Masses, equivalent_masses
 from crankdyn.torsion import Mass, Shaft, TorsionModel
 from crankdyn.torsion.closed_form import single_mass, three_mass, two_mass, uniform_chain
 from crankdyn.torsion.equivalent import (

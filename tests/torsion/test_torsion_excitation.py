@@ -7,9 +7,9 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.forces import crank_train
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.forces import crank_train
 from crankdyn.torsion.excitation import (
     SAMPLES,
     EngineExcitation,
@@ -61,7 +61,7 @@ def diesel():
 
 
 def test_harmonics_equal_the_crank_train_torque(diesel):
-    """The coefficients rebuild every cylinder's torque of crankdyn.forces at a speed."""
+    """The coefficients rebuild every cylinder's torque of crankdyn.engine.forces at a speed."""
     engine, ex = diesel
     w = 1800 * RPM
     orders = np.arange(1, 1001) * 0.5  # the trace's kinks need many orders
@@ -146,7 +146,7 @@ def test_table_without_phases_adds_in_phase(diesel):
 
 def test_misfire_needs_the_compression_ratio_and_lowers_the_half_orders(diesel):
     engine, _ = diesel
-    from crankdyn.pressure import PressureTrace
+    from crankdyn.crank.pressure import PressureTrace
 
     p = engine.pressure
     no_ratio = dataclasses.replace(

@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.response import forced_response
 

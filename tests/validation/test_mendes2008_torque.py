@@ -13,10 +13,10 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
-from crankdyn.forces import cylinder_forces
-from crankdyn.indicated import indicated_work
-from crankdyn.torque import engine_torque
+from crankdyn.crank.indicated import indicated_work
+from crankdyn.engine.forces import cylinder_forces
+from crankdyn.engine.model import Engine
+from crankdyn.engine.torque import engine_torque
 
 BORE, STROKE, ROD, M_OSC = 0.105, 0.137, 0.207, 2.521
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.torsion.modal import natural_modes
 
 DATA = Path(__file__).parent / "data"

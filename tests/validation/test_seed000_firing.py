@@ -9,8 +9,8 @@ from pathlib import Path
 
 import numpy as np
 
-from crankdyn.firing import firing_intervals, v_alternating
-from crankdyn.firing_search import firing_order_search
+from crankdyn.engine.firing import firing_intervals, v_alternating
+from crankdyn.engine.firing_search import firing_order_search
 from crankdyn.io.engine_file import load_engine
 
 DATA = Path(__file__).parent / "data"

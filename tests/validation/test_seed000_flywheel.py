@@ -7,8 +7,8 @@ validation."""
 
 from __future__ import annotations
 
-from crankdyn.engine import Engine
-from crankdyn.flywheel import engine_flywheel
+from crankdyn.engine.flywheel import engine_flywheel
+from crankdyn.engine.model import Engine
 
 
 def test_seed000_table_single_cylinder_mu_and_xi():

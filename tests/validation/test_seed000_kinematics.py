@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import piston_kinematics, slider_crank_approx, slider_crank_exact
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import piston_kinematics, slider_crank_approx, slider_crank_exact
 
 PHI = np.linspace(0.0, 2 * math.pi, 72001)
 

@@ -9,8 +9,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import coefficient_table, piston_kinematics, slider_crank_approx
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import coefficient_table, piston_kinematics, slider_crank_approx
 
 DATA = Path(__file__).parent / "data"
 
@@ -78,7 +78,7 @@ def test_seed002_table2_accelerations_from_rounded_coefficients():
 
 def test_seed002_speed_classes():
     """Table 1: low-speed up to 6 m/s, medium 6-9, high 9-12, very high above 12."""
-    from crankdyn.kinematics import speed_class
+    from crankdyn.crank.kinematics import speed_class
 
     assert speed_class(5.5) == "low-speed"
     assert speed_class(7.0) == "medium-speed"

@@ -17,7 +17,7 @@ from crankdyn.cli.common import (
     speed_option,
     speed_range,
 )
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import load_example
 from crankdyn.report.build import build_report

@@ -11,7 +11,6 @@ import click
 from rich.markup import escape
 from rich.table import Table as RichTable
 
-from crankdyn.balance import BALANCE_METHODS, BalanceInputs, engine_balance
 from crankdyn.cli.common import (
     FORMATS,
     console,
@@ -24,16 +23,17 @@ from crankdyn.cli.common import (
     speed_of,
     speed_option,
 )
-from crankdyn.errors import InputError
-from crankdyn.firing_search import (
+from crankdyn.engine.balance import BALANCE_METHODS, BalanceInputs, engine_balance
+from crankdyn.engine.firing_search import (
     CRITERIA,
     FiringOrderRanking,
     firing_order_search,
     first_mode_shape,
 )
-from crankdyn.flywheel import engine_flywheel
+from crankdyn.engine.flywheel import engine_flywheel
+from crankdyn.engine.torque import engine_torque
+from crankdyn.errors import InputError
 from crankdyn.io.output import write_text
-from crankdyn.torque import engine_torque
 
 __all__ = ["register"]
 

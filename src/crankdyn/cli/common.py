@@ -14,7 +14,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table as RichTable
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import resolve_engine
 from crankdyn.io.output import check_writable, write_bytes, write_text

@@ -7,7 +7,6 @@ from dataclasses import dataclass
 
 import click
 
-from crankdyn.bearings import bearing_loads
 from crankdyn.cli.common import (
     angle_grid,
     emit,
@@ -19,12 +18,13 @@ from crankdyn.cli.common import (
     speed_option,
     step_option,
 )
+from crankdyn.crank.indicated import pressure_analysis
+from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import cylinder_forces
+from crankdyn.engine.torque import engine_torque
 from crankdyn.errors import InputError
-from crankdyn.forces import cylinder_forces
-from crankdyn.indicated import pressure_analysis
-from crankdyn.pressure_model import default_pressure
 from crankdyn.results import Result
-from crankdyn.torque import engine_torque
 
 
 @dataclass(frozen=True)

@@ -17,8 +17,8 @@ from crankdyn.cli.common import (
     speed_option,
     step_option,
 )
+from crankdyn.crank.kinematics import METHODS, coefficient_table, piston_kinematics
 from crankdyn.errors import InputError
-from crankdyn.kinematics import METHODS, coefficient_table, piston_kinematics
 
 
 def check_order(method: str, order: int) -> None:

@@ -21,6 +21,7 @@ from crankdyn.cli.common import (
     speed_range,
 )
 from crankdyn.cli.torsion import _print_tables, torsion_group
+from crankdyn.constants import RPM
 from crankdyn.errors import InputError
 from crankdyn.io.torsion_response_file import resolve_model_and_engine
 from crankdyn.torsion.excitation import (
@@ -31,7 +32,6 @@ from crankdyn.torsion.excitation import (
     order_grid,
 )
 
-RPM = 30.0 / math.pi
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
 
 

@@ -6,19 +6,19 @@ import math
 from importlib import resources
 from pathlib import Path
 
-from crankdyn.balance import BalanceInputs
-from crankdyn.engine import CYCLES, LAYOUTS, Cylinders, Engine
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.masses import Masses
+from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
+from crankdyn.engine.balance import BalanceInputs
+from crankdyn.engine.firing import throw_angles_from_positions
+from crankdyn.engine.flywheel import FlywheelInputs
+from crankdyn.engine.model import CYCLES, LAYOUTS, Cylinders, Engine
 from crankdyn.errors import InputError
-from crankdyn.firing import throw_angles_from_positions
-from crankdyn.flywheel import FlywheelInputs
-from crankdyn.geometry import CrankGeometry
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
 from crankdyn.io.torsion_file import parse_torsion_section
 from crankdyn.io.traces import read_pressure_trace
-from crankdyn.masses import Masses
-from crankdyn.pressure import ATMOSPHERE, PressureTrace
-from crankdyn.pressure_model import LOAD_KEYS, WiebePressureModel
 
 __all__ = [
     "example_files",

@@ -24,9 +24,9 @@ from crankdyn.torsion.equivalent import (
 from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel
 
 if TYPE_CHECKING:  # pragma: no cover
-    from crankdyn.engine import Cylinders, Engine
-    from crankdyn.geometry import CrankGeometry
-    from crankdyn.masses import Masses
+    from crankdyn.crank.geometry import CrankGeometry
+    from crankdyn.crank.masses import Masses
+    from crankdyn.engine.model import Cylinders, Engine
 
 __all__ = [
     "load_torsion_example",

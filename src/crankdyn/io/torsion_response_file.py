@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import dataclasses
 
-from crankdyn.firing import CYCLE_ANGLE
+from crankdyn.engine.firing import CYCLE_ANGLE
 from crankdyn.io.schema import Table, suggest
 from crankdyn.torsion.campbell import OperatingRange
 from crankdyn.torsion.dampers import Damper, design_damper
@@ -71,7 +71,7 @@ def _excitation(t: Table | None, model: TorsionModel, engine) -> ExcitationSpec 
                 t.data["firing_angles"],
             )
         if order is not None:
-            from crankdyn.firing import check_firing_order
+            from crankdyn.engine.firing import check_firing_order
 
             with t.context():
                 check_firing_order(order, count, key="firing_order")

@@ -19,9 +19,9 @@ from pathlib import Path
 
 import numpy as np
 
+from crankdyn.crank.pressure import PressureTrace
 from crankdyn.errors import InputError
 from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
-from crankdyn.pressure import PressureTrace
 
 __all__ = ["read_pressure_trace", "split_header_unit"]
 

@@ -62,8 +62,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite, check_length
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_length
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [

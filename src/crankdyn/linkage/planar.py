@@ -38,8 +38,8 @@ from functools import cached_property
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [

@@ -7,7 +7,7 @@ import math
 import numpy as np
 from matplotlib.ticker import MultipleLocator
 
-from crankdyn.firing import CYCLE_ANGLE
+from crankdyn.engine.firing import CYCLE_ANGLE
 from crankdyn.plots.style import COLORS, new_figure
 
 __all__ = ["draw_crank_end_view", "draw_firing_diagram", "plot_arrangement"]

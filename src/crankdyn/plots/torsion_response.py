@@ -19,7 +19,8 @@ __all__ = [
     "plot_transient",
 ]
 
-RPM = 30.0 / math.pi
+from crankdyn.constants import RPM
+
 _SHOWN_ORDERS = 8
 
 

@@ -6,7 +6,7 @@ import datetime as _dt
 import math
 
 from crankdyn import __version__
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.report.model import Report
 from crankdyn.report.sections import Context, NotApplicable, builders

@@ -254,25 +254,25 @@ def _figure(name, key, label, unit, function, *, scale=1.0, si=None, better=None
 
 
 def _torque(ctx: CaseContext):
-    from crankdyn.torque import engine_torque
+    from crankdyn.engine.torque import engine_torque
 
     return engine_torque(ctx.subject, ctx.speed, step=ctx.settings["step"])
 
 
 def _bearings(ctx: CaseContext):
-    from crankdyn.bearings import bearing_loads
+    from crankdyn.engine.bearings import bearing_loads
 
     return bearing_loads(ctx.subject, ctx.speed, step=ctx.settings["step"])
 
 
 def _cylinder(ctx: CaseContext):
-    from crankdyn.forces import cylinder_forces
+    from crankdyn.engine.forces import cylinder_forces
 
     return cylinder_forces(ctx.subject, ctx.speed, step=ctx.settings["step"])
 
 
 def _kinematics(ctx: CaseContext):
-    from crankdyn.kinematics import piston_kinematics
+    from crankdyn.crank.kinematics import piston_kinematics
 
     return piston_kinematics(ctx.subject.geometry, ctx.speed).summary
 
@@ -457,7 +457,7 @@ _figure(
 )
 
 
-# ---- balance and flywheel (crankdyn.balance, crankdyn.flywheel) ---------------------------------
+# ---- balance and flywheel (crankdyn.engine.balance, crankdyn.engine.flywheel) -----------------
 
 register_setting(
     Setting(
@@ -473,13 +473,13 @@ BALANCE_ORDERS = (1, 2, 4, 6)
 
 
 def _balance(ctx: CaseContext):
-    from crankdyn.balance import engine_balance
+    from crankdyn.engine.balance import engine_balance
 
     return engine_balance(ctx.subject, ctx.speed, orders=BALANCE_ORDERS)
 
 
 def _flywheel(ctx: CaseContext):
-    from crankdyn.flywheel import engine_flywheel
+    from crankdyn.engine.flywheel import engine_flywheel
 
     return engine_flywheel(
         ctx.subject,

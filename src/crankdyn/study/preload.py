@@ -4,12 +4,6 @@ second and more of work that every worker would otherwise repeat)."""
 
 from __future__ import annotations
 
-import crankdyn.bearings
-import crankdyn.forces
-import crankdyn.io.engine_file
-import crankdyn.kinematics
-import crankdyn.study.worker
-import crankdyn.torque  # noqa: F401
 from crankdyn.io.units import registry
 
 registry()

@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_positive
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
     _cylinder_amplitudes,
@@ -41,7 +41,8 @@ __all__ = [
     "with_dampers",
 ]
 
-RPM = 30.0 / math.pi
+from crankdyn.constants import RPM
+
 HZ = 1.0 / (2.0 * math.pi)
 
 

@@ -39,8 +39,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_positive
 from crankdyn.results import Result, scalar
 
 __all__ = [

@@ -7,14 +7,14 @@ neighbouring throws one shaft.
 Inertia of a throw
     J_throw = sum over its cylinders of (m_r + m_j / 2) R^2 + J_crank,
     with the rotating mass m_r and reciprocating mass m_j of each cylinder (seed 000 section 2.1,
-    :func:`crankdyn.masses.equivalent_mass_model`), the crank radius R and the crank's own inertia
-    J_crank (journal, webs and pin about the shaft axis). The reciprocating mass enters with the
-    mean of m_j (dx/dphi)^2 over a revolution, m_j R^2 (1/2 + lambda^2/8); the lambda^2/8 term
+    :func:`crankdyn.crank.masses.equivalent_mass_model`), the crank radius R and the crank's own
+    inertia J_crank (journal, webs and pin about the shaft axis). The reciprocating mass enters with
+    the mean of m_j (dx/dphi)^2 over a revolution, m_j R^2 (1/2 + lambda^2/8); the lambda^2/8 term
     (lambda^2/4 of the whole, 2-3 % for lambda near 0.3) is dropped, as in the classical
     equivalent system (W. Ker Wilson, *Practical Solution of Torsional Vibration Problems*,
     vol. 1, ch. 3; seed 003). On a V-engine
     throw carrying two rods the crank's unbalance m_k is counted once: each cylinder's rotating
-    mass is m_k / 2 + m_CB (:func:`crankdyn.masses.equivalent_mass_model`).
+    mass is m_k / 2 + m_CB (:func:`crankdyn.crank.masses.equivalent_mass_model`).
 
 Stiffness of a crank span
     Given directly, or from the throw's dimensions by Carter's empirical formula for the length
@@ -41,15 +41,15 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite, check_positive
+from crankdyn.crank.masses import equivalent_mass_model
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_positive
-from crankdyn.masses import equivalent_mass_model
 from crankdyn.torsion.model import Gear, Mass, Shaft, ShaftGeometry, TorsionModel
 
 if TYPE_CHECKING:  # pragma: no cover
-    from crankdyn.engine import Cylinders
-    from crankdyn.geometry import CrankGeometry
-    from crankdyn.masses import Masses
+    from crankdyn.crank.geometry import CrankGeometry
+    from crankdyn.crank.masses import Masses
+    from crankdyn.engine.model import Cylinders
 
 __all__ = [
     "CrankThrowGeometry",
@@ -206,8 +206,8 @@ def throw_inertias(
     """Equivalent moment of inertia of every crank throw (kg m^2), throw 1 first.
 
     J_t = R^2 sum over the throw's n_t cylinders of (m_r + m_j / 2) + J_crank, with each
-    cylinder's m_j and m_r from :func:`crankdyn.masses.equivalent_mass_model` for n_t rods on the
-    throw (so the crank's unbalance m_k is counted once per throw; seed 000 section 2.1,
+    cylinder's m_j and m_r from :func:`crankdyn.crank.masses.equivalent_mass_model` for n_t rods on
+    the throw (so the crank's unbalance m_k is counted once per throw; seed 000 section 2.1,
     seed 003; see the module docstring).
     """
     counts = np.bincount(np.asarray(cylinders.throws) - 1, minlength=cylinders.throw_count)

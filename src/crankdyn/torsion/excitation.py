@@ -1,6 +1,6 @@
 """Engine excitation of torsional vibration: harmonic analysis of the cylinder torques (analysis).
 
-Each cylinder's tangential torque M_i(theta) (gas and inertia parts, :mod:`crankdyn.forces`)
+Each cylinder's tangential torque M_i(theta) (gas and inertia parts, :mod:`crankdyn.engine.forces`)
 repeats once per working cycle, so it is a Fourier series in the *orders* q of the crankshaft
 speed, q = 0.5, 1, 1.5, ... for a four-stroke engine (cycle 720 deg) and q = 1, 2, ... for a
 two-stroke engine (seed 003, 第4章 "曲轴系统的激发力矩": the single-cylinder torque and its
@@ -45,8 +45,8 @@ beta_i of its mass in that mode: the *relative amplitude sum* |sum_i beta_i exp(
 
 Misfire (or cylinder cut-out, the same physics: no combustion in the cylinder, compression kept):
 the cylinder's gas pressure is replaced by the motored pressure, polytropic compression and
-expansion from the intake pressure (the synthetic model of :mod:`crankdyn.pressure_model` with no
-heat release), which needs the compression ratio.
+expansion from the intake pressure (the synthetic model of :mod:`crankdyn.crank.pressure_model`
+with no heat release), which needs the compression ratio.
 """
 
 from __future__ import annotations
@@ -57,8 +57,9 @@ from functools import cached_property
 
 import numpy as np
 
+from crankdyn.constants import RPM
+from crankdyn.engine.firing import CYCLE_ANGLE, even_firing_interval
 from crankdyn.errors import InputError
-from crankdyn.firing import CYCLE_ANGLE, even_firing_interval
 from crankdyn.results import Result, array, freeze, scalar
 
 __all__ = [
@@ -86,7 +87,6 @@ SAMPLES = 7200
 """Samples per cycle for the harmonic analysis (FFT length)."""
 _ORDER_TOL = 1e-9
 _MAJOR_TOL = 1e-6
-RPM = 30.0 / math.pi
 
 
 # ---- numeric core -------------------------------------------------------------------------------
@@ -359,7 +359,7 @@ class SpeedTrace:
     """A cylinder-pressure trace measured at one speed (rad/s)."""
 
     speed: float
-    trace: object  # crankdyn.pressure.PressureTrace
+    trace: object  # crankdyn.crank.pressure.PressureTrace
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.speed) and self.speed > 0.0):
@@ -580,7 +580,7 @@ class EngineExcitation:
     # ---- spectra of the basis signals (computed once) -----------------------------------------
     @cached_property
     def _trace(self):
-        from crankdyn.pressure_model import default_pressure
+        from crankdyn.crank.pressure_model import default_pressure
 
         return default_pressure(self.engine)
 
@@ -591,7 +591,7 @@ class EngineExcitation:
     @cached_property
     def _lever(self) -> np.ndarray:
         """R sin(phi + beta)/cos(beta) (m) of every cylinder over the cycle grid."""
-        from crankdyn.forces import rod_forces
+        from crankdyn.engine.forces import rod_forces
 
         g, cyl = self.engine.geometry, self.engine.cylinders
         phi = self._theta[None, :] - np.asarray(cyl.throw_angles)[:, None]
@@ -615,8 +615,8 @@ class EngineExcitation:
     @cached_property
     def _inertia_spectrum(self) -> np.ndarray:
         """rfft of the inertia torque at 1 rad/s, shape (Z, N/2+1)."""
-        from crankdyn.forces import engine_masses
-        from crankdyn.kinematics import slider_crank_exact
+        from crankdyn.crank.kinematics import slider_crank_exact
+        from crankdyn.engine.forces import engine_masses
 
         g, cyl = self.engine.geometry, self.engine.cylinders
         m_j = np.array([m.reciprocating for m in engine_masses(self.engine)])[:, None]
@@ -634,7 +634,7 @@ class EngineExcitation:
 
     @cached_property
     def _motored_trace(self):
-        from crankdyn.pressure_model import WiebePressureModel
+        from crankdyn.crank.pressure_model import WiebePressureModel
 
         trace = self._trace
         eps = trace.compression_ratio
@@ -666,7 +666,7 @@ class EngineExcitation:
             return value
         if curve.kind == "peak_pressure":
             return value / self._trace.peak[0]
-        from crankdyn.indicated import indicated_work
+        from crankdyn.crank.indicated import indicated_work
 
         imep = indicated_work(self._trace, self.engine.geometry) / self.engine.geometry.swept_volume
         if not imep > 0.0:
@@ -805,7 +805,7 @@ def _model_firing_angles(spec, count: int, cycle: str):
             )
         return angles, ""
     if spec is not None and spec.firing_order is not None:
-        from crankdyn.firing import check_firing_order
+        from crankdyn.engine.firing import check_firing_order
 
         order = check_firing_order(spec.firing_order, count)
         interval = even_firing_interval(count, cycle)

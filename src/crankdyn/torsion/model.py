@@ -37,8 +37,8 @@ from functools import cached_property
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_positive
 
 __all__ = [
     "GROUND",

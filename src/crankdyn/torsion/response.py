@@ -69,7 +69,8 @@ __all__ = [
     "steady_state",
 ]
 
-RPM = 30.0 / math.pi
+from crankdyn.constants import RPM
+
 _BLOCK = 1 << 22  # elements per block of the time-domain synthesis
 
 

@@ -34,8 +34,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from crankdyn.constants import RPM
+from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_positive
 from crankdyn.results import Result, array, freeze, scalar
 
 __all__ = [
@@ -51,7 +52,7 @@ __all__ = [
 ]
 
 RULE = "IACS UR M68 (Aug 2014 text), M68.4"
-RPM = 30.0 / math.pi
+
 _MPA = 1e6
 
 

@@ -39,7 +39,7 @@ from crankdyn.torsion.response import linear_system
 
 __all__ = ["TransientResult", "transient_response"]
 
-RPM = 30.0 / math.pi
+from crankdyn.constants import RPM
 
 
 @dataclass(frozen=True)

@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from crankdyn.engine import Engine
+from crankdyn.engine.model import Engine
 
 __all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
 

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from crankdyn.balance import engine_balance
+from crankdyn.engine.balance import engine_balance
+from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-from crankdyn.torque import engine_torque
 
 
 def _row_name(row) -> str:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.firing_search import arrangement, firing_order_search, first_mode_shape
+from crankdyn.engine.firing_search import arrangement, firing_order_search, first_mode_shape
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 _COLUMNS = (

@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
-from crankdyn.flywheel import FlywheelInputs, engine_flywheel
+from crankdyn.engine.flywheel import FlywheelInputs, engine_flywheel
+from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-from crankdyn.torque import engine_torque
 
 DEFAULT_DELTA = 0.01
 """Target degree of cyclic irregularity when the engine file gives none (seed 000 §2.4)."""

@@ -6,8 +6,8 @@ import math
 
 import numpy as np
 
-from crankdyn.bearings import bearing_loads
-from crankdyn.forces import cylinder_forces
+from crankdyn.engine.bearings import bearing_loads
+from crankdyn.engine.forces import cylinder_forces
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.kinematics import piston_kinematics
+from crankdyn.crank.kinematics import piston_kinematics
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 G = 9.80665

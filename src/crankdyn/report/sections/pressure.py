@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.indicated import pressure_analysis
-from crankdyn.pressure_model import default_pressure
+from crankdyn.crank.indicated import pressure_analysis
+from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 

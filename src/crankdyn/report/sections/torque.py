@@ -3,11 +3,11 @@ mean torque x cycle = Z x indicated work."""
 
 from __future__ import annotations
 
-from crankdyn.indicated import indicated_work
-from crankdyn.pressure_model import default_pressure
+from crankdyn.crank.indicated import indicated_work
+from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-from crankdyn.torque import engine_torque
 
 
 def build(ctx) -> Section:

@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 
+from crankdyn.constants import RPM
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
 from crankdyn.torsion.response import forced_response
 
-RPM = 30.0 / math.pi
 STEP = 10.0 / RPM  # default speed step of the sweep: 10 rpm
 
 

@@ -13,7 +13,7 @@ u_i = (sin alpha_i, cos alpha_i), alpha_i its angle from the vertical, clockwise
 
 Reciprocating masses. The piston acceleration (positive toward the crank) is the Fourier series
 a = R w^2 sum_n (C_n cos(n phi) + S_n sin(n phi)), from the lambda-series of
-:func:`crankdyn.kinematics.series_coefficients` carried to convergence (C_1 = 1, C_2 =
+:func:`crankdyn.crank.kinematics.series_coefficients` carried to convergence (C_1 = 1, C_2 =
 lambda + lambda^3/4 + 15 lambda^5/128 + ..., C_4 = -(lambda^3/4 + 3 lambda^5/16 + ...),
 C_6 = 9 lambda^5/128 + ...; an offset adds S_n and odd orders). The inertia force on the engine,
 m_j a u_i, summed over the cylinders, has the order-n part
@@ -54,11 +54,11 @@ from typing import NamedTuple
 
 import numpy as np
 
+from crankdyn.crank.geometry import check_finite
+from crankdyn.crank.kinematics import series_coefficients
+from crankdyn.crank.masses import equivalent_mass_model, equivalent_masses
+from crankdyn.engine.firing import crank_end_view
 from crankdyn.errors import InputError
-from crankdyn.firing import crank_end_view
-from crankdyn.geometry import check_finite
-from crankdyn.kinematics import series_coefficients
-from crankdyn.masses import equivalent_mass_model, equivalent_masses
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -88,7 +88,7 @@ def piston_harmonics(lam: float, k: float = 0.0, orders=DEFAULT_ORDERS, method: 
     """Fourier coefficients of the piston acceleration a/(R w^2) = sum C_n cos(n phi) +
     S_n sin(n phi) (dimensionless).
 
-    ``"exact"``: the lambda-series of :func:`crankdyn.kinematics.series_coefficients`, carried
+    ``"exact"``: the lambda-series of :func:`crankdyn.crank.kinematics.series_coefficients`, carried
     until its next term, of size (lambda (1 + |k|))^(2N), is below 1e-17 (the series converges
     to the exact motion because lambda (1 + |k|) < 1 whenever the crank turns).
     ``"approx"``: seed 000's second-order formula a = R w^2 (cos phi + lambda cos 2 phi +
@@ -175,7 +175,7 @@ def rotating_masses(masses, rod_length: float, throws) -> np.ndarray:
     """Rotating mass of every cylinder at the crank radius (kg), seed 000 section 2.1:
     m_r = m_k / n + m_CB with n rods on the cylinder's throw (a V engine's throw carries its
     unbalance m_k once, shared by its two rods), or the directly given ``rotating`` mass
-    (:func:`crankdyn.masses.equivalent_mass_model`). A throw's rotating mass is the sum over
+    (:func:`crankdyn.crank.masses.equivalent_mass_model`). A throw's rotating mass is the sum over
     its cylinders."""
     throws = list(throws)
     counts = {t: throws.count(t) for t in set(throws)}
@@ -511,7 +511,7 @@ def engine_balance(
         Counterweights, rod offset and power; default ``engine.balance`` or no counterweights.
     torque
         The engine torque over one cycle, for the overturning moment: an
-        :class:`crankdyn.torque.EngineTorque` (whose power also serves the power-related
+        :class:`crankdyn.engine.torque.EngineTorque` (whose power also serves the power-related
         unbalance when ``inputs`` gives none: the effective power if the mechanical efficiency
         is known, else the indicated power) or a pair (angles in rad, torque in N m); None
         leaves it out.

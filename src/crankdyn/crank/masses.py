@@ -8,8 +8,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite, check_positive
 from crankdyn.results import Result, scalar
 
 __all__ = [

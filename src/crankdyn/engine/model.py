@@ -17,18 +17,18 @@ from pathlib import Path
 
 import numpy as np
 
-from crankdyn.balance import BalanceInputs
-from crankdyn.errors import InputError
-from crankdyn.firing import (
+from crankdyn.crank.geometry import CrankGeometry, check_finite, check_positive
+from crankdyn.crank.masses import Masses
+from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.engine.balance import BalanceInputs
+from crankdyn.engine.firing import (
     CYCLE_ANGLE,
     check_firing_order,
     even_firing_throw_angles,
     firing_angles,
 )
-from crankdyn.flywheel import FlywheelInputs
-from crankdyn.geometry import CrankGeometry, check_finite, check_positive
-from crankdyn.masses import Masses
-from crankdyn.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.engine.flywheel import FlywheelInputs
+from crankdyn.errors import InputError
 from crankdyn.torsion.equivalent import check_engine_cylinders
 from crankdyn.torsion.model import TorsionModel
 

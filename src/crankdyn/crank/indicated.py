@@ -18,9 +18,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from crankdyn.geometry import CrankGeometry
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.pressure import PressureTrace
+from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.crank.pressure import PressureTrace
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["PressureResult", "indicated_work", "pressure_analysis"]

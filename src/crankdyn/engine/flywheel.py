@@ -36,10 +36,11 @@ from typing import NamedTuple
 import numpy as np
 from scipy.optimize import brentq
 
-from crankdyn.balance import rotating_masses
+from crankdyn.constants import RPM
+from crankdyn.crank.geometry import check_finite
+from crankdyn.crank.masses import equivalent_masses
+from crankdyn.engine.balance import rotating_masses
 from crankdyn.errors import InputError
-from crankdyn.geometry import check_finite
-from crankdyn.masses import equivalent_masses
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -56,8 +57,6 @@ __all__ = [
 ]
 
 G = 9.80665  # m/s^2, standard gravity (GD^2 = 4 g I)
-RPM = 30.0 / math.pi
-
 
 # ---- numeric core -------------------------------------------------------------------------------
 
@@ -466,7 +465,7 @@ def engine_flywheel(
     """Speed fluctuation and flywheel of an engine at a speed (module docstring).
 
     The torque is the engine's total (gas and inertia) torque over a cycle at constant speed
-    from :func:`crankdyn.torque.engine_torque` (the engine's pressure trace, or its synthetic
+    from :func:`crankdyn.engine.torque.engine_torque` (the engine's pressure trace, or its synthetic
     model); the load takes the mean torque.
 
     Parameters
@@ -483,9 +482,9 @@ def engine_flywheel(
     step
         Crank-angle step of the torque curve (rad).
     torque
-        An :class:`crankdyn.torque.EngineTorque` already computed at this speed, to reuse.
+        An :class:`crankdyn.engine.torque.EngineTorque` already computed at this speed, to reuse.
     """
-    from crankdyn.torque import engine_torque
+    from crankdyn.engine.torque import engine_torque
 
     if engine.masses is None:
         raise InputError(

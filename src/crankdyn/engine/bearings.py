@@ -23,9 +23,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from crankdyn.engine import Engine
-from crankdyn.forces import CrankTrain, cycle_grid, load_angle, reuse_train
-from crankdyn.pressure import PressureTrace
+from crankdyn.crank.pressure import PressureTrace
+from crankdyn.engine.forces import CrankTrain, cycle_grid, load_angle, reuse_train
+from crankdyn.engine.model import Engine
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["BearingLoads", "bearing_loads", "main_bearing_loads"]
@@ -96,7 +96,7 @@ def bearing_loads(
     """Crank-pin and main-bearing loads of an engine at speed w (rad/s) over one cycle (or at
     the crankshaft ``angles``, rad); see the module docstring. ``train``: the crank train at
     exactly these angles, speed and pressure when already computed (e.g. shared with
-    :func:`crankdyn.torque.engine_torque`); default: evaluated here."""
+    :func:`crankdyn.engine.torque.engine_torque`); default: evaluated here."""
     theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
     train = reuse_train(train, engine, speed, theta, pressure)
     t_pin, z_pin = train.pin_loads()

@@ -19,7 +19,7 @@ Seed 000 section 2.3 states the rules this module implements:
   interval within the bank); in the *interposed* scheme the banks' orders and in-bank intervals
   differ, the banks compensating each other so that the engine as a whole fires evenly.
 - A crankshaft allows several firing orders; which one to choose is judged by the criteria
-  of :mod:`crankdyn.firing_search`.
+  of :mod:`crankdyn.engine.firing_search`.
 
 Enumeration. A four-stroke cylinder fires at one of its two TDCs, psi_i or psi_i + 360 deg, so a
 crankshaft allows at most 2^(Z-1) firing schemes (cylinder 1 fires at 0). Each scheme is a
@@ -42,6 +42,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from crankdyn.constants import CYCLE_ANGLE
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -65,7 +66,7 @@ __all__ = [
 ]
 
 TWO_PI = 2.0 * math.pi
-CYCLE_ANGLE = {"four-stroke": 2.0 * TWO_PI, "two-stroke": TWO_PI}
+
 _TOL = 1e-9
 _MATCH_TOL = 1e-6  # rad: angles read from files in degrees agree to far better than this
 MAX_SCHEMES = 200_000
@@ -475,7 +476,7 @@ class VArrangement(NamedTuple):
 
     def cylinders(self, cycle: str, pitch: float | None = None):
         """The :class:`crankdyn.engine.Cylinders` of this arrangement."""
-        from crankdyn.engine import Cylinders  # the domain module imports this one
+        from crankdyn.engine.model import Cylinders  # the domain module imports this one
 
         return Cylinders(
             count=len(self.firing_order),

@@ -149,7 +149,7 @@ class CrankGeometry:
     @property
     def stroke(self) -> float:
         """True stroke (m): sqrt((L+R)^2 - e^2) - sqrt((L-R)^2 - e^2) (seed 000 section 1.2)."""
-        from crankdyn.kinematics import dead_centres
+        from crankdyn.crank.kinematics import dead_centres
 
         return dead_centres(self.crank_radius, self.rod_length, self.offset)[2]
 

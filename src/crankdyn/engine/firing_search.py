@@ -17,7 +17,7 @@ values, with the direction that is better. The built-in ones:
 - ``free_force_1``, ``free_force_2``, ``free_moment_1``, ``free_moment_2``: the first- and
   second-order free forces and moments of the reciprocating masses, per unit harmonic force
   (the amplitude divided by m_j R w^2 A_n) and, for the moments, per unit cylinder pitch a,
-  about the middle of the engine (see :mod:`crankdyn.balance`). They depend on the crankshaft
+  about the middle of the engine (see :mod:`crankdyn.engine.balance`). They depend on the crankshaft
   only, so they separate crankshafts, not orders; forces come first since counterweights can
   cancel a first-order moment but no crankshaft weight cancels a free force of the second
   order.
@@ -57,9 +57,8 @@ from typing import Any
 
 import numpy as np
 
-from crankdyn.balance import harmonic_phasors, phasor_amplitude
-from crankdyn.errors import InputError
-from crankdyn.firing import (
+from crankdyn.engine.balance import harmonic_phasors, phasor_amplitude
+from crankdyn.engine.firing import (
     CYCLE_ANGLE,
     TWO_PI,
     FiringSchemes,
@@ -69,6 +68,7 @@ from crankdyn.firing import (
     even_firing_schemes,
     v_scheme,
 )
+from crankdyn.errors import InputError
 from crankdyn.results import DEG, Result, freeze, scalar
 from crankdyn.torsion.modal import natural_modes
 

@@ -11,9 +11,9 @@ sin(beta) = lambda (sin(phi) - k):
   crank); its 1st- and 2nd-order parts are the first two harmonics of the exact force,
   P_jI = m_j R w^2 (c_1 cos(phi) + s_1 sin(phi)) and
   P_jII = 4 m_j R w^2 (c_2 cos(2 phi) + s_2 sin(2 phi)) with the Fourier coefficients c_m, s_m
-  of x/R (:func:`crankdyn.kinematics.series_coefficients`, taken to harmonic 24); for a central
-  crank P_jI = -m_j R w^2 cos(phi) exactly and P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...)
-  cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi) to first order in lambda;
+  of x/R (:func:`crankdyn.crank.kinematics.series_coefficients`, taken to harmonic 24); for a
+  central crank P_jI = -m_j R w^2 cos(phi) exactly and
+  P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...) cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi) to first order in lambda;
 - resultant along the cylinder axis P = P_g + P_j;
 - side force N = P tan(beta): the piston's push on the cylinder wall, positive toward the major
   thrust side (the side away from which the crank pin moves after TDC, which the piston presses
@@ -37,18 +37,18 @@ from functools import lru_cache
 
 import numpy as np
 
-from crankdyn.engine import Engine
-from crankdyn.errors import InputError
-from crankdyn.kinematics import (
+from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
     crank_terms,
     series_coefficients,
     slider_crank_exact,
 )
-from crankdyn.masses import EquivalentMasses, equivalent_mass_model
-from crankdyn.pressure import PressureTrace
-from crankdyn.pressure_model import default_pressure
+from crankdyn.crank.masses import EquivalentMasses, equivalent_mass_model
+from crankdyn.crank.pressure import PressureTrace
+from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.engine.model import Engine
+from crankdyn.errors import InputError
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -82,7 +82,7 @@ def rod_forces(piston_force, phi, lam: float, k: float = 0.0, *, terms: CrankTer
     lam, k
         lambda = R/L and k = e/R (dimensionless).
     terms
-        :func:`crankdyn.kinematics.crank_terms` at phi for lam and k, when already computed.
+        :func:`crankdyn.crank.kinematics.crank_terms` at phi for lam and k, when already computed.
 
     Returns
     -------
@@ -237,7 +237,7 @@ def crank_train(
 
     Cylinder i's crank angle is phi_i = theta - psi_i (psi_i its throw angle) and its angle from
     firing TDC is theta - Phi_i (Phi_i its firing angle); ``pressure`` defaults to the engine's
-    trace or the synthetic model (:func:`crankdyn.pressure_model.default_pressure`).
+    trace or the synthetic model (:func:`crankdyn.crank.pressure_model.default_pressure`).
     """
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError("the speed must be positive", key="speed", value=speed)

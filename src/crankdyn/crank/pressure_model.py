@@ -40,11 +40,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from crankdyn.constants import CYCLE_ANGLE
+from crankdyn.crank.geometry import CrankGeometry, check_finite, check_positive
+from crankdyn.crank.kinematics import slider_crank_exact
+from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.errors import InputError
-from crankdyn.firing import CYCLE_ANGLE
-from crankdyn.geometry import CrankGeometry, check_finite, check_positive
-from crankdyn.kinematics import slider_crank_exact
-from crankdyn.pressure import ATMOSPHERE, PressureTrace
 
 __all__ = ["LOAD_KEYS", "WiebePressureModel", "cylinder_volume", "default_pressure"]
 

@@ -37,7 +37,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from crankdyn.geometry import CrankGeometry
+from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [

@@ -25,11 +25,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from crankdyn.engine import Engine
+from crankdyn.crank.indicated import indicated_work
+from crankdyn.crank.pressure import PressureTrace
+from crankdyn.engine.forces import CrankTrain, crank_train, cycle_grid, reuse_train
+from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.forces import CrankTrain, crank_train, cycle_grid, reuse_train
-from crankdyn.indicated import indicated_work
-from crankdyn.pressure import PressureTrace
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["EngineTorque", "engine_torque", "journal_torques"]
@@ -132,7 +132,7 @@ def engine_torque(
     train
         The crank train of this engine at this speed over the same cycle grid
         (``crank_train(engine, speed, cycle_grid(engine, step))``), when already computed, e.g.
-        for :func:`crankdyn.bearings.bearing_loads`; default: evaluated here.
+        for :func:`crankdyn.engine.bearings.bearing_loads`; default: evaluated here.
     """
     if mechanical_efficiency is None:
         mechanical_efficiency = engine.mechanical_efficiency
