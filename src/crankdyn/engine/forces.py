@@ -13,7 +13,8 @@ sin(beta) = lambda (sin(phi) - k):
   P_jII = 4 m_j R w^2 (c_2 cos(2 phi) + s_2 sin(2 phi)) with the Fourier coefficients c_m, s_m
   of x/R (:func:`crankdyn.crank.kinematics.series_coefficients`, taken to harmonic 24); for a
   central crank P_jI = -m_j R w^2 cos(phi) exactly and
-  P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...) cos(2 phi), the seed's -m_j R w^2 lambda cos(2 phi) to first order in lambda;
+  P_jII = -m_j R w^2 (lambda + lambda^3/4 + ...) cos(2 phi), the seed's
+  -m_j R w^2 lambda cos(2 phi) to first order in lambda;
 - resultant along the cylinder axis P = P_g + P_j;
 - side force N = P tan(beta): the piston's push on the cylinder wall, positive toward the major
   thrust side (the side away from which the crank pin moves after TDC, which the piston presses
