@@ -361,7 +361,9 @@ def order_analysis(
             ),
             axis=0,
         )
-        cyc_angle = domain.angle[: domain.samples_per_cycle] - domain.angle[0]
+        # crank angle within the cycle (the grid starts at the first tooth after a boundary)
+        start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
+        cyc_angle = domain.angle[: domain.samples_per_cycle] - start
         # instantaneous speed of the averaged cycle: Omega (1 + dv/dpsi), dv/dpsi spectrally
         spec = np.fft.rfft(avg)
         k = np.arange(spec.size)

@@ -211,6 +211,9 @@ class ResonanceFit(Result):
     )
     misfit: float = scalar("fit_misfit", "RMS misfit of the fit (relative)", "", fmt=".3g")
     points: int = scalar("points", "Windows in the fitted band", "")
+    band: tuple[float, float] | None = scalar(
+        "fitted_speeds_rpm", "Fitted band", "rpm", RPM, fmt=".1f", default=None
+    )
     residue: complex = field(default=0j, repr=False)
     residual: complex = field(default=0j, repr=False)
 
@@ -275,6 +278,7 @@ def fit_resonance(order: float, speeds, values) -> ResonanceFit | None:
         half_power_speeds=(float(hp.low / order), float(hp.high / order)),
         misfit=float(misfit),
         points=int(np.count_nonzero(band)),
+        band=(float(s[band][0]), float(s[band][-1])),
         residue=residue,
         residual=residual,
     )
