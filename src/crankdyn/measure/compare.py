@@ -228,11 +228,19 @@ def _model_peak(model, excitation, order, mass, speeds, amplitude, near, dampers
 
 def _model_fit(model, excitation, order, mass, centre, width, dampers) -> ResonanceFit | None:
     """The single-mode fit of the model's own response of one order around ``centre``
-    (rad/s), over +-2 BAND half-bandwidths ``width`` (rad/s)."""
-    span = 2.0 * BAND * width
-    speeds = np.linspace(max(centre - span, 1e-3 * centre), centre + span, 241)
-    r = _response(model, excitation, speeds, [order], dampers)
-    return fit_resonance(order, speeds, r.mass_response[:, 0, mass])
+    (rad/s), sampled at 241 speeds over +-2 BAND half-bandwidths ``width`` (rad/s); wider and
+    narrower spans are tried when the model's resonance is much broader or sharper than that."""
+    for factor in (1.0, 3.0, 0.2, 10.0, 0.04):
+        span = 2.0 * BAND * width * factor
+        speeds = np.linspace(max(centre - span, 1e-3 * centre), centre + span, 241)
+        r = _response(model, excitation, speeds, [order], dampers)
+        values = r.mass_response[:, 0, mass]
+        if not np.all(np.isfinite(values)):
+            continue
+        fit = fit_resonance(order, speeds, values)
+        if fit is not None:
+            return fit
+    return None
 
 
 def compare_with_model(measured, model, excitation, at: str, *, dampers=None) -> ModelComparison:
@@ -361,7 +369,12 @@ def _identify(measured, model, excitation, at, mass, peaks, dampers, notes):
 
     eta = corrected = None
     try:
-        low = zeta(0.0) - target
+        try:
+            bottom = 0.0
+            low = zeta(bottom) - target
+        except _NoFit:  # no other damping: an undamped resonance, no peak to fit at eta = 0
+            bottom = 0.2 * target
+            low = zeta(bottom) - target
         if low > 0.0:
             notes.append(
                 f"the model's other damping alone gives a damping ratio of {low + target:.4g} at "
@@ -370,10 +383,14 @@ def _identify(measured, model, excitation, at, mass, peaks, dampers, notes):
             )
         else:
             high = max(4.0 * target, 0.01)
-            while zeta(high) - target < 0.0 and high < 2.0:
+            above = zeta(high) - target
+            while above < 0.0 and high < 2.0:
                 high *= 2.0
-            if zeta(high) - target >= 0.0:
-                eta = float(brentq(lambda e: zeta(e) - target, 0.0, high, xtol=1e-7, rtol=1e-10))
+                above = zeta(high) - target
+            if above >= 0.0:
+                eta = float(
+                    brentq(lambda e: zeta(e) - target, bottom, high, xtol=1e-7, rtol=1e-10)
+                )
                 variant = with_shaft_loss_factor(model, eta)
                 lo, hi = centre * (1 - 3 * target), centre * (1 + 3 * target)
                 grid = np.linspace(lo, hi, 81)

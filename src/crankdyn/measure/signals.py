@@ -29,7 +29,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.interpolate import CubicSpline
+from scipy.interpolate import CubicSpline, make_interp_spline
 from scipy.ndimage import median_filter
 
 from crankdyn.errors import InputError
@@ -346,7 +346,7 @@ def prepare_pulses(train: PulseTrain) -> PreparedPulses:
     if np.any(filled):
         times = np.empty(full.size)
         times[index] = t
-        times[filled] = CubicSpline(index, t)(full[filled])
+        times[filled] = make_interp_spline(index, t, k=5)(full[filled])
     else:
         times = t.copy()
     ref_index, ref_times, period = _reference(
