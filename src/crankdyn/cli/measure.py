@@ -173,11 +173,7 @@ def _notes(result) -> list[RichTable]:
 def _tracking_tables(result) -> list[RichTable]:
     cmp = result.comparison
     n = result.speed * RPM
-    orders = RichTable(
-        title=escape(f"{result.source}: {result.kind} {n.min():.0f}-{n.max():.0f} rpm, "
-                     "largest amplitude of every order"),
-        header_style="bold",
-    )
+    orders = RichTable(title="Largest per order", header_style="bold")
     cols = ["Order", "Largest\n(mrad)", "at\n(rpm)"]
     if cmp is not None:
         cols += ["Model largest\n(mrad)", "at\n(rpm)"]
@@ -259,7 +255,9 @@ def _tracking_tables(result) -> list[RichTable]:
             damp.add_row(label, escape(value))
         damp.caption = escape(f"apply: {d.advice}")
         tables.append(damp)
-    tables.append(_summary(result))
+    summary = _summary(result)
+    summary.add_row("Record", f"{result.kind} {n.min():.0f} - {n.max():.0f}", "rpm")
+    tables.append(summary)
     tables.extend(_notes(result))
     return tables
 

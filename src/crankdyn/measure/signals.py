@@ -17,7 +17,7 @@ angles, a pulse train of a perfect wheel.
 
 :func:`prepare_pulses` checks a pulse train and repairs it where that is safe: a gap of a whole
 number of pulses recurring once per revolution is a missing-tooth wheel (e.g. 60-2), whose gap
-marks the revolution; isolated dropped pulses (at most two in a row, at most one per thousand)
+marks the revolution; isolated dropped pulses (at most two in a row, at most one in a hundred)
 are interpolated; every repair is said in the notes. Anything else (an interval that is neither
 one pulse pitch nor a whole number of them, a spurious extra pulse, a reference that does not
 divide into the pulse count) is an error naming the line.
@@ -43,7 +43,7 @@ SHORT_RATIO = 0.6
 _WHOLE_TOLERANCE = 0.3  # a gap must be within this many pitches of a whole number of pulses
 MAX_DROPPED_RUN = 2
 """Dropped pulses in a row that are interpolated; longer runs are an error."""
-MAX_DROPPED_FRACTION = 1e-3
+MAX_DROPPED_FRACTION = 0.01
 """Largest share of dropped pulses interpolated; more is an error (the record is unreliable)."""
 MIN_TEETH = 4
 
