@@ -56,8 +56,18 @@ def test_steady_json_has_the_issues_keys(cli, steady_csv):
 
 
 def test_tracking_json_per_speed_bin(cli, runup_csv):
-    run = cli("measure", runup_csv, "--teeth", "60", "--orders", "1.5,3,4.5", "--bin", "20",
-              "--format", "json")
+    run = cli(
+        "measure",
+        runup_csv,
+        "--teeth",
+        "60",
+        "--orders",
+        "1.5,3,4.5",
+        "--bin",
+        "20",
+        "--format",
+        "json",
+    )
     assert run.status == 0, run
     data = json.loads(run.out)
     assert data["kind"] == "run-up"
@@ -97,16 +107,17 @@ def test_plots_are_written(cli, steady_csv, runup_csv, tmp_path):
 def test_errors_are_one_line(cli, steady_csv, tmp_path, write):
     line = one_line_error(cli, "measure", steady_csv)
     assert "pulse times need --teeth N" in line and "steady.csv" in line
-    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--model",
-                          "inline6-diesel")
+    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--model", "inline6-diesel")
     assert "--model and --at go together" in line
-    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--model",
-                          "inline6-diesel", "--at", "puley")
+    line = one_line_error(
+        cli, "measure", steady_csv, "--teeth", "60", "--model", "inline6-diesel", "--at", "puley"
+    )
     assert '--at = "puley": no mass named "puley" (did you mean "pulley"?)' in line
     line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--plot", "x.gif")
     assert "--plot" in line and ".png" in line
-    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--plot-fit",
-                          str(tmp_path / "f.png"))
+    line = one_line_error(
+        cli, "measure", steady_csv, "--teeth", "60", "--plot-fit", str(tmp_path / "f.png")
+    )
     assert "needs a run-up or run-down" in line
     line = one_line_error(cli, "measure", steady_csv, "--teeth", "2")
     assert "--teeth = 2: at least 4 pulses per revolution" in line
@@ -114,8 +125,9 @@ def test_errors_are_one_line(cli, steady_csv, tmp_path, write):
     assert "--orders" in line and "Nyquist order 30" in line
     line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--bin", "-5")
     assert "--bin" in line
-    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--window", "uniform",
-                          "--window-cycles", "0")
+    line = one_line_error(
+        cli, "measure", steady_csv, "--teeth", "60", "--window", "uniform", "--window-cycles", "0"
+    )
     assert "--window-cycles" in line
     bad = write("bad.csv", "time [s]\n0.0\n0.2\n0.1\n")
     line = one_line_error(cli, "measure", bad, "--teeth", "60")
@@ -129,8 +141,19 @@ def test_errors_are_one_line(cli, steady_csv, tmp_path, write):
 
 
 def test_cycle_must_match_the_model(cli, steady_csv):
-    line = one_line_error(cli, "measure", steady_csv, "--teeth", "60", "--cycle", "two-stroke",
-                          "--model", "inline6-diesel", "--at", "pulley")
+    line = one_line_error(
+        cli,
+        "measure",
+        steady_csv,
+        "--teeth",
+        "60",
+        "--cycle",
+        "two-stroke",
+        "--model",
+        "inline6-diesel",
+        "--at",
+        "pulley",
+    )
     assert "--cycle" in line and "four-stroke" in line
 
 
@@ -142,8 +165,20 @@ def test_done_when_the_built_in_run_up(cli, tmp_path):
     from crankdyn.measure.examples import TRUE_LOSS_FACTOR, example_motion
 
     fit = tmp_path / "fit.png"
-    run = cli("measure", "inline6-runup", "--teeth", "60", "--model", "inline6-diesel", "--at",
-              "pulley", "--format", "json", "--plot-fit", fit)
+    run = cli(
+        "measure",
+        "inline6-runup",
+        "--teeth",
+        "60",
+        "--model",
+        "inline6-diesel",
+        "--at",
+        "pulley",
+        "--format",
+        "json",
+        "--plot-fit",
+        fit,
+    )
     assert run.status == 0, run
     assert fit.stat().st_size > 1000
     data = json.loads(run.out)
@@ -170,13 +205,24 @@ def test_done_when_the_built_in_run_up(cli, tmp_path):
 
 
 def test_analyze_measurement_options_checked_first(cli, tmp_path):
-    line = one_line_error(cli, "analyze", "inline6-diesel", "--measurement", "inline6-runup",
-                          "--out", tmp_path / "r")
+    line = one_line_error(
+        cli, "analyze", "inline6-diesel", "--measurement", "inline6-runup", "--out", tmp_path / "r"
+    )
     assert "--at MASS" in line
-    line = one_line_error(cli, "analyze", "inline6-diesel", "--teeth", "60",
-                          "--out", tmp_path / "r")
+    line = one_line_error(
+        cli, "analyze", "inline6-diesel", "--teeth", "60", "--out", tmp_path / "r"
+    )
     assert "go with --measurement" in line
-    line = one_line_error(cli, "analyze", "inline6-diesel", "--measurement", "inline6-runup",
-                          "--at", "flywhel", "--out", tmp_path / "r")
+    line = one_line_error(
+        cli,
+        "analyze",
+        "inline6-diesel",
+        "--measurement",
+        "inline6-runup",
+        "--at",
+        "flywhel",
+        "--out",
+        tmp_path / "r",
+    )
     assert 'did you mean "flywheel"' in line
     assert not (tmp_path / "r").exists()

@@ -42,7 +42,7 @@ def test_speed_signal_in_rpm(write):
         ("time [s]\n0.0\n0.1\nx\n", "line 4 = \"x\": not a number in column 'time [s]'"),
         ("time [s]\n0.0\n0.2\n0.1\n", "line 4 has 0.1 s after 0.2 s"),
         ("time [s],time [ms]\n0,0\n", "the column time appears twice"),
-        ("time [s],reference [s]\n0,x\n", "line 2 = \"x\": not a finite number in column"),
+        ("time [s],reference [s]\n0,x\n", 'line 2 = "x": not a finite number in column'),
     ],
 )
 def test_bad_csv_files_one_line(write, text, message):
@@ -74,12 +74,12 @@ def test_numpy_files(tmp_path):
     with pytest.raises(InputError, match="expected one column of pulse times"):
         read_signal(tmp_path / "m.npy", 36)
     (tmp_path / "junk.npy").write_bytes(b"not numpy")
-    with pytest.raises(InputError, match="not a readable NumPy .npy file"):
+    with pytest.raises(InputError, match=r"not a readable NumPy \.npy file"):
         read_signal(tmp_path / "junk.npy", 36)
 
 
 def test_built_in_names_and_suggestions():
-    with pytest.raises(InputError, match="did you mean \"inline6-runup\""):
+    with pytest.raises(InputError, match='did you mean "inline6-runup"'):
         resolve_signal("inline6-runpu", 60)
     with pytest.raises(InputError, match="measured with 60 teeth"):
         resolve_signal("inline6-2000rpm", 36)

@@ -50,8 +50,7 @@ def _check(result, amplitude_tol=0.01, phase_tol_deg=1.0, mask=None):
 def test_steady_orders_exact_without_noise():
     """The method itself (no noise, a perfect wheel): errors at the level of the resampling."""
     motion = PrescribedMotion(1500 / RPM, 0.0, ORDERS, X)
-    result = order_analysis(synthetic_pulses(motion, TEETH, 2.0, reference_every=2),
-                            orders=ORDERS)
+    result = order_analysis(synthetic_pulses(motion, TEETH, 2.0, reference_every=2), orders=ORDERS)
     assert result.kind == "steady"
     assert result.speed * RPM == pytest.approx(1500.0, rel=1e-9)
     _check(result, amplitude_tol=1e-3, phase_tol_deg=0.02)
@@ -62,13 +61,29 @@ def test_steady_orders_with_wheel_errors_jitter_and_quantisation_calibrated():
     vibration, 1200 to 600 rpm), then the measurement at 1500 rpm."""
     errors = _wheel_errors()
     motion = PrescribedMotion(1500 / RPM, 0.0, ORDERS, X)
-    signal = synthetic_pulses(motion, TEETH, 3.0, tooth_errors=errors, reference_every=2,
-                              jitter=JITTER, clock=CLOCK, seed=1)
+    signal = synthetic_pulses(
+        motion,
+        TEETH,
+        3.0,
+        tooth_errors=errors,
+        reference_every=2,
+        jitter=JITTER,
+        clock=CLOCK,
+        seed=1,
+    )
     raw = order_analysis(signal, orders=ORDERS)
     assert np.max(np.abs(np.abs(raw.coefficients) - AMPLITUDES) / AMPLITUDES) > 0.05  # spoiled
     quiet = PrescribedMotion(1200 / RPM, -200 / RPM, ORDERS, 0.0 * X)
-    calibration = synthetic_pulses(quiet, TEETH, 3.0, tooth_errors=errors, reference_every=2,
-                                   jitter=JITTER, clock=CLOCK, seed=2)
+    calibration = synthetic_pulses(
+        quiet,
+        TEETH,
+        3.0,
+        tooth_errors=errors,
+        reference_every=2,
+        jitter=JITTER,
+        clock=CLOCK,
+        seed=2,
+    )
     result = order_analysis(signal, orders=ORDERS, tooth_correction=calibration)
     _check(result)
     # the wheel's errors themselves, recovered from the calibration record
@@ -83,16 +98,25 @@ def test_steady_half_orders_with_the_records_own_tooth_correction():
     cross-talk of about m A_m in the half orders, which the note bounds)."""
     small = np.where(ORDERS % 1.0 == 0.0, 0.05, 1.0) * X
     motion = PrescribedMotion(1500 / RPM, 0.0, ORDERS, small)
-    signal = synthetic_pulses(motion, TEETH, 3.0, tooth_errors=_wheel_errors(),
-                              reference_every=2, jitter=JITTER, clock=CLOCK, seed=3)
+    signal = synthetic_pulses(
+        motion,
+        TEETH,
+        3.0,
+        tooth_errors=_wheel_errors(),
+        reference_every=2,
+        jitter=JITTER,
+        clock=CLOCK,
+        seed=3,
+    )
     result = order_analysis(signal, orders=ORDERS, tooth_correction="self")
     half = ORDERS % 1.0 == 0.5
     _check(result, mask=half)
     (note,) = [n for n in result.notes if "integer orders" in n]
     # a large integer order: the cross-talk exceeds 1 % and the note says so
     loud = order_analysis(
-        synthetic_pulses(PrescribedMotion(1500 / RPM, 0.0, ORDERS, X), TEETH, 3.0,
-                         reference_every=2, seed=3),
+        synthetic_pulses(
+            PrescribedMotion(1500 / RPM, 0.0, ORDERS, X), TEETH, 3.0, reference_every=2, seed=3
+        ),
         orders=ORDERS,
         tooth_correction="self",
     )
@@ -107,8 +131,9 @@ def test_steady_half_orders_with_the_records_own_tooth_correction():
 def test_run_up_and_run_down_orders(start, rate):
     """Constant order amplitudes over a 200 rpm/s sweep: every window recovers them."""
     motion = PrescribedMotion(start / RPM, rate / RPM, ORDERS, X)
-    signal = synthetic_pulses(motion, TEETH, 5.0, reference_every=2, jitter=JITTER,
-                              clock=CLOCK, seed=4)
+    signal = synthetic_pulses(
+        motion, TEETH, 5.0, reference_every=2, jitter=JITTER, clock=CLOCK, seed=4
+    )
     result = order_analysis(signal, orders=ORDERS)
     assert result.kind == ("run-up" if rate > 0 else "run-down")
     w = result.window_coefficients
@@ -132,8 +157,7 @@ def test_speed_signal_orders():
     slope = np.sum(np.real(1j * ORDERS * X * np.exp(1j * psi[:, None] * ORDERS)), axis=1)
     speed = motion.speed * (1.0 + slope)
     marks = motion.time_at(motion.solve(4 * math.pi * np.arange(1, 20)))
-    result = order_analysis(SpeedSignal(t, speed, reference=marks), orders=ORDERS,
-                            resolution=120)
+    result = order_analysis(SpeedSignal(t, speed, reference=marks), orders=ORDERS, resolution=120)
     _check(result)
 
 
@@ -141,8 +165,9 @@ def test_missing_tooth_wheel_orders():
     """A 60-2 wheel: the gap marks the revolution (the crank angle of the first tooth after it
     given) and the two missing pulses are interpolated."""
     motion = PrescribedMotion(1500 / RPM, 0.0, ORDERS, X)
-    full = synthetic_pulses(motion, TEETH, 3.0, reference_every=1, tooth_offset=0.0,
-                            jitter=JITTER, clock=CLOCK, seed=5)
+    full = synthetic_pulses(
+        motion, TEETH, 3.0, reference_every=1, tooth_offset=0.0, jitter=JITTER, clock=CLOCK, seed=5
+    )
     # tooth k sits at 2 pi k / N from the mark: drop teeth 58 and 59 of every revolution
     ref = full.reference
     k = np.round(np.interp(full.times, ref, np.arange(ref.size)) * TEETH).astype(int)
@@ -162,8 +187,9 @@ def test_missing_tooth_wheel_orders():
 
 def test_dropped_pulses_interpolated():
     motion = PrescribedMotion(1500 / RPM, 0.0, ORDERS, X)
-    full = synthetic_pulses(motion, TEETH, 3.0, reference_every=2, jitter=JITTER, clock=CLOCK,
-                            seed=6)
+    full = synthetic_pulses(
+        motion, TEETH, 3.0, reference_every=2, jitter=JITTER, clock=CLOCK, seed=6
+    )
     keep = np.ones(full.times.size, dtype=bool)
     keep[[1000, 2500, 2501]] = False  # one pulse, then two in a row
     signal = PulseTrain(full.times[keep], TEETH, reference=full.reference)
@@ -191,8 +217,9 @@ def test_single_mode_damping_recovered(start, rate):
     zeta by the single-mode fit and by the half-power bandwidth within 2 %, the natural
     frequency within 0.1 %."""
     motion = PrescribedMotion(start / RPM, rate / RPM, np.array([3.0, 6.0]), _single_mode)
-    signal = synthetic_pulses(motion, TEETH, 550.0 / abs(rate), reference_every=2,
-                              jitter=JITTER, clock=CLOCK, seed=8)
+    signal = synthetic_pulses(
+        motion, TEETH, 550.0 / abs(rate), reference_every=2, jitter=JITTER, clock=CLOCK, seed=8
+    )
     result = order_analysis(signal, orders=[3.0, 6.0])
     (fit,) = result.resonances
     assert fit.order == 6.0
@@ -207,6 +234,7 @@ def test_loss_factor_written_back_reproduces_the_measured_resonance():
     """A single grounded mass with hysteretic damping eta = 0.04 is "measured"; analysed with
     the same model given eta = 0.02, the loss factor written back is 0.04 within 2 %, and the
     model's peak with it matches the measured peak."""
+
     def model(eta):
         return TorsionModel(
             masses=(Mass("disc", J, cylinders=(1,)),),
@@ -223,8 +251,9 @@ def test_loss_factor_written_back_reproduces_the_measured_resonance():
 
     spline = CubicSpline(grid, response[:, None], axis=0)
     motion = PrescribedMotion(2000 / RPM, 50 / RPM, np.array([6.0]), spline)
-    signal = synthetic_pulses(motion, TEETH, 9.0, reference_every=2, jitter=JITTER,
-                              clock=CLOCK, seed=9)
+    signal = synthetic_pulses(
+        motion, TEETH, 9.0, reference_every=2, jitter=JITTER, clock=CLOCK, seed=9
+    )
     result = order_analysis(signal, orders=[6.0]).with_model(model(0.02), excitation, "disc")
     estimate = result.comparison.damping
     assert estimate.loss_factor == pytest.approx(0.04, rel=0.02)

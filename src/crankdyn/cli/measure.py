@@ -58,8 +58,9 @@ def load_measurement(
     from crankdyn.measure.orders import order_analysis
 
     if teeth is not None and teeth < MIN_TEETH:
-        raise InputError(f"at least {MIN_TEETH} pulses per revolution are needed",
-                         key="--teeth", value=teeth)
+        raise InputError(
+            f"at least {MIN_TEETH} pulses per revolution are needed", key="--teeth", value=teeth
+        )
     data = resolve_signal(signal, teeth)
     correction = None
     if tooth_correction not in (None, "none"):
@@ -96,8 +97,9 @@ def load_measurement(
         }.get(exc.key or "")
         if option is None:
             raise
-        raise InputError(exc.message, file=exc.file, key=option,
-                         value=exc.value if exc.has_value else None) from None
+        raise InputError(
+            exc.message, file=exc.file, key=option, value=exc.value if exc.has_value else None
+        ) from None
 
 
 def _steady_tables(result) -> list[RichTable]:
@@ -129,8 +131,9 @@ def _steady_tables(result) -> list[RichTable]:
     summary = _summary(result)
     summary.add_row("Synthesised half-range amplitude", _mrad(result.synthesized), "mrad")
     if cmp is not None:
-        summary.add_row(escape(f"Model at {cmp.mass}, synthesised"),
-                        _mrad(float(cmp.synthesized[0])), "mrad")
+        summary.add_row(
+            escape(f"Model at {cmp.mass}, synthesised"), _mrad(float(cmp.synthesized[0])), "mrad"
+        )
     summary.add_row("Cycles averaged", str(result.cycles), "")
     summary.add_row(
         "Cycle speeds", f"{result.speed_min * RPM:.1f} - {result.speed_max * RPM:.1f}", "rpm"
@@ -206,8 +209,14 @@ def _tracking_tables(result) -> list[RichTable]:
     )
     tables = [orders, bins]
     peaks = RichTable(title="Resonances (every window, single-mode fits)", header_style="bold")
-    cols = ["Order", "Peak at\n(rpm)", "Peak\n(mrad)", "ζ fit", "ζ half-power",
-            "Natural freq.\n(Hz)"]
+    cols = [
+        "Order",
+        "Peak at\n(rpm)",
+        "Peak\n(mrad)",
+        "ζ fit",
+        "ζ half-power",
+        "Natural freq.\n(Hz)",
+    ]
     if cmp is not None:
         cols += ["Model peak at\n(rpm)", "Model peak\n(mrad)", "Model ζ\n(same fit)"]
     for col in cols:
@@ -240,17 +249,21 @@ def _tracking_tables(result) -> list[RichTable]:
         damp.add_column("Value", justify="right")
         for label, value in (
             ("From order", f"{d.order:g} at {d.critical_speed * RPM:.0f} rpm"),
-            ("Measured natural frequency",
-             f"{d.natural_frequency / (2 * math.pi):.2f} Hz (model: "
-             f"{d.mode_frequency / (2 * math.pi):.2f} Hz, {d.mode_nodes}-node mode)"),
+            (
+                "Measured natural frequency",
+                f"{d.natural_frequency / (2 * math.pi):.2f} Hz (model: "
+                f"{d.mode_frequency / (2 * math.pi):.2f} Hz, {d.mode_nodes}-node mode)",
+            ),
             ("Damping ratio, single-mode fit", _zeta(d.damping)),
             ("Damping ratio, half-power", _zeta(d.half_power_damping)),
             ("Model's damping ratio (same fit)", _zeta(d.model_damping)),
             ("Model's shaft loss factors", d.current_loss_factor),
             ("Loss factor that reproduces the measurement", _zeta(d.loss_factor)),
-            ("Peak: measured / model / model with it",
-             f"{_mrad(d.measured_peak)} / {_mrad(d.model_peak)} / "
-             f"{_mrad(d.corrected_peak) if d.corrected_peak is not None else '-'} mrad"),
+            (
+                "Peak: measured / model / model with it",
+                f"{_mrad(d.measured_peak)} / {_mrad(d.model_peak)} / "
+                f"{_mrad(d.corrected_peak) if d.corrected_peak is not None else '-'} mrad",
+            ),
         ):
             damp.add_row(label, escape(value))
         damp.caption = escape(f"apply: {d.advice}")
@@ -264,44 +277,124 @@ def _tracking_tables(result) -> list[RichTable]:
 
 @click.command("measure")
 @click.argument("signal", metavar="SIGNAL")
-@click.option("--teeth", type=int, default=None, metavar="N",
-              help="Pulses per revolution of the wheel (for a sampled speed signal: angle "
-              "samples per revolution, default automatic).")
-@click.option("--cycle", type=click.Choice(_CYCLES), default=None,
-              help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else "
-              "four-stroke.")
-@click.option("--model", default=None, metavar="MODEL_OR_ENGINE",
-              help="Hold the measurement against this model's forced response (needs --at).")
-@click.option("--at", "mass", default=None, metavar="MASS",
-              help="The model's mass that carries the wheel, e.g. pulley.")
-@click.option("--orders", default=None, metavar="FIRST:LAST[:STEP]|LIST",
-              help="Orders to analyse (default every order up to 12, below N/2).")
-@click.option("--analysis", type=click.Choice(ANALYSES), default="auto", show_default=True,
-              help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).")
-@click.option("--window", type=click.Choice(WINDOWS), default="hann", show_default=True,
-              help="Window of order tracking (steady records: uniform, one cycle).")
-@click.option("--window-cycles", type=int, default=4, show_default=True, metavar="N",
-              help="Cycles per window of order tracking (windows step by one cycle).")
-@click.option("--bin", "bin_width", default=None, metavar="RPM",
-              help="Speed bin of order tracking (rpm); default 10.")
-@click.option("--reference-angle", default=None, metavar="DEG",
-              help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; "
-              "default 0.")
-@click.option("--tooth-correction", default=None, metavar="none|self|FILE",
-              help="Tooth-spacing errors: none (default), self (this record's mean over "
-              "revolutions) or a calibration record of the same wheel.")
+@click.option(
+    "--teeth",
+    type=int,
+    default=None,
+    metavar="N",
+    help="Pulses per revolution of the wheel (for a sampled speed signal: angle "
+    "samples per revolution, default automatic).",
+)
+@click.option(
+    "--cycle",
+    type=click.Choice(_CYCLES),
+    default=None,
+    help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else four-stroke.",
+)
+@click.option(
+    "--model",
+    default=None,
+    metavar="MODEL_OR_ENGINE",
+    help="Hold the measurement against this model's forced response (needs --at).",
+)
+@click.option(
+    "--at",
+    "mass",
+    default=None,
+    metavar="MASS",
+    help="The model's mass that carries the wheel, e.g. pulley.",
+)
+@click.option(
+    "--orders",
+    default=None,
+    metavar="FIRST:LAST[:STEP]|LIST",
+    help="Orders to analyse (default every order up to 12, below N/2).",
+)
+@click.option(
+    "--analysis",
+    type=click.Choice(ANALYSES),
+    default="auto",
+    show_default=True,
+    help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).",
+)
+@click.option(
+    "--window",
+    type=click.Choice(WINDOWS),
+    default="hann",
+    show_default=True,
+    help="Window of order tracking (steady records: uniform, one cycle).",
+)
+@click.option(
+    "--window-cycles",
+    type=int,
+    default=4,
+    show_default=True,
+    metavar="N",
+    help="Cycles per window of order tracking (windows step by one cycle).",
+)
+@click.option(
+    "--bin",
+    "bin_width",
+    default=None,
+    metavar="RPM",
+    help="Speed bin of order tracking (rpm); default 10.",
+)
+@click.option(
+    "--reference-angle",
+    default=None,
+    metavar="DEG",
+    help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; default 0.",
+)
+@click.option(
+    "--tooth-correction",
+    default=None,
+    metavar="none|self|FILE",
+    help="Tooth-spacing errors: none (default), self (this record's mean over "
+    "revolutions) or a calibration record of the same wheel.",
+)
 @plot_option("Write order amplitudes (against speed for a run-up), with the model's.")
-@click.option("--plot-map", "map_path", default=None, metavar="FILE",
-              help="Write the colour map of order amplitudes over a run-up.")
-@click.option("--plot-fit", "fit_path", default=None, metavar="FILE",
-              help="Write the resonance fits of a run-up.")
-@click.option("--plot-trace", "trace_path", default=None, metavar="FILE",
-              help="Write the instantaneous speed and angular vibration.")
+@click.option(
+    "--plot-map",
+    "map_path",
+    default=None,
+    metavar="FILE",
+    help="Write the colour map of order amplitudes over a run-up.",
+)
+@click.option(
+    "--plot-fit",
+    "fit_path",
+    default=None,
+    metavar="FILE",
+    help="Write the resonance fits of a run-up.",
+)
+@click.option(
+    "--plot-trace",
+    "trace_path",
+    default=None,
+    metavar="FILE",
+    help="Write the instantaneous speed and angular vibration.",
+)
 @format_option()
 @output_options
 def measure_command(
-    signal, teeth, cycle, model, mass, orders, analysis, window, window_cycles, bin_width,
-    reference_angle, tooth_correction, plot_path, map_path, fit_path, trace_path, fmt, output,
+    signal,
+    teeth,
+    cycle,
+    model,
+    mass,
+    orders,
+    analysis,
+    window,
+    window_cycles,
+    bin_width,
+    reference_angle,
+    tooth_correction,
+    plot_path,
+    map_path,
+    fit_path,
+    trace_path,
+    fmt,
+    output,
     force,
 ) -> int:
     """Orders of the angular vibration measured by a torsiograph, held against a model.
@@ -314,14 +407,20 @@ def measure_command(
     forced response beside them and the damping written back as a shaft loss factor.
     """
     # the options' own checks first, before any work
-    for path, option in ((plot_path, "--plot"), (map_path, "--plot-map"),
-                         (fit_path, "--plot-fit"), (trace_path, "--plot-trace")):
+    for path, option in (
+        (plot_path, "--plot"),
+        (map_path, "--plot-map"),
+        (fit_path, "--plot-fit"),
+        (trace_path, "--plot-trace"),
+    ):
         check_plot_path(path, force, option)
     if output and output != "-":
         check_writable(output, force=force)
     if (model is None) != (mass is None):
-        raise InputError("--model and --at go together: the model and the mass that carries "
-                         "the wheel", key="--at" if model else "--model")
+        raise InputError(
+            "--model and --at go together: the model and the mass that carries the wheel",
+            key="--at" if model else "--model",
+        )
     width = option_quantity(bin_width, "speed", "--bin", "rpm")
     if width is not None and not width > 0.0:
         raise InputError("the speed bin must be positive", key="--bin", value=bin_width)
@@ -338,14 +437,22 @@ def measure_command(
             raise InputError(exc.message, key="--at", value=mass) from None
         excitation = excitation_for(torsion, engine)
         if cycle is not None and cycle != excitation.cycle:
-            raise InputError(f"the model's excitation is {excitation.cycle}", key="--cycle",
-                             value=cycle)
+            raise InputError(
+                f"the model's excitation is {excitation.cycle}", key="--cycle", value=cycle
+            )
         cycle = excitation.cycle
     cycle = cycle or "four-stroke"
     order_list = None if orders is None else parse_orders(orders, cycle)
     result = load_measurement(
-        signal, teeth, cycle=cycle, orders=order_list, analysis=analysis, window=window,
-        window_cycles=window_cycles, bin_width=width, reference_angle=angle,
+        signal,
+        teeth,
+        cycle=cycle,
+        orders=order_list,
+        analysis=analysis,
+        window=window,
+        window_cycles=window_cycles,
+        bin_width=width,
+        reference_angle=angle,
         tooth_correction=tooth_correction,
     )
     if torsion is not None:
@@ -353,11 +460,13 @@ def measure_command(
     steady = result.kind == "steady"
     for path, option in ((map_path, "--plot-map"), (fit_path, "--plot-fit")):
         if path and steady:
-            raise InputError("needs a run-up or run-down; this record is steady", key=option,
-                             value=path)
+            raise InputError(
+                "needs a run-up or run-down; this record is steady", key=option, value=path
+            )
     if fit_path and not result.resonances:
-        raise InputError("no resonance was found in the record: nothing to fit",
-                         key="--plot-fit", value=fit_path)
+        raise InputError(
+            "no resonance was found in the record: nothing to fit", key="--plot-fit", value=fit_path
+        )
     if plot_path:
         save_figure(result.plot("orders"), plot_path, force)
     if map_path:

@@ -111,12 +111,15 @@ def _read_csv(path, teeth):
                 value=cell,
             )
         if key in index:
-            raise InputError(f"the column {key} appears twice", file=name, key="header",
-                             value=cell)
+            raise InputError(f"the column {key} appears twice", file=name, key="header", value=cell)
         kind = COLUMNS[key]
-        example, quantity = ("time [s]", "a time") if kind == "time" else (
-            "speed [rpm]",
-            "a rotational speed",
+        example, quantity = (
+            ("time [s]", "a time")
+            if kind == "time"
+            else (
+                "speed [rpm]",
+                "a rotational speed",
+            )
         )
         factor = unit_factor(
             cell,
@@ -128,8 +131,9 @@ def _read_csv(path, teeth):
         )
         index[key] = (i, factor)
     if "time" not in index:
-        raise InputError("the signal file needs a time column, e.g. time [s]", file=name,
-                         key="header")
+        raise InputError(
+            "the signal file needs a time column, e.g. time [s]", file=name, key="header"
+        )
     if not table.rows:
         raise InputError("the signal file holds no data", file=name)
     lines = np.array([number for number, _ in table.rows])
@@ -149,7 +153,9 @@ def _read_csv(path, teeth):
                 value = math.nan
             if not math.isfinite(value):
                 raise InputError(
-                    "not a finite number in column 'reference'", file=name, key=f"line {number}",
+                    "not a finite number in column 'reference'",
+                    file=name,
+                    key=f"line {number}",
                     value=cell,
                 )
             values.append(value * factor_r)
@@ -159,10 +165,17 @@ def _read_csv(path, teeth):
     if "speed" in index:
         col_s, factor_s = index["speed"]
         speed = table.column(col_s) * factor_s
-        return SpeedSignal(times, speed, reference=reference, source=name, lines=lines,
-                           reference_lines=reference_lines)
-    return _pulses(name, times, teeth, reference=reference, lines=lines,
-                   reference_lines=reference_lines)
+        return SpeedSignal(
+            times,
+            speed,
+            reference=reference,
+            source=name,
+            lines=lines,
+            reference_lines=reference_lines,
+        )
+    return _pulses(
+        name, times, teeth, reference=reference, lines=lines, reference_lines=reference_lines
+    )
 
 
 def _load(path, what: str):

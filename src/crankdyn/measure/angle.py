@@ -23,8 +23,9 @@ t_k at which theta = theta_k, the tooth angles, equally spaced by 2 pi / N.
    angles; a quintic spline through (psi_k, v_k) gives v at the equally spaced crank angles of
    the teeth, psi_j = theta_j (0 at the reference mark's crank angle), each sample moved by v
    only (the interpolation error of a spline grows with the fraction of a pitch a sample is
-   moved and with the order's share of the Nyquist order; de Boor 2001, ch. XII). Analysing v at theta_k instead
-   (the shortcut of taking the tooth angles as the crank angles) errs by v v', which is
+   moved and with the order's share of the Nyquist order; de Boor 2001, ch. XII). Analysing v
+   at theta_k instead (the shortcut of taking the tooth angles as the crank angles) errs by
+   v v', which is
    q A / 2 of the amplitude A of order q: 6 % for 20 mrad at order 6. This is the computed
    order tracking of K. R. Fyfe and E. D. S. Munck, "Analysis of computed order tracking",
    *Mechanical Systems and Signal Processing* 11 (1997) 187-205, with the mean rotation as the

@@ -119,13 +119,15 @@ class DampingEstimate(Result):
         "mode_frequency_hz", "Model's nearest natural frequency", "Hz", HZ, fmt=".2f"
     )
     mode_nodes: int = scalar("mode_nodes", "Nodes of that mode", "")
-    damping: float = scalar("damping_ratio", "Measured damping ratio (single-mode fit)", "",
-                            fmt=".4g")
+    damping: float = scalar(
+        "damping_ratio", "Measured damping ratio (single-mode fit)", "", fmt=".4g"
+    )
     half_power_damping: float | None = scalar(
         "half_power_damping_ratio", "Measured damping ratio (half-power)", "", fmt=".4g"
     )
-    model_damping: float = scalar("model_damping_ratio", "Model's damping ratio (same fit)", "",
-                                  fmt=".4g")
+    model_damping: float = scalar(
+        "model_damping_ratio", "Model's damping ratio (same fit)", "", fmt=".4g"
+    )
     current_loss_factor: str = scalar("model_loss_factor", "Model's shaft loss factors", "")
     loss_factor: float | None = scalar(
         "loss_factor", "Shaft loss factor that reproduces it", "", fmt=".4g"
@@ -157,11 +159,15 @@ class ModelComparison(Result):
         "curve_speed_rpm", "Speeds of the fine curve", "rpm", RPM, default=None
     )
     curve_amplitude: np.ndarray | None = array(
-        "curve_amplitude_rad", "Model amplitude on the fine curve (speed x order)", "rad",
+        "curve_amplitude_rad",
+        "Model amplitude on the fine curve (speed x order)",
+        "rad",
         default=None,
     )
     curve_synthesized: np.ndarray | None = array(
-        "curve_synthesized_amplitude_rad", "Model synthesised amplitude on the fine curve", "rad",
+        "curve_synthesized_amplitude_rad",
+        "Model synthesised amplitude on the fine curve",
+        "rad",
         default=None,
     )
     peaks: tuple[ResonancePeak, ...] = scalar("resonances", "Resonance peaks", "", default=())
@@ -197,8 +203,9 @@ class ModelComparison(Result):
 
 
 def _response(model, excitation, speeds, orders, dampers):
-    return forced_response(model, excitation, np.asarray(speeds, dtype=float), orders,
-                           dampers=dampers)
+    return forced_response(
+        model, excitation, np.asarray(speeds, dtype=float), orders, dampers=dampers
+    )
 
 
 def _mass_column(result, at: str) -> int:
@@ -305,7 +312,13 @@ def compare_with_model(measured, model, excitation, at: str, *, dampers=None) ->
     for fit in measured.resonances or ():
         j = int(np.argmin(np.abs(orders - fit.order)))
         speed, amp, inside = _model_peak(
-            model, excitation, fit.order, i, grid, curve.amplitude[:, j, i], fit.peak_speed,
+            model,
+            excitation,
+            fit.order,
+            i,
+            grid,
+            curve.amplitude[:, j, i],
+            fit.peak_speed,
             dampers,
         )
         model_fit = (
@@ -328,9 +341,7 @@ def compare_with_model(measured, model, excitation, at: str, *, dampers=None) ->
             )
         )
         if not inside:
-            notes.append(
-                f"order {fit.order:g}: the model has no peak inside the measured range"
-            )
+            notes.append(f"order {fit.order:g}: the model has no peak inside the measured range")
     damping = _identify(measured, model, excitation, at, i, peaks, dampers, notes)
     return ModelComparison(
         curve_speed=freeze(grid),
@@ -348,8 +359,9 @@ def _identify(measured, model, excitation, at, mass, peaks, dampers, notes):
     usable = [p for p in peaks if p.model_peak_inside and p.model_damping is not None]
     if not usable:
         if peaks:
-            notes.append("no measured resonance has a model peak to compare: damping not "
-                         "written back")
+            notes.append(
+                "no measured resonance has a model peak to compare: damping not written back"
+            )
         return None
     peak = max(usable, key=lambda p: p.measured_amplitude)
     fit = next(f for f in measured.resonances if f.order == peak.order)
@@ -388,16 +400,20 @@ def _identify(measured, model, excitation, at, mass, peaks, dampers, notes):
                 high *= 2.0
                 above = zeta(high) - target
             if above >= 0.0:
-                eta = float(
-                    brentq(lambda e: zeta(e) - target, bottom, high, xtol=1e-7, rtol=1e-10)
-                )
+                eta = float(brentq(lambda e: zeta(e) - target, bottom, high, xtol=1e-7, rtol=1e-10))
                 variant = with_shaft_loss_factor(model, eta)
                 lo, hi = centre * (1 - 3 * target), centre * (1 + 3 * target)
                 grid = np.linspace(lo, hi, 81)
                 rr = _response(variant, excitation, grid, [fit.order], dampers)
                 _s, corrected, _inside = _model_peak(
-                    variant, excitation, fit.order, mass, grid, rr.amplitude[:, 0, mass],
-                    centre, dampers,
+                    variant,
+                    excitation,
+                    fit.order,
+                    mass,
+                    grid,
+                    rr.amplitude[:, 0, mass],
+                    centre,
+                    dampers,
                 )
     except _NoFit:
         notes.append("the model's resonance could not be fitted: damping not written back")

@@ -13,7 +13,6 @@ every order from 0.5 to 12. ``inline6-2000rpm`` is the same engine at a steady 2
 
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 import numpy as np

@@ -59,9 +59,9 @@ from crankdyn.torsion.response import half_range
 
 __all__ = [
     "ANALYSES",
-    "WINDOWS",
     "DEFAULT_BIN",
     "STEADY_LIMIT",
+    "WINDOWS",
     "OrderSpectrum",
     "OrderTracking",
     "default_orders",
@@ -86,7 +86,7 @@ def default_orders(cycle: str, teeth: int) -> np.ndarray:
     """The orders analysed by default: every order of the cycle up to 12, below N/2."""
     base = fundamental_order(cycle)
     top = min(12.0, (teeth / 2.0) - base)
-    count = int(math.floor(top / base + 1e-9))
+    count = math.floor(top / base + 1e-9)
     return base * np.arange(1, count + 1)
 
 
@@ -256,8 +256,9 @@ def order_analysis(
     if analysis not in ANALYSES:
         raise InputError(f"expected one of {', '.join(ANALYSES)}", key="analysis", value=analysis)
     if isinstance(window_cycles, bool) or int(window_cycles) != window_cycles or window_cycles < 1:
-        raise InputError("expected a whole number of cycles, >= 1", key="window",
-                         value=window_cycles)
+        raise InputError(
+            "expected a whole number of cycles, >= 1", key="window", value=window_cycles
+        )
     window_cycles = int(window_cycles)
     if window not in WINDOWS:
         raise InputError(f"expected one of {', '.join(WINDOWS)}", key="window", value=window)
@@ -292,8 +293,11 @@ def order_analysis(
     correction = "none"
     if isinstance(tooth_correction, str):
         if tooth_correction != "self":
-            raise InputError("expected self, a calibration record or tooth errors",
-                             key="tooth_correction", value=tooth_correction)
+            raise InputError(
+                "expected self, a calibration record or tooth errors",
+                key="tooth_correction",
+                value=tooth_correction,
+            )
         estimate = True
         correction = "mean of this record over its revolutions"
     elif isinstance(tooth_correction, PulseTrain):
@@ -365,9 +369,7 @@ def order_analysis(
             )
         top, low = half_range(mean, harmonic)
         avg = np.mean(
-            domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(
-                domain.cycles, -1
-            ),
+            domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(domain.cycles, -1),
             axis=0,
         )
         # crank angle within the cycle (the grid starts at the first tooth after a boundary)
@@ -593,8 +595,9 @@ class OrderTracking(Result):
         hit = np.flatnonzero(np.isclose(self.orders, order, rtol=0, atol=1e-9))
         if not hit.size:
             listed = ", ".join(_order_label(q) for q in self.orders)
-            raise InputError(f"order {order:g} was not analysed (orders: {listed})",
-                             key="order", value=order)
+            raise InputError(
+                f"order {order:g} was not analysed (orders: {listed})", key="order", value=order
+            )
         return int(hit[0])
 
     def with_model(self, model, excitation, at: str, **kw):
@@ -616,11 +619,10 @@ class OrderTracking(Result):
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
         out = super().column_labels()
-        for i, q in enumerate(self.orders):
+        for q in self.orders:
             out[f"order_{_order_label(q)}_amplitude_rad"] = (f"Order {q:g}", "rad")
-        for i, q in enumerate(self.orders):
+        for q in self.orders:
             out[f"order_{_order_label(q)}_phase_deg"] = (f"Phase {q:g}", "deg")
-            del i
         if self.comparison is not None:
             out.update(self.comparison.column_labels())
         return out

@@ -115,11 +115,13 @@ class PulseTrain:
 
     def __post_init__(self) -> None:
         if isinstance(self.teeth, bool) or not isinstance(self.teeth, (int, np.integer)):
-            raise InputError("expected a whole number of pulses per revolution", key="teeth",
-                             value=self.teeth)
+            raise InputError(
+                "expected a whole number of pulses per revolution", key="teeth", value=self.teeth
+            )
         if self.teeth < MIN_TEETH:
             raise InputError(
-                f"at least {MIN_TEETH} pulses per revolution are needed", key="teeth",
+                f"at least {MIN_TEETH} pulses per revolution are needed",
+                key="teeth",
                 value=int(self.teeth),
             )
         object.__setattr__(self, "teeth", int(self.teeth))
@@ -373,8 +375,9 @@ def _reference(train, times, index, gaps, missing, missing_tooth, notes):
     kept = ref[inside]
     lines = None if train.reference_lines is None else np.asarray(train.reference_lines)[inside]
     if kept.size == 0:
-        raise InputError("no reference time falls within the pulse record", file=name,
-                         key="reference")
+        raise InputError(
+            "no reference time falls within the pulse record", file=name, key="reference"
+        )
     # cubic in time: linear interpolation would err by theta'' dt^2 / 8 (1 mrad for 20 mrad of
     # order 6 on a 60-tooth wheel)
     kappa = CubicSpline(times, np.arange(times.size, dtype=float))(kept)
@@ -394,7 +397,8 @@ def _reference(train, times, index, gaps, missing, missing_tooth, notes):
     if bad.size:
         j = int(bad[0])
         where = (
-            f"lines {int(lines[j])} and {int(lines[j + 1])}" if lines is not None
+            f"lines {int(lines[j])} and {int(lines[j + 1])}"
+            if lines is not None
             else f"{kept[j]:.6g} s and {kept[j + 1]:.6g} s"
         )
         raise InputError(

@@ -76,12 +76,14 @@ def build(ctx) -> Section:
         text = f"order {top.order:g}: {_mrad(top.peak_amplitude)} at {top.peak_speed * RPM:.0f} rpm"
         peak = next((p for p in cmp.peaks if p.order == top.order), None) if cmp else None
         if peak is not None:
-            text += (
-                f" (model {_mrad(peak.model_amplitude)} at {peak.model_speed * RPM:.0f} rpm)"
-            )
+            text += f" (model {_mrad(peak.model_amplitude)} at {peak.model_speed * RPM:.0f} rpm)"
         figures.append(
-            KeyFigure("measured_resonance_peak_rad", "Largest measured resonance",
-                      top.peak_amplitude, text)
+            KeyFigure(
+                "measured_resonance_peak_rad",
+                "Largest measured resonance",
+                top.peak_amplitude,
+                text,
+            )
         )
         figures.append(
             KeyFigure(
@@ -89,8 +91,11 @@ def build(ctx) -> Section:
                 f"Damping ratio of that resonance (order {top.order:g})",
                 top.damping,
                 f"{top.damping:.4g} (single-mode fit), "
-                + (f"{top.half_power_damping:.4g} (half-power)"
-                   if top.half_power_damping is not None else "half-power not available"),
+                + (
+                    f"{top.half_power_damping:.4g} (half-power)"
+                    if top.half_power_damping is not None
+                    else "half-power not available"
+                ),
             )
         )
     if cmp is not None and cmp.damping is not None and cmp.damping.loss_factor is not None:
@@ -111,41 +116,72 @@ def build(ctx) -> Section:
             measured.plot("orders"),
             "Order amplitudes of the angular vibration at the measured mass"
             + (" against speed" if not steady else "")
-            + ("; dashed: the model's forced response" if cmp is not None else "") + ".",
+            + ("; dashed: the model's forced response" if cmp is not None else "")
+            + ".",
         )
     )
     if not steady:
-        plots.append(Plot("measurement_map", "Order map of the run", measured.plot("map"),
-                          "Amplitude of every order in every window (+: resonance peaks)."))
+        plots.append(
+            Plot(
+                "measurement_map",
+                "Order map of the run",
+                measured.plot("map"),
+                "Amplitude of every order in every window (+: resonance peaks).",
+            )
+        )
         if measured.resonances:
-            plots.append(Plot("measurement_fits", "Resonance fits", measured.plot("fit"),
-                              "Measured windows, single-mode fits and half-power bandwidths."))
-    plots.append(Plot("measurement_trace", "Instantaneous speed and angular vibration",
-                      measured.plot("trace"), "At the measured mass."))
+            plots.append(
+                Plot(
+                    "measurement_fits",
+                    "Resonance fits",
+                    measured.plot("fit"),
+                    "Measured windows, single-mode fits and half-power bandwidths.",
+                )
+            )
+    plots.append(
+        Plot(
+            "measurement_trace",
+            "Instantaneous speed and angular vibration",
+            measured.plot("trace"),
+            "At the measured mass.",
+        )
+    )
     if not steady:
         rows = []
         by_order = {p.order: p for p in (cmp.peaks if cmp is not None else ())}
         for fit in measured.resonances:
             p = by_order.get(fit.order)
-            rows.append([
-                f"{fit.order:g}",
-                f"{fit.peak_speed * RPM:.1f}",
-                f"{fit.peak_amplitude * 1e3:.4g}",
-                f"{fit.damping:.4g}",
-                "-" if fit.half_power_damping is None else f"{fit.half_power_damping:.4g}",
-                f"{fit.natural_frequency / (2 * math.pi):.2f}",
-                "-" if p is None else f"{p.model_speed * RPM:.1f}",
-                "-" if p is None else f"{p.model_amplitude * 1e3:.4g}",
-                "-" if p is None or p.model_damping is None else f"{p.model_damping:.4g}",
-            ])
-        tables.append(Table(
-            "measurement_resonances",
-            "Resonances: measured and model",
-            header=["Order", "Peak at (rpm)", "Peak (mrad)", "ζ fit", "ζ half-power",
-                    "Natural frequency (Hz)", "Model peak at (rpm)", "Model peak (mrad)",
-                    "Model ζ (same fit)"],
-            rows=rows,
-        ))
+            rows.append(
+                [
+                    f"{fit.order:g}",
+                    f"{fit.peak_speed * RPM:.1f}",
+                    f"{fit.peak_amplitude * 1e3:.4g}",
+                    f"{fit.damping:.4g}",
+                    "-" if fit.half_power_damping is None else f"{fit.half_power_damping:.4g}",
+                    f"{fit.natural_frequency / (2 * math.pi):.2f}",
+                    "-" if p is None else f"{p.model_speed * RPM:.1f}",
+                    "-" if p is None else f"{p.model_amplitude * 1e3:.4g}",
+                    "-" if p is None or p.model_damping is None else f"{p.model_damping:.4g}",
+                ]
+            )
+        tables.append(
+            Table(
+                "measurement_resonances",
+                "Resonances: measured and model",
+                header=[
+                    "Order",
+                    "Peak at (rpm)",
+                    "Peak (mrad)",
+                    "ζ fit",
+                    "ζ half-power",
+                    "Natural frequency (Hz)",
+                    "Model peak at (rpm)",
+                    "Model peak (mrad)",
+                    "Model ζ (same fit)",
+                ],
+                rows=rows,
+            )
+        )
     tables.append(Table("measurement_orders", "Measured orders", result=measured, show=False))
     intro = (
         f"Torsiograph signal {measured.source}: {measured.teeth} pulses per revolution at "
