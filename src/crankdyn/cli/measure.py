@@ -177,18 +177,18 @@ def _tracking_tables(result) -> list[RichTable]:
     cmp = result.comparison
     n = result.speed * RPM
     orders = RichTable(title="Largest per order", header_style="bold")
-    cols = ["Order", "Largest\n(mrad)", "at\n(rpm)"]
+    cols = ["Order", "Largest bin\n(mrad)", "at\n(rpm)"]
     if cmp is not None:
-        cols += ["Model largest\n(mrad)", "at\n(rpm)"]
+        cols += ["Model at that\nspeed (mrad)"]
     for col in cols:
         orders.add_column(col, justify="right")
     for j, q in enumerate(result.orders):
         k = int(np.argmax(result.amplitude[:, j]))
-        row = [f"{q:g}", _mrad(result.amplitude[k, j]), f"{n[k]:.0f}"]
+        row = [f"{q:g}", _mrad(result.amplitude[k, j]), f"{n[k]:.1f}"]
         if cmp is not None:
-            m = int(np.argmax(cmp.curve_amplitude[:, j]))
-            row += [_mrad(cmp.curve_amplitude[m, j]), f"{cmp.curve_speed[m] * RPM:.0f}"]
+            row.append(_mrad(float(cmp.amplitude[k, j])))
         orders.add_row(*row)
+    orders.caption = "speed bins; resolved resonance peaks below" if result.resonances else None
     shown = np.sort(np.argsort(np.max(result.amplitude, axis=0))[::-1][:_SHOWN])
     bins = RichTable(title="Per speed bin", header_style="bold")
     for col in ("Speed\n(rpm)", "Windows", "Synthesised\n(mrad)"):

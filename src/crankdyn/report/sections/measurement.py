@@ -42,27 +42,25 @@ def build(ctx) -> Section:
     if model is not None and model.cylinder_dofs:
         from crankdyn.torsion.excitation import excitation_for
 
-        measured = measured.with_model(model, excitation_for(model, engine), spec.at)
+        excitation = excitation_for(model, engine)
+        measured = measured.with_model(model, excitation, spec.at)
     else:
         notes.append("the engine has no torsional model with cylinders: measurement only")
     cmp = measured.comparison
     steady = measured.kind == "steady"
     figures, plots, tables = [], [], []
     if steady:
-        synth = float(measured.synthesized)
-        display = f"{_mrad(synth)} at {measured.speed * RPM:.0f} rpm"
-        if cmp is not None:
-            display += f" (model {_mrad(float(cmp.synthesized[0]))})"
-    else:
-        j = int(np.argmax(measured.synthesized))
-        synth = float(measured.synthesized[j])
-        display = f"{_mrad(synth)} at {measured.speed[j] * RPM:.0f} rpm"
-        if cmp is not None:
-            k = int(np.argmax(cmp.curve_synthesized))
-            display += (
-                f" (model {_mrad(float(cmp.curve_synthesized[k]))} at "
-                f"{cmp.curve_speed[k] * RPM:.0f} rpm)"
-            )
+        synth, at_speed = float(measured.synthesized), float(measured.speed)
+    else:  # every window, not the bins
+        j = int(np.argmax(measured.window_synthesized))
+        synth, at_speed = float(measured.window_synthesized[j]), float(measured.window_speed[j])
+    display = f"{_mrad(synth)} at {at_speed * RPM:.0f} rpm"
+    if cmp is not None:
+        from crankdyn.torsion.response import forced_response
+
+        there = forced_response(model, excitation, [at_speed], measured.orders)
+        model_synth = float(there.synthesized_amplitude[0, there.mass_index(spec.at)])
+        display += f" (model there {_mrad(model_synth)})"
     figures.append(
         KeyFigure(
             "measured_synthesized_amplitude_rad",
