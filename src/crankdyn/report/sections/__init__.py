@@ -27,6 +27,7 @@ BUILDERS = (
     "flywheel",
     "torsion_modes",
     "torsion_response",
+    "measurement",
 )
 
 
@@ -41,6 +42,7 @@ class Context:
     engine: Engine
     speed: float  # rad/s, the operating point
     speeds: np.ndarray | None = None  # rad/s, for speed sweeps (torsional response)
+    measurement: Any = None  # sections.measurement.MeasurementInput, or None
     cache: dict[str, Any] = field(default_factory=dict)
 
     def get(self, key: str, compute):
