@@ -9,7 +9,7 @@ from crankdyn import __version__
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.report.model import Report
-from crankdyn.report.sections import Context, NotApplicable, builders
+from crankdyn.report.sections import Context, NotApplicable, NotRequested, builders
 
 __all__ = ["build_report", "engine_inputs"]
 
@@ -97,6 +97,8 @@ def build_report(
             progress(name)
         try:
             sections.append(build(ctx))
+        except NotRequested:
+            continue
         except NotApplicable as why:
             notes.append(f"{name}: {why}")
     return Report(

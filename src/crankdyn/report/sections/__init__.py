@@ -15,7 +15,7 @@ import numpy as np
 
 from crankdyn.engine.model import Engine
 
-__all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
+__all__ = ["BUILDERS", "Context", "NotApplicable", "NotRequested", "builders"]
 
 BUILDERS = (
     "kinematics",
@@ -33,6 +33,10 @@ BUILDERS = (
 
 class NotApplicable(Exception):
     """The analysis does not apply to this engine; the message says why."""
+
+
+class NotRequested(NotApplicable):
+    """An optional section the user did not ask for (no note in the report)."""
 
 
 @dataclass

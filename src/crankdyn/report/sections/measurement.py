@@ -11,7 +11,7 @@ import numpy as np
 
 from crankdyn.constants import RPM
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
-from crankdyn.report.sections import NotApplicable
+from crankdyn.report.sections import NotRequested
 
 __all__ = ["MeasurementInput", "build"]
 
@@ -32,7 +32,7 @@ def _mrad(value: float) -> str:
 def build(ctx) -> Section:
     spec = getattr(ctx, "measurement", None)
     if spec is None:
-        raise NotApplicable(
+        raise NotRequested(
             "no measurement given (crankdyn analyze ENGINE --measurement SIGNAL --teeth N --at "
             "MASS)"
         )
