@@ -18,6 +18,7 @@ from crankdyn.cli.common import (
     option_quantity,
     output_options,
     plot_option,
+    print_warnings,
     save_figure,
 )
 from crankdyn.errors import InputError
@@ -60,6 +61,7 @@ def _single(data: dict, keys) -> dict:
 def _emit(result, fmt, output, force, *, single: bool, summary=None, extra=None):
     """emit() with --angle squeezing and optional extra JSON members."""
     if fmt == "json" and (single or extra):
+        print_warnings(result)
         data = result.to_dict()
         if single:
             data = _single(

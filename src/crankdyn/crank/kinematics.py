@@ -38,6 +38,7 @@ from typing import NamedTuple
 import numpy as np
 
 from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.plausibility import kinematics_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -492,6 +493,7 @@ class KinematicsResult(Result):
     )
     summary: KinematicsSummary = scalar("summary", "Summary", "")
     geometry: CrankGeometry | None = field(default=None, repr=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Piston and rod motion vs crank angle; returns the matplotlib Figure."""
@@ -508,6 +510,7 @@ def piston_kinematics(
     step: float = math.radians(1.0),
     method: str = "exact",
     order: int = 2,
+    fuel: str | None = None,
 ) -> KinematicsResult:
     """Slider-crank kinematics of one cylinder at a constant crank speed.
 
@@ -526,13 +529,17 @@ def piston_kinematics(
         lambda-series to harmonic ``order``, :func:`series_coefficients`).
     order
         Series order (even, >= 2) for ``method="series"``.
+    fuel
+        ``"petrol"``, ``"diesel"`` or None: the engine type whose typical piston acceleration
+        the plausibility check uses (:func:`crankdyn.plausibility.kinematics_warnings`).
 
     Returns
     -------
     KinematicsResult
         Arrays over the crank angle and the :class:`KinematicsSummary`; the summary's extrema
         are those of the chosen method's formulas, found from the zeros of their exact
-        (complex-step) derivatives.
+        (complex-step) derivatives; ``warnings`` holds the plausibility warnings of the mean
+        piston speed and the largest piston acceleration.
     """
     motion = _motion_function(method, order)
     r, l, e, w = geometry.crank_radius, geometry.rod_length, geometry.offset, float(speed)
@@ -552,6 +559,11 @@ def piston_kinematics(
         rod_angular_acceleration=freeze(m.rod_angular_acceleration),
         summary=summary,
         geometry=geometry,
+        warnings=kinematics_warnings(
+            summary.mean_piston_speed,
+            max(abs(summary.max_acceleration), abs(summary.min_acceleration)),
+            fuel,
+        ),
     )
 
 
