@@ -139,6 +139,11 @@ class PlausibilityWarning:
         }
 
     @property
+    def value_text(self) -> str:
+        """The value for people: ``"19 MPa"``, ``"2001 g (19620 m/s²)"``, ``"26.4 deg"``."""
+        return _value_text(self.value, self.unit)
+
+    @property
     def range_text(self) -> str:
         """The typical range for people: ``"1.2-3.8 MPa"``, ``"200-800 g"``, ``"40-90 deg"``."""
         lo, hi = self.low, self.high
@@ -185,7 +190,7 @@ def _warning(key, what, value, unit, low, high, source, kind, hint) -> Plausibil
     )
     side = "below" if value < low else "above"
     text = (
-        f"{what} {_value_text(value, unit)} is {side} the {w.range_text} typical of {kind} "
+        f"{what} {w.value_text} is {side} the {w.range_text} typical of {kind} "
         f"({source}); {hint}"
     )
     object.__setattr__(w, "message", text)
