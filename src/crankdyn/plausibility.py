@@ -190,8 +190,7 @@ def _warning(key, what, value, unit, low, high, source, kind, hint) -> Plausibil
     )
     side = "below" if value < low else "above"
     text = (
-        f"{what} {w.value_text} is {side} the {w.range_text} typical of {kind} "
-        f"({source}); {hint}"
+        f"{what} {w.value_text} is {side} the {w.range_text} typical of {kind} ({source}); {hint}"
     )
     object.__setattr__(w, "message", text)
     return w
