@@ -181,7 +181,9 @@ def _polar(ax, x, y, color, label, marks=None, adjustable="datalim", periodic=No
     """A load polar: y against x (N, drawn in kN); a periodic load drawn over a full cycle is
     closed (its first point repeated at the end when the data leave it out)."""
     x, y = np.asarray(x), np.asarray(y)
-    if periodic == "exclusive":
+    if periodic == "inclusive":  # the end repeats the start (up to round-off): close exactly
+        x, y = x[:-1], y[:-1]
+    if periodic is not None:
         x, y = closed(x), closed(y)
     ax.plot(x * _KN, y * _KN, color=color, linewidth=1.2, label=label)
     if marks:

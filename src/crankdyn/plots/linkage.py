@@ -10,6 +10,7 @@ import textwrap
 import numpy as np
 from matplotlib.patches import Polygon, Rectangle
 
+from crankdyn.plausibility import TRANSMISSION_ANGLE_MIN
 from crankdyn.plots.style import COLORS, angle_axis, identical, legend_outside, new_figure
 
 __all__ = [
@@ -335,6 +336,10 @@ def plot_fourbar(result, fig=None):
             ha="center",
             color=COLORS[1],
         )
+    for limit in (TRANSMISSION_ANGLE_MIN, math.pi - TRANSMISSION_ANGLE_MIN):
+        ax.axhline(math.degrees(limit), color="#808080", linewidth=0.8, linestyle=":")
+    ax.plot([], [], color="#808080", linewidth=0.8, linestyle=":", label="design limits 40°/140°")
+    legend_outside(ax)
     ax.set_ylabel("Transmission angle μ (deg)")
     angle_axis(ax, deg)
     ax = axes[1, 0]
