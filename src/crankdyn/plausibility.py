@@ -109,7 +109,7 @@ class PlausibilityWarning:
     unit
         SI unit of ``value``, ``low`` and ``high`` (``"Pa"``, ``"m/s^2"``, ``"m/s"``, ``"rad"``).
     low, high
-        The typical range (SI); ``None`` for an open end.
+        The typical range (SI, in ``unit``).
     source
         Where the range comes from.
     message
@@ -120,8 +120,8 @@ class PlausibilityWarning:
     quantity: str
     value: float
     unit: str
-    low: float | None
-    high: float | None
+    low: float
+    high: float
     source: str
     message: str
 
@@ -146,14 +146,7 @@ class PlausibilityWarning:
     @property
     def range_text(self) -> str:
         """The typical range for people: ``"1.2-3.8 MPa"``, ``"200-800 g"``, ``"40-90 deg"``."""
-        lo, hi = self.low, self.high
-        if self.unit == "rad":
-            return f"{math.degrees(lo):.0f}-{math.degrees(hi):.0f} deg"
-        if self.unit == "m/s^2":
-            return f"{lo / G:.0f}-{hi / G:.0f} g"
-        if self.unit == "m/s":
-            return f"{lo:g}-{hi:g} m/s"
-        return f"{quantity(lo, self.unit, scale=hi).split()[0]}-{quantity(hi, self.unit)}"
+        return _range_text(self.low, self.high, self.unit)
 
 
 def _engine_type(fuel: str | None, aspiration: str | None) -> list[tuple[str, str]]:
@@ -178,7 +171,8 @@ def _range(table, fuel, aspiration) -> tuple[float, float]:
 def _warning(key, what, value, unit, low, high, source, kind, hint) -> PlausibilityWarning:
     """The warning, its message in one pattern: what, value, the typical range of the kind of
     machine, the source, and what to check."""
-    w = PlausibilityWarning(
+    side = "below" if value < low else "above"
+    return PlausibilityWarning(
         key=key,
         quantity=what,
         value=float(value),
@@ -186,14 +180,21 @@ def _warning(key, what, value, unit, low, high, source, kind, hint) -> Plausibil
         low=float(low),
         high=float(high),
         source=source,
-        message="",
+        message=(
+            f"{what} {_value_text(value, unit)} is {side} the {_range_text(low, high, unit)} "
+            f"typical of {kind} ({source}); {hint}"
+        ),
     )
-    side = "below" if value < low else "above"
-    text = (
-        f"{what} {w.value_text} is {side} the {w.range_text} typical of {kind} ({source}); {hint}"
-    )
-    object.__setattr__(w, "message", text)
-    return w
+
+
+def _range_text(low: float, high: float, unit: str) -> str:
+    if unit == "rad":
+        return f"{math.degrees(low):.0f}-{math.degrees(high):.0f} deg"
+    if unit == "m/s^2":
+        return f"{low / G:.0f}-{high / G:.0f} g"
+    if unit == "m/s":
+        return f"{low:g}-{high:g} m/s"
+    return f"{quantity(low, unit, scale=high).split()[0]}-{quantity(high, unit)}"
 
 
 def _value_text(value: float, unit: str) -> str:

@@ -355,14 +355,22 @@ def local_extrema(f, df=None, n: int = 1440) -> list[Extremum]:
     if df is None:
         df = complex_step(f)
     grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
-    d = df(grid)
+    d = np.array(df(grid), dtype=float)
+    d[-1] = d[0]  # the revolution ends where it starts: one derivative there, not two round-offs
     out: list[Extremum] = []
+
+    def slope(t: float) -> float:
+        return float(df(np.array([t]))[0])
+
     for i in range(n):
         d0, d1 = d[i], d[i + 1]
         if d0 == 0.0:
             root = grid[i]
-        elif d0 * d1 < 0.0:
-            root = brentq(lambda t: float(df(np.array([t]))[0]), grid[i], grid[i + 1], xtol=1e-14)
+        elif (d0 < 0.0) != (d1 < 0.0) and d1 != 0.0:  # signs, not d0 * d1: it may underflow
+            try:
+                root = brentq(slope, grid[i], grid[i + 1], xtol=1e-14)
+            except ValueError:  # at 2 pi the derivative is round-off of the one at 0: the root
+                root = grid[i + 1]  # is the end of the revolution
         else:
             continue
         before = df(np.array([root - 1e-6]))[0]

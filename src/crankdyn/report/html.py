@@ -55,7 +55,7 @@ footer { color: var(--muted); font-size: 12px; text-align: center; padding: 24px
   @page { size: A4; margin: 12mm; }
   body { font-size: 10pt; }
   * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
-  header { padding: 8px 0; }
+  header { padding: 8px 12px; }
   nav { display: none; }
   main { max-width: none; padding: 0; }
   section { margin-top: 12pt; }
