@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from crankdyn.engine.balance import engine_balance
 from crankdyn.engine.torque import engine_torque
-from crankdyn.format import number
+from crankdyn.format import number, quantity
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 
@@ -30,7 +30,7 @@ def build(ctx) -> Section:
             worst_f.free_force,
             "0 (balanced)"
             if worst_f.free_force == 0.0
-            else f"{worst_f.free_force:.4g} N ({_row_name(worst_f)})",
+            else f"{quantity(worst_f.free_force, 'N')} ({_row_name(worst_f)})",
         )
     ]
     if engine.cylinders.pitch is not None:
@@ -42,7 +42,7 @@ def build(ctx) -> Section:
                 worst_m.free_moment,
                 "0 (balanced)"
                 if not worst_m.free_moment
-                else f"{worst_m.free_moment:.4g} N·m ({_row_name(worst_m)})",
+                else f"{quantity(worst_m.free_moment, 'N·m')} ({_row_name(worst_m)})",
             )
         )
         if b.power:
@@ -61,7 +61,8 @@ def build(ctx) -> Section:
                 "overturning_moment_amplitude_Nm",
                 "Overturning moment fluctuation",
                 b.overturning.amplitude,
-                f"±{b.overturning.amplitude:.4g} N·m about {b.overturning.mean:.4g} N·m",
+                f"±{quantity(b.overturning.amplitude, 'N·m')} about "
+                f"{quantity(b.overturning.mean, 'N·m')}",
             )
         )
     header = [
