@@ -232,3 +232,16 @@ def test_result_export_keys_and_units():
     assert "<table>" in res._repr_html_()
     with pytest.raises(ValueError):
         res.velocity[0] = 1.0  # result arrays are read-only
+
+
+def test_summary_of_a_denormal_offset():
+    # the derivative's values at the bracket ends multiply to an underflow (0.0) when the offset
+    # is denormal: the extremum at TDC must still be bracketed by their signs
+    from crankdyn.crank.geometry import CrankGeometry
+    from crankdyn.crank.kinematics import piston_kinematics
+
+    g = CrankGeometry(bore=0.08, crank_radius=0.04, rod_length=0.16, offset=0.04 * 1.2e-270)
+    s = piston_kinematics(g, 100.0).summary
+    centred = piston_kinematics(CrankGeometry(bore=0.08, crank_radius=0.04, rod_length=0.16), 100.0)
+    assert s.max_rod_angular_velocity == pytest.approx(centred.summary.max_rod_angular_velocity)
+    assert s.max_acceleration == pytest.approx(centred.summary.max_acceleration)

@@ -100,7 +100,14 @@ def _clean(values: list) -> list:
 
 
 class Result:
-    """Mixin for result dataclasses; see the module docstring."""
+    """Mixin for result dataclasses; see the module docstring.
+
+    A result whose inputs may be legal but implausible declares a field ``warnings`` (a tuple of
+    :class:`crankdyn.plausibility.PlausibilityWarning`); they are exported as a ``warnings``
+    list in :meth:`to_dict`, shown in the notebook view and printed by the command line.
+    """
+
+    warnings: tuple = ()
 
     # ---- field introspection ------------------------------------------------------------------
     def _fields(self, *kinds: str):
@@ -117,6 +124,8 @@ class Result:
             if value is None:
                 continue
             out[meta["key"]] = _to_jsonable(value, meta["scale"])
+        if self.warnings:
+            out["warnings"] = [w.to_dict() for w in self.warnings]
         return out
 
     def to_json(self, indent: int | None = 2) -> str:
@@ -204,7 +213,9 @@ class Result:
             n = len(next(iter(self.columns().values())))
             names = ", ".join(html.escape(k) for k in cols)
             shape = f"<p>{n} points: {names}</p>"
-        return f"<div><strong>{title}</strong><table>{rows}</table>{shape}</div>"
+        warnings = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in self.warnings)
+        warnings = f"<ul style='color:#b26a00'>{warnings}</ul>" if warnings else ""
+        return f"<div><strong>{title}</strong>{warnings}<table>{rows}</table>{shape}</div>"
 
 
 def _csv_cell(value: Any) -> str:

@@ -35,6 +35,7 @@ __all__ = [
     "output_options",
     "plot_option",
     "print_summary",
+    "print_warnings",
     "save_figure",
     "speed_of",
     "speed_option",
@@ -235,10 +236,24 @@ def print_summary(result: Result, title: str = "Summary", out: Console | None = 
     (out or console()).print(summary_table(result, title))
 
 
+def print_warnings(*results) -> None:
+    """Print the plausibility warnings the results carry (``result.warnings``), one line each
+    on standard error (``crankdyn: warning: ...``), each warning once."""
+    seen = set()
+    for result in results:
+        for w in getattr(result, "warnings", ()) or ():
+            if w.message not in seen:
+                seen.add(w.message)
+                click.echo(f"crankdyn: warning: {w.message}", err=True)
+
+
 def emit(
     result: Result, fmt: str, output: str | None, force: bool, summary: Result | None = None
 ) -> None:
-    """Write a result as a table, CSV or JSON to stdout or (atomically) to a file."""
+    """Write a result as a table, CSV or JSON to stdout or (atomically) to a file; its
+    plausibility warnings go to standard error (:func:`print_warnings`) and, in JSON, into a
+    ``warnings`` list."""
+    print_warnings(result, summary)
     if fmt == "json":
         text = result.to_json() + "\n"
     elif fmt == "csv":

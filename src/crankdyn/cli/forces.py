@@ -173,7 +173,13 @@ def pressure_command(engine, step, fmt, output, force) -> int:
     """Cylinder pressure of ENGINE over the cycle (its trace, or the synthetic Wiebe model) with
     the indicated work, IMEP and peak pressure."""
     eng = load_engine_arg(engine)
-    result = pressure_analysis(default_pressure(eng), eng.geometry, _step(eng, step, fmt))
+    result = pressure_analysis(
+        default_pressure(eng),
+        eng.geometry,
+        _step(eng, step, fmt),
+        fuel=eng.fuel,
+        aspiration=eng.aspiration,
+    )
     _emit(result, fmt, output, force, ("crank_angle_deg", "pressure_Pa", "volume_m3"))
     return 0
 

@@ -54,7 +54,7 @@ def kinematics_command(engine, speed, step, method, order, fmt, output, force) -
     w = speed_of(eng, speed)
     check_order(method, order)
     phi = angle_grid(step, fmt)
-    result = piston_kinematics(eng.geometry, w, phi, method=method, order=order)
+    result = piston_kinematics(eng.geometry, w, phi, method=method, order=order, fuel=eng.fuel)
     emit(result, fmt, output, force, summary=result.summary)
     return 0
 

@@ -18,6 +18,7 @@ from crankdyn.cli.common import (
     option_quantity,
     output_options,
     plot_option,
+    print_warnings,
     save_figure,
 )
 from crankdyn.errors import InputError
@@ -33,6 +34,14 @@ from crankdyn.linkage.kinetostatics import kinetostatics
 from crankdyn.linkage.planar import linkage_kinematics
 
 TWO_PI = 2.0 * math.pi
+PLOT_POINTS = 1441
+"""Crank positions of a plotted revolution (every 0.25 deg): plots are drawn from an analysis at
+this resolution whatever --step the table uses, so a load step is drawn as a step."""
+
+
+def _plot_angles(start: float) -> np.ndarray:
+    """A full crank revolution from ``start`` (rad) at the plot resolution."""
+    return start + np.linspace(0.0, TWO_PI, PLOT_POINTS)
 
 
 def _angles(angle: str | None, step: str | None, fmt: str, start: float = 0.0) -> np.ndarray:
@@ -60,6 +69,7 @@ def _single(data: dict, keys) -> dict:
 def _emit(result, fmt, output, force, *, single: bool, summary=None, extra=None):
     """emit() with --angle squeezing and optional extra JSON members."""
     if fmt == "json" and (single or extra):
+        print_warnings(result)
         data = result.to_dict()
         if single:
             data = _single(
@@ -202,16 +212,9 @@ def fourbar_command(
         ) from None
     result = fourbar_analysis(fb, theta, w, e)
     _emit(result, fmt, output, force, single=angle is not None, summary=result.limits)
-    if plot_file:
-        if angle is not None:
-            full = (
-                fourbar_analysis(fb, np.linspace(0, TWO_PI, 361) + theta[0], w, e)
-                if fb.crank_rotates
-                else result
-            )
-            save_figure(full.plot(), plot_file, force)
-        else:
-            save_figure(result.plot(), plot_file, force)
+    if plot_file:  # a full revolution at the plot resolution, whatever --step or --angle
+        full = fourbar_analysis(fb, _plot_angles(theta[0]), w, e) if fb.crank_rotates else result
+        save_figure(full.plot(), plot_file, force)
     return 0
 
 
@@ -274,8 +277,9 @@ def forces_command(
         _forces_table(result, output, force)
     else:
         _emit(result, fmt, output, force, single=angle is not None, extra=extra)
-    if plot_file:
-        save_figure(result.plot(), plot_file, force)
+    if plot_file:  # a full revolution at the plot resolution, whatever --step or --angle
+        fine = mech.motion(_plot_angles(theta[0]), _speed(mech, speed))
+        save_figure(kinetostatics(fine, friction=not no_friction).plot(), plot_file, force)
     return 0
 
 
@@ -364,7 +368,7 @@ def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> in
     mech = resolve_linkage(linkage)
     check_writable(output, force=force)
     theta0 = _one_angle(angle, mech)
-    theta = theta0 + np.linspace(0.0, TWO_PI, 181)
+    theta = _plot_angles(theta0)
     motion = mech.motion(theta, _speed(mech, speed))
     if paths:
         fig = plot_paths(motion)

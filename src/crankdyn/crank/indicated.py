@@ -21,6 +21,7 @@ import numpy as np
 from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.kinematics import slider_crank_exact
 from crankdyn.crank.pressure import PressureTrace
+from crankdyn.plausibility import pressure_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["PressureResult", "indicated_work", "pressure_analysis"]
@@ -66,6 +67,7 @@ class PressureResult(Result):
     )
     source: str = scalar("pressure_source", "Pressure from", "")
     cycle_angle: float = field(default=4.0 * math.pi, repr=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """p-phi and p-V diagrams; returns the matplotlib Figure."""
@@ -75,14 +77,21 @@ class PressureResult(Result):
 
 
 def pressure_analysis(
-    trace: PressureTrace, geometry: CrankGeometry, step: float = math.radians(0.5)
+    trace: PressureTrace,
+    geometry: CrankGeometry,
+    step: float = math.radians(0.5),
+    *,
+    fuel: str | None = None,
+    aspiration: str | None = None,
 ) -> PressureResult:
     """The pressure over one cycle (every ``step`` rad from half a cycle before firing TDC to
     half a cycle after it, periodic interpolation of the trace) with the volume, indicated work,
     IMEP and peak pressure (module docstring).
 
     The volume is V_c + A x when the trace knows the compression ratio, else the displaced
-    volume A x (``volume_is_swept``)."""
+    volume A x (``volume_is_swept``). ``fuel`` and ``aspiration`` (the engine type, or None)
+    select the typical ranges of the plausibility warnings of the IMEP and the peak pressure
+    (:func:`crankdyn.plausibility.pressure_warnings`), held in ``warnings``."""
     count = round(trace.cycle_angle / step)
     half = trace.cycle_angle / 2.0
     theta = np.linspace(-half, half, count + 1)
@@ -105,4 +114,5 @@ def pressure_analysis(
         volume_is_swept=eps is None,
         source=trace.source or "",
         cycle_angle=trace.cycle_angle,
+        warnings=pressure_warnings(work / geometry.swept_volume, peak, fuel, aspiration),
     )

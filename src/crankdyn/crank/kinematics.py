@@ -38,6 +38,7 @@ from typing import NamedTuple
 import numpy as np
 
 from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.plausibility import kinematics_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -354,14 +355,22 @@ def local_extrema(f, df=None, n: int = 1440) -> list[Extremum]:
     if df is None:
         df = complex_step(f)
     grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
-    d = df(grid)
+    d = np.array(df(grid), dtype=float)
+    d[-1] = d[0]  # the revolution ends where it starts: one derivative there, not two round-offs
     out: list[Extremum] = []
+
+    def slope(t: float) -> float:
+        return float(df(np.array([t]))[0])
+
     for i in range(n):
         d0, d1 = d[i], d[i + 1]
         if d0 == 0.0:
             root = grid[i]
-        elif d0 * d1 < 0.0:
-            root = brentq(lambda t: float(df(np.array([t]))[0]), grid[i], grid[i + 1], xtol=1e-14)
+        elif (d0 < 0.0) != (d1 < 0.0) and d1 != 0.0:  # signs, not d0 * d1: it may underflow
+            try:
+                root = brentq(slope, grid[i], grid[i + 1], xtol=1e-14)
+            except ValueError:  # at 2 pi the derivative is round-off of the one at 0: the root
+                root = grid[i + 1]  # is the end of the revolution
         else:
             continue
         before = df(np.array([root - 1e-6]))[0]
@@ -492,6 +501,7 @@ class KinematicsResult(Result):
     )
     summary: KinematicsSummary = scalar("summary", "Summary", "")
     geometry: CrankGeometry | None = field(default=None, repr=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Piston and rod motion vs crank angle; returns the matplotlib Figure."""
@@ -508,6 +518,7 @@ def piston_kinematics(
     step: float = math.radians(1.0),
     method: str = "exact",
     order: int = 2,
+    fuel: str | None = None,
 ) -> KinematicsResult:
     """Slider-crank kinematics of one cylinder at a constant crank speed.
 
@@ -526,13 +537,17 @@ def piston_kinematics(
         lambda-series to harmonic ``order``, :func:`series_coefficients`).
     order
         Series order (even, >= 2) for ``method="series"``.
+    fuel
+        ``"petrol"``, ``"diesel"`` or None: the engine type whose typical piston acceleration
+        the plausibility check uses (:func:`crankdyn.plausibility.kinematics_warnings`).
 
     Returns
     -------
     KinematicsResult
         Arrays over the crank angle and the :class:`KinematicsSummary`; the summary's extrema
         are those of the chosen method's formulas, found from the zeros of their exact
-        (complex-step) derivatives.
+        (complex-step) derivatives; ``warnings`` holds the plausibility warnings of the mean
+        piston speed and the largest piston acceleration.
     """
     motion = _motion_function(method, order)
     r, l, e, w = geometry.crank_radius, geometry.rod_length, geometry.offset, float(speed)
@@ -552,6 +567,11 @@ def piston_kinematics(
         rod_angular_acceleration=freeze(m.rod_angular_acceleration),
         summary=summary,
         geometry=geometry,
+        warnings=kinematics_warnings(
+            summary.mean_piston_speed,
+            max(abs(summary.max_acceleration), abs(summary.min_acceleration)),
+            fuel,
+        ),
     )
 
 

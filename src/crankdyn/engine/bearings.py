@@ -19,13 +19,14 @@ of the journal on the bearing.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import CrankTrain, cycle_grid, load_angle, reuse_train
 from crankdyn.engine.model import Engine
+from crankdyn.plausibility import engine_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["BearingLoads", "bearing_loads", "main_bearing_loads"]
@@ -75,6 +76,7 @@ class BearingLoads(Result):
     speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Polar diagrams of the crank-pin loads (crank frame) and main-bearing loads (engine
@@ -130,4 +132,5 @@ def bearing_loads(
         speed=train.speed,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
+        warnings=engine_warnings(engine, train.speed, train.trace),
     )

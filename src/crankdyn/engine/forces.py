@@ -50,6 +50,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
+from crankdyn.plausibility import engine_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -372,6 +373,7 @@ class CylinderForces(Result):
     )
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Forces vs crank angle; returns the matplotlib Figure."""
@@ -491,4 +493,5 @@ def cylinder_forces(
         max_rod_couple_error=couple,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
+        warnings=engine_warnings(engine, train.speed, train.trace),
     )

@@ -32,6 +32,11 @@ from crankdyn.errors import InputError
 from crankdyn.torsion.equivalent import check_engine_cylinders
 from crankdyn.torsion.model import TorsionModel
 
+FUELS = ("petrol", "diesel")
+"""Engine types by ignition: spark-ignition (petrol, gas) and compression-ignition (diesel)."""
+ASPIRATIONS = ("natural", "turbocharged")
+"""Air supply: naturally aspirated, or pressure-charged (turbo- or supercharged)."""
+
 __all__ = ["CYCLES", "LAYOUTS", "Cylinders", "Engine"]
 
 CYCLES = ("four-stroke", "two-stroke")
@@ -284,6 +289,12 @@ class Engine:
         or None.
     source
         The file the engine came from, for messages.
+    fuel
+        ``"petrol"`` (spark ignition) or ``"diesel"`` (compression ignition), or None when not
+        stated; selects the typical ranges of the plausibility warnings
+        (:mod:`crankdyn.plausibility`).
+    aspiration
+        ``"natural"`` or ``"turbocharged"`` (any pressure charging), or None when not stated.
     """
 
     name: str
@@ -298,10 +309,16 @@ class Engine:
     balance: BalanceInputs | None = None
     flywheel: FlywheelInputs | None = None
     source: str | None = field(default=None, compare=False)
+    fuel: str | None = None
+    aspiration: str | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
             raise InputError("the engine needs a name", key="name", value=self.name)
+        for key, choices in (("fuel", FUELS), ("aspiration", ASPIRATIONS)):
+            value = getattr(self, key)
+            if value is not None and value not in choices:
+                raise InputError(f"expected one of {', '.join(choices)}", key=key, value=value)
         if self.masses is not None:
             self.masses.check_rod(self.geometry.rod_length)
         check_finite("crankcase_pressure", self.crankcase_pressure)

@@ -30,6 +30,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import CrankTrain, crank_train, cycle_grid, reuse_train
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
+from crankdyn.plausibility import engine_warnings
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = ["EngineTorque", "engine_torque", "journal_torques"]
@@ -95,6 +96,7 @@ class EngineTorque(Result):
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
     cycle_angle: float = field(default=4.0 * math.pi, repr=False)
     throws: tuple[int, ...] = field(default=(), repr=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Single-cylinder and total torque, journal torques; returns the matplotlib Figure."""
@@ -185,4 +187,5 @@ def engine_torque(
         notes=tuple(notes) or None,
         cycle_angle=engine.cycle_angle,
         throws=tuple(cyl.throws),
+        warnings=engine_warnings(engine, train.speed, train.trace),
     )

@@ -13,7 +13,7 @@ from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
 from crankdyn.engine.balance import BalanceInputs
 from crankdyn.engine.firing import throw_angles_from_positions
 from crankdyn.engine.flywheel import FlywheelInputs
-from crankdyn.engine.model import CYCLES, LAYOUTS, Cylinders, Engine
+from crankdyn.engine.model import ASPIRATIONS, CYCLES, FUELS, LAYOUTS, Cylinders, Engine
 from crankdyn.errors import InputError
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
@@ -100,6 +100,8 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
     root = Table(data, file=file, base_dir=base_dir)
     name = root.string("name")
     cycle = root.string("cycle", "four-stroke", choices=CYCLES)
+    fuel = root.string("fuel", None, choices=FUELS)
+    aspiration = root.string("aspiration", None, choices=ASPIRATIONS)
     geometry = _geometry(root.table("geometry", required=True))
     cylinders = _cylinders(root.table("cylinders"), cycle)
     masses = _masses(root.table("masses"), geometry)
@@ -122,6 +124,8 @@ def parse_engine(data: dict, *, file: str | None = None, base_dir: Path | None =
             balance=balance,
             flywheel=flywheel,
             source=file,
+            fuel=fuel,
+            aspiration=aspiration,
         )
     root.finish()
     return engine

@@ -64,6 +64,7 @@ import numpy as np
 
 from crankdyn.crank.geometry import check_finite, check_length
 from crankdyn.errors import InputError
+from crankdyn.plausibility import check_transmission_angle
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -666,6 +667,7 @@ class FourBarResult(Result):
         "coupler_point_acceleration_y_m_s2", "Coupler point ay", "m/s²", default=None
     )
     linkage: FourBar | None = field(default=None, repr=False)
+    warnings: tuple = field(default=(), repr=False, compare=False)  # crankdyn.plausibility
 
     def plot(self, fig=None):
         """Mechanism, coupler curve, transmission angle and angular velocities; returns the
@@ -680,6 +682,8 @@ def fourbar_analysis(
 ) -> FourBarResult:
     """Four-bar kinematics at crank angles ``angles`` (rad) for a crank speed (rad/s) and
     crank acceleration (rad/s^2); raises InputError if the links do not assemble at an angle.
+    ``warnings`` of the result: a worst transmission angle under 40 deg
+    (:func:`crankdyn.plausibility.check_transmission_angle`).
     """
     theta2 = np.asarray(angles, dtype=float)
     m = linkage.motion(theta2, crank_speed, crank_acceleration)
@@ -718,5 +722,6 @@ def fourbar_analysis(
         coupler_angular_acceleration=freeze(m.alpha3),
         rocker_angular_acceleration=freeze(m.alpha4),
         linkage=linkage,
+        warnings=tuple(check_transmission_angle(lim.transmission_angle_worst)),
         **point,
     )

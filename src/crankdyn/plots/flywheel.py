@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from crankdyn.plots.style import COLORS, angle_axis, new_figure
+from crankdyn.plots.style import COLORS, angle_axis, legend_outside, new_figure
 
 __all__ = ["plot_flywheel"]
 
@@ -29,7 +29,7 @@ def plot_flywheel(result, fig=None):
     label = f"M_m = {result.mean_torque:.4g} N·m{mu}"
     ax.plot([], [], color=COLORS[1], linestyle="--", label=label)
     ax.set_ylabel("Torque (N·m)")
-    ax.legend(loc="upper right", fontsize=8)
+    legend_outside(ax)
 
     ax = axes[1, 0]
     work = closed(result.excess_work_curve)
@@ -52,14 +52,10 @@ def plot_flywheel(result, fig=None):
         if result.excess_work_coefficient is None
         else f", ξ = {result.excess_work_coefficient:.3g}"
     )
-    ax.text(
-        x_arrow - 0.01 * (theta[-1] - theta[0]),
-        (lo + hi) / 2.0,
-        f"ΔE = {result.excess_work:.4g} J{xi}",
-        fontsize=8,
-        va="center",
-        ha="right",
-        bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none"},
+    ax.set_title(  # above the panel, not over the curve
+        f"energy swing ΔE = {result.excess_work:.4g} J{xi} (between the marked extremes)",
+        fontsize=9,
+        loc="left",
     )
     ax.axhline(0.0, color="#808080", linewidth=0.6)
     ax.set_ylabel("Excess work W (J)")

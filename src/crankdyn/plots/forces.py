@@ -5,7 +5,16 @@ from __future__ import annotations
 import numpy as np
 from matplotlib.ticker import NullFormatter
 
-from crankdyn.plots.style import COLORS, angle_axis, new_figure
+from crankdyn.plots.style import (
+    COLORS,
+    angle_axis,
+    closed,
+    coinciding,
+    identical,
+    legend_outside,
+    new_figure,
+    number_ranges,
+)
 
 __all__ = [
     "plot_bearing_polars",
@@ -42,7 +51,7 @@ def plot_pressure(result, fig=None):
     )
     ax_phi.set_ylabel("Cylinder pressure p (MPa, absolute)")
     angle_axis(ax_phi, phi, "Crank angle from firing TDC (deg)")
-    ax_phi.legend(loc="upper right", fontsize=8)
+    legend_outside(ax_phi)
     vlabel = (
         "Displaced volume V - V_c (cm³)" if result.volume_is_swept else "Cylinder volume V (cm³)"
     )
@@ -118,7 +127,7 @@ def plot_cylinder_forces(result, fig=None):
             ax.plot(phi, np.asarray(y) * _KN, color=COLORS[j], linewidth=1.3, label=name)
         ax.set_ylabel(label)
         _zero(ax)
-        ax.legend(loc="upper right", fontsize=8)
+        legend_outside(ax)
     ax = axes[2, 0]
     for j, (y, name) in enumerate(
         [
@@ -130,7 +139,7 @@ def plot_cylinder_forces(result, fig=None):
         ax.plot(phi, y, color=COLORS[j], linewidth=1.3, label=name)
     ax.set_ylabel("Cylinder torque (N·m)")
     _zero(ax)
-    ax.legend(loc="upper right", fontsize=8)
+    legend_outside(ax)
     ax = axes[2, 1]
     ax.plot(phi, result.pin_load * _KN, color=COLORS[3], linewidth=1.3, label="|R_B|")
     ax.axhline(
@@ -141,7 +150,7 @@ def plot_cylinder_forces(result, fig=None):
         label=f"mean {result.mean_pin_load * _KN:.3g} kN",
     )
     ax.set_ylabel("Crank-pin load (kN)")
-    ax.legend(loc="upper right", fontsize=8)
+    legend_outside(ax)
     for ax in axes[-1]:
         angle_axis(ax, phi, "Crankshaft angle (deg)")
     fig.suptitle(
@@ -152,7 +161,30 @@ def plot_cylinder_forces(result, fig=None):
     return fig
 
 
-def _polar(ax, x, y, color, label, marks=None, adjustable="datalim"):
+def _full_cycle(angles_deg) -> str | None:
+    """How crank angles sample a periodic load: ``"inclusive"`` (the last angle is the first one
+    cycle later), ``"exclusive"`` (a full cycle without its end) or None (part of a cycle)."""
+    a = np.asarray(angles_deg, dtype=float)
+    if a.size < 3:
+        return None
+    step = float(np.median(np.diff(a)))
+    span = float(a[-1] - a[0])
+    for cycle in (360.0, 720.0):
+        if abs(span - cycle) <= 1e-6 * cycle:
+            return "inclusive"
+        if abs(span + step - cycle) <= 1e-6 * cycle:
+            return "exclusive"
+    return None
+
+
+def _polar(ax, x, y, color, label, marks=None, adjustable="datalim", periodic=None):
+    """A load polar: y against x (N, drawn in kN); a periodic load drawn over a full cycle is
+    closed (its first point repeated at the end when the data leave it out)."""
+    x, y = np.asarray(x), np.asarray(y)
+    if periodic == "inclusive":  # the end repeats the start (up to round-off): close exactly
+        x, y = x[:-1], y[:-1]
+    if periodic is not None:
+        x, y = closed(x), closed(y)
     ax.plot(x * _KN, y * _KN, color=color, linewidth=1.2, label=label)
     if marks:
         span = max(float(np.ptp(x)), float(np.ptp(y)), 1e-12)
@@ -188,7 +220,7 @@ def plot_pin_polar(result, fig=None):
     x = np.asarray(result.pin_tangential)
     y = -np.asarray(result.pin_radial)
     phi = np.degrees(result.crank_angle)
-    _polar(ax, x, y, COLORS[0], "crank-pin load", _marks(x, y, phi))
+    _polar(ax, x, y, COLORS[0], "crank-pin load", _marks(x, y, phi), periodic=_full_cycle(phi))
     ax.set_xlabel("Tangential, in the direction of rotation (kN)")
     ax.set_ylabel("Along the crank, outward (kN)")
     ax.set_title(
@@ -212,21 +244,35 @@ def plot_bearing_polars(result, fig=None):
     _, axes = new_figure(1, 1, fig=left)
     ax_pin = axes[0, 0]
     phi = np.degrees(result.crank_angle)
-    for j in range(result.pin_load.shape[0]):
-        x = result.pin_tangential[j]
-        y = -result.pin_radial[j]
+    periodic = _full_cycle(phi)
+    tangential = np.asarray(result.pin_tangential)
+    outward = -np.asarray(result.pin_radial)
+    # throws whose polars coincide (every throw of an evenly firing in-line engine) are drawn
+    # once and labelled as a group: drawn one over the other, only the last colour would show
+    points = tangential + 1j * outward
+    groups = coinciding(points[:, :-1] if periodic == "inclusive" else points)
+    if periodic is None:  # part of a cycle: the curves are compared point by point only
+        groups = identical(points)
+    for k, group in enumerate(groups):
+        j = group[0]
+        x, y = tangential[j], outward[j]
+        if len(group) == 1:
+            label = f"throw {j + 1}"
+        else:
+            label = f"throws {number_ranges(np.asarray(group) + 1)} (identical)"
         _polar(
             ax_pin,
             x,
             y,
-            COLORS[j % len(COLORS)],
-            f"throw {j + 1}",
-            _marks(x, y, phi) if j == 0 else None,
+            COLORS[k % len(COLORS)],
+            label,
+            _marks(x, y, phi) if k == 0 else None,
+            periodic=periodic,
         )
     ax_pin.set_xlabel("Tangential, in the direction of rotation (kN)")
     ax_pin.set_ylabel("Along the crank, outward (kN)")
     ax_pin.set_title("Crank-pin loads (crank frame; labels: crankshaft angle, throw 1)", fontsize=9)
-    ax_pin.legend(loc="upper right", fontsize=7)
+    legend_outside(ax_pin)
     _, grid = new_figure(rows, cols, fig=right, sharex=True, sharey=True)
     for b, ax in enumerate(grid.flat):
         if b >= n_bearings:
@@ -239,6 +285,7 @@ def plot_bearing_polars(result, fig=None):
             COLORS[b % len(COLORS)],
             f"bearing {b + 1}",
             adjustable="box",
+            periodic=periodic,
         )
         ax.set_title(
             f"Main bearing {b + 1} (max {result.max_bearing_load[b] * _KN:.3g} kN)", fontsize=8
@@ -275,7 +322,7 @@ def plot_torque(result, fig=None):
         )
     ax.set_ylabel("Cylinder torque (N·m)")
     _zero(ax)
-    ax.legend(loc="upper right", fontsize=7, ncol=min(n, 8))
+    legend_outside(ax)
     ax = axes[1, 0]
     ax.plot(phi, result.total_torque, color=COLORS[0], linewidth=1.5, label="total")
     ax.plot(phi, result.gas_torque, color=COLORS[2], linewidth=0.9, label="gas")
@@ -289,7 +336,7 @@ def plot_torque(result, fig=None):
     )
     ax.set_ylabel("Engine torque (N·m)")
     _zero(ax)
-    ax.legend(loc="upper right", fontsize=7, ncol=4)
+    legend_outside(ax)
     ax = axes[2, 0]
     for j in range(result.journal_torque.shape[0]):
         ax.plot(
@@ -301,7 +348,7 @@ def plot_torque(result, fig=None):
         )
     ax.set_ylabel("Main-journal torque (N·m)")
     _zero(ax)
-    ax.legend(loc="upper right", fontsize=7, ncol=4)
+    legend_outside(ax)
     angle_axis(ax, phi, "Crankshaft angle (deg, 0 at cylinder 1 firing TDC)")
     fig.suptitle(
         f"Torque at {result.speed * 30 / np.pi:.0f} rpm: indicated power "

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from crankdyn.plots.style import COLORS, angle_axis, new_figure
+from crankdyn.plots.style import COLORS, angle_axis, legend_outside, new_figure
 
 __all__ = ["plot_kinematics"]
 
@@ -40,7 +40,7 @@ def plot_kinematics(result, fig=None):
             f"v_max = {s.max_velocity:.2f} m/s at {np.degrees(s.crank_angle_at_max_velocity):.1f}°"
         ),
     )
-    ax_v.legend(loc="upper right", fontsize=8)
+    legend_outside(ax_v)
     for x in s.acceleration_extrema:
         ax_a.plot(np.degrees(x.crank_angle), x.acceleration, "o", color=COLORS[1], markersize=4)
     ax_a.plot(
@@ -51,7 +51,7 @@ def plot_kinematics(result, fig=None):
         markersize=4,
         label=f"extrema: max {s.max_acceleration:.0f}, min {s.min_acceleration:.0f} m/s²",
     )
-    ax_a.legend(loc="upper center", fontsize=8)
+    legend_outside(ax_a)
     speed = s.speed * 30.0 / np.pi
     fig.suptitle(
         f"Slider-crank kinematics ({s.method}), {speed:.0f} rpm, λ = {s.lam:.4g}, "

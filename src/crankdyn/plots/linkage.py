@@ -5,11 +5,13 @@ from __future__ import annotations
 
 import io
 import math
+import textwrap
 
 import numpy as np
 from matplotlib.patches import Polygon, Rectangle
 
-from crankdyn.plots.style import COLORS, angle_axis, new_figure
+from crankdyn.plausibility import TRANSMISSION_ANGLE_MIN
+from crankdyn.plots.style import COLORS, angle_axis, identical, legend_outside, new_figure
 
 __all__ = [
     "animate_mechanism",
@@ -21,6 +23,9 @@ __all__ = [
 ]
 
 _LINK_COLORS = COLORS[:6] + COLORS[7:]
+JOINT_LABEL = "joint-label"
+FORCE_LABEL = "force-label"
+"""gid of the joint-name and force-value annotations (so tests and the de-cluttering find them)."""
 
 
 def _link_color(i: int) -> str:
@@ -122,6 +127,7 @@ def draw_mechanism(ax, motion, index: int = 0, *, forces=None, labels: bool = Tr
                 fontsize=8,
                 color="#202020",
                 zorder=7,
+                gid=JOINT_LABEL,
             )
     if forces is not None:
         peak = max(
@@ -142,14 +148,20 @@ def draw_mechanism(ax, motion, index: int = 0, *, forces=None, labels: bool = Tr
                 arrowprops={"arrowstyle": "-|>", "color": COLORS[1], "linewidth": 1.4},
                 zorder=8,
             )
+            # the label beyond the arrow's tip, on the side it points to (away from the joint)
+            norm = math.hypot(fx, fy)
+            ux, uy = fx / norm, fy / norm
             ax.annotate(
-                f"{math.hypot(fx, fy):.4g} N",
+                f"{norm:.4g} N",
                 (p[0] + fx * scale, p[1] + fy * scale),
                 fontsize=7,
                 color=COLORS[1],
-                xytext=(3, -9),
+                xytext=(6 * ux, 6 * uy),
                 textcoords="offset points",
+                ha="left" if ux > 0.3 else "right" if ux < -0.3 else "center",
+                va="bottom" if uy > 0.3 else "top" if uy < -0.3 else "center",
                 zorder=8,
+                gid=FORCE_LABEL,
             )
     ax.set_aspect("equal", adjustable="box")
     ax.set_xlabel("x (m)")
@@ -176,13 +188,78 @@ def plot_mechanism(motion, index: int = 0, forces=None, fig=None):
     draw_mechanism(ax, motion, index, forces=forces)
     _frame_limits(ax, motion)
     theta = math.degrees(motion.crank_angle[index])
-    title = f"{motion.mechanism.name}: crank angle {theta:.4g}°"
+    state = f"crank angle {theta:.4g}°"
     if forces is not None:
-        title += f", driving torque {forces.driving_torque[index]:.4g} N·m"
+        state += f", driving torque {forces.driving_torque[index]:.4g} N·m"
         ax.plot([], [], color=COLORS[1], label="joint force on the second link (N)")
-        ax.legend(loc="upper right", fontsize=8)
-    ax.set_title(title, fontsize=10)
+        legend_outside(ax)
+    _title(fig, motion.mechanism.name, state)
+    declutter(fig, ax)
     return fig
+
+
+def _title(fig, name: str, state: str = "", fontsize: float = 10.0) -> None:
+    """The figure title: the (user's) mechanism name wrapped to the figure's width, the state
+    on a line of its own; it stays inside the figure whatever the name's length."""
+    chars = max(int(fig.get_figwidth() * 72 / (0.62 * fontsize)), 20)
+    lines = textwrap.wrap(name, chars) or [""]
+    if state:
+        lines += textwrap.wrap(state, chars)
+    fig.suptitle("\n".join(lines), fontsize=fontsize)
+
+
+def declutter(fig, ax) -> None:
+    """Move each force label (gid FORCE_LABEL) to the first place around its arrow's tip where
+    it overlaps no joint label and no other force label (in the final layout). Needs a
+    renderer: draws the figure once on an Agg canvas."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    texts = [t for t in ax.texts if t.get_gid() in (JOINT_LABEL, FORCE_LABEL)]
+    forces = [t for t in texts if t.get_gid() == FORCE_LABEL]
+    if not forces:
+        return
+    if not isinstance(fig.canvas, FigureCanvasAgg):
+        FigureCanvasAgg(fig)
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    fig.set_layout_engine("none")  # keep the layout these positions were found in
+
+    def box(text):
+        return text.get_window_extent(renderer).expanded(1.05, 1.1)
+
+    taken = [box(t) for t in texts if t not in forces]
+    for text in forces:
+        places = [(text.xyann, text.get_ha(), text.get_va()), *_PLACES]
+        for offset, ha, va in places:
+            text.xyann = offset
+            text.set_ha(ha)
+            text.set_va(va)
+            if not any(box(text).overlaps(other) for other in taken):
+                break
+        else:  # nowhere free: keep the first place
+            text.xyann, ha, va = places[0]
+            text.set_ha(ha)
+            text.set_va(va)
+        taken.append(box(text))
+
+
+_PLACES = tuple(  # other places for a force label: (dx, dy) points from the arrow's tip
+    ((dx, dy), "left" if dx > 0 else "right" if dx < 0 else "center", va)
+    for dx, dy, va in (
+        (6.0, 6.0, "bottom"),
+        (6.0, -6.0, "top"),
+        (-6.0, 6.0, "bottom"),
+        (-6.0, -6.0, "top"),
+        (0.0, 12.0, "bottom"),
+        (0.0, -12.0, "top"),
+        (16.0, 0.0, "center"),
+        (-16.0, 0.0, "center"),
+        (12.0, 18.0, "bottom"),
+        (12.0, -18.0, "top"),
+        (-12.0, 18.0, "bottom"),
+        (-12.0, -18.0, "top"),
+    )
+)
 
 
 def plot_paths(motion, fig=None):
@@ -197,8 +274,8 @@ def plot_paths(motion, fig=None):
         i += 1
     draw_mechanism(ax, motion, 0, labels=True)
     _frame_limits(ax, motion)
-    ax.legend(loc="upper right", fontsize=8, title="Point paths")
-    ax.set_title(f"{motion.mechanism.name}: point paths (coupler curves)", fontsize=10)
+    legend_outside(ax, title="Point paths")
+    _title(fig, motion.mechanism.name, "point paths (coupler curves)")
     return fig
 
 
@@ -239,11 +316,11 @@ def plot_fourbar(result, fig=None):
     ax.set_aspect("equal", adjustable="datalim")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
-    ax.legend(loc="best", fontsize=7)
     ax.set_title(
         f"{result.grashof_type}, {result.branch} branch, θ2 = {math.degrees(theta[i]):.4g}°",
         fontsize=10,
     )
+    legend_outside(ax)
     deg = np.degrees(theta)
     ax = axes[0, 1]
     ax.plot(deg, np.degrees(result.transmission), color=COLORS[0], label="μ")
@@ -259,19 +336,23 @@ def plot_fourbar(result, fig=None):
             ha="center",
             color=COLORS[1],
         )
+    for limit in (TRANSMISSION_ANGLE_MIN, math.pi - TRANSMISSION_ANGLE_MIN):
+        ax.axhline(math.degrees(limit), color="#808080", linewidth=0.8, linestyle=":")
+    ax.plot([], [], color="#808080", linewidth=0.8, linestyle=":", label="design limits 40°/140°")
+    legend_outside(ax)
     ax.set_ylabel("Transmission angle μ (deg)")
     angle_axis(ax, deg)
     ax = axes[1, 0]
     ax.plot(deg, result.coupler_angular_velocity, color=COLORS[2], label="coupler ω3")
     ax.plot(deg, result.rocker_angular_velocity, color=COLORS[4], label="rocker ω4")
     ax.set_ylabel("Angular velocity (rad/s)")
-    ax.legend(loc="best", fontsize=8)
+    legend_outside(ax)
     angle_axis(ax, deg)
     ax = axes[1, 1]
     ax.plot(deg, result.coupler_angular_acceleration, color=COLORS[2], label="coupler α3")
     ax.plot(deg, result.rocker_angular_acceleration, color=COLORS[4], label="rocker α4")
     ax.set_ylabel("Angular acceleration (rad/s²)")
-    ax.legend(loc="best", fontsize=8)
+    legend_outside(ax)
     angle_axis(ax, deg)
     fig.suptitle(
         f"Four-bar a = {a * 1e3:.5g}, b = {fb.coupler * 1e3:.5g}, c = {c * 1e3:.5g}, "
@@ -303,20 +384,28 @@ def plot_kinetostatics(result, fig=None):
     )
     ax.axhline(0.0, color="#808080", linewidth=0.6)
     ax.set_ylabel("Driving torque (N·m)")
-    ax.legend(loc="upper left", fontsize=8)
     if result.efficiency is not None:
         twin = ax.twinx()
         twin.plot(deg, result.efficiency, color=COLORS[2], linewidth=1.0, label="efficiency η")
         twin.set_ylabel("Instantaneous efficiency η")
         twin.set_ylim(0.0, 1.05)
-        twin.legend(loc="upper right", fontsize=8)
+        # one legend for both scales, above the plot (the twin's curve is listed with them)
+        extra, names = twin.get_legend_handles_labels()
+        ax.plot([], [], color=COLORS[2], linewidth=1.0, label=names[0] + " (right scale)")
+        del extra
+    legend_outside(ax, ncol=2)
     ax = axes[1, 0]
-    for i, (name, f) in enumerate(result.joint_forces.items()):
-        ax.plot(deg, np.hypot(f["x"], f["y"]), color=COLORS[i % len(COLORS)], label=name)
+    names = list(result.joint_forces)
+    magnitudes = np.array([np.hypot(f["x"], f["y"]) for f in result.joint_forces.values()])
+    # joints that carry the same force all cycle long (e.g. the two ends of a two-force
+    # member) are drawn once: drawn one over the other, only the last colour would show
+    for k, group in enumerate(identical(magnitudes)):
+        label = ", ".join(names[j] for j in group) + (" (identical)" if len(group) > 1 else "")
+        ax.plot(deg, magnitudes[group[0]], color=COLORS[k % len(COLORS)], label=label)
     ax.set_ylabel("Joint force magnitude (N)")
-    ax.legend(loc="upper right", fontsize=8, ncol=2, title="Joint")
+    legend_outside(ax, title="Joint")
     angle_axis(ax, deg)
-    fig.suptitle(f"{result.mechanism_name}: kinetostatics at {result.crank_speed:.4g} rad/s")
+    _title(fig, result.mechanism_name, f"kinetostatics at {result.crank_speed:.4g} rad/s", 12.0)
     return fig
 
 

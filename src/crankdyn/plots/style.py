@@ -6,7 +6,15 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
-__all__ = ["angle_axis", "new_figure"]
+__all__ = [
+    "angle_axis",
+    "closed",
+    "coinciding",
+    "identical",
+    "legend_outside",
+    "new_figure",
+    "number_ranges",
+]
 
 COLORS = ("#1f4e79", "#c0504d", "#4f8a3c", "#8064a2", "#d08a1c", "#2aa3b8", "#7f7f7f", "#b5487d")
 
@@ -38,3 +46,128 @@ def angle_axis(ax, angles_deg: np.ndarray, label: str = "Crank angle (deg)") -> 
     ax.xaxis.set_major_locator(MultipleLocator(180 if span > 400 else 90))
     ax.set_xlim(float(np.min(angles_deg)), float(np.max(angles_deg)))
     ax.set_xlabel(label)
+
+
+def legend_outside(ax, *, ncol: int | None = None, title: str | None = None, **kw):
+    """The legend of ``ax`` above its plot area (outside the axes, so it covers no curve), in
+    as many columns as fit; constrained layout makes room for it. A centred axes title moves
+    into the legend's title (so the two do not overlap). Returns the Legend (or None when
+    nothing is labelled)."""
+    handles, labels = ax.get_legend_handles_labels()
+    if not handles:
+        return None
+    heading = ax.get_title()
+    if heading and title is None:
+        title = heading
+        ax.set_title("")
+    if ncol is None:
+        root = ax.figure
+        while not hasattr(root, "get_figwidth"):  # a SubFigure: up to the Figure
+            root = root.figure
+        width = root.get_figwidth() * min(ax.get_position().width, 1.0)
+        longest = max(len(label) for label in labels)
+        ncol = max(1, min(len(labels), int(width * 72 / (5.2 * longest + 30))))
+    handles, labels = _row_major(handles, ncol), _row_major(labels, ncol)
+    options = {
+        "loc": "lower left",
+        "bbox_to_anchor": (0.0, 1.01),
+        "ncol": ncol,
+        "fontsize": 8,
+        "frameon": False,
+        "borderaxespad": 0.0,
+        "handlelength": 1.6,
+        "columnspacing": 1.2,
+        "title": title,
+        "title_fontsize": 9,
+        "alignment": "left",
+    }
+    options.update(kw)
+    return ax.legend(handles, labels, **options)
+
+
+def _row_major(items: list, ncol: int) -> list:
+    """Reorder legend entries so that they read along the rows: matplotlib fills a legend's
+    columns one after the other (np.array_split of the entries into ncol columns)."""
+    n = len(items)
+    sizes = [len(block) for block in np.array_split(np.arange(n), ncol)]
+    slots = [(r, c) for r in range(max(sizes, default=0)) for c in range(ncol) if r < sizes[c]]
+    placed = dict(zip(slots, items, strict=True))
+    return [placed[(r, c)] for c in range(ncol) for r in range(sizes[c])]
+
+
+def closed(values, axis: int = -1) -> np.ndarray:
+    """``values`` with the first point appended after the last (along ``axis``) unless it is
+    there already: a periodic curve drawn over a full cycle then closes on itself."""
+    arr = np.asarray(values)
+    first = np.take(arr, [0], axis=axis)
+    last = np.take(arr, [-1], axis=axis)
+    if arr.shape[axis] and np.array_equal(first, last):
+        return arr
+    return np.concatenate([arr, first], axis=axis)
+
+
+def coinciding(curves, rtol: float = 1e-3) -> list[list[int]]:
+    """Groups of curves that coincide as drawn: curve j joins the group of an earlier curve i
+    when, for some cyclic shift of its points, no point lies farther from i's than ``rtol`` x the
+    largest extent of all the curves (1e-3: a tenth of a line width on a 6 in plot).
+
+    Parameters
+    ----------
+    curves
+        (n, m) complex array (x + i y of n closed curves sampled at m points each, the last
+        point not repeating the first) or (n, m) real array.
+
+    Returns
+    -------
+    list of lists of int
+        Curve indices by group, in order of first appearance.
+    """
+    z = np.asarray(curves)
+    n = z.shape[0]
+    scale = float(np.max(np.abs(z - z.mean())) if z.size else 0.0) or 1.0
+    spectra = np.fft.fft(z, axis=1)
+    groups: list[list[int]] = []
+    for j in range(n):
+        for group in groups:
+            i = group[0]
+            # the best cyclic shift maximises the sum of the dot products of the points (the
+            # real part of the circular cross-correlation); then the largest distance decides
+            corr = np.fft.ifft(spectra[i] * np.conj(spectra[j])).real
+            shift = int(np.argmax(corr))
+            if np.max(np.abs(np.roll(z[j], shift) - z[i])) <= rtol * scale:
+                group.append(j)
+                break
+        else:
+            groups.append([j])
+    return groups
+
+
+def identical(curves, rtol: float = 1e-3) -> list[list[int]]:
+    """Groups of curves equal point by point (no shift): curve j joins the group of an earlier
+    curve when no point differs by more than ``rtol`` x the largest |value| of all the curves.
+    ``curves``: (n, m) real or complex array. Returns curve indices by group."""
+    z = np.asarray(curves)
+    scale = float(np.max(np.abs(z))) if z.size else 0.0
+    scale = scale or 1.0
+    groups: list[list[int]] = []
+    for j in range(z.shape[0]):
+        for group in groups:
+            if np.max(np.abs(z[j] - z[group[0]])) <= rtol * scale:
+                group.append(j)
+                break
+        else:
+            groups.append([j])
+    return groups
+
+
+def number_ranges(numbers) -> str:
+    """``[1, 2, 3, 5, 6]`` -> ``"1-3, 5-6"`` (for legend labels of grouped items)."""
+    values = sorted(int(v) for v in numbers)
+    parts, start = [], None
+    for k, v in enumerate(values):
+        if start is None:
+            start = v
+        if k + 1 == len(values) or values[k + 1] != v + 1:
+            parts.append(f"{start}" if start == v else f"{start}-{v}")
+            start = None
+    return ", ".join(parts)

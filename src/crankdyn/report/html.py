@@ -7,8 +7,10 @@ page has no scripts and loads nothing from the network.
 from __future__ import annotations
 
 import base64
+import re
 from html import escape
 
+from crankdyn.format import column, number, unit_label
 from crankdyn.report.model import Report, Section, Table
 
 __all__ = ["render_html"]
@@ -29,11 +31,16 @@ main { max-width: 1180px; margin: 0 auto; padding: 8px 32px 48px; }
 section { margin-top: 28px; }
 h2 { font-size: 20px; border-bottom: 2px solid var(--accent); padding-bottom: 4px; }
 h3 { font-size: 16px; margin-bottom: 6px; }
-table { border-collapse: collapse; margin: 8px 0 16px; font-size: 14px; }
+table { border-collapse: collapse; margin: 8px 0 16px; font-size: 14px; max-width: 100%; }
 th, td { border-bottom: 1px solid var(--line); padding: 5px 10px; text-align: left;
-         vertical-align: top; }
+         vertical-align: top; overflow-wrap: break-word; }
 th { background: var(--bg); font-weight: 600; }
-td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap;
+         overflow-wrap: normal; }
+td.text { text-align: left; white-space: normal; }
+table.figures { width: 100%; }
+table.figures td:first-child { width: 26%; }
+table.figures td:nth-child(2) { width: 34%; }
 .badge { display: inline-block; min-width: 44px; text-align: center; border-radius: 10px;
          padding: 1px 8px; font-size: 12px; font-weight: 600; color: white; }
 .badge.pass { background: var(--pass); } .badge.warn { background: var(--warn); }
@@ -42,10 +49,36 @@ td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: now
 figure { margin: 12px 0 20px; }
 figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
 figcaption { color: var(--muted); font-size: 13px; margin-top: 4px; }
-.scroll { max-height: 420px; overflow: auto; display: inline-block; max-width: 100%; }
 ul.checks { padding-left: 20px; }
 footer { color: var(--muted); font-size: 12px; text-align: center; padding: 24px; }
+@media print {
+  @page { size: A4; margin: 12mm; }
+  body { font-size: 10pt; }
+  * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+  header { padding: 8px 12px; }
+  nav { display: none; }
+  main { max-width: none; padding: 0; }
+  section { margin-top: 12pt; }
+  h2, h3 { break-after: avoid; page-break-after: avoid; }
+  table { width: 100%; font-size: 8.5pt; }
+  .note, figcaption { font-size: 8.5pt; }
+  a { color: inherit; text-decoration: none; }
+  th, td { padding: 2px 4px; }
+  thead { display: table-header-group; }
+  tr, figure, img { break-inside: avoid; page-break-inside: avoid; }
+  figure img { max-height: 240mm; }
+  footer { padding: 8pt; }
+}
 """
+
+_NUMBER = re.compile(r"^[-+−]?(\d+(\.\d*)?|\.\d+)([eE][-+]?\d+)?$")
+
+
+def _cell(value) -> str:
+    """A body cell: numbers right-aligned and kept on one line, text left-aligned and wrapped."""
+    text = str(value)
+    kind = "num" if _NUMBER.match(text.strip()) or text.strip() in ("-", "") else "text"
+    return f"<td class='{kind}'>{escape(text)}</td>"
 
 
 def _status(status: str | None) -> str:
@@ -54,50 +87,70 @@ def _status(status: str | None) -> str:
     return f'<span class="badge {escape(status)}">{escape(status)}</span>'
 
 
-def _figures_table(section_figures) -> str:
-    rows = "".join(
-        f"<tr><td>{escape(f.label)}</td><td class='num'>{escape(f.display)}</td>"
-        f"<td>{_status(f.status)}</td><td class='note'>{escape(f.note)}</td></tr>"
-        for f in section_figures
+def _figure_row(label, display, status, note) -> str:
+    return (
+        f"<tr><td class='text'>{escape(label)}</td><td class='text'>{escape(display)}</td>"
+        f"<td>{_status(status)}</td><td class='text note'>{escape(note)}</td></tr>"
     )
+
+
+def _warning_row(w) -> str:
+    """A plausibility warning as a summary row (status warn)."""
+    label = w.quantity[:1].upper() + w.quantity[1:]
+    return _figure_row(f"Plausibility: {label}", w.value_text, "warn", w.message)
+
+
+def _figures_table(section_figures, warnings=()) -> str:
+    rows = "".join(_figure_row(f.label, f.display, f.status, f.note) for f in section_figures)
+    rows += "".join(_warning_row(w) for w in warnings)
     return (
         "<table class='figures'><thead><tr><th>Quantity</th><th>Value</th><th>Status</th>"
         f"<th>Note</th></tr></thead><tbody>{rows}</tbody></table>"
     )
 
 
-def _data_table(table: Table, max_rows: int = 400) -> str:
+def _result_rows(result) -> tuple[list[str], list[list[str]]]:
+    """Header (words with engineering units) and formatted rows of a result's columns."""
+    cols = result.columns()
+    labels = result.column_labels()
+    header, columns = [], []
+    for key, values in cols.items():
+        label, unit = labels[key]
+        if values.dtype.kind in "OUS":
+            header.append(label)
+            columns.append([str(v) for v in values])
+            continue
+        factor, shown, scale = column(values, unit)
+        header.append(unit_label(label, shown))
+        columns.append([number(v / factor, 5, scale=scale) for v in values])
+    return header, [list(row) for row in zip(*columns, strict=True)]
+
+
+def _data_table(table: Table) -> str:
+    """The whole table: every row, or the first ``table.limit`` with the count of the others
+    and the file that holds them all."""
     if table.result is not None:
-        cols = table.result.columns()
-        labels = table.result.column_labels()
-        header = [
-            f"{labels[k][0]} ({labels[k][1]})" if labels[k][1] else labels[k][0] for k in cols
-        ]
-        body = [[f"{v:.6g}" for v in row] for row in zip(*cols.values(), strict=True)]
+        header, body = _result_rows(table.result)
     else:
         header, body = table.header, table.rows
     head = "".join(f"<th>{escape(str(h))}</th>" for h in header)
-    rows = "".join(
-        "<tr>" + "".join(f"<td class='num'>{escape(str(v))}</td>" for v in row) + "</tr>"
-        for row in body[:max_rows]
-    )
-    more = (
-        f"<p class='note'>{len(body) - max_rows} more rows in the CSV.</p>"
-        if len(body) > max_rows
-        else ""
-    )
-    return (
-        f"<div class='scroll'><table><thead><tr>{head}</tr></thead><tbody>{rows}</tbody>"
-        f"</table></div>{more}"
-    )
+    shown = body if table.limit is None else body[: table.limit]
+    rows = "".join("<tr>" + "".join(_cell(v) for v in row) + "</tr>" for row in shown)
+    more = ""
+    if len(shown) < len(body):
+        more = (
+            f"<p class='note'>The first {len(shown)} of {len(body)} rows; all {len(body)} in "
+            f"<a href='data/{escape(table.name)}.csv'>data/{escape(table.name)}.csv</a>.</p>"
+        )
+    return f"<table class='data'><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>{more}"
 
 
 def _section(section: Section, images: dict[str, bytes]) -> str:
     parts = [f"<section id='{escape(section.key)}'><h2>{escape(section.title)}</h2>"]
     if section.intro:
         parts.append(f"<p>{escape(section.intro)}</p>")
-    if section.figures:
-        parts.append(_figures_table(section.figures))
+    if section.figures or section.warnings:
+        parts.append(_figures_table(section.figures, section.warnings))
     for plot in section.plots:
         data = base64.b64encode(images[plot.name]).decode("ascii")
         parts.append(
@@ -109,6 +162,8 @@ def _section(section: Section, images: dict[str, bytes]) -> str:
     for table in section.tables:
         link = f"<a href='data/{escape(table.name)}.csv'>data/{escape(table.name)}.csv</a>"
         parts.append(f"<h3>{escape(table.title)}</h3>")
+        if table.caption:
+            parts.append(f"<p class='note'>{escape(table.caption)}</p>")
         if table.show:
             parts.append(_data_table(table))
         parts.append(f"<p class='note'>CSV: {link}</p>")
@@ -127,7 +182,7 @@ def render_html(report: Report, images: dict[str, bytes]) -> str:
     """The report page; ``images`` maps each plot name to its PNG bytes."""
     nav = "".join(f"<a href='#{escape(s.key)}'>{escape(s.title)}</a>" for s in [*report.sections])
     inputs = "".join(
-        f"<tr><th>{escape(label)}</th><td>{escape(value)}</td></tr>"
+        f"<tr><th>{escape(label)}</th><td class='text'>{escape(value)}</td></tr>"
         for label, value in report.inputs
     )
     checks = report.checks()
@@ -138,7 +193,7 @@ def render_html(report: Report, images: dict[str, bytes]) -> str:
     notes = "".join(f"<li>{escape(n)}</li>" for n in report.notes)
     summary = [
         "<section id='summary'><h2>Summary</h2>",
-        _figures_table(report.key_figures()),
+        _figures_table(report.key_figures(), report.warnings()),
     ]
     if checks:
         summary.append(f"<h3>Cross-checks run</h3><ul class='checks'>{check_items}</ul>")

@@ -57,6 +57,8 @@ class Table:
     header: list[str] = field(default_factory=list)  # or explicit rows
     rows: list[list[str]] = field(default_factory=list)
     show: bool = True  # render in the page (CSV is always written)
+    limit: int | None = None  # rows shown in the page (the page says how many more the CSV has)
+    caption: str = ""  # a sentence under the title: what the rows are, how they are ordered
 
     def csv_text(self) -> str:
         if self.result is not None:
@@ -83,6 +85,7 @@ class Section:
     tables: list[Table] = field(default_factory=list)
     checks: list[Check] = field(default_factory=list)
     json: dict[str, Any] = field(default_factory=dict)  # full result data for summary.json
+    warnings: list[Any] = field(default_factory=list)  # crankdyn.plausibility.Warning objects
 
 
 @dataclass
@@ -103,6 +106,16 @@ class Report:
     def checks(self) -> list[Check]:
         return [c for s in self.sections for c in s.checks]
 
+    def warnings(self) -> list[Any]:
+        """The plausibility warnings of every section, each once (in section order)."""
+        seen, out = set(), []
+        for s in self.sections:
+            for w in s.warnings:
+                if w.key not in seen:
+                    seen.add(w.key)
+                    out.append(w)
+        return out
+
     def summary(self) -> dict[str, Any]:
         """summary.json: key figures in SI with the unit in the key, checks, notes."""
         return {
@@ -115,5 +128,6 @@ class Report:
             "checks": [
                 {"name": c.name, "detail": c.detail, "passed": c.passed} for c in self.checks()
             ],
+            "warnings": [w.to_dict() for w in self.warnings()],
             "notes": self.notes,
         }

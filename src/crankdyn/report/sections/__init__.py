@@ -25,6 +25,7 @@ BUILDERS = (
     "firing",
     "balance",
     "flywheel",
+    "torsion_model",
     "torsion_modes",
     "torsion_response",
     "measurement",

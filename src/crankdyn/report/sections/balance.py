@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from crankdyn.engine.balance import engine_balance
 from crankdyn.engine.torque import engine_torque
+from crankdyn.format import number, quantity
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 
@@ -29,7 +30,7 @@ def build(ctx) -> Section:
             worst_f.free_force,
             "0 (balanced)"
             if worst_f.free_force == 0.0
-            else f"{worst_f.free_force:.4g} N ({_row_name(worst_f)})",
+            else f"{quantity(worst_f.free_force, 'N')} ({_row_name(worst_f)})",
         )
     ]
     if engine.cylinders.pitch is not None:
@@ -41,7 +42,7 @@ def build(ctx) -> Section:
                 worst_m.free_moment,
                 "0 (balanced)"
                 if not worst_m.free_moment
-                else f"{worst_m.free_moment:.4g} N·m ({_row_name(worst_m)})",
+                else f"{quantity(worst_m.free_moment, 'N·m')} ({_row_name(worst_m)})",
             )
         )
         if b.power:
@@ -60,30 +61,37 @@ def build(ctx) -> Section:
                 "overturning_moment_amplitude_Nm",
                 "Overturning moment fluctuation",
                 b.overturning.amplitude,
-                f"±{b.overturning.amplitude:.4g} N·m about {b.overturning.mean:.4g} N·m",
+                f"±{quantity(b.overturning.amplitude, 'N·m')} about "
+                f"{quantity(b.overturning.mean, 'N·m')}",
             )
         )
     header = [
         "Order",
         "Free force (N)",
-        "vertical (N)",
-        "horizontal (N)",
+        "Free force, vertical (N)",
+        "Free force, horizontal (N)",
         "Free moment (N·m)",
-        "vertical plane (N·m)",
-        "horizontal plane (N·m)",
+        "Free moment, vertical plane (N·m)",
+        "Free moment, horizontal plane (N·m)",
     ]
+    # round-off next to the rotating mass's centrifugal force reads 0 (the moments: times the
+    # engine's length)
+    scale = b.rotating_mass * engine.geometry.crank_radius * b.speed**2
+    length = (engine.cylinders.pitch or 0.0) * engine.cylinders.throw_count
     table_rows = [
         [
             _row_name(r),
             *(
-                _cell(v)
-                for v in (
-                    r.free_force,
-                    r.free_force_vertical,
-                    r.free_force_horizontal,
-                    r.free_moment,
-                    r.free_moment_vertical,
-                    r.free_moment_horizontal,
+                _cell(v, scale * (1.0 if i < 3 else length))
+                for i, v in enumerate(
+                    (
+                        r.free_force,
+                        r.free_force_vertical,
+                        r.free_force_horizontal,
+                        r.free_moment,
+                        r.free_moment_vertical,
+                        r.free_moment_horizontal,
+                    )
                 )
             ),
         ]
@@ -116,7 +124,7 @@ def build(ctx) -> Section:
     )
 
 
-def _cell(value) -> str:
+def _cell(value, scale: float = 0.0) -> str:
     if value is None:
         return "-"
-    return "0" if value == 0.0 else f"{value:.5g}"
+    return number(value, 5, scale=scale)

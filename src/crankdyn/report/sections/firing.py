@@ -6,16 +6,19 @@ from __future__ import annotations
 import math
 
 from crankdyn.engine.firing_search import arrangement, firing_order_search, first_mode_shape
+from crankdyn.format import number
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
-_COLUMNS = (
-    "interval_deviation_deg",
-    "adjacent_consecutive",
-    "main_bearing_min_interval_deg",
-    "free_moment_1",
-    "free_moment_2",
-    "torsional_vector_sum",
-)
+_COLUMNS = {  # criterion key: column header (words, with the unit)
+    "interval_deviation_deg": "Largest departure from the even interval (deg)",
+    "adjacent_consecutive": "Adjacent cylinders firing in a row",
+    "main_bearing_min_interval_deg": "Shortest firing interval next to a main bearing (deg)",
+    "free_moment_1": "1st-order free moment / (m_j R ω² a)",
+    "free_moment_2": "2nd-order free moment / (m_j R ω² a)",
+    "torsional_vector_sum": "Largest torsional vector sum over the minor orders (relative)",
+}
+SHOWN = 20
+"""Firing orders listed in the page (the CSV holds all of them)."""
 
 
 def build(ctx) -> Section:
@@ -63,14 +66,16 @@ def build(ctx) -> Section:
         )
     columns = [c for c in _COLUMNS if c != "torsional_vector_sum" or mode is not None]
     rows = []
-    for c in ranking.candidates[:20]:
+    for c in ranking.candidates:
         d = c.to_dict()
         rows.append(
             [str(c.rank), c.order_text]
             + [_cell(d.get(k)) for k in columns]
             + ([c.v_scheme or ""] if cyl.layout == "V" else [])
         )
-    header = ["Rank", "Firing order", *columns] + (["V scheme"] if cyl.layout == "V" else [])
+    header = ["Rank", "Firing order", *(_COLUMNS[k] for k in columns)] + (
+        ["V scheme"] if cyl.layout == "V" else []
+    )
     scheme = f", {own.v_scheme} scheme" if own.v_scheme else ""
     return Section(
         key="firing",
@@ -97,9 +102,16 @@ def build(ctx) -> Section:
             )
         ],
         tables=[
-            Table("firing_orders", "Firing orders the crankshaft allows", header=header, rows=rows)
+            Table(
+                "firing_orders",
+                "Firing orders the crankshaft allows",
+                header=header,
+                rows=rows,
+                limit=SHOWN,
+                caption=f"{len(rows)} firing order(s), best first.",
+            )
         ],
-        json={"firing_orders": ranking.ranked_list()[:20]},
+        json={"firing_orders": ranking.ranked_list()},
     )
 
 
@@ -107,5 +119,5 @@ def _cell(value) -> str:
     if value is None:
         return "-"
     if isinstance(value, float):
-        return "0" if value == 0.0 else f"{value:.4g}"
+        return number(value, 4, scale=1.0)  # relative values: round-off next to 1 reads 0
     return str(value)

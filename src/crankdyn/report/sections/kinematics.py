@@ -5,15 +5,17 @@ from __future__ import annotations
 import math
 
 from crankdyn.crank.kinematics import piston_kinematics
+from crankdyn.plausibility import PISTON_ACCELERATION_G
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 G = 9.80665
-# seed 000 section 1.1: typical maximum piston accelerations
-TYPICAL_ACCELERATION_G = {"petrol": (500.0, 1500.0), "diesel": (200.0, 800.0)}
 
 
 def kinematics_of(ctx):
-    return ctx.get("kinematics", lambda: piston_kinematics(ctx.engine.geometry, ctx.speed))
+    return ctx.get(
+        "kinematics",
+        lambda: piston_kinematics(ctx.engine.geometry, ctx.speed, fuel=ctx.engine.fuel),
+    )
 
 
 def build(ctx) -> Section:
@@ -21,7 +23,9 @@ def build(ctx) -> Section:
     s = kin.summary
     g = ctx.engine.geometry
     amax_g = s.max_acceleration / G
-    limit = TYPICAL_ACCELERATION_G["petrol"][1]
+    fuel = ctx.engine.fuel
+    low, high = PISTON_ACCELERATION_G[fuel] if fuel else (200.0, 1500.0)
+    too_fast = any(w.key == "piston_acceleration" for w in kin.warnings)
     figures = [
         KeyFigure("stroke_m", "Stroke", s.stroke, f"{s.stroke * 1e3:.4g} mm"),
         KeyFigure("rod_ratio", "Crank-rod ratio λ = R/L", g.lam, f"{g.lam:.4f}"),
@@ -30,6 +34,7 @@ def build(ctx) -> Section:
             "Mean piston speed",
             s.mean_piston_speed,
             f"{s.mean_piston_speed:.2f} m/s ({s.speed_class})",
+            status="warn" if any(w.key == "mean_piston_speed" for w in kin.warnings) else None,
         ),
         KeyFigure(
             "max_piston_speed_m_s",
@@ -42,8 +47,9 @@ def build(ctx) -> Section:
             "Max piston acceleration",
             s.max_acceleration,
             f"{s.max_acceleration:.0f} m/s² ({amax_g:.0f} g)",
-            status="pass" if amax_g <= limit else "warn",
-            note=f"typical: petrol 500-1500 g, diesel 200-800 g (seed 000); warn above {limit:g} g",
+            status="warn" if too_fast else "pass",
+            note=f"typical of {fuel + ' engines' if fuel else 'petrol and diesel engines'}: "
+            f"{low:.0f}-{high:.0f} g (seed 000 §1)",
         ),
         KeyFigure(
             "min_piston_acceleration_m_s2",
@@ -81,4 +87,5 @@ def build(ctx) -> Section:
             Table("kinematics", "Kinematics over one revolution (1° steps)", result=kin, show=False)
         ],
         json={"kinematics_summary": s.to_dict()},
+        warnings=list(kin.warnings),
     )

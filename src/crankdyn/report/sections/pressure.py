@@ -6,30 +6,47 @@ import math
 
 from crankdyn.crank.indicated import pressure_analysis
 from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.format import quantity
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 
 def pressure_of(ctx):
     engine = ctx.engine
-    return ctx.get("pressure", lambda: pressure_analysis(default_pressure(engine), engine.geometry))
+    return ctx.get(
+        "pressure",
+        lambda: pressure_analysis(
+            default_pressure(engine),
+            engine.geometry,
+            fuel=engine.fuel,
+            aspiration=engine.aspiration,
+        ),
+    )
 
 
 def build(ctx) -> Section:
     r = pressure_of(ctx)
     synthetic = ctx.engine.pressure is None
+    flagged = {w.key for w in r.warnings}
     figures = [
         KeyFigure(
             "peak_pressure_Pa",
             "Peak cylinder pressure",
             r.peak_pressure,
-            f"{r.peak_pressure / 1e6:.4g} MPa at {math.degrees(r.peak_angle):.1f}° after TDC",
+            f"{quantity(r.peak_pressure, 'Pa')} at {math.degrees(r.peak_angle):.1f}° after TDC",
+            status="warn" if "peak_pressure" in flagged else None,
         ),
-        KeyFigure("imep_Pa", "IMEP", r.imep, f"{r.imep / 1e6:.4g} MPa"),
+        KeyFigure(
+            "imep_Pa",
+            "IMEP",
+            r.imep,
+            quantity(r.imep, "Pa"),
+            status="warn" if "imep" in flagged else None,
+        ),
         KeyFigure(
             "indicated_work_J",
             "Indicated work per cylinder and cycle",
             r.indicated_work,
-            f"{r.indicated_work:.5g} J",
+            quantity(r.indicated_work, "J"),
         ),
     ]
     intro = (
@@ -52,4 +69,5 @@ def build(ctx) -> Section:
         json={
             "pressure_summary": {k: v for k, v in r.to_dict().items() if not isinstance(v, list)}
         },
+        warnings=list(r.warnings),
     )

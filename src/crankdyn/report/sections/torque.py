@@ -6,6 +6,7 @@ from __future__ import annotations
 from crankdyn.crank.indicated import indicated_work
 from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.engine.torque import engine_torque
+from crankdyn.format import quantity
 from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 
@@ -20,16 +21,23 @@ def build(ctx) -> Section:
     error = abs(t.mean_torque - expected) / abs(expected) if expected else 0.0
     figures = [
         KeyFigure(
-            "mean_torque_Nm", "Mean indicated torque", t.mean_torque, f"{t.mean_torque:.5g} N·m"
+            "mean_torque_Nm",
+            "Mean indicated torque",
+            t.mean_torque,
+            quantity(t.mean_torque, "N·m"),
         ),
         KeyFigure(
             "indicated_power_W",
             "Indicated power",
             t.indicated_power,
-            f"{t.indicated_power / 1e3:.4g} kW",
+            quantity(t.indicated_power, "W"),
         ),
-        KeyFigure("max_torque_Nm", "Max engine torque", t.max_torque, f"{t.max_torque:.5g} N·m"),
-        KeyFigure("min_torque_Nm", "Min engine torque", t.min_torque, f"{t.min_torque:.5g} N·m"),
+        KeyFigure(
+            "max_torque_Nm", "Max engine torque", t.max_torque, quantity(t.max_torque, "N·m")
+        ),
+        KeyFigure(
+            "min_torque_Nm", "Min engine torque", t.min_torque, quantity(t.min_torque, "N·m")
+        ),
     ]
     return Section(
         key="torque",

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from crankdyn.format import number
 from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 from crankdyn.torsion.modal import natural_modes
@@ -43,8 +44,15 @@ def build(ctx) -> Section:
                     worst < 1e-9,
                 )
             )
+    top = float(np.max(np.abs(hz), initial=0.0))
     rows = [
-        [str(int(m)), f"{f:.3f}", str(int(n)), "; ".join(node.describe() for node in nodes) or "-"]
+        [
+            str(int(m)),
+            number(f, 5, scale=top),
+            number(f * 60.0, 5, scale=top * 60.0),
+            str(int(n)),
+            "; ".join(node.describe() for node in nodes) or "-",
+        ]
         for m, f, n, nodes in zip(modes.mode, hz, modes.node_count, modes.nodes, strict=True)
     ]
     return Section(
@@ -69,7 +77,13 @@ def build(ctx) -> Section:
             Table(
                 "natural_frequencies",
                 "Natural frequencies and nodes",
-                header=["Mode", "Frequency (Hz)", "Nodes", "Node positions"],
+                header=[
+                    "Mode",
+                    "Natural frequency (Hz)",
+                    "Natural frequency (cycles/min)",
+                    "Nodes",
+                    "Node positions",
+                ],
                 rows=rows,
             ),
             Table("modal_data", "Modal data", result=modes, show=False),

@@ -7,6 +7,7 @@ import math
 import numpy as np
 
 from crankdyn.constants import RPM
+from crankdyn.format import number
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 from crankdyn.torsion.campbell import campbell
@@ -78,7 +79,7 @@ def build(ctx) -> Section:
             "major_critical_speeds_in_range",
             "Major-order critical speeds in the range",
             len(majors),
-            ", ".join(f"order {c.order:g} at {c.speed * RPM:.0f} rpm" for c in majors[:4])
+            ", ".join(f"order {c.order:g} at {number(c.speed * RPM, 5)} rpm" for c in majors)
             or "none",
             status="warn" if majors else "pass",
             note="resonances of major orders inside the operating range",
@@ -134,8 +135,8 @@ def build(ctx) -> Section:
         [
             str(c.mode),
             f"{c.order:g}",
-            f"{c.speed * RPM:.0f}",
-            f"{c.frequency / (2 * math.pi):.2f}",
+            number(c.speed * RPM, 5),
+            number(c.frequency / (2 * math.pi), 5),
             "major" if c.major else "minor",
         ]
         for c in crit.critical_speeds
@@ -154,8 +155,16 @@ def build(ctx) -> Section:
             Table(
                 "critical_speeds",
                 "Critical speeds in the range",
-                header=["Mode", "Order", "Speed (rpm)", "Frequency (Hz)", "Order class"],
+                header=[
+                    "Mode",
+                    "Order",
+                    "Critical speed (rpm)",
+                    "Natural frequency (Hz)",
+                    "Order class",
+                ],
                 rows=rows,
+                caption=f"Every mode × order crossing in the range: {len(rows)} critical "
+                f"speed(s), {len(majors)} of major orders.",
             ),
             Table("torsion_response", "Response against speed", result=result, show=False),
         ],

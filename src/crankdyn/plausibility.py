@@ -1,0 +1,357 @@
+"""Plausibility warnings: inputs that are legal but unlikely for the machine they describe.
+
+An error (:class:`crankdyn.errors.InputError`) stops a run; a warning does not. A
+:class:`PlausibilityWarning` says which quantity lies outside the range such machines reach,
+its value, that range and where the range comes from, so the user can check a unit or a typo
+(an IMEP of 19 MPa is usually 1.9 MPa typed with a wrong exponent) or confirm an unusual design.
+The checks are pure functions of SI numbers; the analyses attach their warnings to their result
+objects (``result.warnings``), the command line prints them (``crankdyn: warning: ...``), the
+report lists them in its summary (status ``warn``) and JSON carries them as a ``warnings`` list.
+
+Ranges and their sources
+------------------------
+- **IMEP** at full load, by engine type. Heywood (1988), *Internal Combustion Engine
+  Fundamentals*, sec. 2.7, gives the maximum brake mean effective pressure of production
+  engines: naturally aspirated spark-ignition 0.85-1.05 MPa, turbocharged spark-ignition
+  1.25-1.7 MPa, naturally aspirated four-stroke diesels 0.7-0.9 MPa, turbocharged four-stroke
+  diesels 1.0-1.2 MPa (1.4 MPa aftercooled), large two-stroke diesels about 1.6 MPa;
+  IMEP = bmep / eta_m with the mechanical efficiency eta_m of 0.75-0.9 at full load (Heywood
+  sec. 2.5). Engines built since reach higher mean pressures (downsized turbocharged petrol
+  engines and heavy-duty and medium-speed diesels with bmep of 2.5-3 MPa), so the upper ends
+  below allow for them: a value above them is outside anything the engine type reaches in
+  service.
+- **Peak cylinder pressure**, by engine type: knock limits spark-ignition engines (Heywood
+  ch. 9: typically 3-7 MPa naturally aspirated, about twice that turbocharged), the structure
+  limits diesels (Heywood ch. 10: 6-10 MPa naturally aspirated; turbocharged engines of today
+  up to about 25 MPa).
+- **Maximum piston acceleration**: seed 000 sec. 1 ("actual engines": petrol 500-1500 g,
+  diesel 200-800 g).
+- **Mean piston speed**: seed 002 Table 1 classes (low-speed 5-6 m/s, medium 6-9, high 9-12,
+  very high above 12 m/s); the highest production and racing engines reach about 25 m/s
+  (Heywood sec. 2.2 gives 8-15 m/s at rated speed for production engines), which bounds the
+  top class.
+- **Four-bar transmission angle**: the worst min(mu, 180 deg - mu) over the motion should stay
+  above about 40 deg for the coupler to drive the output well (Norton, *Design of Machinery*,
+  ch. 3, and the transmission angle of ch. 4, eq. 4.32).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from crankdyn.format import quantity
+
+__all__ = [
+    "IMEP_RANGES",
+    "MEAN_PISTON_SPEED_RANGE",
+    "PEAK_PRESSURE_RANGES",
+    "PISTON_ACCELERATION_G",
+    "TRANSMISSION_ANGLE_MIN",
+    "PlausibilityWarning",
+    "check_imep",
+    "check_mean_piston_speed",
+    "check_peak_pressure",
+    "check_piston_acceleration",
+    "check_transmission_angle",
+    "engine_type_text",
+    "engine_warnings",
+    "kinematics_warnings",
+    "pressure_warnings",
+]
+
+G = 9.80665
+"""Standard gravity (m/s^2), for accelerations in g."""
+
+# (fuel, aspiration): (typical low, upper end) at full load (Pa); see the module docstring
+IMEP_RANGES: dict[tuple[str, str], tuple[float, float]] = {
+    ("petrol", "natural"): (0.9e6, 1.8e6),
+    ("petrol", "turbocharged"): (1.4e6, 3.3e6),
+    ("diesel", "natural"): (0.8e6, 1.4e6),
+    ("diesel", "turbocharged"): (1.2e6, 3.8e6),
+}
+IMEP_SOURCE = "Heywood 1988 sec. 2.7, bmep / eta_m, raised to current engines"
+
+PEAK_PRESSURE_RANGES: dict[tuple[str, str], tuple[float, float]] = {
+    ("petrol", "natural"): (3e6, 10e6),
+    ("petrol", "turbocharged"): (5e6, 15e6),
+    ("diesel", "natural"): (6e6, 12e6),
+    ("diesel", "turbocharged"): (8e6, 25e6),
+}
+PEAK_PRESSURE_SOURCE = "Heywood 1988 ch. 9-10, raised to current engines"
+
+PISTON_ACCELERATION_G: dict[str, tuple[float, float]] = {
+    "petrol": (500.0, 1500.0),
+    "diesel": (200.0, 800.0),
+}
+PISTON_ACCELERATION_SOURCE = "seed 000 sec. 1"
+
+MEAN_PISTON_SPEED_RANGE = (5.0, 25.0)
+MEAN_PISTON_SPEED_SOURCE = "seed 002 Table 1; Heywood 1988 sec. 2.2"
+
+TRANSMISSION_ANGLE_MIN = math.radians(40.0)
+TRANSMISSION_ANGLE_SOURCE = "Norton, Design of Machinery, ch. 3"
+
+
+@dataclass(frozen=True)
+class PlausibilityWarning:
+    """A legal but unlikely input value.
+
+    Parameters
+    ----------
+    key
+        Stable identifier of the check (``"imep"``, ``"peak_pressure"``,
+        ``"piston_acceleration"``, ``"mean_piston_speed"``, ``"transmission_angle"``).
+    quantity
+        What is checked, for people (``"IMEP"``).
+    value
+        The value (SI, in ``unit``).
+    unit
+        SI unit of ``value``, ``low`` and ``high`` (``"Pa"``, ``"m/s^2"``, ``"m/s"``, ``"rad"``).
+    low, high
+        The typical range (SI, in ``unit``).
+    source
+        Where the range comes from.
+    message
+        One line for people: the value, the range, the engine type.
+    """
+
+    key: str
+    quantity: str
+    value: float
+    unit: str
+    low: float
+    high: float
+    source: str
+    message: str
+
+    def to_dict(self) -> dict:
+        """JSON-ready: SI values, the unit stated once (``unit``)."""
+        return {
+            "check": self.key,
+            "quantity": self.quantity,
+            "value": self.value,
+            "unit": self.unit,
+            "typical_low": self.low,
+            "typical_high": self.high,
+            "source": self.source,
+            "message": self.message,
+        }
+
+    @property
+    def value_text(self) -> str:
+        """The value for people: ``"19 MPa"``, ``"2001 g (19620 m/s²)"``, ``"26.4 deg"``."""
+        return _value_text(self.value, self.unit)
+
+    @property
+    def range_text(self) -> str:
+        """The typical range for people: ``"1.2-3.8 MPa"``, ``"200-800 g"``, ``"40-90 deg"``."""
+        return _range_text(self.low, self.high, self.unit)
+
+
+def _engine_type(fuel: str | None, aspiration: str | None) -> list[tuple[str, str]]:
+    fuels = (fuel,) if fuel else ("petrol", "diesel")
+    airs = (aspiration,) if aspiration else ("natural", "turbocharged")
+    return [(f, a) for f in fuels for a in airs]
+
+
+def engine_type_text(fuel: str | None, aspiration: str | None) -> str:
+    """``"turbocharged diesel engines"``, ``"petrol engines"`` or ``"piston engines"``."""
+    air = {"natural": "naturally aspirated ", "turbocharged": "turbocharged "}.get(
+        aspiration or "", ""
+    )
+    return f"{air}{fuel or 'piston'} engines"
+
+
+def _range(table, fuel, aspiration) -> tuple[float, float]:
+    pairs = [table[t] for t in _engine_type(fuel, aspiration)]
+    return min(p[0] for p in pairs), max(p[1] for p in pairs)
+
+
+def _warning(key, what, value, unit, low, high, source, kind, hint) -> PlausibilityWarning:
+    """The warning, its message in one pattern: what, value, the typical range of the kind of
+    machine, the source, and what to check."""
+    side = "below" if value < low else "above"
+    return PlausibilityWarning(
+        key=key,
+        quantity=what,
+        value=float(value),
+        unit=unit,
+        low=float(low),
+        high=float(high),
+        source=source,
+        message=(
+            f"{what} {_value_text(value, unit)} is {side} the {_range_text(low, high, unit)} "
+            f"typical of {kind} ({source}); {hint}"
+        ),
+    )
+
+
+def _range_text(low: float, high: float, unit: str) -> str:
+    if unit == "rad":
+        return f"{math.degrees(low):.0f}-{math.degrees(high):.0f} deg"
+    if unit == "m/s^2":
+        return f"{low / G:.0f}-{high / G:.0f} g"
+    if unit == "m/s":
+        return f"{low:g}-{high:g} m/s"
+    return f"{quantity(low, unit, scale=high).split()[0]}-{quantity(high, unit)}"
+
+
+def _value_text(value: float, unit: str) -> str:
+    if unit == "rad":
+        return f"{math.degrees(value):.3g} deg"
+    if unit == "m/s^2":
+        return f"{value / G:.0f} g ({value:.0f} m/s²)"
+    if unit == "m/s":
+        return f"{value:.3g} m/s"
+    return quantity(value, unit)
+
+
+def check_imep(
+    imep: float, fuel: str | None = None, aspiration: str | None = None
+) -> list[PlausibilityWarning]:
+    """A warning when the IMEP (Pa) is above what engines of the type reach at full load.
+
+    Parameters
+    ----------
+    imep
+        Indicated mean effective pressure (Pa).
+    fuel, aspiration
+        The engine type (``"petrol"``/``"diesel"``, ``"natural"``/``"turbocharged"``); None
+        for not stated (the widest range of the types it may be).
+
+    Returns
+    -------
+    list of PlausibilityWarning
+        Empty, or one warning.
+    """
+    low, high = _range(IMEP_RANGES, fuel, aspiration)
+    if not math.isfinite(imep) or imep <= high:
+        return []
+    kind = engine_type_text(fuel, aspiration) + " at full load"
+    hint = "check the pressure's unit and the load"
+    return [_warning("imep", "IMEP", imep, "Pa", low, high, IMEP_SOURCE, kind, hint)]
+
+
+def check_peak_pressure(
+    peak: float, fuel: str | None = None, aspiration: str | None = None
+) -> list[PlausibilityWarning]:
+    """A warning when the peak cylinder pressure (Pa, absolute) is above what engines of the
+    type reach (parameters as :func:`check_imep`)."""
+    low, high = _range(PEAK_PRESSURE_RANGES, fuel, aspiration)
+    if not math.isfinite(peak) or peak <= high:
+        return []
+    kind = engine_type_text(fuel, aspiration)
+    hint = "check the pressure's unit"
+    what = "peak cylinder pressure"
+    return [
+        _warning("peak_pressure", what, peak, "Pa", low, high, PEAK_PRESSURE_SOURCE, kind, hint)
+    ]
+
+
+def check_piston_acceleration(
+    max_acceleration: float, fuel: str | None = None
+) -> list[PlausibilityWarning]:
+    """A warning when the largest piston acceleration (m/s^2) exceeds seed 000's range for the
+    fuel (petrol 500-1500 g, diesel 200-800 g; the widest, 200-1500 g, when not stated)."""
+    fuels = (fuel,) if fuel else tuple(PISTON_ACCELERATION_G)
+    low = min(PISTON_ACCELERATION_G[f][0] for f in fuels) * G
+    high = max(PISTON_ACCELERATION_G[f][1] for f in fuels) * G
+    a = abs(max_acceleration)
+    if not math.isfinite(a) or a <= high:
+        return []
+    kind = f"{fuel} engines" if fuel else "petrol and diesel engines"
+    return [
+        _warning(
+            "piston_acceleration",
+            "max piston acceleration",
+            a,
+            "m/s^2",
+            low,
+            high,
+            PISTON_ACCELERATION_SOURCE,
+            kind,
+            "check the speed and the stroke",
+        )
+    ]
+
+
+def check_mean_piston_speed(mean_piston_speed: float) -> list[PlausibilityWarning]:
+    """A warning when the mean piston speed c_m (m/s) is above the fastest class of seed 002
+    Table 1 as engines reach it (about 25 m/s)."""
+    low, high = MEAN_PISTON_SPEED_RANGE
+    if not math.isfinite(mean_piston_speed) or mean_piston_speed <= high:
+        return []
+    return [
+        _warning(
+            "mean_piston_speed",
+            "mean piston speed",
+            mean_piston_speed,
+            "m/s",
+            low,
+            high,
+            MEAN_PISTON_SPEED_SOURCE,
+            "piston engines",
+            "check the speed (rpm) and the stroke",
+        )
+    ]
+
+
+def check_transmission_angle(worst: float) -> list[PlausibilityWarning]:
+    """A warning when a four-bar's worst transmission angle min(mu, 180 deg - mu) (rad) over
+    its motion is below 40 deg."""
+    if not math.isfinite(worst) or worst >= TRANSMISSION_ANGLE_MIN:
+        return []
+    return [
+        _warning(
+            "transmission_angle",
+            "worst transmission angle",
+            worst,
+            "rad",
+            TRANSMISSION_ANGLE_MIN,
+            math.pi / 2.0,
+            TRANSMISSION_ANGLE_SOURCE,
+            "well-designed linkages",
+            "the coupler drives the output poorly there (large joint forces, friction may lock it)",
+        )
+    ]
+
+
+def kinematics_warnings(
+    mean_piston_speed: float, max_acceleration: float, fuel: str | None = None
+) -> tuple[PlausibilityWarning, ...]:
+    """The warnings of an engine's piston motion: mean piston speed (m/s) and largest piston
+    acceleration (m/s^2)."""
+    return (
+        *check_mean_piston_speed(mean_piston_speed),
+        *check_piston_acceleration(max_acceleration, fuel),
+    )
+
+
+def pressure_warnings(
+    imep: float, peak_pressure: float, fuel: str | None = None, aspiration: str | None = None
+) -> tuple[PlausibilityWarning, ...]:
+    """The warnings of a cylinder pressure: IMEP and peak pressure (Pa)."""
+    return (
+        *check_imep(imep, fuel, aspiration),
+        *check_peak_pressure(peak_pressure, fuel, aspiration),
+    )
+
+
+def engine_warnings(engine, speed: float, trace=None) -> tuple[PlausibilityWarning, ...]:
+    """Every plausibility warning of an engine running at ``speed`` (rad/s): its piston motion
+    (:func:`kinematics_warnings`) and its cylinder pressure (:func:`pressure_warnings`, of
+    ``trace`` when given, e.g. the scaled trace a forced response uses, else the engine's trace
+    or its synthetic default), checked against the ranges of its ``fuel`` and ``aspiration``."""
+    from crankdyn.crank.indicated import pressure_analysis
+    from crankdyn.crank.kinematics import piston_kinematics
+    from crankdyn.crank.pressure_model import default_pressure
+
+    kin = piston_kinematics(engine.geometry, speed, fuel=engine.fuel)
+    pressure = pressure_analysis(
+        trace if trace is not None else default_pressure(engine),
+        engine.geometry,
+        fuel=engine.fuel,
+        aspiration=engine.aspiration,
+    )
+    return (*kin.warnings, *pressure.warnings)
