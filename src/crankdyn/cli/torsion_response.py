@@ -409,7 +409,7 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
                 str(c.mode),
                 str(c.nodes),
                 f"{c.order:g}",
-                f"{c.frequency / (2 * math.pi):.5g}",
+                f"{c.frequency_hz:.5g}",
                 "-" if c.major is None else ("yes" if c.major else "no"),
                 "-" if c.relative_amplitude_sum is None else f"{c.relative_amplitude_sum:.3g}",
             )

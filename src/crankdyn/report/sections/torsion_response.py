@@ -135,8 +135,8 @@ def build(ctx) -> Section:
             str(c.mode),
             f"{c.order:g}",
             f"{c.speed * RPM:.0f}",
-            f"{c.frequency / (2 * math.pi):.2f}",
-            "major" if c.major else "minor",
+            f"{c.frequency_hz:.2f}",
+            "undetermined" if c.major is None else "major" if c.major else "minor",
         ]
         for c in crit.critical_speeds
     ]
