@@ -74,7 +74,8 @@ def _modes_tables(result) -> list[RichTable]:
         )
         if not result.nodes_resolved[r]:
             regions = ", ".join(f"{a}…{b}" for a, b in result.roundoff_regions[r])
-            where += escape(f"{'; ' if where else ''}round-off in {regions}: nodes there undetermined")
+            text = f"round-off in {regions}: nodes there undetermined"
+            where += escape(f"; {text}" if where else text)
         summary.add_row(
             str(int(result.mode[r])),
             _g(result.frequencies_hz[r]),
@@ -85,8 +86,7 @@ def _modes_tables(result) -> list[RichTable]:
         )
     summary.caption = (
         f"{result.structure}, {'free' if result.free else 'grounded'}; solver: {result.solver}; "
-        "elastic modes numbered from 1"
-        + (", the rigid-body mode is 0" if result.free else "")
+        "elastic modes numbered from 1" + (", the rigid-body mode is 0" if result.free else "")
     )
     shapes = RichTable(title="Mode shapes", header_style="bold")
     shapes.caption = "largest amplitude 1"

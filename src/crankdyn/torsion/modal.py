@@ -132,9 +132,11 @@ class ModalResult(Result):
             or not isinstance(mode, (int, np.integer))
             or not first <= mode < first + self.mode.size
         ):
+            last = first + self.mode.size - 1
             raise InputError(
-                f"the model has modes {first} to {first + self.mode.size - 1}"
-                + (" (0 is the rigid-body mode)" if self.free else ""),
+                f"the model has modes 1 to {last}"
+                + (" and the rigid-body mode 0" if self.free else "")
+                + " (docs/conventions.md)",
                 key="mode",
                 value=mode,
             )

@@ -1356,14 +1356,15 @@ def _resolved(sweep: _Sweep, speeds, tolerance):
     else:
         notes.append(
             f"the peaks were refined {MAX_ROUNDS} times and some are still not resolved to "
-            f"{tolerance:.2g}"
+            f"{tolerance * 100:g} %"
         )
     on_grid = np.isin(block.speed, grid)
     added = np.flatnonzero(~on_grid)
     if added.size:
         notes.append(
             f"{added.size} speeds added to the grid (critical speeds and refinement around the "
-            f"resonances) so that every peak is resolved to {tolerance:.2g}: see added_speeds"
+            f"resonances) so that every peak is resolved to {tolerance * 100:g} %: see "
+            "added_speeds"
         )
     extra = {
         "on_grid": freeze(on_grid, dtype=bool),
