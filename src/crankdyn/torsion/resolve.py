@@ -18,10 +18,11 @@ caller supplies the evaluation):
    half its curve's largest value (only those can hold the peak once the resonances are
    sampled across their widths), the vertex of the parabola through the maximum and its two
    neighbours is added (successive parabolic interpolation: R. P. Brent, *Algorithms for
-   Minimization without Derivatives*, 1973, ch. 5; requests of several curves within a tenth of
-   a bracket make one speed), until every candidate's parabola predicts a gain below a quarter
-   of the tolerance, i.e. a further refinement changes no peak by more than the tolerance
-   (0.1 % by default) (:func:`refinement_speeds`).
+   Minimization without Derivatives*, 1973, ch. 5; the parabola is fitted to 1/y^2, exact near
+   a single resonance's peak; requests of several curves within 40 % of a bracket make one
+   speed), until every candidate's parabola predicts a gain below a quarter of the
+   tolerance, i.e. a further refinement changes no peak by more than the tolerance (0.1 % by
+   default) (:func:`refinement_speeds`).
 3. *Limit crossings.* Where a resolved curve exceeds a limit curve, the ends of each range are
    bracketed by neighbouring samples on either side and bisected, all brackets at once per
    round, until they are narrower than the speed tolerance (:func:`bisect_crossings`).
@@ -183,24 +184,23 @@ def refinement_speeds(speeds, values, scale=None, tolerance: float = TOLERANCE, 
     vertex, top = _peak_estimate(x0, x1, x2, y0, y1, y2)
     gain = np.maximum(top - y1, 0.0)
     narrow = (x2 - x0) <= _SPACING * 100.0 * x1
-    todo = (gain > 0.25 * tolerance * np.asarray(scale)[c]) & ~narrow
+    todo = (gain > 0.5 * tolerance * np.asarray(scale)[c]) & ~narrow
     if not np.any(todo):
         return np.zeros(0), np.zeros(0, dtype=int)
     x0, x1, x2, vertex, c = x0[todo], x1[todo], x2[todo], vertex[todo], c[todo]
     span = x2 - x0
-    # the vertex, kept off the bracket's ends; where the parabola puts the peak at the sample
-    # itself (no vertex inside), the midpoints of both neighbouring intervals instead
-    inside = np.abs(vertex - x1) > 1e-3 * span
+    # the vertex, kept off the bracket's ends (where the parabola puts the peak at the sample
+    # itself, the midpoint of the wider neighbouring interval instead)
+    wider = np.where(x1 - x0 > x2 - x1, 0.5 * (x0 + x1), 0.5 * (x1 + x2))
+    vertex = np.where(np.abs(vertex - x1) > 1e-3 * span, vertex, wider)
     vertex = np.clip(vertex, x0 + 0.05 * span, x2 - 0.05 * span)
-    points = np.concatenate([vertex[inside], 0.5 * (x0 + x1)[~inside], 0.5 * (x1 + x2)[~inside]])
-    column = np.concatenate([c[inside], c[~inside], c[~inside]])
-    # requests of several curves within a tenth of a bracket of each other: one speed
-    near = np.concatenate([0.4 * span[inside], 0.4 * span[~inside], 0.4 * span[~inside]])
-    order = np.argsort(points, kind="stable")
-    points, column, near = points[order], column[order], near[order]
-    far = _distance_to(points, s) > np.maximum(0.5 * near, _SPACING * points)
-    points, column, near = points[far], column[far], near[far]
-    keep = _thin(points, near)
+    # requests of several curves within 40 % of a bracket of each other: one speed (the others
+    # ask again next round, in their narrower brackets); none on top of a sampled speed
+    order = np.argsort(vertex, kind="stable")
+    points, column, width = vertex[order], c[order], span[order]
+    far = _distance_to(points, s) > np.maximum(1e-3 * width, _SPACING * points)
+    points, column, width = points[far], column[far], width[far]
+    keep = _thin(points, 0.25 * width)
     return points[keep], column[keep]
 
 

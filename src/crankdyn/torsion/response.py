@@ -83,7 +83,8 @@ __all__ = [
 
 from crankdyn.constants import RPM
 
-_BLOCK = 1 << 22  # elements per block of the time-domain synthesis
+_BLOCK = 1 << 19  # elements per block of the time-domain synthesis (2048 rows: in cache)
+NEWTON = 4  # evaluations per crest in the time-domain synthesis (the last step by Taylor)
 
 
 # ---- numeric core: batched tridiagonal solve ---------------------------------------------------
@@ -423,35 +424,30 @@ def half_range(coefficients, harmonic) -> tuple[np.ndarray, np.ndarray]:
     grid value lies within B = (1/2) (pi/N)^2 sum_k m_k^2 |c_k| of the nearest crest, so every
     grid crest within B of the grid's extreme is refined (not only the grid's extreme: two
     crests of nearly equal height are otherwise confused, by up to B): from the vertex of the
-    parabola through its three grid points, by three Newton steps on x'(phi) = 0, each kept
-    within one grid step. Vectorised over the leading axes, in blocks to bound memory."""
+    parabola through its three grid points, by Newton's method on x'(phi) = 0 (three steps,
+    each kept within one grid step; the fourth taken in the Taylor expansion of x). The
+    harmonics exp(i m phi) are products of exp(i phi) where the indices are small. Vectorised
+    over the leading axes and the crests, in blocks to bound memory."""
     c = np.asarray(coefficients, dtype=complex)
     m = np.asarray(harmonic, dtype=int)
     lead = c.shape[:-1]
     c2 = c.reshape(-1, m.size)
     top = max(int(m.max()), 1)
     samples = max(64, 1 << math.ceil(math.log2(8 * top)))
-    mf = m.astype(float)
-    m2 = mf * mf
-    step = 2.0 * math.pi / samples
     out_max = np.empty(c2.shape[0])
     out_min = np.empty(c2.shape[0])
     rows = max(1, _BLOCK // samples)
     for start in range(0, c2.shape[0], rows):  # blocks of rows, not a loop per speed
         block = c2[start : start + rows]
-        spectrum = np.zeros((block.shape[0], samples // 2 + 1), dtype=complex)
-        spectrum[:, m] = block * (samples / 2.0)
-        x = np.fft.irfft(spectrum, n=samples, axis=-1)
-        bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ m2)
         end = start + block.shape[0]
-        out_max[start:end] = _extreme(x, block, mf, m2, step, bound, 1.0)
-        out_min[start:end] = _extreme(-x, block, mf, m2, step, bound, -1.0)
+        out_max[start:end], out_min[start:end] = _extremes(block, m, samples)
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
-def _extreme(sx, block, mf, m2, step, bound, sign) -> np.ndarray:
-    """sign x the largest value of sign x(phi) over the cycle, per row (:func:`half_range`);
-    ``sx``: sign x on the grid."""
+def _crests(sx, bound):
+    """(row, position in grid steps, grid value) of every crest of the rows of ``sx`` within
+    ``bound`` of the row's largest value, the position from the parabola through the crest's
+    three grid points."""
     samples = sx.shape[1]
     best = np.max(sx, axis=1)
     row, j = np.nonzero(sx >= (best - bound)[:, None])
@@ -461,26 +457,48 @@ def _extreme(sx, block, mf, m2, step, bound, sign) -> np.ndarray:
     den = y0 - 2.0 * y1 + y2
     with np.errstate(divide="ignore", invalid="ignore"):
         shift = np.where(den < 0.0, 0.5 * (y0 - y2) / den, 0.0)
-    phi = (j + np.clip(shift, -0.5, 0.5)) * step
-    c = block[row]
-    a = sign * c.real
-    b = sign * c.imag
-    for _ in range(3):  # Newton on (sign x)'(phi) = 0
-        arg = phi[:, None] * mf
-        cos, sin = np.cos(arg), np.sin(arg)
-        re = a * cos
-        re -= b * sin
-        im = a * sin
-        im += b * cos
-        d1 = -(im @ mf)
-        d2 = -(re @ m2)
+    return row, j + np.clip(shift, -0.5, 0.5), y1
+
+
+def _extremes(block, m, samples) -> tuple[np.ndarray, np.ndarray]:
+    """Largest and smallest value over the cycle of every row of ``block`` (:func:`half_range`)."""
+    count = block.shape[0]
+    spectrum = np.zeros((count, samples // 2 + 1), dtype=complex)
+    spectrum[:, m] = block * (samples / 2.0)
+    x = np.fft.irfft(spectrum, n=samples, axis=-1)
+    mf = m.astype(float)
+    m2 = mf * mf
+    step = 2.0 * math.pi / samples
+    bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ m2)
+    r1, p1, y1 = _crests(x, bound)
+    r2, p2, y2 = _crests(-x, bound)
+    row = np.concatenate([r1, r2])
+    phi = np.concatenate([p1, p2]) * step
+    coef = block[row]
+    coef[r1.size :] *= -1.0  # the minima as maxima of -x
+    top = int(m.max())
+    powers = top <= 4 * m.size and bool(np.all(m >= 1))
+    for k in range(NEWTON):  # Newton on x'(phi) = 0, all crests at once
+        if powers:  # exp(i m phi) as powers of exp(i phi)
+            z = np.exp(1j * phi)
+            e = np.cumprod(np.broadcast_to(z[:, None], (z.size, top)), axis=1)[:, m - 1]
+        else:
+            e = np.exp(1j * phi[:, None] * mf)
+        p = coef * e
+        value = p.real.sum(axis=1)
+        d1 = -(p.imag @ mf)
+        d2 = -(p.real @ m2)
         with np.errstate(divide="ignore", invalid="ignore"):
-            move = np.where(d2 < 0.0, -d1 / d2, 0.0)
-        phi = phi + np.clip(move, -step, step)
-    arg = phi[:, None] * mf
-    value = np.maximum((a * np.cos(arg) - b * np.sin(arg)).sum(axis=1), y1)
-    starts = np.flatnonzero(np.concatenate([[True], row[1:] != row[:-1]]))
-    return sign * np.maximum.reduceat(value, starts)
+            move = np.clip(np.where(d2 < 0.0, -d1 / d2, 0.0), -step, step)
+        if k < NEWTON - 1:
+            phi = phi + move
+    value = value + d1 * move + 0.5 * d2 * move * move  # the last step, by Taylor
+    value = np.maximum(value, np.concatenate([y1, y2]))
+    out = []
+    for rows, values in ((r1, value[: r1.size]), (r2, value[r1.size :])):
+        starts = np.flatnonzero(np.concatenate([[True], rows[1:] != rows[:-1]]))
+        out.append(np.maximum.reduceat(values, starts))
+    return out[0], -out[1]
 
 
 # ---- results -----------------------------------------------------------------------------------
@@ -1020,9 +1038,22 @@ class _Sweep:
     def tracked(self, block: _Block) -> tuple[np.ndarray, np.ndarray]:
         """(values (S, C), scale (C,)): every reported curve (per order, summed, synthesised:
         mass amplitudes, element torques (the stresses are proportional), damper power, the
-        tracked relative angles) and the value each one's tolerance is relative to (its
-        largest value, at least 1e-9 of its family's, so curves at round-off level do not ask
-        for refinement)."""
+        tracked relative angles) and the value each one's tolerance is relative to
+        (:meth:`scale`)."""
+        values, bounds = self._values(block)
+        return values, self.scale(values, bounds)
+
+    @staticmethod
+    def scale(values, bounds) -> np.ndarray:
+        """Per curve its largest value, at least 1e-9 of its family's largest (columns
+        ``bounds[k]:bounds[k+1]``), so that curves at round-off level ask for no refinement."""
+        top = np.max(values, axis=0) if values.shape[0] else np.zeros(values.shape[1])
+        family = np.maximum.reduceat(top, bounds[:-1]) if top.size else top
+        floor = np.repeat(1e-9 * family, np.diff(bounds))
+        return np.maximum(top, floor)
+
+    def _values(self, block: _Block) -> tuple[np.ndarray, np.ndarray]:
+        """The tracked curves (S, C) and the column bounds of their families."""
         s = block.speed.size
         n, e = block.x.shape[2], block.torque.shape[2]
         ax = np.abs(block.x)
@@ -1043,11 +1074,9 @@ class _Sweep:
             j = np.array([p[1] for p in self.pairs])
             rel = np.abs(block.x[:, :, i] - block.x[:, :, j])
             families += [rel.reshape(s, -1), rel.sum(axis=1), half[:, n + e :]]
-        scales = []
-        for f in families:
-            top = np.max(f, axis=0) if s else np.zeros(f.shape[1])
-            scales.append(np.maximum(top, 1e-9 * float(np.max(top, initial=0.0))))
-        return np.concatenate(families, axis=1), np.concatenate(scales)
+        families = [f for f in families if f.shape[1]]
+        bounds = np.concatenate([[0], np.cumsum([f.shape[1] for f in families])])
+        return np.concatenate(families, axis=1), bounds
 
     def describe(self, column: int, block: _Block) -> str:
         """Which curve a column of :meth:`tracked` is (for the added speeds' reasons)."""
@@ -1084,9 +1113,8 @@ class _Sweep:
     def _rigid_count(self) -> int:
         """Zero natural frequencies of the system: the rigid-body mode of a free model and one
         per damper ring joined by a viscous film only."""
-        grounded = bool(np.any(np.abs(np.sum(self.system.stiffness, axis=1)) > 0.0))
         viscous = sum(1 for d in self.system.dampers if d.stiffness == 0.0)
-        return (0 if grounded else 1) + viscous
+        return (1 if self.model.is_free else 0) + viscous
 
     def undamped(self) -> np.ndarray:
         """The elastic undamped natural frequencies (rad/s) of the system with its damper
@@ -1247,7 +1275,7 @@ def forced_response(
         loss factors as viscous damping eta k / omega_h (the time-domain equivalent).
     rules
         A :class:`~crankdyn.torsion.rules.RuleSet` to check the synthesised stresses against;
-        None: the model's own (``model.rules``) when it has one.
+        None: the model's own (``model.rules``) when it has one; False: no check.
     resolve
         True (default): add the critical speeds inside the grid's range and refine around
         every resonance until the peak of every reported quantity is resolved to
@@ -1257,8 +1285,9 @@ def forced_response(
     tolerance
         Relative change of a peak below which it counts as resolved (default 0.1 %).
     relative
-        Pairs of masses (a, b) whose relative angle is resolved with the rest; default the
-        first and the last mass.
+        Pairs of masses (a, b) whose relative angle is resolved with the rest (in the same
+        batched rounds); any other pair is resolved when asked for
+        (:meth:`ResponseResult.relative_angle`).
 
     Returns
     -------
@@ -1289,7 +1318,7 @@ def forced_response(
         )
     system_names = list(model.mass_names) + [d.name for d in dampers]
     if relative is None:
-        pairs = [(0, model.mass_count - 1)] if model.mass_count > 1 else []
+        pairs = []
     else:
         pairs = []
         for a, b in relative:
@@ -1321,7 +1350,7 @@ def forced_response(
     result = sweep.result(block, notes=tuple(notes) or None, **extra)
     if rules is None:
         rules = getattr(model, "rules", None)
-    if rules is not None:
+    if rules is not None and rules is not False:
         from crankdyn.torsion.rules import check_rules
 
         engine = getattr(excitation, "engine", None)
@@ -1343,14 +1372,17 @@ def _resolved(sweep: _Sweep, speeds, tolerance):
     reasons_all = [""] * grid.size + seed_reasons
     reason = [reasons_all[k] for k in first]
     block = sweep.evaluate(start)
+    values, bounds = sweep._values(block)
     notes = []
     for _ in range(MAX_ROUNDS):
-        values, scale = sweep.tracked(block)
+        scale = sweep.scale(values, bounds)
         new, column = refinement_speeds(block.speed, values, scale, tolerance)
         if new.size == 0:
             break
         labels = [f"refinement: peak of {sweep.describe(int(c), block)}" for c in column]
-        block, first = block.merged(sweep.evaluate(new))
+        more = sweep.evaluate(new)
+        block, first = block.merged(more)
+        values = np.concatenate([values, sweep._values(more)[0]])[first]
         combined = reason + labels
         reason = [combined[k] for k in first]
     else:
