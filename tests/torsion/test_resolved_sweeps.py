@@ -235,3 +235,38 @@ def test_relative_angle_resolved_on_demand(line):
     fine = forced_response(model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False, rules=False)
     truth = max(guess.value, fine.relative_angle("cylinder 3", "propeller").peak().value)
     assert got.value == pytest.approx(truth, rel=1e-3)
+
+
+def test_verdict_at_a_tangency_does_not_depend_on_the_grid(line):
+    """The excitation scaled so that the input shaft's stress just touches tau_C (peak ratio
+    about 1.0002): a barred range of a fraction of an rpm, or none. The near-limit maxima of
+    stress / tau_C are refined to 1e-6, so every grid gives the same answer, the brute force's
+    (0.001 rpm around the peak)."""
+    model, ex = line
+    first = forced_response(model, ex, _grid(25.0), ORDERS).rule_check
+    ratio = max(b.max_ratio for b in first.barred_ranges if b.shaft == INPUT)
+    touching = UniformExcitation(ex.torque * 1.0002 / ratio, ex.firing_angles, ex.cycle)
+    answers = []
+    for step in (1.0, 7.0, 25.0, 50.0):
+        check = forced_response(model, touching, _grid(step), ORDERS).rule_check
+        ranges = [b for b in check.barred_ranges if b.shaft == INPUT]
+        answers.append((check.passed, [(b.start / RPM, b.end / RPM, b.max_ratio) for b in ranges]))
+    center = first.barred_ranges[0].peak_speed / RPM
+    fine = forced_response(
+        model,
+        touching,
+        np.arange(center - 3.0, center + 3.0, 0.001) * RPM,
+        ORDERS,
+        resolve=False,
+        rules=False,
+    )
+    above = _above_tau_c(model, fine, INPUT)
+    for passed, ranges in answers:
+        assert passed == answers[0][0]
+        assert len(ranges) == (1 if above.any() else 0)
+        for (start, end, peak), (start0, end0, peak0) in zip(ranges, answers[0][1], strict=True):
+            assert start == pytest.approx(start0, abs=0.01) and end == pytest.approx(end0, abs=0.01)
+            assert peak == pytest.approx(peak0, rel=1e-5)
+            inside = fine.speed[above] / RPM
+            assert start == pytest.approx(inside[0], abs=0.1)
+            assert end == pytest.approx(inside[-1], abs=0.1)

@@ -243,14 +243,14 @@ def plot_campbell(result, fig=None, max_speed: float | None = None):
 
 def plot_stress_limits(result, fig=None):
     """Synthesised shear stress of every checked shaft against tau_C and tau_T (IACS UR M68),
-    barred speed ranges shaded (red where not permitted)."""
+    barred speed ranges shaded between their bisected ends (red where not permitted), drawn on
+    every speed of the resolved response (the peaks included)."""
     check = result.rule_check
     if check is None:
         raise ValueError("the result has no rule check")
     count = len(check.shafts)
     fig, axes = new_figure(count, 1, width=9.5, height=3.4 * count + 0.8, fig=fig)
     n = np.asarray(check.speed) * RPM
-    half_step = 0.5 * float(np.min(np.diff(n))) if n.size > 1 else 0.0
     for j, ax in enumerate(axes[:, 0]):
         a, b = check.shafts[j]
         ax.plot(
@@ -273,8 +273,8 @@ def plot_stress_limits(result, fig=None):
             if tuple(barred.shaft) != (a, b):
                 continue
             ax.axvspan(
-                barred.start * RPM - half_step,
-                barred.end * RPM + half_step,
+                barred.start * RPM,
+                barred.end * RPM,
                 color="#f4c7c3" if not barred.permitted else "#fbe5c8",
                 zorder=0,
             )

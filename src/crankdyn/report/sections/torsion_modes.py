@@ -73,8 +73,7 @@ def build(ctx) -> Section:
             f"{'chain' if model.is_chain else 'branched'}, "
             f"{'free' if model.is_free else 'grounded'}; solved by the tridiagonal eigen solver "
             "and checked by Holzer's method and transfer matrices (seed 003). Elastic modes are "
-            "numbered from 1"
-            + (", the rigid-body mode is mode 0." if model.is_free else ".")
+            "numbered from 1" + (", the rigid-body mode is mode 0." if model.is_free else ".")
         ),
         figures=figures,
         plots=[
