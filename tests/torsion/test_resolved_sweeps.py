@@ -124,6 +124,7 @@ def test_resolved_peaks_equal_the_brute_force(resolved, brute):
     peaks, _ = brute
     for (quantity, item, order), value in peaks.items():
         got = r.peak(quantity, item, order)
+        assert got.order == order or (order is None and got.order in (None, *r.orders))
         # resolved to 0.1 %; not above the true peak, which the 0.01 rpm brute force finds to
         # 1e-5 (the peaks are at least 3 rpm wide)
         assert got.value == pytest.approx(value, rel=1e-3), (step, quantity, item, order)
@@ -235,6 +236,10 @@ def test_relative_angle_resolved_on_demand(line):
     fine = forced_response(model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False, rules=False)
     truth = max(guess.value, fine.relative_angle("cylinder 3", "propeller").peak().value)
     assert got.value == pytest.approx(truth, rel=1e-3)
+    per_order = rel.peak("amplitude", order=3.0)
+    assert per_order.order == 3.0
+    assert per_order.value == pytest.approx(np.max(rel.amplitude[:, list(r.orders).index(3.0)]))
+    assert rel.peak("amplitude").value == pytest.approx(np.max(rel.amplitude))
 
 
 def test_verdict_at_a_tangency_does_not_depend_on_the_grid(line):

@@ -249,3 +249,39 @@ def test_chain_solve_falls_back_to_pivoting_at_a_zero_pivot():
     eye = np.broadcast_to(np.eye(3, dtype=complex), (3, 3, 3))
     receptance = system.solve(w, eye)
     assert np.allclose(receptance, np.linalg.inv(d), atol=1e-12)
+
+
+def test_peak_api():
+    """ResponseResult.peak: the largest value of a quantity, its speed, item and order."""
+    model = TorsionModel.example("seed003-v6")
+    ex = UniformExcitation(1.0, np.radians([0, 120, 240, 360, 480, 600]))
+    w = np.arange(1000.0, 3001.0, 50.0) * math.pi / 30
+    r = forced_response(model, ex, w, [1.5, 3.0, 4.5, 6.0])
+    p = r.peak("synthesized_amplitude", "pulley")
+    i = r.mass_index("pulley")
+    assert p.value == np.max(r.synthesized_amplitude[:, i])
+    assert r.speed[np.argmax(r.synthesized_amplitude[:, i])] == p.speed
+    assert p.on_grid == bool(r.on_grid[np.argmax(r.synthesized_amplitude[:, i])])
+    top = r.peak("shaft_torque")  # over every shaft
+    assert top.value == np.max(r.shaft_torque) and top.item in {f"{a} - {b}" for a, b in r.shafts}
+    per_order = r.peak("amplitude", "flywheel", order=4.5)
+    assert per_order.order == 4.5
+    assert per_order.value == np.max(r.amplitude[:, 2, r.mass_index("flywheel")])
+    assert r.peak("amplitude", "flywheel").order in (1.5, 3.0, 4.5, 6.0)
+    d = p.to_dict()
+    assert d["value_rad"] == p.value and d["speed_rpm"] == pytest.approx(p.speed * 30 / math.pi)
+    with pytest.raises(InputError, match="expected one of"):
+        r.peak("torque")
+    with pytest.raises(InputError, match="give no order"):
+        r.peak("shaft_torque", order=3.0)
+    with pytest.raises(InputError, match="not among the response's orders"):
+        r.peak("amplitude", "pulley", order=2.0)
+    with pytest.raises(InputError, match='no mass named "puley"'):
+        r.peak("synthesized_amplitude", "puley")
+    with pytest.raises(InputError, match="no finite values"):
+        r.peak("shaft_stress")  # no shaft has diameters
+    assert {q["quantity"] for q in r.to_dict()["peaks"]} >= {
+        "synthesized_amplitude",
+        "shaft_torque",
+    }
+    assert forced_response(model, ex, w, [3.0], rules=False).rule_check is None

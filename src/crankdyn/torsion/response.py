@@ -592,14 +592,16 @@ class RelativeAngle(Result):
         label = f"{self.between[0]} - {self.between[1]}"
         if quantity == "amplitude":
             values = np.asarray(self.amplitude)
+            orders = np.asarray(self.orders)
             if order is not None:
-                values = values[:, [_order_index(self.orders, order)]]
+                k = _order_index(self.orders, order)
+                values, orders = values[:, [k]], orders[[k]]
             return _peak_of(
                 values[:, :, None],
                 self.speed,
                 on_grid,
                 [label],
-                self.orders,
+                orders,
                 "relative_amplitude",
                 "rad",
                 None,
@@ -780,8 +782,10 @@ class ResponseResult(Result):
         values = self._quantity_values(quantity)
         if values is None:
             raise InputError(f"the response has no {quantity}", key="quantity", value=quantity)
+        orders = np.asarray(self.orders)
         if per_order and order is not None:
-            values = values[:, [_order_index(self.orders, order)]]
+            k = _order_index(self.orders, order)
+            values, orders = values[:, [k]], orders[[k]]
         elif order is not None:
             raise InputError(
                 f"{quantity} is summed over the orders: give no order", key="order", value=order
@@ -802,9 +806,7 @@ class ResponseResult(Result):
         if index is not None:
             values = values[..., [index]]
             labels = [labels[index]]
-        return _peak_of(
-            values, self.speed, self._on_grid(), labels, self.orders, quantity, unit, None
-        )
+        return _peak_of(values, self.speed, self._on_grid(), labels, orders, quantity, unit, None)
 
     def _quantity_values(self, quantity: str):
         if quantity == "order_shaft_stress":
