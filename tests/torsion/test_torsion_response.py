@@ -285,3 +285,18 @@ def test_peak_api():
         "shaft_torque",
     }
     assert forced_response(model, ex, w, [3.0], rules=False).rule_check is None
+
+
+def test_undamped_resonances_are_noted_not_chased():
+    """Without damping a resonance is unbounded: the resolved sweep does not evaluate the
+    critical speed (a singular solve) nor refine next to it, and says so."""
+    model = TorsionModel(
+        masses=(Mass("a", 1.0, cylinders=(1,)), Mass("b", 2.0)), shafts=(Shaft(("a", "b"), 1e5),)
+    )
+    w = np.arange(1000.0, 3001.0, 100.0) * math.pi / 30
+    r = forced_response(model, UniformExcitation(1.0, [0.0]), w, [1.0, 2.0, 3.0])
+    assert "undamped resonances" in " ".join(r.notes)
+    assert np.all(np.isfinite(r.synthesized_amplitude))
+    assert r.speed.size == w.size
+    top, low = half_range(np.array([[1.0, np.nan], [1.0, 0.0]]), [1, 2])
+    assert np.isnan(top[0]) and np.isnan(low[0]) and top[1] == pytest.approx(1.0)

@@ -143,7 +143,9 @@ def local_maxima(values, floor: float = _FLOOR):
     return row + 1, col
 
 
-def refinement_speeds(speeds, values, scale=None, tolerance: float = TOLERANCE, threshold=None):
+def refinement_speeds(
+    speeds, values, scale=None, tolerance: float = TOLERANCE, threshold=None, exclude=()
+):
     """New speeds that resolve the peaks of the curves ``values`` (module docstring, step 2).
 
     Parameters
@@ -159,6 +161,9 @@ def refinement_speeds(speeds, values, scale=None, tolerance: float = TOLERANCE, 
     threshold
         Refine only the local maxima above these values (C,) instead of those reaching half
         their curve's largest value (e.g. the maxima of a stress-to-limit ratio near 1).
+    exclude
+        Speeds (rad/s) whose neighbourhood is not refined: the resonances of undamped modes,
+        where the response is unbounded.
 
     Returns
     -------
@@ -181,6 +186,18 @@ def refinement_speeds(speeds, values, scale=None, tolerance: float = TOLERANCE, 
         return np.zeros(0), np.zeros(0, dtype=int)
     x0, x1, x2 = s[i - 1], s[i], s[i + 1]
     y0, y1, y2 = y[i - 1, c], y[i, c], y[i + 1, c]
+    skip = np.asarray(exclude, dtype=float)
+    if skip.size:
+        clear = ~np.any((skip[None, :] >= x0[:, None]) & (skip[None, :] <= x2[:, None]), axis=1)
+        x0, x1, x2, y0, y1, y2, c = (
+            x0[clear],
+            x1[clear],
+            x2[clear],
+            y0[clear],
+            y1[clear],
+            y2[clear],
+            c[clear],
+        )
     vertex, top = _peak_estimate(x0, x1, x2, y0, y1, y2)
     gain = np.maximum(top - y1, 0.0)
     narrow = (x2 - x0) <= _SPACING * 100.0 * x1

@@ -437,10 +437,15 @@ def half_range(coefficients, harmonic) -> tuple[np.ndarray, np.ndarray]:
     out_max = np.empty(c2.shape[0])
     out_min = np.empty(c2.shape[0])
     rows = max(1, _BLOCK // samples)
+    finite = np.all(np.isfinite(c2), axis=1)
+    out_max[~finite] = np.nan  # e.g. an undamped system exactly at resonance
+    out_min[~finite] = np.nan
+    c2 = c2[finite]
+    at = np.flatnonzero(finite)
     for start in range(0, c2.shape[0], rows):  # blocks of rows, not a loop per speed
         block = c2[start : start + rows]
-        end = start + block.shape[0]
-        out_max[start:end], out_min[start:end] = _extremes(block, m, samples)
+        where = at[start : start + block.shape[0]]
+        out_max[where], out_min[where] = _extremes(block, m, samples)
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
@@ -1166,15 +1171,27 @@ class _Sweep:
         reason for each: (speeds (rad/s), reasons)."""
         orders = self.orders
         omega = self.undamped()
+        poles = self.poles(float(np.max(orders)) * high * 1.5)
+        # a mode without damping (its pole on the real axis) has an unbounded resonance: its
+        # critical speeds are not evaluated (the solve would be singular) but noted
+        free = poles.real[np.abs(poles.imag) <= 1e-9 * poles.real]
+        undamped = np.zeros(omega.size, dtype=bool)
+        if free.size and omega.size:
+            gap = np.min(np.abs(omega[:, None] - free[None, :]), axis=1)
+            undamped = gap <= 1e-6 * omega
         crit = omega[:, None] / orders[None, :]
         inside = (crit >= low) & (crit <= high)
-        r, q = np.nonzero(inside)
+        self.unbounded = [
+            (int(a) + 1, float(orders[b]), float(crit[a, b]))
+            for a, b in zip(*np.nonzero(inside & undamped[:, None]), strict=True)
+        ]
+        r, q = np.nonzero(inside & ~undamped[:, None])
         crit_speeds = crit[r, q]
         crit_reasons = [
             f"critical speed: mode {int(a) + 1} x order {orders[b]:g}"
             for a, b in zip(r, q, strict=True)
         ]
-        poles = self.poles(float(np.max(orders)) * high * 1.5)
+        poles = poles[np.abs(poles.imag) > 1e-9 * poles.real]
         centre = poles.real[:, None] / orders[None, :]
         width = np.maximum(np.abs(poles.imag), 1e-6 * poles.real)[:, None] / orders[None, :]
         near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
@@ -1376,9 +1393,18 @@ def _resolved(sweep: _Sweep, speeds, tolerance):
     block = sweep.evaluate(start)
     values, bounds = sweep._values(block)
     notes = []
+    unbounded = getattr(sweep, "unbounded", [])
+    if unbounded:
+        listed = ", ".join(f"mode {r} x order {q:g} at {w * RPM:.1f} rpm" for r, q, w in unbounded)
+        notes.append(
+            f"undamped resonances (no damping acts on the mode: the steady response is unbounded "
+            f"there; the peaks next to them are not refined): {listed}"
+        )
     for _ in range(MAX_ROUNDS):
         scale = sweep.scale(values, bounds)
-        new, column = refinement_speeds(block.speed, values, scale, tolerance)
+        new, column = refinement_speeds(
+            block.speed, values, scale, tolerance, exclude=[w for _, _, w in unbounded]
+        )
         if new.size == 0:
             break
         labels = [f"refinement: peak of {sweep.describe(int(c), block)}" for c in column]
