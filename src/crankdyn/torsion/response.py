@@ -821,18 +821,23 @@ class ResponseResult(Result):
     def peaks(self) -> tuple[Peak, ...]:
         """The peaks of the summed and synthesised quantities of every mass, shaft (stresses
         where the diameters are known) and damper: the figures of the response tables."""
-        out = []
-        for name in self.masses:
-            for q in ("synthesized_amplitude", "order_sum_amplitude"):
-                out.append(self.peak(q, name))
+        wanted = [
+            (q, name)
+            for name in self.masses
+            for q in ("synthesized_amplitude", "order_sum_amplitude")
+        ]
         for s, shaft in enumerate(self.shafts):
             quantities = ["shaft_torque", "synthesized_shaft_torque"]
             if self.section_modulus is not None and np.isfinite(self.section_modulus[s]):
                 quantities += ["shaft_stress", "synthesized_shaft_stress"]
-            for q in quantities:
-                out.append(self.peak(q, shaft))
-        for name in self.dampers or ():
-            out.append(self.peak("damper_power", name))
+            wanted += [(q, shaft) for q in quantities]
+        wanted += [("damper_power", name) for name in self.dampers or ()]
+        out = []
+        for q, item in wanted:
+            try:
+                out.append(self.peak(q, item))
+            except InputError:  # no finite value (an undamped system exactly at resonance)
+                continue
         return tuple(out)
 
     def to_dict(self) -> dict:
