@@ -283,7 +283,9 @@ def test_shaft_stress_rules_and_damper_figures_of_a_model():
         "model",
     )
     ranged.analysis("response")
-    np.testing.assert_allclose(ranged.analysis("response")[0].speed, [100.0, 110.0, 120.0])
+    swept = ranged.analysis("response")[0]
+    # the grid, and speeds added to resolve the peaks (none needed in this narrow range)
+    np.testing.assert_allclose(swept.speed[swept.on_grid], [100.0, 110.0, 120.0])
 
 
 @pytest.mark.parametrize(

@@ -72,6 +72,10 @@ def _modes_tables(result) -> list[RichTable]:
             if result.free and r == 0
             else "; ".join(escape(n.describe()) for n in nodes)
         )
+        if not result.nodes_resolved[r]:
+            regions = ", ".join(f"{a}…{b}" for a, b in result.roundoff_regions[r])
+            text = f"round-off in {regions}: nodes there undetermined"
+            where += escape(f"; {text}" if where else text)
         summary.add_row(
             str(int(result.mode[r])),
             _g(result.frequencies_hz[r]),
@@ -81,7 +85,8 @@ def _modes_tables(result) -> list[RichTable]:
             where,
         )
     summary.caption = (
-        f"{result.structure}, {'free' if result.free else 'grounded'}; solver: {result.solver}"
+        f"{result.structure}, {'free' if result.free else 'grounded'}; solver: {result.solver}; "
+        "elastic modes numbered from 1" + (", the rigid-body mode is 0" if result.free else "")
     )
     shapes = RichTable(title="Mode shapes", header_style="bold")
     shapes.caption = "largest amplitude 1"
@@ -110,26 +115,26 @@ def _modes_tables(result) -> list[RichTable]:
     "--plot-modes",
     default=None,
     metavar="LIST",
-    help="Mode numbers to plot, e.g. 2,3,4 (default: the first six elastic modes).",
+    help="Mode numbers to plot, e.g. 1,2,3 (elastic modes from 1; default: the first six).",
 )
 @format_option()
 @output_options
 def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> int:
     """Natural frequencies, mode shapes, nodes and modal inertias of MODEL_OR_ENGINE.
 
-    Every mode is listed, ascending; a free model's rigid-body mode is 0.0 Hz. Mode shapes are
-    normalised to a largest absolute amplitude of 1.
+    Every mode is listed, ascending: elastic modes numbered from 1, a free model's rigid-body
+    mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest absolute amplitude of 1.
     """
     chosen = _mode_list(plot_modes)
     check_plot_path(plot_path, force)
     torsion = resolve_torsion(model)
     result = natural_modes(torsion, solver)
     if chosen is not None:
-        bad = [m for m in chosen if not 1 <= m <= result.mode.size]
-        if bad:
-            raise InputError(
-                f"the model has modes 1..{result.mode.size}", key="--plot-modes", value=plot_modes
-            )
+        for m in chosen:
+            try:
+                result.index(m)
+            except InputError as exc:
+                raise InputError(exc.message, key="--plot-modes", value=plot_modes) from None
     if plot_path:
         save_figure(result.plot(modes=chosen), plot_path, force)
     if fmt == "table":
@@ -146,7 +151,7 @@ def _mode_list(text: str | None) -> list[int] | None:
         values = [int(t) for t in text.split(",") if t.strip()]
     except ValueError:
         raise InputError(
-            "expected mode numbers separated by commas, e.g. 2,3,4",
+            "expected mode numbers separated by commas, e.g. 1,2,3",
             key="--plot-modes",
             value=text,
         ) from None

@@ -131,7 +131,8 @@ def _g(value: float, scale: float = 1.0) -> str:
 
 
 def _response_tables(result, relative=None) -> list[RichTable]:
-    n = result.speed * RPM
+    """The response's peaks (from :meth:`ResponseResult.peak`, on the resolved curve), the rule
+    check, the speeds added to resolve the peaks and the notes."""
     masses = RichTable(
         title=escape(f"{result.model_name}: angular amplitudes"), header_style="bold"
     )
@@ -142,13 +143,11 @@ def _response_tables(result, relative=None) -> list[RichTable]:
         "Largest sum of\norders (mrad)",
     ):
         masses.add_column(col, justify="left" if col == "Mass" else "right")
-    for i, name in enumerate(result.masses):
-        j = int(np.argmax(result.synthesized_amplitude[:, i]))
+    for name in result.masses:
+        synth = result.peak("synthesized_amplitude", name)
+        total = result.peak("order_sum_amplitude", name)
         masses.add_row(
-            escape(name),
-            _g(result.synthesized_amplitude[j, i], 1e3),
-            f"{n[j]:.0f}",
-            _g(np.max(result.order_sum_amplitude[:, i]), 1e3),
+            escape(name), _g(synth.value, 1e3), f"{synth.speed * RPM:.1f}", _g(total.value, 1e3)
         )
     shafts = RichTable(title="Vibratory torque and stress", header_style="bold")
     for col in (
@@ -160,13 +159,19 @@ def _response_tables(result, relative=None) -> list[RichTable]:
     ):
         shafts.add_column(col, justify="left" if col == "Shaft" else "right")
     for s, (a, b) in enumerate(result.shafts):
-        j = int(np.argmax(result.shaft_torque[:, s]))
-        stress = np.max(result.synthesized_shaft_stress[:, s])
+        s_label = f"{a} - {b}"
+        total = result.peak("shaft_torque", s_label)
+        synth = result.peak("synthesized_shaft_torque", s_label)
+        stress = (
+            result.peak("synthesized_shaft_stress", s_label).value
+            if np.isfinite(result.section_modulus[s])
+            else math.nan
+        )
         shafts.add_row(
-            escape(f"{a} - {b}"),
-            _g(result.shaft_torque[j, s]),
-            f"{n[j]:.0f}",
-            _g(np.max(result.synthesized_shaft_torque[:, s])),
+            escape(s_label),
+            _g(total.value),
+            f"{total.speed * RPM:.1f}",
+            _g(synth.value),
             _g(stress, 1e-6),
         )
     shafts.caption = f"excitation: {result.excitation}"
@@ -178,9 +183,11 @@ def _response_tables(result, relative=None) -> list[RichTable]:
         )
         for col in ("Largest synthesised\n(mrad)", "at\n(rpm)", "Largest sum of\norders (mrad)"):
             rel.add_column(col, justify="right")
-        j = int(np.argmax(relative.synthesized))
+        synth = relative.peak("synthesized")
         rel.add_row(
-            _g(relative.synthesized[j], 1e3), f"{n[j]:.0f}", _g(np.max(relative.order_sum), 1e3)
+            _g(synth.value, 1e3),
+            f"{synth.speed * RPM:.1f}",
+            _g(relative.peak("order_sum").value, 1e3),
         )
         tables.append(rel)
     check = result.rule_check
@@ -196,11 +203,13 @@ def _response_tables(result, relative=None) -> list[RichTable]:
         for br in check.barred_ranges:
             rules.add_row(
                 escape(f"{br.shaft[0]} - {br.shaft[1]}"),
-                f"{br.start * RPM:.0f} - {br.end * RPM:.0f}",
+                f"{br.start * RPM:.1f} - {br.end * RPM:.1f}",
                 f"{br.max_ratio:.3g}",
                 escape(br.reason),
             )
         tables.append(rules)
+    if result.added_speeds is not None and result.added_speeds.size:
+        tables.append(_added_table(result))
     if result.notes:
         notes = RichTable(title="Notes", show_header=False)
         notes.add_column("")
@@ -208,6 +217,28 @@ def _response_tables(result, relative=None) -> list[RichTable]:
             notes.add_row(escape(text))
         tables.append(notes)
     return tables
+
+
+def _added_table(result) -> RichTable:
+    """The speeds added to the grid: every critical speed, the others counted by kind."""
+    table = RichTable(
+        title=f"Speeds added to resolve the peaks ({result.added_speeds.size})",
+        header_style="bold",
+    )
+    table.add_column("Speed (rpm)", justify="right")
+    table.add_column("Why")
+    groups: dict[str, list[float]] = {}
+    for w, why in zip(result.added_speeds, result.added_reasons, strict=True):
+        if why.startswith("critical speed"):
+            table.add_row(f"{w * RPM:.1f}", escape(why))
+        else:
+            groups.setdefault(why.split(":")[0], []).append(w * RPM)
+    for kind, speeds in groups.items():
+        table.add_row(
+            f"{len(speeds)} from {min(speeds):.1f} to {max(speeds):.1f}",
+            escape(f"{kind} (each listed in --format json: added_speeds_rpm)"),
+        )
+    return table
 
 
 # ---- commands -----------------------------------------------------------------------------------
@@ -323,14 +354,11 @@ def response_command(
         what = plot_quantity or ("relative" if pair else "torque")
         target = pair if what == "relative" else item
         if what == "stress" and target is None:
-            finite = np.flatnonzero(np.isfinite(result.section_modulus))
-            if finite.size == 0:
+            if not np.any(np.isfinite(result.section_modulus)):
                 raise InputError(
                     "no shaft has diameters: no stress to plot", key="--plot-quantity", value=what
                 )
-            target = result.shafts[
-                int(finite[np.argmax(np.max(result.synthesized_shaft_stress[:, finite], axis=0))])
-            ]
+            target = result.peak("synthesized_shaft_stress").item
         save_figure(result.plot(what, target), plot_path, force)
     if stress_path:
         save_figure(result.plot_stress_limits(), stress_path, force)
@@ -409,7 +437,7 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
                 str(c.mode),
                 str(c.nodes),
                 f"{c.order:g}",
-                f"{c.frequency / (2 * math.pi):.5g}",
+                f"{c.frequency_hz:.5g}",
                 "-" if c.major is None else ("yes" if c.major else "no"),
                 "-" if c.relative_amplitude_sum is None else f"{c.relative_amplitude_sum:.3g}",
             )
@@ -430,7 +458,8 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
     required=True,
     type=int,
     metavar="N",
-    help="The mode to damp (numbered as `crankdyn torsion modes` lists them).",
+    help="The mode to damp: elastic modes numbered from 1, as `crankdyn torsion modes` lists "
+    "them (a free model's rigid-body mode is 0).",
 )
 @click.option("--inertia", required=True, metavar="KG*M^2", help="The ring's inertia.")
 @click.option(
@@ -487,16 +516,14 @@ def damper_command(
         tables = [summary_table(design, "Optimum damper (Den Hartog)")]
         if comparison is not None:
             with_d, without = comparison
-            i = without.mass_index(hub)
             t = RichTable(title=escape(f"Synthesised amplitude at {hub}"), header_style="bold")
             for col in ("", "Largest (mrad)", "at (rpm)", "Damper power at it (W)"):
                 t.add_column(col, justify="right")
             for label, r in (("without damper", without), ("with damper", with_d)):
-                k = int(np.argmax(r.synthesized_amplitude[:, i]))
+                peak = r.peak("synthesized_amplitude", hub)
+                k = int(np.flatnonzero(r.speed == peak.speed)[0])
                 power = "-" if r.damper_power is None else _g(r.damper_power[k, -1])
-                t.add_row(
-                    label, _g(r.synthesized_amplitude[k, i], 1e3), f"{r.speed[k] * RPM:.0f}", power
-                )
+                t.add_row(label, _g(peak.value, 1e3), f"{peak.speed * RPM:.1f}", power)
             tables.append(t)
         _print_tables(tables, output, force)
         return 0

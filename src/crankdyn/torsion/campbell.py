@@ -7,7 +7,12 @@ frequency q n / 60 of every order against the speed n with the natural frequenci
 lines; its crossings are the critical speeds. Each crossing is marked *major* when the order is
 a major order of the engine (all cylinders' phase vectors of that order line up,
 :func:`crankdyn.torsion.excitation.major_orders`) and carries the relative amplitude sum of the
-order over that mode's shape (how strongly the order excites the mode).
+order over that mode's shape (how strongly the order excites the mode). Without firing angles
+(a model with neither firing angles nor a firing order) both are undetermined (None, noted).
+
+Mode numbers as :func:`crankdyn.torsion.modal.natural_modes` gives them (elastic modes from 1;
+docs/conventions.md). Attributes hold SI values: ``natural_frequency`` is the circular
+frequency omega_r (rad/s), ``frequency_hz`` the same in Hz.
 
 Natural frequencies are those of the undamped model (:func:`crankdyn.torsion.modal.natural_modes`);
 tuned dampers of the model are included as a mass and a shaft, viscous dampers' rings are left
@@ -28,7 +33,7 @@ from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
     _cylinder_amplitudes,
     check_orders,
-    major_orders,
+    known_major_orders,
     relative_amplitude_sums,
 )
 from crankdyn.torsion.model import Mass, Shaft, TorsionModel
@@ -87,17 +92,23 @@ def with_dampers(model: TorsionModel) -> TorsionModel:
 
 @dataclass(frozen=True)
 class CriticalSpeed(Result):
-    """One resonance: a mode met by an order at a speed."""
+    """One resonance: a mode met by an order at a speed (rad/s; exported in rpm)."""
 
     mode: int = scalar("mode", "Mode", "")
     nodes: int = scalar("nodes", "Nodes", "")
     order: float = scalar("order", "Order", "", fmt=".4g")
     speed: float = scalar("speed_rpm", "Critical speed", "rpm", RPM, fmt=".6g")
-    frequency: float = scalar("frequency_hz", "Natural frequency", "Hz", HZ)
+    natural_frequency: float = scalar("natural_frequency_hz", "Natural frequency", "Hz", HZ)
+    """omega_r (rad/s; exported in Hz)."""
     major: bool | None = scalar("major", "Major order", "")
     relative_amplitude_sum: float | None = scalar(
         "relative_amplitude_sum", "Relative amplitude sum", "", fmt=".4g"
     )
+
+    @property
+    def frequency_hz(self) -> float:
+        """The natural frequency (Hz)."""
+        return self.natural_frequency * HZ
 
 
 @dataclass(frozen=True)
@@ -114,6 +125,11 @@ class CampbellResult(Result):
     high: float = scalar("speed_max_rpm", "Operating range to", "rpm", RPM)
     model_name: str = scalar("model", "Model", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+
+    @property
+    def frequencies_hz(self) -> np.ndarray:
+        """The natural frequencies (Hz)."""
+        return np.asarray(self.natural_frequency) * HZ
 
     def plot(self, fig=None, max_speed: float | None = None):
         """The Campbell diagram; returns the Figure."""
@@ -174,9 +190,10 @@ def campbell(
     major = rel = None
     if excitation is not None:
         angles = excitation.firing_angles
-        major = major_orders(angles, orders)
-        beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
-        rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
+        major = known_major_orders(excitation, orders)
+        if major is not None:
+            beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
+            rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
         note = getattr(excitation, "note", "")
         if note:
             notes.append(note)
@@ -193,7 +210,7 @@ def campbell(
                 nodes=int(modes.node_count[elastic[r]]),
                 order=float(orders[q]),
                 speed=float(speed[r, q]),
-                frequency=float(omega[r]),
+                natural_frequency=float(omega[r]),
                 major=None if major is None else bool(major[q]),
                 relative_amplitude_sum=None if rel is None else float(rel[r, q]),
             )

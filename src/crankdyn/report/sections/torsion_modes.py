@@ -22,11 +22,12 @@ def build(ctx) -> Section:
     hz = modes.frequencies_hz
     elastic = [i for i, f in enumerate(hz) if f > 0.0]
     figures = []
-    for rank, i in enumerate(elastic[:2], start=1):
+    for i in elastic[:2]:
+        mode = int(modes.mode[i])  # elastic modes from 1 (docs/conventions.md)
         figures.append(
             KeyFigure(
-                f"natural_frequency_{rank}_hz",
-                f"Natural frequency, elastic mode {rank}",
+                f"natural_frequency_{mode}_hz",
+                f"Natural frequency, mode {mode}",
                 float(hz[i]),
                 f"{hz[i]:.2f} Hz ({hz[i] * 60:.0f} cpm)",
             )
@@ -50,10 +51,22 @@ def build(ctx) -> Section:
             str(int(m)),
             number(f, 5, scale=top),
             number(f * 60.0, 5, scale=top * 60.0),
-            str(int(n)),
-            "; ".join(node.describe() for node in nodes) or "-",
+            str(int(n)) if ok else f"at least {int(n)}",
+            "; ".join(
+                [node.describe() for node in nodes]
+                + [f"round-off in {a}…{b}: nodes undetermined" for a, b in regions]
+            )
+            or "-",
         ]
-        for m, f, n, nodes in zip(modes.mode, hz, modes.node_count, modes.nodes, strict=True)
+        for m, f, n, ok, nodes, regions in zip(
+            modes.mode,
+            hz,
+            modes.node_count,
+            modes.nodes_resolved,
+            modes.nodes,
+            modes.roundoff_regions,
+            strict=True,
+        )
     ]
     return Section(
         key="torsion-modes",
@@ -62,7 +75,8 @@ def build(ctx) -> Section:
             f"{model.name or 'Torsional model'}: {model.mass_count} masses, "
             f"{'chain' if model.is_chain else 'branched'}, "
             f"{'free' if model.is_free else 'grounded'}; solved by the tridiagonal eigen solver "
-            "and checked by Holzer's method and transfer matrices (seed 003)."
+            "and checked by Holzer's method and transfer matrices (seed 003). Elastic modes are "
+            "numbered from 1" + (", the rigid-body mode is mode 0." if model.is_free else ".")
         ),
         figures=figures,
         plots=[

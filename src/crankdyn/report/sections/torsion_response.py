@@ -43,48 +43,57 @@ def build(ctx) -> Section:
     result = ctx.get("torsion_response", lambda: forced_response(model, excitation, speeds, orders))
     crit = campbell(model, orders, (float(speeds[0]), float(speeds[-1])), excitation=excitation)
 
-    torque = np.asarray(result.synthesized_shaft_torque)  # speed x shaft
-    s_idx = int(np.argmax(np.max(torque, axis=0)))
-    v_idx = int(np.argmax(torque[:, s_idx]))
-    shaft = " - ".join(result.shafts[s_idx])
-    out_sum = np.asarray(result.shaft_torque)[:, -1]  # sum of order amplitudes, output-end shaft
-    o_idx = int(np.argmax(out_sum))
-    out_shaft = " - ".join(result.shafts[-1])
+    # peaks on the resolved curve (critical speeds added, resonances refined to 0.1 %)
+    top = result.peak("synthesized_shaft_torque")
+    s_idx = result.shaft_index(top.item)
+    shaft = top.item
+    out = result.peak("shaft_torque", result.shafts[-1])  # sum of order amplitudes, output end
     first, last = result.masses[0], result.masses[-1]
-    rel = result.relative_angle(first, last)
-    r_idx = int(np.argmax(rel.synthesized))
+    rel = result.relative_angle(first, last).peak("synthesized")
     figures = [
         KeyFigure(
             "max_vibratory_shaft_torque_Nm",
             "Max vibratory shaft torque (synthesised)",
-            float(torque[v_idx, s_idx]),
-            f"{torque[v_idx, s_idx] / 1e3:.3g} kN·m in {shaft} at {speeds[v_idx] * RPM:.0f} rpm",
+            top.value,
+            f"{top.value / 1e3:.3g} kN·m in {shaft} at {top.speed * RPM:.1f} rpm",
         ),
         KeyFigure(
             "max_output_shaft_torque_order_sum_Nm",
             "Vibratory torque at the output end (sum of order amplitudes)",
-            float(out_sum[o_idx]),
-            f"{out_sum[o_idx] / 1e3:.3g} kN·m in {out_shaft} at {speeds[o_idx] * RPM:.0f} rpm",
+            out.value,
+            f"{out.value / 1e3:.3g} kN·m in {out.item} at {out.speed * RPM:.1f} rpm",
         ),
         KeyFigure(
             "max_relative_angle_rad",
             f"Max relative angle {first} - {last}",
-            float(rel.synthesized[r_idx]),
-            f"{math.degrees(rel.synthesized[r_idx]):.3g}° at {speeds[r_idx] * RPM:.0f} rpm",
+            rel.value,
+            f"{math.degrees(rel.value):.3g}° at {rel.speed * RPM:.1f} rpm",
         ),
     ]
     majors = [c for c in crit.critical_speeds if c.major]
-    figures.append(
-        KeyFigure(
-            "major_critical_speeds_in_range",
-            "Major-order critical speeds in the range",
-            len(majors),
-            ", ".join(f"order {c.order:g} at {number(c.speed * RPM, 5)} rpm" for c in majors)
-            or "none",
-            status="warn" if majors else "pass",
-            note="resonances of major orders inside the operating range",
+    if crit.major is None:
+        figures.append(
+            KeyFigure(
+                "major_critical_speeds_in_range",
+                "Major-order critical speeds in the range",
+                None,
+                "undetermined: no firing order",
+                status="warn",
+                note="the model gives no firing order or firing angles",
+            )
         )
-    )
+    else:
+        figures.append(
+            KeyFigure(
+                "major_critical_speeds_in_range",
+                "Major-order critical speeds in the range",
+                len(majors),
+                ", ".join(f"order {c.order:g} at {number(c.speed * RPM, 5)} rpm" for c in majors)
+                or "none",
+                status="warn" if majors else "pass",
+                note="resonances of major orders inside the operating range",
+            )
+        )
     plots = [
         Plot(
             "torsion_response",
@@ -117,7 +126,7 @@ def build(ctx) -> Section:
                 "within the limits" if check.passed else "above the permissible stress",
                 status="pass" if check.passed else "fail",
                 note="; ".join(
-                    f"barred {b.low * RPM:.0f}-{b.high * RPM:.0f} rpm" for b in check.barred_ranges
+                    f"barred {b.start * RPM:.1f}-{b.end * RPM:.1f} rpm" for b in check.barred_ranges
                 )
                 if check.barred_ranges
                 else "",
@@ -136,8 +145,8 @@ def build(ctx) -> Section:
             str(c.mode),
             f"{c.order:g}",
             number(c.speed * RPM, 5),
-            number(c.frequency / (2 * math.pi), 5),
-            "major" if c.major else "minor",
+            number(c.frequency_hz, 5),
+            "undetermined" if c.major is None else "major" if c.major else "minor",
         ]
         for c in crit.critical_speeds
     ]
@@ -147,7 +156,10 @@ def build(ctx) -> Section:
         intro=(
             f"Steady-state response from {speeds[0] * RPM:.0f} to {speeds[-1] * RPM:.0f} rpm, "
             f"orders {orders[0]:g} to {orders[-1]:g}, excitation: {result.excitation}. Damping "
-            "as in the model (absolute, relative and loss factors)."
+            "as in the model (absolute, relative and loss factors). "
+            f"{0 if result.added_speeds is None else result.added_speeds.size} speeds were added "
+            "to the grid (the critical speeds and refinement around every resonance) so that "
+            "every peak is resolved to 0.1 %."
         ),
         figures=figures,
         plots=plots,
