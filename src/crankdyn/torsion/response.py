@@ -55,8 +55,8 @@ import numpy as np
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
-from crankdyn.torsion.excitation import check_orders, harmonic_index, major_orders
 from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.sources import assemble_forcing, check_model_orders, line_major, synthesize
 
 __all__ = [
     "LinearSystem",
@@ -286,7 +286,7 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
             )
         names.append(d.name)
     n0 = model.dof_count
-    ratio = model.speed_ratios
+    ratio = model.signed_speed_ratios  # actual angles carry the sense of rotation
     mass_dof = np.array(model.mass_dof)
     chain = model.chain
     shaft_dofs = np.array(model.shaft_dofs)
@@ -539,7 +539,7 @@ class ResponseResult(Result):
         """Relative angle theta_a - theta_b per order and synthesised (rad)."""
         i, j = self.mass_index(a), self.mass_index(b)
         diff = self.mass_response[:, :, i] - self.mass_response[:, :, j]
-        top, low = half_range(diff, harmonic_index(self.orders, self.cycle))
+        top, low = synthesize(diff, self.orders, self.cycle)
         return RelativeAngle(
             between=(a, b),
             speed=self.speed,
@@ -642,44 +642,12 @@ def forced_response(
     ResponseResult
     """
     speeds = _check_speeds(speeds)
-    orders = check_orders(orders, excitation.cycle)
+    orders = check_model_orders(model, excitation, orders)
     if dampers is None:
         dampers = getattr(model, "dampers", ()) or ()
     system = linear_system(model, dampers)
-    cyl_dofs = model.cylinder_dofs
-    if not cyl_dofs:
-        raise InputError(
-            "the model has no excitation point: no mass carries a cylinder (give cylinders = "
-            "[...] on the crank-throw masses)",
-            file=model.source,
-        )
-    count = excitation.cylinder_count
-    beyond = [c for c in cyl_dofs if c > count]
-    if beyond:
-        raise InputError(
-            f"a mass carries cylinder {beyond[0]} but the excitation has {count} cylinders",
-            file=model.source,
-            key="cylinders",
-        )
-    notes = list(excitation.notes(speeds))
-    unplaced = [c for c in range(1, count + 1) if c not in cyl_dofs]
-    if unplaced:
-        notes.append(
-            f"cylinder(s) {', '.join(map(str, unplaced))} act on no mass of the model and are left "
-            "out"
-        )
-    # incidence: cylinder -> dof of the augmented system
-    dof_of_model = system.mass_dof[: model.mass_count]
-    index_dof = {}
-    for i, m in enumerate(model.masses):
-        for c in m.cylinders:
-            index_dof[c] = int(dof_of_model[i])
-    incidence = np.zeros((count, system.size))
-    for c, dof in index_dof.items():
-        # a torque T on a mass turning at r times the reference speed does the work of r T
-        incidence[c - 1, dof] = float(system.mass_ratio[model.index(_owner(model, c))])
-    harmonics = excitation.harmonics(speeds, orders)  # (S, Q, Z)
-    forcing = harmonics @ incidence  # (S, Q, n)
+    # harmonic torques of the cylinders and of the model's sources (crankdyn.torsion.sources)
+    forcing, notes = assemble_forcing(model, system, excitation, speeds, orders)  # (S, Q, n)
     omega = speeds[:, None] * orders[None, :]
     x_dof = system.solve(omega, forcing, hysteretic_frequency)
     # actual angles of the listed masses
@@ -706,9 +674,8 @@ def forced_response(
             ),
             axis=1,
         )
-    m_idx = harmonic_index(orders, excitation.cycle)
-    top, low = half_range(np.moveaxis(x, 1, -1), m_idx)
-    t_top, t_low = half_range(np.moveaxis(torque, 1, -1), m_idx)
+    top, low = synthesize(np.moveaxis(x, 1, -1), orders, excitation.cycle)
+    t_top, t_low = synthesize(np.moveaxis(torque, 1, -1), orders, excitation.cycle)
     modulus = np.full(len(system.element_labels), np.nan)
     for s, shaft in enumerate(model.shafts):
         if shaft.geometry is not None:
@@ -718,7 +685,7 @@ def forced_response(
     result = ResponseResult(
         speed=freeze(speeds),
         orders=freeze(orders),
-        major=freeze(major_orders(excitation.firing_angles, orders), dtype=bool),
+        major=freeze(line_major(excitation, orders), dtype=bool),
         masses=system.mass_names,
         shafts=system.element_labels,
         amplitude=freeze(np.abs(x)),
@@ -751,10 +718,3 @@ def forced_response(
             fallback = model.operating.rated
         object.__setattr__(result, "rule_check", check_rules(result, rules, model, fallback))
     return result
-
-
-def _owner(model: TorsionModel, cylinder: int) -> str:
-    for m in model.masses:
-        if cylinder in m.cylinders:
-            return m.name
-    raise KeyError(cylinder)  # pragma: no cover
