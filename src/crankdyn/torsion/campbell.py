@@ -28,10 +28,15 @@ from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
     _cylinder_amplitudes,
     check_orders,
-    major_orders,
     relative_amplitude_sums,
 )
 from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+from crankdyn.torsion.sources import (
+    check_model_orders,
+    engine_orders_mask,
+    line_major,
+    order_sources,
+)
 
 __all__ = [
     "CampbellResult",
@@ -98,6 +103,7 @@ class CriticalSpeed(Result):
     relative_amplitude_sum: float | None = scalar(
         "relative_amplitude_sum", "Relative amplitude sum", "", fmt=".4g"
     )
+    excited_by: str | None = scalar("excited_by", "Excited by", "", default=None)
 
 
 @dataclass(frozen=True)
@@ -161,22 +167,30 @@ def campbell(
             )
         speed_range = (model.operating.low, model.operating.high)
     rng = OperatingRange(*speed_range)
-    if excitation is None and model.cylinder_dofs:
+    if excitation is None and (model.cylinder_dofs or model.sources):
         excitation = excitation_for(model, None)
     if excitation is not None:
         cycle = excitation.cycle
     cycle = cycle or "four-stroke"
-    orders = np.sort(check_orders(orders, cycle))
+    if excitation is not None:  # engine harmonics and the orders of the model's sources
+        orders = np.sort(check_model_orders(model, excitation, orders))
+    else:
+        orders = np.sort(check_orders(orders, cycle))
     full = with_dampers(model)
     modes = natural_modes(full)
     elastic = np.flatnonzero(modes.natural_frequency > 0.0)
     omega = modes.natural_frequency[elastic]
-    major = rel = None
+    major = rel = sources = None
     if excitation is not None:
         angles = excitation.firing_angles
-        major = major_orders(angles, orders)
+        major = line_major(excitation, orders)
         beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
         rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
+        if excitation.cylinder_count == 0:
+            rel = np.full(rel.shape, np.nan)
+        else:  # relative amplitude sums belong to the engine's own orders only
+            rel[:, ~engine_orders_mask(orders, excitation.cycle)] = np.nan
+        sources = order_sources(model, excitation, orders)
         note = getattr(excitation, "note", "")
         if note:
             notes.append(note)
@@ -195,7 +209,10 @@ def campbell(
                 speed=float(speed[r, q]),
                 frequency=float(omega[r]),
                 major=None if major is None else bool(major[q]),
-                relative_amplitude_sum=None if rel is None else float(rel[r, q]),
+                relative_amplitude_sum=(
+                    None if rel is None or not np.isfinite(rel[r, q]) else float(rel[r, q])
+                ),
+                excited_by=None if sources is None else sources[q] or None,
             )
         )
     rows.sort(key=lambda c: (c.speed, c.mode))

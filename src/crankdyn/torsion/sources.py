@@ -71,6 +71,7 @@ __all__ = [
     "engine_orders_mask",
     "line_major",
     "mean_torques",
+    "order_sources",
     "propeller",
     "source_orders",
     "synthesis_index",
@@ -578,6 +579,29 @@ def default_orders(model, cycle: str, *, engine: bool = True, last: float = 12.0
     q = np.sort(np.concatenate(parts))
     keep = np.concatenate([[True], np.diff(q) > _ORDER_TOL * np.maximum(q[1:], 1.0)])
     return q[keep]
+
+
+def order_sources(model, excitation, orders) -> list[str]:
+    """What excites each order (reference speed): ``"engine"`` for the harmonics of the cycle of
+    the cylinders on the masses, and the names of the sources acting at it, joined by ", "."""
+    q = np.asarray(orders, dtype=float)
+    names: list[list[str]] = [[] for _ in range(q.size)]
+    if excitation is not None and excitation.cylinder_count > 0:
+        for j in np.flatnonzero(engine_orders_mask(q, excitation.cycle)):
+            names[j].append("engine")
+    for source, qs in source_orders(model):
+        if isinstance(source, EngineSource):
+            hit = engine_orders_mask(
+                q / (qs[0] / fundamental_order_of(source)), source.excitation.cycle
+            )
+        else:
+            hit = np.any(
+                np.abs(q[:, None] - qs[None, :]) <= _ORDER_TOL * np.maximum(qs[None, :], 1.0),
+                axis=1,
+            )
+        for j in np.flatnonzero(hit):
+            names[j].append(source.name)
+    return [", ".join(n) for n in names]
 
 
 def line_major(excitation, orders) -> np.ndarray:
