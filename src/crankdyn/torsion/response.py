@@ -272,8 +272,10 @@ def _hyst(h, w, hysteretic_frequency):
     return h * (w / hysteretic_frequency)
 
 
-def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
-    """The model's reflected matrices with the dampers' rings added (module docstring)."""
+def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> LinearSystem:
+    """The model's reflected matrices with the dampers' rings added (module docstring), and the
+    damping of modal damping ratios (:func:`crankdyn.torsion.damped.modal_damping_matrix`, which
+    couples every mass: the system is then solved densely)."""
     dampers = tuple(dampers)
     names = list(model.mass_names)
     for d in dampers:
@@ -297,7 +299,7 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
     ]
     labels = [tuple(s.between) for s in model.shafts]
     # ring placement: a ring at an end of a chain keeps the chain (one ring per end)
-    chained = chain is not None
+    chained = chain is not None and modal_damping is None
     first = last = None
     for d in dampers:
         hub = int(mass_dof[model.index(d.at)])
@@ -331,6 +333,10 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
     idx = np.ix_(dof_of_model, dof_of_model)
     stiffness[idx] = model.stiffness_matrix()
     damping[idx] = model.damping_matrix()
+    if modal_damping is not None:
+        from crankdyn.torsion.damped import modal_damping_matrix
+
+        damping[idx] += modal_damping_matrix(model, modal_damping)
     hysteretic[idx] = model.hysteretic_matrix()
     element_dofs = [
         [int(dof_of_model[a]) if a >= 0 else -1, int(dof_of_model[b]) if b >= 0 else -1]
@@ -612,6 +618,7 @@ def forced_response(
     dampers=None,
     hysteretic_frequency: float | None = None,
     rules=None,
+    modal_damping=None,
 ) -> ResponseResult:
     """Steady-state forced response of ``model`` to ``excitation`` over a speed range.
 
@@ -636,6 +643,10 @@ def forced_response(
     rules
         A :class:`~crankdyn.torsion.rules.RuleSet` to check the synthesised stresses against;
         None: the model's own (``model.rules``) when it has one.
+    modal_damping
+        Damping ratios of the elastic modes (one for all, or one per mode) added to the model's
+        damping as C_modal (:mod:`crankdyn.torsion.damped`, as openTorsion's ``C_modal``), or
+        None.
 
     Returns
     -------
@@ -645,7 +656,7 @@ def forced_response(
     orders = check_model_orders(model, excitation, orders)
     if dampers is None:
         dampers = getattr(model, "dampers", ()) or ()
-    system = linear_system(model, dampers)
+    system = linear_system(model, dampers, modal_damping)
     # harmonic torques of the cylinders and of the model's sources (crankdyn.torsion.sources)
     forcing, notes = assemble_forcing(model, system, excitation, speeds, orders)  # (S, Q, n)
     omega = speeds[:, None] * orders[None, :]
