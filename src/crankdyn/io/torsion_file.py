@@ -8,6 +8,7 @@ See docs/torsion-file.md. A model file holds ``name`` and the arrays of tables `
 
 from __future__ import annotations
 
+import math
 from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -15,13 +16,24 @@ from typing import TYPE_CHECKING
 from crankdyn.errors import InputError
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table, suggest
+from crankdyn.torsion.coupling import Coupling
 from crankdyn.torsion.equivalent import (
     CrankThrowGeometry,
     ThrowSpec,
     equivalent_system,
     throw_name,
 )
-from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel
+from crankdyn.torsion.model import (
+    GEAR_DIRECTIONS,
+    GROUND,
+    MASS_ROLES,
+    SHAFT_ROLES,
+    Gear,
+    Mass,
+    Shaft,
+    ShaftGeometry,
+    TorsionModel,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.crank.geometry import CrankGeometry
@@ -266,17 +278,48 @@ def _check_cylinders(tables, masses, cylinders: Cylinders, generated: bool) -> N
 
 def _mass(t: Table) -> Mass:
     name = t.string("name")
-    inertia = t.quantity("inertia", "inertia", check="positive")
+    role = t.string("role", None, choices=MASS_ROLES)
+    # a gear wheel may have no inertia of its own (merged into its rigid mesh)
+    inertia = t.quantity(
+        "inertia", "inertia", check="nonnegative" if role == "gear" else "positive"
+    )
     damping = t.quantity("damping", "torsional_damping", 0.0, check="nonnegative")
     cylinders = t.integer_list("cylinders", ())
     with t.context():
-        mass = Mass(name=name, inertia=inertia, damping=damping, cylinders=cylinders)
+        mass = Mass(name=name, inertia=inertia, damping=damping, cylinders=cylinders, role=role)
     t.finish()
     return mass
 
 
+_COUPLING_KEYS = (
+    "dynamic_stiffness",
+    "stiffness_table",
+    "relative_damping",
+    "damping_ratio",
+    "temperature_factor",
+    "damping_temperature_factor",
+    "reference_torque",
+    "nominal_torque",
+    "maximum_torque",
+    "vibratory_torque",
+    "power_loss",
+    "designation",
+)
+
+
 def _shaft(t: Table) -> Shaft:
     between = t.string_list("between", length=2)
+    kind = t.string("kind", "shaft", choices=("shaft", "coupling"))
+    name = t.string("name", None)
+    role = t.string("role", None, choices=SHAFT_ROLES)
+    coupling = None
+    given = [k for k in _COUPLING_KEYS if k in t.data]
+    if kind == "coupling":
+        coupling = _coupling(t)
+    elif given:
+        raise t.error(
+            given[0], 'is a coupling key: give kind = "coupling" on this shaft', t.data[given[0]]
+        )
     stiffness = t.quantity("stiffness", "torsional_stiffness", None, check="positive")
     length = t.quantity("length", "length", None, check="positive")
     outer = t.quantity("outer_diameter", "length", None, check="positive")
@@ -284,15 +327,35 @@ def _shaft(t: Table) -> Shaft:
     shear = t.quantity("shear_modulus", "pressure", None, check="positive")
     damping = t.quantity("damping", "torsional_damping", 0.0, check="nonnegative")
     loss = t.number("loss_factor", 0.0, check="nonnegative")
+    density = t.quantity("density", "density", None, check="positive")
+    own = t.quantity("inertia", "inertia", None, check="positive")
+    elements = t.integer("elements", None, minimum=1, maximum=10_000)
+    max_frequency = t.quantity("max_frequency", "frequency", None, check="positive")
+    if coupling is not None:
+        for key in ("stiffness", "length", "shear_modulus", "loss_factor", "density", "inertia"):
+            if key in t.data:
+                raise t.error(
+                    key,
+                    "a coupling's stiffness and damping come from its catalogue data "
+                    "(dynamic_stiffness, relative_damping); put its inertias on its masses",
+                    t.data[key],
+                )
+    if density is not None and own is not None:
+        raise t.error(
+            "inertia",
+            "give the density (with the geometry) or the shaft's inertia, not both",
+            t.data["inertia"],
+        )
     if stiffness is not None:
-        for key, value in (("length", length), ("shear_modulus", shear)):
-            if value is not None:
+        refused = ["shear_modulus"] + ([] if density is not None else ["length"])
+        for key in refused:
+            if key in t.data:
                 raise t.error(
                     key,
                     "give the stiffness or the shaft's length and shear modulus, not both",
                     t.data[key],
                 )
-    else:
+    elif coupling is None:
         for key, value in (("length", length), ("outer_diameter", outer), ("shear_modulus", shear)):
             if value is None:
                 raise t.error(
@@ -302,24 +365,147 @@ def _shaft(t: Table) -> Shaft:
                 )
     if inner is not None and outer is None:
         raise t.error("outer_diameter", "missing; a bore needs the outer diameter")
+    if density is not None and (length is None or outer is None):
+        raise t.error(
+            "density",
+            "the shaft's inertia rho I_p L needs its length and outer_diameter (and "
+            "inner_diameter)",
+            t.data["density"],
+        )
+    for key in ("elements", "max_frequency"):
+        if key in t.data and density is None and own is None:
+            raise t.error(
+                key, "subdivides a shaft with inertia: give its density or inertia", t.data[key]
+            )
+    if elements is not None and max_frequency is not None:
+        raise t.error(
+            "max_frequency", "give elements or max_frequency, not both", t.data["max_frequency"]
+        )
     with t.context():
         geometry = ShaftGeometry(outer, inner or 0.0, length, shear) if outer is not None else None
+        if density is not None:
+            own = density * geometry.polar_moment * length
         shaft = Shaft(
             between=between,
             stiffness=stiffness,
             damping=damping,
             loss_factor=loss,
             geometry=geometry,
+            name=name,
+            role=role,
+            coupling=coupling,
+            inertia=own or 0.0,
+            elements=elements,
+            max_frequency=None if max_frequency is None else 2.0 * math.pi * max_frequency,
         )
     t.finish()
     return shaft
 
 
+def _coupling(t: Table) -> Coupling:
+    """The catalogue keys of a ``kind = "coupling"`` shaft (docs/torsion-file.md)."""
+    stiffness = t.quantity("dynamic_stiffness", "torsional_stiffness", None, check="positive")
+    table = t.raw("stiffness_table", None)
+    torques = stiffnesses = None
+    if table is not None:
+        if stiffness is not None:
+            raise t.error(
+                "stiffness_table",
+                "give dynamic_stiffness or stiffness_table, not both",
+                table,
+            )
+        if (
+            not isinstance(table, list)
+            or not table
+            or any(not isinstance(row, list) or len(row) != 2 for row in table)
+        ):
+            raise t.error(
+                "stiffness_table",
+                'expected rows [mean torque, C_Tdyn], e.g. [["0 kN*m", "90 kN*m/rad"], '
+                '["25 kN*m", "160 kN*m/rad"]]',
+                table,
+            )
+        from crankdyn.io.units import parse_quantity
+
+        label = t.label("stiffness_table")
+        torques = [parse_quantity(r[0], "torque", key=label, file=t.file) for r in table]
+        stiffnesses = [
+            parse_quantity(r[1], "torsional_stiffness", key=label, file=t.file) for r in table
+        ]
+    elif stiffness is None:
+        raise t.error(
+            "dynamic_stiffness",
+            "missing; give the coupling's C_Tdyn, or stiffness_table against the mean torque",
+        )
+    psi = t.number("relative_damping", None, check="positive")
+    zeta = t.number("damping_ratio", None, check="positive")
+    values = {
+        key: t.quantity(key, "torque", None, check="positive")
+        for key in ("nominal_torque", "maximum_torque", "vibratory_torque")
+    }
+    reference = t.quantity("reference_torque", "torque", None, check="nonnegative")
+    power = t.quantity("power_loss", "power", None, check="positive")
+    factor = t.number("temperature_factor", 1.0, check="positive")
+    damping_factor = t.number("damping_temperature_factor", 1.0, check="positive")
+    designation = t.string("designation", None)
+    with t.context():
+        return Coupling(
+            stiffness=stiffness,
+            table_torque=torques,
+            table_stiffness=stiffnesses,
+            relative_damping=psi,
+            damping_ratio=zeta,
+            temperature_factor=factor,
+            damping_temperature_factor=damping_factor,
+            reference_torque=reference,
+            power_loss=power,
+            designation=designation,
+            **values,
+        )
+
+
 def _gear(t: Table) -> Gear:
     between = t.string_list("between", length=2)
-    ratio = t.number("ratio")
+    teeth = t.integer_list("teeth", None, length=2)
+    ratio = t.number("ratio", None) if "ratio" in t.data or teeth is None else None
+    if teeth is None and ratio is None:
+        raise t.error("ratio", "missing; give the speed ratio n_b/n_a or the tooth numbers")
+    if teeth is not None and "ratio" in t.data:
+        raise t.error("ratio", "give the ratio or the tooth numbers, not both", t.data["ratio"])
+    if teeth is not None and any(z < 1 for z in teeth):
+        raise t.error("teeth", "tooth numbers must be at least 1", list(teeth))
+    direction = t.string("direction", "opposite", choices=GEAR_DIRECTIONS)
+    stiffness = t.quantity("stiffness", "torsional_stiffness", None, check="positive")
+    mesh = t.quantity("mesh_stiffness", "stiffness", None, check="positive")
+    base = t.quantity("base_diameter", "length", None, check="positive")
+    if mesh is not None and stiffness is not None:
+        raise t.error(
+            "mesh_stiffness", "give stiffness or mesh_stiffness, not both", t.data["mesh_stiffness"]
+        )
+    if mesh is not None:
+        if base is None:
+            raise t.error(
+                "base_diameter",
+                "missing; the mesh stiffness along the line of action needs the base diameter "
+                "of the first wheel (k = c r_b^2)",
+            )
+        stiffness = mesh * (0.5 * base) ** 2
+    elif base is not None:
+        raise t.error("base_diameter", "applies with mesh_stiffness", t.data["base_diameter"])
+    damping = t.quantity("damping", "torsional_damping", 0.0, check="nonnegative")
+    loss = t.number("loss_factor", 0.0, check="nonnegative")
+    name = t.string("name", None)
     with t.context():
-        gear = Gear(between=between, ratio=ratio)
+        gear = Gear(
+            between=between,
+            ratio=ratio,
+            teeth=teeth,
+            direction=direction,
+            stiffness=stiffness,
+            damping=damping,
+            loss_factor=loss,
+            name=name,
+        )
     t.finish()
     return gear
 
