@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
 from crankdyn.io.files import display_name, load_toml
-from crankdyn.io.schema import Table, suggest
+from crankdyn.io.schema import MISSING, Table, suggest
 from crankdyn.torsion.coupling import Coupling
 from crankdyn.torsion.equivalent import (
     CrankThrowGeometry,
@@ -233,7 +233,145 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
     # forced-response data (docs/torsion-file.md): excitation, dampers, rules, operating range
     from crankdyn.io.torsion_response_file import read_response_sections
 
-    return read_response_sections(t, model, engine)
+    model = read_response_sections(t, model, engine)
+    # drivelines: shaft lines joined to an engine, engines joined to a line
+    if engine is not None:
+        return _join_lines(t, model)
+    if t.has("input"):
+        line_input = t.string("input")
+        if line_input not in model.mass_names:
+            raise t.error(
+                "input", f'no mass named "{line_input}"{suggest(line_input, model.mass_names)}'
+            )
+    return _join_engines(t, model)
+
+
+# ---- drivelines ---------------------------------------------------------------------------------
+def load_shaft_line(path: Path, display: str) -> tuple[TorsionModel, str]:
+    """A shaft-line model file and the mass an engine joins (its ``input``, default its first
+    mass)."""
+    data = load_toml(path, what="shaft-line file")
+    if "geometry" in data:
+        raise InputError(
+            "this is an engine file; a shaft line is a model file of masses and shafts",
+            file=display,
+        )
+    if "engine" in data:
+        raise InputError(
+            "a shaft line joined to an engine cannot include engines itself ([[engine]])",
+            file=display,
+            key="engine",
+        )
+    model = parse_torsion_model(data, file=display, base_dir=path.parent, default_name=path.stem)
+    line_input = data.get("input", model.masses[0].name)
+    return model, line_input
+
+
+def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
+    """``shaft_line`` (with ``connect_at``) and ``[[torsion.line]]`` of an engine's [torsion]."""
+    from crankdyn.io.engine_file import _display_path
+    from crankdyn.torsion.driveline import join, rename
+
+    entries = []
+    if t.has("shaft_line"):
+        entries.append((t, "shaft_line", "connect_at", None))
+    elif t.has("connect_at"):
+        raise t.error("connect_at", "applies with shaft_line", t.data["connect_at"])
+    for lt in t.tables("line"):
+        entries.append((lt, "file", "at", "prefix"))
+    if not entries:
+        return model
+    base_name = model.name
+    for table, file_key, at_key, prefix_key in entries:
+        path = table.path(file_key)
+        if not path.is_file():
+            raise table.error(
+                file_key, f"no such shaft-line file (looked for {path})", table.data[file_key]
+            )
+        at = table.string(at_key, model.masses[-1].name if at_key == "connect_at" else MISSING)
+        if at not in model.mass_names:
+            raise table.error(at_key, f'no mass named "{at}"{suggest(at, model.mass_names)}', at)
+        prefix = table.string(prefix_key, "") if prefix_key else ""
+        if prefix_key:
+            table.finish()
+        line, line_input = load_shaft_line(path, _display_path(path))
+        with table.context():
+            line = rename(line, prefix)
+            model = join(model, line, at, f"{prefix}{line_input}", name=base_name)
+    return model
+
+
+def _join_engines(t: Table, line: TorsionModel) -> TorsionModel:
+    """A model file's ``[[engine]]`` entries: engines joined to the line's masses."""
+    tables = t.tables("engine")
+    if not tables:
+        return line
+    import dataclasses
+    import math
+
+    from crankdyn.io.engine_file import load_engine
+    from crankdyn.torsion.driveline import join, rename, strip_cylinders
+    from crankdyn.torsion.excitation import EngineExcitation
+    from crankdyn.torsion.sources import EngineSource
+
+    if line.cylinder_dofs:
+        raise tables[0].error(
+            None, "the model's own masses carry cylinders; engines joined to it must not"
+        )
+    model = None
+    for k, et in enumerate(tables):
+        path = et.path("file")
+        if not path.is_file():
+            raise et.error("file", f"no such engine file (looked for {path})", et.data["file"])
+        engine = load_engine(path)
+        if engine.torsion is None:
+            raise et.error("file", "the engine file has no [torsion] section", et.data["file"])
+        if not engine.torsion.cylinder_dofs:
+            raise et.error(
+                "file", "the engine's [torsion] masses carry no cylinders", et.data["file"]
+            )
+        name = et.string("name", engine.name)
+        prefix = et.string("prefix", f"{name}: " if len(tables) > 1 else "")
+        at = et.string("at")
+        if at not in line.mass_names:
+            raise et.error("at", f'no mass named "{at}"{suggest(at, line.mass_names)}', at)
+        connect = et.string("connect", engine.torsion.masses[-1].name)
+        if connect not in engine.torsion.mass_names:
+            raise et.error(
+                "connect",
+                f'the engine has no mass named "{connect}"'
+                f"{suggest(connect, engine.torsion.mass_names)}",
+                connect,
+            )
+        phase = et.quantity("phase", "angle", 0.0)
+        share = et.number("share", 1.0, check="positive")
+        et.finish()
+        part = rename(engine.torsion, prefix)
+        with et.context():
+            if k == 0:
+                for key in ("phase", "share"):
+                    if key in et.data:
+                        raise et.error(
+                            key,
+                            "the first engine is the reference (phase 0, share 1); give the "
+                            "others' relative to it",
+                            et.data[key],
+                        )
+                part = dataclasses.replace(part, engine=engine)
+                model = join(part, line, f"{prefix}{connect}", at, name=line.name)
+                model = dataclasses.replace(model, operating=line.operating or model.operating)
+                continue
+            stripped, cylinders = strip_cylinders(part)
+            source = EngineSource(
+                name=name,
+                excitation=EngineExcitation(engine, engine.torsion.excitation),
+                cylinders=cylinders,
+                phase=math.fmod(phase, engine.cycle_angle),
+                share=share,
+            )
+            model = join(model, stripped, at, f"{prefix}{connect}", name=line.name)
+            model = dataclasses.replace(model, sources=(*model.sources, source))
+    return model
 
 
 def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
