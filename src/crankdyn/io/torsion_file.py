@@ -30,6 +30,7 @@ from crankdyn.torsion.model import (
     SHAFT_ROLES,
     Gear,
     Mass,
+    MassLimits,
     Shaft,
     ShaftGeometry,
     TorsionModel,
@@ -423,8 +424,33 @@ def _mass(t: Table) -> Mass:
     )
     damping = t.quantity("damping", "torsional_damping", 0.0, check="nonnegative")
     cylinders = t.integer_list("cylinders", ())
+    limits = None
+    lt = t.table("limits")
+    if lt is not None:
+        values = {
+            "vibratory_torque": lt.quantity("vibratory_torque", "torque", None, check="positive"),
+            "angular_acceleration": lt.quantity(
+                "angular_acceleration", "angular_acceleration", None, check="positive"
+            ),
+            "amplitude": lt.quantity("amplitude", "angle", None, check="positive"),
+        }
+        source = lt.string("source", None)
+        lt.finish()
+        if all(v is None for v in values.values()):
+            raise lt.error(
+                None, "give at least one of vibratory_torque, angular_acceleration, amplitude"
+            )
+        with lt.context():
+            limits = MassLimits(**values, source=source)
     with t.context():
-        mass = Mass(name=name, inertia=inertia, damping=damping, cylinders=cylinders, role=role)
+        mass = Mass(
+            name=name,
+            inertia=inertia,
+            damping=damping,
+            cylinders=cylinders,
+            role=role,
+            limits=limits,
+        )
     t.finish()
     return mass
 

@@ -174,17 +174,19 @@ def _rules(t: Table | None, model: TorsionModel, operating) -> RuleSet | None:
     if rated is None and operating is not None:
         rated = operating.rated
     limits = []
-    labels = {tuple(s.between): s for s in model.shafts}
+    labels: dict[tuple[str, str], list] = {}
+    for s in model.shafts:  # a subdivided shaft is named by its ends: every element checked
+        labels.setdefault(tuple(s.segment_of or s.between), []).append(s)
     for st in t.tables("shaft", required=True):
         between = tuple(st.string_list("between", length=2))
-        shaft = labels.get(between) or labels.get(between[::-1])
-        if shaft is None:
+        shafts = labels.get(between) or labels.get(between[::-1])
+        if shafts is None:
             names = [f"{a} - {b}" for a, b in labels]
             text = f"{between[0]} - {between[1]}"
             raise st.error(
                 "between", f"no shaft between these masses{suggest(text, names)}", list(between)
             )
-        if shaft.geometry is None:
+        if shafts[0].geometry is None:
             raise st.error(
                 "between",
                 "this shaft has no diameters: give outer_diameter (and inner_diameter) on its "
@@ -195,7 +197,7 @@ def _rules(t: Table | None, model: TorsionModel, operating) -> RuleSet | None:
         factor = st.number("design_factor", 1.0, check="positive", maximum=1.0)
         st.finish()
         with st.context():
-            limits.append(ShaftLimit(tuple(shaft.between), strength, factor))
+            limits.extend(ShaftLimit(tuple(s.between), strength, factor) for s in shafts)
     t.finish()
     with t.context():
         return RuleSet(rated_speed=rated, shafts=tuple(limits))

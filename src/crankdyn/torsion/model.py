@@ -49,6 +49,7 @@ __all__ = [
     "ChainArrays",
     "Gear",
     "Mass",
+    "MassLimits",
     "Shaft",
     "ShaftGeometry",
     "TorsionModel",
@@ -127,6 +128,35 @@ def shaft_stiffness(
 
 
 @dataclass(frozen=True)
+class MassLimits:
+    """Limits a maker gives for a component on a mass (e.g. an alternator's rotor), kept with the
+    model for the rule checks (the vibration analysis does not check them).
+
+    Parameters
+    ----------
+    vibratory_torque
+        Permissible vibratory torque amplitude at the component (N m), > 0, or None.
+    angular_acceleration
+        Permissible angular acceleration amplitude (rad/s^2), > 0, or None.
+    amplitude
+        Permissible vibratory angle amplitude (rad), > 0, or None.
+    source
+        Where the limits come from (the maker's document), for reports.
+    """
+
+    vibratory_torque: float | None = None
+    angular_acceleration: float | None = None
+    amplitude: float | None = None
+    source: str | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("vibratory_torque", "angular_acceleration", "amplitude"):
+            value = getattr(self, name)
+            if value is not None:
+                object.__setattr__(self, name, check_positive(name, value, "the limit"))
+
+
+@dataclass(frozen=True)
 class Mass:
     """A rigid disc of the lumped model.
 
@@ -146,6 +176,8 @@ class Mass:
         What the mass is (:data:`MASS_ROLES`), or None. A gear wheel (``role="gear"``) may have
         no inertia when a rigid mesh joins it to a wheel that has some (the mesh's degree of
         freedom carries the sum).
+    limits
+        The maker's limits for the component (:class:`MassLimits`), or None.
     """
 
     name: str
@@ -153,6 +185,7 @@ class Mass:
     damping: float = 0.0
     cylinders: tuple[int, ...] = ()
     role: str | None = None
+    limits: MassLimits | None = None
 
     def __post_init__(self) -> None:
         name = _name(self.name)
@@ -197,6 +230,7 @@ class Mass:
             object.__setattr__(mass, key, value)
         object.__setattr__(mass, "cylinders", ())
         object.__setattr__(mass, "role", None)
+        object.__setattr__(mass, "limits", None)
         return mass
 
 
