@@ -12,6 +12,7 @@ from crankdyn.report.sections import NotApplicable
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
 from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sources import default_orders
 
 STEP = 10.0 / RPM  # default speed step of the sweep: 10 rpm
 
@@ -39,6 +40,8 @@ def build(ctx) -> Section:
     excitation = excitation_for(model, engine)
     base = fundamental_order(excitation.cycle)
     orders = order_grid(base, 12.0, base, excitation.cycle)
+    if model.sources:  # engine orders and the orders of the propeller and other sources
+        orders = default_orders(model, excitation.cycle)
     result = ctx.get("torsion_response", lambda: forced_response(model, excitation, speeds, orders))
     crit = campbell(model, orders, (float(speeds[0]), float(speeds[-1])), excitation=excitation)
 
@@ -46,10 +49,12 @@ def build(ctx) -> Section:
     s_idx = int(np.argmax(np.max(torque, axis=0)))
     v_idx = int(np.argmax(torque[:, s_idx]))
     shaft = " - ".join(result.shafts[s_idx])
-    out_sum = np.asarray(result.shaft_torque)[:, -1]  # sum of order amplitudes, output-end shaft
+    # the output end: the model's last shaft and mass (damper rings are listed after them)
+    out = len(model.shafts) - 1
+    out_sum = np.asarray(result.shaft_torque)[:, out]  # sum of order amplitudes
     o_idx = int(np.argmax(out_sum))
-    out_shaft = " - ".join(result.shafts[-1])
-    first, last = result.masses[0], result.masses[-1]
+    out_shaft = " - ".join(result.shafts[out])
+    first, last = model.mass_names[0], model.mass_names[-1]
     rel = result.relative_angle(first, last)
     r_idx = int(np.argmax(rel.synthesized))
     figures = [
