@@ -277,6 +277,24 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
     return 0
 
 
+@torsion_group.command("table")
+@click.argument("model", metavar="MODEL_OR_ENGINE")
+@output_options
+def table_command(model, output, force) -> int:
+    """Write the mass-elastic table of MODEL_OR_ENGINE (a chain) as CSV: one row per mass with
+    its inertia, damping and cylinders and the shaft or gear to the next mass. A table read back
+    (a .csv MODEL argument) gives the same model."""
+    from crankdyn.io.mass_elastic import mass_elastic_csv
+
+    text = mass_elastic_csv(resolve_torsion(model))
+    if output and output != "-":
+        path = write_text(output, text, force=force)
+        click.echo(f"wrote {path}", err=True)
+    else:
+        click.echo(text, nl=False)
+    return 0
+
+
 @torsion_group.command("examples")
 def examples_command() -> int:
     """List the built-in torsional models (engines with a [torsion] section work too)."""

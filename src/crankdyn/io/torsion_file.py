@@ -91,8 +91,13 @@ def load_torsion_example(name: str) -> TorsionModel:
 
 
 def load_torsion_model(path: str | Path) -> TorsionModel:
-    """A torsional model from a model file, or from an engine file's [torsion] section."""
+    """A torsional model from a model file, an engine file's [torsion] section, or a
+    mass-elastic table (``.csv``, :mod:`crankdyn.io.mass_elastic`)."""
     name = display_name(path)
+    if str(path).lower().endswith(".csv"):
+        from crankdyn.io.mass_elastic import read_mass_elastic
+
+        return read_mass_elastic(path, name)
     data = load_toml(path, what="model file")
     if "geometry" in data:  # an engine file
         from crankdyn.io.engine_file import parse_engine  # avoids an import cycle
@@ -118,7 +123,7 @@ def resolve_torsion(spec: str) -> TorsionModel:
     from crankdyn.io.engine_file import example_names, load_example
 
     p = Path(spec)
-    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
+    if p.exists() or spec.endswith((".toml", ".csv")) or "/" in spec or "\\" in spec:
         return load_torsion_model(p)
     models = torsion_example_names()
     if spec in models:

@@ -254,6 +254,8 @@ def resolve_model_and_engine(spec: str):
     )
 
     p = Path(spec)
+    if spec.lower().endswith(".csv"):
+        return load_torsion_model(p), None
     if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
         data = load_toml(p, what="model file")
         if "geometry" in data:

@@ -1092,7 +1092,8 @@ class TorsionModel:
     # ---- alternate constructors ---------------------------------------------------------------
     @classmethod
     def from_file(cls, path) -> TorsionModel:
-        """Load a torsional model file (TOML; docs/torsion-file.md)."""
+        """Load a torsional model file (TOML; docs/torsion-file.md), an engine file's
+        [torsion] section, or a mass-elastic table (.csv, :mod:`crankdyn.io.mass_elastic`)."""
         from crankdyn.io.torsion_file import load_torsion_model  # boundary, on demand
 
         return load_torsion_model(path)
@@ -1103,6 +1104,20 @@ class TorsionModel:
         from crankdyn.io.torsion_file import load_torsion_example
 
         return load_torsion_example(name)
+
+    @classmethod
+    def from_opentorsion(cls, assembly, *, name: str = "openTorsion assembly") -> TorsionModel:
+        """A model from an openTorsion ``Assembly`` (:mod:`crankdyn.torsion.opentorsion`)."""
+        from crankdyn.torsion.opentorsion import from_opentorsion
+
+        return from_opentorsion(assembly, name=name)
+
+    def to_opentorsion(self, *, hysteretic_frequency: float | None = None):
+        """The model as an openTorsion ``Assembly`` (:mod:`crankdyn.torsion.opentorsion`; needs
+        openTorsion installed)."""
+        from crankdyn.torsion.opentorsion import to_opentorsion
+
+        return to_opentorsion(self, hysteretic_frequency=hysteretic_frequency)
 
     @classmethod
     def chain_of(
