@@ -55,6 +55,7 @@ import numpy as np
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
+from crankdyn.torsion.loaded import solve_at_speeds
 from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.sources import assemble_forcing, check_model_orders, line_major, synthesize
 
@@ -660,7 +661,9 @@ def forced_response(
     # harmonic torques of the cylinders and of the model's sources (crankdyn.torsion.sources)
     forcing, notes = assemble_forcing(model, system, excitation, speeds, orders)  # (S, Q, n)
     omega = speeds[:, None] * orders[None, :]
-    x_dof = system.solve(omega, forcing, hysteretic_frequency)
+    # each speed with its couplings' stiffness at that speed's mean torque, where it depends
+    # on it (crankdyn.torsion.loaded; otherwise system.solve and the model's stiffness)
+    x_dof, k = solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency)
     # actual angles of the listed masses
     x = x_dof[:, :, system.mass_dof] * system.mass_ratio[None, None, :]
     # shaft (element) torques: k_actual (theta_b - theta_a)_actual = k_ref/r (dX_ref)
@@ -668,7 +671,6 @@ def forced_response(
     xa = np.where(ends[:, 0] >= 0, x_dof[:, :, np.maximum(ends[:, 0], 0)], 0.0)
     xb = np.where(ends[:, 1] >= 0, x_dof[:, :, np.maximum(ends[:, 1], 0)], 0.0)
     twist = xb - xa
-    k = system.element_stiffness / system.element_ratio
     torque = k * twist
     n_shafts = len(model.shafts)
     power = None
