@@ -184,11 +184,11 @@ def campbell(
     if excitation is not None:
         angles = excitation.firing_angles
         major = line_major(excitation, orders)
-        beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
-        rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
-        if excitation.cylinder_count == 0:
-            rel = np.full(rel.shape, np.nan)
+        if excitation.cylinder_count == 0:  # no engine: no relative amplitude sums
+            rel = np.full((elastic.size, orders.size), np.nan)
         else:  # relative amplitude sums belong to the engine's own orders only
+            beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
+            rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
             rel[:, ~engine_orders_mask(orders, excitation.cycle)] = np.nan
         sources = order_sources(model, excitation, orders)
         note = getattr(excitation, "note", "")
