@@ -484,6 +484,14 @@ def _shaft(t: Table) -> Shaft:
     coupling = None
     given = [k for k in _COUPLING_KEYS if k in t.data]
     if kind == "coupling":
+        for key in ("stiffness", "length", "shear_modulus", "loss_factor", "density", "inertia"):
+            if key in t.data:
+                raise t.error(
+                    key,
+                    "a coupling's stiffness and damping come from its catalogue data "
+                    "(dynamic_stiffness, relative_damping); put its inertias on its masses",
+                    t.data[key],
+                )
         coupling = _coupling(t)
     elif given:
         raise t.error(
@@ -500,15 +508,6 @@ def _shaft(t: Table) -> Shaft:
     own = t.quantity("inertia", "inertia", None, check="positive")
     elements = t.integer("elements", None, minimum=1, maximum=10_000)
     max_frequency = t.quantity("max_frequency", "frequency", None, check="positive")
-    if coupling is not None:
-        for key in ("stiffness", "length", "shear_modulus", "loss_factor", "density", "inertia"):
-            if key in t.data:
-                raise t.error(
-                    key,
-                    "a coupling's stiffness and damping come from its catalogue data "
-                    "(dynamic_stiffness, relative_damping); put its inertias on its masses",
-                    t.data[key],
-                )
     if density is not None and own is not None:
         raise t.error(
             "inertia",

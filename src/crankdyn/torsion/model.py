@@ -379,14 +379,17 @@ class Shaft:
         given = self.stiffness
         from_geometry = self.geometry.stiffness if self.geometry is not None else None
         if self.coupling is not None:
-            if given is not None or from_geometry is not None:
+            own = self.coupling.model_stiffness
+            if from_geometry is not None or (
+                given is not None and abs(given - own) > 1e-12 * own  # a copy keeps its own
+            ):
                 raise InputError(
                     "a coupling's stiffness comes from its catalogue data (dynamic_stiffness); "
                     "give no other stiffness",
                     key="stiffness",
                     value=given if given is not None else from_geometry,
                 )
-            if self.loss_factor:
+            if self.loss_factor and abs(self.loss_factor - self.coupling.loss_factor) > 1e-12:
                 raise InputError(
                     "a coupling's damping comes from its relative damping psi; give no loss_factor",
                     key="loss_factor",
