@@ -133,7 +133,7 @@ def test_engine_with_a_shaft_line(files):
 
 def test_an_engine_drives_two_copies_of_one_line(tmp_path):
     _write(tmp_path, "line.toml", LINE)
-    two = 'shaft_line = "line.toml"\n[[torsion.line]]\nfile = "line.toml"\nat = "throw 1"\nprefix = "PTO "'
+    two = 'shaft_line = "line.toml"\n[[torsion.line]]\nfile = "line.toml"\nat = "throw 2"\nprefix = "PTO "'
     # shaft_line and [[torsion.line]] together: the main line at the flywheel, a PTO at throw 2
     path = _write(tmp_path, "e2.toml", ENGINE.format(line=two))
     model = load_engine(path).torsion
