@@ -133,7 +133,10 @@ def test_engine_with_a_shaft_line(files):
 
 def test_an_engine_drives_two_copies_of_one_line(tmp_path):
     _write(tmp_path, "line.toml", LINE)
-    two = 'shaft_line = "line.toml"\n[[torsion.line]]\nfile = "line.toml"\nat = "throw 2"\nprefix = "PTO "'
+    two = (
+        'shaft_line = "line.toml"\n[[torsion.line]]\nfile = "line.toml"\nat = "throw 2"\n'
+        'prefix = "PTO "'
+    )
     # shaft_line and [[torsion.line]] together: the main line at the flywheel, a PTO at throw 2
     path = _write(tmp_path, "e2.toml", ENGINE.format(line=two))
     model = load_engine(path).torsion
@@ -308,7 +311,8 @@ def test_both_wheels_without_inertia_are_refused():
 def test_elastic_mesh_from_the_line_of_action(tmp_path):
     text = LINE.replace(
         "teeth = [20, 50]",
-        'teeth = [20, 50]\nmesh_stiffness = "1.5e9 N/m"\nbase_diameter = "80 mm"\ndamping = "5 N*m*s/rad"',
+        'teeth = [20, 50]\nmesh_stiffness = "1.5e9 N/m"\nbase_diameter = "80 mm"\n'
+        'damping = "5 N*m*s/rad"',
     ).replace('inertia = "0 kg*m^2"', 'inertia = "0.1 kg*m^2"')
     model = parse_torsion_model(tomllib.loads(text), file="line.toml")
     mesh = next(s for s in model.shafts if s.kind == "mesh")

@@ -165,7 +165,9 @@ role = "propeller"
 [[shaft]]
 between = ["engine", "sec"]
 kind = "coupling"
-stiffness_table = [["0 kN*m", "60 kN*m/rad"], ["10 kN*m", "90 kN*m/rad"], ["20 kN*m", "110 kN*m/rad"]]
+stiffness_table = [
+    ["0 kN*m", "60 kN*m/rad"], ["10 kN*m", "90 kN*m/rad"], ["20 kN*m", "110 kN*m/rad"]
+]
 relative_damping = 1.0
 nominal_torque = "20 kN*m"
 maximum_torque = "50 kN*m"

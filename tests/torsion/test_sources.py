@@ -55,7 +55,8 @@ def test_blade_orders_are_converted_to_the_reference_speed():
     assert list(q) == [1.25, 2.5, 3.0]
     with pytest.raises(
         InputError,
-        match=r"order 1.3 does not fit the four-stroke cycle \(multiples of 0.5\) and is no order of the propeller",
+        match=r"order 1.3 does not fit the four-stroke cycle \(multiples of 0.5\) and is no "
+        r"order of the propeller",
     ) as info:
         check_model_orders(model, ex, [1.3])
     assert info.value.key == "orders" and info.value.value == 1.3

@@ -3,9 +3,9 @@
 A uniform shaft (wave speed c = sqrt(G / rho)) has omega_n = n pi c / L free at both ends and
 omega_n = (2n - 1) pi c / (2 L) fixed at one end (the wave equation theta_tt = c^2 theta_xx
 with theta' = 0 at a free end and theta = 0 at a fixed one; S. S. Rao, *Mechanical
-Vibrations*, ch. 8, torsional vibration of a shaft). crankdyn's subdivision promises a relative error below 0.1 %
-up to its target frequency (module :mod:`crankdyn.torsion.distributed`); lumped masses err
-low.
+Vibrations*, ch. 8, torsional vibration of a shaft). crankdyn's subdivision promises a
+relative error below 0.1 % up to its target frequency (module
+:mod:`crankdyn.torsion.distributed`); lumped masses err low.
 """
 
 from __future__ import annotations

@@ -199,19 +199,15 @@ def read_mass_elastic(path: str | Path, display: str | None = None, *, name: str
         return number, cells[i].strip() if i < len(cells) else ""
 
     def number(r: int, key: str) -> float | None:
-        line, text = cell(r, key)
+        _line, text = cell(r, key)
         if not text:
             return None
         try:
             value = float(text)
         except ValueError:
-            raise InputError(
-                f"not a number in column {key!r}", file=file, key=f"line {line}", value=text
-            ) from None
+            raise InputError("not a number", key=key, value=text) from None
         if not math.isfinite(value):
-            raise InputError(
-                f"not a finite number in column {key!r}", file=file, key=f"line {line}", value=text
-            )
+            raise InputError("not a finite number", key=key, value=text)
         return value * columns[key][1]
 
     masses, shafts, gears = [], [], []
@@ -273,13 +269,11 @@ def read_mass_elastic(path: str | Path, display: str | None = None, *, name: str
                     direction=-1 if (ratio is not None and direction != "same") else 1,
                 )
             )
-        except InputError as exc:
-            raise InputError(
-                exc.message,
-                file=file,
-                key=f"line {line} {exc.key or ''}".strip(),
-                value=exc.value if exc.has_value else label,
-            ) from None
+        except InputError as exc:  # the line and the column
+            key = f"line {line} {exc.key or ''}".strip()
+            if exc.has_value:
+                raise InputError(exc.message, file=file, key=key, value=exc.value) from None
+            raise InputError(exc.message, file=file, key=key) from None
     try:
         return TorsionModel(
             masses=tuple(masses),
