@@ -65,6 +65,7 @@ def coupling_stiffness(model, speeds):
                 f'coupling "{label}" carries a mean torque of {t[k] / 1e3:.6g} kN·m at '
                 f"{speeds[k] * RPM:.6g} rpm, outside its stiffness table ({low / 1e3:.6g} to "
                 f"{high / 1e3:.6g} kN·m; not extrapolated)",
+                file=model.source,
                 key="stiffness_table",
                 value=float(t[k]),
             )
