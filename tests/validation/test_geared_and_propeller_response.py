@@ -111,7 +111,8 @@ def test_geared_line_equals_its_single_speed_equivalent(elastic, direction, sign
 def test_marine_propeller_orders_against_a_dense_solve():
     """Order 1.25 of the engine speed (blade order 4 at the propeller, which turns at 25/80 of
     it; no harmonic of the engine's cycle) excites only through the propeller: the response
-    equals the dense
+    (with the coupling's stiffness at each speed's mean torque, r Q(n) on the engine side, read
+    off its table by hand) equals the dense
     solution of (K + iH - omega^2 M + i omega C) X = F with F at the propeller's degree of
     freedom = (25/80) x fraction x Q0 (n_p / n_0)^2 (the propeller law), solved here with
     numpy's dense solver, independently of the chain solver."""
@@ -131,12 +132,23 @@ def test_marine_propeller_orders_against_a_dense_solve():
     k, m = model.stiffness_matrix(), model.mass_matrix()
     c, h = model.damping_matrix(), model.hysteretic_matrix()
     dof = model.mass_dof[prop]
+    # the coupling (at engine speed): its table in the line file, psi = 1.13
+    table_t = np.array([0.0, 15e3, 30e3, 50e3, 75e3])
+    table_c = np.array([190e3, 240e3, 285e3, 330e3, 360e3])
+    i, o = (model.mass_dof[model.index(n)] for n in ("coupling primary", "coupling secondary"))
+    unit = np.zeros_like(k)
+    unit[[i, o], [i, o]] = 1.0
+    unit[i, o] = unit[o, i] = -1.0
+    k_model = np.interp(38e3, table_t, table_c)  # its reference torque
     for j, (q, fraction) in enumerate(zip(orders, source.fraction[:1], strict=True)):
         for s, w in enumerate(speeds):
             omega = q * w
+            delta = np.interp(ratio * q0 * (ratio * w / n0) ** 2, table_t, table_c) - k_model
+            kk = k + delta * unit
+            hh = h + 1.13 / (2 * math.pi) * delta * unit
             f = np.zeros(model.dof_count, dtype=complex)
             f[dof] = ratio * fraction * q0 * (ratio * w / n0) ** 2
-            x = np.linalg.solve(k + 1j * h - omega**2 * m + 1j * omega * c, f)
+            x = np.linalg.solve(kk + 1j * hh - omega**2 * m + 1j * omega * c, f)
             actual = x[dof] * model.signed_speed_ratios[prop]
             assert r.mass_response[s, j, prop] == pytest.approx(actual, rel=1e-9)
     assert math.isfinite(float(np.max(r.synthesized_amplitude)))

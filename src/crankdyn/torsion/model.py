@@ -91,6 +91,10 @@ _RATIO_TOL = 1e-9
 OMEGA2_LIMIT = 1e100
 """Largest omega^2 bound (Gershgorin, rad^2/s^2) a model may have: keeps every product of the
 solvers (J omega^2 theta, determinants' ratios) far from overflow."""
+MAGNITUDE_LIMIT = 1e20
+"""Largest reflected inertia (kg m^2) or stiffness (N m/rad) a model may have, far beyond any
+machine (a large marine shaft line: 1e7 kg m^2, 1e10 N m/rad): beyond it the values are a unit
+mistake, and the products of the solvers (J omega^2 theta) approach overflow."""
 
 
 def _nonnegative(name: str, value: float, what: str) -> float:
@@ -902,6 +906,12 @@ class TorsionModel:
             raise InputError(
                 "the stiffnesses and inertias give natural frequencies beyond "
                 f"{math.sqrt(OMEGA2_LIMIT):.0e} rad/s; check their units",
+            )
+        largest = max(float(np.max(self.dof_inertia)), float(np.max(k, initial=0.0)))
+        if not largest <= MAGNITUDE_LIMIT:
+            raise InputError(
+                f"the model's inertias or stiffnesses reach {largest:.3g} (kg·m², N·m/rad), "
+                f"beyond {MAGNITUDE_LIMIT:.0e}; check their units",
             )
 
     # ---- names and indices --------------------------------------------------------------------
