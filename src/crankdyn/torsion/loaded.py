@@ -39,13 +39,21 @@ def _has_loads(model) -> bool:
     return any(getattr(s, "load", None) is not None for s in model.sources)
 
 
+def _has_drivers(model) -> bool:
+    """Whether an engine drives the loads (cylinders on the masses or an engine source): a
+    shaft line alone has no mean torque, and keeps its couplings' model stiffness."""
+    from crankdyn.torsion.sources import EngineSource
+
+    return bool(model.cylinder_dofs) or any(isinstance(s, EngineSource) for s in model.sources)
+
+
 def coupling_stiffness(model, speeds):
     """(shaft indices, C_Tdyn (N m/rad, actual, with temperature factors) of those shafts at
     every speed, shape (S, count), and their mean torques (N m), shape (S, count)) for the
     load-dependent couplings, at the mean torque of each reference speed (rad/s); None when the
-    model has no such coupling or no load law."""
+    model has no such coupling, no load law or no engine to drive the loads."""
     shafts = _dependent(model)
-    if not shafts or not _has_loads(model):
+    if not shafts or not _has_loads(model) or not _has_drivers(model):
         return None
     from crankdyn.torsion.sources import mean_torques
 
