@@ -91,3 +91,12 @@ def test_example_copies_the_shaft_line(cli, tmp_path):
     assert (tmp_path / "torsion" / "marine-shaft-line.toml").exists()
     r = cli("torsion", "modes", tmp_path / "marine-propulsion.toml", "--format", "json")
     assert r.status == 0 and "propeller" in json.loads(r.out)["masses"]
+
+
+def test_a_shaft_line_alone_runs_on_its_propeller(cli):
+    r = cli(
+        "torsion", "response", "marine-shaft-line", "--speeds", "300:750:150", "--format", "json"
+    )
+    assert r.status == 0, r.err
+    data = json.loads(r.out)
+    assert data["orders"] == [1.25, 2.5]  # blade orders 4, 8 in the input shaft's speed (x 25/80)
