@@ -183,9 +183,11 @@ def test_viscous_damper_ring_has_no_stiffness():
     assert "visc" not in without.masses
 
 
-def test_geared_model_reflects_torque_and_angles():
+@pytest.mark.parametrize(("direction", "sign"), [("same", 1.0), ("opposite", -1.0)])
+def test_geared_model_reflects_torque_and_angles(direction, sign):
     """A 2:1 gear: the driven shaft's actual torque is half the crank-side torque in a rigid
-    ratio, and its angle twice; against the same system written at the crank speed."""
+    ratio, and its angle twice; against the same system written at the crank speed. Beyond an
+    external (reversing) mesh the angles and torques change sign."""
     geared = TorsionModel(
         masses=(
             Mass("crank", 0.5, damping=1.0, cylinders=(1,)),
@@ -194,7 +196,7 @@ def test_geared_model_reflects_torque_and_angles():
             Mass("load", 2.0),
         ),
         shafts=(Shaft(("crank", "pinion"), 5e4), Shaft(("wheel", "load"), 2e4)),
-        gears=(Gear(("pinion", "wheel"), 0.5),),
+        gears=(Gear(("pinion", "wheel"), 0.5, direction=direction),),
     )
     # reflected to the crank speed: inertia and stiffness x r^2 = 0.25
     plain = TorsionModel(
@@ -210,7 +212,10 @@ def test_geared_model_reflects_torque_and_angles():
     a = forced_response(geared, ex, w, [1.0], resolve=False)
     b = forced_response(plain, ex, w, [1.0], resolve=False)
     assert a.mass_response[:, 0, a.mass_index("load")] == pytest.approx(
-        0.5 * b.mass_response[:, 0, b.mass_index("load")], rel=1e-10
+        sign * 0.5 * b.mass_response[:, 0, b.mass_index("load")], rel=1e-10
+    )
+    assert a.shaft_response[:, 0, 1] == pytest.approx(
+        sign * b.shaft_response[:, 0, 1] / 0.5, rel=1e-10
     )
     assert a.order_shaft_torque[:, 0, 1] == pytest.approx(
         b.order_shaft_torque[:, 0, 1] / 0.5, rel=1e-10

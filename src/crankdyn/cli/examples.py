@@ -69,8 +69,13 @@ def example_command(name: str, output: str | None, force: bool) -> int:
         target = target / f"{name}.toml"
     if target.suffix != ".toml":
         raise InputError("the output file name must end in .toml", key="--output", value=output)
-    destinations = [(main_file, target)] + [(f, target.parent / f.name) for f in files[1:]]
+    # the files it refers to keep their place relative to it (e.g. torsion/<line>.toml)
+    destinations = [(main_file, target)] + [
+        (f, target.parent / f.relative_to(main_file.parent)) for f in files[1:]
+    ]
     for _src, dst in destinations:
+        if dst.parent != target.parent and target.parent.is_dir():
+            dst.parent.mkdir(exist_ok=True)
         check_writable(dst, force=force)
     for src, dst in destinations:
         write_bytes(dst, src.read_bytes(), force=force)

@@ -117,17 +117,54 @@ def _modes_tables(result) -> list[RichTable]:
     metavar="LIST",
     help="Mode numbers to plot, e.g. 1,2,3 (elastic modes from 1; default: the first six).",
 )
+@click.option(
+    "--damped",
+    is_flag=True,
+    help="Damped (complex) modes instead: damped frequencies, damping ratios, logarithmic "
+    "decrements (loss factors at each mode's own frequency).",
+)
+@click.option(
+    "--modal-damping",
+    default=None,
+    metavar="RATIO|LIST",
+    help="With --damped: damping ratios of the elastic modes added (one for all, or one per "
+    "mode), e.g. 0.02.",
+)
 @format_option()
 @output_options
-def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> int:
+def modes_command(
+    model, solver, plot_path, plot_modes, damped, modal_damping, fmt, output, force
+) -> int:
     """Natural frequencies, mode shapes, nodes and modal inertias of MODEL_OR_ENGINE.
 
     Every mode is listed, ascending: elastic modes numbered from 1, a free model's rigid-body
     mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest absolute amplitude of 1.
+    With --damped: the damped modes (complex eigenvalues of the damped system), one per mode,
+    ascending, numbered the same way.
     """
     chosen = _mode_list(plot_modes)
     check_plot_path(plot_path, force)
+    ratios = _ratios(modal_damping)
+    if ratios is not None and not damped:
+        raise InputError("applies with --damped", key="--modal-damping", value=modal_damping)
+    if damped and (plot_path or solver != "eigen"):
+        key, value = ("--plot", plot_path) if plot_path else ("--solver", solver)
+        raise InputError("does not apply to the damped modes", key=key, value=value)
     torsion = resolve_torsion(model)
+    if damped:
+        from crankdyn.torsion.damped import damped_modes
+
+        try:
+            result = damped_modes(torsion, modal_damping=ratios)
+        except InputError as exc:
+            if exc.key != "modal_damping":
+                raise
+            raise InputError(exc.message, key="--modal-damping", value=modal_damping) from None
+        if fmt == "table":
+            _print_tables([_damped_table(result)], output, force)
+        else:
+            emit(result, fmt, output, force)
+        return 0
     result = natural_modes(torsion, solver)
     if chosen is not None:
         for m in chosen:
@@ -142,6 +179,45 @@ def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> i
     else:
         emit(result, fmt, output, force)
     return 0
+
+
+def _ratios(text: str | None):
+    if text is None:
+        return None
+    try:
+        values = [float(t) for t in text.split(",") if t.strip()]
+    except ValueError:
+        values = []
+    if not values:
+        raise InputError(
+            "expected damping ratios separated by commas, e.g. 0.02 or 0.02,0.03",
+            key="--modal-damping",
+            value=text,
+        )
+    return values[0] if len(values) == 1 else values
+
+
+def _damped_table(result) -> RichTable:
+    table = RichTable(title=escape(f"{result.model_name}: damped modes"), header_style="bold")
+    for col in (
+        "Mode",
+        "Natural |λ|\n(Hz)",
+        "Damped\n(Hz)",
+        "Damping\nratio",
+        "Log.\ndecrement",
+    ):
+        table.add_column(col, justify="right")
+    hz = 1.0 / (2.0 * math.pi)
+    for r in range(result.mode.size):
+        table.add_row(
+            str(int(result.mode[r])),
+            _g(result.natural_frequency[r] * hz),
+            _g(result.damped_frequency[r] * hz),
+            _g(result.damping_ratio[r]),
+            _g(result.log_decrement[r]),
+        )
+    table.caption = f"loss factors as viscous damping {result.hysteretic}"
+    return table
 
 
 def _mode_list(text: str | None) -> list[int] | None:
@@ -204,6 +280,24 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
         curve = residual_curve(torsion, None if f_max is None else 2.0 * math.pi * f_max)
         save_figure(curve.plot(), plot_path, force)
     emit(table, fmt, output, force, summary=table)
+    return 0
+
+
+@torsion_group.command("table")
+@click.argument("model", metavar="MODEL_OR_ENGINE")
+@output_options
+def table_command(model, output, force) -> int:
+    """Write the mass-elastic table of MODEL_OR_ENGINE (a chain) as CSV: one row per mass with
+    its inertia, damping and cylinders and the shaft or gear to the next mass. A table read back
+    (a .csv MODEL argument) gives the same model."""
+    from crankdyn.io.mass_elastic import mass_elastic_csv
+
+    text = mass_elastic_csv(resolve_torsion(model))
+    if output and output != "-":
+        path = write_text(output, text, force=force)
+        click.echo(f"wrote {path}", err=True)
+    else:
+        click.echo(text, nl=False)
     return 0
 
 

@@ -31,15 +31,23 @@ from crankdyn.torsion.excitation import (
     harmonic_analysis,
     order_grid,
 )
+from crankdyn.torsion.sources import check_model_orders, default_orders
 
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
 
 
 # ---- option parsing ------------------------------------------------------------------------------
-def parse_orders(text: str | None, cycle: str, option: str = "--orders") -> np.ndarray:
-    """FIRST:LAST[:STEP] or a comma-separated list; default 0.5:12 (four-stroke) / 1:12."""
+def parse_orders(
+    text: str | None, cycle: str, option: str = "--orders", model=None, excitation=None
+) -> np.ndarray:
+    """FIRST:LAST[:STEP] or a comma-separated list; default 0.5:12 (four-stroke) / 1:12, and
+    with a model the orders of its excitation sources too (propeller blade orders...). A list
+    may hold any positive orders the model's cylinders or sources excite."""
     base = fundamental_order(cycle)
     if text is None:
+        if model is not None and model.sources:
+            engine = excitation is None or excitation.cylinder_count > 0
+            return default_orders(model, cycle, engine=engine)
         return order_grid(base, 12.0, base, cycle)
     ranged = ":" in text
     try:
@@ -56,6 +64,8 @@ def parse_orders(text: str | None, cycle: str, option: str = "--orders") -> np.n
         if ranged:
             step = parts[2] if len(parts) == 3 else base
             return order_grid(parts[0], parts[1], step, cycle)
+        if model is not None:
+            return check_model_orders(model, excitation, parts, key=option)
         return check_orders(parts, cycle, key=option)
     except InputError as exc:
         raise InputError(exc.message, key=option, value=text) from None
@@ -325,7 +335,7 @@ def response_command(
     check_plot_path(stress_path, force)
     torsion, engine = resolve_model_and_engine(model)
     ex = _excitation(torsion, engine, cylinders, torque)
-    order_list = parse_orders(orders, ex.cycle)
+    order_list = parse_orders(orders, ex.cycle, model=torsion, excitation=ex)
     w = _speeds(speeds, torsion)
     from crankdyn.torsion.response import forced_response
 
@@ -407,9 +417,11 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
     torsion, engine = resolve_model_and_engine(model)
     from crankdyn.torsion.campbell import campbell
 
-    ex = excitation_for(torsion, engine) if torsion.cylinder_dofs else None
+    ex = excitation_for(torsion, engine) if torsion.cylinder_dofs or torsion.sources else None
     cycle = ex.cycle if ex is not None else "four-stroke"
-    order_list = parse_orders(orders, cycle)
+    order_list = parse_orders(
+        orders, cycle, model=torsion if ex is not None else None, excitation=ex
+    )
     result = campbell(torsion, order_list, _range(speed_span, torsion), excitation=ex, cycle=cycle)
     if plot_path:
         save_figure(result.plot(), plot_path, force)
@@ -501,7 +513,7 @@ def damper_command(
 
         ex = excitation_for(torsion, engine)
         w = speed_range(speeds)
-        order_list = parse_orders(orders, ex.cycle)
+        order_list = parse_orders(orders, ex.cycle, model=torsion, excitation=ex)
         damper = design.damper(_ring_name(torsion))
         with_d = forced_response(torsion, ex, w, order_list, dampers=(*torsion.dampers, damper))
         without = forced_response(torsion, ex, w, order_list, dampers=())
@@ -669,7 +681,7 @@ def transient_command(
         raise InputError("the number of cycles must be positive", key="--cycles", value=cycles)
     torsion, engine = resolve_model_and_engine(model)
     ex = excitation_for(torsion, engine)
-    order_list = parse_orders(orders, ex.cycle)
+    order_list = parse_orders(orders, ex.cycle, model=torsion, excitation=ex)
     from crankdyn.torsion.transient import transient_response
 
     result = transient_response(

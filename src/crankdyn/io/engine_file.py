@@ -50,6 +50,15 @@ def example_files(name: str) -> list[Path]:
     named = [excitation.get("load_curve"), excitation.get("harmonics")]
     named += [t.get("file") for t in excitation.get("trace", []) if isinstance(t, dict)]
     files += [path.parent / f for f in named if isinstance(f, str)]
+    # shaft lines (docs/torsion-file.md) and the tables their sources read
+    lines = [torsion.get("shaft_line")]
+    lines += [t.get("file") for t in torsion.get("line", []) if isinstance(t, dict)]
+    for line in (path.parent / f for f in lines if isinstance(f, str)):
+        files.append(line)
+        ex = load_toml(line).get("excitation", {})
+        ex = ex if isinstance(ex, dict) else {}
+        tables = [t.get("table") for t in ex.get("source", []) if isinstance(t, dict)]
+        files += [line.parent / f for f in tables if isinstance(f, str)]
     return files
 
 

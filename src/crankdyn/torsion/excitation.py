@@ -799,9 +799,21 @@ def excitation_for(model, engine=None, *, misfire=(), torque: float | None = Non
     given (or attached), else the model's ``[excitation]`` (uniform torque, default 1 N m).
 
     ``torque`` forces a uniform excitation of that amplitude (N m) even with an engine (its
-    firing angles are kept)."""
+    firing angles are kept). A model that includes its engines (``[[engine]]``) uses its first
+    engine; a model with excitation sources but no cylinders gets a source-only excitation
+    (:class:`crankdyn.torsion.sources.SourceExcitation`)."""
     spec = getattr(model, "excitation", None)
     cylinders = sorted(model.cylinder_dofs)
+    if engine is None:
+        engine = getattr(model, "engine", None)
+    if not cylinders and getattr(model, "sources", ()):
+        if misfire:
+            raise InputError(
+                "a misfire needs engine cylinders on the model", key="misfire", value=list(misfire)
+            )
+        from crankdyn.torsion.sources import SourceExcitation
+
+        return SourceExcitation(spec.cycle if spec is not None else "four-stroke")
     if not cylinders:
         raise InputError(
             "the model has no excitation point: no mass carries a cylinder (give cylinders = "

@@ -27,6 +27,18 @@ small pivot) elimination with partial pivoting (LAPACK's ``gtsv`` algorithm,
 loop running over the chain's length only. Branched models use numpy's batched dense solve. No
 loop over speeds or orders.
 
+Forcing and drivelines. F holds the cylinders' harmonic torques and those of the model's sources
+(propellers, electric machines, tabulated sources and further engines at any mass, at orders of
+that mass's own speed: :func:`crankdyn.torsion.sources.assemble_forcing`). Couplings whose
+stiffness depends on the mean torque take each speed's stiffness
+(:func:`crankdyn.torsion.loaded.solve_at_speeds`, still one batched solve); modal damping ratios
+add C_modal to C (:mod:`crankdyn.torsion.damped`).
+
+Resolution. By default a sweep is *resolved* (:mod:`crankdyn.torsion.resolve`): the critical
+speeds inside the grid's range are added, every damped resonance is sampled across its width
+(with the damping and modal damping) and every peak is refined until it is resolved to 0.1 %; each round is
+one batched evaluation of the new speeds.
+
 Outputs. Per speed, order and mass the complex amplitude (the actual angle of a geared mass is
 its reflected angle times its speed ratio); the vibratory torque of every shaft, the elastic
 torque k (theta_b - theta_a) for a shaft between masses a and b (actual stiffness and angles);
@@ -35,11 +47,14 @@ the nominal shear stress tau = |T| / W_p with the polar section modulus W_p = pi
 
 - the sum of the order amplitudes sum_q |X_q| (the "vibratory torque" of Mendes et al. 2008,
   an upper bound: every order at its peak at once);
-- the time-domain synthesis x(theta) = sum_q Re(X_q exp(i q theta)) over one working cycle, its
+- the time-domain synthesis x(theta) = sum_q Re(X_q exp(i q theta)) over one working cycle (or,
+  with sources' orders that are not the engine's, over the orders' common period), its
   peak-to-peak value and half of it, the half-range amplitude that IACS UR M68 limits ("the
   synthesis of all harmonic orders present"). The extremes are found on a grid of at least
   8 points per period of the highest order; every crest of the grid within the grid's error
   bound of its extreme is refined by Newton's method on x'(theta) = 0 (:func:`half_range`).
+  Orders without a common period (index above 8192) are bounded by the sum of their amplitudes,
+  their supremum (Kronecker's theorem; :func:`crankdyn.torsion.sources.synthesize`).
 
 Dampers (:mod:`crankdyn.torsion.dampers`) add a ring degree of freedom joined to its hub by the
 complex stiffness k_d + i (omega c_d + eta_d k_d); a damper at an end of a chain keeps the chain.
@@ -57,7 +72,7 @@ import scipy.linalg
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
-from crankdyn.torsion.excitation import check_orders, harmonic_index, known_major_orders
+from crankdyn.torsion.loaded import solve_at_speeds
 from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.resolve import (
     MAX_ROUNDS,
@@ -66,6 +81,14 @@ from crankdyn.torsion.resolve import (
     merge_speeds,
     refinement_speeds,
     seed_speeds,
+)
+from crankdyn.torsion.sources import (
+    assemble_forcing,
+    check_model_orders,
+    forcing_notes,
+    line_major,
+    synthesis_index,
+    synthesize_at,
 )
 
 __all__ = [
@@ -285,8 +308,10 @@ def _hyst(h, w, hysteretic_frequency):
     return h * (w / hysteretic_frequency)
 
 
-def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
-    """The model's reflected matrices with the dampers' rings added (module docstring)."""
+def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> LinearSystem:
+    """The model's reflected matrices with the dampers' rings added (module docstring), and the
+    damping of modal damping ratios (:func:`crankdyn.torsion.damped.modal_damping_matrix`, which
+    couples every mass: the system is then solved densely)."""
     dampers = tuple(dampers)
     names = list(model.mass_names)
     for d in dampers:
@@ -299,7 +324,7 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
             )
         names.append(d.name)
     n0 = model.dof_count
-    ratio = model.speed_ratios
+    ratio = model.signed_speed_ratios  # actual angles carry the sense of rotation
     mass_dof = np.array(model.mass_dof)
     chain = model.chain
     shaft_dofs = np.array(model.shaft_dofs)
@@ -310,7 +335,7 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
     ]
     labels = [tuple(s.between) for s in model.shafts]
     # ring placement: a ring at an end of a chain keeps the chain (one ring per end)
-    chained = chain is not None
+    chained = chain is not None and modal_damping is None
     first = last = None
     for d in dampers:
         hub = int(mass_dof[model.index(d.at)])
@@ -344,6 +369,10 @@ def linear_system(model: TorsionModel, dampers=()) -> LinearSystem:
     idx = np.ix_(dof_of_model, dof_of_model)
     stiffness[idx] = model.stiffness_matrix()
     damping[idx] = model.damping_matrix()
+    if modal_damping is not None:
+        from crankdyn.torsion.damped import modal_damping_matrix
+
+        damping[idx] += modal_damping_matrix(model, modal_damping)
     hysteretic[idx] = model.hysteretic_matrix()
     element_dofs = [
         [int(dof_of_model[a]) if a >= 0 else -1, int(dof_of_model[b]) if b >= 0 else -1]
@@ -854,8 +883,8 @@ class ResponseResult(Result):
         speed = np.asarray(self.speed)
         on_grid = self._on_grid()
         diff = self.mass_response[:, :, i] - self.mass_response[:, :, j]
-        harmonic = harmonic_index(self.orders, self.cycle)
-        top, low = half_range(diff, harmonic)
+        index = synthesis_index(self.orders, self.cycle)
+        top, low = synthesize_at(diff, index)
         if self.resolved and self.evaluator is not None:
             for _ in range(MAX_ROUNDS):
                 amp = np.abs(diff)
@@ -865,7 +894,7 @@ class ResponseResult(Result):
                     break
                 x = self.evaluator.evaluate(new).x
                 more = x[:, :, i] - x[:, :, j]
-                t2, l2 = half_range(more, harmonic)
+                t2, l2 = synthesize_at(more, index)
                 speed, first = merge_speeds(speed, new)
                 diff = np.concatenate([diff, more])[first]
                 top = np.concatenate([top, t2])[first]
@@ -979,22 +1008,17 @@ class _Sweep:
     """Everything of a forced response that does not depend on the speed, and its evaluation
     at any speeds (one batched solve)."""
 
-    def __init__(self, model, excitation, orders, dampers, hysteretic_frequency, pairs):
+    def __init__(
+        self, model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping=None
+    ):
         self.model = model
         self.excitation = excitation
         self.orders = orders
         self.hysteretic_frequency = hysteretic_frequency
-        self.system = system = linear_system(model, dampers)
-        count = excitation.cylinder_count
-        incidence = np.zeros((count, system.size))
-        dof_of_model = system.mass_dof[: model.mass_count]
-        for i, m in enumerate(model.masses):
-            for c in m.cylinders:
-                # a torque T on a mass turning at r times the reference speed does the work of
-                # r T
-                incidence[c - 1, int(dof_of_model[i])] = float(system.mass_ratio[i])
-        self.incidence = incidence
-        self.harmonic = harmonic_index(orders, excitation.cycle)
+        self.system = system = linear_system(model, dampers, modal_damping)
+        # harmonic indices over the orders' common period (None: none short enough, the
+        # synthesis is the sum of the amplitudes; crankdyn.torsion.sources.synthesize)
+        self.synthesis = synthesis_index(orders, excitation.cycle)
         self.n_shafts = len(model.shafts)
         modulus = np.full(len(system.element_labels), np.nan)
         for s, shaft in enumerate(model.shafts):
@@ -1002,7 +1026,7 @@ class _Sweep:
                 modulus[s] = shaft.geometry.section_modulus
         self.modulus = modulus
         self.pairs = tuple(pairs)
-        self.major = known_major_orders(excitation, orders)
+        self.major = line_major(excitation, orders)
 
     # ---- evaluation ---------------------------------------------------------------------------
     def evaluate(self, speeds) -> _Block:
@@ -1010,18 +1034,22 @@ class _Sweep:
         speeds = np.asarray(speeds, dtype=float)
         system = self.system
         orders = self.orders
-        harmonics = self.excitation.harmonics(speeds, orders)  # (S, Q, Z)
-        forcing = harmonics @ self.incidence  # (S, Q, n)
+        # harmonic torques of the cylinders and of the model's sources (crankdyn.torsion.sources)
+        forcing, _ = assemble_forcing(self.model, system, self.excitation, speeds, orders)
         omega = speeds[:, None] * orders[None, :]
-        x_dof = system.solve(omega, forcing, self.hysteretic_frequency)
-        # actual angles of the listed masses
+        # each speed with its couplings' stiffness at that speed's mean torque, where it depends
+        # on it (crankdyn.torsion.loaded; otherwise system.solve and the model's stiffness)
+        x_dof, k = solve_at_speeds(
+            self.model, system, speeds, omega, forcing, self.hysteretic_frequency
+        )
+        # actual angles of the listed masses (signed speed ratios: the sense of rotation)
         x = x_dof[:, :, system.mass_dof] * system.mass_ratio[None, None, :]
         # element torques: k_actual (theta_b - theta_a)_actual = k_ref/r (dX_ref)
         ends = system.element_dofs
         xa = np.where(ends[:, 0] >= 0, x_dof[:, :, np.maximum(ends[:, 0], 0)], 0.0)
         xb = np.where(ends[:, 1] >= 0, x_dof[:, :, np.maximum(ends[:, 1], 0)], 0.0)
         twist = xb - xa
-        torque = (system.element_stiffness / system.element_ratio) * twist
+        torque = k * twist
         n_shafts = self.n_shafts
         power = None
         if system.dampers:
@@ -1043,7 +1071,7 @@ class _Sweep:
             i = np.array([p[0] for p in self.pairs])
             j = np.array([p[1] for p in self.pairs])
             parts.append(x[:, :, i] - x[:, :, j])
-        top, low = half_range(np.moveaxis(np.concatenate(parts, axis=2), 1, -1), self.harmonic)
+        top, low = synthesize_at(np.moveaxis(np.concatenate(parts, axis=2), 1, -1), self.synthesis)
         return _Block(speed=speeds, x=x, torque=torque, power=power, top=top, low=low)
 
     # ---- the curves whose peaks are resolved ----------------------------------------------------
@@ -1276,6 +1304,7 @@ def forced_response(
     resolve: bool = True,
     tolerance: float = TOLERANCE,
     relative=None,
+    modal_damping=None,
 ) -> ResponseResult:
     """Steady-state forced response of ``model`` to ``excitation`` over a speed range.
 
@@ -1312,6 +1341,10 @@ def forced_response(
         Pairs of masses (a, b) whose relative angle is resolved with the rest (in the same
         batched rounds); any other pair is resolved when asked for
         (:meth:`ResponseResult.relative_angle`).
+    modal_damping
+        Damping ratios of the elastic modes (one for all, or one per mode) added to the model's
+        damping as C_modal (:mod:`crankdyn.torsion.damped`, as openTorsion's ``C_modal``), or
+        None. The damped-resonance sampling of a resolved sweep includes it.
 
     Returns
     -------
@@ -1320,26 +1353,11 @@ def forced_response(
         for the largest value of any quantity.
     """
     speeds = _check_speeds(speeds)
-    orders = check_orders(orders, excitation.cycle)
+    orders = check_model_orders(model, excitation, orders)
     if not (math.isfinite(tolerance) and 0.0 < tolerance < 1.0):
         raise InputError("the tolerance must lie between 0 and 1", key="tolerance", value=tolerance)
     if dampers is None:
         dampers = getattr(model, "dampers", ()) or ()
-    cyl_dofs = model.cylinder_dofs
-    if not cyl_dofs:
-        raise InputError(
-            "the model has no excitation point: no mass carries a cylinder (give cylinders = "
-            "[...] on the crank-throw masses)",
-            file=model.source,
-        )
-    count = excitation.cylinder_count
-    beyond = [c for c in cyl_dofs if c > count]
-    if beyond:
-        raise InputError(
-            f"a mass carries cylinder {beyond[0]} but the excitation has {count} cylinders",
-            file=model.source,
-            key="cylinders",
-        )
     system_names = list(model.mass_names) + [d.name for d in dampers]
     if relative is None:
         pairs = []
@@ -1356,21 +1374,17 @@ def forced_response(
                         value=name,
                     )
             pairs.append((system_names.index(a), system_names.index(b)))
-    sweep = _Sweep(model, excitation, orders, dampers, hysteretic_frequency, pairs)
-    notes = []
-    unplaced = [c for c in range(1, count + 1) if c not in cyl_dofs]
-    if unplaced:
-        notes.append(
-            f"cylinder(s) {', '.join(map(str, unplaced))} act on no mass of the model and are left "
-            "out"
-        )
+    # the excitation points are checked (cylinders on the masses, sources) before any solve
+    forcing_notes(model, excitation, speeds[:1], orders)
+    sweep = _Sweep(model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping)
     if not resolve:
         block = sweep.evaluate(speeds)
         extra = {"on_grid": freeze(np.ones(speeds.size), dtype=bool)}
+        notes = []
     else:
-        block, extra, more = _resolved(sweep, speeds, tolerance)
-        notes += more
-    notes = list(excitation.notes(block.speed)) + notes
+        block, extra, notes = _resolved(sweep, speeds, tolerance)
+    # notes of the cylinders' and sources' excitation over every evaluated speed
+    notes = list(forcing_notes(model, excitation, block.speed, orders)) + notes
     result = sweep.result(block, notes=tuple(notes) or None, **extra)
     if rules is None:
         rules = getattr(model, "rules", None)
@@ -1439,10 +1453,3 @@ def _resolved(sweep: _Sweep, speeds, tolerance):
         "tolerance": float(tolerance),
     }
     return block, extra, notes
-
-
-def _owner(model: TorsionModel, cylinder: int) -> str:
-    for m in model.masses:
-        if cylinder in m.cylinders:
-            return m.name
-    raise KeyError(cylinder)  # pragma: no cover

@@ -13,6 +13,7 @@ from crankdyn.report.sections import NotApplicable
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
 from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sources import default_orders
 
 STEP = 10.0 / RPM  # default speed step of the sweep: 10 rpm
 
@@ -40,6 +41,8 @@ def build(ctx) -> Section:
     excitation = excitation_for(model, engine)
     base = fundamental_order(excitation.cycle)
     orders = order_grid(base, 12.0, base, excitation.cycle)
+    if model.sources:  # engine orders and the orders of the propeller and other sources
+        orders = default_orders(model, excitation.cycle)
     result = ctx.get("torsion_response", lambda: forced_response(model, excitation, speeds, orders))
     crit = campbell(model, orders, (float(speeds[0]), float(speeds[-1])), excitation=excitation)
 
@@ -47,8 +50,9 @@ def build(ctx) -> Section:
     top = result.peak("synthesized_shaft_torque")
     s_idx = result.shaft_index(top.item)
     shaft = top.item
-    out = result.peak("shaft_torque", result.shafts[-1])  # sum of order amplitudes, output end
-    first, last = result.masses[0], result.masses[-1]
+    # the output end: the model's last shaft and mass (damper rings are listed after them)
+    out = result.peak("shaft_torque", model.shafts[-1].between)  # sum of order amplitudes
+    first, last = model.mass_names[0], model.mass_names[-1]
     rel = result.relative_angle(first, last).peak("synthesized")
     figures = [
         KeyFigure(
