@@ -58,7 +58,7 @@ def build(ctx) -> Section:
     if cmp is not None:
         from crankdyn.torsion.response import forced_response
 
-        there = forced_response(model, excitation, [at_speed], measured.orders)
+        there = forced_response(model, excitation, [at_speed], measured.orders, resolve=False)
         model_synth = float(there.synthesized_amplitude[0, there.mass_index(spec.at)])
         display += f" (model there {_mrad(model_synth)})"
     figures.append(
