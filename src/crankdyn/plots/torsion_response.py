@@ -25,11 +25,14 @@ _SHOWN_ORDERS = 8
 
 
 def _quantity(result, what: str, item):
-    """(per-order amplitudes (S, Q), order sum (S,), synthesised (S,), label, unit, scale)."""
+    """(speeds (S,) rad/s, per-order amplitudes (S, Q), order sum (S,), synthesised (S,), label,
+    unit, scale). A relative angle has its own speeds (its peaks are resolved too, which may add
+    speeds to the response's)."""
     if what == "amplitude":
         i = 0 if item is None else result.mass_index(item)
         name = result.masses[i]
         return (
+            result.speed,
             result.amplitude[:, :, i],
             result.order_sum_amplitude[:, i],
             result.synthesized_amplitude[:, i],
@@ -41,6 +44,7 @@ def _quantity(result, what: str, item):
         a, b = item if item is not None else (result.masses[0], result.masses[-1])
         rel = result.relative_angle(a, b)
         return (
+            rel.speed,
             rel.amplitude,
             rel.order_sum,
             rel.synthesized,
@@ -56,6 +60,7 @@ def _quantity(result, what: str, item):
         a, b = result.shafts[s]
         if what == "torque":
             return (
+                result.speed,
                 result.order_shaft_torque[:, :, s],
                 result.shaft_torque[:, s],
                 result.synthesized_shaft_torque[:, s],
@@ -67,6 +72,7 @@ def _quantity(result, what: str, item):
         if not np.isfinite(modulus):
             raise ValueError(f"shaft {a} - {b} has no diameters: no stress")
         return (
+            result.speed,
             result.order_shaft_torque[:, :, s] / modulus,
             result.shaft_stress[:, s],
             result.synthesized_shaft_stress[:, s],
@@ -83,10 +89,10 @@ def plot_response(
     """Response against speed: the largest orders (major orders solid and thicker, minor
     dashed), the sum of the order amplitudes and the synthesised half-range amplitude.
     ``orders``: the orders to draw (default the eight with the largest peaks)."""
-    per_order, total, synth, label, unit, scale = _quantity(result, what, item)
+    speed, per_order, total, synth, label, unit, scale = _quantity(result, what, item)
     fig, axes = new_figure(1, 1, width=9.5, height=5.2, fig=fig)
     ax = axes[0, 0]
-    n = np.asarray(result.speed) * RPM
+    n = np.asarray(speed) * RPM
     q = np.asarray(result.orders)
     if orders is None:
         peaks = np.max(per_order, axis=0)
@@ -132,8 +138,8 @@ def plot_damper_comparison(with_damper, without, what: str = "amplitude", item=N
         (without, COLORS[1], "without damper"),
         (with_damper, COLORS[0], "with damper"),
     ):
-        _, total, synth, label, unit, scale = _quantity(result, what, item)
-        n = np.asarray(result.speed) * RPM
+        speed, _, total, synth, label, unit, scale = _quantity(result, what, item)
+        n = np.asarray(speed) * RPM
         ax.plot(n, synth * scale, color=color, linewidth=1.8, label=f"{text}, synthesised")
         ax.plot(
             n,
