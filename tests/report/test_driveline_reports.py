@@ -15,7 +15,7 @@ def test_report_torsion_sections(name):
     engine = Engine.example(name)
     ctx = Context(engine=engine, speed=engine.speed)
     built = {key: build(ctx) for key, build in builders() if key.startswith("torsion")}
-    assert set(built) == {"torsion_modes", "torsion_response"}
+    assert set(built) == {"torsion_model", "torsion_modes", "torsion_response"}
     response = built["torsion_response"]
     figures = {f.key: f for f in response.figures}
     assert figures["max_vibratory_shaft_torque_Nm"].value > 0.0

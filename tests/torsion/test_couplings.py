@@ -195,7 +195,7 @@ def test_load_dependent_coupling_in_the_forced_response():
     ex = excitation_for(model)
     speeds = np.array([200.0, 400.0, 590.0]) / RPM
     orders = [1.0, 3.0]
-    r = forced_response(model, ex, speeds, orders)
+    r = forced_response(model, ex, speeds, orders, resolve=False)
     for s, w in enumerate(speeds):
         at = model_at_speed(model, w)
         q = 18e3 * (w * RPM / 600.0) ** 2
