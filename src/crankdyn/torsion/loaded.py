@@ -24,7 +24,13 @@ import numpy as np
 from crankdyn.constants import RPM
 from crankdyn.errors import InputError
 
-__all__ = ["coupling_stiffness", "model_at_speed", "solve_at_speeds"]
+__all__ = [
+    "change_matrix",
+    "coupling_stiffness",
+    "model_at_speed",
+    "solve_at_speeds",
+    "stiffness_change",
+]
 
 
 def _dependent(model) -> list[int]:
@@ -97,15 +103,16 @@ def model_at_speed(model, speed: float):
     return dataclasses.replace(model, shafts=tuple(changed))
 
 
-def solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency=None):
-    """(X, k) for the forced response: the reflected complex amplitudes X (speeds, orders, dofs)
-    and the actual stiffness per element k (elements,) or (speeds, 1, elements) for the element
-    torques k (theta_b - theta_a) / r: ``system.solve`` when no coupling depends on the load,
-    else the batched solve with each speed's coupling stiffness (module docstring)."""
-    base_k = system.element_stiffness / system.element_ratio
+def stiffness_change(model, system, speeds):
+    """The change of the load-dependent couplings' reflected stiffness from the model's at the
+    mean torque of every reference speed (rad/s): (ends, delta, eta, shafts, k_actual) with the
+    couplings' degrees of freedom ``ends`` (count, 2) in ``system``, ``delta`` (S, count) in
+    N m/rad (reflected: (k(n) - k_model) r^2), their loss factors ``eta`` (count,), their shaft
+    indices and their actual stiffness k(n) (S, count); None when nothing depends on the load
+    (module docstring). The dynamic stiffness at speed n is D(omega) + (1 + i eta) Delta K(n)."""
     found = coupling_stiffness(model, speeds)
     if found is None:
-        return system.solve(omega, forcing, hysteretic_frequency), base_k
+        return None
     shafts, k_actual, _torque = found  # (S, count)
     first = np.array([model.index(model.shafts[i].between[0]) for i in shafts], dtype=int)
     r = model.speed_ratios[first]  # couplings join two masses at one speed (not ground)
@@ -113,6 +120,33 @@ def solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency=
     eta = np.array([model.shafts[i].loss_factor for i in shafts])
     delta = (k_actual - k_model[None, :]) * (r * r)[None, :]  # reflected (S, count)
     ends = system.element_dofs[shafts]  # (count, 2)
+    return ends, delta, eta, shafts, k_actual
+
+
+def change_matrix(ends, values, size: int) -> np.ndarray:
+    """Delta K (..., size, size) of the couplings between the degrees of freedom ``ends`` with
+    the stiffness changes ``values`` (..., count): each a spring between its two ends."""
+    values = np.asarray(values)
+    out = np.zeros((*values.shape[:-1], size, size), dtype=values.dtype)
+    for j, (a, b) in enumerate(ends):  # the couplings (a few)
+        out[..., a, a] += values[..., j]
+        out[..., b, b] += values[..., j]
+        out[..., a, b] -= values[..., j]
+        out[..., b, a] -= values[..., j]
+    return out
+
+
+def solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency=None):
+    """(X, k) for the forced response: the reflected complex amplitudes X (speeds, orders, dofs)
+    and the actual stiffness per element k (elements,) or (speeds, 1, elements) for the element
+    torques k (theta_b - theta_a) / r: ``system.solve`` when no coupling depends on the load,
+    else the batched solve with each speed's coupling stiffness (module docstring)."""
+    base_k = system.element_stiffness / system.element_ratio
+    found = stiffness_change(model, system, speeds)
+    if found is None:
+        return system.solve(omega, forcing, hysteretic_frequency), base_k
+    ends, delta, eta, shafts, k_actual = found
+    first = np.array([model.index(model.shafts[i].between[0]) for i in shafts], dtype=int)
     w = np.asarray(omega, dtype=float)
     # the change of the dynamic stiffness per element: (1 + i eta) delta, or with the loss
     # factor as viscous damping at omega_h: delta + i omega eta delta / omega_h
@@ -136,12 +170,7 @@ def solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency=
 
         x = solve_tridiagonal(lower, diag, upper, f)
     else:
-        d = system.matrix(w, hysteretic_frequency).copy()
-        for j, (a, b) in enumerate(ends):
-            d[..., a, a] += change[..., j]
-            d[..., b, b] += change[..., j]
-            d[..., a, b] -= change[..., j]
-            d[..., b, a] -= change[..., j]
+        d = system.matrix(w, hysteretic_frequency) + change_matrix(ends, change, system.size)
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             x = np.linalg.solve(d, f[..., None])[..., 0]
     # element torques k_actual (actual twist) = k_actual rho (reflected twist), rho signed

@@ -41,6 +41,7 @@ __all__ = [
     "bisect_crossings",
     "crossing_brackets",
     "damped_frequencies",
+    "damped_frequency_rows",
     "local_maxima",
     "merge_speeds",
     "refinement_speeds",
@@ -78,18 +79,29 @@ def damped_frequencies(inertia, stiffness, damping, hysteretic) -> np.ndarray:
     stiffness, damping, hysteretic
         K (N m/rad), C (N m s/rad), H (N m/rad), (n, n).
     """
+    w = damped_frequency_rows(inertia, stiffness, damping, hysteretic)
+    w = w[np.isfinite(w)]
+    return np.sort_complex(w)
+
+
+def damped_frequency_rows(inertia, stiffness, damping, hysteretic) -> np.ndarray:
+    """:func:`damped_frequencies` of a batch of systems: stiffness, damping and hysteretic
+    (..., n, n) (broadcast together); returns (..., 2n) complex, ascending in the real part,
+    NaN where an eigenvalue is not a damped natural frequency (a <= 0)."""
     m = np.asarray(inertia, dtype=float)
     n = m.size
     k = np.asarray(stiffness, dtype=float) + 1j * np.asarray(hysteretic, dtype=float)
     c = np.asarray(damping, dtype=float)
-    a = np.zeros((2 * n, 2 * n), dtype=complex)
-    a[:n, n:] = np.eye(n)
-    a[n:, :n] = k / m[:, None]
-    a[n:, n:] = 1j * c / m[:, None]
+    lead = np.broadcast_shapes(k.shape[:-2], c.shape[:-2])
+    a = np.zeros((*lead, 2 * n, 2 * n), dtype=complex)
+    a[..., :n, n:] = np.eye(n)
+    a[..., n:, :n] = k / m[:, None]
+    a[..., n:, n:] = 1j * c / m[:, None]
     w = np.linalg.eigvals(a)
-    scale = float(np.max(np.abs(w))) if w.size else 0.0
-    w = w[np.isfinite(w) & (w.real > 1e-9 * scale)]
-    return np.sort_complex(w)
+    scale = np.max(np.abs(w), axis=-1, keepdims=True, initial=0.0)
+    w = np.where(np.isfinite(w) & (w.real > 1e-9 * scale), w, np.nan)
+    order = np.argsort(np.where(np.isnan(w), np.inf, w.real), axis=-1, kind="stable")
+    return np.take_along_axis(w, order, axis=-1)
 
 
 def seed_speeds(existing, centre, half_width, low, high):

@@ -36,7 +36,8 @@ add C_modal to C (:mod:`crankdyn.torsion.damped`).
 
 Resolution. By default a sweep is *resolved* (:mod:`crankdyn.torsion.resolve`): the critical
 speeds inside the grid's range are added, every damped resonance is sampled across its width
-(with the damping and modal damping) and every peak is refined until it is resolved to 0.1 %; each round is
+(with the damping, modal damping and, for load-dependent couplings, the stiffness at the
+resonance's own speed) and every peak is refined until it is resolved to 0.1 %; each round is
 one batched evaluation of the new speeds.
 
 Outputs. Per speed, order and mass the complex amplitude (the actual angle of a geared mass is
@@ -72,12 +73,12 @@ import scipy.linalg
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
-from crankdyn.torsion.loaded import solve_at_speeds
+from crankdyn.torsion.loaded import change_matrix, solve_at_speeds, stiffness_change
 from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.resolve import (
     MAX_ROUNDS,
     TOLERANCE,
-    damped_frequencies,
+    damped_frequency_rows,
     merge_speeds,
     refinement_speeds,
     seed_speeds,
@@ -87,6 +88,7 @@ from crankdyn.torsion.sources import (
     check_model_orders,
     forcing_notes,
     line_major,
+    source_breakpoints,
     synthesis_index,
     synthesize_at,
 )
@@ -1172,36 +1174,132 @@ class _Sweep:
         lam = np.sort(lam)[self._rigid_count() :]
         return np.sqrt(np.maximum(lam, 0.0))
 
-    def poles(self, top: float) -> np.ndarray:
-        """Damped natural frequencies a + i b (rad/s) with a <= top (module
-        :mod:`crankdyn.torsion.resolve`): the quadratic eigenproblem for systems of up to
-        :data:`POLE_LIMIT` degrees of freedom, else the undamped modes with the modal damping
-        of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M phi))."""
+    def _damping(self):
+        """(C, H) of the poles: the system's viscous and hysteretic damping matrices, the loss
+        factors as viscous eta k / omega_h when the sweep freezes them at omega_h."""
         system = self.system
-        c = system.damping
-        h = system.hysteretic
+        c, h = system.damping, system.hysteretic
         if self.hysteretic_frequency is not None:
             c = c + h / self.hysteretic_frequency
             h = np.zeros_like(h)
+        return c, h
+
+    def poles(self, top: float) -> np.ndarray:
+        """Damped natural frequencies a + i b (rad/s) with a <= top (module
+        :mod:`crankdyn.torsion.resolve`), with the model's stiffness (load-dependent couplings
+        at their reference torque): the quadratic eigenproblem for systems of up to
+        :data:`POLE_LIMIT` degrees of freedom, else the undamped modes with the modal damping
+        of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M phi))."""
+        w = self._pole_rows(self.system.stiffness, *self._damping())
+        w = w[np.isfinite(w)]
+        return np.sort_complex(w[w.real <= top])
+
+    def _pole_rows(self, stiffness, c, h) -> np.ndarray:
+        """Damped natural frequencies of systems with the stiffness matrices (..., n, n) (the
+        system's mass and damping c, h, broadcast): (..., P) complex, ascending in the real
+        part, NaN-padded (:meth:`poles`)."""
+        system = self.system
         if system.size <= POLE_LIMIT:
-            w = damped_frequencies(system.inertia, system.stiffness, c, h)
-            return w[w.real <= top]
-        lam, phi = scipy.linalg.eigh(system.stiffness, np.diag(system.inertia))
-        lam = lam[self._rigid_count() :]
-        phi = phi[:, self._rigid_count() :]
-        keep = lam <= top * top
-        lam, phi = np.maximum(lam[keep], 0.0), phi[:, keep]
-        omega = np.sqrt(lam)
-        modal_h = np.einsum("ir,ij,jr->r", phi, h, phi)
-        modal_c = np.einsum("ir,ij,jr->r", phi, c, phi)
+            return damped_frequency_rows(system.inertia, stiffness, c, h)
+        j = np.sqrt(system.inertia)
+        lam, psi = np.linalg.eigh(stiffness / j[:, None] / j[None, :])
+        lam, psi = lam[..., self._rigid_count() :], psi[..., self._rigid_count() :]
+        phi = psi / j[:, None]  # mass-normalised mode shapes
+        omega = np.sqrt(np.maximum(lam, 0.0))
+        modal_h = np.einsum("...ir,...ij,...jr->...r", phi, h, phi)
+        modal_c = np.einsum("...ir,...ij,...jr->...r", phi, c, phi)
         with np.errstate(divide="ignore", invalid="ignore"):
             b = (modal_h + omega * modal_c) / (2.0 * np.maximum(omega, 1e-300))
-        return omega + 1j * np.abs(b)
+        return np.where(omega > 0.0, omega + 1j * np.abs(b), np.nan)
+
+    def _loaded_change(self, speeds):
+        """(ends, delta, eta) of the load-dependent couplings at reference speeds (rad/s)
+        (:func:`crankdyn.torsion.loaded.stiffness_change`), or None."""
+        found = stiffness_change(self.model, self.system, speeds)
+        return None if found is None else found[:3]
+
+    def loaded_poles(self, speeds) -> np.ndarray:
+        """Damped natural frequencies (rad/s) with the load-dependent couplings' stiffness at
+        the mean torque of every speed (rad/s): (S, P), NaN-padded, ascending (:meth:`poles`;
+        the forced response takes the same stiffness at that speed)."""
+        speeds = np.asarray(speeds, dtype=float)
+        ends, delta, eta = self._loaded_change(speeds)
+        size = self.system.size
+        c, h = self._damping()
+        k = self.system.stiffness + change_matrix(ends, delta, size)
+        if self.hysteretic_frequency is None:
+            h = h + change_matrix(ends, delta * eta, size)
+        else:
+            c = c + change_matrix(ends, delta * eta / self.hysteretic_frequency, size)
+        return self._pole_rows(k, c, h)
+
+    def _tracked_resonances(self, poles, orders, low: float, high: float):
+        """The resonances of the damped modes with the load-dependent couplings' stiffness at
+        the resonance's own speed: for every pole p (at the reference torque) and order q, the
+        speed n with Re a_p(n) = q n, a_p(n) the pole at the stiffness of speed n (clipped to
+        the range, beyond which the load laws give no stiffness), found by the secant method
+        from the fixed-point step n = Re a_p(n0) / q, all pairs at once, each iteration one
+        batched eigenproblem; the pole followed from speed to speed as the one nearest in
+        frequency. Returns (centre (rad/s), half width (rad/s), pole frequency (rad/s), order
+        index) of the pairs whose resonance lies within two half widths of the range."""
+        rows = self.loaded_poles([low, high])  # (2, P)
+
+        def follow(rows_at, previous):
+            k = np.nanargmin(np.abs(rows_at.real - previous[:, None]), axis=1)
+            return rows_at[np.arange(k.size), k]
+
+        # candidates: a pole p at the reference torque, followed to both ends of the range
+        p_ref = poles
+        at_low = follow(np.broadcast_to(rows[0], (p_ref.size, rows.shape[1])), p_ref.real)
+        at_high = follow(np.broadcast_to(rows[1], (p_ref.size, rows.shape[1])), p_ref.real)
+        q = orders[None, :]
+        g_low = at_low.real[:, None] - q * low + 2.0 * np.abs(at_low.imag)[:, None]
+        g_high = at_high.real[:, None] - q * high - 2.0 * np.abs(at_high.imag)[:, None]
+        p_idx, q_idx = np.nonzero((g_low >= 0.0) & (g_high <= 0.0))
+        if p_idx.size == 0:
+            return np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0, dtype=int)
+        q_sel = orders[q_idx]
+        # start: the resonance interpolated between the ends, then one fixed-point step
+        lo_f, hi_f = at_low.real[p_idx], at_high.real[p_idx]
+        gl, gh = lo_f - q_sel * low, hi_f - q_sel * high
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = np.clip(np.where(gl != gh, gl / (gl - gh), 0.5), 0.0, 1.0)
+        n0 = low + t * (high - low)
+        track = lo_f + t * (hi_f - lo_f)
+
+        def step(n, track):
+            rows_n = self.loaded_poles(np.clip(n, low, high))
+            a = follow(rows_n, track)
+            return a, a.real - q_sel * n
+
+        a0, g0 = step(n0, track)
+        n1 = a0.real / q_sel
+        a1, g1 = step(n1, a0.real)
+        for _ in range(TRACK_ITERATIONS):
+            done = np.abs(n1 - n0) <= 1e-9 * np.abs(n1)
+            if np.all(done):
+                break
+            with np.errstate(divide="ignore", invalid="ignore"):
+                secant = n1 - g1 * (n1 - n0) / (g1 - g0)
+            # a secant step that fails (flat or non-finite) falls back to the fixed point
+            fixed = a1.real / q_sel
+            n2 = np.where(np.isfinite(secant) & (g1 != g0) & ~done, secant, fixed)
+            n2 = np.where(done, n1, n2)
+            a2, g2 = step(n2, a1.real)
+            n0, g0, n1, g1, a1 = n1, g1, n2, g2, a2
+        centre = a1.real / q_sel
+        width = np.maximum(np.abs(a1.imag), 1e-6 * a1.real) / q_sel
+        near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
+        return centre[near], width[near], a1.real[near], q_idx[near]
 
     def seeds(self, grid, low: float, high: float):
         """The critical speeds (undamped modes x orders) inside [low, high] and the speeds
         that sample every damped resonance across its width (resolve module, step 1), with a
-        reason for each: (speeds (rad/s), reasons)."""
+        reason for each: (speeds (rad/s), reasons). The critical speeds are the Campbell
+        diagram's (the model's stiffness: load-dependent couplings at their reference torque);
+        with load-dependent couplings the damped resonances are followed to the coupling
+        stiffness at their own speed (:meth:`_tracked_resonances`), where the forced response
+        has them."""
         orders = self.orders
         omega = self.undamped()
         poles = self.poles(float(np.max(orders)) * high * 1.5)
@@ -1225,25 +1323,35 @@ class _Sweep:
             for a, b in zip(r, q, strict=True)
         ]
         poles = poles[np.abs(poles.imag) > 1e-9 * poles.real]
-        centre = poles.real[:, None] / orders[None, :]
-        width = np.maximum(np.abs(poles.imag), 1e-6 * poles.real)[:, None] / orders[None, :]
-        near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
-        p, q2 = np.nonzero(near)
-        points, which = seed_speeds(
-            np.concatenate([grid, crit_speeds]), centre[p, q2], width[p, q2], low, high
-        )
+        if self._loaded_change([low]) is None:
+            centre = poles.real[:, None] / orders[None, :]
+            width = np.maximum(np.abs(poles.imag), 1e-6 * poles.real)[:, None] / orders[None, :]
+            near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
+            p, q2 = np.nonzero(near)
+            centre, width, frequency = centre[p, q2], width[p, q2], poles.real[p]
+            loaded = ""
+        else:
+            centre, width, frequency, q2 = self._tracked_resonances(poles, orders, low, high)
+            loaded = ", couplings at that speed's mean torque"
+        points, which = seed_speeds(np.concatenate([grid, crit_speeds]), centre, width, low, high)
         seed_reasons = [
-            f"resonance sampling: {poles[p[k]].real / (2 * math.pi):.4g} Hz x order "
-            f"{orders[q2[k]]:g}"
+            f"resonance sampling: {frequency[k] / (2 * math.pi):.4g} Hz x order "
+            f"{orders[q2[k]]:g}{loaded}"
             for k in which
         ]
-        kinks = np.asarray(getattr(self.excitation, "breakpoints", lambda: ())(), dtype=float)
+        kinks = np.concatenate(
+            [
+                np.asarray(getattr(self.excitation, "breakpoints", lambda: ())(), dtype=float),
+                source_breakpoints(self.model),
+            ]
+        )
         kinks = kinks[(kinks > low) & (kinks < high)]
         return (
             np.concatenate([crit_speeds, points, kinks]),
             crit_reasons
             + seed_reasons
-            + ["excitation breakpoint (a point of the load curve or traces)"] * kinks.size,
+            + ["excitation breakpoint (a point of a load curve, trace or source table)"]
+            * kinks.size,
         )
 
     # ---- results ------------------------------------------------------------------------------
@@ -1282,6 +1390,10 @@ class _Sweep:
             **extra,
         )
 
+
+TRACK_ITERATIONS = 30
+"""Secant iterations at most when following a resonance to its load-dependent coupling
+stiffness (each one batched eigenproblem; they converge superlinearly, in a few)."""
 
 POLE_LIMIT = 200
 """Largest system (degrees of freedom) whose damped natural frequencies are found by the

@@ -74,6 +74,7 @@ __all__ = [
     "mean_torques",
     "order_sources",
     "propeller",
+    "source_breakpoints",
     "source_orders",
     "synthesis_index",
     "synthesize",
@@ -626,6 +627,27 @@ def line_major(excitation, orders) -> np.ndarray | None:
             return None
         out[fits] = major
     return out
+
+
+def source_breakpoints(model) -> np.ndarray:
+    """Reference speeds (rad/s) where a source's excitation is not smooth in the speed: the
+    points of its tables (amplitudes and phases against the speed, a tabulated load law, a
+    further engine's load curve or traces), each converted from the speed of its mass (n / |r|).
+    A resolved forced response samples them (:mod:`crankdyn.torsion.resolve`)."""
+    points = []
+    for source in model.sources:
+        r = float(model.speed_ratios[model.index(source.mass_names()[0])])
+        if isinstance(source, EngineSource):
+            found = getattr(source.excitation, "breakpoints", None)
+            if found is not None:
+                points.append(np.asarray(found(), dtype=float) / r)
+            continue
+        if source.speed is not None:
+            points.append(np.asarray(source.speed, dtype=float) / r)
+        load = source.load
+        if load is not None and load.table_speed is not None:
+            points.append(np.asarray(load.table_speed, dtype=float) / r)
+    return np.concatenate(points) if points else np.zeros(0)
 
 
 # ---- time-domain synthesis over a common period --------------------------------------------------
