@@ -222,3 +222,97 @@ def test_half_range_finds_the_highest_of_nearly_equal_crests(seed):
     assert np.all(low <= x.min(axis=1) + 1e-12 * scale)
     assert np.all(top - x.max(axis=1) <= 1e-5 * scale)
     assert np.all(x.min(axis=1) - low <= 1e-5 * scale)
+
+
+# ---- drivelines (issue 18): damped modes, sources ----------------------------------------------
+def test_damped_modes_share_the_numbering(capsys):
+    """Damped mode r is undamped mode r, numbered alike (elastic from 1, a free model's
+    rigid-body mode 0), in Python and in `torsion modes --damped`; frequencies in rad/s under
+    names without a unit, Hz under `_hz` keys."""
+    from crankdyn.torsion import Mass, Shaft
+    from crankdyn.torsion.damped import damped_modes
+
+    free = TorsionModel.example("marine-shaft-line")
+    grounded = TorsionModel(
+        masses=(Mass("a", 2.0), Mass("b", 1.0)),
+        shafts=(Shaft(("ground", "a"), 4e5, loss_factor=0.05), Shaft(("a", "b"), 1e5)),
+    )
+    for model in (free, grounded):
+        undamped = natural_modes(model)
+        damped = damped_modes(model)
+        assert damped.mode.tolist() == undamped.mode.tolist()
+        assert damped.mode[0] == (0 if model.is_free else 1)
+        elastic = undamped.natural_frequency > 0.0
+        # lightly damped: |lambda| within a few per cent of the undamped frequency it is labelled by
+        assert damped.natural_frequency[elastic] == pytest.approx(
+            undamped.natural_frequency[elastic], rel=0.05
+        )
+        assert damped.damped_frequencies_hz == pytest.approx(damped.damped_frequency / 2 / math.pi)
+    assert main(["torsion", "modes", "genset-1500", "--damped", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["mode"][:2] == [0, 1] and data["damping_ratios"][0] is None
+    assert main(["torsion", "modes", "genset-1500", "--format", "json"]) == 0
+    plain = json.loads(capsys.readouterr().out)
+    assert plain["mode"] == data["mode"]
+
+
+def _geared_two_cylinder_line(firing_order=None):
+    """Two cylinders and a 4-blade propeller behind a 20:64 gear (blade orders 1.25 and 2.5)."""
+    from crankdyn.torsion import Gear, Mass, Shaft
+    from crankdyn.torsion.excitation import ExcitationSpec
+    from crankdyn.torsion.sources import LoadLaw, propeller
+
+    masses = (
+        Mass("throw 1", 2.0, cylinders=(1,)),
+        Mass("throw 2", 2.0, cylinders=(2,)),
+        Mass("pinion", 0.1, role="gear"),
+        Mass("wheel", 1.0, role="gear"),
+        Mass("prop", 30.0, role="propeller"),
+    )
+    shafts = (
+        Shaft(("throw 1", "throw 2"), 4e5, loss_factor=0.02),
+        Shaft(("throw 2", "pinion"), 2e5, loss_factor=0.02),
+        Shaft(("wheel", "prop"), 5e5, loss_factor=0.02),
+    )
+    src = propeller("prop", 4, fractions=[0.08, 0.02], load=LoadLaw(5000.0, 50.0, 2.0))
+    spec = None if firing_order is None else ExcitationSpec(firing_order=firing_order)
+    return TorsionModel(
+        masses=masses,
+        shafts=shafts,
+        gears=(Gear(("pinion", "wheel"), teeth=(20, 64)),),
+        sources=(src,),
+        excitation=spec,
+    )
+
+
+def test_major_orders_with_a_propeller_and_unknown_firing():
+    """Without firing angles the engine's orders are undetermined (None), the propeller's own
+    blade order 1.25 is no engine order and so not major, known firing or not; `excited_by`
+    says which excites each order, the response's `major` is undetermined as a whole."""
+    orders = [0.5, 1.0, 1.25, 2.5]
+    speeds = (50.0, 400.0)
+    unknown = _geared_two_cylinder_line()
+    ex = excitation_for(unknown)
+    assert not ex.phases_known
+    c = campbell(unknown, orders, speeds, excitation=ex)
+    assert c.major is None and MAJOR_UNDETERMINED in c.notes
+    by_order = {}
+    for x in c.critical_speeds:
+        by_order.setdefault(x.order, set()).add((x.major, x.excited_by))
+        assert x.relative_amplitude_sum is None
+    assert by_order[1.25] == {(False, "propeller (4 blades) at prop")}
+    assert by_order[2.5] == {(None, "engine, propeller (4 blades) at prop")}
+    assert by_order[0.5] == {(None, "engine")}
+    r = forced_response(unknown, ex, np.linspace(*speeds, 8), orders)
+    assert r.major is None and "major_orders" not in r.to_dict()
+    known = _geared_two_cylinder_line(firing_order=(1, 2))
+    ex = excitation_for(known)
+    assert ex.phases_known
+    c = campbell(known, orders, speeds, excitation=ex)
+    # two cylinders 360 deg apart: the integer orders are major, the half orders minor
+    assert c.major.tolist() == [False, True, False, False]
+    majors = {(x.order, x.major) for x in c.critical_speeds}
+    assert (1.25, False) in majors and (1.0, True) in majors
+    assert all((x.relative_amplitude_sum is None) == (x.order == 1.25) for x in c.critical_speeds)
+    r = forced_response(known, ex, np.linspace(*speeds, 8), orders)
+    assert r.major.tolist() == [False, True, False, False]

@@ -31,11 +31,13 @@ not vibrate: omega_n = omega_d = 0, no damping ratio or decrement (null).
 The modes are labelled by the undamped modes: each undamped mode phi_r (mass-normalised) is
 given the eigenvalue whose eigenvector v (its angle part) is closest to it in the mass metric,
 the modal assurance criterion MAC = |phi_r^T M v|^2 / (phi_r^T M phi_r v^H M v), by an optimal
-assignment (every eigenvalue to one mode). Hysteretic damping (``hysteretic="iterate"``, the
-default) is taken at each mode's own damped frequency: omega_h = omega_d,r, iterated from the
-undamped omega_r until it no longer changes (to 1e-12; a single mass on a hysteretic shaft then
-gives omega_d^2 = omega_n^2 (1 + sqrt(1 - eta^2)) / 2 exactly, tested); or at one given
-frequency for every mode (``hysteretic=omega_h``).
+assignment (every eigenvalue to one mode), and numbered as they are (elastic modes from 1, a
+free model's rigid-body mode 0; docs/conventions.md), so damped mode r is undamped mode r.
+Hysteretic damping (``hysteretic="iterate"``, the default) is taken at each mode's own damped
+frequency: omega_h = omega_d,r, iterated from the undamped omega_r until it no longer changes
+(to 1e-12; a single mass on a hysteretic shaft then gives omega_d^2 = omega_n^2
+(1 + sqrt(1 - eta^2)) / 2 exactly, tested); or at one given frequency for every mode
+(``hysteretic=omega_h``).
 
 Complex mode shapes: the eigenvector's angle part over the masses (reflected amplitudes, in the
 listing order), scaled so that the largest amplitude is 1 (real, positive).
@@ -117,7 +119,10 @@ def modal_damping_matrix(model, ratios) -> np.ndarray:
 @dataclass(frozen=True)
 class DampedModalResult(Result):
     """Damped natural frequencies, damping ratios, logarithmic decrements and complex mode
-    shapes of a torsional model, one per mode, ascending (module docstring)."""
+    shapes of a torsional model, one per mode, in the order of the undamped modes that label
+    them and with their numbers (elastic modes from 1, a free model's rigid-body mode 0:
+    docs/conventions.md) (module docstring). Frequencies are held in rad/s
+    (``natural_frequency`` |lambda|, ``damped_frequency`` omega_d), exported in Hz."""
 
     title = "Damped modes"
     mode: np.ndarray = column("mode", "Mode", "")
@@ -277,7 +282,10 @@ def damped_modes(model, *, hysteretic="iterate", modal_damping=None) -> DampedMo
         2.0 * math.pi * values[:, 2] * values[:, 0] / np.where(values[:, 1] > 0, values[:, 1], 1),
         math.nan,
     )
-    order = np.argsort(values[:, 0], kind="stable")
+    # rows in the order of the undamped modes that label them (ascending), numbered as they
+    # are (docs/conventions.md: elastic modes from 1, a free model's rigid-body mode 0)
+    order = np.argsort(omega0, kind="stable")
+    first = 0 if model.is_free else 1
     dof = model.mass_dof
     shapes = shapes[order][:, dof]
     peak = np.argmax(np.abs(shapes), axis=1)
@@ -285,7 +293,7 @@ def damped_modes(model, *, hysteretic="iterate", modal_damping=None) -> DampedMo
     shapes = shapes / np.where(scale != 0.0, scale, 1.0)[:, None]
     shapes.setflags(write=False)
     return DampedModalResult(
-        mode=freeze(np.arange(1, n + 1), dtype=int),
+        mode=freeze(np.arange(first, first + n), dtype=int),
         natural_frequency=freeze(values[order, 0]),
         damped_frequency=freeze(values[order, 1]),
         damping_ratio=freeze(values[order, 2]),
