@@ -74,6 +74,39 @@ def test_campbell_engine_and_propeller_orders(cli):
     data = json.loads(r.out)
     assert 1.25 in data["orders"] and 2.5 in data["orders"]
     assert {c["excited_by"] for c in data["critical_speeds"]} >= {"engine", "engine, propeller"}
+    assert all("natural_frequency_hz" in c and c["mode"] >= 1 for c in data["critical_speeds"])
+    table = cli("torsion", "campbell", "marine-propulsion", "--range", "350:400")
+    assert table.status == 0, table.err
+    assert "Excited by" in table.out and "engine, propeller" in table.out
+    # the line alone: the propeller's own orders, never major
+    alone = cli("torsion", "campbell", "marine-shaft-line", "--format", "json")
+    assert alone.status == 0, alone.err
+    speeds = json.loads(alone.out)["critical_speeds"]
+    assert speeds and all(c["major"] is False for c in speeds)
+    assert all(c.get("relative_amplitude_sum") is None for c in speeds)
+
+
+def test_resolved_response_of_the_marine_line(cli):
+    """The default forced response of a driveline is resolved: critical speeds and refinements
+    added (said in the output), peaks from the resolved curve."""
+    r = cli("torsion", "response", "marine-propulsion", "--speeds", "300:750:50")
+    assert r.status == 0, r.err
+    assert "Speeds added to resolve the peaks" in r.out
+    assert "critical speed: mode 2 x order 2.5" in r.out
+    data = json.loads(
+        cli(
+            "torsion",
+            "response",
+            "marine-propulsion",
+            "--speeds",
+            "300:750:50",
+            "--format",
+            "json",
+        ).out
+    )
+    assert data["resolved"] is True and sum(data["on_grid"]) == 10
+    assert any("couplings at that speed's mean torque" in w for w in data["added_speed_reasons"])
+    assert 1.25 in data["orders"] and data["peaks"]
 
 
 def test_mass_elastic_table_out_and_back(cli, tmp_path):

@@ -433,6 +433,8 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
             ),
             header_style="bold",
         )
+        # what excites each order, where sources act besides the engine (drivelines)
+        sources = any(c.excited_by not in (None, "engine") for c in result.critical_speeds)
         for col in (
             "Speed\n(rpm)",
             "Mode",
@@ -443,16 +445,21 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
             "Relative\namplitude sum",
         ):
             table.add_column(col, justify="right")
+        if sources:
+            table.add_column("Excited by", justify="left", overflow="fold")
         for c in result.critical_speeds:
-            table.add_row(
+            row = [
                 f"{c.speed * RPM:.1f}",
                 str(c.mode),
                 str(c.nodes),
                 f"{c.order:g}",
                 f"{c.frequency_hz:.5g}",
-                "-" if c.major is None else ("yes" if c.major else "no"),
+                "undetermined" if c.major is None else ("yes" if c.major else "no"),
                 "-" if c.relative_amplitude_sum is None else f"{c.relative_amplitude_sum:.3g}",
-            )
+            ]
+            if sources:
+                row.append(escape(c.excited_by or "-"))
+            table.add_row(*row)
         if result.notes:
             table.caption = escape("; ".join(result.notes))
         _print_tables([table], output, force)

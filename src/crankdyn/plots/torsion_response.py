@@ -204,13 +204,15 @@ def plot_campbell(result, fig=None, max_speed: float | None = None):
     ax.axvspan(
         result.low * RPM, result.high * RPM, color="#dde8f3", zorder=0, label="operating range"
     )
-    unknown = result.major is None
+    # undetermined: the engine's orders without firing angles (a source's own orders, e.g. a
+    # propeller's blade orders, are never major: drawn as minor)
+    unknown = [c for c in result.critical_speeds if c.major is None]
     major_pts = [c for c in result.critical_speeds if c.major]
     minor_pts = [c for c in result.critical_speeds if c.major is False]
-    if unknown and result.critical_speeds:
+    if unknown:
         ax.plot(
-            [c.speed * RPM for c in result.critical_speeds],
-            [c.frequency_hz for c in result.critical_speeds],
+            [c.speed * RPM for c in unknown],
+            [c.frequency_hz for c in unknown],
             "D",
             color="#606060",
             markersize=5,
