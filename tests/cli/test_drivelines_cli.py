@@ -133,3 +133,6 @@ def test_a_shaft_line_alone_runs_on_its_propeller(cli):
     assert r.status == 0, r.err
     data = json.loads(r.out)
     assert data["orders"] == [1.25, 2.5]  # blade orders 4, 8 in the input shaft's speed (x 25/80)
+    # the blade orders' critical speeds are added to the grid (resolved sweep)
+    assert "critical speed: mode 1 x order 1.25" in data["added_speed_reasons"]
+    assert data["major_orders"] == [False, False]

@@ -287,3 +287,36 @@ def test_source_table_points_are_sampled():
         k = int(np.argmin(np.abs(r.speed - w)))
         assert r.speed[k] == pytest.approx(w, rel=1e-12)
         assert "excitation breakpoint" in r.added_reasons[list(r.added_speeds).index(r.speed[k])]
+
+
+def test_resolved_synthesis_over_the_common_period_against_a_dense_time_evaluation(marine):
+    """The synthesised torques of the resolved marine sweep (engine orders and blade orders 1.25
+    and 2.5: common period of four revolutions) equal half the range of the time signal
+    sum_q Re(T_q exp(i q theta)) evaluated densely over those four revolutions."""
+    model, ex, orders = marine
+    r = forced_response(model, ex, _grid(575.0, 675.0, 50.0), orders)
+    theta = np.linspace(0.0, 8.0 * math.pi, 400_001)
+    s = r.shaft_index(INTERMEDIATE)
+    k = int(np.argmax(r.synthesized_shaft_torque[:, s]))  # the refined peak's row
+    rows = [0, k, r.speed.size - 1]
+    c = r.shaft_response[rows, :, s]  # (3, orders)
+    x = np.zeros((len(rows), theta.size))
+    for j, q in enumerate(orders):
+        x += np.real(c[:, [j]] * np.exp(1j * q * theta)[None, :])
+    dense = 0.5 * (x.max(axis=1) - x.min(axis=1))
+    assert r.synthesized_shaft_torque[rows, s] == pytest.approx(dense, rel=1e-6)
+
+
+def test_incommensurate_orders_are_bounded_by_the_sum_of_amplitudes():
+    """A source at orders 1 and pi has no common period: the synthesis is the sum of the order
+    amplitudes (their supremum, Kronecker), said in the notes, and the sweep still resolves."""
+    from crankdyn.torsion.sources import SourceExcitation
+
+    model = _undamped_line(orders=[1.0, math.pi], amplitude=[30.0, 10.0], name="rotor")
+    r = forced_response(
+        model, SourceExcitation(), _grid(100.0, 1000.0, 50.0), [1.0, math.pi], modal_damping=0.02
+    )
+    assert r.resolved and r.added_speeds.size > 0
+    assert any("no common period" in n for n in r.notes)
+    assert r.synthesized_amplitude == pytest.approx(r.order_sum_amplitude, rel=1e-12)
+    assert r.synthesized_shaft_torque == pytest.approx(r.shaft_torque, rel=1e-12)
