@@ -1245,8 +1245,9 @@ class _Sweep:
         rows = self.loaded_poles([low, high])  # (2, P)
 
         def follow(rows_at, previous):
-            k = np.nanargmin(np.abs(rows_at.real - previous[:, None]), axis=1)
-            return rows_at[np.arange(k.size), k]
+            gap = np.abs(rows_at.real - previous[:, None])
+            k = np.argmin(np.where(np.isnan(gap), np.inf, gap), axis=1)
+            return rows_at[np.arange(k.size), k]  # NaN where there is no pole at all
 
         # candidates: a pole p at the reference torque, followed to both ends of the range
         p_ref = poles
@@ -1255,7 +1256,8 @@ class _Sweep:
         q = orders[None, :]
         g_low = at_low.real[:, None] - q * low + 2.0 * np.abs(at_low.imag)[:, None]
         g_high = at_high.real[:, None] - q * high - 2.0 * np.abs(at_high.imag)[:, None]
-        p_idx, q_idx = np.nonzero((g_low >= 0.0) & (g_high <= 0.0))
+        with np.errstate(invalid="ignore"):
+            p_idx, q_idx = np.nonzero((g_low >= 0.0) & (g_high <= 0.0))
         if p_idx.size == 0:
             return np.zeros(0), np.zeros(0), np.zeros(0), np.zeros(0, dtype=int)
         q_sel = orders[q_idx]
@@ -1267,29 +1269,36 @@ class _Sweep:
         n0 = low + t * (high - low)
         track = lo_f + t * (hi_f - lo_f)
 
-        def step(n, track):
-            rows_n = self.loaded_poles(np.clip(n, low, high))
-            a = follow(rows_n, track)
-            return a, a.real - q_sel * n
+        def step(n, track, which):
+            """The followed poles and g = Re a - q n at speeds n of the pairs ``which``."""
+            at = np.clip(np.where(np.isfinite(n), n, low), low, high)
+            a = follow(self.loaded_poles(at), track)
+            return a, a.real - q_sel[which] * n
 
-        a0, g0 = step(n0, track)
+        every = np.arange(q_sel.size)
+        a0, g0 = step(n0, track, every)
         n1 = a0.real / q_sel
-        a1, g1 = step(n1, a0.real)
+        a1, g1 = step(n1, a0.real, every)
         for _ in range(TRACK_ITERATIONS):
-            done = np.abs(n1 - n0) <= 1e-9 * np.abs(n1)
-            if np.all(done):
+            # converged, or lost (no pole to follow): no further evaluation
+            active = np.flatnonzero(
+                np.isfinite(n1) & np.isfinite(g1) & (np.abs(n1 - n0) > 1e-9 * np.abs(n1))
+            )
+            if active.size == 0:
                 break
+            m0, m1, h0, h1 = n0[active], n1[active], g0[active], g1[active]
             with np.errstate(divide="ignore", invalid="ignore"):
-                secant = n1 - g1 * (n1 - n0) / (g1 - g0)
+                secant = m1 - h1 * (m1 - m0) / (h1 - h0)
             # a secant step that fails (flat or non-finite) falls back to the fixed point
-            fixed = a1.real / q_sel
-            n2 = np.where(np.isfinite(secant) & (g1 != g0) & ~done, secant, fixed)
-            n2 = np.where(done, n1, n2)
-            a2, g2 = step(n2, a1.real)
-            n0, g0, n1, g1, a1 = n1, g1, n2, g2, a2
+            fixed = a1.real[active] / q_sel[active]
+            m2 = np.where(np.isfinite(secant) & (h1 != h0), secant, fixed)
+            a2, h2 = step(m2, a1.real[active], active)
+            n0, g0 = n1.copy(), g1.copy()
+            n1[active], g1[active], a1[active] = m2, h2, a2
         centre = a1.real / q_sel
         width = np.maximum(np.abs(a1.imag), 1e-6 * a1.real) / q_sel
-        near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
+        with np.errstate(invalid="ignore"):
+            near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
         return centre[near], width[near], a1.real[near], q_idx[near]
 
     def seeds(self, grid, low: float, high: float):
@@ -1381,7 +1390,9 @@ class _Sweep:
             damper_power=None if block.power is None else freeze(block.power),
             dampers=tuple(d.name for d in system.dampers) or None,
             model_name=self.model.name,
-            excitation=self.excitation.description,
+            excitation="; ".join(
+                [self.excitation.description] + [src.describe() for src in self.model.sources]
+            ),
             cycle=self.excitation.cycle,
             mass_response=x,
             shaft_response=torque,
