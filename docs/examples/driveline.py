@@ -26,10 +26,10 @@ engine = Engine.example("marine-propulsion")
 model = engine.torsion  # the engine's crank train + torsion/marine-shaft-line.toml
 print(f"{model.name}: {model.mass_count} masses, {model.dof_count} degrees of freedom")
 
-damped = damped_modes(model)
+damped = damped_modes(model)  # numbered as the undamped modes: rigid-body mode 0, elastic from 1
 for r in range(1, 4):
     print(
-        f"mode {r + 1}: {damped.damped_frequency[r] / (2 * math.pi):.2f} Hz, "
+        f"mode {damped.mode[r]}: {damped.damped_frequency[r] / (2 * math.pi):.2f} Hz, "
         f"damping ratio {damped.damping_ratio[r]:.3f}, log. decrement {damped.log_decrement[r]:.3f}"
     )
 
@@ -40,14 +40,14 @@ print(f"coupling mean torque at 750 rpm: {loads.mean_torque[-1, coupling] / 1e3:
 
 excitation = excitation_for(model, engine)
 orders = default_orders(model, excitation.cycle)  # 0.5 ... 12 and the blade orders 1.25, 2.5
+# resolved: the critical speeds added, the resonances sampled where the coupling's load puts
+# them and every peak refined to 0.1 %
 result = forced_response(model, excitation, speeds, orders)
-j = list(orders).index(1.25)
-prop = result.mass_index("propeller")
-k = int(np.argmax(result.amplitude[:, j, prop]))
-print(
-    f"blade order 1.25 at the propeller: {result.amplitude[k, j, prop] * 1e3:.3f} mrad "
-    f"at {result.speed[k] / RPM:.0f} rpm"
-)
+peak = result.peak("amplitude", "propeller", order=1.25)
+print(f"blade order 1.25 at the propeller: {peak.describe(1e3, 'mrad')}")
+top = result.peak("order_shaft_torque", ("stern tube flange", "propeller shaft 1/14"), order=2.5)
+print(f"blade order 2 (2.5) in the propeller shaft: {top.describe(1e-3, 'kN·m')}")
+print(f"{result.added_speeds.size} speeds added to the 10 rpm grid")
 for c in campbell(model, orders, excitation=excitation).critical_speeds[:5]:
     print(
         f"critical speed {c.speed / RPM:.0f} rpm: mode {c.mode}, order {c.order:g} ({c.excited_by})"
