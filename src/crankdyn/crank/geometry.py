@@ -149,9 +149,8 @@ class CrankGeometry:
     @property
     def stroke(self) -> float:
         """True stroke (m): sqrt((L+R)^2 - e^2) - sqrt((L-R)^2 - e^2) (seed 000 section 1.2)."""
-        from crankdyn.crank.kinematics import dead_centres
-
-        return dead_centres(self.crank_radius, self.rod_length, self.offset)[2]
+        r, rod, e = self.crank_radius, self.rod_length, self.offset
+        return math.sqrt((rod + r) ** 2 - e * e) - math.sqrt((rod - r) ** 2 - e * e)
 
     @property
     def piston_area(self) -> float:

@@ -18,10 +18,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from crankdyn.constants import DEG
 from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.kinematics import slider_crank_exact
 from crankdyn.crank.pressure import PressureTrace
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = ["PressureResult", "indicated_work", "pressure_analysis"]
 

@@ -37,8 +37,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from crankdyn.constants import DEG, RPM
 from crankdyn.crank.geometry import CrankGeometry
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = [
     "METHODS",
@@ -430,7 +431,7 @@ class KinematicsSummary(Result):
 
     title = "Slider-crank kinematics"
     method: str = scalar("method", "Method", "")
-    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     lam: float = scalar("lambda", "Crank-rod ratio λ = R/L", "", fmt=".5g")
     k: float = scalar("offset_ratio", "Offset ratio k = e/R", "", fmt=".5g")
     stroke: float = scalar("stroke_m", "Stroke", "m")

@@ -23,10 +23,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from crankdyn.constants import DEG, RPM
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import CrankTrain, cycle_grid, load_angle, reuse_train
 from crankdyn.engine.model import Engine
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = ["BearingLoads", "bearing_loads", "main_bearing_loads"]
 
@@ -72,7 +73,7 @@ class BearingLoads(Result):
     mean_bearing_load: np.ndarray = scalar(
         "mean_main_bearing_load_N", "Mean main-bearing load per bearing", "N"
     )
-    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 

@@ -38,6 +38,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from crankdyn.constants import DEG, RPM
 from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
@@ -50,7 +51,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = [
     "CrankTrain",
@@ -355,7 +356,7 @@ class CylinderForces(Result):
     bank: str = scalar("bank", "Bank", "")
     throw: int = scalar("throw", "Throw", "")
     rods_on_pin: int = scalar("rods_on_pin", "Rods on the crank pin", "")
-    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     masses: EquivalentMasses = scalar("masses", "Masses", "")
     rotating_force: float = scalar("rotating_force_N", "Rotating inertia force m_r R ω²", "N")
     pin_rotating_force: float = scalar(

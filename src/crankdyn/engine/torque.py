@@ -25,12 +25,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from crankdyn.constants import DEG, RPM
 from crankdyn.crank.indicated import indicated_work
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import CrankTrain, crank_train, cycle_grid, reuse_train
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = ["EngineTorque", "engine_torque", "journal_torques"]
 
@@ -88,7 +89,7 @@ class EngineTorque(Result):
     peak_angle: float = scalar(
         "peak_pressure_angle_deg", "Peak pressure after firing TDC", "deg", DEG
     )
-    speed: float = scalar("speed_rpm", "Speed", "rpm", 30.0 / math.pi)
+    speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     cylinders: int = scalar("cylinders", "Cylinders", "")
     firing_angles: np.ndarray = scalar("firing_angles_deg", "Firing angles", "deg", DEG, fmt=".5g")
     pressure_source: str = scalar("pressure_source", "Pressure from", "")

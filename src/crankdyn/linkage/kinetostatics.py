@@ -30,9 +30,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from crankdyn.constants import DEG
 from crankdyn.errors import InputError
 from crankdyn.linkage.planar import GROUND, MechanismMotion
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = [
     "KinetostaticSystem",

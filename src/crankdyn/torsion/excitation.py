@@ -57,7 +57,7 @@ from functools import cached_property
 
 import numpy as np
 
-from crankdyn.constants import RPM
+from crankdyn.constants import DEG, RPM
 from crankdyn.engine.firing import CYCLE_ANGLE, even_firing_interval
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
@@ -828,7 +828,7 @@ class HarmonicResult(Result):
     amplitude: np.ndarray = array("amplitude_Nm", "Single-cylinder amplitude", "N·m")
     gas_amplitude: np.ndarray = array("gas_amplitude_Nm", "Gas part", "N·m")
     inertia_amplitude: np.ndarray = array("inertia_amplitude_Nm", "Inertia part", "N·m")
-    phase: np.ndarray = array("phase_deg", "Phase from firing TDC", "deg", 180.0 / math.pi)
+    phase: np.ndarray = array("phase_deg", "Phase from firing TDC", "deg", DEG)
     phase_sum: np.ndarray = array("phase_vector_sum", "Phase-vector sum |Σ e^(-iqΦ)|", "")
     major: np.ndarray = array("major", "Major order", "")
     engine_amplitude: np.ndarray = array("engine_amplitude_Nm", "All cylinders |Σ c|", "N·m")
@@ -838,7 +838,7 @@ class HarmonicResult(Result):
     modes: np.ndarray | None = array("modes", "Modes", "")
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     cylinders: int = scalar("cylinders", "Cylinders", "")
-    firing_angles: np.ndarray = array("firing_angles_deg", "Firing angles", "deg", 180.0 / math.pi)
+    firing_angles: np.ndarray = array("firing_angles_deg", "Firing angles", "deg", DEG)
     source: str = scalar("excitation", "Excitation", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 

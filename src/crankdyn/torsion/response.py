@@ -52,7 +52,7 @@ from functools import cached_property
 
 import numpy as np
 
-from crankdyn.errors import InputError
+from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.excitation import check_orders, harmonic_index, major_orders
@@ -512,10 +512,8 @@ class ResponseResult(Result):
         try:
             return self._mass_index[name]
         except KeyError:
-            from crankdyn.torsion.model import _suggest
-
             raise InputError(
-                f'no mass named "{name}"{_suggest(name, self._mass_index)}',
+                f'no mass named "{name}"{did_you_mean(name, self._mass_index)}',
                 key="mass",
                 value=name,
             ) from None
@@ -530,10 +528,8 @@ class ResponseResult(Result):
             if parts in ((a, b), (b, a)):
                 return i
         labels = [f"{a} - {b}" for a, b in self.shafts]
-        from crankdyn.torsion.model import _suggest
-
         text = " - ".join(parts)
-        raise InputError(f'no shaft "{text}"{_suggest(text, labels)}', key="shaft", value=text)
+        raise InputError(f'no shaft "{text}"{did_you_mean(text, labels)}', key="shaft", value=text)
 
     def relative_angle(self, a: str, b: str) -> RelativeAngle:
         """Relative angle theta_a - theta_b per order and synthesised (rad)."""

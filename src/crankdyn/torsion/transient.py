@@ -39,7 +39,7 @@ from crankdyn.torsion.response import linear_system
 
 __all__ = ["TransientResult", "transient_response"]
 
-from crankdyn.constants import RPM
+from crankdyn.constants import DEG, RPM
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ class TransientResult(Result):
     title = "Time-domain response"
     time: np.ndarray = column("time_s", "Time", "s")
     speed: np.ndarray = column("speed_rpm", "Speed", "rpm", RPM)
-    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", 180.0 / math.pi)
+    crank_angle: np.ndarray = column("crank_angle_deg", "Crank angle", "deg", DEG)
     angle: np.ndarray = array("angle_rad", "Vibratory angle (time x mass)", "rad")
     shaft_torque: np.ndarray = array("shaft_torque_Nm", "Shaft torque (time x shaft)", "N·m")
     masses: tuple[str, ...] = scalar("masses", "Masses", "")
