@@ -70,7 +70,7 @@ def test_another_study_in_the_folder_needs_force(cli, tmp_path):
         (("nope.toml",), "nope.toml: no such study file"),
         (
             ("inline4-rod-and-firng",),
-            "inline4-rod-and-firng: no such file or built-in example study (examples: "
+            "inline4-rod-and-firng: no such file or built-in study (examples: "
             "inline4-rod-and-firing, inline6-flywheel-and-pulley-shaft, inline6-tolerances) "
             '(did you mean "inline4-rod-and-firing"?)',
         ),
@@ -100,13 +100,13 @@ def test_errors(cli, tmp_path, monkeypatch, args, message):
 
 
 def test_ctrl_c_while_the_tables_are_written_keeps_the_journal(cli, tmp_path, monkeypatch):
-    import crankdyn.study.results
+    import crankdyn.study.run.results
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
     study = write_study(tmp_path / "files", ratios=(0.26,))
-    monkeypatch.setattr(crankdyn.study.results, "write_outputs", interrupted)
+    monkeypatch.setattr(crankdyn.study.run.results, "write_outputs", interrupted)
     result = cli("study", study, "--out", tmp_path / "out", "--workers", "1")
     assert result.status == 130
     assert "interrupted; the finished cases are kept in" in result.err

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import example_names, load_engine, load_example, resolve_engine
+from crankdyn.io.catalogue import load_example, resolve_engine
+from crankdyn.io.engine_file import load_engine
+from crankdyn.io.examples import example_names
 
 BASE = """
 name = "test engine"

@@ -255,7 +255,7 @@ def test_misfire_without_compression_ratio_is_one_line(tmp_path, capsys):
     import shutil
 
     from crankdyn.cli import main
-    from crankdyn.io.engine_file import example_files
+    from crankdyn.io.examples import example_files
 
     for f in example_files("inline6-diesel"):
         shutil.copy(f, tmp_path / f.name)

@@ -7,7 +7,7 @@ import json
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.io.engine_file import load_example
+from crankdyn.io.catalogue import load_example
 from crankdyn.report.build import build_report
 from crankdyn.report.write import write_report
 

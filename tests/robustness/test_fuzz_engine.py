@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import example_names, parse_engine
+from crankdyn.io.engine_file import parse_engine
+from crankdyn.io.examples import example_names
 from tests.conftest import fuzz_examples
 from tests.robustness.strategies import mutated
 

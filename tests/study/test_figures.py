@@ -12,11 +12,12 @@ import pytest
 from crankdyn.engine.bearings import bearing_loads
 from crankdyn.engine.torque import engine_torque
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import example_files, load_example
+from crankdyn.io.catalogue import load_example
+from crankdyn.io.examples import example_files
 from crankdyn.io.files import load_toml
 from crankdyn.study.docpath import parse_path
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext, Figure, register_figure
-from crankdyn.study.worker import Payload, evaluate_case
+from crankdyn.study.run.worker import Payload, evaluate_case
 
 STEP = math.radians(1.0)
 
@@ -171,8 +172,8 @@ def test_natural_frequencies_of_a_two_mass_model_study(tmp_path):
     only elastic mode is f = sqrt(k (J1 + J2)/(J1 J2)) / (2 pi) (seed 003, two-mass system),
     and there is no second one."""
     from crankdyn.io.study_file import load_study
-    from crankdyn.study.results import read_table
-    from crankdyn.study.runner import run_study
+    from crankdyn.study.run.results import read_table
+    from crankdyn.study.run.runner import run_study
 
     (tmp_path / "model.toml").write_text(
         'name = "two discs"\n'
@@ -204,9 +205,9 @@ def test_one_parameter_sets_two_keys(tmp_path):
     """The built-in flywheel study sets the flywheel's inertia in the torsional model and in
     [flywheel] with one parameter: the natural frequency and the speed fluctuation both move
     (delta ~ 1 / (J_F + I_crank + I_other) at a fixed excess work)."""
-    from crankdyn.io.study_file import resolve_study
+    from crankdyn.io.catalogue import resolve_study
     from crankdyn.study.cases import expand
-    from crankdyn.study.runner import payload_of
+    from crankdyn.study.run.runner import payload_of
 
     spec = resolve_study("inline6-flywheel-and-pulley-shaft")
     flywheel = spec.parameters[0]
@@ -264,7 +265,7 @@ def test_shaft_stress_rules_and_damper_figures_of_a_model():
     """A shaft line with a 50 mm solid shaft: the nominal shear stress is the torque over the
     polar section modulus pi D^3 / 16 (Timoshenko, Strength of Materials), the rule figure is
     the stress over tau_C, and a viscous damper dissipates power."""
-    from crankdyn.io.torsion_file import load_torsion_model
+    from crankdyn.io.catalogue import load_torsion_model
 
     model = load_torsion_model(SHAFT_LINE)
     ctx = CaseContext(model, AnalysisSettings(), "model")

@@ -7,7 +7,7 @@ import json
 import pytest
 
 from crankdyn.errors import InputError
-from crankdyn.study.journal import JOURNAL, MANIFEST, Journal, StudyFolder, read_journal
+from crankdyn.study.run.journal import JOURNAL, MANIFEST, Journal, StudyFolder, read_journal
 
 INFO = {"name": "t"}
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import click
@@ -17,9 +16,10 @@ from crankdyn.cli.common import (
     speed_option,
     speed_range,
 )
+from crankdyn.constants import RPM
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import load_example
+from crankdyn.io.catalogue import load_example
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import builders
 from crankdyn.report.write import write_report
@@ -107,7 +107,7 @@ def analyze_command(engine, out, speed, speeds, force) -> int:
 def demo_command(out: str, force: bool) -> int:
     """The full report on the built-in inline-6 diesel (crankdyn analyze inline6-diesel)."""
     engine = load_example(DEMO_ENGINE)
-    speed = engine.speed if engine.speed else 2000 * math.pi / 30
+    speed = engine.speed if engine.speed else 2000 / RPM
     return run_report(engine, Path(out), speed=speed, speeds=None, force=force)
 
 

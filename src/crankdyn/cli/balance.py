@@ -23,6 +23,7 @@ from crankdyn.cli.common import (
     speed_of,
     speed_option,
 )
+from crankdyn.constants import RPM
 from crankdyn.engine.balance import BALANCE_METHODS, BalanceInputs, engine_balance
 from crankdyn.engine.firing_search import (
     CRITERIA,
@@ -337,7 +338,7 @@ def _row_name(row) -> str:
 def balance_table(result) -> RichTable:
     """A rich table of the free forces and moments by order."""
     table = RichTable(
-        title=f"{result.engine}: free forces and moments at {result.speed * 30 / math.pi:.0f} rpm",
+        title=f"{result.engine}: free forces and moments at {result.speed * RPM:.0f} rpm",
         header_style="bold",
     )
     table.add_column("Order")
@@ -518,8 +519,7 @@ def balance_command(
 def flywheel_table(result) -> RichTable:
     """The flywheel figures as a rich table."""
     table = RichTable(
-        title=f"{result.engine}: speed fluctuation and flywheel at "
-        f"{result.speed * 30 / math.pi:.0f} rpm",
+        title=f"{result.engine}: speed fluctuation and flywheel at {result.speed * RPM:.0f} rpm",
         header_style="bold",
     )
     table.add_column("Quantity")

@@ -16,7 +16,7 @@ from rich.table import Table as RichTable
 
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import resolve_engine
+from crankdyn.io.catalogue import resolve_engine
 from crankdyn.io.output import check_writable, write_bytes, write_text
 from crankdyn.io.units import parse_quantity
 from crankdyn.results import Result

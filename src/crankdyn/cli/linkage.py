@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import click
 import numpy as np
@@ -20,13 +19,9 @@ from crankdyn.cli.common import (
     plot_option,
     save_figure,
 )
+from crankdyn.cli.examples import example_alias, examples_alias
 from crankdyn.errors import InputError
-from crankdyn.io.linkage_file import (
-    linkage_example_names,
-    linkage_example_path,
-    load_linkage_example,
-    resolve_linkage,
-)
+from crankdyn.io.catalogue import resolve_linkage
 from crankdyn.io.output import check_writable, write_bytes, write_text
 from crankdyn.linkage.fourbar import BRANCHES, FourBar, fourbar_analysis
 from crankdyn.linkage.kinetostatics import kinetostatics
@@ -88,7 +83,7 @@ def linkage_group() -> None:
     """Planar linkages: four-bar, slider-crank and general mechanisms (kinematics, forces).
 
     LINKAGE arguments take a linkage file (TOML, docs/linkage-file.md) or a built-in example
-    (`crankdyn linkage examples`). Angles are counter-clockwise from the ground line, with the
+    (`crankdyn examples`). Angles are counter-clockwise from the ground line, with the
     crank pivot at the origin (docs/theory-linkage.md).
     """
 
@@ -414,42 +409,8 @@ def animate_command(linkage, frames, fps, speed, show_forces, output, force) -> 
     return 0
 
 
-@linkage_group.command("examples")
-def examples_command() -> int:
-    """List the built-in example linkages."""
-    table = RichTable(title="Built-in linkages", header_style="bold")
-    for col in ("Name", "Mechanism", "Links", "Joints", "Groups"):
-        table.add_column(col)
-    for name in linkage_example_names():
-        m = load_linkage_example(name)
-        groups = "; ".join(f"{g.kind} {'-'.join(g.links)}" for g in m.link_groups())
-        table.add_row(name, m.name, str(len(m.links)), str(len(m.joints)), groups)
-    console().print(table)
-    return 0
-
-
-@linkage_group.command("example")
-@click.argument("name")
-@click.option(
-    "-o",
-    "--output",
-    default=None,
-    metavar="PATH",
-    help="File (NAME.toml by default) or folder; '-' prints the file.",
-)
-@click.option("--force", is_flag=True, help="Overwrite an existing file.")
-def example_command(name, output, force) -> int:
-    """Write the built-in linkage NAME to a file, to edit."""
-    src = linkage_example_path(name)
-    if output == "-":
-        click.echo(src.read_text(encoding="utf-8"), nl=False)
-        return 0
-    target = Path(output) if output else Path(f"{name}.toml")
-    if target.is_dir():
-        target = target / f"{name}.toml"
-    write_bytes(target, src.read_bytes(), force=force)
-    click.echo(f"wrote {target}", err=True)
-    return 0
+linkage_group.add_command(examples_alias("linkage", "linkage"))
+linkage_group.add_command(example_alias("linkage"))
 
 
 def register(group: click.Group) -> None:

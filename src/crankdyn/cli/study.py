@@ -16,17 +16,11 @@ from crankdyn.errors import InputError
 
 
 def _list() -> None:
-    from crankdyn.io.study_file import resolve_study, study_example_names
+    from crankdyn.cli.examples import print_examples
     from crankdyn.study.figures import FIGURES, SETTINGS
 
+    print_examples("study")
     out = console()
-    examples = RichTable(title="Built-in example studies", header_style="bold")
-    for col in ("Name", "Study", "Base", "Cases"):
-        examples.add_column(col)
-    for name in study_example_names():
-        spec = resolve_study(name)
-        examples.add_row(name, escape(spec.name), escape(spec.base.source), str(spec.case_count))
-    out.print(examples)
     figures = RichTable(title=escape("Figures (names for [analysis] figures)"), header_style="bold")
     for col in ("Name", "Column (SI)", "Shown in", "Better", "Applies to", "Description"):
         figures.add_column(col)
@@ -194,7 +188,7 @@ def study_command(
         return 0
     if study is None:
         raise click.UsageError("missing argument STUDY (or give --list)")
-    from crankdyn.io.study_file import resolve_study
+    from crankdyn.io.catalogue import resolve_study
 
     spec = resolve_study(study)
     if dry_run:
@@ -203,7 +197,7 @@ def study_command(
     if workers is not None and workers < 1:
         raise InputError("expected a number of processes >= 1", key="--workers", value=workers)
     folder = Path(out) if out else _default_out(study)
-    from crankdyn.study.runner import run_study
+    from crankdyn.study.run.runner import run_study
 
     bar = _Bar()
     try:
@@ -254,7 +248,7 @@ def study_command(
 def _print_best(spec, folder: Path) -> None:
     """The best case of every figure with a sense of better, from the written table."""
     from crankdyn.study.figures import FIGURES
-    from crankdyn.study.results import read_table
+    from crankdyn.study.run.results import read_table
     from crankdyn.study.sensitivity import negligible_spread
 
     data = read_table(folder / "results.parquet").to_pydict()

@@ -20,9 +20,10 @@ from crankdyn.cli.common import (
     plot_option,
     save_figure,
 )
+from crankdyn.cli.examples import examples_alias
 from crankdyn.errors import InputError
+from crankdyn.io.catalogue import resolve_torsion
 from crankdyn.io.output import write_text
-from crankdyn.io.torsion_file import load_torsion_example, resolve_torsion, torsion_example_names
 from crankdyn.torsion.holzer import holzer_table, residual_curve
 from crankdyn.torsion.modal import SOLVERS, natural_modes
 
@@ -202,24 +203,7 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
     return 0
 
 
-@torsion_group.command("examples")
-def examples_command() -> int:
-    """List the built-in torsional models (engines with a [torsion] section work too)."""
-    table = RichTable(title="Built-in torsional models", header_style="bold")
-    for col in ("Name", "Model", "Masses", "Structure", "Ends"):
-        table.add_column(col)
-    for name in torsion_example_names():
-        m = load_torsion_example(name)
-        table.add_row(
-            escape(name),
-            escape(m.name),
-            str(m.mass_count),
-            "chain" if m.is_chain else "branched",
-            "free" if m.is_free else "grounded",
-        )
-    console().print(table)
-    return 0
-
+torsion_group.add_command(examples_alias("model", "torsion"))
 
 torsion_group.help = (torsion_group.help or "") + "\n\n" + _MODEL_HELP
 

@@ -23,7 +23,7 @@ from crankdyn.cli.common import (
 from crankdyn.cli.torsion import _print_tables, torsion_group
 from crankdyn.constants import RPM
 from crankdyn.errors import InputError
-from crankdyn.io.torsion_response_file import resolve_model_and_engine
+from crankdyn.io.catalogue import resolve_model_and_engine
 from crankdyn.torsion.excitation import (
     check_orders,
     excitation_for,
@@ -537,7 +537,7 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, fo
     w = option_quantity(speed, "speed", "--speed", "rpm")
     if not w > 0.0:
         raise InputError("the speed must be positive", key="--speed", value=speed)
-    from crankdyn.io.engine_file import resolve_engine
+    from crankdyn.io.catalogue import resolve_engine
     from crankdyn.torsion.excitation import EngineExcitation
 
     engine = resolve_engine(model)

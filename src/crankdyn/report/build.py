@@ -6,6 +6,7 @@ import datetime as _dt
 import math
 
 from crankdyn import __version__
+from crankdyn.constants import RPM
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.report.model import Report
@@ -62,7 +63,7 @@ def engine_inputs(engine: Engine) -> list[tuple[str, str]]:
         )
         rows.append(("Crankcase pressure", f"{engine.crankcase_pressure / 1e3:.6g} kPa"))
     if engine.speed is not None:
-        rows.append(("Operating speed", f"{engine.speed * 30 / math.pi:.6g} rpm"))
+        rows.append(("Operating speed", f"{engine.speed * RPM:.6g} rpm"))
     return rows
 
 

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from crankdyn.constants import RPM
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -597,9 +598,7 @@ def _modes(ctx: CaseContext):
 
     model = ctx.subject
     if ctx.kind == "engine":
-        from crankdyn.io.torsion_file import engine_torsion
-
-        model = engine_torsion(ctx.subject)
+        model = ctx.subject.torsion
     return natural_modes(model)
 
 
@@ -646,7 +645,7 @@ register_setting(
     Setting(
         "speed_step",
         "speed",
-        25.0 * math.pi / 30.0,
+        25.0 / RPM,
         "Speed step of the forced-response figures (default 25 rpm).",
     )
 )
@@ -675,9 +674,7 @@ register_setting(
 def _torsion_model(ctx: CaseContext):
     """(torsional model, engine or None) of a case."""
     if ctx.kind == "engine":
-        from crankdyn.io.torsion_file import engine_torsion
-
-        return engine_torsion(ctx.subject), ctx.subject
+        return ctx.subject.torsion, ctx.subject
     return ctx.subject, None
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from crankdyn.constants import RPM
 from crankdyn.engine.balance import engine_balance
 from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
@@ -90,7 +91,7 @@ def build(ctx) -> Section:
         for r in rows
     ]
     intro = (
-        f"Free forces and moments of the mass forces at {b.speed * 30 / 3.141592653589793:.0f} "
+        f"Free forces and moments of the mass forces at {b.speed * RPM:.0f} "
         f"rpm, by order (largest magnitude over a revolution; moments about the middle of the "
         f"engine); counterweights c = {b.counterweight_ratio:g}, "
         f"b = {b.reciprocating_balance_ratio:g} (seed 000 §2.2)."

@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
+from crankdyn.constants import RPM
 from crankdyn.engine.bearings import bearing_loads
 from crankdyn.engine.forces import cylinder_forces
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
@@ -66,7 +65,7 @@ def build(ctx) -> Section:
         )
     m = f.masses
     intro = (
-        f"Forces of cylinder 1 at {ctx.speed * 30 / math.pi:.0f} rpm (seed 000 §2.2): "
+        f"Forces of cylinder 1 at {ctx.speed * RPM:.0f} rpm (seed 000 §2.2): "
         f"m_j = {m.reciprocating:.4g} kg, m_r = {m.rotating:.4g} kg per cylinder. Main bearings "
         "carry half of each adjacent throw's load (simply supported throws)."
     )

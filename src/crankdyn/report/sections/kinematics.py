@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from crankdyn.constants import RPM
 from crankdyn.crank.kinematics import piston_kinematics
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
@@ -63,7 +64,7 @@ def build(ctx) -> Section:
         key="kinematics",
         title="Slider-crank kinematics",
         intro=(
-            f"Exact piston and rod motion at {ctx.speed * 30 / math.pi:.0f} rpm "
+            f"Exact piston and rod motion at {ctx.speed * RPM:.0f} rpm "
             f"(seed 000 §1, seed 002). v_max/c_m = {s.velocity_ratio:.3f}; "
             f"{len(s.acceleration_extrema)} acceleration extrema per revolution."
         ),
