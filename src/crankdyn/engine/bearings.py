@@ -25,7 +25,15 @@ import numpy as np
 
 from crankdyn.constants import DEG, RPM
 from crankdyn.crank.pressure import PressureTrace
-from crankdyn.engine.forces import CrankTrain, cycle_grid, load_angle, reuse_train
+from crankdyn.engine.forces import (
+    SUMMARY_STEP,
+    CrankTrain,
+    crank_train,
+    cycle_grid,
+    load_angle,
+    refined_extremum,
+    reuse_train,
+)
 from crankdyn.engine.model import Engine
 from crankdyn.results import Result, column, freeze, scalar
 
@@ -105,7 +113,7 @@ def bearing_loads(
     bx, by = main_bearing_loads(hx, hy)
     pin = np.hypot(t_pin, z_pin)
     bearing = np.hypot(bx, by)
-    body = slice(0, -1) if angles is None else slice(None)  # the cycle's end repeats its start
+    max_pin, mean_pin, max_bearing, mean_bearing = _load_summary(engine, train, full=angles is None)
     notes = []
     if not all(m.pin_mass_known for m in train.masses):
         notes.append(
@@ -124,11 +132,50 @@ def bearing_loads(
         bearing_load_angle=freeze(load_angle(by, bx)),
         bearing_horizontal=freeze(bx),
         bearing_vertical=freeze(by),
-        max_pin_load=freeze(pin.max(axis=1)),
-        mean_pin_load=freeze(pin[:, body].mean(axis=1)),
-        max_bearing_load=freeze(bearing.max(axis=1)),
-        mean_bearing_load=freeze(bearing[:, body].mean(axis=1)),
+        max_pin_load=freeze(max_pin),
+        mean_pin_load=freeze(mean_pin),
+        max_bearing_load=freeze(max_bearing),
+        mean_bearing_load=freeze(mean_bearing),
         speed=train.speed,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
+    )
+
+
+def _load_summary(engine: Engine, train: CrankTrain, *, full: bool):
+    """Largest and mean crank-pin and main-bearing loads over the whole cycle: on the summary
+    grid (the maxima refined, :func:`crankdyn.engine.forces.refined_extremum`), whatever grid
+    ``train`` holds."""
+    on_grid = (
+        full
+        and train.theta.size > 1
+        and np.allclose(np.diff(train.theta), SUMMARY_STEP, atol=1e-12, rtol=0.0)
+    )
+    if not on_grid:
+        train = crank_train(
+            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=train.trace
+        )
+
+    def loads(theta):
+        local = crank_train(engine, train.speed, np.asarray(theta), pressure=train.trace)
+        t_pin, z_pin = local.pin_loads()
+        bx, by = main_bearing_loads(*local.throw_forces())
+        return np.hypot(t_pin, z_pin), np.hypot(bx, by)
+
+    pin, bearing = loads(train.theta)
+    period = engine.cycle_angle
+    max_pin = [
+        refined_extremum(lambda th, k=k: loads(th)[0][k], train.theta, pin[k], period=period)[0]
+        for k in range(pin.shape[0])
+    ]
+    max_bearing = [
+        refined_extremum(lambda th, k=k: loads(th)[1][k], train.theta, bearing[k], period=period)[0]
+        for k in range(bearing.shape[0])
+    ]
+    body = slice(0, -1)  # the cycle's end repeats its start
+    return (
+        np.array(max_pin),
+        pin[:, body].mean(axis=1),
+        np.array(max_bearing),
+        bearing[:, body].mean(axis=1),
     )

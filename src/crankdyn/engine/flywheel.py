@@ -447,6 +447,13 @@ def engine_flywheel(
         inertia=inertia,
         engine=engine.name,
     )
+    # the torque's own extrema are refined between the grid points (crankdyn.engine.torque):
+    # the largest and smallest torque and the non-uniformity are the same numbers everywhere
+    changes = {"max_torque": torque.max_torque, "min_torque": torque.min_torque}
+    if result.torque_nonuniformity is not None and torque.mean_torque > 0.0:
+        changes["torque_nonuniformity"] = (
+            torque.max_torque - torque.min_torque
+        ) / torque.mean_torque
     if torque.notes:
-        result = replace(result, notes=tuple(torque.notes) + result.notes)
-    return result
+        changes["notes"] = tuple(torque.notes) + result.notes
+    return replace(result, **changes)

@@ -28,7 +28,14 @@ import numpy as np
 from crankdyn.constants import DEG, RPM
 from crankdyn.crank.indicated import indicated_work
 from crankdyn.crank.pressure import PressureTrace
-from crankdyn.engine.forces import CrankTrain, crank_train, cycle_grid, reuse_train
+from crankdyn.engine.forces import (
+    SUMMARY_STEP,
+    CrankTrain,
+    crank_train,
+    cycle_grid,
+    refined_extremum,
+    reuse_train,
+)
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
@@ -39,14 +46,40 @@ __all__ = ["EngineTorque", "engine_torque", "journal_torques"]
 _MEAN_STEP = math.radians(0.1)
 
 
-def _mean_torque(engine: Engine, train, step: float) -> float:
-    """Mean of the total torque over the cycle by the rectangle rule on the output grid, or on a
-    0.1 deg grid when the output grid is coarser (the trace's kinks make the rule second-order)."""
-    if step <= _MEAN_STEP * (1 + 1e-9):
+def _mean_torque(engine: Engine, train) -> float:
+    """Mean of the total torque over the cycle by the rectangle rule on a 0.1 deg grid (the
+    trace's kinks make the rule second-order), whatever grid the rows use."""
+    if train.theta.size > 1 and np.allclose(np.diff(train.theta), _MEAN_STEP, atol=1e-12, rtol=0):
         return float(np.mean(train.tangential[:, :-1].sum(axis=0))) * engine.geometry.crank_radius
     fine = cycle_grid(engine, _MEAN_STEP)[:-1]
     dense = crank_train(engine, train.speed, fine, pressure=train.trace)
     return float(np.mean(dense.tangential.sum(axis=0))) * engine.geometry.crank_radius
+
+
+def _torque_extrema(engine: Engine, train) -> tuple[float, float]:
+    """(max, min) of the total torque over the whole cycle: on the summary grid, refined
+    (:func:`crankdyn.engine.forces.refined_extremum`), whatever grid the rows use."""
+    r = engine.geometry.crank_radius
+    if not (
+        train.theta.size > 1 and np.allclose(np.diff(train.theta), SUMMARY_STEP, atol=1e-12, rtol=0)
+    ):
+        train = crank_train(
+            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=train.trace
+        )
+    total = train.tangential.sum(axis=0) * r
+
+    def f(sign):
+        return lambda th: (
+            sign
+            * crank_train(engine, train.speed, np.asarray(th), pressure=train.trace).tangential.sum(
+                axis=0
+            )
+            * r
+        )
+
+    top = refined_extremum(f(1.0), train.theta, total, period=engine.cycle_angle)[0]
+    low = -refined_extremum(f(-1.0), train.theta, -total, period=engine.cycle_angle)[0]
+    return top, low
 
 
 def journal_torques(throw_torque):
@@ -122,9 +155,10 @@ def engine_torque(
     speed
         Crank speed w (rad/s).
     step
-        Crank-angle step (rad); must divide the cycle angle (the mean is taken over the
-        cycle with the rectangle rule, which is exact for trigonometric polynomials of low
-        enough order and second-order accurate otherwise).
+        Crank-angle step (rad) of the rows; must divide the cycle angle. The summary does not
+        depend on it: the mean is taken over the cycle with the rectangle rule on a 0.1 deg
+        grid (exact for trigonometric polynomials of low enough order, second-order accurate
+        otherwise), the largest and smallest torque on the summary grid and refined.
     mechanical_efficiency
         eta_m (0 < eta_m <= 1) for the effective torque and power; default the engine's
         [operating] mechanical_efficiency; None there too leaves them out.
@@ -153,7 +187,8 @@ def engine_torque(
     np.add.at(throw_torque, index, per_cylinder)
     journal, pin = journal_torques(throw_torque)
     total = per_cylinder.sum(axis=0)
-    mean = _mean_torque(engine, train, step)
+    mean = _mean_torque(engine, train)
+    top, low = _torque_extrema(engine, train)
     work = indicated_work(train.trace, engine.geometry)
     peak, at = train.trace.peak
     effective = None if mechanical_efficiency is None else mechanical_efficiency * mean
@@ -173,8 +208,8 @@ def engine_torque(
         mechanical_efficiency=mechanical_efficiency,
         indicated_power=mean * train.speed,
         effective_power=None if effective is None else effective * train.speed,
-        max_torque=float(total.max()),
-        min_torque=float(total.min()),
+        max_torque=top,
+        min_torque=low,
         indicated_work=work,
         imep=work / engine.geometry.swept_volume,
         peak_pressure=peak,
