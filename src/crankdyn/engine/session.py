@@ -155,6 +155,11 @@ class Analysis:
         speed = f", {self._speed * RPM:.6g} rpm" if self._speed is not None else ""
         return f"Analysis({what!r}{speed}, {len(self._memo)} analyses computed)"
 
+    def computed(self) -> list[str]:
+        """The names of the analyses computed so far, once each time one was computed (a name
+        repeats for each set of options)."""
+        return [k[0] if isinstance(k, tuple) else k for k in self._memo]
+
     def _cached(self, key, compute):
         if key not in self._memo:
             self._memo[key] = compute()

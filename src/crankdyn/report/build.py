@@ -8,7 +8,7 @@ import math
 from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.engine.model import Engine
-from crankdyn.errors import InputError
+from crankdyn.engine.session import Analysis
 from crankdyn.report.model import Report
 from crankdyn.report.sections import Context, NotApplicable, builders
 
@@ -75,7 +75,7 @@ def build_report(
     Parameters
     ----------
     engine
-        The engine.
+        The engine; every number comes from one :class:`crankdyn.engine.session.Analysis` of it.
     speed
         Operating speed (rad/s); default the engine's [operating] speed.
     speeds
@@ -84,12 +84,9 @@ def build_report(
     progress
         Optional callable progress(name) called before each analysis.
     """
-    speed = speed if speed is not None else engine.speed
-    if speed is None:
-        raise InputError(
-            "no speed: give --speed RPM or [operating] speed in the engine file", file=engine.source
-        )
-    ctx = Context(engine=engine, speed=speed, speeds=speeds)
+    analysis = Analysis(engine, speed=speed, speeds=speeds)
+    analysis.speed  # noqa: B018  (no speed: the one-line error before any work)
+    ctx = Context(analysis)
     sections, notes = [], []
     for name, build in builders():
         if progress is not None:

@@ -1,4 +1,5 @@
-"""Section builders: one module per analysis, each with ``build(ctx) -> Section``.
+"""Section builders: one module per analysis, each with ``build(ctx) -> Section`` taking its numbers
+from the analysis session ``ctx.analysis`` (:class:`crankdyn.engine.session.Analysis`).
 
 A builder raises :class:`NotApplicable` (with the reason) when its analysis does not apply to the
 engine (no pressure, no torsional model...); the reason is listed in the report. The order of
@@ -8,12 +9,10 @@ engine (no pressure, no torsional model...); the reason is listed in the report.
 from __future__ import annotations
 
 import importlib
-from dataclasses import dataclass, field
-from typing import Any
-
-import numpy as np
+from dataclasses import dataclass
 
 from crankdyn.engine.model import Engine
+from crankdyn.engine.session import Analysis
 
 __all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
 
@@ -36,18 +35,19 @@ class NotApplicable(Exception):
 
 @dataclass
 class Context:
-    """What the builders share: the engine, the speeds, and a cache of computed results."""
+    """What the builders share: the analysis session (every number of the report comes from
+    it, so the report agrees with the command line, the study runner and notebooks)."""
 
-    engine: Engine
-    speed: float  # rad/s, the operating point
-    speeds: np.ndarray | None = None  # rad/s, for speed sweeps (torsional response)
-    cache: dict[str, Any] = field(default_factory=dict)
+    analysis: Analysis
 
-    def get(self, key: str, compute):
-        """The cached value for key, computed once."""
-        if key not in self.cache:
-            self.cache[key] = compute()
-        return self.cache[key]
+    @property
+    def engine(self) -> Engine:
+        return self.analysis.engine
+
+    @property
+    def speed(self) -> float:
+        """The operating point (rad/s)."""
+        return self.analysis.speed
 
 
 def builders():

@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 from crankdyn.constants import RPM
-from crankdyn.engine.balance import engine_balance
-from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 
@@ -19,8 +17,7 @@ def build(ctx) -> Section:
     engine = ctx.engine
     if engine.masses is None:
         raise NotApplicable("balance: the engine file has no [masses]")
-    torque = ctx.get("torque", lambda: engine_torque(engine, ctx.speed))
-    b = ctx.get("balance", lambda: engine_balance(engine, ctx.speed, torque=torque))
+    b = ctx.analysis.balance()
     rows = b.rows()
     worst_f = max(rows, key=lambda r: r.free_force)
     figures = [

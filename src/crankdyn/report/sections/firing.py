@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.engine.firing_search import arrangement, firing_order_search, first_mode_shape
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 _COLUMNS = (
@@ -21,13 +20,9 @@ _COLUMNS = (
 def build(ctx) -> Section:
     engine = ctx.engine
     cyl = engine.cylinders
-    own = ctx.get("arrangement", lambda: arrangement(cyl))
-    mode = None
-    if engine.torsion is not None:
-        mode = first_mode_shape(engine.torsion, cyl.count)
-    ranking = ctx.get(
-        "firing_orders", lambda: firing_order_search(cyl, name=engine.name, mode_shape=mode)
-    )
+    own = ctx.analysis.firing
+    ranking = ctx.analysis.firing_orders()
+    mode = engine.torsion  # the torsional criterion uses its first mode when there is one
     gaps = sorted({round(math.degrees(g), 6) for g in own.firing_intervals})
     figures = [
         KeyFigure(

@@ -2,28 +2,16 @@
 
 from __future__ import annotations
 
-from crankdyn.engine.flywheel import FlywheelInputs, engine_flywheel
-from crankdyn.engine.torque import engine_torque
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-
-DEFAULT_DELTA = 0.01
-"""Target degree of cyclic irregularity when the engine file gives none (seed 000 §2.4)."""
 
 
 def build(ctx) -> Section:
     engine = ctx.engine
     if engine.masses is None:
         raise NotApplicable("flywheel: the engine file has no [masses]")
-    inputs = engine.flywheel or FlywheelInputs()
-    delta = None
-    if inputs.delta is None and inputs.inertia is None:
-        delta = DEFAULT_DELTA
-    torque = ctx.get("torque", lambda: engine_torque(engine, ctx.speed))
-    r = ctx.get(
-        "flywheel",
-        lambda: engine_flywheel(engine, ctx.speed, delta=delta, inputs=inputs, torque=torque),
-    )
+    r = ctx.analysis.flywheel()
+    default = ctx.analysis.flywheel_default_delta()
     figures = [
         KeyFigure(
             "torque_nonuniformity",
@@ -58,7 +46,7 @@ def build(ctx) -> Section:
             )
         )
     target = (
-        f"target δ = {r.target_delta:.4g}" + (" (default)" if delta is not None else "")
+        f"target δ = {r.target_delta:.4g}" + (" (default)" if default else "")
         if r.target_delta is not None
         else f"the given flywheel ({r.flywheel_inertia:.4g} kg·m²)"
     )

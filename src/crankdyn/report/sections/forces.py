@@ -5,8 +5,6 @@ from __future__ import annotations
 import numpy as np
 
 from crankdyn.constants import RPM
-from crankdyn.engine.bearings import bearing_loads
-from crankdyn.engine.forces import cylinder_forces
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
 
@@ -15,8 +13,8 @@ def build(ctx) -> Section:
     engine = ctx.engine
     if engine.masses is None:
         raise NotApplicable("forces and bearing loads: the engine file has no [masses]")
-    f = ctx.get("forces", lambda: cylinder_forces(engine, ctx.speed))
-    b = ctx.get("bearings", lambda: bearing_loads(engine, ctx.speed))
+    f = ctx.analysis.forces()
+    b = ctx.analysis.bearings()
     worst = int(np.argmax(b.max_bearing_load))
     figures = [
         KeyFigure(

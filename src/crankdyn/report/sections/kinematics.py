@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 
 from crankdyn.constants import RPM
-from crankdyn.crank.kinematics import piston_kinematics
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 G = 9.80665
@@ -13,12 +12,8 @@ G = 9.80665
 TYPICAL_ACCELERATION_G = {"petrol": (500.0, 1500.0), "diesel": (200.0, 800.0)}
 
 
-def kinematics_of(ctx):
-    return ctx.get("kinematics", lambda: piston_kinematics(ctx.engine.geometry, ctx.speed))
-
-
 def build(ctx) -> Section:
-    kin = kinematics_of(ctx)
+    kin = ctx.analysis.kinematics()
     s = kin.summary
     g = ctx.engine.geometry
     amax_g = s.max_acceleration / G

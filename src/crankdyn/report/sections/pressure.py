@@ -4,18 +4,11 @@ from __future__ import annotations
 
 import math
 
-from crankdyn.crank.indicated import pressure_analysis
-from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 
 
-def pressure_of(ctx):
-    engine = ctx.engine
-    return ctx.get("pressure", lambda: pressure_analysis(default_pressure(engine), engine.geometry))
-
-
 def build(ctx) -> Section:
-    r = pressure_of(ctx)
+    r = ctx.analysis.pressure
     synthetic = ctx.engine.pressure is None
     figures = [
         KeyFigure(

@@ -6,18 +6,13 @@ import numpy as np
 
 from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-from crankdyn.torsion.modal import natural_modes
-
-
-def modes_of(ctx):
-    return ctx.get("torsion_modes", lambda: natural_modes(ctx.engine.torsion))
 
 
 def build(ctx) -> Section:
     model = ctx.engine.torsion
     if model is None:
         raise NotApplicable("the engine file has no [torsion] model")
-    modes = modes_of(ctx)
+    modes = ctx.analysis.modes
     hz = modes.frequencies_hz
     elastic = [i for i, f in enumerate(hz) if f > 0.0]
     figures = []
@@ -33,7 +28,7 @@ def build(ctx) -> Section:
     checks = []
     if model.is_chain:
         for solver, label in (("holzer", "Holzer"), ("transfer", "transfer-matrix")):
-            other = natural_modes(model, solver=solver).frequencies_hz
+            other = ctx.analysis.modes_by(solver).frequencies_hz
             scale = np.maximum(np.abs(hz), 1e-300)
             worst = float(np.max(np.abs(other - hz)[hz > 0] / scale[hz > 0])) if elastic else 0.0
             checks.append(
