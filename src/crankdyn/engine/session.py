@@ -108,6 +108,8 @@ class Analysis:
     engine
         With a torsional model as ``subject``: the engine whose cylinders excite it (its
         pressure and masses), if any.
+    speed_hint, speeds_hint
+        How the front end names the speed and the speed range in its error messages.
 
     Attributes are the analyses: properties for those without options (``torque``,
     ``modes``...), methods with keyword options for the others (``forces(cylinder=2)``,
@@ -123,6 +125,8 @@ class Analysis:
         orders=None,
         step: float | None = None,
         engine: Engine | None = None,
+        speed_hint: str = "--speed RPM",
+        speeds_hint: str = "--speeds LOW:HIGH[:STEP]",
     ) -> None:
         if isinstance(subject, Engine):
             self.engine: Engine | None = subject
@@ -148,6 +152,7 @@ class Analysis:
         self.step = STEP if step is None else float(step)
         if self.engine is not None:
             check_step(self.step, self.engine.cycle_angle)
+        self._hints = (speed_hint, speeds_hint)
         self._memo: dict[Any, Any] = {}
 
     def __repr__(self) -> str:
@@ -205,7 +210,7 @@ class Analysis:
             self.engine.source if self.engine is not None else getattr(self.model, "source", None)
         )
         raise InputError(
-            "no speed: give --speed RPM or [operating] speed in the engine file", file=source
+            f"no speed: give {self._hints[0]} or [operating] speed in the engine file", file=source
         )
 
     @property
@@ -217,8 +222,8 @@ class Analysis:
         model = self._need_model()
         if model.operating is None:
             raise InputError(
-                "no speed range: give --speeds LOW:HIGH[:STEP] or [operating] speed_range in the "
-                "torsional model",
+                f"no speed range for the forced response: give {self._hints[1]} or [operating] "
+                "speed_range in the torsional model",
                 file=model.source,
                 key="speeds",
             )
