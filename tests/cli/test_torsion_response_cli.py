@@ -246,7 +246,7 @@ def test_model_without_excitation_point(capsys, tmp_path):
     line = one_line_error(capsys, "torsion", "response", str(path), "--speeds", "100:200:10")
     assert "no excitation point" in line
     line = one_line_error(capsys, "torsion", "response", "seed003-v6")
-    assert "no speeds" in line
+    assert "no speed range" in line
 
 
 def test_misfire_without_compression_ratio_is_one_line(tmp_path, capsys):

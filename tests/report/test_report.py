@@ -79,7 +79,7 @@ def test_user_text_is_escaped(hostile_report):
 
 
 def test_existing_report_not_overwritten(cli, demo_report):
-    run = cli("analyze", "inline6-diesel", "--out", demo_report)
+    run = cli("analyze", "inline6-diesel", "--output", demo_report)
     assert run.status == 2 and "already exists" in run.err
 
 

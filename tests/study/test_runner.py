@@ -67,7 +67,7 @@ def test_dask_local_cluster_gives_the_same_table(reference, tmp_path, cli):
         address = cluster.scheduler_address
         assert address.startswith("tcp://127.0.0.1:")
         result = cli(
-            "study", study, "--scheduler", address, "--out", tmp_path / "dask", "--no-summary"
+            "study", study, "--scheduler", address, "--output", tmp_path / "dask", "--no-summary"
         )
     assert result.status == 0, result
     assert "Dask cluster at tcp://127.0.0.1" in result.out

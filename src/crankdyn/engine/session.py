@@ -25,7 +25,7 @@ Defaults (module constants, used by every front end):
 from __future__ import annotations
 
 import math
-from dataclasses import fields, replace
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -76,14 +76,8 @@ def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> np.ndarray:
 
 
 def _with_summary(rows, full):
-    """``rows`` (a result on a display grid) with every scalar figure of ``full`` (the same
-    analysis on the session's grid): the summary never depends on the display grid."""
-    if rows is full:
-        return full
-    changes = {
-        f.name: getattr(full, f.name) for f in fields(full) if f.metadata.get("kind") == "scalar"
-    }
-    return replace(rows, **changes)
+    """``rows`` (a result on a display grid) with every scalar figure of ``full``."""
+    return rows.with_summary_of(full)
 
 
 class Analysis:
@@ -180,10 +174,9 @@ class Analysis:
         engine = self._need_engine(what)
         if engine.masses is None:
             raise InputError(
-                f"{what}: the engine file has no [masses] (give reciprocating and rotating, or "
-                "the components)",
+                f"the engine has no [masses]: {what} needs the reciprocating and rotating masses "
+                "(give reciprocating and rotating, or the components)",
                 file=engine.source,
-                key="[masses]",
             )
         return engine
 
@@ -222,7 +215,7 @@ class Analysis:
         model = self._need_model()
         if model.operating is None:
             raise InputError(
-                f"no speed range for the forced response: give {self._hints[1]} or [operating] "
+                f"no speed range: give {self._hints[1]} or [operating] "
                 "speed_range in the torsional model",
                 file=model.source,
                 key="speeds",
@@ -532,6 +525,8 @@ class Analysis:
 
         key = ("excitation", tuple(misfire), torque)
         model = self.model
+        if model is not None and self.engine is None and not model.cylinder_dofs:
+            excitation_for(model)  # raises: the model has no excitation point
         if model is None or not model.cylinder_dofs:
             engine = self._need_engine("the excitation")
             if torque is not None:
