@@ -17,10 +17,13 @@ import numpy as np
 __all__ = [
     "SIGNIFICANT",
     "column_text",
+    "engine_html",
     "engineering_unit",
     "format_value",
     "html_table",
     "mass_elastic_rows",
+    "mechanism_html",
+    "torsion_model_html",
 ]
 
 SIGNIFICANT = 5
@@ -165,9 +168,9 @@ def mass_elastic_rows(model) -> tuple[list[str], list[list[str]], list[str], lis
     masses = [
         [
             m.name,
-            format_value(m.inertia, "kg·m²")[0],
+            f"{m.inertia:.6g}",
             ", ".join(str(c) for c in m.cylinders) or "-",
-            format_value(m.damping, "N·m·s/rad")[0] if m.damping else "-",
+            f"{m.damping:.6g}" if m.damping else "-",
         ]
         for m in model.masses
     ]
@@ -187,7 +190,7 @@ def mass_elastic_rows(model) -> tuple[list[str], list[list[str]], list[str], lis
             [
                 f"{a} - {b}",
                 f"{stiffness[0]} {stiffness[1]}",
-                format_value(s.damping, "N·m·s/rad")[0] if s.damping else "-",
+                f"{s.damping:.6g}" if s.damping else "-",
                 f"{s.loss_factor:g}" if getattr(s, "loss_factor", 0.0) else "-",
                 diameter,
             ]
@@ -198,3 +201,78 @@ def mass_elastic_rows(model) -> tuple[list[str], list[list[str]], list[str], lis
         ["Shaft", "Stiffness", "Damping (N·m·s/rad)", "Loss factor", "Diameter"],
         shafts,
     )
+
+
+def torsion_model_html(model) -> str:
+    """The mass-elastic system of a torsional model: masses and shafts (notebook view)."""
+    mass_head, masses, shaft_head, shafts = mass_elastic_rows(model)
+    title = (
+        f"{model.name}: {model.mass_count} masses, "
+        + ("chain" if model.is_chain else "branched")
+        + (", free" if model.is_free else ", grounded")
+    )
+    out = html_table(mass_head, masses, title=title)
+    out += html_table(shaft_head, shafts, title="Shafts")
+    gears = getattr(model, "gears", ())
+    if gears:
+        out += html_table(
+            ["Gear mesh", "Ratio"],
+            [[f"{g.between[0]} - {g.between[1]}", f"{g.ratio:g}"] for g in gears],
+            title="Gears",
+        )
+    return out
+
+
+def engine_html(engine) -> str:
+    """The engine's main data and, with a [torsion] section, its mass-elastic system."""
+    from crankdyn.constants import DEG, RPM
+
+    g, c = engine.geometry, engine.cylinders
+    layout = f"{c.count} {c.layout}" + (
+        f", bank angle {c.bank_angle * DEG:g}°" if c.layout == "V" else ""
+    )
+    rows = [
+        ["Cycle", engine.cycle],
+        ["Cylinders", layout],
+        ["Firing order", "-".join(str(i) for i in c.firing_order)],
+        ["Bore x stroke", f"{g.bore * 1e3:.6g} x {g.nominal_stroke * 1e3:.6g} mm"],
+        ["Rod length", f"{g.rod_length * 1e3:.6g} mm (λ = {g.lam:.4f})"],
+        ["Displacement", f"{engine.displacement * 1e3:.4g} L"],
+    ]
+    if engine.speed is not None:
+        rows.append(["Operating speed", f"{engine.speed * RPM:.6g} rpm"])
+    if engine.masses is not None:
+        m = engine.masses
+        for label, value in (
+            ("Reciprocating mass", m.reciprocating),
+            ("Rotating mass", m.rotating),
+        ):
+            if value is not None:
+                rows.append([label, f"{value:.6g} kg"])
+    rows.append(
+        ["Pressure", engine.pressure.source if engine.pressure is not None else "synthetic"]
+    )
+    out = html_table(["", ""], rows, title=engine.name)
+    if engine.torsion is not None:
+        out += torsion_model_html(engine.torsion)
+    return out
+
+
+def mechanism_html(mech) -> str:
+    """A planar mechanism's links (masses, inertias) and joints (notebook view)."""
+    links = [
+        [
+            link.name,
+            ", ".join(link.points),
+            f"{link.mass:.6g}",
+            f"{link.inertia:.6g}",
+        ]
+        for link in mech.links
+    ]
+    joints = [[j.name, j.kind, " - ".join(j.links)] for j in mech.joints]
+    out = html_table(
+        ["Link", "Points", "Mass (kg)", "Inertia (kg·m²)"],
+        links,
+        title=f"{mech.name}: {len(mech.links)} links, {len(mech.joints)} joints",
+    )
+    return out + html_table(["Joint", "Kind", "Between"], joints, title="Joints")

@@ -217,7 +217,7 @@ class Result:
         from crankdyn.display import html_table
 
         title = getattr(self, "title", type(self).__name__)
-        rows = [list(r) for r in self.summary_rows() + self.key_rows()]
+        rows = [list(r) for r in self.key_rows() + self.summary_rows()]
         out = html_table(["Quantity", "Value", "Unit"], rows, title=title)
         cols = self.column_labels()
         if cols:

@@ -137,9 +137,7 @@ def _widths(table: TextTable) -> list[int]:
         words = [len(w) for w in head.split()] or [1]
         cells = [row[c] for row in table.rows]
         if c in table.text_columns:
-            longest_word = max(
-                [max((len(w) for w in s.split()), default=1) for s in cells] or [1]
-            )
+            longest_word = max([max((len(w) for w in s.split()), default=1) for s in cells] or [1])
             longest = max((len(s) for s in cells), default=1)
             need = max(longest_word, min(longest, 24))
         else:

@@ -468,7 +468,7 @@ def engine_balance(
         Counterweights, rod offset and power; default ``engine.balance`` or no counterweights.
     torque
         The engine torque over one cycle, for the overturning moment: an
-        :class:`crankdyn.engine.torque.EngineTorque` (whose power also serves the power-related
+        :class:`crankdyn.engine.torque.TorqueResult` (whose power also serves the power-related
         unbalance when ``inputs`` gives none: the effective power if the mechanical efficiency
         is known, else the indicated power) or a pair (angles in rad, torque in N m); None
         leaves it out.

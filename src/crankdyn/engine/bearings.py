@@ -37,7 +37,13 @@ from crankdyn.engine.forces import (
 from crankdyn.engine.model import Engine
 from crankdyn.results import Result, column, freeze, scalar
 
-__all__ = ["BearingLoads", "bearing_loads", "main_bearing_loads"]
+__all__ = [
+    "BearingLoads",
+    "BearingsResult",
+    "bearing_loads",
+    "engine_bearings",
+    "main_bearing_loads",
+]
 
 
 def main_bearing_loads(throw_x, throw_y):
@@ -53,7 +59,7 @@ def main_bearing_loads(throw_x, throw_y):
 
 
 @dataclass(frozen=True)
-class BearingLoads(Result):
+class BearingsResult(Result):
     """Crank-pin loads (one row per throw) and main-bearing loads (one row per bearing) over
     the cycle (module docstring for frames and signs)."""
 
@@ -93,7 +99,7 @@ class BearingLoads(Result):
         return plot_bearing_polars(self, fig=fig)
 
 
-def bearing_loads(
+def engine_bearings(
     engine: Engine,
     speed: float,
     angles=None,
@@ -101,7 +107,7 @@ def bearing_loads(
     step: float = math.radians(1.0),
     pressure: PressureTrace | None = None,
     train: CrankTrain | None = None,
-) -> BearingLoads:
+) -> BearingsResult:
     """Crank-pin and main-bearing loads of an engine at speed w (rad/s) over one cycle (or at
     the crankshaft ``angles``, rad); see the module docstring. ``train``: the crank train at
     exactly these angles, speed and pressure when already computed (e.g. shared with
@@ -122,7 +128,7 @@ def bearing_loads(
         )
     if engine.pressure is None:
         notes.append("no pressure trace: synthetic Wiebe model with default parameters")
-    return BearingLoads(
+    return BearingsResult(
         crank_angle=freeze(theta),
         pin_load=freeze(pin),
         pin_load_angle=freeze(load_angle(-z_pin, t_pin)),
@@ -179,3 +185,11 @@ def _load_summary(engine: Engine, train: CrankTrain, *, full: bool):
         np.array(max_bearing),
         bearing[:, body].mean(axis=1),
     )
+
+
+BearingLoads = BearingsResult
+"""The former name of :class:`BearingsResult` (kept as an alias)."""
+
+
+bearing_loads = engine_bearings
+"""The former name of :func:`engine_bearings` (kept as an alias)."""

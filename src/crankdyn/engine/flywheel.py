@@ -421,7 +421,7 @@ def engine_flywheel(
     step
         Crank-angle step of the torque curve (rad).
     torque
-        An :class:`crankdyn.engine.torque.EngineTorque` already computed at this speed, to reuse.
+        An :class:`crankdyn.engine.torque.TorqueResult` already computed at this speed, to reuse.
     """
     from crankdyn.engine.torque import engine_torque
 

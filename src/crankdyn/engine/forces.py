@@ -57,10 +57,12 @@ __all__ = [
     "SUMMARY_STEP",
     "CrankTrain",
     "CylinderForces",
+    "ForcesResult",
     "check_step",
     "crank_train",
     "cycle_grid",
     "cylinder_forces",
+    "engine_forces",
     "engine_masses",
     "inertia_harmonics",
     "load_angle",
@@ -394,7 +396,7 @@ def reuse_train(
 
 
 @dataclass(frozen=True)
-class CylinderForces(Result):
+class ForcesResult(Result):
     """Forces of one cylinder over the working cycle (module docstring for signs)."""
 
     title = "Cylinder forces"
@@ -457,7 +459,7 @@ class CylinderForces(Result):
         return plot_pin_polar(self, fig=fig)
 
 
-def cylinder_forces(
+def engine_forces(
     engine: Engine,
     speed: float,
     angles=None,
@@ -465,7 +467,7 @@ def cylinder_forces(
     cylinder: int = 1,
     step: float = math.radians(1.0),
     pressure: PressureTrace | None = None,
-) -> CylinderForces:
+) -> ForcesResult:
     """Forces of cylinder ``cylinder`` (1-based, numbered from the free end) over the cycle.
 
     Parameters
@@ -483,7 +485,7 @@ def cylinder_forces(
 
     Returns
     -------
-    CylinderForces
+    ForcesResult
         The summary figures (maxima, the mean pin load) are those of the whole cycle on the
         :data:`SUMMARY_STEP` grid, the maxima refined (:func:`refined_extremum`), whatever
         ``angles`` or ``step`` the rows use. The crank-pin load is that of the cylinder's throw
@@ -524,7 +526,7 @@ def cylinder_forces(
         )
     if engine.pressure is None:
         notes.append("no pressure trace: synthetic Wiebe model with default parameters")
-    return CylinderForces(
+    return ForcesResult(
         crank_angle=freeze(theta),
         cylinder_angle=freeze(train.cycle_phase[i]),
         pressure=freeze(train.pressure[i]),
@@ -608,3 +610,11 @@ def _force_summary(engine: Engine, train: CrankTrain, cylinder: int, pressure, *
         "max_pin_load": peak["pin"],
         "mean_pin_load": float(np.mean(pin[:-1])),
     }
+
+
+CylinderForces = ForcesResult
+"""The former name of :class:`ForcesResult` (kept as an alias)."""
+
+
+cylinder_forces = engine_forces
+"""The former name of :func:`engine_forces` (kept as an alias)."""

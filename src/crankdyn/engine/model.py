@@ -491,6 +491,12 @@ class Engine:
         """Total swept volume of all cylinders (m^3)."""
         return self.cylinders.count * self.geometry.swept_volume
 
+    def _repr_html_(self) -> str:
+        """The engine's data and its mass-elastic system (notebooks)."""
+        from crankdyn.display import engine_html
+
+        return engine_html(self)
+
     @classmethod
     def from_file(cls, path: str | Path) -> Engine:
         """Load an engine description file (TOML; docs/engine-file.md)."""

@@ -312,30 +312,30 @@ class Analysis:
 
     def forces(self, cylinder: int = 1, *, step=None):
         """Forces of one cylinder over the working cycle
-        (:func:`crankdyn.engine.forces.cylinder_forces`); rows every ``step`` (rad, default the
+        (:func:`crankdyn.engine.forces.engine_forces`); rows every ``step`` (rad, default the
         session's), the summary from the session's grid."""
-        from crankdyn.engine.forces import cylinder_forces
+        from crankdyn.engine.forces import engine_forces
 
         engine = self._need_masses("the forces")
 
         def compute(h):
-            return cylinder_forces(engine, self.speed, cylinder=cylinder, step=h)
+            return engine_forces(engine, self.speed, cylinder=cylinder, step=h)
 
         full = self._cached(("forces", cylinder), lambda: compute(self.step))
         return self._rows(step, ("forces", cylinder), full, lambda: compute(step))
 
     def bearings(self, *, step=None):
         """Crank-pin and main-bearing loads over the cycle
-        (:func:`crankdyn.engine.bearings.bearing_loads`); rows every ``step`` (rad)."""
-        from crankdyn.engine.bearings import bearing_loads
+        (:func:`crankdyn.engine.bearings.engine_bearings`); rows every ``step`` (rad)."""
+        from crankdyn.engine.bearings import engine_bearings
 
         engine = self._need_masses("the bearing loads")
         full = self._cached(
             "bearings",
-            lambda: bearing_loads(engine, self.speed, step=self.step, train=self._train()),
+            lambda: engine_bearings(engine, self.speed, step=self.step, train=self._train()),
         )
         return self._rows(
-            step, "bearings", full, lambda: bearing_loads(engine, self.speed, step=step)
+            step, "bearings", full, lambda: engine_bearings(engine, self.speed, step=step)
         )
 
     @property

@@ -40,7 +40,7 @@ from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
 
-__all__ = ["EngineTorque", "engine_torque", "journal_torques"]
+__all__ = ["EngineTorque", "TorqueResult", "engine_torque", "journal_torques"]
 
 
 _MEAN_STEP = math.radians(0.1)
@@ -93,7 +93,7 @@ def journal_torques(throw_torque):
 
 
 @dataclass(frozen=True)
-class EngineTorque(Result):
+class TorqueResult(Result):
     """Torque of every cylinder, the total, main-journal and crank-pin torques over one cycle,
     with mean torque and power (module docstring)."""
 
@@ -145,7 +145,7 @@ def engine_torque(
     mechanical_efficiency: float | None = None,
     pressure: PressureTrace | None = None,
     train: CrankTrain | None = None,
-) -> EngineTorque:
+) -> TorqueResult:
     """Torques of an engine at speed w (rad/s) over one cycle every ``step`` rad.
 
     Parameters
@@ -195,7 +195,7 @@ def engine_torque(
     notes = []
     if engine.pressure is None:
         notes.append("no pressure trace: synthetic Wiebe model with default parameters")
-    return EngineTorque(
+    return TorqueResult(
         crank_angle=freeze(theta),
         cylinder_torque=freeze(per_cylinder),
         total_torque=freeze(total),
@@ -222,3 +222,7 @@ def engine_torque(
         cycle_angle=engine.cycle_angle,
         throws=tuple(cyl.throws),
     )
+
+
+EngineTorque = TorqueResult
+"""The former name of :class:`TorqueResult` (kept as an alias)."""

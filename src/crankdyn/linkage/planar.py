@@ -638,6 +638,12 @@ class Mechanism:
 
         return load_linkage(path)
 
+    def _repr_html_(self) -> str:
+        """The links (masses, inertias) and joints (notebooks)."""
+        from crankdyn.display import mechanism_html
+
+        return mechanism_html(self)
+
     @classmethod
     def example(cls, name: str) -> Mechanism:
         """A built-in example linkage by name (``crankdyn linkage examples`` lists them)."""

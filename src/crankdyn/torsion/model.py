@@ -698,6 +698,12 @@ class TorsionModel:
         )
 
     # ---- alternate constructors ---------------------------------------------------------------
+    def _repr_html_(self) -> str:
+        """The mass-elastic system: masses, shafts and gears (notebooks)."""
+        from crankdyn.display import torsion_model_html
+
+        return torsion_model_html(self)
+
     @classmethod
     def from_file(cls, path) -> TorsionModel:
         """Load a torsional model file (TOML; docs/torsion-file.md)."""

@@ -560,6 +560,32 @@ class ResponseResult(Result):
 
         return plot_stress_limits(self, fig=fig)
 
+    def key_rows(self) -> list[tuple[str, str, str]]:
+        """The largest synthesised amplitude and shaft torque, where and at which speed, and the
+        rule verdict (the notebook view)."""
+        from crankdyn.display import format_value
+
+        rows = []
+        amp = np.asarray(self.synthesized_amplitude)
+        i, k = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        value, unit = format_value(float(amp[i, k]), "rad")
+        rows.append(
+            (
+                "Largest amplitude",
+                f"{value} {unit}",
+                f"{self.masses[k]} at {self.speed[i] * RPM:.1f} rpm",
+            )
+        )
+        torque = np.asarray(self.synthesized_shaft_torque)
+        i, s = np.unravel_index(int(np.argmax(torque)), torque.shape)
+        value, unit = format_value(float(torque[i, s]), "N·m")
+        where = f"{self.shafts[s][0]} - {self.shafts[s][1]} at {self.speed[i] * RPM:.1f} rpm"
+        rows.append(("Largest shaft torque", f"{value} {unit}", where))
+        if self.rule_check is not None:
+            verdict = "passed" if self.rule_check.passed else "FAILED"
+            rows.append((f"Rule check ({self.rule_check.rule})", verdict, ""))
+        return rows
+
     # ---- CSV: one row per speed -----------------------------------------------------------------
     def columns(self) -> dict[str, np.ndarray]:
         out = {"speed_rpm": np.asarray(self.speed) * RPM}
