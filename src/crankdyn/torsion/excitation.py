@@ -717,7 +717,7 @@ class EngineExcitation:
         elif spec is not None and spec.traces:
             w = np.array([t.speed for t in spec.traces])
             base = np.transpose(self._speed_trace_spectra[:, :, m] * scale, (0, 2, 1)) - cc
-            gas = _interp_complex(speeds, w, base)  # (S, Q, Z)
+            gas = interp_complex(speeds, w, base)  # (S, Q, Z)
         else:
             p = (self._trace_spectrum[:, m] * scale).T
             s = self.load_factor(speeds)
@@ -748,7 +748,7 @@ class EngineExcitation:
         return gas + inertia
 
 
-def _interp_complex(x, xp, fp) -> np.ndarray:
+def interp_complex(x, xp, fp) -> np.ndarray:
     """Linear interpolation along the first axis of fp (held at the ends), vectorised."""
     x = np.asarray(x, dtype=float)
     if len(xp) == 1:
@@ -877,7 +877,7 @@ def harmonic_analysis(excitation, speed: float, orders, modes=None, model=None) 
     sums = rel = mode_numbers = None
     if modes is not None and model is not None:
         elastic = np.flatnonzero(modes.natural_frequency > 0.0)
-        beta = _cylinder_amplitudes(modes, model, excitation.cylinder_count)[elastic]
+        beta = cylinder_amplitudes(modes, model, excitation.cylinder_count)[elastic]
         rel = relative_amplitude_sums(beta, angles, orders)
         mode_numbers = modes.mode[elastic]
     sums = phase_vector_sums(angles, orders)
@@ -900,7 +900,7 @@ def harmonic_analysis(excitation, speed: float, orders, modes=None, model=None) 
     )
 
 
-def _cylinder_amplitudes(modes, model, count: int) -> np.ndarray:
+def cylinder_amplitudes(modes, model, count: int) -> np.ndarray:
     """(modes, cylinders) mode-shape amplitude of the mass carrying each cylinder, each mode
     normalised to a largest absolute cylinder amplitude of 1 (0 for cylinders on no mass)."""
     shapes = np.asarray(modes.mode_shapes)  # mode x mass

@@ -34,7 +34,7 @@ from scipy.integrate import solve_ivp
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
-from crankdyn.torsion.excitation import _interp_complex, check_orders
+from crankdyn.torsion.excitation import check_orders, interp_complex
 from crankdyn.torsion.response import linear_system
 
 __all__ = ["TransientResult", "transient_response"]
@@ -180,7 +180,7 @@ def transient_response(
 
     def rhs(t, y):
         w = w0 + rate * t
-        f = forcing[0] if grid.size == 1 else _interp_complex(np.array([w]), grid, forcing)[0]
+        f = forcing[0] if grid.size == 1 else interp_complex(np.array([w]), grid, forcing)[0]
         torque = np.real(np.exp(1j * orders * crank(t)) @ f)
         acc = a_lower @ y + inv_m * torque
         return np.concatenate([y[n:], acc])
