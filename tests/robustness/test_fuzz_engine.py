@@ -21,7 +21,7 @@ from tests.robustness.strategies import mutated
 EXAMPLES = resources.files("crankdyn") / "examples"
 BASES = {
     name: tomllib.loads((EXAMPLES / f"{name}.toml").read_text(encoding="utf-8"))
-    for name in example_names()
+    for name in example_names("engine")
 }
 
 

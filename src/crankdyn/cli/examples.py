@@ -65,7 +65,7 @@ def write_example(name: str, output: str | None, force: bool, kind: str | None =
 
 
 @click.command("example")
-@click.argument("name")
+@click.argument("name", metavar="NAME")
 @click.option(
     "-o",
     "--output",
@@ -97,7 +97,7 @@ def example_alias(kind: str) -> click.Command:
     """``crankdyn GROUP example NAME``: ``crankdyn example NAME`` for one kind."""
 
     @click.command("example", hidden=True)
-    @click.argument("name")
+    @click.argument("name", metavar="NAME")
     @click.option("-o", "--output", default=None, metavar="PATH", help="File or folder.")
     @click.option("--force", is_flag=True, help="Overwrite existing files.")
     def alias(name: str, output: str | None, force: bool) -> int:

@@ -457,10 +457,16 @@ def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> in
     default=72,
     show_default=True,
     type=click.IntRange(4, 720),
-    help="Frames per crank revolution.",
+    metavar="N",
+    help="Frames per crank revolution (4 to 720).",
 )
 @click.option(
-    "--fps", default=20, show_default=True, type=click.IntRange(1, 50), help="Frames per second."
+    "--fps",
+    default=20,
+    show_default=True,
+    type=click.IntRange(1, 50),
+    metavar="N",
+    help="Frames per second (1 to 50).",
 )
 @speed_option(_SPEED_HELP)
 @click.option(
@@ -470,7 +476,7 @@ def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> in
     show_default=True,
     help="Draw the joint forces.",
 )
-@click.option("-o", "--output", required=True, metavar="FILE.gif", help="GIF to write.")
+@click.option("-o", "--output", required=True, metavar="FILE", help="The GIF to write (.gif).")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
 def animate_command(linkage, frames, fps, speed, show_forces, output, force) -> int:
     """An animated GIF of LINKAGE through a full crank revolution."""
