@@ -80,7 +80,9 @@ def test_examples_load(name):
 
 
 def test_example_list():
-    assert {"inline6-diesel", "single-cylinder", "v8-crossplane", "vaz2108"} <= set(example_names("engine"))
+    assert {"inline6-diesel", "single-cylinder", "v8-crossplane", "vaz2108"} <= set(
+        example_names("engine")
+    )
 
 
 def test_inline6_example_is_mendes2008():
