@@ -21,7 +21,7 @@ from crankdyn.study.run.runner import run_study
 from tests.study import helpers
 from tests.study.helpers import write_study
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[3]
 
 
 def rows(folder: Path) -> list[dict]:
