@@ -203,19 +203,6 @@ def test_examples_and_example(cli, tmp_path, monkeypatch):
     assert cli("example", "vaz2108", "-o", tmp_path / "sub" / "x.toml").status == 2
 
 
-def test_demo_writes_outputs(cli, tmp_path):
-    out = tmp_path / "demo"
-    run = cli("demo", "--output", out)
-    assert run.status == 0, run
-    assert (out / "index.html").exists() and (out / "summary.json").exists()
-    assert (out / "data" / "kinematics.csv").exists()
-    assert (out / "plots" / "kinematics.png").stat().st_size > 10_000
-    again = cli("demo", "--output", out)
-    assert again.status == 2 and "already exists" in again.err
-    assert cli("demo", "--output", out, "--force").status == 0
-    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".demo")]
-
-
 def test_geometry_from_stroke_alternatives():
     g = CrankGeometry.from_stroke(0.076, 0.071, rod_ratio=0.26)
     assert g.rod_length == pytest.approx(0.0355 / 0.26)
