@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from crankdyn.constants import DEG
-from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.geometry import CrankGeometry, check_step
 from crankdyn.crank.kinematics import slider_crank_exact
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.results import Result, column, freeze, scalar
@@ -84,7 +84,7 @@ def pressure_analysis(
 
     The volume is V_c + A x when the trace knows the compression ratio, else the displaced
     volume A x (``volume_is_swept``)."""
-    count = round(trace.cycle_angle / step)
+    count = check_step(step, trace.cycle_angle)
     half = trace.cycle_angle / 2.0
     theta = np.linspace(-half, half, count + 1)
     x = _displacement(theta, geometry)

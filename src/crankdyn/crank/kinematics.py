@@ -38,11 +38,12 @@ from typing import NamedTuple
 import numpy as np
 
 from crankdyn.constants import DEG, RPM
-from crankdyn.crank.geometry import CrankGeometry
+from crankdyn.crank.geometry import CrankGeometry, check_step
 from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = [
     "METHODS",
+    "SERIES_ORDER",
     "SPEED_CLASSES",
     "CoefficientTable",
     "CrankTerms",
@@ -405,6 +406,10 @@ def speed_class(mean_piston_speed: float) -> str:
 
 METHODS = ("exact", "approx", "series")
 
+SERIES_ORDER = 4
+"""Highest harmonic of the λ-series (``method="series"``) by default, in the library and the
+command line alike."""
+
 
 def _motion_function(method: str, order: int):
     if method == "exact":
@@ -508,7 +513,7 @@ def piston_kinematics(
     *,
     step: float = math.radians(1.0),
     method: str = "exact",
-    order: int = 2,
+    order: int = SERIES_ORDER,
 ) -> KinematicsResult:
     """Slider-crank kinematics of one cylinder at a constant crank speed.
 
@@ -538,7 +543,7 @@ def piston_kinematics(
     motion = _motion_function(method, order)
     r, l, e, w = geometry.crank_radius, geometry.rod_length, geometry.offset, float(speed)
     if angles is None:
-        count = round(2.0 * math.pi / step)
+        count = check_step(step, 2.0 * math.pi)
         angles = np.linspace(0.0, 2.0 * math.pi, count + 1)
     phi = np.asarray(angles, dtype=float)
     m = motion(phi, r, l, e, w)
@@ -644,7 +649,12 @@ class CoefficientTable(Result):
 
 
 def coefficient_table(
-    lambdas, angles, *, offset_ratio: float = 0.0, method: str = "exact", order: int = 2
+    lambdas,
+    angles,
+    *,
+    offset_ratio: float = 0.0,
+    method: str = "exact",
+    order: int = SERIES_ORDER,
 ) -> CoefficientTable:
     """The seeds' coefficient tables: A, B, C vs crank angle for each lambda (R = 1, w = 1).
 

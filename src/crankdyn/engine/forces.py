@@ -39,6 +39,7 @@ from functools import lru_cache
 import numpy as np
 
 from crankdyn.constants import DEG, RPM
+from crankdyn.crank.geometry import check_step
 from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
@@ -290,27 +291,6 @@ def crank_train(
 SUMMARY_STEP = math.radians(1.0)
 """Crank-angle step of the grid on which summary figures (maxima, minima, means) are found, then
 refined (:func:`refined_extremum`): the same whatever grid the rows of a result use."""
-
-
-def check_step(step: float, cycle: float) -> int:
-    """The number of steps of ``step`` (rad) in ``cycle`` (rad): it must divide the cycle (to
-    a relative 1e-9); the library never rounds a step silently."""
-    if not (math.isfinite(step) and 0.0 < step <= cycle):
-        raise InputError(
-            f"the crank-angle step must lie between 0 and {cycle * DEG:g} deg",
-            key="step",
-            value=step * DEG,
-        )
-    count = round(cycle / step)
-    if abs(count * step - cycle) > 1e-9 * cycle:
-        raise InputError(
-            f"the crank-angle step must divide the {cycle * DEG:g} deg cycle evenly",
-            key="step",
-            value=step * DEG,
-        )
-    if count > 1_000_000:
-        raise InputError("the step is too small (more than 1000000 points)", key="step")
-    return count
 
 
 def cycle_grid(engine: Engine, step: float) -> np.ndarray:

@@ -31,7 +31,8 @@ from typing import Any
 import numpy as np
 
 from crankdyn.constants import RPM
-from crankdyn.engine.forces import check_step
+from crankdyn.crank.geometry import check_step
+from crankdyn.crank.kinematics import SERIES_ORDER
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.results import freeze
@@ -51,9 +52,6 @@ MAX_ORDER = 12.0
 DELTA = 0.01
 """Target degree of cyclic irregularity when the engine file gives no [flywheel] delta or
 inertia (seed 000 section 2.4: 1/100 to 1/300 for most engines)."""
-
-SERIES_ORDER = 4
-"""Highest harmonic of the λ-series kinematics (``method="series"``)."""
 
 
 def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> np.ndarray:
