@@ -20,7 +20,6 @@ from crankdyn.io.engine_file import load_engine, parse_engine
 from crankdyn.io.examples import EXAMPLE_KINDS, example_kind, example_names, example_path
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.linkage_file import load_linkage, parse_linkage
-from crankdyn.io.study_file import load_study, parse_study
 from crankdyn.io.torsion_file import parse_torsion_model
 
 __all__ = [
@@ -54,6 +53,8 @@ def load_example(name: str, kind: str | None = None) -> Any:
         return parse_torsion_model(data, file=source, base_dir=path.parent)
     if found == "linkage":
         return parse_linkage(data, file=source)
+    from crankdyn.io.study_file import parse_study  # scipy and the study registry: on demand
+
     return parse_study(data, file=source, base_dir=path.parent, default_name=name)
 
 
@@ -145,6 +146,8 @@ def resolve_linkage(spec: str):
 def resolve_study(spec: str):
     """A STUDY argument: a path to a study file, or a built-in example study's name."""
     if _looks_like_path(spec):
+        from crankdyn.io.study_file import load_study
+
         return load_study(Path(spec))
     if example_kind(spec) == "study":
         return load_example(spec, "study")

@@ -9,10 +9,8 @@ from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.masses import Masses
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
-from crankdyn.engine.balance import BalanceInputs
 from crankdyn.engine.firing import throw_angles_from_positions
-from crankdyn.engine.flywheel import FlywheelInputs
-from crankdyn.engine.model import CYCLES, LAYOUTS, Cylinders, Engine
+from crankdyn.engine.model import CYCLES, LAYOUTS, BalanceInputs, Cylinders, Engine, FlywheelInputs
 from crankdyn.errors import InputError
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
