@@ -613,6 +613,22 @@ class Analysis:
         torque = np.asarray(result.synthesized_shaft_torque)
         return tuple(result.shafts[int(np.argmax(np.max(torque, axis=0)))])
 
+    def plot_response(self, quantity: str = "torque", item=None, response=None, **kw):
+        """The response against speed (per order and synthesised) with the command line's
+        defaults: the most loaded shaft for ``"torque"``, the most stressed one (with diameters)
+        for ``"stress"``, the first mass for ``"amplitude"``, the first and the last mass for
+        ``"relative"``; returns the Figure."""
+        result = self.response() if response is None else response
+        if item is None:
+            if quantity == "torque":
+                item = self.most_loaded_shaft(result)
+            elif quantity == "stress":
+                item = self.most_stressed_shaft(result)
+            elif quantity == "relative":
+                names = self._need_model().mass_names
+                item = (names[0], names[-1])
+        return result.plot(quantity, item, **kw)
+
     def peak(self, quantity: str, item=None, response=None):
         """(peak value, speed (rad/s)) of a synthesised response quantity over the sweep:
         ``"amplitude"`` of mass ``item``, ``"torque"`` or ``"stress"`` of shaft ``item``,
