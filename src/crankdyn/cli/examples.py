@@ -6,9 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import click
-from rich.table import Table as RichTable
 
-from crankdyn.cli.common import console
+from crankdyn.cli.writer import Output, TextTable
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import catalogue
 from crankdyn.io.examples import EXAMPLE_KINDS, example_files, example_kind
@@ -19,15 +18,18 @@ _KIND_CHOICE = click.Choice(tuple(EXAMPLE_KINDS))
 
 def print_examples(kind: str | None = None) -> None:
     """The catalogue as one table (or the examples of one kind)."""
-    table = RichTable(title="Built-in examples", header_style="bold")
-    for col in ("Name", "Kind", "Title", "What"):
-        table.add_column(col, overflow="fold")
-    for ex in catalogue(kind):
-        table.add_row(ex.name, EXAMPLE_KINDS[ex.kind][1], ex.title, ex.description)
-    console().print(table)
-    click.echo(
-        "Use a name wherever a file is expected (ENGINE, MODEL_OR_ENGINE, LINKAGE, STUDY); "
-        "`crankdyn example NAME` writes the file to edit."
+    table = TextTable(
+        "Built-in examples",
+        ["Name", "Kind", "Title", "What"],
+        [[ex.name, EXAMPLE_KINDS[ex.kind][1], ex.title, ex.description] for ex in catalogue(kind)],
+        text_columns={0, 1, 2, 3},
+    )
+    Output("table").write(
+        blocks=[
+            table,
+            "Use a name wherever a file is expected (ENGINE, MODEL_OR_ENGINE, LINKAGE, STUDY); "
+            "`crankdyn example NAME` writes the file to edit.",
+        ]
     )
 
 

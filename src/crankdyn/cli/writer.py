@@ -21,8 +21,8 @@ from pathlib import Path
 import click
 import numpy as np
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table as RichTable
+from rich.text import Text
 
 from crankdyn.cli.common import console
 from crankdyn.display import column_text, format_value
@@ -183,21 +183,22 @@ def _parts(table: TextTable, width: int) -> list[list[int]]:
 
 
 def _rich(table: TextTable, columns: list[int], title: str) -> RichTable:
+    # every string goes in as a Text: user text is never read as markup, whatever the console
     widths = _widths(table)
-    rich = RichTable(title=escape(title) if title else None, header_style="bold")
+    rich = RichTable(title=Text(title) if title else None, header_style="bold")
     for c in columns:
         text = c in table.text_columns
         rich.add_column(
-            escape(_wrap(table.header[c], widths[c])),
+            Text(_wrap(table.header[c], widths[c])),
             justify="left" if text else "right",
             overflow="fold",
             no_wrap=not text,
             min_width=widths[c],
         )
     for row in table.rows:
-        rich.add_row(*(escape(row[c]) for c in columns))
+        rich.add_row(*(Text(row[c]) for c in columns))
     if table.caption:
-        rich.caption = escape(table.caption)
+        rich.caption = Text(table.caption)
     return rich
 
 
@@ -212,7 +213,7 @@ def render(blocks, con: Console) -> None:
                     title = f"{block.title} (part {n + 1} of {len(parts)})".strip()
                 con.print(_rich(block, cols, title))
         elif block:
-            con.print(escape(str(block)), soft_wrap=False)
+            con.print(Text(str(block)), soft_wrap=False)
 
 
 # ---- the output of a command ------------------------------------------------------------------
@@ -262,9 +263,8 @@ class Output:
                 render(blocks, console())
                 return
             buffer = io.StringIO()
-            con = Console(
-                file=buffer, width=FILE_WIDTH, soft_wrap=False, highlight=False, record=False
-            )
+            con = console(file=buffer)  # the shared console's settings, a fixed width
+            con.width = FILE_WIDTH
             render(blocks, con)
             text = buffer.getvalue()
         if self.path is not None:
