@@ -129,3 +129,50 @@ def test_response_peaks_agree(cli, session):
     line = next(ln for ln in table.splitlines() if f"{shaft[0]} - {shaft[1]}" in ln)
     assert f" {text} " in line or text in line
     assert f"{speed * 30 / math.pi:.1f}" in line
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("linkage", "forces", "fourbar-seed004"),
+        (
+            "linkage",
+            "fourbar",
+            "--crank",
+            "20",
+            "--coupler",
+            "70",
+            "--rocker",
+            "50",
+            "--ground",
+            "60",
+        ),
+    ],
+)
+def test_linkage_summaries_do_not_depend_on_the_rows(cli, args):
+    """A 10 deg table and the 1 deg JSON give the same figures: the table's summary is the
+    full-turn analysis's."""
+    fine = _flat(json.loads(cli(*args, "--format", "json").out))
+    coarse = _flat(json.loads(cli(*args, "--format", "json", "--step", "10").out))
+    assert fine and {k: v for k, v in coarse.items() if k in fine} == {
+        k: v for k, v in fine.items() if k in coarse
+    }
+
+
+def test_the_other_torsion_commands_are_the_sessions(cli, session):
+    ex = json.loads(cli("torsion", "excitation", ENGINE, "--format", "json").out)
+    assert ex["amplitude_Nm"] == list(session.harmonics().amplitude)
+    camp = json.loads(cli("torsion", "campbell", ENGINE, "--format", "json").out)
+    assert camp == json.loads(json.dumps(session.campbell().to_dict()))
+    damper = json.loads(
+        cli(
+            "torsion", "damper", ENGINE, "--at", "pulley", "--mode", "2", "--inertia", "0.01",
+            "--format", "json",
+        ).out
+    )  # fmt: skip
+    design = session.damper("pulley", 2, 0.01)
+    assert {k: v for k, v in damper.items() if "damper" not in k or k == "dampers"} == {
+        k: v for k, v in json.loads(json.dumps(design.to_dict())).items()
+    }
+    firing = json.loads(cli("firing-orders", ENGINE, "--format", "json").out)
+    assert firing == json.loads(json.dumps(session.firing_orders().ranked_list()))
