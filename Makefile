@@ -20,7 +20,7 @@ $(VENV)/.stamp-test: pyproject.toml | $(BIN)/python
 
 ## make demo: install and run the main job on the built-in inline-6 diesel
 demo: $(VENV)/.stamp-base
-	$(BIN)/crankdyn demo --out $(OUT) --force
+	$(BIN)/crankdyn demo -o $(OUT) --force
 
 ## make test: install with test extras, lint, run the whole suite
 test: $(VENV)/.stamp-test

@@ -2,96 +2,94 @@
 
 from __future__ import annotations
 
-import io
 import math
 
 import click
-from rich.console import Console
-from rich.markup import escape
-from rich.table import Table as RichTable
 
 from crankdyn.cli.common import (
     check_plot_path,
-    console,
-    emit,
-    format_option,
     option_quantity,
-    output_options,
     plot_option,
     save_figure,
 )
+from crankdyn.cli.examples import examples_alias
+from crankdyn.cli.writer import Output, TextTable, output_options, result_table, summary_table
+from crankdyn.display import column_text
+from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
-from crankdyn.io.output import write_text
-from crankdyn.io.torsion_file import load_torsion_example, resolve_torsion, torsion_example_names
-from crankdyn.torsion.holzer import holzer_table, residual_curve
-from crankdyn.torsion.modal import SOLVERS, natural_modes
+from crankdyn.io.catalogue import resolve_model_and_engine
+from crankdyn.torsion.modal import SOLVERS
 
 _MODEL_HELP = (
     "MODEL_OR_ENGINE is a torsional model file, an engine file with a [torsion] section, the "
-    "name of a built-in model (`crankdyn torsion examples`) or of a built-in engine."
+    "name of a built-in model or of a built-in engine (`crankdyn examples`)."
 )
 
 
 @click.group("torsion")
 def torsion_group() -> None:
-    """Crankshaft torsional vibration: lumped models and free vibration.
+    """Crankshaft torsional vibration: lumped models, free and forced vibration.
 
     Models are TOML files of masses, shafts and gears (docs/torsion-file.md).
     """
 
 
-def _print_tables(tables: list[RichTable], output: str | None, force: bool) -> None:
-    if not output or output == "-":
-        con = console()
-        for table in tables:
-            con.print(table)
-        return
-    con = Console(record=True, width=160, file=io.StringIO())
-    for table in tables:
-        con.print(table)
-    path = write_text(output, con.export_text(), force=force)
-    click.echo(f"wrote {path}", err=True)
+def model_session(
+    spec: str, *, orders: str | None = None, option: str = "--orders", **options
+) -> Analysis:
+    """The analysis session of a MODEL_OR_ENGINE argument (with the engine when it is one),
+    with the ``--orders`` text read for its cycle."""
+    from crankdyn.cli.common import parse_orders
+
+    model, engine = resolve_model_and_engine(spec)
+    subject = engine if engine is not None else model
+    if orders is not None:
+        cycle = Analysis(subject).cycle
+        options["orders"] = parse_orders(orders, cycle, option)
+    return Analysis(subject, **options)
 
 
-def _g(value: float) -> str:
-    return f"{value:.6g}" if math.isfinite(value) else "-"
-
-
-def _modes_tables(result) -> list[RichTable]:
-    summary = RichTable(title=escape(result.model_name), header_style="bold")
-    summary.add_column("Mode", justify="right")
-    summary.add_column("Frequency\n(Hz)", justify="right")
-    summary.add_column("ω\n(rad/s)", justify="right")
-    summary.add_column("Modal inertia\n(kg·m²)", justify="right")
-    summary.add_column("Modal stiffness\n(N·m/rad)", justify="right")
-    summary.add_column("Nodes", justify="left")
-    for r in range(result.mode.size):
+def modes_tables(result) -> list[TextTable]:
+    """Every mode (frequency, modal inertia and stiffness, nodes) and the mode shapes."""
+    n = result.mode.size
+    hz, hz_unit = column_text(result.frequencies_hz, "Hz")
+    omega, _ = column_text(result.natural_frequency, "rad/s")
+    inertia, i_unit = column_text(result.modal_inertia, "kg·m²")
+    stiffness, k_unit = column_text(result.modal_stiffness, "N·m/rad")
+    rows = []
+    for r in range(n):
         nodes = result.nodes[r]
         where = (
             "rigid-body mode"
             if result.free and r == 0
-            else "; ".join(escape(n.describe()) for n in nodes)
+            else "; ".join(node.describe() for node in nodes) or "-"
         )
-        summary.add_row(
-            str(int(result.mode[r])),
-            _g(result.frequencies_hz[r]),
-            _g(result.natural_frequency[r]),
-            _g(result.modal_inertia[r]),
-            _g(result.modal_stiffness[r]),
-            where,
-        )
-    summary.caption = (
-        f"{result.structure}, {'free' if result.free else 'grounded'}; solver: {result.solver}"
+        rows.append([str(int(result.mode[r])), hz[r], omega[r], inertia[r], stiffness[r], where])
+    summary = TextTable(
+        result.model_name,
+        [
+            "Mode",
+            f"Frequency ({hz_unit})",
+            "Angular frequency (rad/s)",
+            f"Modal inertia ({i_unit})",
+            f"Modal stiffness ({k_unit})",
+            "Nodes",
+        ],
+        rows,
+        text_columns={5},
+        caption=f"{result.structure}, {'free' if result.free else 'grounded'}; "
+        f"solver: {result.solver}",
     )
-    shapes = RichTable(title="Mode shapes", header_style="bold")
-    shapes.caption = "largest amplitude 1"
-    shapes.add_column("Mass", justify="left")
-    for r in range(result.mode.size):
-        shapes.add_column(
-            f"{int(result.mode[r])}\n{result.frequencies_hz[r]:.4g} Hz", justify="right"
-        )
-    for i, name in enumerate(result.masses):
-        shapes.add_row(escape(name), *(f"{v:.4f}" for v in result.mode_shapes[:, i]))
+    shape_rows = [
+        [name, *(f"{v:.4f}" for v in result.mode_shapes[:, i])]
+        for i, name in enumerate(result.masses)
+    ]
+    shapes = TextTable(
+        "Mode shapes (largest amplitude 1)",
+        ["Mass", *(f"Mode {int(result.mode[r])} ({hz[r]} {hz_unit})" for r in range(n))],
+        shape_rows,
+        text_columns={0},
+    )
     return [summary, shapes]
 
 
@@ -112,30 +110,27 @@ def _modes_tables(result) -> list[RichTable]:
     metavar="LIST",
     help="Mode numbers to plot, e.g. 2,3,4 (default: the first six elastic modes).",
 )
-@format_option()
 @output_options
-def modes_command(model, solver, plot_path, plot_modes, fmt, output, force) -> int:
+def modes_command(model, solver, plot_path, plot_modes, fmt, output_path, force) -> int:
     """Natural frequencies, mode shapes, nodes and modal inertias of MODEL_OR_ENGINE.
 
     Every mode is listed, ascending; a free model's rigid-body mode is 0.0 Hz. Mode shapes are
     normalised to a largest absolute amplitude of 1.
     """
+    out = Output(fmt, output_path, force)
+    out.check()
     chosen = _mode_list(plot_modes)
     check_plot_path(plot_path, force)
-    torsion = resolve_torsion(model)
-    result = natural_modes(torsion, solver)
+    result = model_session(model).modes_by(solver)
     if chosen is not None:
         bad = [m for m in chosen if not 1 <= m <= result.mode.size]
         if bad:
             raise InputError(
                 f"the model has modes 1..{result.mode.size}", key="--plot-modes", value=plot_modes
             )
+    out.write(blocks=modes_tables(result), json_data=result, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(modes=chosen), plot_path, force)
-    if fmt == "table":
-        _print_tables(_modes_tables(result), output, force)
-    else:
-        emit(result, fmt, output, force)
     return 0
 
 
@@ -161,7 +156,7 @@ def _mode_list(text: str | None) -> list[int] | None:
     "--frequency",
     required=True,
     metavar="HZ",
-    help="Trial frequency (Hz, or with a unit: '120 Hz', '7200 rpm').",
+    help="Trial frequency (Hz for a bare number, or with a unit: '120 Hz', '7200 rpm').",
 )
 @plot_option("Also write the residual-torque curve with its zeros (.png, .svg or .pdf).")
 @click.option(
@@ -170,15 +165,16 @@ def _mode_list(text: str | None) -> list[int] | None:
     metavar="HZ",
     help="Upper end of the plotted curve (default: 1.15 x the highest natural frequency).",
 )
-@format_option()
 @output_options
-def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, force) -> int:
+def holzer_command(model, frequency, plot_path, max_frequency, fmt, output_path, force) -> int:
     """Holzer's table of MODEL_OR_ENGINE (a chain) at a trial frequency.
 
     Per mass: the angle (the first mass's is 1), the inertia torque J ω² θ, the accumulated
     torque and the twist of the shaft to the next mass. The residual torque after the last mass
     vanishes at a natural frequency.
     """
+    out = Output(fmt, output_path, force)
+    out.check()
     f = option_quantity(frequency, "frequency", "--frequency", "Hz")
     if f < 0.0:
         raise InputError("the frequency must not be negative", key="--frequency", value=frequency)
@@ -188,39 +184,25 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output, forc
             "the frequency must be positive", key="--max-frequency", value=max_frequency
         )
     check_plot_path(plot_path, force)
-    torsion = resolve_torsion(model)
+    session = model_session(model)
     try:
-        table = holzer_table(torsion, 2.0 * math.pi * f)
+        table = session.holzer(2.0 * math.pi * f)
     except InputError as exc:
         if exc.key != "frequency":
             raise
         raise InputError(exc.message, key="--frequency", value=frequency) from None
+    out.write(
+        blocks=[result_table(table, title="Holzer's table"), summary_table(table)],
+        json_data=table,
+        csv_text=table.to_csv(),
+    )
     if plot_path:
-        curve = residual_curve(torsion, None if f_max is None else 2.0 * math.pi * f_max)
+        curve = session.residual_curve(None if f_max is None else 2.0 * math.pi * f_max)
         save_figure(curve.plot(), plot_path, force)
-    emit(table, fmt, output, force, summary=table)
     return 0
 
 
-@torsion_group.command("examples")
-def examples_command() -> int:
-    """List the built-in torsional models (engines with a [torsion] section work too)."""
-    table = RichTable(title="Built-in torsional models", header_style="bold")
-    for col in ("Name", "Model", "Masses", "Structure", "Ends"):
-        table.add_column(col)
-    for name in torsion_example_names():
-        m = load_torsion_example(name)
-        table.add_row(
-            escape(name),
-            escape(m.name),
-            str(m.mass_count),
-            "chain" if m.is_chain else "branched",
-            "free" if m.is_free else "grounded",
-        )
-    console().print(table)
-    return 0
-
-
+torsion_group.add_command(examples_alias("model", "torsion"))
 torsion_group.help = (torsion_group.help or "") + "\n\n" + _MODEL_HELP
 
 

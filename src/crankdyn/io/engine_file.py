@@ -3,91 +3,39 @@
 from __future__ import annotations
 
 import math
-from importlib import resources
 from pathlib import Path
 
 from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.masses import Masses
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
-from crankdyn.engine.balance import BalanceInputs
 from crankdyn.engine.firing import throw_angles_from_positions
-from crankdyn.engine.flywheel import FlywheelInputs
-from crankdyn.engine.model import ASPIRATIONS, CYCLES, FUELS, LAYOUTS, Cylinders, Engine
+from crankdyn.engine.model import (
+    ASPIRATIONS,
+    CYCLES,
+    FUELS,
+    LAYOUTS,
+    BalanceInputs,
+    Cylinders,
+    Engine,
+    FlywheelInputs,
+)
 from crankdyn.errors import InputError
+from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
-from crankdyn.io.schema import Table, suggest
+from crankdyn.io.schema import Table
 from crankdyn.io.torsion_file import parse_torsion_section
 from crankdyn.io.traces import read_pressure_trace
 
 __all__ = [
-    "example_files",
-    "example_names",
     "load_engine",
-    "load_example",
     "parse_engine",
-    "resolve_engine",
 ]
-
-_EXAMPLES = resources.files("crankdyn") / "examples"
-
-
-def example_names() -> list[str]:
-    """Names of the built-in example engines (the TOML files shipped with the package)."""
-    return sorted(p.name[:-5] for p in _EXAMPLES.iterdir() if p.name.endswith(".toml"))
-
-
-def example_files(name: str) -> list[Path]:
-    """The files of a built-in example: its TOML file and the files it refers to."""
-    path = _example_path(name)
-    data = load_toml(path)
-    files = [path]
-    trace = data.get("pressure", {}).get("file") if isinstance(data.get("pressure"), dict) else None
-    if isinstance(trace, str):
-        files.append(path.parent / trace)
-    torsion = data.get("torsion") if isinstance(data.get("torsion"), dict) else {}
-    excitation = torsion.get("excitation") if isinstance(torsion.get("excitation"), dict) else {}
-    named = [excitation.get("load_curve"), excitation.get("harmonics")]
-    named += [t.get("file") for t in excitation.get("trace", []) if isinstance(t, dict)]
-    files += [path.parent / f for f in named if isinstance(f, str)]
-    return files
-
-
-def _example_path(name: str) -> Path:
-    names = example_names()
-    if name not in names:
-        raise InputError(
-            f"no built-in example of that name (examples: {', '.join(names)})"
-            + suggest(name, names),
-            key="example",
-            value=name,
-        )
-    return Path(str(_EXAMPLES / f"{name}.toml"))
-
-
-def load_example(name: str) -> Engine:
-    """Load a built-in example engine by name."""
-    path = _example_path(name)
-    return _load(path, f"{name} (built-in example)")
 
 
 def load_engine(path: str | Path) -> Engine:
     """Load an engine description file."""
     return _load(Path(path), display_name(path))
-
-
-def resolve_engine(spec: str) -> Engine:
-    """An ENGINE argument: a path to an engine file, or a built-in example name."""
-    p = Path(spec)
-    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
-        return load_engine(p)
-    names = example_names()
-    if spec in names:
-        return load_example(spec)
-    raise InputError(
-        f"no such file or built-in example (examples: {', '.join(names)}){suggest(spec, names)}",
-        file=spec,
-    )
 
 
 def _load(path: Path, name: str) -> Engine:
@@ -259,7 +207,7 @@ def _pressure(t: Table | None, cycle: str, geometry: CrankGeometry):
                 trace_path,
                 firing_tdc=firing_tdc,
                 cycle_angle=cycle_angle,
-                display=_display_path(trace_path),
+                display=display_path(trace_path),
             )
             if eps is not None:
                 trace = PressureTrace(
@@ -313,19 +261,6 @@ _MODEL_KEYS = {
     "peak_pressure": ("pressure", "positive"),
 }
 """Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
-
-
-def _display_path(path: Path) -> str:
-    """A file as the user knows it: by name for files that ship with the package, else relative
-    to the working folder when inside it, else as given."""
-    try:
-        return str(path.resolve().relative_to(Path(str(_EXAMPLES)).resolve()))
-    except ValueError:
-        pass
-    try:
-        return str(path.resolve().relative_to(Path.cwd().resolve()))
-    except ValueError:
-        return str(path)
 
 
 def _torsion(t: Table | None, name: str, geometry, cylinders, masses):

@@ -8,13 +8,11 @@ See docs/torsion-file.md. A model file holds ``name`` and the arrays of tables `
 
 from __future__ import annotations
 
-from importlib import resources
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from crankdyn.errors import InputError
-from crankdyn.io.files import display_name, load_toml
-from crankdyn.io.schema import Table, suggest
+from crankdyn.errors import did_you_mean
+from crankdyn.io.schema import Table
 from crankdyn.torsion.equivalent import (
     CrankThrowGeometry,
     ThrowSpec,
@@ -26,19 +24,13 @@ from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, Tor
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.crank.geometry import CrankGeometry
     from crankdyn.crank.masses import Masses
-    from crankdyn.engine.model import Cylinders, Engine
+    from crankdyn.engine.model import Cylinders
 
 __all__ = [
-    "load_torsion_example",
-    "load_torsion_model",
     "parse_torsion_model",
     "parse_torsion_section",
-    "resolve_torsion",
-    "torsion_example_files",
-    "torsion_example_names",
 ]
 
-_EXAMPLES = resources.files("crankdyn") / "examples" / "torsion"
 _CARTER_KEYS = (
     "journal_diameter",
     "journal_length",
@@ -48,76 +40,6 @@ _CARTER_KEYS = (
     "web_width",
     "shear_modulus",
 )
-
-
-# ---- built-in models and resolution -----------------------------------------------------------
-def torsion_example_names() -> list[str]:
-    """Names of the built-in torsional models (TOML files shipped with the package)."""
-    return sorted(p.name[:-5] for p in _EXAMPLES.iterdir() if p.name.endswith(".toml"))
-
-
-def torsion_example_files(name: str) -> Path:
-    """The file of a built-in torsional model."""
-    names = torsion_example_names()
-    if name not in names:
-        raise InputError(
-            f"no built-in torsional model of that name (models: {', '.join(names)})"
-            + suggest(name, names),
-            key="model",
-            value=name,
-        )
-    return Path(str(_EXAMPLES / f"{name}.toml"))
-
-
-def load_torsion_example(name: str) -> TorsionModel:
-    """A built-in torsional model by name."""
-    path = torsion_example_files(name)
-    return parse_torsion_model(
-        load_toml(path, what="model file"), file=f"{name} (built-in model)", base_dir=path.parent
-    )
-
-
-def load_torsion_model(path: str | Path) -> TorsionModel:
-    """A torsional model from a model file, or from an engine file's [torsion] section."""
-    name = display_name(path)
-    data = load_toml(path, what="model file")
-    if "geometry" in data:  # an engine file
-        from crankdyn.io.engine_file import parse_engine  # avoids an import cycle
-
-        return engine_torsion(parse_engine(data, file=name, base_dir=Path(path).parent))
-    return parse_torsion_model(
-        data, file=name, base_dir=Path(path).parent, default_name=Path(path).stem
-    )
-
-
-def engine_torsion(engine: Engine) -> TorsionModel:
-    """The engine's torsional model, or a one-line error when it has no [torsion] section."""
-    if engine.torsion is None:
-        raise InputError(
-            "the engine has no [torsion] section (docs/torsion-file.md)", file=engine.source
-        )
-    return engine.torsion
-
-
-def resolve_torsion(spec: str) -> TorsionModel:
-    """A MODEL_OR_ENGINE argument: a model or engine file, a built-in torsional model, or a
-    built-in engine with a [torsion] section."""
-    from crankdyn.io.engine_file import example_names, load_example
-
-    p = Path(spec)
-    if p.exists() or spec.endswith(".toml") or "/" in spec or "\\" in spec:
-        return load_torsion_model(p)
-    models = torsion_example_names()
-    if spec in models:
-        return load_torsion_example(spec)
-    engines = example_names()
-    if spec in engines:
-        return engine_torsion(load_example(spec))
-    raise InputError(
-        f"no such file, built-in model ({', '.join(models)}) or built-in engine "
-        f"({', '.join(engines)}){suggest(spec, models + engines)}",
-        file=spec,
-    )
 
 
 # ---- parsing ------------------------------------------------------------------------------------
@@ -227,7 +149,7 @@ def _read(t: Table, *, default_name: str, engine) -> TorsionModel:
 def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
     for end in ends:
         if end != GROUND and end not in known:
-            raise t.error("between", f'no mass named "{end}"{suggest(end, known)}', list(ends))
+            raise t.error("between", f'no mass named "{end}"{did_you_mean(end, known)}', list(ends))
 
 
 def _check_cylinders(tables, masses, cylinders: Cylinders, generated: bool) -> None:

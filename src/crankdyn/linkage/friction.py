@@ -29,18 +29,16 @@ back (both negative), NaN where the two differ in sign (power passes through zer
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from crankdyn.errors import InputError
-from crankdyn.linkage.kinetostatics import (
-    KinetostaticSystem,
-    _cross_arm,
-    _joint_geometry,
-    _sign_of_speed,
-    driving_torque_of,
-)
+from crankdyn.linkage.joints import cross_arm, driving_torque_of, joint_geometry, sign_of_speed
 from crankdyn.linkage.planar import GROUND, Mechanism, MechanismMotion
+
+if TYPE_CHECKING:  # pragma: no cover
+    from crankdyn.linkage.kinetostatics import KinetostaticSystem
 
 __all__ = ["efficiency", "has_friction", "solve_with_friction"]
 
@@ -57,7 +55,7 @@ def has_friction(mech: Mechanism) -> bool:
 def _friction_terms(motion: MechanismMotion):
     """Per joint: (rows/columns needed to add its friction) as closures over the kinematics."""
     mech = motion.mechanism
-    direction = _sign_of_speed(motion.speed)
+    direction = sign_of_speed(motion.speed)
     terms = []
     col = 0
     for joint in mech.joints:
@@ -68,7 +66,7 @@ def _friction_terms(motion: MechanismMotion):
             rel = np.sign(np.round((w_j - w_i) * direction, 12))
             terms.append(("revolute", joint, col, rel, None, None))
         elif joint.kind == "prismatic" and joint.friction > 0.0:
-            r, _nrm, t = _joint_geometry(motion, joint)
+            r, _nrm, t = joint_geometry(motion, joint)
             v_j = motion.point(joint.point, link=second, which="qp")
             if first == GROUND:
                 v_i = np.zeros_like(v_j)
@@ -106,7 +104,7 @@ def _friction_vector(motion, terms, R, n_eq):
             for sign, link in ((1.0, second), (-1.0, first)):
                 if link != GROUND:
                     k = 3 * (model.index[link] - 1)
-                    mx, my = _cross_arm(r - G[link])
+                    mx, my = cross_arm(r - G[link])
                     out[:, k] += sign * fx
                     out[:, k + 1] += sign * fy
                     out[:, k + 2] += sign * (mx * fx + my * fy)
@@ -159,7 +157,7 @@ def prismatic_friction_forces(terms, R) -> dict:
 def efficiency(ideal, actual, speed: float = 1.0) -> np.ndarray:
     """Instantaneous efficiency from the ideal and actual driving torques (module docstring);
     the sense of the crank's rotation is that of ``speed``."""
-    s = _sign_of_speed(speed)
+    s = sign_of_speed(speed)
     m0, m = np.asarray(ideal) * s, np.asarray(actual) * s
     out = np.full(m.shape, np.nan)
     tiny = 1e-12 * max(float(np.max(np.abs(m), initial=0.0)), 1e-300)

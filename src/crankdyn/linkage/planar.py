@@ -38,9 +38,10 @@ from functools import cached_property
 
 import numpy as np
 
+from crankdyn.constants import DEG
 from crankdyn.crank.geometry import check_finite
-from crankdyn.errors import InputError
-from crankdyn.results import DEG, Result, column, freeze, scalar
+from crankdyn.errors import InputError, did_you_mean
+from crankdyn.results import Result, column, freeze, scalar
 
 __all__ = [
     "GROUND",
@@ -55,7 +56,6 @@ __all__ = [
     "MechanismMotion",
     "Torque",
     "degrees_of_freedom",
-    "fourbar_mechanism",
     "is_statically_determinate",
     "linkage_kinematics",
     "slider_crank_mechanism",
@@ -392,7 +392,7 @@ class Mechanism:
             for p in link.points:
                 if p not in point_set:
                     raise InputError(
-                        f"no point of that name{_did_you_mean(p, names)}",
+                        f"no point of that name{did_you_mean(p, names)}",
                         key=_key("link", link.name, "points"),
                         value=p,
                     )
@@ -405,13 +405,13 @@ class Mechanism:
             for ln in j.links:
                 if ln not in all_links:
                     raise InputError(
-                        f"no link of that name{_did_you_mean(ln, sorted(all_links))}",
+                        f"no link of that name{did_you_mean(ln, sorted(all_links))}",
                         key=_key("joint", j.name, "links"),
                         value=ln,
                     )
             if j.point not in point_set:
                 raise InputError(
-                    f"no point of that name{_did_you_mean(j.point, names)}",
+                    f"no point of that name{did_you_mean(j.point, names)}",
                     key=_key("joint", j.name, "point"),
                     value=j.point,
                 )
@@ -453,7 +453,7 @@ class Mechanism:
         joints = {j.name: j for j in self.joints}
         if d.joint not in joints:
             raise InputError(
-                f"no joint of that name{_did_you_mean(d.joint, joint_names)}",
+                f"no joint of that name{did_you_mean(d.joint, joint_names)}",
                 key="driver joint",
                 value=d.joint,
             )
@@ -481,7 +481,7 @@ class Mechanism:
         for f in self.forces:
             if f.link not in by_name:
                 raise InputError(
-                    f"no moving link of that name{_did_you_mean(f.link, link_names)}",
+                    f"no moving link of that name{did_you_mean(f.link, link_names)}",
                     key="force link",
                     value=f.link,
                 )
@@ -492,7 +492,7 @@ class Mechanism:
         for t in self.torques:
             if t.link not in by_name:
                 raise InputError(
-                    f"no moving link of that name{_did_you_mean(t.link, link_names)}",
+                    f"no moving link of that name{did_you_mean(t.link, link_names)}",
                     key="torque link",
                     value=t.link,
                 )
@@ -638,19 +638,18 @@ class Mechanism:
 
         return load_linkage(path)
 
+    def _repr_html_(self) -> str:
+        """The links (masses, inertias) and joints (notebooks)."""
+        from crankdyn.display import mechanism_html
+
+        return mechanism_html(self)
+
     @classmethod
     def example(cls, name: str) -> Mechanism:
         """A built-in example linkage by name (``crankdyn linkage examples`` lists them)."""
-        from crankdyn.io.linkage_file import load_linkage_example
+        from crankdyn.io.catalogue import load_example
 
-        return load_linkage_example(name)
-
-
-def _did_you_mean(word: str, names) -> str:
-    import difflib
-
-    match = difflib.get_close_matches(str(word), list(names), n=1, cutoff=0.6)
-    return f' (did you mean "{match[0]}"?)' if match else ""
+        return load_example(name, "linkage")
 
 
 def _connected(links: set[str], joints) -> bool:
@@ -1134,70 +1133,6 @@ class MechanismMotion:
 
 
 # ---- constructors of common mechanisms ----------------------------------------------------
-
-
-def fourbar_mechanism(
-    fourbar,
-    theta2: float = math.radians(60.0),
-    *,
-    masses: tuple[float, float, float] = (0.0, 0.0, 0.0),
-    inertias: tuple[float, float, float] = (0.0, 0.0, 0.0),
-    cgs: tuple | None = None,
-    speed: float = 1.0,
-    acceleration: float = 0.0,
-    gravity=(0.0, 0.0),
-    forces=(),
-    torques=(),
-    name: str = "four-bar",
-) -> Mechanism:
-    """A :class:`~crankdyn.linkage.fourbar.FourBar` as a general Mechanism, drawn at crank angle
-    theta2 (rad) on its branch: points A (origin), B, C, D (ground, d, 0) and the coupler point P
-    if any; links crank (A, B), coupler (B, C[, P]), rocker (D, C); joints A, B, C, D.
-
-    ``cgs`` gives each link's centre of gravity as the fraction along its line (crank from A,
-    coupler from B, rocker from D), default the midpoints.
-    """
-    from crankdyn.linkage.fourbar import fourbar_positions
-
-    a, b, c, d = fourbar.lengths
-    t3, t4 = fourbar_positions(np.array([theta2]), a, b, c, d, fourbar.branch)
-    if not np.isfinite(t4[0]):
-        raise fourbar.assembly_error(theta2)
-    pa = np.array([0.0, 0.0])
-    pb = a * np.array([math.cos(theta2), math.sin(theta2)])
-    pd = np.array([d, 0.0])
-    pc = pd + c * np.array([math.cos(t4[0]), math.sin(t4[0])])
-    points = {"A": pa, "B": pb, "C": pc, "D": pd}
-    coupler_pts = ["B", "C"]
-    if fourbar.coupler_point is not None:
-        p, qq = fourbar.coupler_point
-        u = np.array([math.cos(t3[0]), math.sin(t3[0])])
-        points["P"] = pb + p * u + qq * np.array([-u[1], u[0]])
-        coupler_pts.append("P")
-    fr = cgs or (0.5, 0.5, 0.5)
-    ends = ((pa, pb), (pb, pc), (pd, pc))
-    cg = [tuple(s + f * (e - s)) for f, (s, e) in zip(fr, ends, strict=True)]
-    links = (
-        Link("crank", ("A", "B"), masses[0], inertias[0], cg[0]),
-        Link("coupler", tuple(coupler_pts), masses[1], inertias[1], cg[1]),
-        Link("rocker", ("D", "C"), masses[2], inertias[2], cg[2]),
-    )
-    joints = (
-        Joint("A", "revolute", (GROUND, "crank"), "A"),
-        Joint("B", "revolute", ("crank", "coupler"), "B"),
-        Joint("C", "revolute", ("coupler", "rocker"), "C"),
-        Joint("D", "revolute", (GROUND, "rocker"), "D"),
-    )
-    return Mechanism(
-        name=name,
-        points={k: tuple(v) for k, v in points.items()},
-        links=links,
-        joints=joints,
-        driver=Driver("A", "B", 0.0, speed, acceleration),
-        forces=tuple(forces),
-        torques=tuple(torques),
-        gravity=gravity,
-    )
 
 
 def slider_crank_mechanism(

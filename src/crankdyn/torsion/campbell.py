@@ -26,8 +26,8 @@ from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
-    _cylinder_amplitudes,
     check_orders,
+    cylinder_amplitudes,
     major_orders,
     relative_amplitude_sums,
 )
@@ -175,7 +175,7 @@ def campbell(
     if excitation is not None:
         angles = excitation.firing_angles
         major = major_orders(angles, orders)
-        beta = _cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
+        beta = cylinder_amplitudes(modes, full, excitation.cylinder_count)[elastic]
         rel = relative_amplitude_sums(beta, angles, orders)  # (modes, orders)
         note = getattr(excitation, "note", "")
         if note:

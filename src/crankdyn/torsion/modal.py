@@ -115,6 +115,13 @@ class ModalResult(Result):
         out["nodes"] = [[n.to_dict() for n in mode] for mode in self.nodes]
         return out
 
+    def key_rows(self) -> list[tuple[str, str, str]]:
+        """The natural frequency and node count of every mode (the notebook view)."""
+        return [
+            (f"Mode {int(m)}", f"{f:.6g} Hz", f"{int(n)} node(s)")
+            for m, f, n in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
+        ]
+
     @property
     def frequencies_hz(self) -> np.ndarray:
         """Natural frequencies (Hz)."""

@@ -38,7 +38,7 @@ from functools import cached_property
 import numpy as np
 
 from crankdyn.crank.geometry import check_finite, check_positive
-from crankdyn.errors import InputError
+from crankdyn.errors import InputError, did_you_mean
 
 __all__ = [
     "GROUND",
@@ -477,14 +477,14 @@ class TorsionModel:
                     if end != GROUND and end not in seen:
                         raise InputError(
                             f'{what} "{item.between[0]}" - "{item.between[1]}": '
-                            f'no mass named "{end}"{_suggest(end, seen)}',
+                            f'no mass named "{end}"{did_you_mean(end, seen)}',
                             key="between",
                             value=list(item.between),
                         )
         for d in self.dampers:
             if d.at not in seen:
                 raise InputError(
-                    f'damper "{d.name}": no mass named "{d.at}"{_suggest(d.at, seen)}',
+                    f'damper "{d.name}": no mass named "{d.at}"{did_you_mean(d.at, seen)}',
                     key="at",
                     value=d.at,
                 )
@@ -532,7 +532,7 @@ class TorsionModel:
             return self._index[name]
         except KeyError:
             raise InputError(
-                f'no mass named "{name}"{_suggest(name, self._index)}', key="mass", value=name
+                f'no mass named "{name}"{did_you_mean(name, self._index)}', key="mass", value=name
             ) from None
 
     @property
@@ -698,19 +698,25 @@ class TorsionModel:
         )
 
     # ---- alternate constructors ---------------------------------------------------------------
+    def _repr_html_(self) -> str:
+        """The mass-elastic system: masses, shafts and gears (notebooks)."""
+        from crankdyn.display import torsion_model_html
+
+        return torsion_model_html(self)
+
     @classmethod
     def from_file(cls, path) -> TorsionModel:
         """Load a torsional model file (TOML; docs/torsion-file.md)."""
-        from crankdyn.io.torsion_file import load_torsion_model  # boundary, on demand
+        from crankdyn.io.catalogue import load_torsion_model  # boundary, on demand
 
         return load_torsion_model(path)
 
     @classmethod
     def example(cls, name: str) -> TorsionModel:
         """A built-in torsional model by name (``crankdyn torsion examples`` lists them)."""
-        from crankdyn.io.torsion_file import load_torsion_example
+        from crankdyn.io.catalogue import load_example
 
-        return load_torsion_example(name)
+        return load_example(name, "model")
 
     @classmethod
     def chain_of(
@@ -750,11 +756,6 @@ class TorsionModel:
 
 
 # ---- topology ---------------------------------------------------------------------------------
-def _suggest(word: str, names) -> str:
-    import difflib
-
-    match = difflib.get_close_matches(word, list(names), n=1, cutoff=0.6)
-    return f' (did you mean "{match[0]}"?)' if match else ""
 
 
 def _reference(masses) -> int:

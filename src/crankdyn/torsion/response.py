@@ -52,7 +52,7 @@ from functools import cached_property
 
 import numpy as np
 
-from crankdyn.errors import InputError
+from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.excitation import check_orders, harmonic_index, major_orders
@@ -512,10 +512,8 @@ class ResponseResult(Result):
         try:
             return self._mass_index[name]
         except KeyError:
-            from crankdyn.torsion.model import _suggest
-
             raise InputError(
-                f'no mass named "{name}"{_suggest(name, self._mass_index)}',
+                f'no mass named "{name}"{did_you_mean(name, self._mass_index)}',
                 key="mass",
                 value=name,
             ) from None
@@ -530,10 +528,8 @@ class ResponseResult(Result):
             if parts in ((a, b), (b, a)):
                 return i
         labels = [f"{a} - {b}" for a, b in self.shafts]
-        from crankdyn.torsion.model import _suggest
-
         text = " - ".join(parts)
-        raise InputError(f'no shaft "{text}"{_suggest(text, labels)}', key="shaft", value=text)
+        raise InputError(f'no shaft "{text}"{did_you_mean(text, labels)}', key="shaft", value=text)
 
     def relative_angle(self, a: str, b: str) -> RelativeAngle:
         """Relative angle theta_a - theta_b per order and synthesised (rad)."""
@@ -563,6 +559,32 @@ class ResponseResult(Result):
         from crankdyn.plots.torsion_response import plot_stress_limits
 
         return plot_stress_limits(self, fig=fig)
+
+    def key_rows(self) -> list[tuple[str, str, str]]:
+        """The largest synthesised amplitude and shaft torque, where and at which speed, and the
+        rule verdict (the notebook view)."""
+        from crankdyn.display import format_value
+
+        rows = []
+        amp = np.asarray(self.synthesized_amplitude)
+        i, k = np.unravel_index(int(np.argmax(amp)), amp.shape)
+        value, unit = format_value(float(amp[i, k]), "rad")
+        rows.append(
+            (
+                "Largest amplitude",
+                f"{value} {unit}",
+                f"{self.masses[k]} at {self.speed[i] * RPM:.1f} rpm",
+            )
+        )
+        torque = np.asarray(self.synthesized_shaft_torque)
+        i, s = np.unravel_index(int(np.argmax(torque)), torque.shape)
+        value, unit = format_value(float(torque[i, s]), "N·m")
+        where = f"{self.shafts[s][0]} - {self.shafts[s][1]} at {self.speed[i] * RPM:.1f} rpm"
+        rows.append(("Largest shaft torque", f"{value} {unit}", where))
+        if self.rule_check is not None:
+            verdict = "passed" if self.rule_check.passed else "FAILED"
+            rows.append((f"Rule check ({self.rule_check.rule})", verdict, ""))
+        return rows
 
     # ---- CSV: one row per speed -----------------------------------------------------------------
     def columns(self) -> dict[str, np.ndarray]:

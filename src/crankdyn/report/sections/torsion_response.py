@@ -7,26 +7,10 @@ import math
 import numpy as np
 
 from crankdyn.constants import RPM
-from crankdyn.format import number
+from crankdyn.display import number, quantity
+from crankdyn.errors import InputError
 from crankdyn.report.model import KeyFigure, Plot, Section, Table
 from crankdyn.report.sections import NotApplicable
-from crankdyn.torsion.campbell import campbell
-from crankdyn.torsion.excitation import excitation_for, fundamental_order, order_grid
-from crankdyn.torsion.response import forced_response
-
-STEP = 10.0 / RPM  # default speed step of the sweep: 10 rpm
-
-
-def _speeds(ctx, model) -> np.ndarray:
-    if ctx.speeds is not None:
-        return np.asarray(ctx.speeds, dtype=float)
-    if model.operating is None:
-        raise NotApplicable(
-            "no speed range for the forced response: give --speeds or "
-            "[torsion.operating] speed_range"
-        )
-    low, high = model.operating.low, model.operating.high
-    return low + STEP * np.arange(math.floor((high - low) / STEP * (1 + 1e-12)) + 1)
 
 
 def build(ctx) -> Section:
@@ -36,41 +20,48 @@ def build(ctx) -> Section:
         raise NotApplicable("the engine file has no [torsion] model")
     if not model.cylinder_dofs:
         raise NotApplicable("the [torsion] model has no mass carrying a cylinder")
-    speeds = _speeds(ctx, model)
-    excitation = excitation_for(model, engine)
-    base = fundamental_order(excitation.cycle)
-    orders = order_grid(base, 12.0, base, excitation.cycle)
-    result = ctx.get("torsion_response", lambda: forced_response(model, excitation, speeds, orders))
-    crit = campbell(model, orders, (float(speeds[0]), float(speeds[-1])), excitation=excitation)
+    a = ctx.analysis
+    try:
+        speeds = a.speeds
+    except InputError:
+        raise NotApplicable(
+            "no speed range for the forced response: give --speeds or "
+            "[torsion.operating] speed_range"
+        ) from None
+    orders = a.orders
+    result = a.response()
+    crit = a.campbell()
 
     torque = np.asarray(result.synthesized_shaft_torque)  # speed x shaft
-    s_idx = int(np.argmax(np.max(torque, axis=0)))
+    s_idx = result.shaft_index(a.most_loaded_shaft())
     v_idx = int(np.argmax(torque[:, s_idx]))
     shaft = " - ".join(result.shafts[s_idx])
     out_sum = np.asarray(result.shaft_torque)[:, -1]  # sum of order amplitudes, output-end shaft
     o_idx = int(np.argmax(out_sum))
     out_shaft = " - ".join(result.shafts[-1])
     first, last = result.masses[0], result.masses[-1]
-    rel = result.relative_angle(first, last)
+    rel = a.relative_angle(first, last)
     r_idx = int(np.argmax(rel.synthesized))
     figures = [
         KeyFigure(
             "max_vibratory_shaft_torque_Nm",
             "Max vibratory shaft torque (synthesised)",
             float(torque[v_idx, s_idx]),
-            f"{torque[v_idx, s_idx] / 1e3:.3g} kN·m in {shaft} at {speeds[v_idx] * RPM:.0f} rpm",
+            f"{quantity(float(torque[v_idx, s_idx]), 'N·m')} in {shaft} at "
+            f"{speeds[v_idx] * RPM:.0f} rpm",
         ),
         KeyFigure(
             "max_output_shaft_torque_order_sum_Nm",
             "Vibratory torque at the output end (sum of order amplitudes)",
             float(out_sum[o_idx]),
-            f"{out_sum[o_idx] / 1e3:.3g} kN·m in {out_shaft} at {speeds[o_idx] * RPM:.0f} rpm",
+            f"{quantity(float(out_sum[o_idx]), 'N·m')} in {out_shaft} at "
+            f"{speeds[o_idx] * RPM:.0f} rpm",
         ),
         KeyFigure(
             "max_relative_angle_rad",
             f"Max relative angle {first} - {last}",
             float(rel.synthesized[r_idx]),
-            f"{math.degrees(rel.synthesized[r_idx]):.3g}° at {speeds[r_idx] * RPM:.0f} rpm",
+            f"{number(math.degrees(rel.synthesized[r_idx]))}° at {speeds[r_idx] * RPM:.0f} rpm",
         ),
     ]
     majors = [c for c in crit.critical_speeds if c.major]

@@ -53,12 +53,12 @@ def test_another_study_in_the_folder_needs_force(cli, tmp_path):
     a = write_study(tmp_path / "a", ratios=(0.26,))
     b = write_study(tmp_path / "b", ratios=(0.26,), figures=["imep"])
     out = tmp_path / "out"
-    assert cli("study", a, "--out", out, "--workers", "1", "--no-summary").status == 0
-    refused = cli("study", b, "--out", out, "--workers", "1", "--no-summary")
+    assert cli("study", a, "--output", out, "--workers", "1", "--no-summary").status == 0
+    refused = cli("study", b, "--output", out, "--workers", "1", "--no-summary")
     assert refused.status == 2
     assert refused.err.startswith(f"crankdyn: error: {out}: holds the results of a different")
     assert refused.err.count("\n") == 1
-    forced = cli("study", b, "--out", out, "--workers", "1", "--no-summary", "--force")
+    forced = cli("study", b, "--output", out, "--workers", "1", "--no-summary", "--force")
     assert forced.status == 0, forced
     assert "imep_Pa" in (out / "results.csv").read_text()
 
@@ -70,7 +70,7 @@ def test_another_study_in_the_folder_needs_force(cli, tmp_path):
         (("nope.toml",), "nope.toml: no such study file"),
         (
             ("inline4-rod-and-firng",),
-            "inline4-rod-and-firng: no such file or built-in example study (examples: "
+            "inline4-rod-and-firng: no such file or built-in study (examples: "
             "inline4-rod-and-firing, inline6-flywheel-and-pulley-shaft, inline6-tolerances) "
             '(did you mean "inline4-rod-and-firing"?)',
         ),
@@ -100,18 +100,18 @@ def test_errors(cli, tmp_path, monkeypatch, args, message):
 
 
 def test_ctrl_c_while_the_tables_are_written_keeps_the_journal(cli, tmp_path, monkeypatch):
-    import crankdyn.study.results
+    import crankdyn.study.run.results
 
     def interrupted(*args, **kwargs):
         raise KeyboardInterrupt
 
     study = write_study(tmp_path / "files", ratios=(0.26,))
-    monkeypatch.setattr(crankdyn.study.results, "write_outputs", interrupted)
-    result = cli("study", study, "--out", tmp_path / "out", "--workers", "1")
+    monkeypatch.setattr(crankdyn.study.run.results, "write_outputs", interrupted)
+    result = cli("study", study, "--output", tmp_path / "out", "--workers", "1")
     assert result.status == 130
     assert "interrupted; the finished cases are kept in" in result.err
     assert (tmp_path / "out" / "journal.jsonl").read_text().count("\n") == 2
     monkeypatch.undo()
-    again = cli("study", study, "--out", tmp_path / "out", "--workers", "1", "--no-summary")
+    again = cli("study", study, "--output", tmp_path / "out", "--workers", "1", "--no-summary")
     assert again.status == 0 and (tmp_path / "out" / "results.csv").is_file()
     assert "2 cases finished in an earlier run are kept" in again.err

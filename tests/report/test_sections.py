@@ -10,6 +10,7 @@ import pytest
 
 import crankdyn.report.sections as sections
 from crankdyn.engine.model import Engine
+from crankdyn.engine.session import Analysis
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import Context, NotApplicable
 from crankdyn.report.write import write_report
@@ -20,17 +21,18 @@ OURS = ("firing", "balance", "flywheel")
 @pytest.mark.parametrize("name", ["v8-crossplane", "inline3-petrol"])
 def test_sections_build(name):
     e = Engine.example(name)
-    ctx = Context(engine=e, speed=e.speed)
+    ctx = Context(Analysis(e))
     for key in OURS:
         section = importlib.import_module(f"crankdyn.report.sections.{key}").build(ctx)
         assert section.key == key and section.figures and section.plots
-    assert "torque" in ctx.cache  # the balance and flywheel sections share one torque run
+    # the torque, balance and flywheel sections share one torque run
+    assert ctx.analysis.computed().count("torque") == 1
 
 
 def test_sections_not_applicable_without_masses():
     base = Engine.example("vaz2108")
     e = Engine(name="bare", geometry=base.geometry, cylinders=base.cylinders, speed=base.speed)
-    ctx = Context(engine=e, speed=e.speed)
+    ctx = Context(Analysis(e))
     for key in ("balance", "flywheel"):
         with pytest.raises(NotApplicable):
             importlib.import_module(f"crankdyn.report.sections.{key}").build(ctx)

@@ -1,10 +1,10 @@
-"""Plots that tell the truth (issue 14, point 8): curves that coincide are said to coincide,
-periodic polars are closed, legends and labels cover nothing, titles stay inside the figure,
-and a plot's resolution does not follow the table's --step."""
+"""crankdyn.plots.style and the plots that use it tell the truth (issue 14, point 8): curves that
+coincide are said to coincide, periodic polars are closed, legends cover nothing and stay inside
+the figure. (Linkage drawings: test_linkage_plots.py; a plot's resolution does not follow the
+table's --step: tests/cli/test_linkage_cli.py and tests/cli/test_forces_cli.py.)"""
 
 from __future__ import annotations
 
-import dataclasses
 import math
 
 import numpy as np
@@ -14,14 +14,11 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from crankdyn.engine.bearings import bearing_loads
 from crankdyn.engine.flywheel import engine_flywheel
 from crankdyn.engine.torque import engine_torque
-from crankdyn.io.engine_file import load_example
+from crankdyn.io.catalogue import load_example
 from crankdyn.linkage.fourbar import FourBar, fourbar_analysis
 from crankdyn.linkage.kinetostatics import kinetostatics
 from crankdyn.linkage.planar import Mechanism
-from crankdyn.plots.linkage import FORCE_LABEL, JOINT_LABEL, plot_mechanism, plot_paths
 from crankdyn.plots.style import closed, coinciding, identical, number_ranges
-
-LINKAGES = ("fourbar-seed004", "conveyor-seed004", "slider-crank-friction")
 
 
 @pytest.fixture(scope="module")
@@ -129,80 +126,3 @@ def test_legends_cover_no_curve_and_stay_in_the_figure(inline6):
                         & (xy[:, 1] < box.y1)
                     )
                     assert not inside.any(), (name, ax.get_ylabel(), line.get_label())
-
-
-def _long_named(mech, name):
-    return dataclasses.replace(mech, name=name)
-
-
-@pytest.mark.parametrize("linkage", LINKAGES)
-def test_mechanism_drawing_title_inside_and_labels_apart(linkage):
-    mech = Mechanism.example(linkage)
-    name = f"{mech.name}, drawn for the design review of the conveyor line, second revision"
-    motion = _long_named(mech, name).motion(mech.crank_angle_drawn + np.linspace(0, 2 * np.pi, 73))
-    for fig in (plot_mechanism(motion, 0, forces=kinetostatics(motion)), plot_paths(motion)):
-        renderer = _drawn(fig)
-        title = fig.get_suptitle()
-        assert name.split()[0] in title
-        box = fig._suptitle.get_window_extent(renderer)
-        assert fig.bbox.x0 <= box.x0 and box.x1 <= fig.bbox.x1 and box.y1 <= fig.bbox.y1
-        ax = fig.axes[0]
-        joints = [t for t in ax.texts if t.get_gid() == JOINT_LABEL]
-        forces = [t for t in ax.texts if t.get_gid() == FORCE_LABEL]
-        assert joints
-        for f in forces:
-            fbox = f.get_window_extent(renderer)
-            for j in joints:
-                assert not fbox.overlaps(j.get_window_extent(renderer)), (
-                    f.get_text(),
-                    j.get_text(),
-                )
-
-
-# ---- resolution ------------------------------------------------------------------------------
-
-
-@pytest.fixture
-def captured(monkeypatch):
-    """The figures the linkage commands save (instead of writing them)."""
-    import crankdyn.cli.linkage as linkage_cli
-
-    figures = []
-    monkeypatch.setattr(linkage_cli, "save_figure", lambda fig, path, force: figures.append(fig))
-    return figures
-
-
-def _torque_line(fig):
-    ax = next(ax for ax in fig.axes if ax.get_ylabel() == "Driving torque (N·m)")
-    return next(line for line in ax.get_lines() if line.get_label().startswith("matrix method"))
-
-
-def test_linkage_forces_plot_does_not_follow_the_table_step(cli, captured, tmp_path):
-    for step in ("10", "30"):
-        run = cli("linkage", "forces", "slider-crank-friction", "--step", step, "--plot", "f.png")
-        assert run.status == 0, run
-    coarse, coarser = (_torque_line(fig) for fig in captured)
-    assert len(coarse.get_xdata()) == len(coarser.get_xdata()) >= 1441
-    np.testing.assert_array_equal(coarse.get_ydata(), coarser.get_ydata())
-    # the slider's resistance reverses at the dead centre: the plotted torque falls there within
-    # one plot step (0.25 deg), not over the 10 deg of the table grid
-    x, y = coarse.get_xdata(), coarse.get_ydata()
-    near = (x > 170.0) & (x < 180.0)
-    assert np.max(y[near]) > 10 * np.min(np.abs(y[(x > 179.0) & (x < 181.0)])) + 1.0
-
-
-def test_fourbar_plot_does_not_follow_the_table_step(cli, captured):
-    args = ("linkage", "fourbar", "--crank", "73.4mm", "--coupler", "125.36mm")
-    args += ("--rocker", "103.4mm", "--ground", "103.52mm", "--plot", "f.png")
-    for step in ("10", "45"):
-        assert cli(*args, "--step", step).status == 0
-    assert cli(*args, "--angle", "30").status == 0
-    sizes = {
-        len(
-            next(ax for ax in fig.axes if "Transmission" in ax.get_ylabel())
-            .get_lines()[0]
-            .get_xdata()
-        )
-        for fig in captured
-    }
-    assert sizes == {1441}

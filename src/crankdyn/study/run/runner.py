@@ -1,9 +1,9 @@
 """Running a study: in one process, on a local process pool, or on a Dask cluster.
 
 The main process expands the cases, opens the output folder (resuming what it holds), hands the
-unfinished cases to an executor a few at a time, and appends every finished case to the journal
-as it arrives (crankdyn.study.journal). At the end, or on Ctrl-C, the results tables and the HTML
-summary are rebuilt from the journal.
+unfinished cases to an executor a few at a time, and appends every finished case to the
+journal as it arrives (crankdyn.study.run.journal). At the end, or on Ctrl-C, the results tables
+and the HTML summary are rebuilt from the journal.
 
 Executors:
 
@@ -42,9 +42,9 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, scalar
 from crankdyn.study.cases import Case, expand
 from crankdyn.study.figures import FIGURES
-from crankdyn.study.journal import Journal, StudyFolder
+from crankdyn.study.run.journal import Journal, StudyFolder
+from crankdyn.study.run.worker import Payload, evaluate_case, prepare_worker, warm_up
 from crankdyn.study.spec import StudySpec
-from crankdyn.study.worker import Payload, evaluate_case, prepare_worker, warm_up
 
 __all__ = ["StudyRun", "payload_of", "run_study", "start_method"]
 
@@ -154,7 +154,7 @@ def start_method() -> str:
 def _mp_context(method: str):
     ctx = multiprocessing.get_context(method)
     if method == "forkserver":
-        ctx.set_forkserver_preload(["crankdyn.study.preload"])  # ignored once the server runs
+        ctx.set_forkserver_preload(["crankdyn.study.run.preload"])  # ignored once the server runs
     return ctx
 
 
@@ -383,7 +383,7 @@ def run_study(
     spec
         The study.
     out
-        Output folder (crankdyn.study.journal for the rules on an existing one).
+        Output folder (crankdyn.study.run.journal for the rules on an existing one).
     workers
         Processes of the local pool (default: all cores; 1 runs the cases in this process).
     scheduler
@@ -404,7 +404,7 @@ def run_study(
     StudyRun
         Counts and timing; ``interrupted`` when Ctrl-C stopped the run (what finished is kept).
     """
-    from crankdyn.study.results import CaseTable, write_outputs
+    from crankdyn.study.run.results import CaseTable, write_outputs
 
     cases = expand(spec)
     info = {

@@ -197,7 +197,7 @@ class StudyFolder:
                 if not force:
                     raise InputError(
                         f"{MANIFEST} is not a crankdyn study manifest; give --force to start "
-                        "the study over in this folder, or choose another --out",
+                        "the study over in this folder, or choose another --output",
                         file=shown,
                     ) from None
                 manifest = None
@@ -208,14 +208,14 @@ class StudyFolder:
             raise InputError(
                 "holds the results of a different study (or of this one before its base file, "
                 "[analysis], figures, removed keys or crankdyn version changed); give --force to "
-                "discard them and start over, or choose another --out",
+                "discard them and start over, or choose another --output",
                 file=shown,
             )
         ours = {MANIFEST, JOURNAL, LOCK, *DERIVED}
         others = [q.name for q in p.iterdir() if q.name not in ours]
         if manifest is None and not force and (others or self.journal_path.exists()):
             raise InputError(
-                "is not empty and holds no crankdyn study; choose another --out, or give "
+                "is not empty and holds no crankdyn study; choose another --output, or give "
                 "--force to write the study into it (only the study's own files are replaced)",
                 file=shown,
             )

@@ -8,7 +8,9 @@ import numpy as np
 import pytest
 
 from crankdyn.errors import InputError
-from crankdyn.io.engine_file import example_names, load_engine, load_example, resolve_engine
+from crankdyn.io.catalogue import load_example, resolve_engine
+from crankdyn.io.engine_file import load_engine
+from crankdyn.io.examples import example_names
 
 BASE = """
 name = "test engine"
@@ -78,7 +80,9 @@ def test_examples_load(name):
 
 
 def test_example_list():
-    assert {"inline6-diesel", "single-cylinder", "v8-crossplane", "vaz2108"} <= set(example_names())
+    assert {"inline6-diesel", "single-cylinder", "v8-crossplane", "vaz2108"} <= set(
+        example_names("engine")
+    )
 
 
 def test_inline6_example_is_mendes2008():

@@ -22,9 +22,9 @@ from pathlib import Path
 from typing import Any
 
 from crankdyn.errors import InputError
+from crankdyn.io.study_file import parse_base
 from crankdyn.study.docpath import KeyPath, apply_values
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
-from crankdyn.study.spec import BASE_KINDS
 
 __all__ = ["Payload", "evaluate_case", "prepare_worker", "warm_up"]
 
@@ -48,7 +48,7 @@ class Payload:
 def warm_up() -> str:
     """Import the analyses and build the unit registry in this process (run on every Dask
     worker before the first case); returns the crankdyn version, checked against the client's."""
-    import crankdyn.study.preload  # noqa: F401
+    import crankdyn.study.run.preload  # noqa: F401
     from crankdyn import __version__
 
     return __version__
@@ -94,7 +94,7 @@ def _one_line(text: str) -> str:
 
 def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dict[str, Any]:
     """Apply a case to the base document, parse it with the base file's reader and compute the
-    figures; returns the journal record (crankdyn.study.journal)."""
+    figures; returns the journal record (crankdyn.study.run.journal)."""
     start = time.perf_counter()
     figures: dict[str, float | None] = {}
     error = None
@@ -103,7 +103,7 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
         values = {path: params[key] for key, paths in payload.targets for path in paths}
         document = apply_values(payload.document, values, payload.remove)
         base_dir = _base_dir(payload)
-        subject = BASE_KINDS[payload.kind].parse(document, file=payload.source, base_dir=base_dir)
+        subject = parse_base(payload.kind, document, file=payload.source, base_dir=base_dir)
         ctx = CaseContext(subject, payload.settings, payload.kind)
         for name in payload.figures:
             figures[name] = FIGURES[name].evaluate(ctx)

@@ -119,7 +119,7 @@ def test_balance_table_csv_options(cli, tmp_path):
         "--no-torque",
     )
     assert run.status == 0, run
-    assert "M per kW" in run.out and "1 rotating" in run.out
+    assert "power" in run.out and "(N·m/kW)" in run.out and "1 rotating" in run.out
     out = tmp_path / "b.csv"
     run = cli(
         "balance", "inline3-petrol", "--format", "csv", "-o", out, "--plot", tmp_path / "b.svg"
@@ -159,7 +159,6 @@ def test_flywheel_json_and_table(cli, tmp_path):
     [
         (("flywheel", "vaz2108", "--delta", "2"), "--delta"),
         (("flywheel", "vaz2108", "--delta", "x"), "fraction"),
-        (("flywheel", "vaz2108"), "give a target"),
         (("flywheel", "vaz2108", "--inertia", "-1"), "--inertia"),
         (("flywheel", "vaz2108", "--delta", "0.01", "--step", "7"), "--step"),
         (("balance", "vaz2108", "--orders", "0,2"), "--orders"),
@@ -178,6 +177,13 @@ def test_errors_one_line_status_2(cli, args, fragment):
     run = cli(*args)
     assert run.status == 2, run
     assert fragment in run.err and run.err.count("\n") == 1 and "Traceback" not in run.err
+
+
+def test_flywheel_default_target(cli):
+    """Without a target δ or a flywheel the session's default δ = 0.01 is used, and said."""
+    run = cli("flywheel", "vaz2108")
+    assert run.status == 0, run
+    assert "default 0.01" in run.out
 
 
 def test_balance_needs_masses(cli, write):

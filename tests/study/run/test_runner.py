@@ -16,12 +16,12 @@ from pathlib import Path
 import pytest
 
 from crankdyn.io.study_file import load_study
-from crankdyn.study.journal import read_journal
-from crankdyn.study.runner import run_study
+from crankdyn.study.run.journal import read_journal
+from crankdyn.study.run.runner import run_study
 from tests.study import helpers
 from tests.study.helpers import write_study
 
-REPO = Path(__file__).resolve().parents[2]
+REPO = Path(__file__).resolve().parents[3]
 
 
 def rows(folder: Path) -> list[dict]:
@@ -67,7 +67,7 @@ def test_dask_local_cluster_gives_the_same_table(reference, tmp_path, cli):
         address = cluster.scheduler_address
         assert address.startswith("tcp://127.0.0.1:")
         result = cli(
-            "study", study, "--scheduler", address, "--out", tmp_path / "dask", "--no-summary"
+            "study", study, "--scheduler", address, "--output", tmp_path / "dask", "--no-summary"
         )
     assert result.status == 0, result
     assert "Dask cluster at tcp://127.0.0.1" in result.out
@@ -78,7 +78,7 @@ def test_dask_workers_get_the_files_the_engine_names(tmp_path):
     """The base names a pressure trace: the workers receive its contents with the study, so
     the run succeeds even where the file is not (here: deleted after the study was read)."""
     distributed = pytest.importorskip("distributed")
-    from crankdyn.io.engine_file import example_files
+    from crankdyn.io.examples import example_files
 
     folder = tmp_path / "files"
     folder.mkdir()

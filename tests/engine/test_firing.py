@@ -165,7 +165,7 @@ def test_v_alternating_60deg_v12_fires_every_60deg():
     v = v_alternating([1, 5, 3, 6, 2, 4], math.radians(60), "four-stroke")
     assert v.firing_order == (1, 7, 5, 11, 3, 9, 6, 12, 2, 8, 4, 10)
     np.testing.assert_allclose(firing_intervals(v.firing_angles, "four-stroke"), 60 * DEG)
-    cyl = v.cylinders("four-stroke")
+    cyl = Cylinders.from_arrangement(v, "four-stroke")
     np.testing.assert_allclose(cyl.firing_angles, v.firing_angles, atol=1e-12)
     assert v_scheme(cyl.firing_order, cyl.banks, cyl.throws, cyl.firing_angles, cyl.cycle) == (
         "alternating"
@@ -177,7 +177,7 @@ def test_v_alternating_90deg_v6_common_pins_fires_90_150():
     assert v.firing_order == (1, 4, 2, 5, 3, 6)
     gaps = np.degrees(firing_intervals(v.firing_angles, "four-stroke"))
     np.testing.assert_allclose(gaps, [90, 150] * 3)
-    cyl = v.cylinders("four-stroke")
+    cyl = Cylinders.from_arrangement(v, "four-stroke")
     np.testing.assert_allclose(np.degrees(cyl.throw_positions), [0, 120, 240], atol=1e-9)
 
 

@@ -1,7 +1,7 @@
 """The results of a study: one table with the parameters and figures of every finished case
 (Parquet and CSV), and a short HTML summary (cases, best cases, sensitivity).
 
-Both are rebuilt from the journal (crankdyn.study.journal) and written atomically, so a reader
+Both are rebuilt from the journal (crankdyn.study.run.journal) and written atomically, so a reader
 never sees half a table. Columns, in order:
 
 - ``case``: the case's number in the study's order (1-based); ``case_id``: its stable id;
@@ -32,6 +32,7 @@ from typing import Any
 import numpy as np
 
 from crankdyn import __version__
+from crankdyn.constants import RPM
 from crankdyn.io.output import write_bytes, write_text
 from crankdyn.study.cases import Case
 from crankdyn.study.figures import FIGURES, SETTINGS
@@ -524,7 +525,7 @@ def _setting_text(setting, value: Any) -> str:
         inner = SimpleNamespace(kind=setting.kind.removeprefix("list:"))
         return ", ".join(str(v) if isinstance(v, str) else _setting_text(inner, v) for v in value)
     if setting.kind == "speed":
-        return f"{value * 30.0 / math.pi:.6g} rpm"
+        return f"{value * RPM:.6g} rpm"
     if setting.kind == "angle":
         return f"{math.degrees(value):.6g} deg"
     if setting.kind == "number":

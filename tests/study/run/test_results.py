@@ -12,9 +12,9 @@ import pytest
 
 from crankdyn.io.study_file import load_study
 from crankdyn.study.cases import expand
-from crankdyn.study.journal import read_journal
-from crankdyn.study.results import CaseTable, read_table
-from crankdyn.study.runner import run_study
+from crankdyn.study.run.journal import read_journal
+from crankdyn.study.run.results import CaseTable, read_table
+from crankdyn.study.run.runner import run_study
 from tests.study.helpers import write_study
 
 

@@ -182,3 +182,18 @@ def test_synthetic_pressure_in_engine_file(capsys, tmp_path):
     assert "imep" in _error(capsys, "torque", str(engine), "--speed", "2000")
     engine.write_text(ENGINE + '[pressure]\nmodel = "wiebe"\nimep = "1 MPa"\npeak_pressure = 9e6\n')
     assert "give only one of" in _error(capsys, "torque", str(engine), "--speed", "2000")
+
+
+@pytest.mark.parametrize("command", ["forces", "bearings", "torque", "pressure", "kinematics"])
+def test_the_figure_does_not_follow_the_table_step(capsys, monkeypatch, command):
+    """A table every 30 deg plots the session's 1 deg analysis (issue 14, point 8)."""
+    import crankdyn.cli.forces as forces_cli
+    import crankdyn.cli.kinematics as kinematics_cli
+
+    figures = []
+    for module in (forces_cli, kinematics_cli):
+        monkeypatch.setattr(module, "save_figure", lambda fig, *a, **k: figures.append(fig))
+    status, _out, err = run(capsys, command, "vaz2108", "--step", "30", "--plot", "p.png")
+    assert status == 0, err
+    points = max(len(line.get_xdata()) for ax in figures[0].axes for line in ax.get_lines())
+    assert points >= 361

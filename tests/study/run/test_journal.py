@@ -7,7 +7,7 @@ import json
 import pytest
 
 from crankdyn.errors import InputError
-from crankdyn.study.journal import JOURNAL, MANIFEST, Journal, StudyFolder, read_journal
+from crankdyn.study.run.journal import JOURNAL, MANIFEST, Journal, StudyFolder, read_journal
 
 INFO = {"name": "t"}
 
@@ -85,8 +85,15 @@ def test_a_folder_of_other_files_is_refused_and_force_keeps_them(tmp_path):
 
 
 def test_an_empty_folder_is_used(tmp_path):
-    (tmp_path / "out").mkdir()
-    StudyFolder(tmp_path / "out", "f1", force=False, info=INFO).close()
+    """An empty folder (made by the user beforehand) becomes the study's folder: a new study,
+    its manifest written, no journal records."""
+    out = tmp_path / "out"
+    out.mkdir()
+    with StudyFolder(out, "f1", force=False, info=INFO) as folder:
+        assert not folder.resumed
+        assert folder.records()[0] == {}
+    manifest = json.loads((out / MANIFEST).read_text())
+    assert manifest["fingerprint"] == "f1" and manifest["name"] == "t"
 
 
 def test_a_file_or_a_missing_parent_is_refused(tmp_path):

@@ -6,13 +6,10 @@ import tomllib
 import pytest
 
 from crankdyn.errors import InputError
+from crankdyn.io.catalogue import load_torsion_model, resolve_torsion
 from crankdyn.io.engine_file import parse_engine
-from crankdyn.io.torsion_file import (
-    load_torsion_model,
-    parse_torsion_model,
-    resolve_torsion,
-    torsion_example_names,
-)
+from crankdyn.io.examples import example_names
+from crankdyn.io.torsion_file import parse_torsion_model
 from crankdyn.torsion import TorsionModel
 
 MODEL = """
@@ -134,7 +131,7 @@ def test_model_name_defaults_to_the_file_name(tmp_path):
 
 
 def test_built_in_models_and_engines_resolve():
-    assert {"seed003-three-disc", "seed003-v6"} <= set(torsion_example_names())
+    assert {"seed003-three-disc", "seed003-v6"} <= set(example_names("model"))
     assert resolve_torsion("seed003-v6").mass_count == 9
     mendes = resolve_torsion("inline6-diesel")
     assert mendes.mass_count == 9 and mendes.masses[2].cylinders == (1,)

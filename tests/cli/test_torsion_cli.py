@@ -148,7 +148,7 @@ def test_holzer_table_text_units_and_plot(tmp_path, capsys):
         str(fig),
     )
     assert status == 0
-    assert "Holzer table" in out and "cylinder 6" in out and "216.667" in out
+    assert "Holzer's table" in out and "cylinder 6" in out and "216.67" in out
     assert fig.read_text().lstrip().startswith("<?xml")
 
 
