@@ -40,6 +40,7 @@ import numpy as np
 
 from crankdyn.crank.geometry import check_finite
 from crankdyn.errors import InputError
+from crankdyn.linkage.linsolve import lu_factor
 from crankdyn.results import DEG, Result, column, freeze, scalar
 
 __all__ = [
@@ -66,7 +67,9 @@ JOINT_KINDS = ("revolute", "prismatic")
 TWO_PI = 2.0 * math.pi
 _MAX_STEP = math.radians(3.0)  # largest continuation step of the crank
 _MIN_STEP = 1e-9  # rad; below this a step that still fails marks a dead point
-_COND_LIMIT = 1e10  # condition number above which a matrix counts as singular
+_COND_LIMIT = 1e10  # condition number above which the drawn configuration counts as singular
+_BLOCK = 4096  # crank angles per block of the general solver's batched Jacobians (bounded memory)
+_PATH_BLOCK = 8192  # crank angles per block of the closed-form solution
 
 
 def degrees_of_freedom(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
@@ -624,9 +627,7 @@ class Mechanism:
         theta = np.atleast_1d(np.asarray(crank_angles, dtype=float))
         w = self.driver.speed if speed is None else float(speed)
         e = self.driver.acceleration if acceleration is None else float(acceleration)
-        model = self._model
-        q = model.solve_positions(theta)
-        qp, qpp = model.rates(q, theta)
+        q, qp, qpp = self._model.solve(theta)
         return MechanismMotion(
             mechanism=self, crank_angle=theta, speed=w, acceleration=e, q=q, qp=qp, qpp=qpp
         )
@@ -877,12 +878,11 @@ class _Model:
         return q, bool(np.max(np.abs(phi)) <= tol), max_iter
 
     def _unit_rates(self, q):
-        """q' and q'' per unit crank speed at one configuration (for the predictor)."""
-        jac = self.jacobian(q[None, :])[0]
-        rhs = np.zeros(self.m)
-        rhs[-1] = 1.0
-        qp = np.linalg.solve(jac, rhs)
-        qpp = np.linalg.solve(jac, self.gamma(q[None, :], qp[None, :])[0])
+        """q' and q'' per unit crank speed at one configuration (for the predictor), from one
+        inverse of the Jacobian."""
+        inv = np.linalg.inv(self.jacobian(q[None, :])[0])
+        qp = inv[:, -1].copy()  # Phi_q q' = e_driver
+        qpp = inv @ self.gamma(q[None, :], qp[None, :])[0]
         return qp, qpp
 
     def _march(self, q, theta, target, step0=_MAX_STEP):
@@ -986,60 +986,199 @@ class _Model:
             raise self._dead_point(lock.q, lock.theta, float(first)) from None
 
     def _batch_unit_rates(self, q):
-        jac = self.jacobian(q)
-        rhs = np.zeros((q.shape[0], self.m, 1))
-        rhs[:, -1, 0] = 1.0
-        try:
-            qp = np.linalg.solve(jac, rhs)[..., 0]
-            qpp = np.linalg.solve(jac, self.gamma(q, qp)[..., None])[..., 0]
-        except np.linalg.LinAlgError:
-            return np.zeros_like(q), np.zeros_like(q)
+        """q', q'' (N, nq) for the predictors, block by block from one LU factorisation of the
+        Jacobian each; zero at singular positions."""
+        qp = np.zeros_like(q)
+        qpp = np.zeros_like(q)
+        for sl in _blocks(q.shape[0], _BLOCK):
+            fact, a, b = self._block_rates(q[sl])
+            a[fact.singular] = 0.0
+            b[fact.singular] = 0.0
+            qp[sl], qpp[sl] = a, b
         return qp, qpp
 
+    def _block_rates(self, q):
+        """(LU factors of Phi_q, q', q'') at positions q (B, nq): one factorisation for both
+        right-hand sides, Phi_q q' = e_driver and Phi_q q'' = gamma(q, q')."""
+        fact = lu_factor(self.jacobian(q))
+        rhs = np.zeros((q.shape[0], self.m))
+        rhs[:, -1] = 1.0
+        qp = fact.solve(rhs)
+        qpp = fact.solve(self.gamma(q, qp))
+        return fact, qp, qpp
+
     def _batch_newton(self, q, theta, max_iter=8):
-        """Newton-Raphson at all angles at once; returns (q, converged mask)."""
+        """Newton-Raphson at all angles at once, in blocks of angles; returns (q, converged
+        mask). A position whose Jacobian is singular (from its LU pivots) does not converge."""
+        out = np.empty_like(q)
+        ok = np.empty(q.shape[0], dtype=bool)
+        for sl in _blocks(q.shape[0], _BLOCK):
+            out[sl], ok[sl] = self._block_newton(q[sl], theta[sl], max_iter)
+        return out, ok
+
+    def _block_newton(self, q, theta, max_iter):
         tol = 1e-14 * self.scale
-        ok = np.zeros(q.shape[0], dtype=bool)
+        failed = np.zeros(q.shape[0], dtype=bool)
         for _ in range(max_iter):
             phi = self.constraints(q, theta)
             ok = np.max(np.abs(phi), axis=1) <= tol
-            if np.all(ok):
+            if np.all(ok | failed):
                 break
-            jac = self.jacobian(q)
-            try:
-                dq = np.linalg.solve(jac, -phi[..., None])[..., 0]
-            except np.linalg.LinAlgError:
-                return q, np.zeros(q.shape[0], dtype=bool)
-            dq[ok] = 0.0
+            fact = lu_factor(self.jacobian(q))
+            failed |= fact.singular
+            dq = fact.solve(-phi)
+            dq[ok | failed] = 0.0
             q = q + dq
             bad = ~np.all(np.isfinite(q), axis=1)
             if np.any(bad):
                 q[bad] = 0.0
-                ok &= ~bad
+                failed |= bad
         else:
             phi = self.constraints(q, theta)
             ok = np.max(np.abs(phi), axis=1) <= tol
-        return q, ok
+        return q, ok & ~failed
 
     def rates(self, q, theta):
-        """Unit-speed rates q' and q'' (N, nq), batched; raises InputError at singular
-        positions."""
-        jac = self.jacobian(q)
-        cond = np.linalg.cond(jac)
-        bad = ~(cond < _COND_LIMIT)
-        if np.any(bad):
-            i = int(np.argmax(bad))
-            raise InputError(
-                f"the constraint Jacobian is singular at crank angle "
-                f"{math.degrees(theta[i]):.6g} deg (a dead point or change point: links in "
-                "line); velocities are indeterminate there",
-                file=self.mech.source,
-            )
-        rhs = np.zeros((q.shape[0], self.m, 1))
-        rhs[:, -1, 0] = 1.0
-        qp = np.linalg.solve(jac, rhs)[..., 0]
-        qpp = np.linalg.solve(jac, self.gamma(q, qp)[..., None])[..., 0]
+        """Unit-speed rates q' and q'' (N, nq), batched in blocks of angles, one LU
+        factorisation of the Jacobian per position for both; raises InputError at singular
+        positions (a pivot below 1e-10 of its column, :mod:`.linsolve`)."""
+        qp = np.empty_like(q)
+        qpp = np.empty_like(q)
+        for sl in _blocks(q.shape[0], _BLOCK):
+            fact, qp[sl], qpp[sl] = self._block_rates(q[sl])
+            if np.any(fact.singular):
+                i = sl.start + int(np.argmax(fact.singular))
+                raise self._singular(theta[i])
         return qp, qpp
+
+    def _singular(self, theta) -> InputError:
+        return InputError(
+            f"the constraint Jacobian is singular at crank angle "
+            f"{math.degrees(theta):.6g} deg (a dead point or change point: links in "
+            "line); velocities are indeterminate there",
+            file=self.mech.source,
+        )
+
+    # ---- the solution: closed form where the link groups allow it ------------------------------
+    @cached_property
+    def closed(self):
+        """The closed-form plan (:mod:`.dyads`), or None when a group has none."""
+        from crankdyn.linkage.dyads import closed_form
+
+        return closed_form(self.mech, self)
+
+    def solve(self, theta, method: str = "auto"):
+        """q, q', q'' (N, nq) at crank angles theta (rad).
+
+        ``"auto"``: in closed form (:mod:`.dyads`) when every link group is a dyad with one and
+        every position on the path from the drawn angle is regular; otherwise, and with
+        ``"newton"``, by the general solver (:meth:`solve_positions`, :meth:`rates`), which
+        also reports dead points and singular positions.
+        """
+        theta = np.asarray(theta, dtype=float)
+        if (
+            method == "auto"
+            and theta.size
+            and self.closed is not None
+            and np.all(np.isfinite(theta))
+        ):
+            from crankdyn.linkage.dyads import NoClosedForm
+
+            try:
+                return self._solve_closed(theta)
+            except NoClosedForm:
+                pass
+        q = self.solve_positions(theta)
+        qp, qpp = self.rates(q, theta)
+        return q, qp, qpp
+
+    def _path(self, theta):
+        """The path of crank angles the closed form is continued along: the requested angles
+        in increasing order, the drawn angle, and anchors in every gap wider than 3 deg (the
+        general solver's continuation step). Returns (angles, source) with source the index of
+        the requested angle, -1 for an anchor, -2 for the drawn angle."""
+        n = theta.shape[0]
+        order = np.arange(n)
+        if n > 1 and np.any(theta[1:] < theta[:-1]):
+            order = np.argsort(theta, kind="stable")
+        ts = theta[order]
+        k0 = int(np.searchsorted(ts, self.theta0))
+        pt = np.insert(ts, k0, self.theta0)
+        src = np.insert(order, k0, -2)
+        gaps = np.diff(pt)
+        need = np.maximum(np.ceil(gaps / _MAX_STEP).astype(int) - 1, 0)
+        if np.any(need):
+            counts = np.append(need + 1, 1)
+            first = np.cumsum(counts) - counts
+            j = np.arange(int(counts.sum())) - np.repeat(first, counts)
+            step = np.repeat(np.append(gaps / (need + 1), 0.0), counts)
+            pt = np.repeat(pt, counts) + j * step
+            src = np.where(j == 0, np.repeat(src, counts), -1)
+        return pt, src
+
+    def _solve_closed(self, theta):
+        """The closed form along the path (:meth:`_path`), block by block. The rotations of the
+        dyad links are continued from sample to sample: the whole turns added to a wrapped
+        increment are those that bring it nearest the increment predicted from the rates
+        (corrected trapezoidal rule, h (q'_0 + q'_1)/2 + h^2 (q''_0 - q''_1)/12), and every step
+        must then agree with that prediction as the general solver's steps must (deviation at
+        most a quarter of the step's motion, weighted norm); the drawn angle has rotation 0.
+        A step that does not agree (an assembly gap or a branch change between samples) raises
+        NoClosedForm."""
+        cf = self.closed
+        pt, src = self._path(theta)
+        n = theta.shape[0]
+        q = np.empty((n, self.nq))
+        qp = np.empty((n, self.nq))
+        qpp = np.empty((n, self.nq))
+        cols = cf.angle_columns
+        prev = None
+        turns_drawn = np.zeros(cols.size)
+        for sl in _blocks(pt.shape[0], _PATH_BLOCK):
+            t, sb = pt[sl], src[sl]
+            qb, qpb, qppb = cf.evaluate(t)
+            turns, prev = self._continue(t, qb, qpb, qppb, cols, prev)
+            qb[:, cols] += TWO_PI * turns
+            drawn = sb == -2
+            if np.any(drawn):
+                turns_drawn = turns[int(np.argmax(drawn))]
+            mine = sb >= 0
+            rows = sb[mine]
+            q[rows], qp[rows], qpp[rows] = qb[mine], qpb[mine], qppb[mine]
+        if np.any(turns_drawn):
+            q[:, cols] -= TWO_PI * turns_drawn
+        return q, qp, qpp
+
+    def _continue(self, t, q, qp, qpp, cols, prev):
+        """Whole turns (B, k) of the rotation columns ``cols`` of a block and the carry for
+        the next block; raises NoClosedForm where a step disagrees with its prediction
+        (:meth:`_solve_closed`). ``prev`` is the previous block's last (angle, q, q', q'',
+        turns), with q holding wrapped rotations."""
+        from crankdyn.linkage.dyads import NoClosedForm
+
+        first = (t[0], q[0], qp[0], qpp[0], np.zeros(cols.size)) if prev is None else prev
+        tt = np.concatenate([[first[0]], t])
+        qq = np.vstack([first[1], q])
+        d1 = np.vstack([first[2], qp])
+        d2 = np.vstack([first[3], qpp])
+        h = np.diff(tt)[:, None]
+        pred = 0.5 * h * (d1[1:] + d1[:-1]) + (h * h / 12.0) * (d2[:-1] - d2[1:])
+        step = np.diff(qq, axis=0)
+        jumps = np.rint((pred[:, cols] - step[:, cols]) / TWO_PI)
+        turns = first[4] + np.cumsum(jumps, axis=0)
+        step[:, cols] += TWO_PI * jumps
+        w = self.weights
+        err = np.max(np.abs(step - pred) * w, axis=1)
+        motion = np.max(np.abs(pred) * w, axis=1)
+        if not np.all(err <= 0.25 * motion + 1e-9 * self.scale):
+            raise NoClosedForm("a step along the path disagrees with its prediction")
+        carry = (t[-1], q[-1].copy(), qp[-1].copy(), qpp[-1].copy(), turns[-1].copy())
+        return turns, carry
+
+
+def _blocks(n: int, size: int):
+    """Slices of at most ``size`` covering range(n)."""
+    return [slice(i, min(i + size, n)) for i in range(0, n, size)]
 
 
 # ---- motion result ---------------------------------------------------------------------------
