@@ -172,7 +172,7 @@ def test_scotch_yoke_against_its_closed_form():
     )
     acc = -r * (w * w * np.cos(FULL_TURN) + e * np.sin(FULL_TURN))
     np.testing.assert_allclose(m.link_state("yoke", "qdd")[:, 0], acc, atol=1e-14)
-    np.testing.assert_allclose(m.link_state("yoke")[:, 1:], [[-0.01, 0.0]], atol=1e-15)
+    assert np.all(m.link_state("yoke")[:, 1:] == [-0.01, 0.0])  # on its guide, not turning
 
 
 def test_slotted_crank_against_its_closed_form():
