@@ -150,8 +150,10 @@ def _check(margin) -> None:
         raise NoClosedForm("a dyad cannot be assembled")
 
 
-def _check_det(normalised) -> None:
-    if not np.all(np.abs(normalised) >= DET_LIMIT):
+def _check_det(normalised, sign: float) -> None:
+    """Regularity: the normalised determinant keeps its drawn sign and stays away from zero
+    (a sign change between two samples is a singular position passed between them)."""
+    if not np.all(normalised * sign >= DET_LIMIT):
         raise NoClosedForm("a dyad is at or near a singular position")
 
 
@@ -187,6 +189,7 @@ class _Dyad:
             raise NoClosedForm("a dyad of three prismatic joints")
         self.kinds = kinds
         self.sigma = self._drawn_sign()
+        self.det_sign = self._drawn_det_sign()
 
     def _drawn_sign(self) -> float:
         """Branch sign sigma of the drawn configuration (module docstring)."""
@@ -207,6 +210,27 @@ class _Dyad:
             g, s = self.outer[self.guide], self.outer[1 - self.guide]
             w = s.point - g.point
             value = self.n0[0] * w[1] - self.n0[1] * w[0]
+        if not abs(value) > 0.0:
+            raise NoClosedForm("the drawn dyad is singular")
+        return math.copysign(1.0, value)
+
+    def _drawn_det_sign(self) -> float:
+        """Sign of the dyad's determinant in the drawn configuration (module docstring)."""
+        q0 = self.q0
+        if self.inner_kind == "R":
+            e = []
+            for o in self.outer:
+                if o.kind == "R":
+                    r = q0 - o.point
+                    e.append((-r[1], r[0]))
+                else:
+                    e.append(o.d0)
+            value = e[1][0] * e[0][1] - e[1][1] * e[0][0]
+        elif self.kinds == "RR":
+            w = self.outer[1 - self.guide].point - self.outer[self.guide].point
+            value = self.n0[0] * w[1] - self.n0[1] * w[0]
+        else:
+            value = float(self.n0 @ self.outer[0 if self.kinds == "PR" else 1].d0)
         if not abs(value) > 0.0:
             raise NoClosedForm("the drawn dyad is singular")
         return math.copysign(1.0, value)
@@ -250,7 +274,7 @@ class _Dyad:
             (_, (ca, _ca1, _ca2), da), (_, (cb, _cb1, _cb2), db) = ends
             ea, eb = da[0], db[0]
             det = eb[0] * ea[1] - eb[1] * ea[0]  # e_a x (-e_b)
-            _check_det(det)
+            _check_det(det, self.det_sign)
             rhs = (cb[0] - ca[0], cb[1] - ca[1])
             ua, ub = _solve2(ea, eb, rhs, det)
             u = [ua, ub]
@@ -284,7 +308,8 @@ class _Dyad:
         ea, eb = e
         det = eb[0] * ea[1] - eb[1] * ea[0]
         if self.kinds != "PP":
-            _check_det(det / np.sqrt((ea[0] ** 2 + ea[1] ** 2) * (eb[0] ** 2 + eb[1] ** 2)))
+            norm = np.sqrt((ea[0] ** 2 + ea[1] ** 2) * (eb[0] ** 2 + eb[1] ** 2))
+            _check_det(det / norm, self.det_sign)
         x1 = _solve2(ea, eb, (k1[1][0] - k1[0][0], k1[1][1] - k1[0][1]), det)
         k2 = []
         for X, end in enumerate(ends):
@@ -335,7 +360,7 @@ class _Dyad:
         s = (b * c0 - h * a) / r2
         nx, ny = c * n0[0] - s * n0[1], s * n0[0] + c * n0[1]
         det = nx * wy - ny * wx  # n x w
-        _check_det(det / np.sqrt(r2))
+        _check_det(det / np.sqrt(r2), self.det_sign)
         w1x, w1y = ps1[0] - pg1[0], ps1[1] - pg1[1]
         w2x, w2y = ps2[0] - pg2[0], ps2[1] - pg2[1]
         omega = -(nx * w1x + ny * w1y) / det
@@ -369,7 +394,7 @@ class _Dyad:
         d = _direction(known, o_p.d0)
         (dx, dy), (d1x, d1y), (d2x, d2y) = d
         nd = nx * dx + ny * dy
-        _check_det(nd)
+        _check_det(nd, self.det_sign)
         u0 = -(nx * mx + ny * my) / nd
         vx, vy = mx + u0 * dx, my + u0 * dy
         u1 = -(n1x * vx + n1y * vy + nx * (m1x + u0 * d1x) + ny * (m1y + u0 * d1y)) / nd
@@ -455,32 +480,29 @@ class ClosedForm:
             sorted(3 * (i - 1) + 2 for d in self.dyads for i in d.links), dtype=int
         )
 
-    def evaluate(self, theta):
-        """q, q', q'' (N, 3n) at crank angles theta (N,), rad; dyad rotations wrapped."""
+    def evaluate(self, theta, out=None) -> np.ndarray:
+        """q, q', q'' (per unit crank speed) at crank angles theta (B,) rad, as an array
+        (3, 3n, B): for each, the rows x_G, y_G, phi of every moving link (the transpose of
+        the (B, 3n) layout of :class:`~crankdyn.linkage.planar.MechanismMotion`), written into
+        ``out`` when given. Rotations of dyad links are wrapped to (-pi, pi]."""
         theta = np.asarray(theta, dtype=float)
         phi = theta - self.theta0
         c, s = np.cos(phi), np.sin(phi)
-        pivot = (
-            (float(self.pivot[0]), float(self.pivot[1])),
-            (0.0, 0.0),
-            (0.0, 0.0),
-        )
+        pivot = ((float(self.pivot[0]), float(self.pivot[1])), (0.0, 0.0), (0.0, 0.0))
         st = _pose_about(pivot, c, s, 1.0, 0.0, self.crank_g0 - self.pivot)
         states = {0: _GROUND_STATE, self.crank: (*st[:4], phi, *st[5:])}
         for dyad in self.dyads:
             dyad.solve(states)
-        N = theta.shape[0]
-        nq = 3 * self.n
-        q = np.empty((N, nq))
-        qp = np.empty((N, nq))
-        qpp = np.empty((N, nq))
+        if out is None:
+            out = np.empty((3, 3 * self.n, theta.shape[0]))
+        q, qp, qpp = out
         for i in range(1, self.n + 1):
             gx, gy, _c, _s, ph, gxp, gyp, w, gxpp, gypp, al = states[i]
             k = 3 * (i - 1)
-            q[:, k], q[:, k + 1], q[:, k + 2] = gx, gy, ph
-            qp[:, k], qp[:, k + 1], qp[:, k + 2] = gxp, gyp, w
-            qpp[:, k], qpp[:, k + 1], qpp[:, k + 2] = gxpp, gypp, al
-        return q, qp, qpp
+            q[k], q[k + 1], q[k + 2] = gx, gy, ph
+            qp[k], qp[k + 1], qp[k + 2] = gxp, gyp, w
+            qpp[k], qpp[k + 1], qpp[k + 2] = gxpp, gypp, al
+        return out
 
 
 def closed_form(mech, model) -> ClosedForm | None:

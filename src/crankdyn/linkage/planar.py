@@ -70,6 +70,7 @@ _MIN_STEP = 1e-9  # rad; below this a step that still fails marks a dead point
 _COND_LIMIT = 1e10  # condition number above which the drawn configuration counts as singular
 _BLOCK = 4096  # crank angles per block of the general solver's batched Jacobians (bounded memory)
 _PATH_BLOCK = 8192  # crank angles per block of the closed-form solution
+_MAX_TURN = 0.5 * math.pi  # largest rotation of a link the closed form follows between samples
 
 
 def degrees_of_freedom(moving_links: int, lower_pairs: int, higher_pairs: int = 0) -> int:
@@ -1117,63 +1118,77 @@ class _Model:
         return pt, src
 
     def _solve_closed(self, theta):
-        """The closed form along the path (:meth:`_path`), block by block. The rotations of the
-        dyad links are continued from sample to sample: the whole turns added to a wrapped
-        increment are those that bring it nearest the increment predicted from the rates
-        (corrected trapezoidal rule, h (q'_0 + q'_1)/2 + h^2 (q''_0 - q''_1)/12), and every step
-        must then agree with that prediction as the general solver's steps must (deviation at
-        most a quarter of the step's motion, weighted norm); the drawn angle has rotation 0.
-        A step that does not agree (an assembly gap or a branch change between samples) raises
-        NoClosedForm."""
+        """The closed form at the requested angles, continued along the path from the drawn
+        angle (:meth:`_path`), block by block.
+
+        The rotations of the dyad links are continued from sample to sample along the path:
+        the whole turns added to a wrapped increment are those that bring it nearest the
+        increment predicted from the rates (the corrected trapezoidal rule,
+        h (phi'_0 + phi'_1)/2 + h^2 (phi''_0 - phi''_1)/12), and every step must then agree with
+        that prediction as the general solver's steps must (deviation at most a quarter of the
+        step's motion, the crank's own included); the drawn angle has rotation 0. A predicted
+        rotation above 90 deg in one step (a link far faster than the crank, near a dead point),
+        a step that does not agree (an assembly gap or a branch change between two samples) and
+        a dyad
+        whose determinant changes sign or nears zero (:mod:`.dyads`) raise NoClosedForm.
+        Returns (q, q', q''), each (N, nq), transposed views of one (3, nq, N) array.
+        """
         cf = self.closed
-        pt, src = self._path(theta)
         n = theta.shape[0]
-        q = np.empty((n, self.nq))
-        qp = np.empty((n, self.nq))
-        qpp = np.empty((n, self.nq))
-        cols = cf.angle_columns
+        out = np.empty((3, self.nq, n))
+        for sl in _blocks(n, _PATH_BLOCK):
+            cf.evaluate(theta[sl], out=out[:, :, sl])
+        pt, src = self._path(theta)
+        extra = src < 0
+        ext = cf.evaluate(pt[extra])
+        ext_index = np.cumsum(extra) - 1
+        cols = cf.angle_columns[:, None]
         prev = None
-        turns_drawn = np.zeros(cols.size)
+        turns_drawn = np.zeros(cols.shape[0])
         for sl in _blocks(pt.shape[0], _PATH_BLOCK):
-            t, sb = pt[sl], src[sl]
-            qb, qpb, qppb = cf.evaluate(t)
-            turns, prev = self._continue(t, qb, qpb, qppb, cols, prev)
-            qb[:, cols] += TWO_PI * turns
-            drawn = sb == -2
-            if np.any(drawn):
-                turns_drawn = turns[int(np.argmax(drawn))]
+            sb = src[sl]
             mine = sb >= 0
             rows = sb[mine]
-            q[rows], qp[rows], qpp[rows] = qb[mine], qpb[mine], qppb[mine]
+            angles = np.empty((3, cols.shape[0], sb.shape[0]))
+            angles[:, :, mine] = out[:, cols, rows]
+            if not np.all(mine):
+                angles[:, :, ~mine] = ext[:, cols, ext_index[sl][~mine]]
+            turns, prev = self._continue(pt[sl], angles, prev)
+            out[0, cols, rows] += TWO_PI * turns[:, mine]
+            drawn = sb == -2
+            if np.any(drawn):
+                turns_drawn = turns[:, int(np.argmax(drawn))]
         if np.any(turns_drawn):
-            q[:, cols] -= TWO_PI * turns_drawn
-        return q, qp, qpp
+            out[0, cols[:, 0]] -= TWO_PI * turns_drawn[:, None]
+        return out[0].T, out[1].T, out[2].T
 
-    def _continue(self, t, q, qp, qpp, cols, prev):
-        """Whole turns (B, k) of the rotation columns ``cols`` of a block and the carry for
-        the next block; raises NoClosedForm where a step disagrees with its prediction
-        (:meth:`_solve_closed`). ``prev`` is the previous block's last (angle, q, q', q'',
-        turns), with q holding wrapped rotations."""
+    def _continue(self, t, angles, prev):
+        """Whole turns (k, B) of a block of wrapped rotations ``angles`` (3, k, B: values,
+        first and second derivatives) along the path angles t, and the carry for the next
+        block; raises NoClosedForm where a step disagrees with its prediction
+        (:meth:`_solve_closed`). ``prev``: the previous block's last (angle, (3, k) values,
+        turns)."""
         from crankdyn.linkage.dyads import NoClosedForm
 
-        first = (t[0], q[0], qp[0], qpp[0], np.zeros(cols.size)) if prev is None else prev
-        tt = np.concatenate([[first[0]], t])
-        qq = np.vstack([first[1], q])
-        d1 = np.vstack([first[2], qp])
-        d2 = np.vstack([first[3], qpp])
-        h = np.diff(tt)[:, None]
-        pred = 0.5 * h * (d1[1:] + d1[:-1]) + (h * h / 12.0) * (d2[:-1] - d2[1:])
-        step = np.diff(qq, axis=0)
-        jumps = np.rint((pred[:, cols] - step[:, cols]) / TWO_PI)
-        turns = first[4] + np.cumsum(jumps, axis=0)
-        step[:, cols] += TWO_PI * jumps
-        w = self.weights
-        err = np.max(np.abs(step - pred) * w, axis=1)
-        motion = np.max(np.abs(pred) * w, axis=1)
-        if not np.all(err <= 0.25 * motion + 1e-9 * self.scale):
+        if prev is None:
+            prev = (t[0], angles[:, :, 0], np.zeros(angles.shape[1]))
+        tt = np.concatenate([[prev[0]], t])
+        a = np.concatenate([prev[1][:, :, None], angles], axis=2)
+        h = np.diff(tt)
+        pred = 0.5 * h * (a[1, :, 1:] + a[1, :, :-1]) + (h * h / 12.0) * (
+            a[2, :, :-1] - a[2, :, 1:]
+        )
+        if not np.all(np.abs(pred) <= _MAX_TURN):
+            raise NoClosedForm("a rotation too fast to follow from one sample to the next")
+        step = np.diff(a[0], axis=1)
+        jumps = np.rint((pred - step) / TWO_PI)
+        turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
+        step += TWO_PI * jumps
+        err = np.max(np.abs(step - pred), axis=0, initial=0.0)
+        motion = np.maximum(np.max(np.abs(pred), axis=0, initial=0.0), np.abs(h))
+        if not np.all(err <= 0.25 * motion + 1e-9):
             raise NoClosedForm("a step along the path disagrees with its prediction")
-        carry = (t[-1], q[-1].copy(), qp[-1].copy(), qpp[-1].copy(), turns[-1].copy())
-        return turns, carry
+        return turns, (t[-1], angles[:, :, -1].copy(), turns[:, -1].copy())
 
 
 def _blocks(n: int, size: int):
