@@ -1129,37 +1129,33 @@ class _Model:
         step's motion, the crank's own included); the drawn angle has rotation 0. A predicted
         rotation above 90 deg in one step (a link far faster than the crank, near a dead point),
         a step that does not agree (an assembly gap or a branch change between two samples) and
-        a dyad
-        whose determinant changes sign or nears zero (:mod:`.dyads`) raise NoClosedForm.
-        Returns (q, q', q''), each (N, nq), transposed views of one (3, nq, N) array.
+        a dyad whose determinant changes sign or nears zero (:mod:`.dyads`) raise NoClosedForm.
+        Returns (q, q', q''), each (N, nq), transposed views of one (3, nq, N + anchors)
+        array.
         """
         cf = self.closed
         n = theta.shape[0]
-        out = np.empty((3, self.nq, n))
-        for sl in _blocks(n, _PATH_BLOCK):
-            cf.evaluate(theta[sl], out=out[:, :, sl])
         pt, src = self._path(theta)
         extra = src < 0
-        ext = cf.evaluate(pt[extra])
-        ext_index = np.cumsum(extra) - 1
-        cols = cf.angle_columns[:, None]
+        every = np.concatenate([theta, pt[extra]])  # the requested angles, then the others
+        whole = np.empty((3, self.nq, every.shape[0]))
+        for sl in _blocks(every.shape[0], _PATH_BLOCK):
+            cf.evaluate(every[sl], out=whole[:, :, sl])
+        rotations = whole[:, 2::3, :]  # (3, links, N + anchors): phi, phi', phi'' of every link
+        column = np.where(extra, n + np.cumsum(extra) - 1, src)  # of ``whole``, in path order
         prev = None
-        turns_drawn = np.zeros(cols.shape[0])
+        turns_drawn = None
         for sl in _blocks(pt.shape[0], _PATH_BLOCK):
-            sb = src[sl]
-            mine = sb >= 0
-            rows = sb[mine]
-            angles = np.empty((3, cols.shape[0], sb.shape[0]))
-            angles[:, :, mine] = out[:, cols, rows]
-            if not np.all(mine):
-                angles[:, :, ~mine] = ext[:, cols, ext_index[sl][~mine]]
-            turns, prev = self._continue(pt[sl], angles, prev)
-            out[0, cols, rows] += TWO_PI * turns[:, mine]
-            drawn = sb == -2
-            if np.any(drawn):
-                turns_drawn = turns[:, int(np.argmax(drawn))]
+            cols = column[sl]
+            turns, prev = self._continue(pt[sl], np.take(rotations, cols, axis=2), prev)
+            if np.any(turns):
+                rotations[0][:, cols] += TWO_PI * turns
+            drawn = np.flatnonzero(src[sl] == -2)
+            if drawn.size:
+                turns_drawn = turns[:, drawn[0]]
         if np.any(turns_drawn):
-            out[0, cols[:, 0]] -= TWO_PI * turns_drawn[:, None]
+            rotations[0] -= TWO_PI * turns_drawn[:, None]
+        out = whole[:, :, :n]
         return out[0].T, out[1].T, out[2].T
 
     def _continue(self, t, angles, prev):
