@@ -77,48 +77,89 @@ class NoClosedForm(Exception):
     """The mechanism, or a requested position, needs the general solver."""
 
 
+def _mul(a, b):
+    """a * b, without an array operation when either factor is the number 0 or 1 (the crank
+    turns at unit speed without acceleration, the ground stands still: their rates are plain
+    numbers)."""
+    if type(a) is float:
+        if a == 0.0:
+            return 0.0
+        if a == 1.0:
+            return b
+    if type(b) is float:
+        if b == 0.0:
+            return 0.0
+        if b == 1.0:
+            return a
+    return a * b
+
+
+def _add(a, b):
+    """a + b, without an array operation when either is the number 0."""
+    if type(a) is float and a == 0.0:
+        return b
+    if type(b) is float and b == 0.0:
+        return a
+    return a + b
+
+
+def _sub(a, b):
+    """a - b, without an array operation when b is the number 0."""
+    if type(b) is float and b == 0.0:
+        return a
+    return a - b
+
+
 def _material(state, g0, p):
     """Position, first and second derivative of the material point of a link drawn at p,
     for the link's state (module docstring). Returns ((x, y), (x', y'), (x'', y''))."""
     gx, gy, c, s, _phi, gxp, gyp, w, gxpp, gypp, al = state
-    vx, vy = p[0] - g0[0], p[1] - g0[1]
+    vx, vy = float(p[0] - g0[0]), float(p[1] - g0[1])
     ax = c * vx - s * vy
     ay = s * vx + c * vy
-    w2 = w * w
+    w2 = _mul(w, w)
     return (
         (gx + ax, gy + ay),
-        (gxp - w * ay, gyp + w * ax),
-        (gxpp - al * ay - w2 * ax, gypp + al * ax - w2 * ay),
+        (_sub(gxp, _mul(w, ay)), _add(gyp, _mul(w, ax))),
+        (
+            _sub(_sub(gxpp, _mul(al, ay)), _mul(w2, ax)),
+            _sub(_add(gypp, _mul(al, ax)), _mul(w2, ay)),
+        ),
     )
 
 
 def _direction(state, d0):
     """A(phi) d0 of a link's state and its two derivatives."""
     _gx, _gy, c, s, _phi, _gxp, _gyp, w, _gxpp, _gypp, al = state
-    dx = c * d0[0] - s * d0[1]
-    dy = s * d0[0] + c * d0[1]
-    w2 = w * w
-    return (dx, dy), (-w * dy, w * dx), (-al * dy - w2 * dx, al * dx - w2 * dy)
+    dx = c * float(d0[0]) - s * float(d0[1])
+    dy = s * float(d0[0]) + c * float(d0[1])
+    w2 = _mul(w, w)
+    return (
+        (dx, dy),
+        (-_mul(w, dy), _mul(w, dx)),
+        (-_add(_mul(al, dy), _mul(w2, dx)), _sub(_mul(al, dx), _mul(w2, dy))),
+    )
 
 
 def _pose_about(pin, c, s, w, al, v):
     """State of a link turning about a pin: pin = (P, P', P''), rotation (c, s, omega, alpha),
     v = drawn centre of gravity minus drawn pin point."""
     (px, py), (p1x, p1y), (p2x, p2y) = pin
-    ax = c * v[0] - s * v[1]
-    ay = s * v[0] + c * v[1]
-    w2 = w * w
+    vx, vy = float(v[0]), float(v[1])
+    ax = c * vx - s * vy
+    ay = s * vx + c * vy
+    w2 = _mul(w, w)
     return (
         px + ax,
         py + ay,
         c,
         s,
         None,
-        p1x - w * ay,
-        p1y + w * ax,
+        _sub(p1x, _mul(w, ay)),
+        _add(p1y, _mul(w, ax)),
         w,
-        p2x - al * ay - w2 * ax,
-        p2y + al * ax - w2 * ay,
+        _sub(_sub(p2x, _mul(al, ay)), _mul(w2, ax)),
+        _sub(_add(p2y, _mul(al, ax)), _mul(w2, ay)),
         al,
     )
 
@@ -129,31 +170,34 @@ def _pose_sliding(known, kg0, g0, d, u):
     (mx, my), (m1x, m1y), (m2x, m2y) = _material(known, kg0, g0)
     (dx, dy), (d1x, d1y), (d2x, d2y) = d
     u0, u1, u2 = u
+    u12 = 2.0 * u1
     return (
-        mx + u0 * dx,
-        my + u0 * dy,
+        mx + _mul(u0, dx),
+        my + _mul(u0, dy),
         known[2],
         known[3],
         known[4],
-        m1x + u1 * dx + u0 * d1x,
-        m1y + u1 * dy + u0 * d1y,
+        _add(_add(m1x, _mul(u1, dx)), _mul(u0, d1x)),
+        _add(_add(m1y, _mul(u1, dy)), _mul(u0, d1y)),
         known[7],
-        m2x + u2 * dx + 2.0 * u1 * d1x + u0 * d2x,
-        m2y + u2 * dy + 2.0 * u1 * d1y + u0 * d2y,
+        _add(_add(_add(m2x, _mul(u2, dx)), _mul(u12, d1x)), _mul(u0, d2x)),
+        _add(_add(_add(m2y, _mul(u2, dy)), _mul(u12, d1y)), _mul(u0, d2y)),
         known[10],
     )
 
 
 def _check(margin) -> None:
-    """Feasibility: a negative margin is an imaginary intersection (the links do not reach)."""
-    if np.min(margin) < 0.0 or not np.all(np.isfinite(margin)):
+    """Feasibility: a negative margin is an imaginary intersection (the links do not reach);
+    NaN fails the test too."""
+    if not np.min(margin) >= 0.0:
         raise NoClosedForm("a dyad cannot be assembled")
 
 
 def _check_det(normalised, sign: float) -> None:
     """Regularity: the normalised determinant keeps its drawn sign and stays away from zero
     (a sign change between two samples is a singular position passed between them)."""
-    if not np.all(normalised * sign >= DET_LIMIT):
+    ok = np.min(normalised) >= DET_LIMIT if sign > 0.0 else np.max(normalised) <= -DET_LIMIT
+    if not ok:
         raise NoClosedForm("a dyad is at or near a singular position")
 
 
@@ -190,6 +234,19 @@ class _Dyad:
         self.kinds = kinds
         self.sigma = self._drawn_sign()
         self.det_sign = self._drawn_det_sign()
+        # per end: (q - o)/|q - o|^2 of a turning end (its rotation from r . r0, r0 x r), and
+        # 1/(|e_a| |e_b|) of an inner revolute's determinant
+        self.r0_scaled = [None, None]
+        norm = 1.0
+        for X, o in enumerate(outer):
+            if inner_kind == "R" and o.kind == "R":
+                r0 = inner_point - o.point
+                l2 = float(r0 @ r0)
+                if not l2 > 0.0:
+                    raise NoClosedForm("a dyad link with its two joints at one point")
+                self.r0_scaled[X] = (float(r0[0] / l2), float(r0[1] / l2))
+                norm *= math.sqrt(l2)
+        self.inv_norm = 1.0 / norm
 
     def _drawn_sign(self) -> float:
         """Branch sign sigma of the drawn configuration (module docstring)."""
@@ -304,13 +361,12 @@ class _Dyad:
             else:
                 (_c, c1, _c2), (d, d1, _d2) = end[1], end[2]
                 e.append(d)
-                k1.append((c1[0] + u[X] * d1[0], c1[1] + u[X] * d1[1]))
+                k1.append((_add(c1[0], _mul(u[X], d1[0])), _add(c1[1], _mul(u[X], d1[1]))))
         ea, eb = e
         det = eb[0] * ea[1] - eb[1] * ea[0]
-        if self.kinds != "PP":
-            norm = np.sqrt((ea[0] ** 2 + ea[1] ** 2) * (eb[0] ** 2 + eb[1] ** 2))
-            _check_det(det / norm, self.det_sign)
-        x1 = _solve2(ea, eb, (k1[1][0] - k1[0][0], k1[1][1] - k1[0][1]), det)
+        if self.kinds != "PP":  # |e_X| is the constant |q - o| of a turning end, 1 of a slide
+            _check_det(det * self.inv_norm, self.det_sign)
+        x1 = _solve2(ea, eb, (_sub(k1[1][0], k1[0][0]), _sub(k1[1][1], k1[0][1])), det)
         k2 = []
         for X, end in enumerate(ends):
             if end[0] == "R":
@@ -319,21 +375,21 @@ class _Dyad:
                 k2.append((p2[0] - w2 * r[X][0], p2[1] - w2 * r[X][1]))
             else:
                 (_c, _c1, c2), (_d, d1, d2) = end[1], end[2]
+                u2 = 2.0 * x1[X]
                 k2.append(
                     (
-                        c2[0] + 2.0 * x1[X] * d1[0] + u[X] * d2[0],
-                        c2[1] + 2.0 * x1[X] * d1[1] + u[X] * d2[1],
+                        _add(_add(c2[0], _mul(u2, d1[0])), _mul(u[X], d2[0])),
+                        _add(_add(c2[1], _mul(u2, d1[1])), _mul(u[X], d2[1])),
                     )
                 )
-        x2 = _solve2(ea, eb, (k2[1][0] - k2[0][0], k2[1][1] - k2[0][1]), det)
+        x2 = _solve2(ea, eb, (_sub(k2[1][0], k2[0][0]), _sub(k2[1][1], k2[0][1])), det)
         for X, end in enumerate(ends):
             o, link = self.outer[X], self.links[X]
             if end[0] == "R":
-                r0 = q0 - o.point
+                u0x, u0y = self.r0_scaled[X]  # (q - o) / |q - o|^2
                 rx, ry = r[X]
-                l2 = float(r0 @ r0)
-                c = (rx * r0[0] + ry * r0[1]) / l2
-                s = (r0[0] * ry - r0[1] * rx) / l2
+                c = rx * u0x + ry * u0y
+                s = ry * u0x - rx * u0y
                 st = _pose_about(end[1], c, s, x1[X], x2[X], self.g0[X] - o.point)
                 states[link] = (*st[:4], np.arctan2(s, c), *st[5:])
             else:
@@ -475,10 +531,6 @@ class ClosedForm:
             known |= {ia, ib}
         if len(known) != self.n + 1:
             raise NoClosedForm("some links are in no dyad")
-        # columns of q holding rotations that the caller continues along its path
-        self.angle_columns = np.array(
-            sorted(3 * (i - 1) + 2 for d in self.dyads for i in d.links), dtype=int
-        )
 
     def evaluate(self, theta, out=None) -> np.ndarray:
         """q, q', q'' (per unit crank speed) at crank angles theta (B,) rad, as an array

@@ -1,5 +1,6 @@
-"""General planar mechanisms: links, revolute and prismatic joints, a crank driver; positions by
-Newton-Raphson with branch control, velocities and accelerations from the constraint Jacobian.
+"""General planar mechanisms: links, revolute and prismatic joints, a crank driver; positions,
+velocities and accelerations in closed form for mechanisms of dyads, else by Newton-Raphson with
+branch control and the constraint Jacobian.
 
 Formulation (absolute coordinates; Nikravesh 1988, Computer-Aided Analysis of Mechanical Systems,
 ch. 3-4; Haug 1989, Computer-Aided Kinematics and Dynamics of Mechanical Systems, ch. 3)
@@ -18,14 +19,24 @@ A the rotation matrix; B = dA/dphi = A R90. The ground is fixed (G = 0, phi = 0)
 
 The mechanism has F = 3n - 2 p_l degrees of freedom (Gruebler-Chebyshev, seed 004: each lower
 pair removes two); crankdyn needs F = 1 so that the driver closes the system (3n equations).
-Positions: Newton-Raphson, Phi_q dq = -Phi, continued from the drawn configuration in small
-crank steps with a second-order predictor q + q' dtheta + q'' dtheta^2 / 2. **Branch control**:
-a step is accepted only when Newton converges quickly and its correction is small against the
-step's own motion; otherwise the step is halved. The assembly branch is therefore the one drawn,
-kept through the cycle; a mechanism that cannot reach a requested crank angle stops at its dead
-point with a message naming both angles. Velocities and accelerations then follow from batched
-linear solves over all positions: Phi_q q' = e_driver and Phi_q q'' = gamma(q, q'), per unit
-crank speed, so that q_dot = omega q' and q_ddot = omega^2 q'' + alpha q'.
+
+**Closed form.** When every link group (:meth:`Mechanism.link_groups`) is a dyad (RRR, RRP, RPR,
+PRP, RPP), the mechanism is solved group by group in closed form, vectorised over all crank
+angles (:mod:`crankdyn.linkage.dyads`), on the drawn assembly branch, with the rotations
+continued along the crank angles from the drawn one (:meth:`_Model._solve_closed`). Everything
+else, and any path that passes a dead point, an assembly gap or a singular position, goes to the
+general solver below, which reports such positions.
+
+**General solver.** Positions: Newton-Raphson, Phi_q dq = -Phi, continued from the drawn
+configuration in small crank steps with a second-order predictor q + q' dtheta + q'' dtheta^2 / 2.
+**Branch control**: a step is accepted only when Newton converges quickly and its correction is
+small against the step's own motion; otherwise the step is halved. The assembly branch is
+therefore the one drawn, kept through the cycle; a mechanism that cannot reach a requested crank
+angle stops at its dead point with a message naming both angles. Velocities and accelerations
+then follow from one LU factorisation of Phi_q per position (batched over blocks of angles,
+:mod:`crankdyn.linkage.linsolve`) used for both Phi_q q' = e_driver and Phi_q q'' = gamma(q, q'),
+per unit crank speed, so that q_dot = omega q' and q_ddot = omega^2 q'' + alpha q'; a position
+whose factorisation has a pivot below 1e-10 of its column is singular and named in the error.
 """
 
 from __future__ import annotations
