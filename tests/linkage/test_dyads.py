@@ -299,3 +299,20 @@ def test_class_iii_group_uses_the_general_solver_and_its_rates_are_derivatives()
     plus, minus = mech.motion(theta + h, 1.0, 0.0), mech.motion(theta - h, 1.0, 0.0)
     np.testing.assert_allclose(m.qp, (plus.q - minus.q) / (2 * h), atol=1e-8)
     np.testing.assert_allclose(m.qpp, (plus.qp - minus.qp) / (2 * h), atol=1e-6)
+
+
+def test_blocks_of_angles_give_the_same_result(monkeypatch):
+    # memory stays bounded by solving blocks of angles; the blocks must not change a number
+    import crankdyn.linkage.planar as planar
+
+    theta = np.radians(np.concatenate([np.arange(-400.0, 400.0, 0.7), [-3000.0, 4000.0]]))
+    mech = Mechanism.example("conveyor-seed004")
+    whole = mech._model._solve_closed(theta)
+    newton = mech._model.solve(theta[:40], method="newton")
+    monkeypatch.setattr(planar, "_PATH_BLOCK", 64)  # anchors then solved block by block too
+    monkeypatch.setattr(planar, "_BLOCK", 7)
+    fresh = Mechanism.example("conveyor-seed004")
+    for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):
+        np.testing.assert_array_equal(a, b)
+    for a, b in zip(fresh._model.solve(theta[:40], method="newton"), newton, strict=True):
+        np.testing.assert_allclose(a, b, rtol=0, atol=1e-13 * max(1.0, np.max(np.abs(b))))

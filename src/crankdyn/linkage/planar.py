@@ -1148,20 +1148,35 @@ class _Model:
         n = theta.shape[0]
         pt, src = self._path(theta)
         extra = src < 0
-        every = np.concatenate([theta, pt[extra]])  # the requested angles, then the others
+        # the other path angles (the drawn one, anchors) are solved with the requested ones,
+        # unless there are many (a few requested angles far from the drawn one): then block by
+        # block, so that memory stays bounded
+        inline = int(np.count_nonzero(extra)) <= 8 * _PATH_BLOCK
+        every = np.concatenate([theta, pt[extra]]) if inline else theta
         whole = np.empty((3, self.nq, every.shape[0]))
         for sl in _blocks(every.shape[0], _PATH_BLOCK):
             cf.evaluate(every[sl], out=whole[:, :, sl])
-        rotations = whole[:, 2::3, :]  # (3, links, N + anchors): phi, phi', phi'' of every link
-        column = np.where(extra, n + np.cumsum(extra) - 1, src)  # of ``whole``, in path order
+        rotations = whole[:, 2::3, :]  # (3, links, ...): phi, phi', phi'' of every link
+        if inline:
+            column = np.where(extra, n + np.cumsum(extra) - 1, src)  # of ``whole``, path order
         prev = None
         turns_drawn = None
         for sl in _blocks(pt.shape[0], _PATH_BLOCK):
-            cols = column[sl]
-            turns, prev = self._continue(pt[sl], np.take(rotations, cols, axis=2), prev)
+            sb = src[sl]
+            if inline:
+                cols = column[sl]
+                angles = np.take(rotations, cols, axis=2)
+            else:
+                mine = sb >= 0
+                cols = sb[mine]
+                angles = np.empty((3, rotations.shape[1], sb.shape[0]))
+                angles[:, :, mine] = np.take(rotations, cols, axis=2)
+                if not np.all(mine):
+                    angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, 2::3, :]
+            turns, prev = self._continue(pt[sl], angles, prev)
             if np.any(turns):
-                rotations[0][:, cols] += TWO_PI * turns
-            drawn = np.flatnonzero(src[sl] == -2)
+                rotations[0][:, cols] += TWO_PI * (turns if inline else turns[:, mine])
+            drawn = np.flatnonzero(sb == -2)
             if drawn.size:
                 turns_drawn = turns[:, drawn[0]]
         if np.any(turns_drawn):
