@@ -6,7 +6,7 @@ reverse of the force-analysis order), each dyad from the links already known, in
 vectorised over all crank angles at once; velocities and accelerations per unit crank speed
 follow from the derivatives of the same closure equations.
 
-Formulation (Norton 2012, Design of Machinery, ch. 4, 6, 7: the vector-loop closure and its
+Formulation (Norton 2012, Design of Machinery, 5th ed., ch. 4, 6, 7: the vector-loop closure and its
 derivatives; Nikravesh 1988, Computer-Aided Analysis of Mechanical Systems, sec. 3.6 and 4.1 for
 the absolute coordinates and the prismatic-joint equations used by :mod:`.planar`)
 ---------------------------------------------------------------------------------------------
@@ -55,7 +55,8 @@ sample to the next with the increment predicted from the rates, see :mod:`.plana
 **What has no closed form here** (a group of more than two links, a dyad of three prismatic
 joints, a dyad whose joints are not one inner and one outer per link) and **positions where
 a dyad is infeasible or nearly singular** (an imaginary intersection, a normalised determinant
-below :data:`DET_LIMIT`) raise :class:`NoClosedForm`: the caller then uses the general
+below :data:`DET_LIMIT` or of the other sign than drawn: a singular position passed between two
+samples) raise :class:`NoClosedForm`: the caller then uses the general
 Newton-Raphson solver, which reports dead points and singular positions.
 """
 
