@@ -1137,7 +1137,7 @@ class _Model:
         increment predicted from the rates (the corrected trapezoidal rule,
         h (phi'_0 + phi'_1)/2 + h^2 (phi''_0 - phi''_1)/12), and every step must then agree with
         that prediction as the general solver's steps must (deviation at most a quarter of the
-        step's motion, the crank's own included); the drawn angle has rotation 0. A predicted
+        step's motion, here the crank's rotation); the drawn angle has rotation 0. A predicted
         rotation above 90 deg in one step (a link far faster than the crank, near a dead point),
         a step that does not agree (an assembly gap or a branch change between two samples) and
         a dyad whose determinant changes sign or nears zero (:mod:`.dyads`) raise NoClosedForm.
@@ -1197,18 +1197,21 @@ class _Model:
         tt = np.concatenate([[prev[0]], t])
         a = np.concatenate([prev[1][:, :, None], angles], axis=2)
         h = np.diff(tt)
-        pred = 0.5 * h * (a[1, :, 1:] + a[1, :, :-1]) + (h * h / 12.0) * (
-            a[2, :, :-1] - a[2, :, 1:]
-        )
-        if not np.all(np.abs(pred) <= _MAX_TURN):
+        pred = (0.5 * h) * (a[1, :, 1:] + a[1, :, :-1])
+        pred += (h * h / 12.0) * (a[2, :, :-1] - a[2, :, 1:])
+        if not np.max(np.abs(pred), initial=0.0) <= _MAX_TURN:
             raise NoClosedForm("a rotation too fast to follow from one sample to the next")
-        step = np.diff(a[0], axis=1)
-        jumps = np.rint((pred - step) / TWO_PI)
-        turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
-        step += TWO_PI * jumps
-        err = np.max(np.abs(step - pred), axis=0, initial=0.0)
-        motion = np.maximum(np.max(np.abs(pred), axis=0, initial=0.0), np.abs(h))
-        if not np.all(err <= 0.25 * motion + 1e-9):
+        miss = np.diff(a[0], axis=1)
+        miss -= pred  # the step's deviation from its prediction, before whole turns
+        jumps = np.rint(miss * (-1.0 / TWO_PI))
+        if np.any(jumps):
+            miss += TWO_PI * jumps
+            turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
+        else:
+            turns = np.broadcast_to(prev[2][:, None], jumps.shape)
+        # the general solver's test, with the crank's own rotation as the step's motion (every
+        # coordinate's deviation within a quarter of it)
+        if not np.all(np.abs(miss) <= 0.25 * np.abs(h) + 1e-9):
             raise NoClosedForm("a step along the path disagrees with its prediction")
         return turns, (t[-1], angles[:, :, -1].copy(), turns[:, -1].copy())
 
