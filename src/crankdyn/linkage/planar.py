@@ -1165,7 +1165,13 @@ class _Model:
             sb = src[sl]
             if inline:
                 cols = column[sl]
-                angles = np.take(rotations, cols, axis=2)
+                # runs of consecutive columns (sorted requested angles around the drawn one)
+                # are read as views; many short runs (anchors) by one gather
+                cuts = np.flatnonzero(np.diff(cols) != 1) + 1
+                if cuts.size <= 8:
+                    turns, prev = self._continue_runs(pt[sl], rotations, cols, cuts, prev)
+                else:
+                    turns, prev = self._continue(pt[sl], np.take(rotations, cols, axis=2), prev)
             else:
                 mine = sb >= 0
                 cols = sb[mine]
@@ -1173,7 +1179,7 @@ class _Model:
                 angles[:, :, mine] = np.take(rotations, cols, axis=2)
                 if not np.all(mine):
                     angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, 2::3, :]
-            turns, prev = self._continue(pt[sl], angles, prev)
+                turns, prev = self._continue(pt[sl], angles, prev)
             if np.any(turns):
                 rotations[0][:, cols] += TWO_PI * (turns if inline else turns[:, mine])
             drawn = np.flatnonzero(sb == -2)
@@ -1184,36 +1190,61 @@ class _Model:
         out = whole[:, :, :n]
         return out[0].T, out[1].T, out[2].T
 
+    def _continue_runs(self, t, rotations, cols, cuts, prev):
+        """:meth:`_continue` over runs of consecutive columns of ``rotations`` (views)."""
+        bounds = [0, *cuts.tolist(), cols.shape[0]]
+        parts = []
+        for i0, i1 in itertools.pairwise(bounds):
+            c0 = int(cols[i0])
+            turns, prev = self._continue(t[i0:i1], rotations[:, :, c0 : c0 + i1 - i0], prev)
+            parts.append(turns)
+        return (parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)), prev
+
     def _continue(self, t, angles, prev):
         """Whole turns (k, B) of a block of wrapped rotations ``angles`` (3, k, B: values,
         first and second derivatives) along the path angles t, and the carry for the next
         block; raises NoClosedForm where a step disagrees with its prediction
         (:meth:`_solve_closed`). ``prev``: the previous block's last (angle, (3, k) values,
         turns)."""
-        from crankdyn.linkage.dyads import NoClosedForm
-
         if prev is None:
             prev = (t[0], angles[:, :, 0], np.zeros(angles.shape[1]))
-        tt = np.concatenate([[prev[0]], t])
-        a = np.concatenate([prev[1][:, :, None], angles], axis=2)
-        h = np.diff(tt)
-        pred = (0.5 * h) * (a[1, :, 1:] + a[1, :, :-1])
-        pred += (h * h / 12.0) * (a[2, :, :-1] - a[2, :, 1:])
-        if not np.max(np.abs(pred), initial=0.0) <= _MAX_TURN:
-            raise NoClosedForm("a rotation too fast to follow from one sample to the next")
-        miss = np.diff(a[0], axis=1)
-        miss -= pred  # the step's deviation from its prediction, before whole turns
-        jumps = np.rint(miss * (-1.0 / TWO_PI))
-        if np.any(jumps):
-            miss += TWO_PI * jumps
-            turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
+        first = _turns(np.array([t[0] - prev[0]]), prev[1][:, :, None], angles[:, :, :1])
+        rest = _turns(np.diff(t), angles[:, :, :-1], angles[:, :, 1:])
+        if first is None and rest is None:
+            turns = np.broadcast_to(prev[2][:, None], (angles.shape[1], t.shape[0]))
         else:
-            turns = np.broadcast_to(prev[2][:, None], jumps.shape)
-        # the general solver's test, with the crank's own rotation as the step's motion (every
-        # coordinate's deviation within a quarter of it)
-        if not np.all(np.abs(miss) <= 0.25 * np.abs(h) + 1e-9):
-            raise NoClosedForm("a step along the path disagrees with its prediction")
+            jumps = np.zeros((angles.shape[1], t.shape[0]))
+            if first is not None:
+                jumps[:, :1] = first
+            if rest is not None:
+                jumps[:, 1:] = rest
+            turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
         return turns, (t[-1], angles[:, :, -1].copy(), turns[:, -1].copy())
+
+
+def _turns(h, lo, hi):
+    """Whole turns added to each step lo -> hi of wrapped rotations (3, k, L each: values,
+    first and second derivatives; steps h, rad), None when there are none; raises
+    NoClosedForm where a step disagrees with its prediction (:meth:`_Model._solve_closed`)."""
+    from crankdyn.linkage.dyads import NoClosedForm
+
+    if h.shape[0] == 0:
+        return None
+    pred = (0.5 * h) * (hi[1] + lo[1])
+    pred += (h * h / 12.0) * (lo[2] - hi[2])
+    if not np.max(np.abs(pred)) <= _MAX_TURN:
+        raise NoClosedForm("a rotation too fast to follow from one sample to the next")
+    miss = hi[0] - lo[0]
+    miss -= pred  # the step's deviation from its prediction, before whole turns
+    jumps = np.rint(miss * (-1.0 / TWO_PI))
+    wrapped = np.any(jumps)
+    if wrapped:
+        miss += TWO_PI * jumps
+    # the general solver's test, with the crank's own rotation as the step's motion (every
+    # coordinate's deviation within a quarter of it)
+    if not np.all(np.abs(miss) <= 0.25 * np.abs(h) + 1e-9):
+        raise NoClosedForm("a step along the path disagrees with its prediction")
+    return jumps if wrapped else None
 
 
 def _blocks(n: int, size: int):
