@@ -210,6 +210,22 @@ def _solve2(ea, eb, rhs, det):
     return x1, x2
 
 
+def _store(state, out, i):
+    """Write link i's state into its rows of ``out`` (3, 3n, B) and return the state with its
+    arrays replaced by those rows (plain numbers stay numbers)."""
+    gx, gy, c, s, ph, gxp, gyp, w, gxpp, gypp, al = state
+    k = 3 * (i - 1)
+    values = ((gx, gy, ph), (gxp, gyp, w), (gxpp, gypp, al))
+    rows = []
+    for which, triple in enumerate(values):
+        for j, value in enumerate(triple):
+            row = out[which, k + j]
+            row[...] = value
+            rows.append(value if type(value) is float else row)
+    (gx, gy, ph), (gxp, gyp, w), (gxpp, gypp, al) = rows[0:3], rows[3:6], rows[6:9]
+    return (gx, gy, c, s, ph, gxp, gyp, w, gxpp, gypp, al)
+
+
 class _Outer:
     """An outer joint of a dyad link: kind "R" or "P", the known link's index and drawn centre
     of gravity, the joint's drawn point, the guide's drawn direction (prismatic)."""
@@ -542,19 +558,15 @@ class ClosedForm:
         phi = theta - self.theta0
         c, s = np.cos(phi), np.sin(phi)
         pivot = ((float(self.pivot[0]), float(self.pivot[1])), (0.0, 0.0), (0.0, 0.0))
-        st = _pose_about(pivot, c, s, 1.0, 0.0, self.crank_g0 - self.pivot)
-        states = {0: _GROUND_STATE, self.crank: (*st[:4], phi, *st[5:])}
-        for dyad in self.dyads:
-            dyad.solve(states)
         if out is None:
             out = np.empty((3, 3 * self.n, theta.shape[0]))
-        q, qp, qpp = out
-        for i in range(1, self.n + 1):
-            gx, gy, _c, _s, ph, gxp, gyp, w, gxpp, gypp, al = states[i]
-            k = 3 * (i - 1)
-            q[k], q[k + 1], q[k + 2] = gx, gy, ph
-            qp[k], qp[k + 1], qp[k + 2] = gxp, gyp, w
-            qpp[k], qpp[k + 1], qpp[k + 2] = gxpp, gypp, al
+        st = _pose_about(pivot, c, s, 1.0, 0.0, self.crank_g0 - self.pivot)
+        states = {0: _GROUND_STATE}
+        states[self.crank] = _store((*st[:4], phi, *st[5:]), out, self.crank)
+        for dyad in self.dyads:
+            dyad.solve(states)
+            for i in dyad.links:  # written out at once: the state's arrays are then freed
+                states[i] = _store(states[i], out, i)
         return out
 
 
