@@ -548,6 +548,22 @@ class ClosedForm:
             known |= {ia, ib}
         if len(known) != self.n + 1:
             raise NoClosedForm("some links are in no dyad")
+        # links whose rotation comes out of an arctangent, wrapped to (-pi, pi] (or is copied
+        # from such a link): the caller continues them along its path; their rows in q are
+        # ``rotation_rows`` (a slice over the span of them; links in between are continued too,
+        # harmlessly). None when there is none (only PRP and RPP dyads after the crank).
+        wrapped: set[int] = set()
+        for d in self.dyads:
+            if d.inner_kind == "R":
+                for X, o in enumerate(d.outer):
+                    if o.kind == "R" or o.k in wrapped:
+                        wrapped.add(d.links[X])
+            elif d.kinds == "RR" or d.outer[0 if d.kinds == "PR" else 1].k in wrapped:
+                wrapped |= set(d.links)
+        self.rotation_rows = None
+        if wrapped:
+            lo, hi = min(wrapped), max(wrapped)
+            self.rotation_rows = slice(3 * lo - 1, 3 * hi, 3)
 
     def evaluate(self, theta, out=None) -> np.ndarray:
         """q, q', q'' (per unit crank speed) at crank angles theta (B,) rad, as an array

@@ -1156,7 +1156,10 @@ class _Model:
         whole = np.empty((3, self.nq, every.shape[0]))
         for sl in _blocks(every.shape[0], _PATH_BLOCK):
             cf.evaluate(every[sl], out=whole[:, :, sl])
-        rotations = whole[:, 2::3, :]  # (3, links, ...): phi, phi', phi'' of every link
+        if cf.rotation_rows is None:  # no rotation to continue (the dyads checked themselves)
+            out = whole[:, :, :n]
+            return out[0].T, out[1].T, out[2].T
+        rotations = whole[:, cf.rotation_rows, :]  # (3, links, ...): phi, phi', phi''
         if inline:
             column = np.where(extra, n + np.cumsum(extra) - 1, src)  # of ``whole``, path order
         prev = None
@@ -1178,7 +1181,7 @@ class _Model:
                 angles = np.empty((3, rotations.shape[1], sb.shape[0]))
                 angles[:, :, mine] = np.take(rotations, cols, axis=2)
                 if not np.all(mine):
-                    angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, 2::3, :]
+                    angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, cf.rotation_rows, :]
                 turns, prev = self._continue(pt[sl], angles, prev)
             if np.any(turns):
                 rotations[0][:, cols] += TWO_PI * (turns if inline else turns[:, mine])
