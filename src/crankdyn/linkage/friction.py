@@ -16,7 +16,8 @@ relative sliding. Equivalently, added to the frictionless equations of :mod:`.ki
 The directions of relative motion come from the kinematics (per unit crank speed, times the sign
 of the crank speed; a crank at rest is taken as about to turn counter-clockwise), the magnitudes
 from the reactions, so the system is solved by fixed-point iteration
-R_{k+1} = C^-1 (D P - F_friction(R_k)) from the frictionless solution, all positions at once,
+R_{k+1} = C^-1 (D P - F_friction(R_k)) from the frictionless solution, all positions at once
+(one LU factorisation of C, reused by every step),
 until the largest change is below 1e-12 of the largest reaction. Where a relative motion is at
 rest (a rocker's reversal) its friction is taken as zero.
 
@@ -119,13 +120,13 @@ def solve_with_friction(
     from the frictionless reactions R0 (module docstring)."""
     terms = _friction_terms(motion)
     n_eq = system.C.shape[1]
-    c_inv = np.linalg.inv(system.C)
+    lu = system.lu  # the factors of C from the frictionless solve
     base = np.einsum("nij,nj->ni", system.D, system.P)
     R = R0
     scale = max(float(np.max(np.abs(R0))), 1e-300)
     for _ in range(_MAX_ITER):
         fric = _friction_vector(motion, terms, R, n_eq)
-        R_new = np.einsum("nij,nj->ni", c_inv, base - fric)
+        R_new = lu.solve(base - fric)
         change = np.max(np.abs(R_new - R), axis=1)
         R = R_new
         if np.all(change <= 1e-12 * scale):

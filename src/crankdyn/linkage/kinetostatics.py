@@ -18,21 +18,25 @@ unknowns for the four-bar). Known loads {P}: per link (P_x, P_y) at the centre o
 couple M (inertia, gravity, applied couples), then each applied force at a point. With
 {R} on the left and {P} on the right, C R + L P = 0 and D = -L.
 
-All positions are assembled into stacked arrays C (N, 3n, 3n), D (N, 3n, p) and solved in one
-batched ``numpy.linalg.solve``; a position where C is singular (condition number above 1e10) is
-named in an InputError.
+All positions are assembled into stacked arrays C (N, 3n, 3n), D (N, 3n, p). C is factorised
+once, all positions at once (:mod:`crankdyn.linkage.linsolve`: batched LU with partial
+pivoting); a position where C is singular (a pivot below 1e-10 of its column's largest entry,
+about a condition number of 1e10) is named in an InputError, and the factors serve every
+right-hand side: the frictionless reactions and each step of the friction iteration.
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 
 import numpy as np
 
 from crankdyn.constants import DEG
 from crankdyn.errors import InputError
 from crankdyn.linkage.joints import cross_arm, driving_torque_of, joint_geometry, sign_of_speed
+from crankdyn.linkage.linsolve import LU, lu_factor
 from crankdyn.linkage.planar import GROUND, MechanismMotion
 from crankdyn.results import Result, column, freeze, scalar
 
@@ -45,8 +49,6 @@ __all__ = [
     "known_loads",
     "solve_system",
 ]
-
-_COND_LIMIT = 1e10
 
 
 @dataclass(frozen=True, eq=False)
@@ -161,6 +163,12 @@ class KinetostaticSystem:
     equations: tuple[str, ...]
     loads: KnownLoads
 
+    @cached_property
+    def lu(self) -> LU:
+        """LU factors of C at every position (:func:`crankdyn.linkage.linsolve.lu_factor`),
+        computed once and reused by every solve."""
+        return lu_factor(self.C)
+
     def matrices(self, index: int) -> dict:
         """C, D, P and the names at one position, as plain lists (for JSON)."""
         return {
@@ -242,9 +250,8 @@ def build_system(motion: MechanismMotion, loads: KnownLoads | None = None) -> Ki
 
 
 def check_singular(system: KinetostaticSystem, crank_angle, source=None) -> None:
-    """Raise InputError naming the first position where C is singular."""
-    cond = np.linalg.cond(system.C)
-    bad = ~(cond < _COND_LIMIT)
+    """Raise InputError naming the first position where C is singular (from its LU pivots)."""
+    bad = system.lu.singular
     if np.any(bad):
         i = int(np.argmax(bad))
         raise InputError(
@@ -256,11 +263,12 @@ def check_singular(system: KinetostaticSystem, crank_angle, source=None) -> None
 
 
 def solve_system(system: KinetostaticSystem, extra=None) -> np.ndarray:
-    """{R} (N, 3n) from C R = D P (- extra), one batched solve."""
+    """{R} (N, 3n) from C R = D P (- extra), with the factors of C
+    (:attr:`KinetostaticSystem.lu`)."""
     rhs = np.einsum("nij,nj->ni", system.D, system.P)
     if extra is not None:
         rhs = rhs - extra
-    return np.linalg.solve(system.C, rhs[..., None])[..., 0]
+    return system.lu.solve(rhs)
 
 
 # ---- result ----------------------------------------------------------------------------------
