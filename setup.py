@@ -46,7 +46,9 @@ class BuildPyWithDocs(build_py):
             shutil.copyfile(path, dest)
         if os.environ.get("CRANKDYN_DOCS_HTML") == "1":
             if not (SITE / "index.html").is_file():
-                raise SystemExit("CRANKDYN_DOCS_HTML=1 but docs/_build/html is not built (make docs)")
+                raise SystemExit(
+                    "CRANKDYN_DOCS_HTML=1 but docs/_build/html is not built (make docs)"
+                )
             shutil.copytree(SITE, target / "html", dirs_exist_ok=True)
 
 

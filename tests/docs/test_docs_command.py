@@ -48,9 +48,7 @@ def test_show_accepts_the_file_name(capsys):
 
 def test_raw_prints_the_markdown_source(capsys):
     assert main(["docs", "conventions", "--raw"]) == 0
-    assert capsys.readouterr().out == (ROOT / "docs" / "conventions.md").read_text(
-        encoding="utf-8"
-    )
+    assert capsys.readouterr().out == (ROOT / "docs" / "conventions.md").read_text(encoding="utf-8")
 
 
 def test_unknown_topic_is_one_line_with_a_suggestion(capsys):

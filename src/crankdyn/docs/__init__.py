@@ -23,7 +23,17 @@ from pathlib import Path
 
 from crankdyn.errors import InputError
 
-__all__ = ["Topic", "html_dirs", "html_page", "pages_dir", "read", "ref", "topic", "topic_names", "topics"]
+__all__ = [
+    "Topic",
+    "html_dirs",
+    "html_page",
+    "pages_dir",
+    "read",
+    "ref",
+    "topic",
+    "topic_names",
+    "topics",
+]
 
 SITE_ONLY = frozenset({"index"})
 """Pages of the HTML site only (its table of contents), not topics."""
