@@ -25,6 +25,7 @@ import tempfile
 from pathlib import Path
 
 from docutils import nodes
+from docutils.statemachine import StringList
 from sphinx.util import logging
 from sphinx.util.docutils import SphinxDirective
 
@@ -77,8 +78,16 @@ def _title_and_body(doc: str, fallback: str) -> tuple[str, str]:
     if not sep:
         head, sep, rest = first.partition(". ")
     title = head.rstrip(".")
-    body = "\n\n".join([rest.strip(), *("\n".join(b) for b in blocks[1:])]).strip()
-    return title, body
+    rest = rest.strip()
+    body = "\n\n".join([rest[:1].upper() + rest[1:], *("\n".join(b) for b in blocks[1:])])
+    return title, body.strip()
+
+
+def _without_docstring(source: str, tree: ast.Module) -> str:
+    """The script's code after its module docstring (shown as text above it)."""
+    if ast.get_docstring(tree) is None:
+        return source
+    return "\n".join(source.splitlines()[tree.body[0].end_lineno :]).strip("\n") + "\n"
 
 
 def _section(document, title: str, ident: str) -> nodes.section:
@@ -102,12 +111,16 @@ class GalleryDirective(SphinxDirective):
         sections = []
         for script in scripts:
             source = script.read_text(encoding="utf-8")
-            title, body = _title_and_body(ast.get_docstring(ast.parse(source)) or "", script.stem)
+            tree = ast.parse(source)
+            title, body = _title_and_body(ast.get_docstring(tree) or "", script.stem)
             section = _section(self.state.document, title, f"example-{script.stem}")
-            section += plain_nodes(body)
+            if body:  # the docstring is Markdown/reST-light: ``code`` and `code` render as code
+                holder = nodes.container()
+                self.state.nested_parse(StringList(body.splitlines(), str(script)), 0, holder)
+                section += holder.children
             section += nodes.paragraph("", "", nodes.literal(text=f"python {script.name} OUTDIR"))
-            code = nodes.literal_block(source, source, language="python")
-            section += code
+            code = _without_docstring(source, tree)
+            section += nodes.literal_block(code, code, language="python")
             if script in runs:
                 section += self._results(script, *runs[script])
             else:
