@@ -28,6 +28,7 @@ COMMAND_MODULES = (
     "balance",
     "torsion_response",
     "study",
+    "measure",
     "docs",
 )
 

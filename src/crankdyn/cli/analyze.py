@@ -28,7 +28,9 @@ DEMO_ENGINE = "inline6-diesel"
 _BADGE = {"pass": "[green]pass[/]", "warn": "[yellow]warn[/]", "fail": "[red]fail[/]", None: ""}
 
 
-def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force: bool) -> int:
+def run_report(
+    engine: Engine, out: Path, *, speed: float | None, speeds, force: bool, measurement=None
+) -> int:
     """Build and write the report with a progress bar, then print the summary table."""
     if out.exists() and not force:  # fail before the long work
         raise InputError("already exists; not overwritten without --force", file=str(out))
@@ -48,7 +50,9 @@ def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force:
         def step(name):
             progress.update(task, description=f"Analysing: {name}", advance=1)
 
-        report = build_report(engine, speed=speed, speeds=speeds, progress=step)
+        report = build_report(
+            engine, speed=speed, speeds=speeds, progress=step, measurement=measurement
+        )
         plots = sum(len(s.plots) for s in report.sections)
         task2 = progress.add_task("Writing plots", total=plots)
 
@@ -86,17 +90,46 @@ def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force:
     default=None,
     help="Speed range of the sweeps (rpm), e.g. 1000:2500:25.",
 )
+@click.option(
+    "--measurement",
+    default=None,
+    metavar="SIGNAL",
+    help="A torsiograph signal to hold against the model (crankdyn measure; needs --teeth for "
+    "pulse times and --at).",
+)
+@click.option("--teeth", type=int, default=None, metavar="N", help="Pulses per revolution.")
+@click.option("--at", "mass", default=None, metavar="MASS", help="The mass that carries the wheel.")
 @click.option("--force", is_flag=True, help="Replace an existing report folder.")
-def analyze_command(engine, out, speed, speeds, force) -> int:
+def analyze_command(engine, out, speed, speeds, measurement, teeth, mass, force) -> int:
     """Run every analysis that applies to ENGINE and write an HTML report with its data."""
     eng = load_engine_arg(engine)
+    signal = _measurement(eng, measurement, teeth, mass)
     w = option_quantity(speed, "speed", "--speed", "rpm")
     if w is not None and not w > 0:
         raise InputError("the speed must be positive", key="--speed", value=speed)
     sweep = speed_range(speeds)
     stem = Path(engine).stem if engine.endswith(".toml") else engine
     target = Path(out) if out else Path(f"{stem}-report")
-    return run_report(eng, target, speed=w, speeds=sweep, force=force)
+    return run_report(eng, target, speed=w, speeds=sweep, force=force, measurement=signal)
+
+
+def _measurement(engine: Engine, signal, teeth, mass):
+    """--measurement SIGNAL --teeth N --at MASS, analysed before the report's long work."""
+    if signal is None:
+        if teeth is not None or mass is not None:
+            raise InputError("--teeth and --at go with --measurement SIGNAL", key="--measurement")
+        return None
+    if mass is None:
+        raise InputError("give --at MASS, the mass that carries the wheel", key="--at")
+    if engine.torsion is not None:
+        try:
+            engine.torsion.index(mass)
+        except InputError as exc:
+            raise InputError(exc.message, key="--at", value=mass) from None
+    from crankdyn.cli.measure import load_measurement
+    from crankdyn.report.sections.measurement import MeasurementInput
+
+    return MeasurementInput(load_measurement(signal, teeth, cycle=engine.cycle), mass)
 
 
 @click.command("demo")

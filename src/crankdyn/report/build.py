@@ -9,7 +9,7 @@ from crankdyn import __version__
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.report.model import Report
-from crankdyn.report.sections import Context, NotApplicable, builders
+from crankdyn.report.sections import Context, NotApplicable, NotRequested, builders
 
 __all__ = ["build_report", "engine_inputs"]
 
@@ -67,7 +67,7 @@ def engine_inputs(engine: Engine) -> list[tuple[str, str]]:
 
 
 def build_report(
-    engine: Engine, *, speed: float | None = None, speeds=None, progress=None
+    engine: Engine, *, speed: float | None = None, speeds=None, progress=None, measurement=None
 ) -> Report:
     """Run every analysis that applies to ``engine``.
 
@@ -82,19 +82,23 @@ def build_report(
         defaults.
     progress
         Optional callable progress(name) called before each analysis.
+    measurement
+        A :class:`~crankdyn.report.sections.measurement.MeasurementInput`, or None.
     """
     speed = speed if speed is not None else engine.speed
     if speed is None:
         raise InputError(
             "no speed: give --speed RPM or [operating] speed in the engine file", file=engine.source
         )
-    ctx = Context(engine=engine, speed=speed, speeds=speeds)
+    ctx = Context(engine=engine, speed=speed, speeds=speeds, measurement=measurement)
     sections, notes = [], []
     for name, build in builders():
         if progress is not None:
             progress(name)
         try:
             sections.append(build(ctx))
+        except NotRequested:
+            continue
         except NotApplicable as why:
             notes.append(f"{name}: {why}")
     return Report(

@@ -15,7 +15,7 @@ import numpy as np
 
 from crankdyn.engine.model import Engine
 
-__all__ = ["BUILDERS", "Context", "NotApplicable", "builders"]
+__all__ = ["BUILDERS", "Context", "NotApplicable", "NotRequested", "builders"]
 
 BUILDERS = (
     "kinematics",
@@ -27,11 +27,16 @@ BUILDERS = (
     "flywheel",
     "torsion_modes",
     "torsion_response",
+    "measurement",
 )
 
 
 class NotApplicable(Exception):
     """The analysis does not apply to this engine; the message says why."""
+
+
+class NotRequested(NotApplicable):
+    """An optional section the user did not ask for (no note in the report)."""
 
 
 @dataclass
@@ -41,6 +46,7 @@ class Context:
     engine: Engine
     speed: float  # rad/s, the operating point
     speeds: np.ndarray | None = None  # rad/s, for speed sweeps (torsional response)
+    measurement: Any = None  # sections.measurement.MeasurementInput, or None
     cache: dict[str, Any] = field(default_factory=dict)
 
     def get(self, key: str, compute):

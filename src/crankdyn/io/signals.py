@@ -1,0 +1,243 @@
+"""Reading torsiograph signals: pulse times or sampled speeds from CSV or NumPy files, or a
+built-in example (docs/measurement.md).
+
+CSV (unit-annotated, :mod:`crankdyn.io.csv_tables`): a ``time`` column with its unit
+(``time [s]``, ``time_ms``) holds the pulse times, one per tooth; with a ``speed`` column
+(``speed [rpm]``) the file is a sampled speed signal instead, ``time`` then holding the sample
+times. An optional ``reference`` column (a time unit) holds the times of the once-per-revolution
+or once-per-cycle mark; it is shorter than the others, its cells blank after the last mark.
+
+NumPy (SI, no units to name): ``.npy`` with one column of pulse times (s), or two columns of
+sample times (s) and speeds (rad/s); ``.npz`` with arrays ``time`` (s), optionally ``speed``
+(rad/s) and ``reference`` (s).
+"""
+
+from __future__ import annotations
+
+import math
+import zipfile
+from pathlib import Path
+
+import numpy as np
+
+from crankdyn.errors import InputError
+from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.files import MAX_CSV_BYTES, display_name
+from crankdyn.measure.signals import PulseTrain, SpeedSignal
+
+__all__ = ["COLUMNS", "read_signal", "resolve_signal"]
+
+COLUMNS = {"time": "time", "speed": "speed", "reference": "time"}
+"""The columns a signal file may hold, with the kind of quantity of each."""
+
+
+def resolve_signal(spec: str, teeth: int | None):
+    """A SIGNAL argument: a CSV/NumPy file, or the name of a built-in example signal.
+
+    Parameters
+    ----------
+    spec
+        File path or built-in name.
+    teeth
+        Pulses per revolution (required for pulse times; for a speed signal the angle samples
+        per revolution of the resampling, or None for the default).
+
+    Returns
+    -------
+    PulseTrain or SpeedSignal
+    """
+    from crankdyn.measure.examples import EXAMPLES, TEETH, example_signal
+
+    path = Path(spec)
+    if spec in EXAMPLES and not path.exists():
+        if teeth is not None and teeth != TEETH:
+            raise InputError(
+                f"the built-in signal was measured with {TEETH} teeth", key="--teeth", value=teeth
+            )
+        return example_signal(spec)
+    if not path.exists() and path.suffix.lower() not in (".csv", ".npy", ".npz", ".txt"):
+        from crankdyn.torsion.model import _suggest
+
+        raise InputError(
+            f"no such signal file, and no built-in signal of that name{_suggest(spec, EXAMPLES)}"
+            f" (built-in: {', '.join(EXAMPLES)})",
+            key="SIGNAL",
+            value=spec,
+        )
+    return read_signal(path, teeth)
+
+
+def read_signal(path: str | Path, teeth: int | None):
+    """Read a signal file (module docstring) as a PulseTrain (needs ``teeth``) or a
+    SpeedSignal."""
+    suffix = Path(path).suffix.lower()
+    if suffix == ".npy":
+        return _read_npy(path, teeth)
+    if suffix == ".npz":
+        return _read_npz(path, teeth)
+    return _read_csv(path, teeth)
+
+
+def _pulses(name, times, teeth, **kw) -> PulseTrain:
+    if teeth is None:
+        raise InputError(
+            "pulse times need --teeth N, the pulses per revolution of the wheel", file=name
+        )
+    return PulseTrain(times, teeth, source=name, **kw)
+
+
+def _read_csv(path, teeth):
+    name = display_name(path)
+    table = read_csv_table(path, what="signal file")
+    if table.header_is_numeric:
+        raise InputError(
+            "the first line must name the columns with their units, e.g. time [s] (pulse "
+            "times) or time [s],speed [rpm] (a speed signal)",
+            file=name,
+            key=f"line {table.header_line}",
+        )
+    index: dict[str, tuple[int, float]] = {}
+    for i, cell in enumerate(table.header):
+        label, unit = split_header_unit(cell)
+        key = label.strip().lower()
+        if key not in COLUMNS:
+            from crankdyn.torsion.model import _suggest
+
+            raise InputError(
+                f"unknown column {label!r}{_suggest(key, COLUMNS)} (a signal file has "
+                f"{', '.join(COLUMNS)})",
+                file=name,
+                key="header",
+                value=cell,
+            )
+        if key in index:
+            raise InputError(f"the column {key} appears twice", file=name, key="header", value=cell)
+        kind = COLUMNS[key]
+        example, quantity = (
+            ("time [s]", "a time")
+            if kind == "time"
+            else (
+                "speed [rpm]",
+                "a rotational speed",
+            )
+        )
+        factor = unit_factor(
+            cell,
+            unit,
+            kind,
+            name,
+            missing=f"the column {key} needs a unit, e.g. {example}",
+            unknown=f"the unit {{unit}} of the column {key} is not {quantity}",
+        )
+        index[key] = (i, factor)
+    if "time" not in index:
+        raise InputError(
+            "the signal file needs a time column, e.g. time [s]", file=name, key="header"
+        )
+    if not table.rows:
+        raise InputError("the signal file holds no data", file=name)
+    lines = np.array([number for number, _ in table.rows])
+    col, factor = index["time"]
+    times = table.column(col) * factor
+    reference = reference_lines = None
+    if "reference" in index:
+        col_r, factor_r = index["reference"]
+        values, ref_lines = [], []
+        for number, row in table.rows:
+            cell = row[col_r].strip() if col_r < len(row) else ""
+            if not cell:
+                continue
+            try:
+                value = float(cell)
+            except ValueError:
+                value = math.nan
+            if not math.isfinite(value):
+                raise InputError(
+                    "not a finite number in column 'reference'",
+                    file=name,
+                    key=f"line {number}",
+                    value=cell,
+                )
+            values.append(value * factor_r)
+            ref_lines.append(number)
+        reference = np.array(values)
+        reference_lines = np.array(ref_lines)
+    if "speed" in index:
+        col_s, factor_s = index["speed"]
+        speed = table.column(col_s) * factor_s
+        return SpeedSignal(
+            times,
+            speed,
+            reference=reference,
+            source=name,
+            lines=lines,
+            reference_lines=reference_lines,
+        )
+    return _pulses(
+        name, times, teeth, reference=reference, lines=lines, reference_lines=reference_lines
+    )
+
+
+def _load(path, what: str):
+    name = display_name(path)
+    p = Path(path)
+    try:
+        size = p.stat().st_size
+    except FileNotFoundError:
+        raise InputError("no such signal file", file=name) from None
+    except OSError as exc:
+        raise InputError(f"cannot read the signal file: {exc.strerror or exc}", file=name) from None
+    if p.is_dir():
+        raise InputError("is a directory, not a signal file", file=name)
+    if size > MAX_CSV_BYTES:
+        raise InputError(
+            f"the signal file is larger than the {MAX_CSV_BYTES // (1 << 20)} MiB crankdyn reads",
+            file=name,
+        )
+    try:
+        return np.load(p, allow_pickle=False)
+    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
+        detail = " ".join(str(exc).split())[:80]
+        raise InputError(f"not a readable {what} ({detail})", file=name) from None
+
+
+def _float_array(name, key, value) -> np.ndarray:
+    arr = np.asarray(value)
+    if arr.dtype.kind not in "fiu":
+        raise InputError("expected numbers", file=name, key=key, value=str(arr.dtype))
+    return arr.astype(float)
+
+
+def _read_npy(path, teeth):
+    name = display_name(path)
+    data = _float_array(name, "array", _load(path, "NumPy .npy file"))
+    if data.ndim == 1:
+        return _pulses(name, data, teeth)
+    if data.ndim == 2 and data.shape[1] == 2:
+        return SpeedSignal(data[:, 0], data[:, 1], source=name)
+    raise InputError(
+        "expected one column of pulse times (s) or two columns of times (s) and speeds (rad/s)",
+        file=name,
+        key="shape",
+        value=list(data.shape),
+    )
+
+
+def _read_npz(path, teeth):
+    name = display_name(path)
+    with _load(path, "NumPy .npz file") as archive:
+        keys = set(archive.files)
+        unknown = keys - set(COLUMNS)
+        if unknown:
+            raise InputError(
+                f"unknown array {sorted(unknown)[0]!r} (a signal archive holds "
+                f"{', '.join(COLUMNS)})",
+                file=name,
+            )
+        if "time" not in keys:
+            raise InputError("the archive needs an array named time (s)", file=name)
+        arrays = {k: _float_array(name, k, archive[k]) for k in keys}
+    reference = arrays.get("reference")
+    if "speed" in arrays:
+        return SpeedSignal(arrays["time"], arrays["speed"], reference=reference, source=name)
+    return _pulses(name, arrays["time"], teeth, reference=reference)

@@ -1,0 +1,637 @@
+"""Order analysis of a torsiograph signal (analysis and results): the orders of the angular
+vibration at a steady speed, and order tracking over a run-up or a run-down.
+
+After :mod:`crankdyn.measure.angle` the vibration v(psi) is known at N equally spaced crank angles
+per revolution, over whole working cycles starting on a cycle boundary. For one window of c
+whole cycles (L c samples) the discrete Fourier transform gives every order of the cycle exactly
+(synchronous sampling):
+
+    V_q = (2 / (L c)) sum_j v_j exp(-i q psi_j),    v(psi) = sum_q Re( V_q exp(i q psi) ),
+
+q = k 2 pi / (c Theta) for bin k (Theta the cycle's crank angle), so the orders 0.5, 1, 1.5, ...
+of a four-stroke engine fall on bins and nothing leaks between them: the window is uniform
+(rectangular), which is exact for synchronous data (a Hann window would spread each order over
+its neighbours, half an order away; R. B. Randall, *Frequency Analysis*, Bruel & Kjaer 1987,
+ch. 4 on windows and synchronous sampling). The phase is that of the cosine at the crank angle
+psi measured from the reference mark's crank angle, the convention of the model's forced
+response (:mod:`crankdyn.torsion.response`: theta(t) = Re(X exp(i q Omega t)), crank angle 0 at
+cylinder 1's firing TDC), so measured and predicted phases compare directly.
+
+Steady speed: the complex (synchronous) average of V_q over every whole cycle of the record,
+each cycle a uniform window (noise and content not locked to the crank average out; the scatter
+of the single cycles about the mean is reported).
+
+Order tracking (run-up, run-down): one window at every cycle boundary, c cycles long (default 4,
+so that windows overlap by three quarters), with a Hann window w_j = (1 - cos(2 pi j / n)) / 2
+and the amplitudes divided by its coherent gain sum(w) / n = 1/2. With c >= 2 the Hann window
+is still exact for stationary orders (its transform occupies only the bins next to each order,
+which are not orders), while the leakage of an order whose amplitude changes within the window
+(a resonance passed during the run-up) into its neighbours falls off as the cube of the
+distance instead of linearly: in the built-in run-up, orders above 0.5 mrad come out within
+0.5 % next to the 16 mrad order-6 resonance with Hann over 4 cycles, 6 % with uniform one-cycle
+windows (Randall 1987, ch. 4; F. J. Harris, "On the use of windows for harmonic analysis with
+the discrete Fourier transform", *Proc. IEEE* 66 (1978) 51-83). The window's speed is the crank
+angle it spans over the time the mean rotation takes. The windows are complex-averaged in speed
+bins (default 10 rpm) for the table, CSV and JSON; resonance peaks and damping fits use every
+window (resolved data, independent of the bins). Orders must lie below the wheel's Nyquist order
+N/2: the teeth are the samples, and content above N/2 aliases (no filter can prevent it after
+the wheel).
+
+The synthesised amplitude is half the peak-to-peak of sum_q Re(V_q exp(i q psi)) over the
+analysed orders, found exactly as for the model (:func:`crankdyn.torsion.response.half_range`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from crankdyn.constants import CYCLE_ANGLE, DEG, RPM
+from crankdyn.errors import InputError
+from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
+from crankdyn.measure.resonance import ResonanceFit, fit_resonance
+from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
+from crankdyn.results import Result, array, column, freeze, scalar
+from crankdyn.torsion.excitation import check_orders, fundamental_order, harmonic_index
+from crankdyn.torsion.response import half_range
+
+__all__ = [
+    "ANALYSES",
+    "DEFAULT_BIN",
+    "STEADY_LIMIT",
+    "WINDOWS",
+    "OrderSpectrum",
+    "OrderTracking",
+    "default_orders",
+    "find_resonances",
+    "order_analysis",
+]
+
+ANALYSES = ("auto", "steady", "tracking")
+WINDOWS = ("hann", "uniform")
+DEFAULT_BIN = 10.0 / RPM
+"""Default speed bin of order tracking (rad/s): 10 rpm."""
+STEADY_LIMIT = 0.02
+"""``auto`` treats a record as steady when its cycle speeds stay within this share of the mean."""
+SIGNIFICANT = 0.05
+"""A resonance is reported when its peak reaches this share of the record's largest order."""
+MAX_MISFIT = 0.1
+"""Largest relative RMS misfit of the single-mode fit for a reported resonance."""
+_CYCLES = {"four-stroke", "two-stroke"}
+
+
+def default_orders(cycle: str, teeth: int) -> np.ndarray:
+    """The orders analysed by default: every order of the cycle up to 12, below N/2."""
+    base = fundamental_order(cycle)
+    top = min(12.0, (teeth / 2.0) - base)
+    count = math.floor(top / base + 1e-9)
+    return base * np.arange(1, count + 1)
+
+
+def _check_orders(orders, cycle: str, teeth: int) -> np.ndarray:
+    q = default_orders(cycle, teeth) if orders is None else check_orders(orders, cycle)
+    high = q[q >= teeth / 2.0]
+    if high.size:
+        raise InputError(
+            f"order {high[0]:g} is at or above the wheel's Nyquist order {teeth / 2:g} "
+            f"({teeth} pulses per revolution): content there aliases",
+            key="orders",
+            value=float(high[0]),
+        )
+    if q.size == 0:
+        raise InputError(f"no order of the cycle lies below {teeth / 2:g}", key="orders")
+    return q
+
+
+def _reference_text(prep: PreparedPulses, cycle: str, reference_angle: float) -> tuple[str, list]:
+    notes: list[str] = []
+    if prep.reference_index is None:
+        notes.append(
+            "no reference mark: phases are relative to the first pulse"
+            + (" and the four-stroke cycle's start is arbitrary" if cycle == "four-stroke" else "")
+        )
+        return "first pulse", notes
+    where = "the gap of the missing teeth" if prep.missing_tooth else "the reference mark"
+    text = f"{where} at crank angle {reference_angle * DEG:g} deg"
+    if cycle == "four-stroke" and prep.reference_period == prep.teeth:
+        notes.append(
+            "the reference is once per revolution: the four-stroke cycle starts at the first "
+            "mark, so the phases of the half orders are known up to 180 deg"
+        )
+    return text, notes
+
+
+def _calibration_errors(calibration: PulseTrain, cycle: str, fraction: float) -> np.ndarray:
+    """Tooth errors (rad) from a calibration record of the same wheel (its mean over
+    revolutions), numbered from its reference mark and aligned with the measurement's."""
+    prep = prepare_pulses(calibration)
+    if prep.reference_index is None:
+        raise InputError(
+            "the calibration record needs the reference mark (or a missing-tooth gap) to number "
+            "the teeth",
+            file=calibration.source,
+            key="reference",
+        )
+    _, _, frac = tooth_numbering(prep)
+    shift = 0
+    delta = frac - fraction
+    if delta > 0.5:
+        shift = 1
+    elif delta < -0.5:
+        shift = -1
+    if abs(delta - shift) > 0.25:
+        raise InputError(
+            f"the reference mark sits {abs(delta - shift):.2f} tooth pitches apart in the "
+            "calibration record and the measurement: not the same wheel and mark?",
+            file=calibration.source,
+            key="reference",
+        )
+    _, errors = angle_domain(prep, CYCLE_ANGLE[cycle], estimate_teeth=True, tooth_shift=shift)
+    return errors
+
+
+def _to_pulses(signal, resolution):
+    if isinstance(signal, SpeedSignal):
+        return signal.to_pulses(resolution)
+    if isinstance(signal, PulseTrain):
+        return signal
+    raise TypeError(f"expected a PulseTrain or a SpeedSignal, got {type(signal).__name__}")
+
+
+@dataclass(frozen=True)
+class _Windows:
+    coefficients: np.ndarray  # (W, Q) complex
+    speed: np.ndarray  # (W,) rad/s
+    start_angle: np.ndarray  # (W,) rad
+
+
+def _windows(
+    domain: AngleDomain, orders, cycle_angle: float, cycles: int, shape: str = "uniform"
+) -> _Windows:
+    length = domain.samples_per_cycle
+    count = domain.cycles - cycles + 1
+    if count < 1:
+        raise InputError(
+            f"the record holds {domain.cycles} whole cycles after filtering, fewer than the "
+            f"{cycles} of one window",
+            key="window",
+        )
+    per = domain.vibration[: domain.cycles * length].reshape(domain.cycles, length)
+    if cycles == 1:
+        data = per
+    else:
+        view = np.lib.stride_tricks.sliding_window_view(per, cycles, axis=0)  # (W, L, c)
+        data = np.moveaxis(view, -1, 1).reshape(count, cycles * length)
+    n = data.shape[1]
+    if shape == "hann":
+        w = 0.5 - 0.5 * np.cos(2.0 * math.pi * np.arange(n) / n)  # periodic Hann
+        spectrum = np.fft.rfft(data * w, axis=1) * (2.0 / np.sum(w))
+    else:
+        spectrum = np.fft.rfft(data, axis=1) * (2.0 / n)
+    q = np.asarray(orders, dtype=float)
+    bins = np.round(q * cycles * cycle_angle / (2.0 * math.pi)).astype(int)
+    start = domain.angle[0] + cycle_angle * np.arange(count)
+    # the window starts at the crank angle psi_s: V_q = (2 / n) sum v_j exp(-i q (psi_s + ...))
+    coefficients = spectrum[:, bins] * np.exp(-1j * start[:, None] * q[None, :])
+    times = domain.boundary_times
+    speed = cycles * cycle_angle / (times[cycles:] - times[:count])
+    return _Windows(coefficients, speed, start)
+
+
+def order_analysis(
+    signal,
+    *,
+    cycle: str = "four-stroke",
+    orders=None,
+    analysis: str = "auto",
+    window_cycles: int = 4,
+    bin_width: float | None = None,
+    reference_angle: float = 0.0,
+    tooth_correction=None,
+    resolution: int | None = None,
+    window: str = "hann",
+):
+    """Orders of the angular vibration at the measured point (module docstring).
+
+    Parameters
+    ----------
+    signal
+        A :class:`~crankdyn.measure.signals.PulseTrain` or
+        :class:`~crankdyn.measure.signals.SpeedSignal`.
+    cycle
+        ``"four-stroke"`` (orders 0.5, 1, 1.5, ...) or ``"two-stroke"``.
+    orders
+        Orders to report (multiples of the cycle's fundamental order, below N/2); default
+        every order up to 12.
+    analysis
+        ``"steady"``, ``"tracking"`` (run-up or run-down) or ``"auto"``: tracking when the
+        cycles' mean speeds spread by more than :data:`STEADY_LIMIT` of their mean.
+    window_cycles
+        Cycles per window of order tracking (c >= 1; windows step by one cycle); default 4.
+    window
+        Window of order tracking: ``"hann"`` (default; needs c >= 2) or ``"uniform"``.
+        A steady-speed analysis always uses uniform one-cycle windows (exact for stationary
+        orders).
+    bin_width
+        Speed bin of order tracking (rad/s); default :data:`DEFAULT_BIN`.
+    reference_angle
+        Crank angle at the reference mark (rad), e.g. the angle of cylinder 1's firing TDC
+        as seen from the mark; for a missing-tooth wheel, at the first tooth after the gap.
+    tooth_correction
+        None; ``"self"`` (this record's mean over revolutions, :mod:`crankdyn.measure.angle`);
+        a calibration :class:`PulseTrain` of the same wheel and mark; or the tooth errors
+        (rad, N values numbered from the mark).
+    resolution
+        Angle samples per revolution when ``signal`` is a speed signal (default
+        :meth:`SpeedSignal.default_teeth`).
+
+    Returns
+    -------
+    OrderSpectrum or OrderTracking
+    """
+    if cycle not in _CYCLES:
+        raise InputError("expected four-stroke or two-stroke", key="cycle", value=cycle)
+    if analysis not in ANALYSES:
+        raise InputError(f"expected one of {', '.join(ANALYSES)}", key="analysis", value=analysis)
+    if isinstance(window_cycles, bool) or int(window_cycles) != window_cycles or window_cycles < 1:
+        raise InputError(
+            "expected a whole number of cycles, >= 1", key="window", value=window_cycles
+        )
+    window_cycles = int(window_cycles)
+    if window not in WINDOWS:
+        raise InputError(f"expected one of {', '.join(WINDOWS)}", key="window", value=window)
+    if window == "hann" and window_cycles < 2:
+        raise InputError(
+            "a Hann window needs at least 2 cycles (over one cycle it would mix each order with "
+            "its neighbours half an order away)",
+            key="window-cycles",
+            value=window_cycles,
+        )
+    width = DEFAULT_BIN if bin_width is None else float(bin_width)
+    if not (math.isfinite(width) and width > 0.0):
+        raise InputError("the speed bin must be positive", key="bin", value=width * RPM)
+    if not math.isfinite(reference_angle):
+        raise InputError("the reference angle must be finite", key="reference_angle")
+    pulses = _to_pulses(signal, resolution)
+    q = _check_orders(orders, cycle, pulses.teeth)
+    prep = prepare_pulses(pulses)
+    notes = list(prep.notes)
+    if isinstance(signal, SpeedSignal):
+        notes.insert(
+            0,
+            f"speed signal integrated to the shaft angle and resampled at {pulses.teeth} "
+            "angles per revolution",
+        )
+    reference, more = _reference_text(prep, cycle, reference_angle)
+    notes.extend(more)
+    _, _, fraction = tooth_numbering(prep)
+    cycle_angle = CYCLE_ANGLE[cycle]
+    errors = None
+    estimate = False
+    correction = "none"
+    if isinstance(tooth_correction, str):
+        if tooth_correction != "self":
+            raise InputError(
+                "expected self, a calibration record or tooth errors",
+                key="tooth_correction",
+                value=tooth_correction,
+            )
+        estimate = True
+        correction = "mean of this record over its revolutions"
+    elif isinstance(tooth_correction, PulseTrain):
+        if prep.reference_index is None:
+            raise InputError(
+                "a calibration record needs the reference mark (or a missing-tooth gap) in the "
+                "measurement too, to number the teeth",
+                key="tooth_correction",
+            )
+        if tooth_correction.teeth != prep.teeth:
+            raise InputError(
+                f"the calibration record has {tooth_correction.teeth} teeth, the measurement "
+                f"{prep.teeth}",
+                key="tooth_correction",
+            )
+        errors = _calibration_errors(tooth_correction, cycle, fraction)
+        correction = f"from the calibration record {tooth_correction.source}"
+    elif tooth_correction is not None:
+        errors = np.asarray(tooth_correction, dtype=float)
+        if errors.shape != (prep.teeth,) or not np.all(np.isfinite(errors)):
+            raise InputError(f"expected {prep.teeth} finite tooth errors", key="tooth_errors")
+        correction = "given tooth errors"
+    domain, estimated = angle_domain(
+        prep,
+        cycle_angle,
+        reference_angle=reference_angle,
+        tooth_errors=errors,
+        estimate_teeth=estimate,
+    )
+    tooth_errors = estimated if estimated is not None else errors
+    if estimated is not None:
+        # the pattern holds the integer orders' mean too; removed at the tooth angles instead of
+        # the crank angles, it leaves a cross-talk of about m |P_m| (relative) in the others
+        spectrum = np.abs(np.fft.rfft(estimated)) * (2.0 / estimated.size)
+        m = np.arange(spectrum.size)
+        engine = (m >= 1) & (m <= np.max(q))
+        bound = float(np.sum(m[engine] * spectrum[engine]))
+        notes.append(
+            "tooth-spacing errors taken as this record's mean over revolutions: the integer "
+            "orders lose their mean over the record (they cannot be told from the wheel's "
+            f"errors); the half orders keep a cross-talk of up to {bound:.2%} of their amplitude "
+            "(a calibration record avoids both)"
+        )
+    per_cycle = _windows(domain, q, cycle_angle, 1)
+    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
+    kind = analysis
+    if kind == "auto":
+        kind = "tracking" if spread > STEADY_LIMIT else "steady"
+    common = {
+        "orders": freeze(q),
+        "teeth": prep.teeth,
+        "cycle": cycle,
+        "reference": reference,
+        "tooth_correction": correction,
+        "tooth_errors": None if tooth_errors is None else freeze(tooth_errors),
+        "source": pulses.source,
+        "domain": domain,
+    }
+    harmonic = harmonic_index(q, cycle)
+    if kind == "steady":
+        mean = np.mean(per_cycle.coefficients, axis=0)
+        scatter = np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0))
+        angle_span = cycle_angle * domain.cycles
+        speed = angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])
+        if spread > STEADY_LIMIT:
+            notes.append(
+                f"the cycle speeds spread by {spread:.1%} of their mean: a steady-speed average "
+                "blurs orders that change with speed (try --analysis tracking)"
+            )
+        top, low = half_range(mean, harmonic)
+        avg = np.mean(
+            domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(domain.cycles, -1),
+            axis=0,
+        )
+        # crank angle within the cycle (the grid starts at the first tooth after a boundary)
+        start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
+        cyc_angle = domain.angle[: domain.samples_per_cycle] - start
+        # instantaneous speed of the averaged cycle: Omega (1 + dv/dpsi), dv/dpsi spectrally
+        spec = np.fft.rfft(avg)
+        k = np.arange(spec.size)
+        dv = np.fft.irfft(1j * k * (2.0 * math.pi / cycle_angle) * spec, n=avg.size)
+        return OrderSpectrum(
+            speed=float(speed),
+            amplitude=freeze(np.abs(mean)),
+            phase=freeze(np.angle(mean)),
+            scatter=freeze(scatter),
+            synthesized=float(0.5 * (top - low)),
+            cycles=int(domain.cycles),
+            speed_min=float(np.min(per_cycle.speed)),
+            speed_max=float(np.max(per_cycle.speed)),
+            window=f"uniform (rectangular) over 1 cycle ({cycle_angle * DEG:g} deg), "
+            f"synchronous: {domain.samples_per_cycle} samples per cycle",
+            averaging=f"complex (synchronous) average of {domain.cycles} cycles",
+            cycle_angle=freeze(cyc_angle),
+            cycle_vibration=freeze(avg),
+            cycle_speed=freeze(speed * (1.0 + dv)),
+            notes=tuple(notes) or None,
+            cycle_coefficients=per_cycle.coefficients,
+            **common,
+        )
+    win = (
+        per_cycle
+        if window_cycles == 1 and window == "uniform"
+        else _windows(domain, q, cycle_angle, window_cycles, window)
+    )
+    trend = np.polyfit(np.arange(win.speed.size), win.speed, 1)[0] if win.speed.size > 1 else 0
+    label = "run-up" if trend >= 0 else "run-down"
+    cell = np.floor(win.speed / width).astype(np.int64)
+    cells, inverse, counts = np.unique(cell, return_inverse=True, return_counts=True)
+    sums = np.zeros((cells.size, q.size), dtype=complex)
+    np.add.at(sums, inverse, win.coefficients)
+    speed_sum = np.zeros(cells.size)
+    np.add.at(speed_sum, inverse, win.speed)
+    coeff = sums / counts[:, None]
+    top, low = half_range(coeff, harmonic)
+    wtop, wlow = half_range(win.coefficients, harmonic)
+    span = f"{window_cycles} cycle{'s' if window_cycles > 1 else ''}"
+    resonances = find_resonances(q, win.speed, win.coefficients)
+    return OrderTracking(
+        kind=label,
+        speed=freeze(speed_sum / counts),
+        windows=freeze(counts, dtype=int),
+        amplitude=freeze(np.abs(coeff)),
+        phase=freeze(np.angle(coeff)),
+        synthesized=freeze(0.5 * (top - low)),
+        window_speed=freeze(win.speed),
+        window_amplitude=freeze(np.abs(win.coefficients)),
+        window_phase=freeze(np.angle(win.coefficients)),
+        window_synthesized=freeze(0.5 * (wtop - wlow)),
+        window_cycles=window_cycles,
+        bin_width=width,
+        resonances=resonances,
+        window=f"{'Hann' if window == 'hann' else 'uniform (rectangular)'} over {span} "
+        f"({window_cycles * cycle_angle * DEG:g} deg), synchronous, stepping by one cycle"
+        + (", amplitudes divided by the coherent gain 0.5" if window == "hann" else ""),
+        averaging=f"complex average of the windows in {width * RPM:g} rpm speed bins "
+        f"({win.speed.size} windows in {cells.size} bins); peaks and fits use every window",
+        notes=tuple(notes) or None,
+        window_coefficients=win.coefficients,
+        **common,
+    )
+
+
+def find_resonances(orders, speeds, coefficients) -> tuple[ResonanceFit, ...]:
+    """The resonance of every order that has one inside the sweep
+    (:func:`crankdyn.measure.resonance.fit_resonance`), kept when its peak reaches
+    :data:`SIGNIFICANT` of the largest order amplitude of the record and the single-mode fit
+    matches the windows in its band to :data:`MAX_MISFIT` (relative RMS)."""
+    amplitude = np.abs(coefficients)
+    largest = float(np.max(amplitude)) if amplitude.size else 0.0
+    out = []
+    for j, q in enumerate(orders):
+        if np.max(amplitude[:, j]) < SIGNIFICANT * largest:
+            continue
+        fit = fit_resonance(float(q), speeds, coefficients[:, j])
+        if fit is None or fit.misfit > MAX_MISFIT:
+            continue
+        if not np.min(speeds) < fit.critical_speed < np.max(speeds):
+            continue
+        out.append(fit)
+    return tuple(out)
+
+
+# ---- results ----------------------------------------------------------------------------------
+def _order_label(q: float) -> str:
+    return f"{q:g}"
+
+
+@dataclass(frozen=True)
+class OrderSpectrum(Result):
+    """Orders of the angular vibration at a steady speed (module docstring): per order the
+    amplitude and phase of v(psi) = sum Re(V_q exp(i q psi)) at the measured point."""
+
+    title = "Measured orders (steady speed)"
+    speed: float = scalar("speed_rpm", "Mean speed", "rpm", RPM, fmt=".2f")
+    orders: np.ndarray = column("orders", "Order", "")
+    amplitude: np.ndarray = column("amplitude_rad", "Amplitude", "rad")
+    phase: np.ndarray = column("phase_deg", "Phase", "deg", DEG)
+    scatter: np.ndarray = column("scatter_rad", "Cycle-to-cycle scatter (RMS)", "rad")
+    synthesized: float = scalar(
+        "synthesized_amplitude_rad", "Synthesised half-range amplitude", "rad"
+    )
+    cycles: int = scalar("cycles", "Cycles averaged", "")
+    speed_min: float = scalar("speed_min_rpm", "Slowest cycle", "rpm", RPM, fmt=".2f")
+    speed_max: float = scalar("speed_max_rpm", "Fastest cycle", "rpm", RPM, fmt=".2f")
+    teeth: int = scalar("teeth", "Pulses per revolution", "")
+    cycle: str = scalar("cycle", "Cycle", "")
+    window: str = scalar("window", "Window", "")
+    averaging: str = scalar("averaging", "Averaging", "")
+    reference: str = scalar("reference", "Phase reference", "")
+    tooth_correction: str = scalar("tooth_correction", "Tooth-spacing correction", "")
+    source: str = scalar("signal", "Signal", "")
+    tooth_errors: np.ndarray | None = array(
+        "tooth_errors_deg", "Tooth-spacing errors", "deg", DEG, default=None
+    )
+    cycle_angle: np.ndarray | None = array(
+        "cycle_angle_deg", "Crank angle of the averaged cycle", "deg", DEG, default=None
+    )
+    cycle_vibration: np.ndarray | None = array(
+        "cycle_vibration_rad", "Angular vibration of the averaged cycle", "rad", default=None
+    )
+    cycle_speed: np.ndarray | None = array(
+        "cycle_speed_rpm", "Instantaneous speed of the averaged cycle", "rpm", RPM, default=None
+    )
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    comparison: Result | None = scalar("model", "Model", "", default=None)
+    cycle_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
+    domain: AngleDomain | None = field(default=None, repr=False, compare=False)
+
+    kind = "steady"
+
+    @property
+    def coefficients(self) -> np.ndarray:
+        """Complex amplitudes V_q (rad)."""
+        return self.amplitude * np.exp(1j * self.phase)
+
+    def columns(self) -> dict[str, np.ndarray]:
+        out = super().columns()
+        if self.comparison is not None:
+            out.update(self.comparison.columns())
+        return out
+
+    def column_labels(self) -> dict[str, tuple[str, str]]:
+        out = super().column_labels()
+        if self.comparison is not None:
+            out.update(self.comparison.column_labels())
+        return out
+
+    def with_model(self, model, excitation, at: str, **kw):
+        """This analysis with the model's prediction at mass ``at`` attached
+        (:func:`crankdyn.measure.compare.compare_with_model`)."""
+        from crankdyn.measure.compare import compare_with_model
+
+        return replace(self, comparison=compare_with_model(self, model, excitation, at, **kw))
+
+    def plot(self, what: str = "orders", fig=None):
+        """``"orders"``: amplitude per order (with the model's); ``"trace"``: angular vibration
+        and instantaneous speed over the averaged cycle. Returns the Figure."""
+        from crankdyn.plots.measure import plot_measurement
+
+        return plot_measurement(self, what=what, fig=fig)
+
+
+@dataclass(frozen=True)
+class OrderTracking(Result):
+    """Order tracking over a run-up or run-down (module docstring): per speed bin and order the
+    amplitude and phase of the angular vibration at the measured point; per window the same,
+    unbinned (``window_*``)."""
+
+    title = "Measured orders (order tracking)"
+    kind: str = scalar("kind", "Record", "")
+    speed: np.ndarray = column("speed_rpm", "Speed", "rpm", RPM)
+    windows: np.ndarray = column("windows", "Windows", "")
+    synthesized: np.ndarray = column(
+        "synthesized_amplitude_rad", "Synthesised half-range amplitude", "rad"
+    )
+    orders: np.ndarray = array("orders", "Orders", "")
+    amplitude: np.ndarray = array("amplitude_rad", "Amplitude (speed x order)", "rad")
+    phase: np.ndarray = array("phase_deg", "Phase (speed x order)", "deg", DEG)
+    window_speed: np.ndarray = array("window_speed_rpm", "Speed of every window", "rpm", RPM)
+    window_amplitude: np.ndarray = array(
+        "window_amplitude_rad", "Amplitude of every window (window x order)", "rad"
+    )
+    window_phase: np.ndarray = array(
+        "window_phase_deg", "Phase of every window (window x order)", "deg", DEG
+    )
+    window_synthesized: np.ndarray = array(
+        "window_synthesized_amplitude_rad", "Synthesised amplitude of every window", "rad"
+    )
+    window_cycles: int = scalar("window_cycles", "Cycles per window", "")
+    bin_width: float = scalar("bin_width_rpm", "Speed bin", "rpm", RPM, fmt=".4g")
+    teeth: int = scalar("teeth", "Pulses per revolution", "")
+    cycle: str = scalar("cycle", "Cycle", "")
+    window: str = scalar("window", "Window", "")
+    averaging: str = scalar("averaging", "Averaging", "")
+    reference: str = scalar("reference", "Phase reference", "")
+    tooth_correction: str = scalar("tooth_correction", "Tooth-spacing correction", "")
+    source: str = scalar("signal", "Signal", "")
+    tooth_errors: np.ndarray | None = array(
+        "tooth_errors_deg", "Tooth-spacing errors", "deg", DEG, default=None
+    )
+    resonances: tuple[ResonanceFit, ...] = scalar("resonances", "Resonances", "", default=())
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    comparison: Result | None = scalar("model", "Model", "", default=None)
+    window_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
+    domain: AngleDomain | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def coefficients(self) -> np.ndarray:
+        """Complex amplitudes V_q per speed bin (rad), (bins x orders)."""
+        return self.amplitude * np.exp(1j * self.phase)
+
+    def order_index(self, order: float) -> int:
+        """Index of an analysed order (one-line error for another)."""
+        hit = np.flatnonzero(np.isclose(self.orders, order, rtol=0, atol=1e-9))
+        if not hit.size:
+            listed = ", ".join(_order_label(q) for q in self.orders)
+            raise InputError(
+                f"order {order:g} was not analysed (orders: {listed})", key="order", value=order
+            )
+        return int(hit[0])
+
+    def with_model(self, model, excitation, at: str, **kw):
+        """This analysis with the model's prediction at mass ``at``, the resonance peaks and the
+        identified damping attached (:func:`crankdyn.measure.compare.compare_with_model`)."""
+        from crankdyn.measure.compare import compare_with_model
+
+        return replace(self, comparison=compare_with_model(self, model, excitation, at, **kw))
+
+    def columns(self) -> dict[str, np.ndarray]:
+        out = super().columns()
+        for i, q in enumerate(self.orders):
+            out[f"order_{_order_label(q)}_amplitude_rad"] = self.amplitude[:, i]
+        for i, q in enumerate(self.orders):
+            out[f"order_{_order_label(q)}_phase_deg"] = self.phase[:, i] * DEG
+        if self.comparison is not None:
+            out.update(self.comparison.columns())
+        return out
+
+    def column_labels(self) -> dict[str, tuple[str, str]]:
+        out = super().column_labels()
+        for q in self.orders:
+            out[f"order_{_order_label(q)}_amplitude_rad"] = (f"Order {q:g}", "rad")
+        for q in self.orders:
+            out[f"order_{_order_label(q)}_phase_deg"] = (f"Phase {q:g}", "deg")
+        if self.comparison is not None:
+            out.update(self.comparison.column_labels())
+        return out
+
+    def plot(self, what: str = "orders", fig=None, **kw):
+        """``"orders"``: amplitude against speed per order and synthesised (with the model's
+        prediction); ``"map"``: colour map of order amplitudes over speed; ``"fit"``: the
+        resonance fits; ``"trace"``: instantaneous speed and vibration over crank angle.
+        Returns the Figure."""
+        from crankdyn.plots.measure import plot_measurement
+
+        return plot_measurement(self, what=what, fig=fig, **kw)
