@@ -50,16 +50,37 @@ _LAZY = {
 
 
 def examples(kind: str | None = None):
-    """The built-in examples (of ``kind``: ``"engine"``, ``"model"``, ``"linkage"``,
-    ``"study"``), each with its name, kind, title and a short description; load one with
-    :func:`example`."""
+    """The built-in examples, each with its name, kind, title and a short description.
+
+    Parameters
+    ----------
+    kind : str or None
+        Only the examples of this kind: ``"engine"``, ``"model"``, ``"linkage"`` or
+        ``"study"``; None for all.
+
+    Returns
+    -------
+    list
+        The catalogue entries; load one with :func:`example`.
+    """
     from crankdyn.io.catalogue import catalogue
 
     return catalogue(kind)
 
 
 def example(name: str):
-    """The built-in example ``name``: an Engine, a TorsionModel, a Mechanism or a study."""
+    """A built-in example by name.
+
+    Parameters
+    ----------
+    name : str
+        The example's name, as :func:`examples` lists it (e.g. ``"inline6-diesel"``).
+
+    Returns
+    -------
+    Engine, TorsionModel, Mechanism or StudySpec
+        The loaded example.
+    """
     from crankdyn.io.catalogue import load_example
 
     return load_example(name)

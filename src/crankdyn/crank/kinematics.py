@@ -16,7 +16,7 @@ Geometry (docs/conventions.md): crank centre at the origin, cylinder axis toward
 crank pin at R (sin phi, cos phi), the cylinder axis at lateral offset e, so that
 sin(beta) = lambda (sin(phi) - k) with lambda = R/L, k = e/R. The piston displacement x is measured
 from TDC toward the crank: x = y_TDC - (R cos(phi) + L cos(beta)), y_TDC = sqrt((R+L)^2 - e^2).
-Differentiating at constant w = dphi/dt (beta' = lambda cos(phi)/cos(beta)) gives
+Differentiating at constant w = dphi/dt (beta' = lambda cos(phi)/cos(beta)) gives::
 
     v = R w sin(phi + beta) / cos(beta)
     a = R w^2 [cos(phi + beta)/cos(beta) + lambda cos^2(phi)/cos^3(beta)]

@@ -33,6 +33,7 @@ import numpy as np
 
 from crankdyn import __version__
 from crankdyn.constants import RPM
+from crankdyn.extras import require
 from crankdyn.io.output import write_bytes, write_text
 from crankdyn.study.cases import Case
 from crankdyn.study.figures import FIGURES, SETTINGS
@@ -208,6 +209,7 @@ def _cell(value: Any) -> str:
 
 def read_table(path: str | Path):
     """Read a study's ``results.parquet`` (a pyarrow Table)."""
+    require("studies", "pyarrow")
     import pyarrow.parquet as pq
 
     return pq.read_table(path)

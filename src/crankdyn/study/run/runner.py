@@ -39,6 +39,7 @@ from typing import Any
 
 from crankdyn import __version__
 from crankdyn.errors import InputError
+from crankdyn.extras import require
 from crankdyn.results import Result, scalar
 from crankdyn.study.cases import Case, expand
 from crankdyn.study.figures import FIGURES
@@ -404,6 +405,7 @@ def run_study(
     StudyRun
         Counts and timing; ``interrupted`` when Ctrl-C stopped the run (what finished is kept).
     """
+    require("studies", "pyarrow", *(("distributed",) if scheduler else ()))
     from crankdyn.study.run.results import CaseTable, write_outputs
 
     cases = expand(spec)
