@@ -19,7 +19,6 @@ from crankdyn.io.output import (
     check_writable,
     deferred_signals,
     rename_noreplace,
-    write_bytes,
     write_text,
 )
 
@@ -292,7 +291,7 @@ def test_outputs_take_the_umask(tmp_path, umask):
     assert stat.S_IMODE((tmp_path / "rep").stat().st_mode) == 0o777 & ~umask
 
 
-# ---- signals ---------------------------------------------------------------------------------------
+# ---- signals -------------------------------------------------------------------------------------
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
