@@ -6,9 +6,9 @@ import math
 from pathlib import Path
 
 import click
-from rich.console import Console
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
 from rich.table import Table as RichTable
+from rich.text import Text
 
 from crankdyn.cli.common import (
     console,
@@ -20,23 +20,28 @@ from crankdyn.cli.common import (
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.engine_file import load_example
+from crankdyn.io.output import check_output_dir
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import builders
 from crankdyn.report.write import write_report
 
 DEMO_ENGINE = "inline6-diesel"
-_BADGE = {"pass": "[green]pass[/]", "warn": "[yellow]warn[/]", "fail": "[red]fail[/]", None: ""}
+_BADGE = {
+    "pass": Text("pass", style="green"),
+    "warn": Text("warn", style="yellow"),
+    "fail": Text("fail", style="red"),
+    None: "",
+}
 
 
 def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force: bool) -> int:
     """Build and write the report with a progress bar, then print the summary table."""
-    if out.exists() and not force:  # fail before the long work
-        raise InputError("already exists; not overwritten without --force", file=str(out))
+    check_output_dir(out, force=force)  # fail before the long work
     con = console()
-    err = Console(stderr=True)
+    err = console(stderr=True)
     with Progress(
         SpinnerColumn(),
-        TextColumn("{task.description}"),
+        TextColumn("{task.description}", markup=False),
         BarColumn(),
         TextColumn("{task.completed}/{task.total}"),
         TimeElapsedColumn(),
@@ -55,7 +60,7 @@ def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force:
         def plot_step(name):
             progress.update(task2, description=f"Writing plots: {name}", advance=1)
 
-        write_report(report, out, force=force, progress=plot_step)
+        out = write_report(report, out, force=force, progress=plot_step)
     table = RichTable(title=f"{engine.name}: key figures", header_style="bold")
     table.add_column("Quantity")
     table.add_column("Value", justify="right")
@@ -69,7 +74,7 @@ def run_report(engine: Engine, out: Path, *, speed: float | None, speeds, force:
             f"Cross-checks: {len(report.checks()) - len(failed)} of {len(report.checks())} passed."
         )
     for note in report.notes:
-        con.print(f"[dim]Not analysed: {note}[/]")
+        con.print(Text(f"Not analysed: {note}", style="dim"))
     con.print(f"Report: {out / 'index.html'}")
     return 0
 

@@ -2,13 +2,11 @@
 
 from __future__ import annotations
 
-import io
 import json
 import math
 from dataclasses import replace
 
 import click
-from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.cli.common import (
@@ -66,9 +64,7 @@ def _print_or_record(renderables, output: str | None, force: bool) -> None:
         for r in renderables:
             con.print(r)
         return
-    from rich.console import Console
-
-    con = Console(record=True, width=160, file=io.StringIO())
+    con = console(record=True)
     for r in renderables:
         con.print(r)
     _write(con.export_text(), output, force)
@@ -157,7 +153,7 @@ def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> RichT
             row.append(_fmt(value, ".4g" if isinstance(value, float) else ""))
         if v_engine:
             row.append(cand.v_scheme or "")
-        table.add_row(*(escape(x) for x in row))
+        table.add_row(*row)
     return table
 
 
@@ -314,7 +310,7 @@ def firing_orders_command(
         limit = top if top is not None else 30
         shown = min(limit, len(result.candidates))
         _print_or_record(
-            [ranking_table(result, limit), *(escape(x) for x in _ranking_notes(result, shown))],
+            [ranking_table(result, limit), *_ranking_notes(result, shown)],
             output,
             force,
         )
@@ -504,9 +500,7 @@ def balance_command(
     elif fmt == "csv":
         _write(result.to_csv(), output, force)
     else:
-        _print_or_record(
-            [balance_table(result), *(escape(x) for x in _balance_notes(result))], output, force
-        )
+        _print_or_record([balance_table(result), *_balance_notes(result)], output, force)
     if plot_file:
         save_figure(result.plot(), plot_file, force)
     return 0
@@ -528,7 +522,7 @@ def flywheel_table(result) -> RichTable:
     for label, value, unit in result.summary_rows():
         if label in ("Engine", "Notes"):
             continue
-        table.add_row(escape(label), escape(value), escape(unit))
+        table.add_row(label, value, unit)
     return table
 
 
@@ -584,7 +578,7 @@ def flywheel_command(engine, speed, delta, inertia, step, fmt, output, force, pl
         _write(result.to_csv(), output, force)
     else:
         notes = [n[0].upper() + n[1:] + "." for n in result.notes]
-        _print_or_record([flywheel_table(result), *(escape(n) for n in notes)], output, force)
+        _print_or_record([flywheel_table(result), *notes], output, force)
     if plot_file:
         save_figure(result.plot(), plot_file, force)
     return 0

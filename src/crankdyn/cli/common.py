@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import errno
 import io
 import math
+import os
 import shutil
 import sys
 from pathlib import Path
@@ -11,7 +13,6 @@ from pathlib import Path
 import click
 import numpy as np
 from rich.console import Console
-from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.engine.model import Engine
@@ -44,10 +45,36 @@ __all__ = [
 FORMATS = ("table", "csv", "json")
 
 
-def console(file=None) -> Console:
-    """A rich console wide enough for tables even when stdout is not a terminal."""
+class _PlainConsole(Console):
+    """A rich console whose closed pipe is an ordinary BrokenPipeError (rich would end the
+    process with status 1); crankdyn.cli.main reports it in one line."""
+
+    def on_broken_pipe(self) -> None:
+        raise BrokenPipeError(errno.EPIPE, os.strerror(errno.EPIPE))
+
+
+def console(file=None, *, stderr: bool = False, record: bool = False) -> Console:
+    """The one way the command line makes a rich console.
+
+    Text is printed as written: markup is off, so user text (an engine named ``x [/] y``) needs
+    no escaping anywhere; styles come from :class:`rich.text.Text` and :class:`rich.style.Style`
+    objects. Standard output (or stderr with ``stderr``) is the default file; the console is
+    wide enough for tables when it is not a terminal. ``record`` makes a console that renders
+    to nothing and keeps the text for ``export_text()`` (160 columns), for writing to a file.
+    """
+    if record:
+        return _PlainConsole(
+            record=True, width=160, file=_Null(), markup=False, highlight=False, soft_wrap=False
+        )
     width = shutil.get_terminal_size((120, 24)).columns
-    return Console(file=file or sys.stdout, width=max(width, 120), soft_wrap=False, highlight=False)
+    return _PlainConsole(
+        file=file or (sys.stderr if stderr else sys.stdout),
+        width=None if stderr else max(width, 120),
+        soft_wrap=False,
+        highlight=False,
+        markup=False,
+        emoji=False,
+    )
 
 
 _SPEED_HELP = "Crank speed (rpm, or with a unit); default: the engine's [operating] speed."
@@ -192,7 +219,7 @@ def speed_of(engine: Engine, speed_option: str | None) -> float:
 
 def _fmt(value: float, scale: float = 0.0) -> str:
     if isinstance(value, str):
-        return escape(value)  # user text (names) may hold [brackets]
+        return value
     if not math.isfinite(value):
         return "-"
     if abs(value) <= 1e-12 * scale:
@@ -209,7 +236,7 @@ def render_table(result: Result, title: str | None = None) -> RichTable:
         label, unit = labels[key]
         text = cols[key].dtype.kind in "OUS"
         table.add_column(
-            escape(f"{label}\n({unit})" if unit else label), justify="left" if text else "right"
+            f"{label}\n({unit})" if unit else label, justify="left" if text else "right"
         )
     scales = [
         float(np.max(np.abs(c), initial=0.0, where=np.isfinite(c))) if c.dtype.kind in "fiu" else 0
@@ -227,7 +254,7 @@ def summary_table(result: Result, title: str = "Summary") -> RichTable:
     table.add_column("Value", justify="right")
     table.add_column("Unit", justify="left")
     for label, value, unit in result.summary_rows():  # user text may hold [brackets]
-        table.add_row(escape(label), escape(value), escape(unit))
+        table.add_row(label, value, unit)
     return table
 
 
@@ -244,7 +271,7 @@ def emit(
     elif fmt == "csv":
         text = result.to_csv()
     else:
-        con = Console(record=True, width=160, file=_Null()) if output else console()
+        con = console(record=True) if output else console()
         con.print(render_table(result, getattr(result, "title", None)))
         if summary is not None:
             con.print(summary_table(summary))

@@ -281,9 +281,7 @@ def forces_command(
 
 def _forces_table(result, output, force) -> None:
     """A readable table: driving torque by both methods and the joint force magnitudes."""
-    from rich.console import Console
-
-    from crankdyn.cli.common import _Null, summary_table
+    from crankdyn.cli.common import summary_table
 
     table = RichTable(title=f"{result.mechanism_name}: kinetostatics", header_style="bold")
     cols = [("Crank angle\n(deg)", np.degrees(result.crank_angle))]
@@ -297,7 +295,7 @@ def _forces_table(result, output, force) -> None:
         table.add_column(label, justify="right")
     for row in zip(*(v for _l, v in cols), strict=True):
         table.add_row(*(f"{x:.6g}" if np.isfinite(x) else "-" for x in row))
-    con = Console(record=True, width=160, file=_Null()) if output else console()
+    con = console(record=True) if output else console()
     con.print(table)
     con.print(summary_table(result))
     if output:
@@ -409,8 +407,7 @@ def animate_command(linkage, frames, fps, speed, show_forces, output, force) -> 
     motion = mech.motion(theta, _speed(mech, speed))
     result = kinetostatics(motion) if show_forces else None
     data = animate_mechanism(motion, result, fps=fps)
-    write_bytes(output, data, force=force)
-    click.echo(f"wrote {output}", err=True)
+    click.echo(f"wrote {write_bytes(output, data, force=force)}", err=True)
     return 0
 
 
@@ -447,8 +444,7 @@ def example_command(name, output, force) -> int:
     target = Path(output) if output else Path(f"{name}.toml")
     if target.is_dir():
         target = target / f"{name}.toml"
-    write_bytes(target, src.read_bytes(), force=force)
-    click.echo(f"wrote {target}", err=True)
+    click.echo(f"wrote {write_bytes(target, src.read_bytes(), force=force)}", err=True)
     return 0
 
 

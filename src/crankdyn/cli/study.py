@@ -3,12 +3,9 @@
 from __future__ import annotations
 
 import math
-import sys
 from pathlib import Path
 
 import click
-from rich.console import Console
-from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.cli.common import console, summary_table
@@ -25,21 +22,21 @@ def _list() -> None:
         examples.add_column(col)
     for name in study_example_names():
         spec = resolve_study(name)
-        examples.add_row(name, escape(spec.name), escape(spec.base.source), str(spec.case_count))
+        examples.add_row(name, spec.name, spec.base.source, str(spec.case_count))
     out.print(examples)
-    figures = RichTable(title=escape("Figures (names for [analysis] figures)"), header_style="bold")
+    figures = RichTable(title="Figures (names for [analysis] figures)", header_style="bold")
     for col in ("Name", "Column (SI)", "Shown in", "Better", "Applies to", "Description"):
         figures.add_column(col)
     for f in FIGURES.values():
         figures.add_row(
-            f.name, f.key, f.unit, f.better or "-", ", ".join(f.subjects), escape(f.description)
+            f.name, f.key, f.unit, f.better or "-", ", ".join(f.subjects), f.description
         )
     out.print(figures)
-    settings = RichTable(title=escape("[analysis] settings"), header_style="bold")
+    settings = RichTable(title="[analysis] settings", header_style="bold")
     for col in ("Key", "Kind", "Meaning"):
         settings.add_column(col)
     for s in SETTINGS.values():
-        settings.add_row(s.name, s.kind, escape(s.help))
+        settings.add_row(s.name, s.kind, s.help)
     out.print(settings)
 
 
@@ -48,7 +45,7 @@ def _dry_run(spec) -> None:
 
     out = console()
     cases = expand(spec)
-    table = RichTable(title=escape(f"Study: {spec.name}"), header_style="bold")
+    table = RichTable(title=f"Study: {spec.name}", header_style="bold")
     table.add_column("Parameter")
     table.add_column("Varies as")
     table.add_column("Values", justify="right")
@@ -60,22 +57,22 @@ def _dry_run(spec) -> None:
             shown = ", ".join(str(v) for v in p.values[:6])
             how = shown + (", ..." if len(p.values) > 6 else "")
             count = str(len(p.values))
-        table.add_row(escape(p.key), escape(how), count)
+        table.add_row(p.key, how, count)
     out.print(table)
     out.print(
-        f"base {escape(spec.base.kind)}: {escape(spec.base.source)}; "
+        f"base {spec.base.kind}: {spec.base.source}; "
         f"{len(cases)} cases; figures: {', '.join(spec.figures)}"
     )
     first = RichTable(title="First cases", header_style="bold")
     first.add_column("Case", justify="right")
     first.add_column("Id")
     for p in spec.parameters:
-        first.add_column(escape(p.key), justify="right")
+        first.add_column(p.key, justify="right")
     for case in cases[:5]:
         first.add_row(
             str(case.index + 1),
             case.case_id,
-            *(escape(_shown(case.params[p.key])) for p in spec.parameters),
+            *(_shown(case.params[p.key]) for p in spec.parameters),
         )
     out.print(first)
 
@@ -95,7 +92,7 @@ class _Bar:
     """A rich progress bar on stderr (only when stderr is a terminal)."""
 
     def __init__(self):
-        self.console = Console(file=sys.stderr)
+        self.console = console(stderr=True)
         self.progress = None
         self.task = None
         self.failed = 0
@@ -121,7 +118,7 @@ class _Bar:
             TextColumn("cases"),
             BarColumn(),
             MofNCompleteColumn(),
-            TextColumn("[red]{task.fields[failed]} failed"),
+            TextColumn("{task.fields[failed]} failed", style="red", markup=False),
             TimeElapsedColumn(),
             TextColumn("eta"),
             TimeRemainingColumn(),
@@ -233,7 +230,7 @@ def study_command(
     if fmt == "json":
         click.echo(run.to_json())
     else:
-        console().print(summary_table(run, f"Study: {escape(spec.name)}"))
+        console().print(summary_table(run, f"Study: {spec.name}"))
         _print_best(spec, folder)
     for text, count in run.errors:
         click.echo(f"failed ({count} cases): {text}", err=True)
@@ -274,7 +271,7 @@ def _print_best(spec, folder: Path) -> None:
             continue
         if negligible_spread([v for v, _ in values]):
             table.add_row(
-                escape(f.label),
+                f.label,
                 f"{values[0][0] * f.scale:.5g} {f.unit}".strip(),
                 "all",
                 "the same in every case",
@@ -289,10 +286,10 @@ def _print_best(spec, folder: Path) -> None:
             for p in spec.parameters
         )
         table.add_row(
-            escape(f.label),
+            f.label,
             f"{value * f.scale:.5g} {f.unit}".strip(),
             str(data["case"][i]),
-            escape(params),
+            params,
         )
         rows += 1
     if rows:

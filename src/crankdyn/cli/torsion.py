@@ -2,12 +2,9 @@
 
 from __future__ import annotations
 
-import io
 import math
 
 import click
-from rich.console import Console
-from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.cli.common import (
@@ -46,7 +43,7 @@ def _print_tables(tables: list[RichTable], output: str | None, force: bool) -> N
         for table in tables:
             con.print(table)
         return
-    con = Console(record=True, width=160, file=io.StringIO())
+    con = console(record=True)
     for table in tables:
         con.print(table)
     path = write_text(output, con.export_text(), force=force)
@@ -58,7 +55,7 @@ def _g(value: float) -> str:
 
 
 def _modes_tables(result) -> list[RichTable]:
-    summary = RichTable(title=escape(result.model_name), header_style="bold")
+    summary = RichTable(title=result.model_name, header_style="bold")
     summary.add_column("Mode", justify="right")
     summary.add_column("Frequency\n(Hz)", justify="right")
     summary.add_column("ω\n(rad/s)", justify="right")
@@ -68,9 +65,7 @@ def _modes_tables(result) -> list[RichTable]:
     for r in range(result.mode.size):
         nodes = result.nodes[r]
         where = (
-            "rigid-body mode"
-            if result.free and r == 0
-            else "; ".join(escape(n.describe()) for n in nodes)
+            "rigid-body mode" if result.free and r == 0 else "; ".join(n.describe() for n in nodes)
         )
         summary.add_row(
             str(int(result.mode[r])),
@@ -91,7 +86,7 @@ def _modes_tables(result) -> list[RichTable]:
             f"{int(result.mode[r])}\n{result.frequencies_hz[r]:.4g} Hz", justify="right"
         )
     for i, name in enumerate(result.masses):
-        shapes.add_row(escape(name), *(f"{v:.4f}" for v in result.mode_shapes[:, i]))
+        shapes.add_row(name, *(f"{v:.4f}" for v in result.mode_shapes[:, i]))
     return [summary, shapes]
 
 
@@ -211,8 +206,8 @@ def examples_command() -> int:
     for name in torsion_example_names():
         m = load_torsion_example(name)
         table.add_row(
-            escape(name),
-            escape(m.name),
+            name,
+            m.name,
             str(m.mass_count),
             "chain" if m.is_chain else "branched",
             "free" if m.is_free else "grounded",

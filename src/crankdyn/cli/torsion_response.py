@@ -7,7 +7,6 @@ import math
 
 import click
 import numpy as np
-from rich.markup import escape
 from rich.table import Table as RichTable
 
 from crankdyn.cli.common import (
@@ -132,9 +131,7 @@ def _g(value: float, scale: float = 1.0) -> str:
 
 def _response_tables(result, relative=None) -> list[RichTable]:
     n = result.speed * RPM
-    masses = RichTable(
-        title=escape(f"{result.model_name}: angular amplitudes"), header_style="bold"
-    )
+    masses = RichTable(title=f"{result.model_name}: angular amplitudes", header_style="bold")
     for col in (
         "Mass",
         "Largest synthesised\n(mrad)",
@@ -145,7 +142,7 @@ def _response_tables(result, relative=None) -> list[RichTable]:
     for i, name in enumerate(result.masses):
         j = int(np.argmax(result.synthesized_amplitude[:, i]))
         masses.add_row(
-            escape(name),
+            name,
             _g(result.synthesized_amplitude[j, i], 1e3),
             f"{n[j]:.0f}",
             _g(np.max(result.order_sum_amplitude[:, i]), 1e3),
@@ -163,7 +160,7 @@ def _response_tables(result, relative=None) -> list[RichTable]:
         j = int(np.argmax(result.shaft_torque[:, s]))
         stress = np.max(result.synthesized_shaft_stress[:, s])
         shafts.add_row(
-            escape(f"{a} - {b}"),
+            f"{a} - {b}",
             _g(result.shaft_torque[j, s]),
             f"{n[j]:.0f}",
             _g(np.max(result.synthesized_shaft_torque[:, s])),
@@ -173,7 +170,7 @@ def _response_tables(result, relative=None) -> list[RichTable]:
     tables = [masses, shafts]
     if relative is not None:
         rel = RichTable(
-            title=escape(f"Relative angle {relative.between[0]} - {relative.between[1]}"),
+            title=f"Relative angle {relative.between[0]} - {relative.between[1]}",
             header_style="bold",
         )
         for col in ("Largest synthesised\n(mrad)", "at\n(rpm)", "Largest sum of\norders (mrad)"):
@@ -186,7 +183,7 @@ def _response_tables(result, relative=None) -> list[RichTable]:
     check = result.rule_check
     if check is not None:
         rules = RichTable(
-            title=escape(f"{check.rule}: {'passed' if check.passed else 'FAILED'}"),
+            title=f"{check.rule}: {'passed' if check.passed else 'FAILED'}",
             header_style="bold",
         )
         for col in ("Shaft", "Barred range (rpm)", "Largest stress / τ_C", "Verdict"):
@@ -195,17 +192,17 @@ def _response_tables(result, relative=None) -> list[RichTable]:
             rules.add_row("all checked", "none", "-", "stress below τ_C everywhere")
         for br in check.barred_ranges:
             rules.add_row(
-                escape(f"{br.shaft[0]} - {br.shaft[1]}"),
+                f"{br.shaft[0]} - {br.shaft[1]}",
                 f"{br.start * RPM:.0f} - {br.end * RPM:.0f}",
                 f"{br.max_ratio:.3g}",
-                escape(br.reason),
+                br.reason,
             )
         tables.append(rules)
     if result.notes:
         notes = RichTable(title="Notes", show_header=False)
         notes.add_column("")
         for text in result.notes:
-            notes.add_row(escape(text))
+            notes.add_row(text)
         tables.append(notes)
     return tables
 
@@ -387,7 +384,7 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
         save_figure(result.plot(), plot_path, force)
     if fmt == "table":
         table = RichTable(
-            title=escape(
+            title=(
                 f"{result.model_name}: critical speeds "
                 f"{result.low * RPM:.0f}-{result.high * RPM:.0f} rpm"
             ),
@@ -414,7 +411,7 @@ def campbell_command(model, speed_span, orders, plot_path, fmt, output, force) -
                 "-" if c.relative_amplitude_sum is None else f"{c.relative_amplitude_sum:.3g}",
             )
         if result.notes:
-            table.caption = escape("; ".join(result.notes))
+            table.caption = "; ".join(result.notes)
         _print_tables([table], output, force)
         return 0
     emit(result, fmt, output, force)
@@ -488,7 +485,7 @@ def damper_command(
         if comparison is not None:
             with_d, without = comparison
             i = without.mass_index(hub)
-            t = RichTable(title=escape(f"Synthesised amplitude at {hub}"), header_style="bold")
+            t = RichTable(title=f"Synthesised amplitude at {hub}", header_style="bold")
             for col in ("", "Largest (mrad)", "at (rpm)", "Damper power at it (W)"):
                 t.add_column(col, justify="right")
             for label, r in (("without damper", without), ("with damper", with_d)):
@@ -554,7 +551,7 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, fo
         save_figure(result.plot(), plot_path, force)
     if fmt == "table":
         table = RichTable(
-            title=escape(f"{engine.name}: torque harmonics at {w * RPM:.0f} rpm"),
+            title=f"{engine.name}: torque harmonics at {w * RPM:.0f} rpm",
             header_style="bold",
         )
         cols = [
@@ -585,7 +582,7 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output, fo
             if result.modes is not None:
                 row += [f"{v:.3g}" for v in result.relative_amplitude_sums[:3, j]]
             table.add_row(*row)
-        table.caption = escape(result.source)
+        table.caption = result.source
         _print_tables([table], output, force)
         return 0
     emit(result, "json" if fmt == "csv" else fmt, output, force)
@@ -660,14 +657,14 @@ def transient_command(
         cycle_angle = 4.0 * math.pi if ex.cycle == "four-stroke" else 2.0 * math.pi
         last = result.last_cycle(cycle_angle)
         table = RichTable(
-            title=escape(f"{result.model_name}: shaft torques, last cycle"), header_style="bold"
+            title=f"{result.model_name}: shaft torques, last cycle", header_style="bold"
         )
         for col in ("Shaft", "Half range (N·m)", "Largest |T| over the run (N·m)"):
             table.add_column(col, justify="left" if col == "Shaft" else "right")
         for s, (a, b) in enumerate(result.shafts):
             seg = result.shaft_torque[last, s]
             table.add_row(
-                escape(f"{a} - {b}"),
+                f"{a} - {b}",
                 _g(0.5 * (seg.max() - seg.min())),
                 _g(np.max(np.abs(result.shaft_torque[:, s]))),
             )
