@@ -65,7 +65,7 @@ class Table:
         self.base_dir = base_dir
         self._known: set[str] = set()
 
-    # ---- messages -----------------------------------------------------------------------------
+    # ---- messages --------------------------------------------------------------------------------
     def label(self, key: str) -> str:
         """How a key is named in messages: ``[section] key`` (quoted as TOML writes keys that
         are not bare)."""
@@ -88,7 +88,7 @@ class Table:
         except InputError as exc:
             raise exc.within(file=self.file, section=self.name or None) from None
 
-    # ---- presence -----------------------------------------------------------------------------
+    # ---- presence --------------------------------------------------------------------------------
     def has(self, key: str) -> bool:
         """Whether the key is present (and records it as known)."""
         self._known.add(key)
@@ -131,7 +131,7 @@ class Table:
             return None
         return present[0]
 
-    # ---- typed accessors ----------------------------------------------------------------------
+    # ---- typed accessors -------------------------------------------------------------------------
     def quantity(self, key: str, kind: str, default: Any = MISSING, *, check: str | None = None):
         """A physical quantity in SI (unit string or bare SI number); optional sign check."""
         value = self.raw(
@@ -282,6 +282,21 @@ class Table:
             p = self.base_dir / p
         return p
 
+    def input_file(self, key: str, what: str) -> Path:
+        """The path of an input file this table names (:meth:`path`), which must be a regular
+        file: a missing file, a folder, a FIFO (whose open would wait for a writer) or a device
+        is refused here, naming the key, before anything opens it."""
+        from crankdyn.io.files import check_regular
+
+        p = self.path(key)
+        try:
+            check_regular(p, what=what)
+        except InputError as exc:
+            if not p.exists():
+                raise self.error(key, f"no such {what} (looked for {p})", self.data[key]) from None
+            raise self.error(key, f"{p} {exc.message}", self.data[key]) from None
+        return p
+
     def table(self, key: str, *, required: bool = False) -> Table | None:
         """A sub-table ``[key]`` (None when absent and not required)."""
         self._known.add(key)
@@ -323,7 +338,7 @@ class Table:
             if key not in known:
                 raise self.error(key, f"unknown key{suggest(key, sorted(known))}", self.data[key])
 
-    # ---- helpers ------------------------------------------------------------------------------
+    # ---- helpers ---------------------------------------------------------------------------------
     def _sub(self, key: str) -> str:
         inner = self.name.strip("[]").split(" ")[0] if self.name else ""
         return f"{inner}.{key}" if inner else key
