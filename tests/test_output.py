@@ -80,7 +80,7 @@ def test_atomic_directory_replaces_only_when_complete(tmp_path, moves):
     assert [p.name for p in tmp_path.iterdir()] == ["report"]
 
 
-# ---- the target appears between the check and the move (issue 17, point 1) --------------------
+# ---- the target appears between the check and the move (issue 17, point 1) -----------------------
 
 
 def test_a_folder_that_appeared_meanwhile_is_kept(tmp_path, capsys, moves):
@@ -195,7 +195,7 @@ def test_rename_noreplace(tmp_path, moves):
     assert listing(tmp_path / "f") == ["x"]
 
 
-# ---- checks before the work (issue 17, point 4) ------------------------------------------------
+# ---- checks before the work (issue 17, point 4) --------------------------------------------------
 
 
 @posix

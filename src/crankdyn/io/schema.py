@@ -65,7 +65,7 @@ class Table:
         self.base_dir = base_dir
         self._known: set[str] = set()
 
-    # ---- messages --------------------------------------------------------------------------------
+    # ---- messages -----------------------------------------------------------------------------
     def label(self, key: str) -> str:
         """How a key is named in messages: ``[section] key`` (quoted as TOML writes keys that
         are not bare)."""
@@ -88,7 +88,7 @@ class Table:
         except InputError as exc:
             raise exc.within(file=self.file, section=self.name or None) from None
 
-    # ---- presence --------------------------------------------------------------------------------
+    # ---- presence -----------------------------------------------------------------------------
     def has(self, key: str) -> bool:
         """Whether the key is present (and records it as known)."""
         self._known.add(key)
@@ -131,7 +131,7 @@ class Table:
             return None
         return present[0]
 
-    # ---- typed accessors -------------------------------------------------------------------------
+    # ---- typed accessors ----------------------------------------------------------------------
     def quantity(self, key: str, kind: str, default: Any = MISSING, *, check: str | None = None):
         """A physical quantity in SI (unit string or bare SI number); optional sign check."""
         value = self.raw(
@@ -338,7 +338,7 @@ class Table:
             if key not in known:
                 raise self.error(key, f"unknown key{suggest(key, sorted(known))}", self.data[key])
 
-    # ---- helpers ---------------------------------------------------------------------------------
+    # ---- helpers ------------------------------------------------------------------------------
     def _sub(self, key: str) -> str:
         inner = self.name.strip("[]").split(" ")[0] if self.name else ""
         return f"{inner}.{key}" if inner else key

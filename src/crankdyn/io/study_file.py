@@ -47,7 +47,7 @@ _STUDIES = resources.files("crankdyn") / "examples" / "studies"
 MAX_RANGE_VALUES = 100_000
 
 
-# ---- built-in examples and resolution ------------------------------------------------------------
+# ---- built-in examples and resolution ---------------------------------------------------------
 
 
 def study_example_names() -> list[str]:
@@ -94,7 +94,7 @@ def _load(path: Path, name: str) -> StudySpec:
     return parse_study(data, file=name, base_dir=path.parent, default_name=path.stem)
 
 
-# ---- the base ------------------------------------------------------------------------------------
+# ---- the base ---------------------------------------------------------------------------------
 
 
 def _base(root: Table) -> Base:
@@ -195,7 +195,7 @@ def _files(document: dict, folder: Path) -> tuple[str, tuple[tuple[str, bytes], 
     return digest.hexdigest(), tuple(files)
 
 
-# ---- parameters ----------------------------------------------------------------------------------
+# ---- parameters -------------------------------------------------------------------------------
 
 
 def _numeric(t: Table, key: str, items: list, *, unit: str | None = None):
@@ -314,7 +314,7 @@ def _parameter(t: Table, base_document: dict) -> Parameter:
         return Parameter(path=path, also=also, unit=unit, distribution=distribution)
 
 
-# ---- the whole file ------------------------------------------------------------------------------
+# ---- the whole file ---------------------------------------------------------------------------
 
 
 def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
