@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import errno
+import functools
 import io
 import math
 import os
@@ -121,10 +122,32 @@ def save_figure(fig, path: str, force: bool, option: str = "--plot", dpi: int = 
     return written
 
 
+def _checked_first(check):
+    """Wrap a command so that ``check(kwargs)`` runs before its work (an output target that
+    cannot be written costs no computing time)."""
+
+    def decorate(f):
+        @functools.wraps(f)
+        def command(*args, **kwargs):
+            check(kwargs)
+            return f(*args, **kwargs)
+
+        return command
+
+    return decorate
+
+
 def plot_option(help: str, param: str = "plot_path"):
     """The --plot FILE option: write a figure (.png, .svg or .pdf), never over an existing file
-    without --force."""
-    return click.option("--plot", param, default=None, metavar="FILE", help=help)
+    without --force; the file is checked before the work."""
+
+    def decorate(f):
+        f = _checked_first(lambda kw: check_plot_path(kw.get(param), bool(kw.get("force", False))))(
+            f
+        )
+        return click.option("--plot", param, default=None, metavar="FILE", help=help)(f)
+
+    return decorate
 
 
 def angle_grid(
@@ -180,7 +203,15 @@ def format_option(default: str = "table"):
     )
 
 
+def _check_output(kwargs) -> None:
+    output = kwargs.get("output")
+    if output and output != "-":
+        check_writable(output, force=bool(kwargs.get("force", False)))
+
+
 def output_options(f):
+    """-o/--output FILE and --force; FILE is checked before the work (crankdyn.io.output)."""
+    f = _checked_first(_check_output)(f)
     f = click.option("--force", is_flag=True, help="Overwrite an existing output file.")(f)
     return click.option(
         "-o",
