@@ -84,7 +84,7 @@ def test_names_in_the_terminal(cli, tmp_path_factory, name):
             assert shown(name, run.out), (name, run.out[:400])
 
 
-@settings(max_examples=fuzz_examples(25))
+@settings(max_examples=fuzz_examples(8))
 @given(name=names, log=st.booleans())
 @example(name="$\\undefinedcmd$", log=True)
 def test_names_in_figures(name, log):
@@ -102,8 +102,7 @@ def test_names_in_figures(name, log):
     right.bar([0, 1], [1, 2])
     right.set_xticks([0, 1], labels=[name, name + "2"])
     fig.suptitle(name)
-    for fmt in ("png", "svg"):
-        fig.savefig(io.BytesIO(), format=fmt)
+    fig.savefig(io.BytesIO(), format="png", dpi=40)
     assert left.get_title() == name and not left.title.get_parse_math()
     if log:
         assert left.get_yticklabels()[0].get_parse_math()  # powers of ten in mathtext
@@ -186,12 +185,10 @@ def crankdyn(*args, stdout):
 
 
 @posix
-@pytest.mark.parametrize(
-    "args", [("kinematics", "vaz2108"), ("forces", "vaz2108", "--format", "json")]
-)
-def test_standard_output_full(args):
+def test_standard_output_full():
+    """A rich table into a full disk (`> /dev/full`)."""
     with open("/dev/full", "w") as full:
-        status, err = crankdyn(*args, stdout=full)
+        status, err = crankdyn("kinematics", "vaz2108", stdout=full)
     assert (status, err) == (
         2,
         "crankdyn: error: cannot write to standard output: No space left on device\n",
@@ -199,14 +196,13 @@ def test_standard_output_full(args):
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
-@pytest.mark.parametrize("args", [("kinematics", "vaz2108"), ("examples",)])
-def test_standard_output_closed(args):
-    """The reader of the pipe is gone before anything is written (``| head`` that quit): the
-    write fails with EPIPE at once, deterministically."""
+def test_standard_output_closed():
+    """JSON into a pipe whose reader is gone before anything is written (``| head`` that
+    quit): the write fails with EPIPE at once, deterministically."""
     read, write = os.pipe()
     os.close(read)
     try:
-        status, err = crankdyn(*args, stdout=write)
+        status, err = crankdyn("forces", "vaz2108", "--format", "json", stdout=write)
     finally:
         os.close(write)
     assert (status, err) == (2, "crankdyn: error: cannot write to standard output: Broken pipe\n")
