@@ -313,3 +313,33 @@ def test_signals_are_held_during_a_move(tmp_path):
     finally:
         signal.signal(signal.SIGTERM, previous)
         signal.signal(signal.SIGINT, previous_int)
+
+
+@posix
+def test_commands_check_their_targets_before_the_work(cli, tmp_path, monkeypatch):
+    """The issue's `analyze --out` a dangling symlink failed with NotADirectoryError after the
+    whole analysis; every writing command now checks its target first (the analysis would
+    raise here)."""
+    from crankdyn.report import build
+
+    def no_work(*args, **kwargs):
+        raise AssertionError("the work started")
+
+    monkeypatch.setattr(build, "builders", no_work)
+    link = tmp_path / "rep"
+    link.symlink_to(tmp_path / "gone")
+    message = (
+        f"is a symbolic link to {tmp_path / 'gone'}, which does not exist; remove the link or "
+        "choose another name"
+    )
+    for args in (
+        ("analyze", "vaz2108", "--out", link),
+        ("forces", "vaz2108", "-o", link),
+        ("balance", "vaz2108", "--plot", tmp_path / "nowhere" / "b.png"),
+        ("study", "inline4-rod-and-firing", "--out", link),
+    ):
+        run = cli(*args)
+        assert run.status == 2, (args, run)
+        assert run.err.count("\n") == 1
+        assert message in run.err or "the folder" in run.err, (args, run.err)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["rep"]
