@@ -209,3 +209,45 @@ def test_the_issues_fifo(cli, tmp_path):
         f"crankdyn: error: {tmp_path / 'engine.toml'}: is not a regular file (a FIFO); crankdyn "
         "reads engine files from regular files\n"
     )
+
+
+_RELEASE = threading.Event()
+
+
+def _stuck_warm_up() -> str:
+    _RELEASE.wait()
+    return "never"
+
+
+def test_workers_that_do_not_answer(cli, tmp_path, monkeypatch):
+    """A cluster whose workers never report (here: their warm-up waits on an event the test
+    sets only afterwards; the workers are threads of this process): one line once
+    WORKER_TIMEOUT has passed, no output folder."""
+    distributed = pytest.importorskip("distributed")
+    from crankdyn.study import runner
+
+    release = _RELEASE
+    release.clear()
+    monkeypatch.setattr(runner, "WORKER_TIMEOUT", 1.0)
+    monkeypatch.setattr(runner, "warm_up", _stuck_warm_up)
+    study = write_study(tmp_path / "files", ratios=(0.26,))
+    try:
+        with distributed.LocalCluster(
+            n_workers=1,
+            threads_per_worker=1,
+            processes=False,
+            protocol="tcp",
+            host="127.0.0.1",
+            dashboard_address=None,
+        ) as cluster:
+            address = cluster.scheduler_address
+            run = cli("study", study, "--scheduler", address, "--out", tmp_path / "out")
+            release.set()
+    finally:
+        release.set()
+    assert run.status == 2, run
+    assert run.err == (
+        f'crankdyn: error: --scheduler = "{address}": the Dask workers did not answer within 1 s '
+        "(importing crankdyn on each of them); check that they run and can reach the scheduler\n"
+    )
+    assert not (tmp_path / "out").exists()

@@ -237,7 +237,9 @@ def _check_address(address: str) -> None:
 
 SCHEDULER_TIMEOUT = 10.0
 """Seconds crankdyn waits for a Dask scheduler to take the connection and answer (each step of
-making the client: the connection, the handshake, the registration)."""
+making the client: the connection, the handshake, the registration, the list of workers)."""
+WORKER_TIMEOUT = 60.0
+"""Seconds crankdyn waits for the Dask workers to import crankdyn and report its version."""
 
 
 def _probe_scheduler(address: str, timeout: float) -> None:
@@ -311,9 +313,10 @@ class _Dask:
             ) from None
         try:
             self._check_workers(address)
-            threads = sum(self.client.nthreads().values())
+            nthreads = self.client.nthreads(callback_timeout=SCHEDULER_TIMEOUT)
+            threads = sum(nthreads.values())
             self.capacity = max(16, 4 * threads)
-            workers = len(self.client.nthreads())
+            workers = len(nthreads)
             self.description = f"Dask cluster at {address} ({workers} workers, {threads} threads)"
             self.payload = self.client.scatter(payload, hash=False)
             self.completed = as_completed(loop=self.client.loop)
@@ -323,7 +326,14 @@ class _Dask:
 
     def _check_workers(self, address: str) -> None:
         try:
-            versions = self.client.run(warm_up)
+            versions = self.client.run(warm_up, callback_timeout=WORKER_TIMEOUT)
+        except TimeoutError:
+            raise InputError(
+                f"the Dask workers did not answer within {WORKER_TIMEOUT:g} s (importing "
+                "crankdyn on each of them); check that they run and can reach the scheduler",
+                key="--scheduler",
+                value=address,
+            ) from None
         except Exception as exc:
             raise InputError(
                 "a Dask worker has no crankdyn installed (install the same crankdyn "
