@@ -251,3 +251,33 @@ def test_workers_that_do_not_answer(cli, tmp_path, monkeypatch):
         "(importing crankdyn on each of them); check that they run and can reach the scheduler\n"
     )
     assert not (tmp_path / "out").exists()
+
+
+# ---- angles far from the drawn position ----------------------------------------------------------
+
+
+@settings(
+    max_examples=fuzz_examples(12),
+    suppress_health_check=[HealthCheck.function_scoped_fixture],
+)
+@given(
+    zero=st.one_of(st.floats(-1e13, 1e13), st.sampled_from([1e10, -7e11, 360.0 * 4e6])),
+    angle=st.one_of(st.none(), st.floats(-1e12, 1e12), st.sampled_from([1e6, -3601.0, 3600.0])),
+)
+def test_angles_far_from_the_drawn_position(cli, tmp_path_factory, zero, angle):
+    """A linkage's motion is followed from its drawn position: a zero line of 1e10 deg (found
+    by the linkage fuzz, a march through millions of turns) or `--angle 1e6 deg` took minutes
+    to hours. The zero line is a direction (whole turns dropped) and --angle lies within ten
+    turns: a result or one line, at once."""
+    text = (EXAMPLES / "linkages" / "fourbar-seed004.toml").read_text(encoding="utf-8")
+    text = text.replace('zero = "D" ', f'zero = "{zero!r} deg" ')
+    path = tmp_path_factory.mktemp("zero") / "l.toml"
+    path.write_text(text, encoding="utf-8")
+    args = ["linkage", "forces", path, "--format", "json"]
+    args += ["--step", "90deg"] if angle is None else ["--angle", f"{angle!r} deg"]
+    run = cli(*args)
+    if angle is not None and abs(angle) > 3600:
+        assert run.status == 2 and "the crank angle must lie within ±3600 deg" in run.err
+    else:
+        assert run.status in (0, 2), run
+        assert run.status == 0 or run.err.count("\n") == 1

@@ -40,8 +40,19 @@ def _angles(angle: str | None, step: str | None, fmt: str, start: float = 0.0) -
     if angle is not None and step is not None:
         raise InputError("give --angle or --step, not both", key="--angle", value=angle)
     if angle is not None:
-        return np.array([option_quantity(angle, "angle", "--angle", "deg")])
+        value = option_quantity(angle, "angle", "--angle", "deg")
+        if abs(value) > MAX_TURNS * TWO_PI:  # the motion is followed from the drawn position
+            raise InputError(
+                f"the crank angle must lie within ±{MAX_TURNS * 360} deg ({MAX_TURNS} turns); "
+                "positions repeat every turn",
+                key="--angle",
+                value=angle,
+            )
+        return np.array([value])
     return angle_grid(step, fmt, TWO_PI, start=start, max_points=100_000)
+
+
+MAX_TURNS = 10
 
 
 def _single(data: dict, keys) -> dict:
