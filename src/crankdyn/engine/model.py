@@ -22,6 +22,7 @@ from crankdyn.crank.masses import Masses
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.engine.firing import (
     CYCLE_ANGLE,
+    VArrangement,
     check_firing_order,
     even_firing_throw_angles,
     firing_angles,
@@ -213,11 +214,44 @@ class Cylinders:
                     )
 
     @classmethod
-    def from_arrangement(cls, arrangement, cycle: str, pitch: float | None = None) -> Cylinders:
-        """The cylinders of a V engine's arrangement (a :class:`crankdyn.engine.firing.VArrangement`
-        from :func:`~crankdyn.engine.firing.v_alternating` or
-        :func:`~crankdyn.engine.firing.v_interposed`): firing order, throw angles (rad), banks,
-        throws and bank angle (rad); ``pitch`` the axial throw spacing (m) or None."""
+    def from_arrangement(
+        cls, arrangement: VArrangement, cycle: str, pitch: float | None = None
+    ) -> Cylinders:
+        """The cylinders of a V engine's arrangement.
+
+        Parameters
+        ----------
+        arrangement : crankdyn.engine.firing.VArrangement
+            From :func:`~crankdyn.engine.firing.v_alternating` or
+            :func:`~crankdyn.engine.firing.v_interposed`: firing order, throw angles (rad),
+            banks, throws and bank angle (rad).
+        cycle : str
+            ``"four-stroke"`` or ``"two-stroke"``.
+        pitch : float or None
+            Axial spacing of the throws (m), or None when unknown.
+
+        Returns
+        -------
+        Cylinders
+            A V engine's cylinders.
+
+        Raises
+        ------
+        InputError
+            If the arrangement does not make a valid set of cylinders.
+
+        Examples
+        --------
+        A 90 deg V8 with a flat crank, each bank firing 1-3-4-2 (seed 000 section 2.3):
+
+        >>> import math
+        >>> from crankdyn.engine.firing import v_alternating
+        >>> v8 = Cylinders.from_arrangement(
+        ...     v_alternating((1, 3, 4, 2), math.radians(90), "four-stroke"), "four-stroke"
+        ... )
+        >>> v8.firing_order
+        (1, 5, 3, 7, 4, 8, 2, 6)
+        """
         return cls(
             count=len(arrangement.firing_order),
             firing_order=tuple(arrangement.firing_order),
@@ -516,14 +550,53 @@ class Engine:
 
     @classmethod
     def from_file(cls, path: str | Path) -> Engine:
-        """Load an engine description file (TOML; docs/engine-file.md)."""
+        """Load an engine description file (TOML; ``crankdyn docs engine-file``).
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The engine file.
+
+        Returns
+        -------
+        Engine
+            The engine, in SI.
+
+        Raises
+        ------
+        InputError
+            If the file cannot be read or holds a mistake (the message names file, key and
+            value).
+        """
         from crankdyn.io.engine_file import load_engine  # boundary layer, imported on demand
 
         return load_engine(path)
 
     @classmethod
     def example(cls, name: str) -> Engine:
-        """A built-in example engine by name (``crankdyn examples`` lists them)."""
+        """A built-in example engine by name (``crankdyn examples`` lists them).
+
+        Parameters
+        ----------
+        name : str
+            The example's name, e.g. ``"inline6-diesel"``.
+
+        Returns
+        -------
+        Engine
+            The engine.
+
+        Raises
+        ------
+        InputError
+            If there is no engine example of that name.
+
+        Examples
+        --------
+        >>> engine = Engine.example("inline6-diesel")
+        >>> engine.cylinders.count, engine.cycle
+        (6, 'four-stroke')
+        """
         from crankdyn.io.catalogue import load_example
 
         return load_example(name, "engine")
