@@ -29,15 +29,25 @@ interpolated from a grid of speeds.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.excitation import interp_complex
 from crankdyn.torsion.response import linear_system
 from crankdyn.torsion.sources import assemble_forcing, check_model_orders
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["TransientResult", "transient_response"]
 
@@ -46,7 +56,29 @@ from crankdyn.constants import DEG, RPM
 
 @dataclass(frozen=True)
 class TransientResult(Result):
-    """Angles and shaft torques against time (module docstring)."""
+    """Angles and shaft torques against time (module docstring).
+
+    ``angle`` holds the vibratory angle of every listed mass (the model's masses, then the
+    damper rings; the actual angle of a geared mass, its reflected angle times its speed
+    ratio), ``shaft_torque`` the elastic torque k (theta_b - theta_a) of every shaft and damper
+    coupling (actual stiffness and angles), both against ``time``.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+    ...     shafts=(Shaft(("ground", "m"), 1e6),),
+    ... )
+    >>> run = transient_response(
+    ...     model, UniformExcitation(100.0, [0.0], "two-stroke"), [1.0], speed=900.0, cycles=2
+    ... )
+    >>> run.angle.shape, run.masses, run.shafts
+    ((1441, 1), ('m',), (('ground', 'm'),))
+    >>> sorted(run.columns())[:4]
+    ['angle_rad.m', 'crank_angle_deg', 'shaft_torque_Nm.ground - m', 'speed_rpm']
+    """
 
     title = "Time-domain response"
     time: np.ndarray = column("time_s", "Time", "s")
@@ -64,11 +96,45 @@ class TransientResult(Result):
     model_name: str = scalar("model", "Model", "")
 
     def last_cycle(self, cycle_angle: float) -> np.ndarray:
-        """Mask of the samples in the last working cycle (crank angle within ``cycle_angle``
-        rad of the end)."""
+        """Mask of the samples in the last working cycle.
+
+        Parameters
+        ----------
+        cycle_angle : float
+            The working cycle's crank angle (rad): 4 pi for a four-stroke engine, 2 pi for a
+            two-stroke one.
+
+        Returns
+        -------
+        numpy.ndarray
+            (T,) bool, True where the crank angle lies less than ``cycle_angle`` before the
+            last sample's (one period, its first point, the repeat of the last, left out).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6),),
+        ... )
+        >>> run = transient_response(
+        ...     model, UniformExcitation(100.0, [0.0], "two-stroke"), [1.0], speed=900.0, cycles=2
+        ... )
+        >>> int(run.last_cycle(2 * np.pi).sum())  # 720 samples per cycle
+        720
+        """
         return self.crank_angle >= self.crank_angle[-1] - cycle_angle * (1 - 1e-12)
 
     def columns(self) -> dict[str, np.ndarray]:
+        """The time columns, and one column per mass (``angle_rad.<mass>``) and per shaft
+        (``shaft_torque_Nm.<a> - <b>``) for the CSV.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            {key: values} in the unit of the key (:meth:`crankdyn.results.Result.columns`).
+        """
         out = super().columns()
         for i, name in enumerate(self.masses):
             out[f"angle_rad.{name}"] = self.angle[:, i]
@@ -77,6 +143,13 @@ class TransientResult(Result):
         return out
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
+        """Label and unit of every column of :meth:`columns`.
+
+        Returns
+        -------
+        dict of str to (str, str)
+            {column key: (label, unit)}.
+        """
         out = super().column_labels()
         for _i, name in enumerate(self.masses):
             out[f"angle_rad.{name}"] = (f"Angle {name}", "rad")
@@ -84,24 +157,38 @@ class TransientResult(Result):
             out[f"shaft_torque_Nm.{a} - {b}"] = (f"Torque {a} - {b}", "N·m")
         return out
 
-    def plot(self, shaft=None, fig=None):
-        """Shaft torque against time (and speed for a run-up); returns the Figure."""
+    def plot(self, shaft: tuple[str, str] | None = None, fig: Figure | None = None) -> Figure:
+        """Shaft torque against time (and speed for a run-up)
+        (:func:`crankdyn.plots.torsion_response.plot_transient`).
+
+        Parameters
+        ----------
+        shaft : (str, str) or None
+            The shaft's two ends (mass names); default every shaft.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; default a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion_response import plot_transient
 
         return plot_transient(self, shaft=shaft, fig=fig)
 
 
 def transient_response(
-    model,
-    excitation,
-    orders,
+    model: TorsionModel,
+    excitation: EngineExcitation | UniformExcitation,
+    orders: ArrayLike,
     *,
     speed: float | None = None,
     run_up: tuple[float, float] | None = None,
     duration: float | None = None,
     cycles: float | None = None,
     samples_per_cycle: int = 720,
-    dampers=None,
+    dampers: Sequence[Damper] | None = None,
     hysteretic_frequency: float | None = None,
     method: str = "DOP853",
     rtol: float = 1e-8,
@@ -110,32 +197,82 @@ def transient_response(
 ) -> TransientResult:
     """Integrate the model's response to the engine torque in time.
 
+    The equations and the forcing are those of the module docstring: seed 003 (the V6 paper's
+    eq. 1), the first-order form y' = A y + B T(t) integrated by ``scipy.integrate.solve_ivp``
+    (Dormand-Prince of order 8 by default; Hairer, Norsett and Wanner 1993, sec. II.5).
+
     Parameters
     ----------
-    model, excitation, orders
-        As for :func:`~crankdyn.torsion.response.forced_response`.
-    speed
-        Constant crankshaft speed (rad/s); or
-    run_up
-        (start, end) speeds (rad/s) of a linear run-up over ``duration``.
-    duration
-        Simulated time (s); or
-    cycles
-        Number of working cycles at constant speed.
-    samples_per_cycle
-        Output samples per working cycle (at the mean speed).
-    dampers
-        As for the forced response (None: the model's own).
-    hysteretic_frequency
-        omega_h (rad/s) for the loss factors as viscous damping; default the lowest elastic
-        natural frequency.
-    method, rtol, atol
-        Passed to ``scipy.integrate.solve_ivp``.
-    start
+    model : crankdyn.torsion.model.TorsionModel
+        The torsional model (masses carrying cylinders are the excitation points).
+    excitation : EngineExcitation or UniformExcitation
+        The cylinders' excitation (:func:`crankdyn.torsion.excitation.excitation_for`).
+    orders : array_like
+        (Q,) orders of the crankshaft speed (multiples of the cycle's fundamental order, or
+        orders of the model's sources), as for
+        :func:`~crankdyn.torsion.response.forced_response`.
+    speed : float or None
+        Constant crankshaft speed (rad/s), > 0; or
+    run_up : (float, float) or None
+        (start, end) speeds (rad/s), > 0, of a linear run-up over ``duration``.
+    duration : float or None
+        Simulated time (s), > 0 (required for a run-up); or
+    cycles : float or None
+        Number of working cycles at constant speed (the duration then is
+        ``cycles`` x cycle angle / speed).
+    samples_per_cycle : int
+        Output samples per working cycle at the mean speed (default 720).
+    dampers : sequence of Damper or None
+        Dampers to add (:class:`~crankdyn.torsion.dampers.Damper`); None: the model's own
+        (``model.dampers``); ``()``: none.
+    hysteretic_frequency : float or None
+        omega_h (rad/s) for the loss factors as viscous damping eta k / omega_h; default the
+        lowest elastic natural frequency (1 rad/s when there is none).
+    method : str
+        The ``solve_ivp`` integrator (default ``"DOP853"``).
+    rtol, atol : float
+        ``solve_ivp``'s relative and absolute tolerances (atol in rad and rad/s).
+    start : str
         ``"rest"`` (default): no vibration at t = 0; ``"steady"``: the steady state at the
         starting speed, theta(0) = Re sum_q X_q and theta'(0) = Re sum_q i q Omega_0 X_q with
         X_q the frequency-domain solution of the same equations (the loss factors as viscous
         damping at omega_h), so that a run-up starts without a start-up transient.
+
+    Returns
+    -------
+    TransientResult
+        Time (s), speed (rad/s), crank angle (rad), the masses' vibratory angles (rad) and the
+        shafts' torques (N m) at the output samples.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: neither or both of ``speed`` and ``run_up``, a speed that is
+        not positive and finite, neither ``duration`` nor ``cycles`` at constant speed, a run-up
+        without a duration, a duration that is not positive, a ``start`` other than ``rest``
+        or ``steady``, or orders the model cannot take
+        (:func:`crankdyn.torsion.sources.check_model_orders`).
+
+    Examples
+    --------
+    One damped mass on a grounded shaft, started in its steady state at 900 rad/s: the
+    amplitude over the last cycle is that of the single damped mass (seed 003,
+    B = T / |k - omega^2 J + i omega c|).
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+    ...     shafts=(Shaft(("ground", "m"), 1e6),),
+    ... )
+    >>> run = transient_response(
+    ...     model, UniformExcitation(100.0, [0.0], "two-stroke"), [1.0],
+    ...     speed=900.0, cycles=2, start="steady",
+    ... )
+    >>> last = run.last_cycle(2 * np.pi)
+    >>> amplitude = float(np.max(np.abs(run.angle[last, 0])))
+    >>> round(amplitude / (100.0 / abs(1e6 - 900.0**2 + 900j * 20.0)), 5)
+    1.0
     """
     from crankdyn.torsion.modal import natural_modes
 
@@ -151,6 +288,7 @@ def transient_response(
                 raise InputError("give the duration or the number of cycles", key="cycles")
             duration = cycles * cycle_angle / w0
     else:
+        assert run_up is not None  # exactly one of speed and run_up (checked above)
         w0, w1 = (float(v) for v in run_up)
         if not (w0 > 0.0 and w1 > 0.0 and math.isfinite(w0) and math.isfinite(w1)):
             raise InputError("run-up speeds must be positive", key="run_up", value=run_up)
@@ -178,10 +316,10 @@ def transient_response(
     a_lower = np.hstack([-inv_m[:, None] * stiffness, -inv_m[:, None] * damping])
     rate = (w1 - w0) / duration
 
-    def crank(t):
+    def crank(t: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
         return w0 * t + 0.5 * rate * t * t
 
-    def rhs(t, y):
+    def rhs(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
         w = w0 + rate * t
         f = forcing[0] if grid.size == 1 else interp_complex(np.array([w]), grid, forcing)[0]
         torque = np.real(np.exp(1j * orders * crank(t)) @ f)
