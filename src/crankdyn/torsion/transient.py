@@ -199,7 +199,7 @@ def transient_response(
 
     The equations and the forcing are those of the module docstring: seed 003 (the V6 paper's
     eq. 1), the first-order form y' = A y + B T(t) integrated by ``scipy.integrate.solve_ivp``
-    (Dormand-Prince of order 8 by default; Hairer, Norsett and Wanner 1993, sec. II.5).
+    (Dormand-Prince of order 8 by default, scipy's DOP853 after Hairer, Norsett and Wanner 1993).
 
     Parameters
     ----------
