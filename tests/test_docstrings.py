@@ -138,6 +138,7 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.torsion.damped",
         "crankdyn.torsion.transient",
     }
 )

@@ -57,12 +57,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import linear_sum_assignment
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
     "DampedModalResult",
@@ -76,10 +81,38 @@ _ITERATIONS = 60
 _REAL = 1e-9  # |Im lambda| below this x |lambda|: a real eigenvalue
 
 
-def modal_damping_ratios(model, ratios) -> np.ndarray:
-    """The damping ratio of every mode of ``model`` (ascending, rigid-body mode first with 0):
-    ``ratios`` is one number for every elastic mode or one per elastic mode (dimensionless,
-    0 <= zeta < 1)."""
+def modal_damping_ratios(model: TorsionModel, ratios: ArrayLike) -> NDArray[np.float64]:
+    """The damping ratio of every mode of ``model``, from the ratios of its elastic modes.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    ratios : float or array_like
+        One damping ratio for every elastic mode, or one per elastic mode in ascending order
+        (dimensionless, 0 <= zeta < 1; 0.02 is 2 % of critical).
+
+    Returns
+    -------
+    numpy.ndarray
+        (modes,) zeta_r of every mode in ascending order of the undamped natural frequency
+        (dimensionless), a free model's rigid-body mode first with 0.
+
+    Raises
+    ------
+    InputError
+        Naming the key ``modal_damping`` and the value: neither one ratio nor one per elastic
+        mode, or a ratio outside [0, 1) or not finite.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> free = TorsionModel(
+    ...     masses=(Mass("a", 1.0), Mass("b", 3.0)), shafts=(Shaft(("a", "b"), 3e4),)
+    ... )
+    >>> modal_damping_ratios(free, 0.02).tolist()  # the rigid-body mode, then mode 1
+    [0.0, 0.02]
+    """
     from crankdyn.torsion.modal import eigen_modes
 
     lam, _phi = eigen_modes(model)
@@ -104,9 +137,43 @@ def modal_damping_ratios(model, ratios) -> np.ndarray:
     return out
 
 
-def modal_damping_matrix(model, ratios) -> np.ndarray:
-    """C_modal = M Phi diag(2 zeta_r omega_r) Phi^T M (N m s/rad, dof x dof, reflected) for
-    damping ratios per elastic mode (module docstring; :func:`modal_damping_ratios`)."""
+def modal_damping_matrix(model: TorsionModel, ratios: ArrayLike) -> NDArray[np.float64]:
+    """The modal damping matrix C_modal = M Phi diag(2 zeta_r omega_r) Phi^T M.
+
+    Inman (2001), "Critical damping in lumped parameter models", *Encyclopedia of Vibration*;
+    openTorsion's ``Assembly.C_modal`` (module docstring): with the mass-normalised undamped
+    modes Phi, Phi^T C_modal Phi = diag(2 zeta_r omega_r).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    ratios : float or array_like
+        Damping ratios of the elastic modes (dimensionless), as for
+        :func:`modal_damping_ratios`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (dof, dof) C_modal (N m s/rad, reflected to the reference speed), symmetric.
+
+    Raises
+    ------
+    InputError
+        As :func:`modal_damping_ratios` (key ``modal_damping``).
+
+    Examples
+    --------
+    Two free masses: mode 1 has omega_1 = sqrt(k (1/J_a + 1/J_b)) = 200 rad/s and C_modal is
+    2 zeta omega_1 J_a J_b / (J_a + J_b) = 6 N m s/rad on the shaft's twist.
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> free = TorsionModel(
+    ...     masses=(Mass("a", 1.0), Mass("b", 3.0)), shafts=(Shaft(("a", "b"), 3e4),)
+    ... )
+    >>> np.round(modal_damping_matrix(free, 0.02), 9).tolist()
+    [[6.0, -6.0], [-6.0, 6.0]]
+    """
     from crankdyn.torsion.modal import eigen_modes
 
     zeta = modal_damping_ratios(model, ratios)
@@ -122,7 +189,24 @@ class DampedModalResult(Result):
     shapes of a torsional model, one per mode, in the order of the undamped modes that label
     them and with their numbers (elastic modes from 1, a free model's rigid-body mode 0:
     docs/conventions.md) (module docstring). Frequencies are held in rad/s
-    (``natural_frequency`` |lambda|, ``damped_frequency`` omega_d), exported in Hz."""
+    (``natural_frequency`` |lambda|, ``damped_frequency`` omega_d), exported in Hz.
+
+    Parameters
+    ----------
+    mode_shapes : numpy.ndarray or None
+        (mode, mass) complex mode shapes, reflected, the largest amplitude of every mode 1
+        (dimensionless; not a column: :meth:`to_dict` exports its real and imaginary parts).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 2.0, damping=40.0),), shafts=(Shaft(("ground", "m"), 8e4),)
+    ... )
+    >>> result = damped_modes(model)
+    >>> result.mode.tolist(), round(float(result.damping_ratio[0]), 12)
+    ([1], 0.05)
+    """
 
     title = "Damped modes"
     mode: np.ndarray = column("mode", "Mode", "")
@@ -142,12 +226,21 @@ class DampedModalResult(Result):
     """Complex mode shapes (mode x mass, reflected, largest amplitude 1)."""
 
     @property
-    def damped_frequencies_hz(self) -> np.ndarray:
+    def damped_frequencies_hz(self) -> NDArray[np.float64]:
+        """Damped natural frequencies omega_d / (2 pi) (Hz), one per mode."""
         return self.damped_frequency * HZ
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
         """JSON-ready dict; ``mode_shapes_real`` and ``mode_shapes_imag`` hold the complex mode
-        shapes (mode x mass)."""
+        shapes (mode x mass).
+
+        Returns
+        -------
+        dict
+            The columns and scalars in their exported units
+            (:meth:`crankdyn.results.Result.to_dict`), and the mode shapes (dimensionless) as
+            lists of rows.
+        """
         out = super().to_dict()
         if self.mode_shapes is not None:
             out["mode_shapes_real"] = [[float(v) for v in row] for row in self.mode_shapes.real]
@@ -189,23 +282,61 @@ def _mode_values(lam, partner=None):
     return wn, 0.0, zeta
 
 
-def damped_modes(model, *, hysteretic="iterate", modal_damping=None) -> DampedModalResult:
+def damped_modes(
+    model: TorsionModel,
+    *,
+    hysteretic: str | float | None = "iterate",
+    modal_damping: ArrayLike | None = None,
+) -> DampedModalResult:
     """Damped modes of a torsional model (module docstring).
+
+    The eigenvalues of the state-space matrix A = [[0, I], [-M^-1 K, -M^-1 C_eff]] (Friswell
+    et al. 2010, secs. 2.4 and 3.4): omega_n = |lambda|, zeta = -Re(lambda)/|lambda|,
+    omega_d = |Im(lambda)| and the logarithmic decrement 2 pi zeta / sqrt(1 - zeta^2) (Rao,
+    *Mechanical Vibrations*, sec. 2.6), labelled by the undamped modes through the MAC.
 
     Parameters
     ----------
-    model
+    model : crankdyn.torsion.model.TorsionModel
         The lumped model (its ``[[damper]]`` rings are not included, as in the undamped modes).
-    hysteretic
-        ``"iterate"`` (default): loss factors as viscous damping at each mode's own damped
-        frequency; a number omega_h (rad/s): at that frequency for every mode.
-    modal_damping
-        Damping ratios per elastic mode added as C_modal (one number for all), or None.
+    hysteretic : str, float or None
+        ``"iterate"`` (default; None the same): loss factors as viscous damping eta k / omega
+        at each mode's own damped frequency; a number omega_h (rad/s), > 0: at that frequency
+        for every mode.
+    modal_damping : float, array_like or None
+        Damping ratios per elastic mode (dimensionless) added as C_modal (one number for all;
+        :func:`modal_damping_matrix`), or None.
 
     Returns
     -------
     DampedModalResult
-        One row per mode, ascending in the undamped natural frequency.
+        One row per mode, ascending in the undamped natural frequency: frequencies (rad/s),
+        damping ratios and logarithmic decrements (dimensionless), eigenvalues (1/s, rad/s)
+        and complex mode shapes.
+
+    Raises
+    ------
+    InputError
+        Naming the key ``hysteretic`` and its value when it is neither ``"iterate"`` nor a
+        positive finite frequency; the key ``modal_damping`` as :func:`modal_damping_ratios`.
+
+    Examples
+    --------
+    One mass J = 2 kg m^2 on a grounded shaft k = 8e4 N m/rad with an absolute damper
+    c = 40 N m s/rad: omega_n = sqrt(k/J) = 200 rad/s, zeta = c / (2 sqrt(k J)) = 0.05 and
+    omega_d = omega_n sqrt(1 - zeta^2) (Rao sec. 2.6).
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 2.0, damping=40.0),), shafts=(Shaft(("ground", "m"), 8e4),)
+    ... )
+    >>> result = damped_modes(model)
+    >>> round(float(result.natural_frequency[0]), 9), round(float(result.damping_ratio[0]), 12)
+    (200.0, 0.05)
+    >>> round(float(result.damped_frequency[0]) / (200.0 * math.sqrt(1 - 0.05**2)), 12)
+    1.0
+    >>> round(float(result.log_decrement[0]), 6)  # 2 pi zeta / sqrt(1 - zeta^2)
+    0.314553
     """
     from crankdyn.torsion.modal import eigen_modes
 
@@ -308,7 +439,16 @@ def damped_modes(model, *, hysteretic="iterate", modal_damping=None) -> DampedMo
     )
 
 
-def _assign(lam, vectors, phi, m, rigid, values, eig, shapes) -> None:
+def _assign(
+    lam: NDArray[np.complex128],
+    vectors: NDArray[np.complex128],
+    phi: NDArray[np.float64],
+    m: NDArray[np.float64],
+    rigid: NDArray[np.bool_],
+    values: NDArray[np.float64],
+    eig: NDArray[np.complex128],
+    shapes: NDArray[np.complex128],
+) -> None:
     """Give every undamped mode its eigenvalue(s) of one state-space solution (module
     docstring: optimal assignment on the MAC)."""
     oscillating = np.flatnonzero(lam.imag > _REAL * np.abs(lam))
