@@ -139,6 +139,7 @@ HELD = frozenset(
         "crankdyn.study.spec",
         "crankdyn.torsion",
         "crankdyn.torsion.damped",
+        "crankdyn.torsion.dampers",
         "crankdyn.torsion.transient",
     }
 )

@@ -39,12 +39,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, scalar
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
     "Damper",
@@ -64,23 +70,37 @@ class Damper:
 
     Parameters
     ----------
-    name
+    name : str
         Name of the ring in outputs (unique among the masses).
-    at
+    at : str
         The hub: the mass the damper is mounted on.
-    inertia
+    inertia : float
         Ring inertia J_d (kg m^2), > 0.
-    stiffness
+    stiffness : float
         Stiffness of the rubber element k_d (N m/rad), >= 0; 0 for a viscous damper.
-    damping
+    damping : float
         Viscous damping between ring and hub c_d (N m s/rad), >= 0.
-    loss_factor
+    loss_factor : float
         Loss factor of the rubber element eta_d (dimensionless), >= 0.
-    permissible_power
+    permissible_power : float or None
         The damper maker's permissible heat load (W, mean dissipated power), > 0, or None; kept
         for the TVC's damper check (:mod:`crankdyn.tvc`).
-    limit_source
+    limit_source : str or None
         Where the permissible power comes from (the maker's document), for reports.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: an empty ``name`` or ``at``, an inertia that is not positive,
+        a negative or non-finite stiffness, damping or loss factor, a permissible power that
+        is not positive, neither damping nor stiffness (key ``damping``), or a loss factor
+        without a stiffness.
+
+    Examples
+    --------
+    >>> ring = Damper("ring", "pulley", 0.1, stiffness=1e4, damping=2.0, loss_factor=0.1)
+    >>> ring.kind, Damper("visc", "pulley", 0.2, damping=30.0).kind
+    ('tuned', 'viscous')
     """
 
     name: str
@@ -129,23 +149,88 @@ class Damper:
         """``"viscous"`` (no stiffness) or ``"tuned"``."""
         return "viscous" if self.stiffness == 0.0 else "tuned"
 
-    def complex_stiffness(self, omega) -> np.ndarray:
-        """k_d + i (omega c_d + eta_d k_d) (N m/rad) at omega (rad/s)."""
+    def complex_stiffness(self, omega: ArrayLike) -> NDArray[np.complexfloating]:
+        """Complex stiffness k_d + i (omega c_d + eta_d k_d) between ring and hub.
+
+        Seed 003 (the V6 engine's viscous-rubber damper, Kd and Cd); the loss factor as
+        hysteretic damping, exact in the frequency domain (module docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Vibration frequencies (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            The complex stiffness (N m/rad), of the shape of ``omega``.
+
+        Examples
+        --------
+        >>> ring = Damper("ring", "pulley", 0.1, stiffness=1e4, damping=2.0, loss_factor=0.1)
+        >>> complex(ring.complex_stiffness(100.0))  # 1e4 + i (100 x 2 + 0.1 x 1e4)
+        (10000+1200j)
+        """
         w = np.asarray(omega, dtype=float)
         return self.stiffness + 1j * (w * self.damping + self.loss_factor * self.stiffness)
 
-    def power(self, omega, twist) -> np.ndarray:
-        """Mean power dissipated (W) at harmonic twist amplitudes ``twist`` (rad, complex or
-        real) at omega (rad/s): (1/2) omega (omega c + eta k) |twist|^2."""
+    def power(self, omega: ArrayLike, twist: ArrayLike) -> NDArray[np.float64]:
+        """Mean power dissipated at a harmonic twist, (1/2) omega (omega c + eta k) |twist|^2.
+
+        The work of the damping torque over a cycle, pi (omega c + eta k) |twist|^2, times
+        omega / (2 pi) cycles per second (module docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Vibration frequencies (rad/s).
+        twist : float or array_like
+            Amplitudes of the ring's twist relative to the hub (rad, complex or real),
+            broadcast against ``omega``.
+
+        Returns
+        -------
+        numpy.ndarray
+            The mean dissipated power (W).
+
+        Examples
+        --------
+        >>> ring = Damper("ring", "pulley", 0.1, stiffness=1e4, damping=2.0, loss_factor=0.1)
+        >>> float(ring.power(100.0, 0.01))  # 0.5 x 100 x 1200 x 1e-4
+        6.0
+        """
         w = np.asarray(omega, dtype=float)
         return 0.5 * w * (w * self.damping + self.loss_factor * self.stiffness) * np.abs(twist) ** 2
 
 
 # ---- design -------------------------------------------------------------------------------------
 def optimum_tuned(mass_ratio: float) -> tuple[float, float, float]:
-    """Den Hartog's optimum tuned absorber for mass ratio mu (> 0): (tuning ratio
-    omega_d/omega_r = 1/(1+mu), damping ratio c/(2 J_d omega_r) = sqrt(3 mu/(8 (1+mu)^3)),
-    largest magnification sqrt(1 + 2/mu))."""
+    """Den Hartog's optimum tuned absorber for a mass ratio mu.
+
+    Den Hartog (1956), sec. 3.9 (the two fixed points at equal height, the curve horizontal
+    at them; module docstring).
+
+    Parameters
+    ----------
+    mass_ratio : float
+        mu = J_d / J_e (dimensionless), > 0.
+
+    Returns
+    -------
+    tuple of float
+        (tuning ratio omega_d/omega_r = 1/(1+mu), damping ratio c/(2 J_d omega_r) =
+        sqrt(3 mu/(8 (1+mu)^3)), largest magnification sqrt(1 + 2/mu)), all dimensionless.
+
+    Raises
+    ------
+    InputError
+        Naming the key ``mass_ratio`` and its value when it is not positive and finite.
+
+    Examples
+    --------
+    >>> [round(v, 6) for v in optimum_tuned(0.1)]
+    [0.909091, 0.167852, 4.582576]
+    """
     mu = check_positive("mass_ratio", mass_ratio, "the mass ratio")
     return (
         1.0 / (1.0 + mu),
@@ -155,9 +240,33 @@ def optimum_tuned(mass_ratio: float) -> tuple[float, float, float]:
 
 
 def optimum_viscous(mass_ratio: float) -> tuple[float, float, float]:
-    """Den Hartog's optimum untuned viscous damper for mass ratio mu (> 0): (frequency ratio of
-    the fixed point sqrt(2/(2+mu)), damping ratio c/(2 J_d omega_r) = 1/sqrt(2 (1+mu)(2+mu)),
-    magnification at the fixed point 1 + 2/mu)."""
+    """Den Hartog's optimum untuned viscous damper for a mass ratio mu.
+
+    Den Hartog (1956), sec. 3.10 (every response curve through one fixed point, the optimum
+    curve horizontal there; module docstring).
+
+    Parameters
+    ----------
+    mass_ratio : float
+        mu = J_d / J_e (dimensionless), > 0.
+
+    Returns
+    -------
+    tuple of float
+        (frequency ratio of the fixed point sqrt(2/(2+mu)), damping ratio c/(2 J_d omega_r) =
+        1/sqrt(2 (1+mu)(2+mu)), magnification at the fixed point 1 + 2/mu), all
+        dimensionless.
+
+    Raises
+    ------
+    InputError
+        Naming the key ``mass_ratio`` and its value when it is not positive and finite.
+
+    Examples
+    --------
+    >>> [round(v, 6) for v in optimum_viscous(0.25)]
+    [0.942809, 0.421637, 9.0]
+    """
     mu = check_positive("mass_ratio", mass_ratio, "the mass ratio")
     return (
         math.sqrt(2.0 / (2.0 + mu)),
@@ -166,10 +275,53 @@ def optimum_viscous(mass_ratio: float) -> tuple[float, float, float]:
     )
 
 
-def equivalent_single_mass(model, at: str, mode: int, modes=None) -> tuple[float, float]:
-    """(J_e (kg m^2), omega_r (rad/s)) of mode number ``mode`` (elastic modes from 1, as
-    :func:`~crankdyn.torsion.modal.natural_modes` numbers them; docs/conventions.md) seen at
-    mass ``at``: J_e = sum J_i phi_i^2 with phi_at = 1 (module docstring)."""
+def equivalent_single_mass(
+    model: TorsionModel, at: str, mode: int, modes: ModalResult | None = None
+) -> tuple[float, float]:
+    """The single-degree-of-freedom system of one mode as seen at a mass.
+
+    J_e = sum J_i phi_i^2 with the mode shape scaled to phi_at = 1, and the mode's natural
+    frequency: the main system of Den Hartog's (1956, secs. 3.9-3.10) absorber (module
+    docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    at : str
+        The hub mass.
+    mode : int
+        The mode's number (elastic modes from 1, as
+        :func:`~crankdyn.torsion.modal.natural_modes` numbers them; docs/conventions.md).
+    modes : crankdyn.torsion.modal.ModalResult or None
+        The model's natural modes, if already computed; default computed here.
+
+    Returns
+    -------
+    tuple of float
+        (J_e (kg m^2, at the hub's own speed), omega_r (rad/s)).
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: ``mode`` not a mode number of the model, or the rigid-body
+        mode; ``at`` not a mass of the model, or at a node of the mode.
+
+    Examples
+    --------
+    Two equal masses J = 1 kg m^2 on two equal shafts k = 1e6 N m/rad from ground: mode 1
+    has omega^2 = (3 - sqrt 5)/2 k/J and, seen at the free end, phi = (0.618, 1), so
+    J_e = 1 + 0.618^2.
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> two = TorsionModel(
+    ...     masses=(Mass("a", 1.0), Mass("b", 1.0)),
+    ...     shafts=(Shaft(("ground", "a"), 1e6), Shaft(("a", "b"), 1e6)),
+    ... )
+    >>> j_e, omega = equivalent_single_mass(two, "b", 1)
+    >>> round(j_e, 9), round(omega**2 / ((3 - math.sqrt(5)) / 2 * 1e6), 9)
+    (1.381966011, 1.0)
+    """
     from crankdyn.torsion.modal import natural_modes
 
     modes = natural_modes(model) if modes is None else modes
@@ -201,7 +353,16 @@ def equivalent_single_mass(model, at: str, mode: int, modes=None) -> tuple[float
 
 @dataclass(frozen=True)
 class DamperDesign(Result):
-    """Optimum damper for one mode (Den Hartog; module docstring)."""
+    """Optimum damper for one mode (Den Hartog; module docstring).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> design = design_damper(model, "m", 1, 0.1)
+    >>> design.kind, round(design.mass_ratio, 12), round(design.tuning_ratio, 9)
+    ('tuned', 0.1, 0.909090909)
+    """
 
     title = "Damper design"
     kind: str = scalar("kind", "Damper", "")
@@ -224,15 +385,82 @@ class DamperDesign(Result):
     )
 
     def damper(self, name: str = "damper ring") -> Damper:
-        """The designed damper as a :class:`Damper`."""
+        """The designed damper.
+
+        Parameters
+        ----------
+        name : str
+            The ring's name in outputs (default ``"damper ring"``).
+
+        Returns
+        -------
+        Damper
+            Ring inertia, stiffness and viscous damping of the design on its hub (no loss
+            factor).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+        >>> ring = design_damper(model, "m", 1, 0.1, kind="viscous").damper()
+        >>> ring.kind, ring.at, round(ring.damping, 6)  # 2 J_d omega_r / sqrt(2 x 1.1 x 2.1)
+        ('viscous', 'm', 93.048421)
+        """
         return Damper(name, self.at, self.ring_inertia, self.stiffness, self.damping)
 
 
 def design_damper(
-    model, at: str, mode: int, ring_inertia: float, kind: str = "tuned", modes=None
+    model: TorsionModel,
+    at: str,
+    mode: int,
+    ring_inertia: float,
+    kind: str = "tuned",
+    modes: ModalResult | None = None,
 ) -> DamperDesign:
-    """Optimum tuned or viscous damper of ring inertia J_d (kg m^2) on mass ``at`` for mode
-    ``mode`` of ``model`` (module docstring: Den Hartog)."""
+    """Optimum tuned or viscous damper for one mode of a model.
+
+    The mode reduced to J_e and omega_r at the hub (:func:`equivalent_single_mass`), then Den
+    Hartog's (1956) optima, secs. 3.9 (:func:`optimum_tuned`: k_d = J_d (f omega_r)^2) and
+    3.10 (:func:`optimum_viscous`: k_d = 0), with c = 2 zeta J_d omega_r.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    at : str
+        The hub mass the damper is mounted on.
+    mode : int
+        The mode to damp (elastic modes from 1).
+    ring_inertia : float
+        Ring inertia J_d (kg m^2), > 0.
+    kind : str
+        ``"tuned"`` (default, a rubber damper) or ``"viscous"`` (untuned).
+    modes : crankdyn.torsion.modal.ModalResult or None
+        The model's natural modes, if already computed.
+
+    Returns
+    -------
+    DamperDesign
+        The mass ratio, the optimum tuning (tuned only), stiffness (N m/rad), damping ratio,
+        damping (N m s/rad) and the largest magnification at the hub.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: a ``kind`` other than tuned or viscous, a ring inertia that
+        is not positive, and as :func:`equivalent_single_mass` (``mode``, ``at``).
+
+    Examples
+    --------
+    One mass J = 1 kg m^2 on k = 1e6 N m/rad (omega_r = 1000 rad/s), a 0.1 kg m^2 ring: the
+    tuned optimum k_d = J_d (omega_r / (1 + mu))^2.
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> design = design_damper(model, "m", 1, 0.1)
+    >>> round(design.stiffness / (0.1 * (1000 / 1.1) ** 2), 12), round(design.magnification, 6)
+    (1.0, 4.582576)
+    """
     if kind not in ("tuned", "viscous"):
         raise InputError('expected "tuned" or "viscous"', key="kind", value=kind)
     j_d = check_positive("ring_inertia", ring_inertia, "the ring's inertia")
