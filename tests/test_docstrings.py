@@ -140,6 +140,7 @@ HELD = frozenset(
         "crankdyn.torsion",
         "crankdyn.torsion.damped",
         "crankdyn.torsion.dampers",
+        "crankdyn.torsion.resolve",
         "crankdyn.torsion.transient",
     }
 )

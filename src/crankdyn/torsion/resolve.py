@@ -32,8 +32,10 @@ from __future__ import annotations
 
 import hashlib
 import math
+from collections.abc import Callable
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "MAX_ROUNDS",
@@ -63,7 +65,9 @@ _SPACING = 1e-10  # relative: speeds closer than this are one speed
 
 
 # ---- resonances -----------------------------------------------------------------------------
-def damped_frequencies(inertia, stiffness, damping, hysteretic) -> np.ndarray:
+def damped_frequencies(
+    inertia: ArrayLike, stiffness: ArrayLike, damping: ArrayLike, hysteretic: ArrayLike
+) -> NDArray[np.complex128]:
     """Complex natural frequencies omega_p = a + i b (rad/s, a > 0) of
     (K + i H) x + i omega C x - omega^2 M x = 0, ascending in a.
 
@@ -75,28 +79,67 @@ def damped_frequencies(inertia, stiffness, damping, hysteretic) -> np.ndarray:
 
     Parameters
     ----------
-    inertia
+    inertia : array_like
         Diagonal of M (kg m^2), (n,).
-    stiffness, damping, hysteretic
+    stiffness, damping, hysteretic : array_like
         K (N m/rad), C (N m s/rad), H (N m/rad), (n, n).
+
+    Returns
+    -------
+    numpy.ndarray
+        The complex frequencies a + i b (rad/s) with a > 0, ascending in a.
+
+    Examples
+    --------
+    One mass J = 1 kg m^2 on k = 1e6 N m/rad with c = 20 N m s/rad: the roots of
+    k + i omega c - omega^2 J = 0 are omega = sqrt(k/J - (c/2J)^2) + i c/(2J).
+
+    >>> w = damped_frequencies([1.0], [[1e6]], [[20.0]], [[0.0]])
+    >>> round(float(w[0].real), 6), round(float(w[0].imag), 9)
+    (999.949999, 10.0)
     """
     w = damped_frequency_rows(inertia, stiffness, damping, hysteretic)
     w = w[np.isfinite(w)]
     return np.sort_complex(w)
 
 
-_POLE_CACHE: dict = {}
+_POLE_CACHE: dict[tuple[tuple[tuple[int, ...], bytes], ...], NDArray[np.complex128]] = {}
 _POLE_CACHE_SIZE = 64
 
 
-def damped_frequency_rows(inertia, stiffness, damping, hysteretic) -> np.ndarray:
-    """:func:`damped_frequencies` of a batch of systems: stiffness, damping and hysteretic
-    (..., n, n) (broadcast together); returns (..., 2n) complex, ascending in the real part,
-    NaN where an eigenvalue is not a damped natural frequency (a <= 0).
+def damped_frequency_rows(
+    inertia: ArrayLike, stiffness: ArrayLike, damping: ArrayLike, hysteretic: ArrayLike
+) -> NDArray[np.complex128]:
+    """:func:`damped_frequencies` of a batch of systems, one row per system.
 
-    A pure function of its inputs, remembered for the last 64 distinct inputs (a calculation
-    that solves the same system under several excitations, e.g. the misfiring cylinders of a
-    TVC, finds its poles once); the result is read-only."""
+    The same linearisation (Tisseur and Meerbergen 2001, sec. 3.4). A pure function of its
+    inputs, remembered for the last 64 distinct inputs (a calculation that solves the same
+    system under several excitations, e.g. the misfiring cylinders of a TVC, finds its poles
+    once).
+
+    Parameters
+    ----------
+    inertia : array_like
+        Diagonal of M (kg m^2), (n,).
+    stiffness, damping, hysteretic : array_like
+        K (N m/rad), C (N m s/rad), H (N m/rad), (..., n, n), broadcast together.
+
+    Returns
+    -------
+    numpy.ndarray
+        (..., 2n) complex frequencies a + i b (rad/s), ascending in a; a NaN real part where
+        an eigenvalue is not a damped natural frequency (a <= 0), those last. Read-only.
+
+    Examples
+    --------
+    Two stiffnesses of one damped mass at once (a batch of two systems):
+
+    >>> rows = damped_frequency_rows(
+    ...     [1.0], np.array([[[1e6]], [[4e6]]]), [[20.0]], [[0.0]]
+    ... )
+    >>> rows.shape, np.round(rows[:, 0].real, 3).tolist()
+    ((2, 2), [999.95, 1999.975])
+    """
     arrays = [
         np.ascontiguousarray(x, dtype=float) for x in (inertia, stiffness, damping, hysteretic)
     ]
@@ -111,7 +154,9 @@ def damped_frequency_rows(inertia, stiffness, damping, hysteretic) -> np.ndarray
     return found
 
 
-def _damped_frequency_rows(inertia, stiffness, damping, hysteretic) -> np.ndarray:
+def _damped_frequency_rows(
+    inertia: ArrayLike, stiffness: ArrayLike, damping: ArrayLike, hysteretic: ArrayLike
+) -> NDArray[np.complex128]:
     m = np.asarray(inertia, dtype=float)
     n = m.size
     k = np.asarray(stiffness, dtype=float) + 1j * np.asarray(hysteretic, dtype=float)
@@ -121,29 +166,43 @@ def _damped_frequency_rows(inertia, stiffness, damping, hysteretic) -> np.ndarra
     a[..., :n, n:] = np.eye(n)
     a[..., n:, :n] = k / m[:, None]
     a[..., n:, n:] = 1j * c / m[:, None]
-    w = np.linalg.eigvals(a)
+    w = np.asarray(np.linalg.eigvals(a), dtype=complex)  # complex already (no copy): typed
     scale = np.max(np.abs(w), axis=-1, keepdims=True, initial=0.0)
     w = np.where(np.isfinite(w) & (w.real > 1e-9 * scale), w, np.nan)
     order = np.argsort(np.where(np.isnan(w), np.inf, w.real), axis=-1, kind="stable")
     return np.take_along_axis(w, order, axis=-1)
 
 
-def seed_speeds(existing, centre, half_width, low, high):
+def seed_speeds(
+    existing: ArrayLike, centre: ArrayLike, half_width: ArrayLike, low: float, high: float
+) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
     """Speeds that sample resonances across their widths (module docstring, step 1).
+
+    The centre a/q plus :data:`SEED_OFFSETS` half-power half-widths b/q (Ewins 2000, ch. 2:
+    the half-power points of a resonance lie at a +/- b), leaving out those within 0.35
+    half-widths of a speed already sampled or of another seed.
 
     Parameters
     ----------
-    existing
+    existing : array_like
         Speeds already sampled (rad/s).
-    centre, half_width
+    centre, half_width : array_like
         Centre and half-power half-width of every resonance in speed (rad/s), (R,).
-    low, high
-        The speed range (rad/s).
+    low, high : float
+        The speed range (rad/s); seeds outside it are left out.
 
     Returns
     -------
-    (speeds, resonance)
-        The new speeds (rad/s, ascending) and the index of the resonance each samples.
+    speeds : numpy.ndarray
+        The new speeds (rad/s, ascending).
+    resonance : numpy.ndarray
+        The index of the resonance each samples (int).
+
+    Examples
+    --------
+    >>> speeds, which = seed_speeds([99.0, 100.0], [100.0], [1.0], 90.0, 110.0)
+    >>> speeds.tolist(), which.tolist()  # 99 and 100 are sampled already
+    ([98.0, 99.5, 100.5, 101.0, 102.0], [0, 0, 0, 0, 0])
     """
     centre = np.asarray(centre, dtype=float)
     width = np.asarray(half_width, dtype=float)
@@ -164,9 +223,31 @@ def seed_speeds(existing, centre, half_width, low, high):
 
 
 # ---- peaks ------------------------------------------------------------------------------------
-def local_maxima(values, floor: float = _FLOOR):
-    """(row, column) of every interior local maximum of each column of ``values`` (S, C) that
-    reaches ``floor`` times its column's largest value (rows: ascending speeds)."""
+def local_maxima(
+    values: ArrayLike, floor: float = _FLOOR
+) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """Interior local maxima of every curve that reach a share of the curve's largest value.
+
+    Parameters
+    ----------
+    values : array_like
+        (S, C) curves sampled at ascending speeds (rows), in any one unit.
+    floor : float
+        Share of each column's largest value a maximum must reach (dimensionless, default
+        0.5: only those can hold the peak once the resonances are sampled across their
+        widths).
+
+    Returns
+    -------
+    row, column : numpy.ndarray
+        Indices (int) of the maxima; the first and last rows are never maxima.
+
+    Examples
+    --------
+    >>> rows, cols = local_maxima([[1.0, 0.0], [3.0, 1.0], [2.0, 4.0], [1.0, 1.0]])
+    >>> rows.tolist(), cols.tolist()
+    ([1, 2], [0, 1])
+    """
     y = np.asarray(values, dtype=float)
     if y.shape[0] < 3:
         return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
@@ -180,32 +261,54 @@ def local_maxima(values, floor: float = _FLOOR):
 
 
 def refinement_speeds(
-    speeds, values, scale=None, tolerance: float = TOLERANCE, threshold=None, exclude=()
-):
+    speeds: ArrayLike,
+    values: ArrayLike,
+    scale: ArrayLike | None = None,
+    tolerance: float = TOLERANCE,
+    threshold: ArrayLike | None = None,
+    exclude: ArrayLike = (),
+) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
     """New speeds that resolve the peaks of the curves ``values`` (module docstring, step 2).
+
+    The vertex of the parabola through each local maximum and its neighbours, fitted to 1/y^2
+    (successive parabolic interpolation, Brent 1973, ch. 5): near a single lightly damped
+    resonance |H|^-2 is quadratic in the frequency, so the vertex is then exact.
 
     Parameters
     ----------
-    speeds
+    speeds : array_like
         Ascending speeds (rad/s), (S,).
-    values
-        Curves sampled at them, (S, C).
-    scale
-        The value each curve's tolerance is relative to, (C,); default its largest value.
-    tolerance
-        Relative change of a peak that counts as resolved.
-    threshold
+    values : array_like
+        Curves sampled at them, (S, C) (or (S,) for one), in any one unit.
+    scale : array_like or None
+        The value each curve's tolerance is relative to, (C,), in the unit of ``values``;
+        default its largest value.
+    tolerance : float
+        Relative change of a peak that counts as resolved (dimensionless, default 1e-3).
+    threshold : array_like or None
         Refine only the local maxima above these values (C,) instead of those reaching half
         their curve's largest value (e.g. the maxima of a stress-to-limit ratio near 1).
-    exclude
+    exclude : array_like
         Speeds (rad/s) whose neighbourhood is not refined: the resonances of undamped modes,
         where the response is unbounded.
 
     Returns
     -------
-    (speeds, column)
-        New speeds (rad/s, ascending, none closer than 5 % of its bracket to another speed) and
-        the curve that asked for each; empty when every peak is resolved.
+    speeds : numpy.ndarray
+        New speeds (rad/s, ascending, none closer than 5 % of its bracket to another speed);
+        empty when every peak is resolved.
+    column : numpy.ndarray
+        The curve that asked for each (int).
+
+    Examples
+    --------
+    A resonance y = 1/sqrt((omega - 10.3)^2 + 0.01) sampled at 8, 9, ..., 12 rad/s: the
+    parabola through 1/y^2 puts its peak at 10.3 exactly.
+
+    >>> s = np.arange(8.0, 13.0)
+    >>> new, column = refinement_speeds(s, 1.0 / np.sqrt((s - 10.3) ** 2 + 0.01))
+    >>> np.round(new, 12).tolist(), column.tolist()
+    ([10.3], [0])
     """
     s = np.asarray(speeds, dtype=float)
     y = np.asarray(values, dtype=float)
@@ -257,7 +360,14 @@ def refinement_speeds(
     return points[keep], column[keep]
 
 
-def _peak_estimate(x0, x1, x2, y0, y1, y2):
+def _peak_estimate(
+    x0: NDArray[np.float64],
+    x1: NDArray[np.float64],
+    x2: NDArray[np.float64],
+    y0: NDArray[np.float64],
+    y1: NDArray[np.float64],
+    y2: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Vertex and value of a peak from three samples around it: the parabola through
     (x, 1/y^2), exact for a single lightly damped resonance near its peak (1/|H|^2 is quadratic
     in the frequency there: |H|^-2 = (omega_r^2 - omega^2)^2 + (eta omega_r^2)^2 ~ 4 omega_r^2
@@ -272,7 +382,14 @@ def _peak_estimate(x0, x1, x2, y0, y1, y2):
     return np.where(ok, xz, xy), np.where(ok, top_z, top_y)
 
 
-def _parabola(x0, x1, x2, y0, y1, y2):
+def _parabola(
+    x0: NDArray[np.float64],
+    x1: NDArray[np.float64],
+    x2: NDArray[np.float64],
+    y0: NDArray[np.float64],
+    y1: NDArray[np.float64],
+    y2: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Vertex abscissa and value of the parabola through three points (x0 < x1 < x2); where
     the points are collinear or convex, (x1, y1)."""
     d0, d2 = x1 - x0, x1 - x2
@@ -291,9 +408,28 @@ def _parabola(x0, x1, x2, y0, y1, y2):
     return xv, top
 
 
-def merge_speeds(*groups) -> tuple[np.ndarray, np.ndarray]:
-    """The sorted union of speed arrays and, for each speed of the union, the index of its
-    first occurrence in the concatenation (speeds equal to 1e-10 relative are one)."""
+def merge_speeds(*groups: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """The sorted union of speed arrays, speeds equal to 1e-10 relative counting as one.
+
+    Parameters
+    ----------
+    *groups : array_like
+        Speed arrays (rad/s), any order.
+
+    Returns
+    -------
+    speeds : numpy.ndarray
+        The union (rad/s), ascending.
+    first : numpy.ndarray
+        For each speed of the union, the index of its first occurrence in the concatenation
+        of the groups (int).
+
+    Examples
+    --------
+    >>> speeds, first = merge_speeds([1.0, 3.0], [2.0, 3.0])
+    >>> speeds.tolist(), first.tolist()
+    ([1.0, 2.0, 3.0], [0, 2, 1])
+    """
     every = np.concatenate([np.asarray(g, dtype=float).ravel() for g in groups])
     order = np.argsort(every, kind="stable")
     sorted_ = every[order]
@@ -304,10 +440,31 @@ def merge_speeds(*groups) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ---- crossings --------------------------------------------------------------------------------
-def crossing_brackets(excess):
-    """Where a sampled excess (curve minus limit, (S, C), NaN where there is no limit) changes
-    sign between neighbouring speeds: (row, column, rising) with the crossing between rows
-    ``row`` and ``row + 1``, rising where the excess becomes positive."""
+def crossing_brackets(
+    excess: ArrayLike,
+) -> tuple[NDArray[np.intp], NDArray[np.intp], NDArray[np.bool_]]:
+    """Where a sampled excess changes sign between neighbouring speeds (module docstring,
+    step 3).
+
+    Parameters
+    ----------
+    excess : array_like
+        (S, C) curve minus limit at ascending speeds (any one unit; NaN where there is no
+        limit: no crossing there).
+
+    Returns
+    -------
+    row, column : numpy.ndarray
+        The crossings (int), each between rows ``row`` and ``row + 1``.
+    rising : numpy.ndarray
+        True (bool) where the excess becomes positive.
+
+    Examples
+    --------
+    >>> row, col, rising = crossing_brackets([[-1.0], [1.0], [2.0], [-1.0]])
+    >>> row.tolist(), col.tolist(), rising.tolist()
+    ([0, 2], [0, 0], [True, False])
+    """
     e = np.asarray(excess, dtype=float)
     above = e > 0.0
     known = np.isfinite(e)
@@ -316,12 +473,40 @@ def crossing_brackets(excess):
     return row, col, above[row + 1, col]
 
 
-def bisect_crossings(evaluate, low, high, rising, width: float):
-    """Bisect brackets [low, high] (rad/s, arrays) on the sign of an excess until each is
-    narrower than ``width`` (rad/s); ``evaluate(speeds, k)`` returns the excess at the speeds for
-    brackets ``k`` (one batched call per round for all brackets). ``rising``: the excess is <= 0
-    at ``low`` and > 0 at ``high`` (else the reverse). Returns the crossings (rad/s): the
-    midpoints of the final brackets."""
+def bisect_crossings(
+    evaluate: Callable[[NDArray[np.float64], NDArray[np.intp]], ArrayLike],
+    low: ArrayLike,
+    high: ArrayLike,
+    rising: ArrayLike,
+    width: float,
+) -> NDArray[np.float64]:
+    """Bisect brackets on the sign of an excess until each is narrower than ``width``.
+
+    Bisection, all brackets at once per round (module docstring, step 3).
+
+    Parameters
+    ----------
+    evaluate : callable
+        ``evaluate(speeds, k)`` returns the excess (any unit, the sign counts) at ``speeds``
+        (rad/s) for the brackets of index ``k``: one batched call per round for all brackets.
+    low, high : array_like
+        The brackets' ends (rad/s), (B,).
+    rising : array_like
+        (B,) bool: the excess is <= 0 at ``low`` and > 0 at ``high`` (else the reverse).
+    width : float
+        The final brackets' width (rad/s), > 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        The crossings (rad/s): the midpoints of the final brackets, (B,).
+
+    Examples
+    --------
+    >>> root = bisect_crossings(lambda s, k: s**2 - 2.0, [1.0], [2.0], [True], 1e-9)
+    >>> round(float(root[0]), 8)  # sqrt(2)
+    1.41421356
+    """
     lo = np.array(low, dtype=float)
     hi = np.array(high, dtype=float)
     rising = np.asarray(rising, dtype=bool)
@@ -339,7 +524,9 @@ def bisect_crossings(evaluate, low, high, rising, width: float):
 
 
 # ---- helpers -----------------------------------------------------------------------------------
-def _distance_to(points, sorted_values):
+def _distance_to(
+    points: NDArray[np.float64], sorted_values: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Distance of every point to the nearest of ascending ``sorted_values`` (inf if none)."""
     if sorted_values.size == 0:
         return np.full(points.shape, np.inf)
@@ -349,7 +536,7 @@ def _distance_to(points, sorted_values):
     return np.minimum(np.abs(points - left), np.abs(right - points))
 
 
-def _thin(points, near):
+def _thin(points: NDArray[np.float64], near: NDArray[np.float64]) -> NDArray[np.bool_]:
     """Keep the first of every run of ascending points closer than ``near`` to the previous
     one (so a cluster of requests adds one speed)."""
     if points.size == 0:
