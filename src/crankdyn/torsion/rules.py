@@ -37,15 +37,22 @@ of a response against any limit curve (couplings, gears, ... against their own l
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.resolve import bisect_crossings, merge_speeds, refinement_speeds
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import TorsionModel
+    from crankdyn.torsion.response import ResponseResult
 
 __all__ = [
     "RULE",
@@ -65,6 +72,7 @@ __all__ = [
 ]
 
 RULE = "IACS UR M68 (Aug 2014 text), M68.4"
+"""The rule and section the check applies (module docstring)."""
 
 _MPA = 1e6
 
@@ -87,33 +95,98 @@ carbon and carbon-manganese steel intermediate and thrust shafts, 800 N/mm^2 for
 600 N/mm^2 for propeller shafts (sources: :mod:`crankdyn.tvc.limits`)."""
 
 
-def capped_strength(tensile_strength: float, material: str, kind: str, cap=None) -> float:
-    """sigma_B (Pa) the M68 formulas use: the specified minimum tensile strength, at most the
-    cap of :data:`STRENGTH_CAPS` for the material and shaft kind (or ``cap``, Pa)."""
+def capped_strength(
+    tensile_strength: float, material: str, kind: str, cap: float | None = None
+) -> float:
+    """sigma_B the M68 formulas use: the specified minimum tensile strength, at most the cap.
+
+    IACS UR M68.4 (module docstring; the caps :data:`STRENGTH_CAPS`).
+
+    Parameters
+    ----------
+    tensile_strength : float
+        Specified minimum tensile strength of the material (Pa).
+    material : str
+        ``"carbon"`` or ``"alloy"``.
+    kind : str
+        ``"intermediate"``, ``"thrust"`` or ``"propeller"``.
+    cap : float or None
+        The cap (Pa) where the society states another value; None: :data:`STRENGTH_CAPS`.
+
+    Returns
+    -------
+    float
+        sigma_B (Pa).
+
+    Examples
+    --------
+    >>> capped_strength(900e6, "carbon", "propeller") / 1e6  # capped at 600 N/mm^2
+    600.0
+    >>> capped_strength(700e6, "alloy", "intermediate") / 1e6
+    700.0
+    """
     limit = cap if cap is not None else STRENGTH_CAPS[(material, kind)]
     return min(float(tensile_strength), float(limit))
 
 
-def size_factor(diameter) -> np.ndarray:
-    """C_D = 0.35 + 0.93 d^-0.2 with d in mm (``diameter`` in m)."""
+def size_factor(diameter: ArrayLike) -> NDArray[np.float64]:
+    """The size factor C_D = 0.35 + 0.93 d^-0.2 with d in mm (IACS UR M68.4).
+
+    Parameters
+    ----------
+    diameter : float or array_like
+        Outer diameter d of the shaft (m).
+
+    Returns
+    -------
+    numpy.ndarray
+        C_D (dimensionless), of the shape of ``diameter``.
+
+    Examples
+    --------
+    >>> round(float(size_factor(0.3)), 9)  # 0.35 + 0.93 x 300^-0.2
+    0.64720677
+    """
     d_mm = np.asarray(diameter, dtype=float) * 1e3
     return 0.35 + 0.93 * d_mm**-0.2
 
 
-def permissible_continuous(speed_ratio, tensile_strength, design_factor, diameter) -> np.ndarray:
-    """tau_C (Pa) for continuous operation at speed ratios lambda = n/n_0 (module docstring);
-    NaN above lambda = 1.05 (no limit given by the UR).
+def permissible_continuous(
+    speed_ratio: ArrayLike,
+    tensile_strength: float | NDArray[np.float64],
+    design_factor: float | NDArray[np.float64],
+    diameter: ArrayLike,
+) -> NDArray[np.float64]:
+    """Permissible stress tau_C for continuous operation (IACS UR M68.4; module docstring).
+
+    tau_C = (sigma_B + 160)/18 C_K C_D (3 - 2 lambda^2) below lambda = 0.9, with the factor
+    1.38 for 0.9 <= lambda <= 1.05 (sigma_B in N/mm^2, tau_C in N/mm^2).
 
     Parameters
     ----------
-    speed_ratio
-        lambda (dimensionless), array.
-    tensile_strength
-        sigma_B (Pa).
-    design_factor
+    speed_ratio : array_like
+        lambda = n / n_0 (dimensionless).
+    tensile_strength : float or numpy.ndarray
+        sigma_B (Pa), capped (:func:`capped_strength`); broadcast against ``speed_ratio``.
+    design_factor : float or numpy.ndarray
         C_K (dimensionless).
-    diameter
-        Outer diameter d (m), for C_D.
+    diameter : float or array_like
+        Outer diameter d (m), for C_D (:func:`size_factor`).
+
+    Returns
+    -------
+    numpy.ndarray
+        tau_C (Pa), the half-range amplitude of the vibratory shear stress; NaN above
+        lambda = 1.05 (no limit given by the UR).
+
+    Examples
+    --------
+    sigma_B = 600 N/mm^2, a plain 300 mm shaft (C_K = 1): at lambda = 0.5 the factor is
+    3 - 2 x 0.25 = 2.5, at lambda = 1 it is 1.38.
+
+    >>> tau_c = permissible_continuous([0.5, 1.0, 1.1], 600e6, 1.0, 0.3)
+    >>> np.round(tau_c / 1e6, 4).tolist()
+    [68.3163, 37.7106, nan]
     """
     lam = np.asarray(speed_ratio, dtype=float)
     base = (tensile_strength / _MPA + 160.0) / 18.0 * design_factor * size_factor(diameter)
@@ -121,8 +194,32 @@ def permissible_continuous(speed_ratio, tensile_strength, design_factor, diamete
     return np.where(lam <= 1.05, base * factor * _MPA, np.nan)
 
 
-def permissible_transient(speed_ratio, tau_c, design_factor) -> np.ndarray:
-    """tau_T = 1.7 tau_C / sqrt(C_K) (Pa) for lambda <= 0.8, NaN above."""
+def permissible_transient(
+    speed_ratio: ArrayLike, tau_c: ArrayLike, design_factor: ArrayLike
+) -> NDArray[np.float64]:
+    """Permissible stress tau_T = 1.7 tau_C / sqrt(C_K) for transient running through a barred
+    speed range (IACS UR M68.4; module docstring).
+
+    Parameters
+    ----------
+    speed_ratio : array_like
+        lambda = n / n_0 (dimensionless).
+    tau_c : array_like
+        tau_C at those speed ratios (Pa; :func:`permissible_continuous`).
+    design_factor : float or array_like
+        C_K (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        tau_T (Pa) for lambda <= 0.8, NaN above (no barred range permitted there).
+
+    Examples
+    --------
+    >>> tau_t = permissible_transient([0.5, 0.9], [68.0e6, 40.0e6], 0.5)
+    >>> np.round(tau_t / 1e6, 3).tolist()  # 1.7 x 68 / sqrt(0.5)
+    [163.483, nan]
+    """
     lam = np.asarray(speed_ratio, dtype=float)
     return np.where(lam <= 0.8, 1.7 * np.asarray(tau_c) / np.sqrt(design_factor), np.nan)
 
@@ -133,23 +230,35 @@ class ShaftLimit:
 
     Parameters
     ----------
-    between
+    between : (str, str)
         The shaft's two masses (its outer diameter comes from the shaft's geometry).
-    tensile_strength
+    tensile_strength : float
         Specified minimum tensile strength sigma_B (Pa), > 0.
-    design_factor
+    design_factor : float
         C_K (dimensionless), 0 < C_K <= 1.
-    material
+    material : str
         ``"carbon"`` (carbon and carbon-manganese steel, default) or ``"alloy"``, for the cap on
         sigma_B (:data:`STRENGTH_CAPS`).
-    kind
+    kind : str
         ``"intermediate"`` (default), ``"thrust"`` or ``"propeller"`` shaft, for the cap.
-    strength_cap
+    strength_cap : float or None
         The largest sigma_B (Pa) the formulas may use, where the society states another value
         than the default cap; None: the cap of the material and kind.
-    feature
+    feature : str or None
         The design feature C_K was taken from (a key of
         :data:`crankdyn.tvc.limits.DESIGN_FACTORS`), for reports; None: given as a number.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: ``between`` not two names, a tensile strength or cap that
+        is not positive, C_K outside (0, 1], an unknown ``material`` or ``kind``.
+
+    Examples
+    --------
+    >>> limit = ShaftLimit(("gearbox", "propeller"), 900e6, 0.6, kind="propeller")
+    >>> limit.strength_used / 1e6  # the cap of a carbon-steel propeller shaft
+    600.0
     """
 
     between: tuple[str, str]
@@ -162,7 +271,8 @@ class ShaftLimit:
 
     @property
     def strength_used(self) -> float:
-        """sigma_B (Pa) in the formulas: the tensile strength, at most the cap (M68)."""
+        """sigma_B (Pa) in the formulas: the tensile strength, at most the cap (M68;
+        :func:`capped_strength`)."""
         return capped_strength(self.tensile_strength, self.material, self.kind, self.strength_cap)
 
     def __post_init__(self) -> None:
@@ -199,8 +309,27 @@ class ShaftLimit:
 
 @dataclass(frozen=True)
 class RuleSet:
-    """The rule check's inputs: rated speed n_0 (rad/s; None: the engine's operating speed)
-    and the checked shafts."""
+    """The rule check's inputs: the rated speed and the checked shafts.
+
+    Parameters
+    ----------
+    rated_speed : float or None
+        Rated speed n_0 (rad/s), > 0; None: the engine's operating speed.
+    shafts : tuple of ShaftLimit
+        The checked shafts, at least one.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: a rated speed that is not positive (``rated_speed``), no
+        shaft (``shaft``).
+
+    Examples
+    --------
+    >>> rules = RuleSet(104.72, [ShaftLimit(("engine", "propeller"), 600e6)])
+    >>> len(rules.shafts), rules.shafts[0].design_factor
+    (1, 1.0)
+    """
 
     rated_speed: float | None
     shafts: tuple[ShaftLimit, ...]
@@ -219,7 +348,29 @@ class RuleSet:
 
 @dataclass(frozen=True)
 class BarredRange(Result):
-    """A speed range where the synthesised stress of a shaft exceeds tau_C."""
+    """A speed range where the synthesised stress of a shaft exceeds tau_C (IACS UR M68.4:
+    permitted below 0.8 n_0 while the stress stays below tau_T; :func:`check_rules`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
+    ... )
+    >>> rpm = math.pi / 30
+    >>> response = forced_response(
+    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
+    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
+    ... )
+    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
+    >>> barred = check_rules(response, rules, model).barred_ranges[0]
+    >>> round(barred.start / rpm, 1), round(barred.end / rpm, 1), barred.permitted
+    (595.2, 601.5, True)
+    """
 
     shaft: tuple[str, str] = scalar("shaft", "Shaft", "")
     start: float = scalar("start_rpm", "From", "rpm", RPM)
@@ -239,7 +390,28 @@ class BarredRange(Result):
 
 @dataclass(frozen=True)
 class RuleCheck(Result):
-    """Synthesised shaft stresses against the IACS UR M68 limits (module docstring)."""
+    """Synthesised shaft stresses against the IACS UR M68 limits (module docstring).
+
+    Examples
+    --------
+    >>> import math
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
+    ... )
+    >>> rpm = math.pi / 30
+    >>> response = forced_response(
+    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
+    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
+    ... )
+    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
+    >>> check = check_rules(response, rules, model)
+    >>> check.passed, len(check.barred_ranges), check.stress.shape == check.tau_c.shape
+    (True, 1, True)
+    """
 
     title = "Rule check"
     rule: str = scalar("rule", "Rule", "")
@@ -263,7 +435,25 @@ class Exceedance:
     curve is above the limit there (``open_start``, ``open_end``); ``peak`` is the curve's
     largest sampled value inside (its peak resolved), ``peak_ratio`` the largest curve / limit,
     ``peak_speed`` (rad/s) where the curve peaks; ``rows`` the rows of the response's speeds
-    inside the range."""
+    inside the range.
+
+    Parameters
+    ----------
+    column : int
+        The curve's column (of the ``curve`` and ``limit`` arrays).
+    start, end : float
+        The range's ends (rad/s).
+    open_start, open_end : bool
+        The range starts below (ends above) the swept range.
+    peak : float
+        The curve's largest value inside (the curve's unit).
+    peak_ratio : float
+        The largest curve / limit inside (dimensionless).
+    peak_speed : float
+        Where the curve peaks (rad/s).
+    rows : numpy.ndarray
+        The rows (int) of the response's speeds inside the range.
+    """
 
     column: int
     start: float
@@ -276,28 +466,62 @@ class Exceedance:
     rows: np.ndarray
 
 
-def exceedances(result, curve, limit, *, width: float = SPEED_TOLERANCE) -> tuple[Exceedance, ...]:
+def exceedances(
+    result: ResponseResult,
+    curve: Callable[[ResponseResult], ArrayLike],
+    limit: Callable[[NDArray[np.float64]], ArrayLike],
+    *,
+    width: float = SPEED_TOLERANCE,
+) -> tuple[Exceedance, ...]:
     """Where a curve of a response exceeds a limit curve, with the ends of every range found by
     bisection (module docstring).
 
+    The local maxima of curve / limit within 1 % of 1 are refined by successive parabolic
+    interpolation (:func:`crankdyn.torsion.resolve.refinement_speeds`), the ends of every
+    range bisected (:func:`crankdyn.torsion.resolve.bisect_crossings`).
+
     Parameters
     ----------
-    result
-        A :class:`~crankdyn.torsion.response.ResponseResult`, resolved for grid-independent
-        answers; without an evaluator (``result.at``) the ends are the outermost samples above
-        the limit.
-    curve
+    result : crankdyn.torsion.response.ResponseResult
+        The response, resolved for grid-independent answers; without an evaluator
+        (``result.at``) the ends are the outermost samples above the limit.
+    curve : callable
         ``curve(r)`` -> (S, k): the curves of a response ``r`` (e.g. the synthesised stress of
-        some shafts).
-    limit
-        ``limit(speeds)`` -> (S, k): the limits at speeds (rad/s), NaN where there is none.
-    width
+        some shafts, Pa).
+    limit : callable
+        ``limit(speeds)`` -> (S, k): the limits at speeds (rad/s) in the curves' unit, NaN
+        where there is none.
+    width : float
         The ends are bisected to brackets this narrow (rad/s; default 0.01 rpm).
 
     Returns
     -------
     tuple of Exceedance
         Sorted by column, then speed.
+
+    Examples
+    --------
+    The order-3 resonance of an engine and a propeller on a 60 mm shaft, at
+    sqrt(k (1/J_e + 1/J_p)) / 3 = 598.3 rpm, against tau_C of M68 for n_0 = 1000 rpm:
+
+    >>> import math
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
+    ... )
+    >>> rpm = math.pi / 30
+    >>> response = forced_response(
+    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
+    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
+    ... )
+    >>> def tau_c(w):
+    ...     return permissible_continuous(w[:, None] / (1000 * rpm), 600e6, 1.0, 0.06)
+    >>> (ex,) = exceedances(response, lambda r: r.synthesized_shaft_stress, tau_c)
+    >>> round(ex.start / rpm, 1), round(ex.peak_speed / rpm), round(ex.end / rpm, 1)
+    (595.2, 598, 601.5)
     """
     speed = np.asarray(result.speed, dtype=float)
     values = np.asarray(curve(result), dtype=float)
@@ -351,7 +575,7 @@ def exceedances(result, curve, limit, *, width: float = SPEED_TOLERANCE) -> tupl
     if ends and can_evaluate:
         cols = np.array([e[4] for e in ends])
 
-        def excess(speeds, which):
+        def excess(speeds: NDArray[np.float64], which: NDArray[np.intp]) -> NDArray[np.float64]:
             r = result.at(speeds)
             v = np.asarray(curve(r), dtype=float)[np.arange(speeds.size), cols[which]]
             lim = np.asarray(limit(speeds), dtype=float)[np.arange(speeds.size), cols[which]]
@@ -365,16 +589,69 @@ def exceedances(result, curve, limit, *, width: float = SPEED_TOLERANCE) -> tupl
             width,
         )
         for (index, which, *_), speed_at in zip(ends, found, strict=True):
-            out[index] = dataclasses.replace(out[index], **{which: float(speed_at)})
+            end_at: dict[str, Any] = {which: float(speed_at)}
+            out[index] = dataclasses.replace(out[index], **end_at)
     return tuple(out)
 
 
-def check_rules(result, rules: RuleSet, model=None, rated_speed: float | None = None) -> RuleCheck:
-    """Check the synthesised stresses of a :class:`~crankdyn.torsion.response.ResponseResult`
-    against M68 (module docstring); ``rated_speed`` (rad/s) serves when the rule set has none.
-    Barred ranges come from :func:`exceedances` on the synthesised stress against tau_C: their
-    ends bisected to 0.01 rpm, so the verdict and the ranges do not depend on the grid of a
-    resolved response."""
+def check_rules(
+    result: ResponseResult,
+    rules: RuleSet,
+    model: TorsionModel | None = None,
+    rated_speed: float | None = None,
+) -> RuleCheck:
+    """Check the synthesised shaft stresses of a response against IACS UR M68.4.
+
+    Barred ranges come from :func:`exceedances` on the synthesised stress against tau_C
+    (:func:`permissible_continuous`): their ends bisected to 0.01 rpm, so the verdict and the
+    ranges do not depend on the grid of a resolved response. A range is permitted below
+    0.8 n_0 while the stress stays below tau_T (:func:`permissible_transient`).
+
+    Parameters
+    ----------
+    result : crankdyn.torsion.response.ResponseResult
+        The forced response, with the shafts' section moduli (their diameters).
+    rules : RuleSet
+        The rated speed and the checked shafts.
+    model : crankdyn.torsion.model.TorsionModel or None
+        The model the response is of, for the shafts' outer diameters (C_D); None: no size
+        factor can be computed (tau_C NaN).
+    rated_speed : float or None
+        n_0 (rad/s) when the rule set has none (the engine's operating speed).
+
+    Returns
+    -------
+    RuleCheck
+        Stress, tau_C and tau_T (Pa) per speed and checked shaft, the barred ranges and the
+        verdict.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: no rated speed (``rated_speed``), a checked shaft without
+        diameters (``[rules] shaft`` and its two masses), a shaft not in the model
+        (:meth:`~crankdyn.torsion.response.ResponseResult.shaft_index`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
+    ... )
+    >>> rpm = math.pi / 30
+    >>> response = forced_response(
+    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
+    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
+    ... )
+    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
+    >>> check = check_rules(response, rules, model)
+    >>> check.passed, [b.reason for b in check.barred_ranges]
+    (True, ['τ_C exceeded below 0.8 n_0 and τ_T kept: pass through quickly'])
+    """
     n0 = rules.rated_speed if rules.rated_speed is not None else rated_speed
     if n0 is None:
         raise InputError(
@@ -384,7 +661,11 @@ def check_rules(result, rules: RuleSet, model=None, rated_speed: float | None = 
         )
     speeds = np.asarray(result.speed)
     lam = speeds / n0
-    index, labels, strengths, factors, diameters = [], [], [], [], []
+    shaft_rows: list[int] = []
+    labels: list[tuple[str, str]] = []
+    strength_list: list[float] = []
+    factor_list: list[float] = []
+    diameter_list: list[float | None] = []
     for limit in rules.shafts:
         s = result.shaft_index(limit.between)
         modulus = result.section_modulus[s] if result.section_modulus is not None else np.nan
@@ -395,26 +676,27 @@ def check_rules(result, rules: RuleSet, model=None, rated_speed: float | None = 
                 key="[rules] shaft",
                 value=list(limit.between),
             )
-        diameter = model.shafts[s].geometry.outer_diameter if model is not None else None
-        index.append(s)
+        geometry = model.shafts[s].geometry if model is not None else None
+        diameter = geometry.outer_diameter if geometry is not None else None
+        shaft_rows.append(s)
         labels.append(result.shafts[s])
-        strengths.append(limit.strength_used)
-        factors.append(limit.design_factor)
-        diameters.append(diameter)
-    index = np.array(index)
-    strengths = np.array(strengths)
-    factors = np.array(factors)
-    diameters = np.array(diameters, dtype=float)
+        strength_list.append(limit.strength_used)
+        factor_list.append(limit.design_factor)
+        diameter_list.append(diameter)
+    index = np.array(shaft_rows)
+    strengths = np.array(strength_list)
+    factors = np.array(factor_list)
+    diameters = np.array(diameter_list, dtype=float)
 
-    def tau_c_at(w):
+    def tau_c_at(w: ArrayLike) -> NDArray[np.float64]:
         ratio = np.asarray(w, dtype=float)[:, None] / n0
         return permissible_continuous(ratio, strengths, factors, diameters)
 
-    def tau_t_at(w):
+    def tau_t_at(w: ArrayLike) -> NDArray[np.float64]:
         ratio = np.asarray(w, dtype=float)[:, None] / n0
         return permissible_transient(ratio, tau_c_at(w), factors[None, :])
 
-    def stress_of(r):
+    def stress_of(r: ResponseResult) -> NDArray[np.float64]:
         return np.asarray(r.synthesized_shaft_stress)[:, index]
 
     stress = stress_of(result)
@@ -472,7 +754,7 @@ def check_rules(result, rules: RuleSet, model=None, rated_speed: float | None = 
     )
 
 
-def _runs(mask) -> list[tuple[int, int]]:
+def _runs(mask: ArrayLike) -> list[tuple[int, int]]:
     """(first, last) indices of the runs of True in a 1-D mask."""
     m = np.concatenate([[False], np.asarray(mask, dtype=bool), [False]])
     edges = np.flatnonzero(np.diff(m.astype(int)))
