@@ -43,6 +43,7 @@ TYPED := \
 	src/crankdyn/torsion/damped.py \
 	src/crankdyn/torsion/dampers.py \
 	src/crankdyn/torsion/resolve.py \
+	src/crankdyn/torsion/response.py \
 	src/crankdyn/torsion/rules.py \
 	src/crankdyn/torsion/transient.py
 

@@ -141,6 +141,7 @@ HELD = frozenset(
         "crankdyn.torsion.damped",
         "crankdyn.torsion.dampers",
         "crankdyn.torsion.resolve",
+        "crankdyn.torsion.response",
         "crankdyn.torsion.rules",
         "crankdyn.torsion.transient",
     }

@@ -64,11 +64,14 @@ complex stiffness k_d + i (omega c_d + eta_d k_d); a damper at an end of a chain
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
 import scipy.linalg
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import Result, array, freeze, scalar
@@ -95,6 +98,12 @@ from crankdyn.torsion.sources import (
 from crankdyn.torsion.synthesis import half_range
 from crankdyn.torsion.tridiagonal import solve_tridiagonal
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.rules import RuleCheck, RuleSet
+
 __all__ = [
     "QUANTITIES",
     "LinearSystem",
@@ -115,7 +124,7 @@ _FREQUENCY_BLOCK = 1 << 13
 processor's cache through the elimination."""
 
 
-def _abs2(z):
+def _abs2(z: NDArray[np.complex128]) -> NDArray[np.float64]:
     """|z|^2 of a complex array."""
     out = np.multiply(z.real, z.real)
     out += z.imag * z.imag
@@ -128,13 +137,56 @@ class LinearSystem:
     """The reflected equations of motion of a model with its dampers, ready for harmonic solves.
 
     ``chain`` holds the tridiagonal arrays in chain order (None for a branched system, which
-    uses the dense matrices). Degrees of freedom: the model's, with each damper ring added."""
+    uses the dense matrices). Degrees of freedom: the model's, with each damper ring added.
+    Everything is reflected to the reference (crankshaft) speed: inertias and stiffnesses times
+    the squared speed ratio (:mod:`crankdyn.torsion.model`). Built by :func:`linear_system`.
+
+    Parameters
+    ----------
+    inertia : numpy.ndarray
+        (n,) inertia of every degree of freedom (kg m^2).
+    stiffness : numpy.ndarray
+        (n, n) stiffness matrix K (N m/rad).
+    damping : numpy.ndarray
+        (n, n) viscous damping matrix C (N m s/rad).
+    hysteretic : numpy.ndarray
+        (n, n) hysteretic matrix H = sum eta_s K_s (N m/rad).
+    chain : tuple of numpy.ndarray or None
+        (k_between, c_between, h_between, k_g, c_g, h_g) in dof order: the (n-1,) couplings
+        between neighbours and the (n,) row sums (N m/rad, N m s/rad, N m/rad); None for a
+        branched system.
+    mass_dof : numpy.ndarray
+        (N,) dof of every listed mass (the model's masses, then the damper rings), int.
+    mass_ratio : numpy.ndarray
+        (N,) signed speed ratio of every listed mass (dimensionless).
+    mass_names : tuple of str
+        The listed masses' names.
+    element_dofs : numpy.ndarray
+        (E, 2) dofs of every element's ends (shafts, then damper couplings), -1 = ground.
+    element_stiffness : numpy.ndarray
+        (E,) reflected stiffness of every element (N m/rad).
+    element_ratio : numpy.ndarray
+        (E,) speed ratio of every element's masses (dimensionless).
+    element_labels : tuple of (str, str)
+        Every element's ends by name.
+    dampers : tuple of Damper
+        The dampers whose rings were added.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.dampers import Damper
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> system = linear_system(model, [Damper("ring", "m", 0.1, damping=30.0)])
+    >>> system.size, system.mass_names, system.element_labels
+    (2, ('m', 'ring'), (('ground', 'm'), ('m', 'ring')))
+    """
 
     inertia: np.ndarray  # (n,) kg m^2
     stiffness: np.ndarray  # (n, n) N m/rad
     damping: np.ndarray  # (n, n) N m s/rad
     hysteretic: np.ndarray  # (n, n) N m/rad
-    chain: tuple | None  # (k_between, c_between, h_between, k_g, c_g, h_g) in dof order
+    chain: tuple[np.ndarray, ...] | None  # (k_between, c_between, h_between, k_g, c_g, h_g)
     mass_dof: np.ndarray  # dof of every listed mass (model masses, then damper rings)
     mass_ratio: np.ndarray  # speed ratio of every listed mass
     mass_names: tuple[str, ...]
@@ -146,11 +198,55 @@ class LinearSystem:
 
     @property
     def size(self) -> int:
+        """Number of degrees of freedom n (the model's and the damper rings)."""
         return int(self.inertia.size)
 
-    def diagonals(self, omega, hysteretic_frequency: float | None = None):
-        """(lower, diag, upper) of D(omega) for a chain, shape omega.shape + (n-1 | n)."""
-        kb, cb, hb, kg, cg, hg = self.chain
+    def _chain(self) -> tuple[np.ndarray, ...]:
+        """The chain arrays; a branched system has none (ValueError)."""
+        if self.chain is None:
+            raise ValueError("a branched system has no tridiagonal form: use matrix()")
+        return self.chain
+
+    def diagonals(
+        self, omega: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> tuple[
+        NDArray[np.complexfloating], NDArray[np.complexfloating], NDArray[np.complexfloating]
+    ]:
+        """The three diagonals of the dynamic stiffness D(omega) of a chain.
+
+        D(omega) = K + i H - omega^2 M + i omega C (seed 003, the V6 paper's eqs. 2 and 6;
+        module docstring), symmetric tridiagonal for a chain.
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s).
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        lower, diag, upper : numpy.ndarray
+            Complex (N m/rad), of shapes omega.shape + (n-1,), + (n,), + (n-1,).
+
+        Raises
+        ------
+        ValueError
+            For a branched system (``chain`` None).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("a", 1.0), Mass("b", 2.0)),
+        ...     shafts=(Shaft(("ground", "a"), 3e4), Shaft(("a", "b"), 1e4)),
+        ... )
+        >>> lower, diag, upper = linear_system(model).diagonals(100.0)  # k - omega^2 J
+        >>> diag.real.tolist(), upper.real.tolist()
+        ([30000.0, -10000.0], [-10000.0])
+        """
+        kb, cb, hb, kg, cg, hg = self._chain()
         w = np.asarray(omega, dtype=float)[..., None]
         hb_, hg_ = _hyst(hb, w, hysteretic_frequency), _hyst(hg, w, hysteretic_frequency)
         link = kb + 1j * (w * cb + hb_)
@@ -159,15 +255,78 @@ class LinearSystem:
         diag = diag + np.concatenate([np.zeros((*link.shape[:-1], 1)), link], axis=-1)
         return -link, diag, -link
 
-    def matrix(self, omega, hysteretic_frequency: float | None = None) -> np.ndarray:
-        """Dense D(omega), shape omega.shape + (n, n)."""
+    def matrix(
+        self, omega: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> NDArray[np.complexfloating]:
+        """The dense dynamic stiffness D(omega) = K + i H - omega^2 M + i omega C.
+
+        Seed 003 (the V6 paper's eqs. 2 and 6; module docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s).
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex D (N m/rad), shape omega.shape + (n, n).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+        ... )
+        >>> complex(linear_system(model).matrix(900.0)[0, 0])  # k - omega^2 J + i omega c
+        (190000+18000j)
+        """
         w = np.asarray(omega, dtype=float)[..., None, None]
         h = _hyst(self.hysteretic, w, hysteretic_frequency)
         return self.stiffness - w**2 * np.diag(self.inertia) + 1j * (w * self.damping + h)
 
-    def solve(self, omega, forcing, hysteretic_frequency: float | None = None) -> np.ndarray:
-        """X with D(omega) X = F for every frequency: omega (...), forcing (..., n) or
-        (..., n, r); complex, reflected dof angles (rad)."""
+    def solve(
+        self, omega: ArrayLike, forcing: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> NDArray[np.complexfloating]:
+        """The steady-state amplitudes X with D(omega) X = F for every frequency.
+
+        A chain by elimination (the Thomas algorithm, pivoting where a pivot is small:
+        :func:`solve_tridiagonal`), a branched system by numpy's batched dense solve (module
+        docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s), shape (...).
+        forcing : array_like
+            Harmonic torque amplitudes F on the degrees of freedom (N m, complex), shape
+            (..., n) or (..., n, r) for r right-hand sides.
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex reflected angles of the degrees of freedom (rad), the shape of
+            ``forcing``; NaN for an undamped branched system exactly at a resonance.
+
+        Examples
+        --------
+        One damped mass: X = T / (k - omega^2 J + i omega c) (seed 003, the single damped
+        mass).
+
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+        ... )
+        >>> x = linear_system(model).solve(900.0, [100.0])
+        >>> round(abs(complex(x[0]) * (190000 + 18000j)), 9)
+        100.0
+        """
         omega = np.asarray(omega, dtype=float)
         if self.chain is not None:  # the forcing read block by block, as it is (no copy)
             return self._solve_chain(omega, np.asarray(forcing), hysteretic_frequency)
@@ -182,7 +341,9 @@ class LinearSystem:
                 x = np.full(np.broadcast_shapes(a.shape[:-2], b.shape[:-2]) + b.shape[-2:], np.nan)
         return x[..., 0] if vector else x
 
-    def _solve_chain(self, omega, f, hysteretic_frequency):
+    def _solve_chain(
+        self, omega: NDArray[np.float64], f: np.ndarray, hysteretic_frequency: float | None
+    ) -> NDArray[np.complexfloating]:
         """The chain's symmetric tridiagonal systems for all frequencies, in blocks of about
         :data:`_FREQUENCY_BLOCK` frequencies laid out with the chain along the first axis
         (contiguous rows, a block's arrays in cache): elimination without interchanges (the
@@ -211,10 +372,12 @@ class LinearSystem:
             out = out[0]
         return out[..., 0] if vector else out
 
-    def _diagonals_of(self, w, hysteretic_frequency):
+    def _diagonals_of(
+        self, w: NDArray[np.float64], hysteretic_frequency: float | None
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
         """(off, diag) of D(w) in chain order for frequencies w (1-D): off (n-1, F) the negated
         off-diagonal, diag (n, F)."""
-        kb, cb, hb, kg, cg, hg = self.chain
+        kb, cb, hb, kg, cg, hg = self._chain()
         factor = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
         off = np.empty((kb.size, w.size), dtype=complex)
         off.real = kb[:, None]
@@ -226,7 +389,9 @@ class LinearSystem:
         diag[1:] += off
         return off, diag
 
-    def _eliminate(self, w, rhs, hysteretic_frequency):
+    def _eliminate(
+        self, w: NDArray[np.float64], rhs: np.ndarray, hysteretic_frequency: float | None
+    ) -> NDArray[np.complexfloating]:
         """X (n, r, F) of one block: w (F,) rad/s, rhs (F, n, r) N m (module docstring)."""
         n = self.size
         count = w.size
@@ -262,7 +427,7 @@ class LinearSystem:
         return b
 
 
-def _hyst(h, w, hysteretic_frequency):
+def _hyst(h: np.ndarray, w: np.ndarray, hysteretic_frequency: float | None) -> np.ndarray:
     """eta k (in phase with the rate): exact (constant) in the frequency domain, or as viscous
     c = eta k / omega_h frozen at a frequency omega_h (to compare with the time domain)."""
     if hysteretic_frequency is None:
@@ -270,10 +435,50 @@ def _hyst(h, w, hysteretic_frequency):
     return h * (w / hysteretic_frequency)
 
 
-def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> LinearSystem:
-    """The model's reflected matrices with the dampers' rings added (module docstring), and the
-    damping of modal damping ratios (:func:`crankdyn.torsion.damped.modal_damping_matrix`, which
-    couples every mass: the system is then solved densely)."""
+def linear_system(
+    model: TorsionModel,
+    dampers: Iterable[Damper] = (),
+    modal_damping: ArrayLike | None = None,
+) -> LinearSystem:
+    """The model's reflected matrices with the dampers' rings added (module docstring).
+
+    Each ring is a degree of freedom joined to its hub by the complex stiffness
+    k_d + i (omega c_d + eta_d k_d) (:mod:`crankdyn.torsion.dampers`); a ring at an end of a
+    chain keeps the chain. Modal damping ratios add C_modal
+    (:func:`crankdyn.torsion.damped.modal_damping_matrix`), which couples every mass: the
+    system is then solved densely.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    dampers : iterable of Damper
+        Dampers whose rings are added (default none).
+    modal_damping : float, array_like or None
+        Damping ratios of the elastic modes (dimensionless; one for all or one per mode), or
+        None.
+
+    Returns
+    -------
+    LinearSystem
+        The reflected system (kg m^2, N m/rad, N m s/rad).
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: a damper's hub not a mass of the model, a ring named like
+        a mass (``name``), modal damping ratios as
+        :func:`crankdyn.torsion.damped.modal_damping_ratios`.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.dampers import Damper
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> system = linear_system(model, [Damper("ring", "m", 0.1, damping=30.0)])
+    >>> system.inertia.tolist(), system.damping.tolist()
+    ([1.0, 0.1], [[30.0, -30.0], [-30.0, 30.0]])
+    """
     dampers = tuple(dampers)
     names = list(model.mass_names)
     for d in dampers:
@@ -295,7 +500,7 @@ def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> Linear
         float(ratio[model.index(s.between[0] if s.between[0] != "ground" else s.between[1])])
         for s in model.shafts
     ]
-    labels = [tuple(s.between) for s in model.shafts]
+    labels: list[tuple[str, str]] = [s.between for s in model.shafts]
     # ring placement: a ring at an end of a chain keeps the chain (one ring per end)
     chained = chain is not None and modal_damping is None
     first = last = None
@@ -312,7 +517,7 @@ def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> Linear
     shift = 1 if chained and first is not None else 0
     dof_of_model = np.arange(n0) + shift
     n = n0 + len(dampers)
-    ring_dof = {}
+    ring_dof: dict[int, int] = {}
     if chained:
         if first is not None:
             ring_dof[id(first)] = 0
@@ -341,7 +546,8 @@ def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> Linear
         for a, b in shaft_dofs
     ]
     element_k = list(k_s)
-    ring_mass_dof, ring_ratio = [], []
+    ring_mass_dof: list[int] = []
+    ring_ratio: list[float] = []
     for d in order:
         r = int(ring_dof[id(d)])
         hub_mass = model.index(d.at)
@@ -398,11 +604,52 @@ def linear_system(model: TorsionModel, dampers=(), modal_damping=None) -> Linear
     )
 
 
-def steady_state(model: TorsionModel, omega, forcing, *, dampers=(), hysteretic_frequency=None):
-    """Steady-state complex amplitudes of the degrees of freedom (reflected, rad) under harmonic
-    torques ``forcing`` (N m, shape omega.shape + (dofs,) or (..., dofs, r)) at circular
-    frequencies ``omega`` (rad/s): X = D(omega)^-1 F for every frequency at once (module
-    docstring). The counterpart of openTorsion's ``Assembly.ss_response``."""
+def steady_state(
+    model: TorsionModel,
+    omega: ArrayLike,
+    forcing: ArrayLike,
+    *,
+    dampers: Iterable[Damper] = (),
+    hysteretic_frequency: float | None = None,
+) -> NDArray[np.complexfloating]:
+    """Steady-state complex amplitudes under harmonic torques: X = D(omega)^-1 F.
+
+    For every frequency at once (seed 003, the V6 paper's eqs. 2 and 6; module docstring).
+    The counterpart of openTorsion's ``Assembly.ss_response``.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    omega : float or array_like
+        Circular frequencies (rad/s), shape (...).
+    forcing : array_like
+        Harmonic torques on the degrees of freedom (N m, complex), shape (..., dofs) or
+        (..., dofs, r).
+    dampers : iterable of Damper
+        Dampers whose rings are added (default none).
+    hysteretic_frequency : float or None
+        None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous damping
+        eta k / omega_h.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex reflected angles of the degrees of freedom (rad), the shape of ``forcing``.
+
+    Examples
+    --------
+    One damped mass at 900 rad/s: X = T / (k - omega^2 J + i omega c) (seed 003,
+    "单质量有阻尼强迫扭转振动").
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+    ... )
+    >>> x = steady_state(model, [900.0], [[100.0]])
+    >>> round(float(abs(x[0, 0])) / abs(100.0 / (1e6 - 900.0**2 + 900j * 20.0)), 12)
+    1.0
+    """
     return linear_system(model, dampers).solve(omega, forcing, hysteretic_frequency)
 
 
@@ -429,7 +676,22 @@ QUANTITIES = {
 @dataclass(frozen=True)
 class Peak(Result):
     """The largest value of a response quantity over the resolved speed range (its speed in
-    rad/s, exported in rpm; the value in SI, its unit in ``unit`` and in the JSON key)."""
+    rad/s, exported in rpm; the value in SI, its unit in ``unit`` and in the JSON key).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+    ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+    ... )
+    >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+    >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+    >>> peak = response.peak("synthesized_shaft_torque")
+    >>> peak.item, round(peak.value), peak.unit
+    ('ground - m', 5000, 'N·m')
+    """
 
     title = "Peak"
     quantity: str = scalar("quantity", "Quantity", "")
@@ -440,17 +702,64 @@ class Peak(Result):
     speed: float = scalar("speed_rpm", "At speed", "rpm", RPM, fmt=".6g")
     on_grid: bool = scalar("on_grid", "On the user's speed grid", "")
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict, the value's key naming its unit (``value_rad``, ``value_Nm``,
+        ``value_Pa``, ``value_W``).
+
+        Returns
+        -------
+        dict
+            The fields in their exported units (:meth:`crankdyn.results.Result.to_dict`; the
+            speed in rpm).
+        """
         out = super().to_dict()
         out[f"value_{_UNIT_KEYS.get(self.unit, self.unit)}"] = out.pop("value")
         return out
 
     def describe(self, scale: float = 1.0, unit: str | None = None, digits: int = 4) -> str:
-        """``"<value> <unit> at <speed> rpm"``, the value times ``scale`` in ``unit``."""
+        """The peak in words: ``"<value> <unit> at <speed> rpm"``.
+
+        Parameters
+        ----------
+        scale : float
+            Factor from the SI value to the unit shown (e.g. 1e3 for mrad).
+        unit : str or None
+            The unit shown; default the SI unit (``unit``).
+        digits : int
+            Significant digits of the value.
+
+        Returns
+        -------
+        str
+            The value times ``scale`` with ``digits`` significant digits, its unit and the
+            speed (rpm, one decimal).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> response.peak("amplitude").describe(1e3, "mrad")
+        '5 mrad at 9549.3 rpm'
+        """
         return f"{self.value * scale:.{digits}g} {unit or self.unit} at {self.speed * RPM:.1f} rpm"
 
 
-def _peak_of(values, speed, on_grid, labels, orders, quantity, unit, item_label):
+def _peak_of(
+    values: ArrayLike,
+    speed: np.ndarray,
+    on_grid: np.ndarray,
+    labels: Sequence[str] | None,
+    orders: np.ndarray | None,
+    quantity: str,
+    unit: str,
+    item_label: Callable[[int], str] | None,
+) -> Peak:
     """Peak of values (S, Q, I) or (S, I) over speed (and order and item) -> Peak."""
     v = np.asarray(values, dtype=float)
     finite = np.where(np.isfinite(v), v, -np.inf)
@@ -459,11 +768,17 @@ def _peak_of(values, speed, on_grid, labels, orders, quantity, unit, item_label)
     k = int(np.argmax(finite))
     idx = np.unravel_index(k, v.shape)
     order = None
-    if v.ndim == 3:
+    if v.ndim == 3 and orders is not None:
         order = float(orders[idx[1]])
+    if labels is not None:
+        item = labels[int(idx[-1])]
+    elif item_label is not None:
+        item = item_label(int(idx[-1]))
+    else:  # pragma: no cover - every caller gives labels or a labeller
+        raise ValueError("the peak's item needs labels or a labeller")
     return Peak(
         quantity=quantity,
-        item=item_label(int(idx[-1])) if labels is None else labels[int(idx[-1])],
+        item=item,
         order=order,
         value=float(v[idx]),
         unit=unit,
@@ -477,7 +792,24 @@ class RelativeAngle(Result):
     """The relative angle between two masses over the speed range (per order and synthesised),
     e.g. pulley - flywheel, the V6 paper's criterion (seed 003). On a resolved response its
     peaks are resolved too (:meth:`ResponseResult.relative_angle`), so its speeds may add to the
-    response's."""
+    response's.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> two = TorsionModel(
+    ...     masses=(Mass("a", 1.0, damping=10.0, cylinders=(1,)), Mass("b", 3.0)),
+    ...     shafts=(Shaft(("a", "b"), 3e4),),
+    ... )
+    >>> response = forced_response(
+    ...     two, UniformExcitation(100.0, [0.0], "two-stroke"), [100.0, 150.0], [1.0],
+    ...     resolve=False,
+    ... )
+    >>> relative = response.relative_angle("a", "b")
+    >>> relative.amplitude.shape, relative.peak().item
+    ((2, 1), 'a - b')
+    """
 
     title = "Relative angle"
     between: tuple[str, str] = scalar("between", "Between", "")
@@ -491,15 +823,50 @@ class RelativeAngle(Result):
     on_grid: np.ndarray | None = array("on_grid", "On the user's speed grid", "", default=None)
 
     def peak(self, quantity: str = "synthesized", order: float | None = None) -> Peak:
-        """Largest ``"synthesized"``, ``"order_sum"`` or ``"amplitude"`` (per order; ``order``
-        or the largest over all orders) relative angle (rad) and its speed."""
+        """The largest relative angle and its speed.
+
+        Parameters
+        ----------
+        quantity : str
+            ``"synthesized"`` (default, the half-range amplitude of the synthesis),
+            ``"order_sum"`` or ``"amplitude"`` (per order).
+        order : float or None
+            For ``"amplitude"``: the order; None: the largest over all orders.
+
+        Returns
+        -------
+        Peak
+            The value (rad) and its speed (rad/s).
+
+        Raises
+        ------
+        InputError
+            Naming the key and value: an unknown ``quantity``, an ``order`` not among the
+            response's or given for a quantity summed over the orders.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> two = TorsionModel(
+        ...     masses=(Mass("a", 1.0, damping=10.0, cylinders=(1,)), Mass("b", 3.0)),
+        ...     shafts=(Shaft(("a", "b"), 3e4),),
+        ... )
+        >>> response = forced_response(
+        ...     two, UniformExcitation(100.0, [0.0], "two-stroke"), [100.0, 150.0], [1.0],
+        ...     resolve=False,
+        ... )
+        >>> found = response.relative_angle("a", "b").peak("amplitude", order=1.0)
+        >>> found.quantity, found.order, found.speed
+        ('relative_amplitude', 1.0, 150.0)
+        """
         on_grid = self.on_grid if self.on_grid is not None else np.ones(self.speed.size, bool)
         label = f"{self.between[0]} - {self.between[1]}"
         if quantity == "amplitude":
             values = np.asarray(self.amplitude)
             orders = np.asarray(self.orders)
             if order is not None:
-                k = _order_index(self.orders, order)
+                k = _order_index(orders, order)
                 values, orders = values[:, [k]], orders[[k]]
             return _peak_of(
                 values[:, :, None],
@@ -530,7 +897,7 @@ class RelativeAngle(Result):
         )
 
 
-def _order_index(orders, order) -> int:
+def _order_index(orders: ArrayLike, order: float) -> int:
     q = np.asarray(orders, dtype=float)
     hit = np.flatnonzero(np.abs(q - float(order)) <= 1e-9 * max(1.0, abs(float(order))))
     if hit.size == 0:
@@ -554,7 +921,39 @@ class ResponseResult(Result):
     ``speed`` holds the user's grid and, on a resolved sweep (the default), the speeds added to
     resolve every resonance peak (``on_grid`` tells them apart; ``added_speeds`` and
     ``added_reasons`` say why each was added). :meth:`peak` gives the largest value of any
-    quantity and its speed on the resolved curve."""
+    quantity and its speed on the resolved curve.
+
+    Parameters
+    ----------
+    mass_response : numpy.ndarray or None
+        (S, Q, N) complex amplitudes of the listed masses' actual angles (rad), not exported.
+    shaft_response : numpy.ndarray or None
+        (S, Q, E) complex torques of the shafts and damper couplings (N m), not exported.
+    section_modulus : numpy.ndarray or None
+        (E,) polar section modulus W_p of every element (m^3), NaN where the diameters are
+        unknown.
+    evaluator : object or None
+        The sweep that evaluates the same response at other speeds (:meth:`at`); None on a
+        result read back from a file.
+
+    Examples
+    --------
+    One damped mass J = 1 kg m^2 on k = 1e6 N m/rad, c = 20 N m s/rad, excited by 100 N m at
+    order 1 of a two-stroke engine, swept on a 130 rad/s grid:
+
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+    ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+    ... )
+    >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+    >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+    >>> int(response.on_grid.sum()), response.speed.size  # the grid, and speeds added
+    (8, 14)
+    >>> response.amplitude.shape  # speed x order x mass
+    (14, 1, 1)
+    """
 
     title = "Forced response"
     speed: np.ndarray = array("speed_rpm", "Speed", "rpm", RPM)
@@ -604,7 +1003,7 @@ class ResponseResult(Result):
     tolerance: float | None = scalar(
         "peak_tolerance", "Peaks resolved to (relative)", "", default=None
     )
-    rule_check: Result | None = scalar("rule_check", "Rule check", "", default=None)
+    rule_check: RuleCheck | None = scalar("rule_check", "Rule check", "", default=None)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
     mass_response: np.ndarray | None = field(default=None, repr=False, compare=False)
     shaft_response: np.ndarray | None = field(default=None, repr=False, compare=False)
@@ -618,7 +1017,37 @@ class ResponseResult(Result):
         return {name: i for i, name in enumerate(self.masses)}
 
     def mass_index(self, name: str) -> int:
-        """Index of a mass (or damper ring) by name; unknown names: one-line error."""
+        """Index of a mass (or damper ring) by name.
+
+        Parameters
+        ----------
+        name : str
+            The mass's or ring's name.
+
+        Returns
+        -------
+        int
+            Its column in the per-mass arrays.
+
+        Raises
+        ------
+        InputError
+            Naming the key ``mass`` and the value (with the nearest names) when there is no
+            such mass.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> response.mass_index("m")
+        0
+        """
         try:
             return self._mass_index[name]
         except KeyError:
@@ -628,8 +1057,38 @@ class ResponseResult(Result):
                 value=name,
             ) from None
 
-    def shaft_index(self, spec) -> int:
-        """Index of a shaft given as (a, b) or "a - b" (either order)."""
+    def shaft_index(self, spec: str | Sequence[str]) -> int:
+        """Index of a shaft (or damper coupling) by its ends.
+
+        Parameters
+        ----------
+        spec : str or (str, str)
+            The ends as ``(a, b)`` or ``"a - b"``, in either order.
+
+        Returns
+        -------
+        int
+            Its column in the per-shaft arrays.
+
+        Raises
+        ------
+        InputError
+            Naming the key ``shaft`` and the value (with the nearest names) when there is no
+            such shaft.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> response.shaft_index("m - ground"), response.shaft_index(("ground", "m"))
+        (0, 0)
+        """
         if isinstance(spec, str):
             parts = tuple(p.strip() for p in spec.split(" - ")) if " - " in spec else (spec,)
         else:
@@ -641,38 +1100,101 @@ class ResponseResult(Result):
         text = " - ".join(parts)
         raise InputError(f'no shaft "{text}"{did_you_mean(text, labels)}', key="shaft", value=text)
 
-    def _on_grid(self) -> np.ndarray:
+    def _on_grid(self) -> NDArray[np.bool_]:
         return self.on_grid if self.on_grid is not None else np.ones(self.speed.size, bool)
 
-    def at(self, speeds) -> ResponseResult:
-        """The same response (model, excitation, orders, dampers) at exactly ``speeds``
-        (rad/s), without resolution or rule check."""
+    def at(self, speeds: ArrayLike) -> ResponseResult:
+        """The same response (model, excitation, orders, dampers) at exactly ``speeds``,
+        without resolution or rule check.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), > 0.
+
+        Returns
+        -------
+        ResponseResult
+            The response at those speeds, in their order.
+
+        Raises
+        ------
+        ValueError
+            When the result has no evaluator (read back from a file).
+        InputError
+            Naming the key ``speeds`` and the value (rpm) of a speed that is not positive.
+
+        Examples
+        --------
+        At the undamped natural frequency the single mass's amplitude is T / (c omega):
+
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> round(float(response.at([1000.0]).amplitude[0, 0, 0]), 12)
+        0.005
+        """
         if self.evaluator is None:
             raise ValueError("this result cannot be evaluated at other speeds")
         speeds = _check_speeds(speeds)
         return self.evaluator.result(self.evaluator.evaluate(speeds))
 
     # ---- peaks ----------------------------------------------------------------------------------
-    def peak(self, quantity: str, item=None, order: float | None = None) -> Peak:
+    def peak(
+        self,
+        quantity: str,
+        item: str | Sequence[str] | None = None,
+        order: float | None = None,
+    ) -> Peak:
         """The largest value of a quantity over the speed range and its speed.
 
         Parameters
         ----------
-        quantity
+        quantity : str
             A name of :data:`QUANTITIES` (the field names: ``"synthesized_shaft_stress"``,
             ``"amplitude"``, ...).
-        item
+        item : str, (str, str) or None
             The mass (or damper ring), shaft (``(a, b)`` or ``"a - b"``) or damper; None: the
             largest over all of them (shafts without diameters left out of stresses).
-        order
+        order : float or None
             For the per-order quantities (``amplitude``, ``order_shaft_torque``,
             ``order_shaft_stress``): the order; None: the largest over all orders.
 
         Returns
         -------
         Peak
-            On a resolved response (the default of :func:`forced_response`) the peak is
-            resolved to ``tolerance``: a finer sweep changes it by less than that.
+            The value in the quantity's SI unit (rad, N m, Pa, W) and its speed (rad/s). On a
+            resolved response (the default of :func:`forced_response`) the peak is resolved
+            to ``tolerance``: a finer sweep changes it by less than that.
+
+        Raises
+        ------
+        InputError
+            Naming the key and value: an unknown ``quantity``, ``item`` or ``order``, an order
+            given for a quantity summed over the orders, a quantity with no finite value.
+
+        Examples
+        --------
+        The peak of a single damped mass, T / (c sqrt(k/J - (c/2J)^2)) (seed 003, the single
+        damped mass), found between the grid's speeds to the tolerance 0.1 %:
+
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> found = response.peak("amplitude", "m")
+        >>> exact = 100.0 / (20.0 * math.sqrt(1e6 - 100.0))
+        >>> abs(found.value / exact - 1.0) < 1e-3, found.on_grid
+        (True, False)
         """
         spec = QUANTITIES.get(quantity)
         if spec is None:
@@ -693,7 +1215,7 @@ class ResponseResult(Result):
             )
         if kind == "mass":
             labels = list(self.masses)
-            index = None if item is None else self.mass_index(item)
+            index = None if item is None else self.mass_index(cast(str, item))
         elif kind == "shaft":
             labels = [f"{a} - {b}" for a, b in self.shafts]
             index = None if item is None else self.shaft_index(item)
@@ -709,15 +1231,36 @@ class ResponseResult(Result):
             labels = [labels[index]]
         return _peak_of(values, self.speed, self._on_grid(), labels, orders, quantity, unit, None)
 
-    def _quantity_values(self, quantity: str):
+    def _quantity_values(self, quantity: str) -> np.ndarray | None:
         if quantity == "order_shaft_stress":
             return np.asarray(self.order_shaft_torque) / np.asarray(self.section_modulus)
         return getattr(self, quantity)
 
     def peaks(self) -> tuple[Peak, ...]:
         """The peaks of the summed and synthesised quantities of every mass, shaft (stresses
-        where the diameters are known) and damper: the figures of the response tables."""
-        wanted = [
+        where the diameters are known) and damper: the figures of the response tables.
+
+        Returns
+        -------
+        tuple of Peak
+            Per mass the synthesised and order-sum amplitudes (rad), per shaft the torques
+            (N m) and stresses (Pa), per damper the power (W); quantities without a finite
+            value left out.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> [p.quantity for p in response.peaks()][:3]
+        ['synthesized_amplitude', 'order_sum_amplitude', 'shaft_torque']
+        """
+        wanted: list[tuple[str, str | tuple[str, str]]] = [
             (q, name)
             for name in self.masses
             for q in ("synthesized_amplitude", "order_sum_amplitude")
@@ -736,16 +1279,60 @@ class ResponseResult(Result):
                 continue
         return tuple(out)
 
-    def to_dict(self) -> dict:
-        """JSON-ready dict (module docstring), with ``peaks``: :meth:`peaks`."""
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dict (module docstring), with ``peaks``: :meth:`peaks`.
+
+        Returns
+        -------
+        dict
+            The fields in their exported units (:meth:`crankdyn.results.Result.to_dict`:
+            speeds in rpm) and the peaks' dicts (:meth:`Peak.to_dict`).
+        """
         out = super().to_dict()
         out["peaks"] = [p.to_dict() for p in self.peaks()]
         return out
 
     def relative_angle(self, a: str, b: str) -> RelativeAngle:
-        """Relative angle theta_a - theta_b per order and synthesised (rad). On a resolved
-        response its peaks are resolved as well: speeds are added where they need it (the
-        pairs given to :func:`forced_response` as ``relative`` need none)."""
+        """Relative angle theta_a - theta_b per order and synthesised.
+
+        On a resolved response its peaks are resolved as well: speeds are added where they
+        need it (the pairs given to :func:`forced_response` as ``relative`` need none).
+
+        Parameters
+        ----------
+        a, b : str
+            The two masses (or damper rings).
+
+        Returns
+        -------
+        RelativeAngle
+            Per speed (rad/s) and order the amplitude, the sum of the order amplitudes and the
+            synthesised half-range amplitude (rad).
+
+        Raises
+        ------
+        InputError
+            Naming the key ``mass`` and the value of an unknown mass.
+        ValueError
+            When the result holds no complex amplitudes (read back from a file).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> two = TorsionModel(
+        ...     masses=(Mass("a", 1.0, damping=10.0, cylinders=(1,)), Mass("b", 3.0)),
+        ...     shafts=(Shaft(("a", "b"), 3e4),),
+        ... )
+        >>> response = forced_response(
+        ...     two, UniformExcitation(100.0, [0.0], "two-stroke"), [100.0, 150.0], [1.0],
+        ...     resolve=False,
+        ... )
+        >>> response.relative_angle("a", "b").between
+        ('a', 'b')
+        """
+        if self.mass_response is None:
+            raise ValueError("this result holds no complex amplitudes (read from a file?)")
         i, j = self.mass_index(a), self.mass_index(b)
         speed = np.asarray(self.speed)
         on_grid = self._on_grid()
@@ -777,28 +1364,81 @@ class ResponseResult(Result):
             on_grid=freeze(on_grid, dtype=bool),
         )
 
-    def plot(self, what: str = "amplitude", item=None, fig=None, **kw):
-        """Response against speed per order and synthesised; returns the Figure.
+    def plot(
+        self,
+        what: str = "amplitude",
+        item: Any = None,
+        fig: Figure | None = None,
+        **kw: Any,
+    ) -> Figure:
+        """Response against speed per order and synthesised
+        (:func:`crankdyn.plots.torsion_response.plot_response`).
 
-        ``what``: ``"amplitude"`` (mass ``item``, default the first), ``"torque"`` or
-        ``"stress"`` (shaft ``item``, default the one with the largest torque),
-        ``"relative"`` (``item = (a, b)``)."""
+        Parameters
+        ----------
+        what : str
+            ``"amplitude"`` (mass ``item``, default the first), ``"torque"`` or ``"stress"``
+            (shaft ``item``, default the one with the largest torque), ``"relative"``
+            (``item = (a, b)``).
+        item : str, (str, str) or None
+            The mass, shaft or pair drawn.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; default a new one.
+        **kw
+            Passed to :func:`~crankdyn.plots.torsion_response.plot_response`.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion_response import plot_response
 
         return plot_response(self, what=what, item=item, fig=fig, **kw)
 
-    def plot_stress_limits(self, fig=None):
-        """Synthesised shaft stress against the rule limits (needs a rule check)."""
+    def plot_stress_limits(self, fig: Figure | None = None) -> Figure:
+        """Synthesised shaft stress against the rule limits (needs a rule check;
+        :func:`crankdyn.plots.torsion_response.plot_stress_limits`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; default a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion_response import plot_stress_limits
 
         return plot_stress_limits(self, fig=fig)
 
     def key_rows(self) -> list[tuple[str, str, str]]:
         """The largest synthesised amplitude and shaft torque, where and at which speed (from
-        :meth:`peak`, on the resolved curve), and the rule verdict (the notebook view)."""
+        :meth:`peak`, on the resolved curve), and the rule verdict (the notebook view).
+
+        Returns
+        -------
+        list of (str, str, str)
+            (label, value with its unit, item and speed in rpm) rows.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> response.key_rows()[0][0]
+        'Largest amplitude'
+        """
         from crankdyn.display import format_value
 
-        rows = []
+        rows: list[tuple[str, str, str]] = []
         for label, quantity, unit in (
             ("Largest amplitude", "synthesized_amplitude", "rad"),
             ("Largest shaft torque", "synthesized_shaft_torque", "N·m"),
@@ -817,7 +1457,28 @@ class ResponseResult(Result):
     # ---- CSV: one row per speed -----------------------------------------------------------------
     def columns(self) -> dict[str, np.ndarray]:
         """One row per speed, every speed (the peaks included); ``on_grid`` is 1 on the user's
-        grid, 0 at the speeds added to resolve the peaks."""
+        grid, 0 at the speeds added to resolve the peaks.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            {key: values}: the speed (rpm), ``on_grid``, and per mass and shaft the summed and
+            synthesised amplitudes (rad), torques (N m) and stresses (Pa, where the diameters
+            are known), in the unit the key names.
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+        >>> from crankdyn.torsion.excitation import UniformExcitation
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+        ... )
+        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
+        >>> list(response.columns())[:3]
+        ['speed_rpm', 'on_grid', 'synthesized_amplitude_rad.m']
+        """
         out = {"speed_rpm": np.asarray(self.speed) * RPM}
         out["on_grid"] = self._on_grid().astype(int)
         for i, name in enumerate(self.masses):
@@ -835,6 +1496,13 @@ class ResponseResult(Result):
         return out
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
+        """Label and unit of every column of :meth:`columns`.
+
+        Returns
+        -------
+        dict of str to (str, str)
+            {column key: (label, unit)}.
+        """
         out = {}
         for key in self.columns():
             if key == "speed_rpm":
@@ -849,7 +1517,7 @@ class ResponseResult(Result):
         return out
 
 
-def _check_speeds(speeds) -> np.ndarray:
+def _check_speeds(speeds: ArrayLike) -> NDArray[np.float64]:
     s = np.atleast_1d(np.asarray(speeds, dtype=float))
     if s.ndim != 1 or s.size == 0:
         raise InputError("the speed range is empty", key="speeds")
@@ -876,15 +1544,17 @@ class _Block:
         concatenation each row came from."""
         speed, first = merge_speeds(self.speed, other.speed)
 
-        def cat(a, b):
-            return None if a is None else np.concatenate([a, b])[first]
+        def cat(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+            return np.concatenate([a, b])[first]
 
         return (
             _Block(
                 speed=speed,
                 x=cat(self.x, other.x),
                 torque=cat(self.torque, other.torque),
-                power=cat(self.power, other.power),
+                power=None
+                if self.power is None or other.power is None
+                else cat(self.power, other.power),
                 top=cat(self.top, other.top),
                 low=cat(self.low, other.low),
             ),
@@ -897,8 +1567,15 @@ class _Sweep:
     at any speeds (one batched solve)."""
 
     def __init__(
-        self, model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping=None
-    ):
+        self,
+        model: TorsionModel,
+        excitation: EngineExcitation | UniformExcitation,
+        orders: NDArray[np.float64],
+        dampers: Iterable[Damper],
+        hysteretic_frequency: float | None,
+        pairs: Iterable[tuple[int, int]],
+        modal_damping: ArrayLike | None = None,
+    ) -> None:
         self.model = model
         self.excitation = excitation
         self.orders = orders
@@ -915,9 +1592,11 @@ class _Sweep:
         self.modulus = modulus
         self.pairs = tuple(pairs)
         self.major = line_major(excitation, orders)
+        # (mode, order, critical speed) of the undamped resonances in the range (:meth:`seeds`)
+        self.unbounded: list[tuple[int, float, float]] = []
 
     # ---- evaluation ---------------------------------------------------------------------------
-    def evaluate(self, speeds) -> _Block:
+    def evaluate(self, speeds: ArrayLike) -> _Block:
         """The response at ``speeds`` (rad/s): one batched solve over speeds x orders."""
         speeds = np.asarray(speeds, dtype=float)
         system = self.system
@@ -972,7 +1651,7 @@ class _Sweep:
         return values, self.scale(values, bounds)
 
     @staticmethod
-    def scale(values, bounds) -> np.ndarray:
+    def scale(values: np.ndarray, bounds: np.ndarray) -> np.ndarray:
         """Per curve its largest value, at least 1e-9 of its family's largest (columns
         ``bounds[k]:bounds[k+1]``), so that curves at round-off level ask for no refinement."""
         top = np.max(values, axis=0) if values.shape[0] else np.zeros(values.shape[1])
@@ -1060,7 +1739,7 @@ class _Sweep:
         lam = np.sort(lam)[self._rigid_count() :]
         return np.sqrt(np.maximum(lam, 0.0))
 
-    def _damping(self):
+    def _damping(self) -> tuple[np.ndarray, np.ndarray]:
         """(C, H) of the poles: the system's viscous and hysteretic damping matrices, the loss
         factors as viscous eta k / omega_h when the sweep freezes them at omega_h."""
         system = self.system
@@ -1080,7 +1759,7 @@ class _Sweep:
         w = w[np.isfinite(w)]
         return np.sort_complex(w[w.real <= top])
 
-    def _pole_rows(self, stiffness, c, h) -> np.ndarray:
+    def _pole_rows(self, stiffness: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
         """Damped natural frequencies of systems with the stiffness matrices (..., n, n) (the
         system's mass and damping c, h, broadcast): (..., P) complex, ascending in the real
         part, NaN-padded (:meth:`poles`)."""
@@ -1098,18 +1777,21 @@ class _Sweep:
             b = (modal_h + omega * modal_c) / (2.0 * np.maximum(omega, 1e-300))
         return np.where(omega > 0.0, omega + 1j * np.abs(b), np.nan)
 
-    def _loaded_change(self, speeds):
+    def _loaded_change(self, speeds: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """(ends, delta, eta) of the load-dependent couplings at reference speeds (rad/s)
         (:func:`crankdyn.torsion.loaded.stiffness_change`), or None."""
         found = stiffness_change(self.model, self.system, speeds)
         return None if found is None else found[:3]
 
-    def loaded_poles(self, speeds) -> np.ndarray:
+    def loaded_poles(self, speeds: ArrayLike) -> np.ndarray:
         """Damped natural frequencies (rad/s) with the load-dependent couplings' stiffness at
         the mean torque of every speed (rad/s): (S, P), NaN-padded, ascending (:meth:`poles`;
         the forced response takes the same stiffness at that speed)."""
         speeds = np.asarray(speeds, dtype=float)
-        ends, delta, eta = self._loaded_change(speeds)
+        found = self._loaded_change(speeds)
+        if found is None:  # pragma: no cover - called only with load-dependent couplings
+            raise ValueError("no coupling of the model depends on the load")
+        ends, delta, eta = found
         size = self.system.size
         c, h = self._damping()
         k = self.system.stiffness + change_matrix(ends, delta, size)
@@ -1119,7 +1801,9 @@ class _Sweep:
             c = c + change_matrix(ends, delta * eta / self.hysteretic_frequency, size)
         return self._pole_rows(k, c, h)
 
-    def _tracked_resonances(self, poles, orders, low: float, high: float):
+    def _tracked_resonances(
+        self, poles: np.ndarray, orders: np.ndarray, low: float, high: float
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """The resonances of the damped modes with the load-dependent couplings' stiffness at
         the resonance's own speed: for every pole p (at the reference torque) and order q, the
         speed n with Re a_p(n) = q n, a_p(n) the pole at the stiffness of speed n (clipped to
@@ -1130,7 +1814,7 @@ class _Sweep:
         index) of the pairs whose resonance lies within two half widths of the range."""
         rows = self.loaded_poles([low, high])  # (2, P)
 
-        def follow(rows_at, previous):
+        def follow(rows_at: np.ndarray, previous: np.ndarray) -> np.ndarray:
             gap = np.abs(rows_at.real - previous[:, None])
             k = np.argmin(np.where(np.isnan(gap), np.inf, gap), axis=1)
             return rows_at[np.arange(k.size), k]  # NaN where there is no pole at all
@@ -1155,7 +1839,9 @@ class _Sweep:
         n0 = low + t * (high - low)
         track = lo_f + t * (hi_f - lo_f)
 
-        def step(n, track, which):
+        def step(
+            n: np.ndarray, track: np.ndarray, which: np.ndarray
+        ) -> tuple[np.ndarray, np.ndarray]:
             """The followed poles and g = Re a - q n at speeds n of the pairs ``which``."""
             at = np.clip(np.where(np.isfinite(n), n, low), low, high)
             a = follow(self.loaded_poles(at), track)
@@ -1187,7 +1873,7 @@ class _Sweep:
             near = (centre + 2.0 * width >= low) & (centre - 2.0 * width <= high)
         return centre[near], width[near], a1.real[near], q_idx[near]
 
-    def seeds(self, grid, low: float, high: float):
+    def seeds(self, grid: np.ndarray, low: float, high: float) -> tuple[np.ndarray, list[str]]:
         """The critical speeds (undamped modes x orders) inside [low, high] and the speeds
         that sample every damped resonance across its width (resolve module, step 1), with a
         reason for each: (speeds (rad/s), reasons). The critical speeds are the Campbell
@@ -1250,7 +1936,7 @@ class _Sweep:
         )
 
     # ---- results ------------------------------------------------------------------------------
-    def result(self, block: _Block, **extra) -> ResponseResult:
+    def result(self, block: _Block, **extra: Any) -> ResponseResult:
         """The ResponseResult of a block (``extra``: the resolution fields and notes)."""
         n, e = block.x.shape[2], block.torque.shape[2]
         x, torque = block.x, block.torque
@@ -1297,60 +1983,66 @@ POLE_LIMIT = 200
 quadratic eigenproblem; above it the undamped modes with modal damping are used."""
 
 
-def _per_order(k: int, count: int, names, orders) -> str:
+def _per_order(k: int, count: int, names: Sequence[str], orders: np.ndarray) -> str:
     return f"{names[k % count]}, order {orders[k // count]:g}"
 
 
 def forced_response(
     model: TorsionModel,
-    excitation,
-    speeds,
-    orders,
+    excitation: EngineExcitation | UniformExcitation,
+    speeds: ArrayLike,
+    orders: ArrayLike,
     *,
-    dampers=None,
+    dampers: Sequence[Damper] | None = None,
     hysteretic_frequency: float | None = None,
-    rules=None,
+    rules: RuleSet | Literal[False] | None = None,
     resolve: bool = True,
     tolerance: float = TOLERANCE,
-    relative=None,
-    modal_damping=None,
+    relative: Iterable[tuple[str, str]] | None = None,
+    modal_damping: ArrayLike | None = None,
 ) -> ResponseResult:
     """Steady-state forced response of ``model`` to ``excitation`` over a speed range.
 
+    The dynamic-stiffness equation D(q Omega) X = F for every speed and order (seed 003, the
+    V6 paper's eqs. 1, 2 and 6), its synthesis over the orders and the shafts' torques and
+    nominal stresses (module docstring); the peaks resolved by :mod:`crankdyn.torsion.resolve`.
+
     Parameters
     ----------
-    model
+    model : crankdyn.torsion.model.TorsionModel
         The torsional model (masses carrying cylinders are the excitation points).
-    excitation
+    excitation : EngineExcitation or UniformExcitation
         :class:`~crankdyn.torsion.excitation.EngineExcitation` or
         :class:`~crankdyn.torsion.excitation.UniformExcitation` (see
         :func:`~crankdyn.torsion.excitation.excitation_for`).
-    speeds
+    speeds : array_like
         Crankshaft speeds (rad/s), > 0: the user's grid.
-    orders
-        Orders to solve (multiples of the cycle's fundamental order).
-    dampers
+    orders : array_like
+        Orders to solve (multiples of the cycle's fundamental order, or orders of the model's
+        sources).
+    dampers : sequence of Damper or None
         Dampers to add (:class:`~crankdyn.torsion.dampers.Damper`); None: the model's own
         (``model.dampers``); ``()``: none (the response without them).
-    hysteretic_frequency
+    hysteretic_frequency : float or None
         None (default): loss factors as exact hysteretic damping. A frequency omega_h (rad/s):
         loss factors as viscous damping eta k / omega_h (the time-domain equivalent).
-    rules
+    rules : RuleSet, False or None
         A :class:`~crankdyn.torsion.rules.RuleSet` to check the synthesised stresses against;
         None: the model's own (``model.rules``) when it has one; False: no check.
-    resolve
+    resolve : bool
         True (default): add the critical speeds inside the grid's range and refine around
         every resonance until the peak of every reported quantity is resolved to
         ``tolerance`` (:mod:`crankdyn.torsion.resolve`); the result's speeds are the sorted
         union of the grid and the added speeds. False: exactly the given speeds, in their
         order (for comparisons on a fixed grid).
-    tolerance
-        Relative change of a peak below which it counts as resolved (default 0.1 %).
-    relative
+    tolerance : float
+        Relative change of a peak below which it counts as resolved (dimensionless, default
+        0.1 %), 0 < tolerance < 1.
+    relative : iterable of (str, str) or None
         Pairs of masses (a, b) whose relative angle is resolved with the rest (in the same
         batched rounds); any other pair is resolved when asked for
         (:meth:`ResponseResult.relative_angle`).
-    modal_damping
+    modal_damping : float, array_like or None
         Damping ratios of the elastic modes (one for all, or one per mode) added to the model's
         damping as C_modal (:mod:`crankdyn.torsion.damped`, as openTorsion's ``C_modal``), or
         None. The damped-resonance sampling of a resolved sweep includes it.
@@ -1358,8 +2050,40 @@ def forced_response(
     Returns
     -------
     ResponseResult
-        ``speed``, ``on_grid``, ``added_speeds`` and ``added_reasons``; :meth:`~ResponseResult.peak`
-        for the largest value of any quantity.
+        Amplitudes (rad), torques (N m), stresses (Pa) and damper power (W) per speed
+        (rad/s); ``speed``, ``on_grid``, ``added_speeds`` and ``added_reasons``;
+        :meth:`~ResponseResult.peak` for the largest value of any quantity; ``rule_check``.
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: an empty speed range or a speed that is not positive
+        (``speeds``), orders the model cannot take (``orders``), a tolerance outside (0, 1),
+        an unknown mass in ``relative``, excitation points the model lacks, dampers and modal
+        damping as :func:`linear_system`, and the rule check's errors
+        (:func:`crankdyn.torsion.rules.check_rules`).
+
+    Examples
+    --------
+    One damped mass on a grounded shaft swept on a 130 rad/s grid: the peak of the resolved
+    response is the single damped mass's, T / (c sqrt(k/J - (c/2J)^2)) (seed 003), to the
+    tolerance; the grid alone misses it by more than half.
+
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
+    ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
+    ... )
+    >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
+    >>> grid = np.arange(500.0, 1500.0, 130.0)
+    >>> exact = 100.0 / (20.0 * math.sqrt(1e6 - 100.0))
+    >>> resolved = forced_response(model, excitation, grid, [1.0])
+    >>> abs(resolved.peak("amplitude").value / exact - 1.0) < 1e-3
+    True
+    >>> on_grid = forced_response(model, excitation, grid, [1.0], resolve=False)
+    >>> round(on_grid.peak("amplitude").value / exact, 2)
+    0.44
     """
     speeds = _check_speeds(speeds)
     orders = check_model_orders(model, excitation, orders)
@@ -1368,6 +2092,7 @@ def forced_response(
     if dampers is None:
         dampers = getattr(model, "dampers", ()) or ()
     system_names = list(model.mass_names) + [d.name for d in dampers]
+    pairs: list[tuple[int, int]]
     if relative is None:
         pairs = []
     else:
@@ -1384,6 +2109,8 @@ def forced_response(
     # the excitation points are checked (cylinders on the masses, sources) before any solve
     forcing_notes(model, excitation, speeds[:1], orders)
     sweep = _Sweep(model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping)
+    extra: dict[str, Any]
+    notes: list[str]
     if not resolve:
         block = sweep.evaluate(speeds)
         extra = {"on_grid": freeze(np.ones(speeds.size), dtype=bool)}
@@ -1400,13 +2127,16 @@ def forced_response(
 
         engine = getattr(excitation, "engine", None)
         fallback = getattr(engine, "speed", None)
-        if fallback is None and getattr(model, "operating", None) is not None:
-            fallback = model.operating.rated
+        operating: Any = getattr(model, "operating", None)
+        if fallback is None and operating is not None:
+            fallback = operating.rated
         object.__setattr__(result, "rule_check", check_rules(result, rules, model, fallback))
     return result
 
 
-def _resolved(sweep: _Sweep, speeds, tolerance):
+def _resolved(
+    sweep: _Sweep, speeds: np.ndarray, tolerance: float
+) -> tuple[_Block, dict[str, Any], list[str]]:
     """Evaluate the grid, the critical speeds and the resonance seeds, then refine until every
     peak is resolved (module :mod:`crankdyn.torsion.resolve`): (block, resolution fields,
     notes)."""
