@@ -932,8 +932,8 @@ class ResponseResult(Result):
     section_modulus : numpy.ndarray or None
         (E,) polar section modulus W_p of every element (m^3), NaN where the diameters are
         unknown.
-    evaluator : object or None
-        The sweep that evaluates the same response at other speeds (:meth:`at`); None on a
+    evaluator : _Sweep or None
+        The (private) sweep that evaluates the same response at other speeds (:meth:`at`); None on a
         result read back from a file.
 
     Examples
@@ -1367,7 +1367,7 @@ class ResponseResult(Result):
     def plot(
         self,
         what: str = "amplitude",
-        item: Any = None,
+        item: str | Sequence[str] | None = None,
         fig: Figure | None = None,
         **kw: Any,
     ) -> Figure:
