@@ -40,7 +40,8 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
-	src/crankdyn/tvc/limits.py
+	src/crankdyn/tvc/limits.py \
+	src/crankdyn/tvc/spec.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .
