@@ -41,6 +41,7 @@ TYPED := \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
 	src/crankdyn/tvc/limits.py \
+	src/crankdyn/tvc/result.py \
 	src/crankdyn/tvc/spec.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python

@@ -139,6 +139,7 @@ HELD = frozenset(
         "crankdyn.study.spec",
         "crankdyn.torsion",
         "crankdyn.tvc.limits",
+        "crankdyn.tvc.result",
         "crankdyn.tvc.spec",
     }
 )
