@@ -40,6 +40,7 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
+	src/crankdyn/tvc/curves.py \
 	src/crankdyn/tvc/limits.py \
 	src/crankdyn/tvc/result.py \
 	src/crankdyn/tvc/spec.py

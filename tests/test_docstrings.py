@@ -138,6 +138,7 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.tvc.curves",
         "crankdyn.tvc.limits",
         "crankdyn.tvc.result",
         "crankdyn.tvc.spec",
