@@ -40,6 +40,8 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
+	src/crankdyn/tvc/__init__.py \
+	src/crankdyn/tvc/analysis.py \
 	src/crankdyn/tvc/curves.py \
 	src/crankdyn/tvc/limits.py \
 	src/crankdyn/tvc/result.py \

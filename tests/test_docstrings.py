@@ -138,6 +138,8 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.tvc",
+        "crankdyn.tvc.analysis",
         "crankdyn.tvc.curves",
         "crankdyn.tvc.limits",
         "crankdyn.tvc.result",
