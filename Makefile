@@ -19,6 +19,7 @@ TYPED := \
 	src/crankdyn/constants.py \
 	src/crankdyn/crank \
 	src/crankdyn/display.py \
+	src/crankdyn/docs \
 	src/crankdyn/engine/__init__.py \
 	src/crankdyn/engine/balance.py \
 	src/crankdyn/engine/bearings.py \
@@ -29,7 +30,6 @@ TYPED := \
 	src/crankdyn/engine/model.py \
 	src/crankdyn/engine/session.py \
 	src/crankdyn/engine/torque.py \
-	src/crankdyn/docs \
 	src/crankdyn/errors.py \
 	src/crankdyn/extras.py \
 	src/crankdyn/io \
@@ -45,7 +45,13 @@ TYPED := \
 	src/crankdyn/torsion/resolve.py \
 	src/crankdyn/torsion/response.py \
 	src/crankdyn/torsion/rules.py \
-	src/crankdyn/torsion/transient.py
+	src/crankdyn/torsion/transient.py \
+	src/crankdyn/tvc/__init__.py \
+	src/crankdyn/tvc/analysis.py \
+	src/crankdyn/tvc/curves.py \
+	src/crankdyn/tvc/limits.py \
+	src/crankdyn/tvc/result.py \
+	src/crankdyn/tvc/spec.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -144,6 +144,12 @@ HELD = frozenset(
         "crankdyn.torsion.response",
         "crankdyn.torsion.rules",
         "crankdyn.torsion.transient",
+        "crankdyn.tvc",
+        "crankdyn.tvc.analysis",
+        "crankdyn.tvc.curves",
+        "crankdyn.tvc.limits",
+        "crankdyn.tvc.result",
+        "crankdyn.tvc.spec",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave

@@ -48,10 +48,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, TypeAlias
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 import crankdyn.tvc.curves as cv
 from crankdyn.constants import RPM
@@ -60,6 +62,28 @@ from crankdyn.torsion.rules import exceedances
 from crankdyn.tvc.limits import M68, WIDENING_SOURCES, M68Shaft, barred_limits
 from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult, Verdict
 from crankdyn.tvc.spec import TvcSpec
+
+if TYPE_CHECKING:
+    from crankdyn.engine.model import Engine
+    from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.excitation import (
+        EngineExcitation,
+        SourceExcitation,
+        UniformExcitation,
+    )
+    from crankdyn.torsion.model import Shaft, TorsionModel
+    from crankdyn.torsion.response import ResponseResult
+    from crankdyn.torsion.transient import TransientResult
+
+    Excitation: TypeAlias = EngineExcitation | UniformExcitation | SourceExcitation
+    MeanTorque: TypeAlias = Callable[[ArrayLike], NDArray[np.float64]]
+    Curve: TypeAlias = Callable[[ResponseResult], NDArray[np.float64]]
+    Limit: TypeAlias = Callable[[NDArray[np.float64]], NDArray[np.float64]]
+    TransientCurve: TypeAlias = Callable[[TransientResult, MeanTorque | None], NDArray[np.float64]]
+    # one condition's (condition, verdicts, barred ranges, response)
+    Evaluated: TypeAlias = tuple[
+        "_Condition", list[Verdict], list[BarredSpeedRange], ResponseResult
+    ]
 
 __all__ = ["Check", "tvc"]
 
@@ -72,30 +96,66 @@ RUN_OUT = 0.02
 
 @dataclass(frozen=True, eq=False)
 class Check:
-    """One component quantity against its limit (module docstring)."""
+    """One component quantity against its limit (module docstring).
+
+    Parameters
+    ----------
+    component : str
+        The component's label (e.g. ``"coupling C1"``, ``"crank span 3"``).
+    quantity : str
+        What is checked (e.g. ``"synthesised vibratory torque vs T_KW"``).
+    unit : str
+        The unit of the quantity and its limit (SI: ``"Pa"``, ``"N·m"``, ``"W"``,
+        ``"rad/s²"``, ``"rad"``).
+    source : str
+        The rule or maker's document the limit comes from (IACS UR M68.4, DIN 740-2 catalogue,
+        engine builder, ...).
+    curve : callable
+        ``curve(r)`` -> the quantity at the speeds of a forced response ``r``
+        (:class:`~crankdyn.torsion.response.ResponseResult`), shape (S,), in ``unit``.
+    limit : callable
+        ``limit(speeds)`` -> the continuous limit at speeds (rad/s), shape (S,), in ``unit``
+        (NaN where none applies).
+    barred : bool
+        Whether the speeds above the limit form barred speed ranges (shafts, crank spans,
+        couplings' T_KW); False: the limit holds at every speed of continuous running.
+    m68 : bool
+        Whether the check is IACS UR M68's (no barred range above 0.8 n_0, M68.4).
+    transient_limit : callable or None
+        ``transient_limit(speeds)`` -> the limit while passing a barred range (rad/s in, the
+        unit out; tau_T, T_Kmax less the mean torque); None: no barred range is permitted.
+    transient_curve : callable or None
+        ``transient_curve(run, mean)`` -> the quantity over the samples of a time-domain run
+        (:class:`~crankdyn.torsion.transient.TransientResult`), ``mean`` the mean-torque
+        function of the load laws (or None).
+    transient_source : str
+        The source of the transient limit.
+    elements : tuple of int
+        The model's shaft indices the quantity is read on (for plots).
+    """
 
     component: str
     quantity: str
     unit: str
     source: str
-    curve: Callable
-    limit: Callable
+    curve: Curve
+    limit: Limit
     barred: bool = False
     m68: bool = False
-    transient_limit: Callable | None = None
-    transient_curve: Callable | None = None  # (TransientResult, mean(speeds)) -> (T,) values
+    transient_limit: Limit | None = None
+    transient_curve: TransientCurve | None = None
     transient_source: str = ""
-    elements: tuple = ()  # the model's shaft indices the quantity is read on (for plots)
+    elements: tuple[int, ...] = ()
 
 
 # ---- the checks of a model ----------------------------------------------------------------------
-def _shaft_label(shaft) -> str:
+def _shaft_label(shaft: Shaft) -> str:
     ends = shaft.segment_of or shaft.between
     text = f"{ends[0]} - {ends[1]}"
     return f"{shaft.name} ({text})" if shaft.name else text
 
 
-def _mean_torque_function(model):
+def _mean_torque_function(model: TorsionModel) -> MeanTorque | None:
     """mean(speeds) -> (S, shafts) mean torques (N m) from the load laws, or None."""
     from crankdyn.torsion.sources import mean_torques
 
@@ -104,23 +164,27 @@ def _mean_torque_function(model):
     except InputError:
         return None
 
-    def mean(speeds):
+    def mean(speeds: ArrayLike) -> NDArray[np.float64]:
         return np.asarray(mean_torques(model, np.atleast_1d(speeds)).mean_torque)
 
     return mean
 
 
-def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], list[str]]:
+def _checks(
+    model: TorsionModel, spec: TvcSpec, rated: float, dampers: Sequence[Damper]
+) -> tuple[list[Check], list[str]]:
     """Every component check of the model (module docstring) and notes on what is not checked."""
     notes: list[str] = []
     checks: list[Check] = []
     mean = _mean_torque_function(model)
     shafts = model.shafts
     # propulsion shafts: IACS UR M68, grouped by the shaft a subdivided element belongs to
-    if model.rules is not None:
-        groups: dict = {}
-        for limit in model.rules.shafts:
-            s = _index_of_shaft(model, limit.between)
+    # a RuleSet or None (TorsionModel holds it as an object)
+    rules: Any = model.rules
+    if rules is not None:
+        groups: dict[tuple[str, float, float, float], list[tuple[int, M68Shaft, float]]] = {}
+        for shaft_limit in rules.shafts:
+            s = _index_of_shaft(model, shaft_limit.between)
             shaft = shafts[s]
             if shaft.geometry is None:
                 raise InputError(
@@ -128,19 +192,19 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                     "outer_diameter",
                     file=model.source,
                     key="[rules] shaft",
-                    value=list(limit.between),
+                    value=list(shaft_limit.between),
                 )
             m = M68Shaft(
-                tuple(limit.between),
-                limit.tensile_strength,
-                limit.design_factor,
+                tuple(shaft_limit.between),
+                shaft_limit.tensile_strength,
+                shaft_limit.design_factor,
                 shaft.geometry.outer_diameter,
-                limit.strength_used,
-                limit.feature,
+                shaft_limit.strength_used,
+                shaft_limit.feature,
             )
             key = (_shaft_label(shaft), m.strength_used, m.design_factor, m.diameter)
             groups.setdefault(key, []).append((s, m, shaft.geometry.section_modulus))
-        n0 = model.rules.rated_speed or rated
+        n0 = rules.rated_speed or rated
         for (label, strength, ck, diameter), items in groups.items():
             idx = np.array([s for s, _, _ in items])
             moduli = np.array([w for _, _, w in items])
@@ -162,7 +226,7 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
             def tau_t(w, m=m, n0=n0):
                 return m.tau_t(np.asarray(w, dtype=float) / n0)
 
-            def transient(run, _mean, idx=idx, moduli=moduli):
+            def m68_transient(run, _mean, idx=idx, moduli=moduli):
                 return np.max(np.abs(run.shaft_torque[:, idx]) / moduli[None, :], axis=1)
 
             checks.append(
@@ -176,7 +240,7 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                     barred=True,
                     m68=True,
                     transient_limit=tau_t,
-                    transient_curve=transient,
+                    transient_curve=m68_transient,
                     transient_source=f"{M68}: τ_T = 1.7 τ_C / √C_K (λ ≤ 0.8)",
                     elements=tuple(int(i) for i in idx),
                 )
@@ -212,21 +276,23 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                 f"{' (' + crank.source + ')' if crank.source else ''}"
             )
 
-            def curve(r, s=s, factor=factor):
+            def span_curve(r, s=s, factor=factor):
                 return np.asarray(r.synthesized_shaft_torque)[:, s] * factor
 
             def limit(w, value=value):
                 return np.full(np.size(w), value)
 
-            transient_limit = None
-            transient = None
+            transient_limit: Limit | None = None
+            transient: TransientCurve | None = None
             if transient_value is not None:
 
-                def transient_limit(w, value=transient_value):
+                def span_transient_limit(w, value=transient_value):
                     return np.full(np.size(w), value)
 
-                def transient(run, _mean, s=s, factor=factor):
+                def span_transient(run, _mean, s=s, factor=factor):
                     return np.abs(run.shaft_torque[:, s]) * factor
+
+                transient_limit, transient = span_transient_limit, span_transient
 
             checks.append(
                 Check(
@@ -238,7 +304,7 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                     ),
                     unit="Pa" if crank.by_stress else "N·m",
                     source=source,
-                    curve=curve,
+                    curve=span_curve,
                     limit=limit,
                     barred=True,
                     transient_limit=transient_limit,
@@ -275,12 +341,14 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
             transient_limit = transient = None
             if t_max is not None:
 
-                def transient_limit(w, s=s, t_max=t_max):
+                def coupling_transient_limit(w, s=s, t_max=t_max):
                     m = np.abs(mean(w)[:, s]) if mean is not None else 0.0
                     return t_max - m
 
-                def transient(run, _mean, s=s):
+                def coupling_transient(run, _mean, s=s):
                     return np.abs(run.shaft_torque[:, s])
+
+                transient_limit, transient = coupling_transient_limit, coupling_transient
 
             checks.append(
                 Check(
@@ -409,13 +477,13 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                 )
             )
     # generators and other machines with the maker's limits
-    for m in model.masses:
-        lim = m.limits
+    for machine in model.masses:
+        lim = machine.limits
         if lim is None:
             continue
-        label = _labelled(m.role or "machine", m.name)
+        label = _labelled(machine.role or "machine", machine.name)
         src = f"maker's limit{' (' + lim.source + ')' if lim.source else ''}"
-        attached = [s for s, sh in enumerate(shafts) if m.name in sh.between]
+        attached = [s for s, sh in enumerate(shafts) if machine.name in sh.between]
         if lim.vibratory_torque is not None and attached:
 
             def rotor_torque(r, idx=tuple(attached)):
@@ -429,7 +497,7 @@ def _checks(model, spec: TvcSpec, rated: float, dampers) -> tuple[list[Check], l
                     label, "synthesised vibratory torque at the rotor", "N·m", src, rotor_torque, vt
                 )
             )
-        j = names.index(m.name)
+        j = names.index(machine.name)
         if lim.angular_acceleration is not None:
 
             def accel(r, j=j):
@@ -481,7 +549,7 @@ def _labelled(kind: str, name: str) -> str:
     return name if kind.split()[-1].lower() in name.lower() else f"{kind} {name}"
 
 
-def _index_of_shaft(model, between) -> int:
+def _index_of_shaft(model: TorsionModel, between: Sequence[str]) -> int:
     for s, sh in enumerate(model.shafts):
         if tuple(sh.between) in (tuple(between), tuple(between)[::-1]):
             return s
@@ -493,15 +561,15 @@ def _index_of_shaft(model, between) -> int:
 class _Condition:
     name: str
     kind: str
-    excitation: object
-    dampers: tuple
+    excitation: Excitation
+    dampers: tuple[Damper, ...]
     low: float
     high: float
     description: str
     misfire: int | None = None
 
 
-def _load_of(model, spec: TvcSpec) -> str:
+def _load_of(model: TorsionModel, spec: TvcSpec) -> str:
     if spec.load is not None:
         return spec.load
     props = [s for s in model.sources if getattr(s, "kind", None) == "propeller"]
@@ -509,12 +577,12 @@ def _load_of(model, spec: TvcSpec) -> str:
     return "propeller" if props or curve is not None else "constant-speed"
 
 
-def _with_load(model, engine, load: str, rated: float):
+def _with_load(model: TorsionModel, engine: Engine | None, load: str, rated: float) -> TorsionModel:
     """The model with the excitation's load matching the load law: constant speed drops a load
     curve (full load at every speed); the propeller law adds (n/n_0)^2 where none is given."""
     from crankdyn.torsion.excitation import ExcitationSpec, LoadCurve
 
-    exc = model.excitation
+    exc: Any = model.excitation  # an ExcitationSpec or None (TorsionModel holds it as an object)
     if engine is None:  # a uniform torque or the sources alone: no gas pressure to load
         return model
     if load == "constant-speed" and exc is not None and exc.load_curve is not None:
@@ -533,7 +601,9 @@ def _with_load(model, engine, load: str, rated: float):
     return model
 
 
-def _conditions(model, engine, spec: TvcSpec, notes: list[str]) -> list[_Condition]:
+def _conditions(
+    model: TorsionModel, engine: Engine | None, spec: TvcSpec, notes: list[str]
+) -> list[_Condition]:
     from crankdyn.torsion.excitation import EngineExcitation, excitation_for
 
     base = excitation_for(model, engine)
@@ -580,14 +650,21 @@ def _conditions(model, engine, spec: TvcSpec, notes: list[str]) -> list[_Conditi
 
 
 # ---- evaluation of one condition -----------------------------------------------------------------
-def _grid(low: float, high: float, step: float) -> np.ndarray:
+def _grid(low: float, high: float, step: float) -> NDArray[np.float64]:
     count = max(2, math.floor((high - low) / step * (1 + 1e-12)) + 1)
     grid = low + step * np.arange(count)
     return np.unique(np.concatenate([grid[grid < high], [high]]))
 
 
-def _evaluate(model, cond: _Condition, orders, checks, spec: TvcSpec, n0: float):
-    """(verdicts, barred ranges, response, curves) of one condition."""
+def _evaluate(
+    model: TorsionModel,
+    cond: _Condition,
+    orders: NDArray[np.float64],
+    checks: Sequence[Check],
+    spec: TvcSpec,
+    n0: float,
+) -> tuple[list[Verdict], list[BarredSpeedRange], ResponseResult]:
+    """(verdicts, barred ranges, response) of one condition."""
     from crankdyn.torsion.response import forced_response
 
     r = forced_response(
@@ -752,7 +829,9 @@ def _evaluate(model, cond: _Condition, orders, checks, spec: TvcSpec, n0: float)
     return verdicts, barred, r
 
 
-def _passage_cases(group, barred):
+def _passage_cases(
+    group: Sequence[Evaluated], barred: Sequence[BarredSpeedRange]
+) -> list[tuple[_Condition, list[BarredSpeedRange]]]:
     """(condition, permitted barred ranges) to pass in the time domain: a single condition's
     own; for the misfiring cylinders every united range once, with the cylinder whose own
     range there responds most."""
@@ -772,7 +851,7 @@ def _passage_cases(group, barred):
     return cases
 
 
-def _union(ranges) -> list[BarredSpeedRange]:
+def _union(ranges: Sequence[BarredSpeedRange]) -> list[BarredSpeedRange]:
     """The barred ranges of several conditions (the misfiring cylinders) merged per component
     where they overlap: the union of the declared ranges, permitted only where every one is,
     the condition naming the conditions that produce it."""
@@ -802,7 +881,7 @@ def _union(ranges) -> list[BarredSpeedRange]:
     return out
 
 
-def _names(names) -> str:
+def _names(names: Sequence[str]) -> str:
     """``misfire cylinders 1, 2, 6`` for several misfire conditions, else the names joined."""
     prefix = "misfire cylinder "
     if len(names) > 1 and all(n.startswith(prefix) for n in names):
@@ -811,7 +890,7 @@ def _names(names) -> str:
     return ", ".join(names)
 
 
-def _merge(intervals) -> list[tuple[float, float]]:
+def _merge(intervals: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
     out: list[list[float]] = []
     for a, b in sorted(intervals):
         if out and a <= out[-1][1]:
@@ -822,7 +901,7 @@ def _merge(intervals) -> list[tuple[float, float]]:
 
 
 # ---- passage through barred ranges ---------------------------------------------------------------
-def _load_torque(model, speeds) -> np.ndarray:
+def _load_torque(model: TorsionModel, speeds: ArrayLike) -> NDArray[np.float64]:
     """Mean load torque reflected to the reference shaft (N m) at reference speeds (rad/s)."""
     n = np.asarray(speeds, dtype=float)
     total = np.zeros(n.shape)
@@ -836,23 +915,35 @@ def _load_torque(model, speeds) -> np.ndarray:
     return total
 
 
-def _passages(model, cond: _Condition, orders, checks, barred, spec, n0, load, mean):
-    """Passage rows and verdicts of one condition's barred ranges (module docstring)."""
+def _passages(
+    model: TorsionModel,
+    cond: _Condition,
+    orders: NDArray[np.float64],
+    checks: Sequence[Check],
+    barred: Sequence[BarredSpeedRange],
+    spec: TvcSpec,
+    n0: float,
+    load: str,
+    mean: MeanTorque | None,
+) -> tuple[list[Passage], list[Verdict], list[str]]:
+    """Passage rows, verdicts and notes of one condition's barred ranges (module docstring)."""
     from crankdyn.torsion.response import linear_system
     from crankdyn.torsion.transient import transient_response
 
-    passages, verdicts, notes = [], [], []
+    passages: list[Passage] = []
+    verdicts: list[Verdict] = []
+    notes: list[str] = []
     if not barred:
         return passages, verdicts, notes
     inertia = float(np.sum(linear_system(model, cond.dampers).inertia))
     passage_load = spec.passage_load or ("law" if load == "propeller" else "none")
 
-    def load_at(w):
+    def load_at(w: ArrayLike) -> NDArray[np.float64]:
         return _load_torque(model, w) if passage_load == "law" else np.zeros(np.size(w))
 
     rated_torque = float(_load_torque(model, [n0])[0])
 
-    def engine_at(w):
+    def engine_at(w: ArrayLike) -> NDArray[np.float64]:
         return spec.engine_torque_at(w, rated_torque)
 
     if spec.engine_torque_curve is None and not float(engine_at([n0])[0]) > 0.0:
@@ -959,29 +1050,81 @@ def _passages(model, cond: _Condition, orders, checks, barred, spec, n0, load, m
 
 # ---- the calculation --------------------------------------------------------------------------
 def tvc(
-    model, engine=None, spec: TvcSpec | None = None, *, passage: bool = True, orders=None
+    model: TorsionModel,
+    engine: Engine | None = None,
+    spec: TvcSpec | None = None,
+    *,
+    passage: bool = True,
+    orders: ArrayLike | None = None,
 ) -> TvcResult:
     """The torsional vibration calculation of an installation (module docstring).
 
+    Every running condition's resolved forced response, checked component by component
+    against its limit: propulsion shafts against IACS UR M68.4 (tau_C, tau_T, barred ranges
+    only below 0.8 n_0), elastic couplings against the catalogue's T_KW, T_Kmax, T_KN and P_KV
+    (DIN 740-2), crank spans, gears, machines and dampers against their makers' limits; the
+    barred ranges widened by the chosen rule (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5,
+    or none) and the tachometer tolerance; the passage through them in the time domain.
+
     Parameters
     ----------
-    model
+    model : TorsionModel
         The torsional model (an engine file's [torsion] with its shaft line, or a model file).
-    engine
+    engine : Engine or None
         The engine whose cylinders excite it, or None (the model's own engine or excitation).
-    spec
+    spec : TvcSpec or None
         The TVC settings; None: the model's ``[tvc]`` or the defaults.
-    passage
-        Whether to run the time-domain passage through the barred ranges.
-    orders
-        The excitation orders; None: the cycle's harmonics to 12 with the orders of the
-        model's sources (:func:`crankdyn.torsion.sources.default_orders`).
+    passage : bool
+        Whether to run the time-domain passage through the barred ranges (default True).
+    orders : array_like or None
+        The excitation orders (multiples of the crankshaft speed); None: the cycle's harmonics
+        to 12 with the orders of the model's sources
+        (:func:`crankdyn.torsion.sources.default_orders`).
 
     Returns
     -------
     TvcResult
         ``verdicts`` (every component x condition), ``barred_ranges``, ``passages``,
         ``condition_results`` (with their responses), ``modes`` and ``campbell``.
+
+    Raises
+    ------
+    InputError
+        Naming the model's file and the key ``rated_speed`` where no rated speed n_0 is given
+        (``[rules]``, ``[operating]`` or the engine's speed), ``speed_range`` where no condition
+        has a speed range, ``[rules] shaft`` (with the shaft's masses) where an M68 shaft has
+        no diameter, ``diameter`` where a crank span has none for the nominal stress; and the
+        errors of the forced response (orders, speeds).
+
+    Examples
+    --------
+    Two masses, J_1 = 1 and J_2 = 3 kg m^2, on a 50 mm intermediate shaft (k = 1e5 N m/rad,
+    loss factor 0.1, sigma_B = 600 N/mm^2, C_K = 1), a harmonic torque of 100 N m per order
+    (orders 1 and 2) on the first mass, n_0 = 400 rad/s:
+
+    >>> from crankdyn.torsion.campbell import OperatingRange
+    >>> from crankdyn.torsion.excitation import ExcitationSpec
+    >>> from crankdyn.torsion.model import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion.rules import RuleSet, ShaftLimit
+    >>> model = TorsionModel(
+    ...     (Mass("crank", 1.0, cylinders=(1,)), Mass("propeller", 3.0)),
+    ...     (Shaft(("crank", "propeller"), stiffness=1e5, loss_factor=0.1,
+    ...            geometry=ShaftGeometry(0.05), name="intermediate shaft"),),
+    ...     excitation=ExcitationSpec(torque=100.0),
+    ...     operating=OperatingRange(100.0, 400.0, rated=400.0),
+    ...     rules=RuleSet(None, (ShaftLimit(("crank", "propeller"), 600e6),)),
+    ... )
+    >>> result = tvc(model, orders=[1.0, 2.0])
+    >>> result.passed, [c.name for c in result.conditions]
+    (True, ['normal firing'])
+
+    The worst stress is the order-1 resonance at omega_n = sqrt(k (1/J_1 + 1/J_2)) = 365.148
+    rad/s, where k |dtheta| = T J_2 / (J_1 + J_2) / eta = 750 N m, over W_p = pi d^3/16:
+    30.558 MPa, against tau_C = (600 + 160)/18 C_D 1.38 (lambda = 0.91):
+
+    >>> (row,) = result.verdicts
+    >>> f"{row.worst / 1e6:.3f} MPa <= {row.limit / 1e6:.3f} MPa at {row.speed:.3f} rad/s"
+    '30.558 MPa <= 45.174 MPa at 365.148 rad/s'
     """
     from crankdyn.torsion.campbell import campbell
     from crankdyn.torsion.modal import natural_modes
@@ -990,11 +1133,14 @@ def tvc(
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
     engine = engine or getattr(model, "engine", None)
     notes: list[str] = []
+    # a RuleSet and an OperatingRange, or None (TorsionModel holds them as objects)
+    rules: Any = model.rules
+    operating: Any = model.operating
     rated = None
-    if model.rules is not None and model.rules.rated_speed is not None:
-        rated = model.rules.rated_speed
-    elif model.operating is not None and model.operating.rated is not None:
-        rated = model.operating.rated
+    if rules is not None and rules.rated_speed is not None:
+        rated = rules.rated_speed
+    elif operating is not None and operating.rated is not None:
+        rated = operating.rated
     elif engine is not None:
         rated = engine.speed
     if rated is None:
@@ -1046,9 +1192,9 @@ def tvc(
             worst_of: dict = {}
             for _cond, vs, _barred, _r in group:
                 for v in vs:
-                    key = (v.component, v.kind or v.quantity)
-                    if key not in worst_of or v.margin < worst_of[key].margin:
-                        worst_of[key] = v
+                    row = (v.component, v.kind or v.quantity)
+                    if row not in worst_of or v.margin < worst_of[row].margin:
+                        worst_of[row] = v
             verdicts = list(worst_of.values())
             overall = min(group, key=lambda x: min((v.margin for v in x[1]), default=math.inf))
             response = overall[3]

@@ -23,14 +23,50 @@ Every quantity is a function ``curve(r)`` of a :class:`~crankdyn.torsion.respons
 given intervals, refining every local maximum of the ratio by successive parabolic
 interpolation (:func:`crankdyn.torsion.resolve.refinement_speeds`) until a further refinement
 changes it by less than 1e-6 relative, and sampling the intervals' ends exactly.
+
+Examples
+--------
+Two free masses, J_1 = 1 and J_2 = 3 kg m^2, joined by a shaft of k = 1e5 N m/rad with loss
+factor eta = 0.1, a harmonic torque of 100 N m per order (orders 1 and 2) on the first:
+
+>>> import numpy as np
+>>> from crankdyn.torsion.excitation import UniformExcitation
+>>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+>>> from crankdyn.torsion.response import forced_response
+>>> model = TorsionModel(
+...     (Mass("crank", 1.0, cylinders=(1,)), Mass("flywheel", 3.0)),
+...     (Shaft(("crank", "flywheel"), stiffness=1e5, loss_factor=0.1),),
+... )
+>>> r = forced_response(model, UniformExcitation(100.0, [0.0]), [100.0, 150.0, 200.0],
+...                     [1.0, 2.0], resolve=False)
+
+The power dissipated in the shaft is the mean power the torque puts in,
+sum_q (1/2) Re(T_q conj(i q Omega X_1,q)) (W):
+
+>>> omega = r.speed[:, None] * r.orders[None, :]
+>>> put_in = 0.5 * np.real(100.0 * np.conj(1j * omega * r.mass_response[:, :, 0])).sum(axis=1)
+>>> np.allclose(damping_power(r, 0, (0, 1), 0.1, 0.0), put_in, rtol=1e-12)
+True
+
+Newton's second law of the free flywheel, J_2 theta_2'' = -T_shaft:
+
+>>> np.allclose(3.0 * acceleration_coefficients(r, 1), -element_torque(r, 0, (0, 1), 0.1, 0.0))
+True
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.torsion.resolve import merge_speeds, refinement_speeds
 from crankdyn.torsion.sources import synthesize_at
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.response import ResponseResult
 
 __all__ = [
     "acceleration_coefficients",
@@ -44,10 +80,58 @@ __all__ = [
 _TOLERANCE = 1e-6
 _ROUNDS = 60
 
+MeshShaft = tuple[int, int, float, float, tuple[int, int]]
+"""An element ending on a mesh's driven wheel: (shaft index, sign, loss factor eta
+(dimensionless), damping c (N m s/rad), (a, b) its mass indices)
+(:func:`mesh_torque_coefficients`)."""
 
-def synthesized(result, coefficients) -> np.ndarray:
-    """Half-range over time of sum_q Re(c_q exp(i q theta)) for coefficients (S, Q) at the
-    response's orders (its common period; the sum of |c_q| where there is none)."""
+
+def _responses(
+    result: ResponseResult,
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """(mass_response, shaft_response) of a forced response (complex angles (S, Q, masses) in
+    rad, elastic torques (S, Q, shafts) in N m); :func:`crankdyn.torsion.response.
+    forced_response` always fills them."""
+    masses, shafts = result.mass_response, result.shaft_response
+    assert masses is not None and shafts is not None  # set by every forced response
+    return masses, shafts
+
+
+def synthesized(result: ResponseResult, coefficients: ArrayLike) -> NDArray[np.float64]:
+    """Half-range over time of a harmonic quantity sum_q Re(c_q exp(i q theta)).
+
+    The synthesis of all orders over their common period, the basis of IACS UR M68
+    (:func:`crankdyn.torsion.sources.synthesize_at`); the sum of |c_q| where the orders have
+    none.
+
+    Parameters
+    ----------
+    result : ResponseResult
+        The forced response whose orders (and cycle) the coefficients belong to.
+    coefficients : array_like
+        Complex harmonic coefficients c_q, shape (S, Q): one row per speed of ``result``, one
+        column per order (any unit).
+
+    Returns
+    -------
+    numpy.ndarray
+        (max - min) / 2 over a period, shape (S,), in the coefficients' unit.
+
+    Examples
+    --------
+    cos(theta) + cos(2 theta) ranges from 2 (theta = 0) to -9/8 (cos(theta) = -1/4), so its
+    half-range is 25/16:
+
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
+    ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
+    >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), [100.0], [1.0, 2.0],
+    ...                     resolve=False)
+    >>> synthesized(r, [[1.0, 1.0]])
+    array([1.5625])
+    """
     index = getattr(result.evaluator, "synthesis", None) if result.evaluator is not None else None
     if index is None and result.evaluator is None:
         from crankdyn.torsion.sources import synthesis_index
@@ -57,21 +141,78 @@ def synthesized(result, coefficients) -> np.ndarray:
     return 0.5 * (np.asarray(top) - np.asarray(low))
 
 
-def acceleration_coefficients(result, mass: int) -> np.ndarray:
-    """-(q Omega)^2 X_q (rad/s^2, complex, (S, Q)) of a mass's actual angle."""
+def acceleration_coefficients(result: ResponseResult, mass: int) -> NDArray[np.complex128]:
+    """Harmonics of a mass's angular acceleration, -(q Omega)^2 X_q (module docstring).
+
+    Parameters
+    ----------
+    result : ResponseResult
+        The forced response.
+    mass : int
+        The mass's index in the model (its actual angle).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex acceleration harmonics (rad/s^2), shape (S, Q): speeds x orders.
+    """
+    masses, _ = _responses(result)
     omega = np.asarray(result.speed)[:, None] * np.asarray(result.orders)[None, :]
-    return -(omega**2) * result.mass_response[:, :, mass]
+    return -(omega**2) * masses[:, :, mass]
 
 
-def mesh_torque_coefficients(result, wheel: int, inertia: float, shafts, damping=0.0):
-    """Torque harmonics (N m, complex, (S, Q)) at a rigid mesh on its driven wheel (module
-    docstring): ``wheel`` the wheel's mass index, ``inertia`` its own J (kg m^2), ``damping``
-    its absolute damping c (N m s/rad), ``shafts`` (index, sign, loss factor, damping, (a, b))
-    of the elements ending on it: sign +1 where the wheel is the element's first mass (the
-    element's torque k (1 + i eta) (theta_b - theta_a) + i omega c (theta_b - theta_a) acts on
-    it positively), -1 where it is the second; (a, b) the element's mass indices."""
+def mesh_torque_coefficients(
+    result: ResponseResult,
+    wheel: int,
+    inertia: float,
+    shafts: Iterable[MeshShaft],
+    damping: float = 0.0,
+) -> NDArray[np.complex128]:
+    """Torque harmonics at a rigid gear mesh, from the dynamic equilibrium of its driven wheel.
+
+    T_q = -(q Omega)^2 J_w X_w,q + i q Omega c_w X_w,q - sum_s (+/- T_s,q): Newton's second
+    law of the wheel, J theta'' = the sum of the torques acting on it (module docstring).
+
+    Parameters
+    ----------
+    result : ResponseResult
+        The forced response.
+    wheel : int
+        The driven wheel's mass index.
+    inertia : float
+        The wheel's own moment of inertia J_w (kg m^2).
+    shafts : iterable of MeshShaft
+        (index, sign, loss factor eta, damping c (N m s/rad), (a, b)) of every element ending
+        on the wheel: sign +1 where the wheel is the element's first mass (the element's torque
+        k (1 + i eta) (theta_b - theta_a) + i omega c (theta_b - theta_a) acts on it
+        positively), -1 where it is the second; (a, b) the element's mass indices.
+    damping : float
+        The wheel's absolute viscous damping c_w (N m s/rad), default 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex torque harmonics at the mesh (N m), shape (S, Q): speeds x orders.
+
+    Examples
+    --------
+    A wheel that meshes with nothing (the flywheel of the module's example) carries no mesh
+    torque: its shaft's torque is all that accelerates it.
+
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
+    ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
+    >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), [100.0, 200.0], [1.0, 2.0],
+    ...                     resolve=False)
+    >>> torque = mesh_torque_coefficients(r, 1, 3.0, [(0, -1, 0.1, 0.0, (0, 1))])
+    >>> bool(np.abs(torque).max() < 1e-9 * np.abs(element_torque(r, 0, (0, 1), 0.1, 0.0)).max())
+    True
+    """
+    masses, _ = _responses(result)
     omega = np.asarray(result.speed)[:, None] * np.asarray(result.orders)[None, :]
-    x = result.mass_response[:, :, wheel]
+    x = masses[:, :, wheel]
     torque = -(omega**2) * inertia * x + 1j * omega * damping * x
     for s, sign, eta, c, (a, b) in shafts:
         full = element_torque(result, s, (a, b), eta, c)
@@ -79,54 +220,143 @@ def mesh_torque_coefficients(result, wheel: int, inertia: float, shafts, damping
     return torque
 
 
-def element_torque(result, shaft: int, ends, loss_factor: float, damping: float) -> np.ndarray:
-    """The whole torque (N m, complex, (S, Q)) an element transmits, elastic and damping:
+def element_torque(
+    result: ResponseResult,
+    shaft: int,
+    ends: Sequence[int],
+    loss_factor: float,
+    damping: float,
+) -> NDArray[np.complex128]:
+    """The whole torque an element transmits, elastic and damping.
+
     k (1 + i eta) dtheta + i omega c dtheta with dtheta = theta_b - theta_a (actual angles),
-    from its elastic torque k dtheta (``shaft_response``)."""
+    from its elastic torque k dtheta (``shaft_response``): the hysteretic and viscous damping
+    torques of a harmonic twist (S. S. Rao, *Mechanical Vibrations*, 5th ed., 2011, section
+    2.7).
+
+    Parameters
+    ----------
+    result : ResponseResult
+        The forced response.
+    shaft : int
+        The element's index in the model.
+    ends : sequence of int
+        (a, b), the indices of its two masses.
+    loss_factor : float
+        Its hysteretic loss factor eta (dimensionless).
+    damping : float
+        Its viscous damping c (N m s/rad, actual).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex torque harmonics (N m), shape (S, Q): speeds x orders.
+    """
+    masses, shafts = _responses(result)
     omega = np.asarray(result.speed)[:, None] * np.asarray(result.orders)[None, :]
     a, b = ends
-    twist = result.mass_response[:, :, b] - result.mass_response[:, :, a]
-    return result.shaft_response[:, :, shaft] * (1.0 + 1j * loss_factor) + 1j * omega * (
-        damping * twist
-    )
+    twist = masses[:, :, b] - masses[:, :, a]
+    return shafts[:, :, shaft] * (1.0 + 1j * loss_factor) + 1j * omega * (damping * twist)
 
 
-def damping_power(result, shaft: int, ends, loss_factor: float, damping: float) -> np.ndarray:
-    """Power (W, (S,)) dissipated in an element (module docstring): ``ends`` the indices of its
-    two masses (actual angles), ``loss_factor`` eta, ``damping`` c (N m s/rad, actual)."""
+def damping_power(
+    result: ResponseResult,
+    shaft: int,
+    ends: Sequence[int],
+    loss_factor: float,
+    damping: float,
+) -> NDArray[np.float64]:
+    """Power dissipated in an element, the mean over a cycle of its damping torque times the
+    twist rate.
+
+    P = sum_q (1/2) omega_q (eta k + c omega_q) |dtheta_q|^2, omega_q = q Omega (the damping
+    work per cycle of a harmonic twist times its frequency: S. S. Rao, *Mechanical
+    Vibrations*, 5th ed., 2011, section 2.7; module docstring). The coupling's P_KV of DIN
+    740-2 is checked against it.
+
+    Parameters
+    ----------
+    result : ResponseResult
+        The forced response.
+    shaft : int
+        The element's index in the model.
+    ends : sequence of int
+        (a, b), the indices of its two masses (actual angles).
+    loss_factor : float
+        Its hysteretic loss factor eta (dimensionless).
+    damping : float
+        Its viscous damping c (N m s/rad, actual).
+
+    Returns
+    -------
+    numpy.ndarray
+        Dissipated power (W), shape (S,).
+    """
+    masses, shafts = _responses(result)
     omega = np.asarray(result.speed)[:, None] * np.asarray(result.orders)[None, :]
     a, b = ends
-    twist = result.mass_response[:, :, b] - result.mass_response[:, :, a]
-    t = np.abs(result.shaft_response[:, :, shaft])
+    twist = masses[:, :, b] - masses[:, :, a]
+    t = np.abs(shafts[:, :, shaft])
     dt = np.abs(twist)
     # eta k |dtheta|^2 = eta |T| |dtheta| (k = |T| / |dtheta|, the element's actual stiffness)
     per_order = 0.5 * omega * (loss_factor * t * dt + damping * omega * dt * dt)
     return np.sum(per_order, axis=1)
 
 
-def resolved_worst(result, curve, limit, excluded=(), *, low=None, high=None):
+def resolved_worst(
+    result: ResponseResult,
+    curve: Callable[[ResponseResult], ArrayLike],
+    limit: Callable[[NDArray[np.float64]], ArrayLike],
+    excluded: Iterable[tuple[float, float]] = (),
+    *,
+    low: float | None = None,
+    high: float | None = None,
+) -> tuple[float, float, float] | None:
     """The largest curve / limit over the speeds of ``result`` outside the intervals
-    ``excluded`` (rad/s pairs), resolved (module docstring).
+    ``excluded``, resolved (module docstring).
 
     Parameters
     ----------
-    result
+    result : ResponseResult
         A resolved :class:`~crankdyn.torsion.response.ResponseResult` (``at`` evaluates more
         speeds).
-    curve
-        ``curve(r)`` -> (S,) values.
-    limit
-        ``limit(speeds)`` -> (S,) limits (NaN where none applies).
-    excluded
-        Speed intervals left out (barred ranges).
-    low, high
-        The range considered (default the response's).
+    curve : callable
+        ``curve(r)`` -> (S,) values at the speeds of a response ``r`` (the quantity's unit).
+    limit : callable
+        ``limit(speeds)`` -> (S,) limits at speeds (rad/s), in the curve's unit (NaN where none
+        applies).
+    excluded : iterable of (float, float)
+        Speed intervals left out (rad/s; barred ranges); their ends are sampled.
+    low, high : float or None
+        The range considered (rad/s; default the response's).
 
     Returns
     -------
     (value, limit, speed) or None
         The curve's value, the limit and the speed (rad/s) where the ratio is largest; None when
         no speed outside the intervals has a limit.
+
+    Examples
+    --------
+    The two-mass line of the module's example swept over 100-400 rad/s: with the order-2
+    resonance (near 182.6 rad/s) left out, the worst shaft torque is the order-1 resonance at
+    omega_n = sqrt(k (1/J_1 + 1/J_2)) = 365.148 rad/s, where the elastic torque k |dtheta| is
+    T J_2 / (J_1 + J_2) / eta = 750 N m (the order-2 harmonic adds 0.002 N m):
+
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.response import forced_response
+    >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
+    ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
+    >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), np.linspace(100, 400, 31),
+    ...                     [1.0, 2.0])
+    >>> def torque(x):
+    ...     return x.synthesized_shaft_torque[:, 0]
+    >>> def limit(w):
+    ...     return np.full(np.size(w), 1000.0)
+    >>> value, limit_value, speed = resolved_worst(r, torque, limit, [(170.0, 200.0)])
+    >>> f"{value:.2f} N m / {limit_value:g} N m at {speed:.3f} rad/s"
+    '750.00 N m / 1000 N m at 365.148 rad/s'
     """
     speed = np.asarray(result.speed, dtype=float)
     low = float(speed[0]) if low is None else float(low)

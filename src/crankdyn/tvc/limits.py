@@ -41,6 +41,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
@@ -96,21 +97,117 @@ WIDENING_SOURCES = {
 }
 
 
-def continuous_limit(speed_ratio, tensile_strength, design_factor, diameter) -> np.ndarray:
-    """tau_C (Pa) at speed ratios lambda (IACS UR M68.4; NaN above 1.05)."""
+def continuous_limit(
+    speed_ratio: ArrayLike, tensile_strength: float, design_factor: float, diameter: float
+) -> NDArray[np.float64]:
+    """tau_C, the permissible vibratory shear stress for continuous operation (IACS UR M68.4).
+
+    tau_C = (sigma_B + 160)/18 C_K C_D (3 - 2 lambda^2) for lambda < 0.9 and
+    (sigma_B + 160)/18 C_K C_D 1.38 for 0.9 <= lambda <= 1.05, sigma_B in N/mm^2, with the size
+    factor C_D = 0.35 + 0.93 d^-0.2 (d in mm) (IACS UR M68.4; module docstring;
+    :func:`crankdyn.torsion.rules.permissible_continuous`).
+
+    Parameters
+    ----------
+    speed_ratio : array_like
+        lambda = n / n_0 (dimensionless), any shape.
+    tensile_strength : float
+        sigma_B the formula uses (Pa): the specified minimum tensile strength, capped
+        (:func:`capped_strength`).
+    design_factor : float
+        C_K (dimensionless, :data:`DESIGN_FACTORS`).
+    diameter : float
+        Outer diameter d of the shaft (m), for C_D.
+
+    Returns
+    -------
+    numpy.ndarray
+        tau_C (Pa, half-range amplitude), the shape of ``speed_ratio``; NaN above lambda = 1.05,
+        where the UR sets no limit.
+
+    Examples
+    --------
+    A 300 mm intermediate shaft, sigma_B = 600 N/mm^2, C_K = 1 (MPa):
+
+    >>> tau = continuous_limit([0.5, 0.95, 1.1], 600e6, 1.0, 0.3)
+    >>> [f"{t / 1e6:.6g}" for t in tau]
+    ['68.3163', '37.7106', 'nan']
+    """
     return permissible_continuous(speed_ratio, tensile_strength, design_factor, diameter)
 
 
-def transient_limit(speed_ratio, tensile_strength, design_factor, diameter) -> np.ndarray:
-    """tau_T = 1.7 tau_C / sqrt(C_K) (Pa) at lambda <= 0.8, NaN above (IACS UR M68.4)."""
+def transient_limit(
+    speed_ratio: ArrayLike, tensile_strength: float, design_factor: float, diameter: float
+) -> NDArray[np.float64]:
+    """tau_T, the permissible vibratory shear stress while passing a barred speed range (IACS UR
+    M68.4).
+
+    tau_T = 1.7 tau_C / sqrt(C_K) for lambda <= 0.8 (IACS UR M68.4; module docstring;
+    :func:`crankdyn.torsion.rules.permissible_transient`); no barred range, hence no transient
+    limit, above lambda = 0.8.
+
+    Parameters
+    ----------
+    speed_ratio : array_like
+        lambda = n / n_0 (dimensionless), any shape.
+    tensile_strength : float
+        sigma_B the formula uses (Pa), capped (:func:`capped_strength`).
+    design_factor : float
+        C_K (dimensionless, :data:`DESIGN_FACTORS`).
+    diameter : float
+        Outer diameter d of the shaft (m), for C_D.
+
+    Returns
+    -------
+    numpy.ndarray
+        tau_T (Pa, half-range amplitude), the shape of ``speed_ratio``; NaN above lambda = 0.8.
+
+    Examples
+    --------
+    A keyway in a tapered connection (C_K = 0.60), 300 mm, sigma_B = 600 N/mm^2 (MPa):
+
+    >>> tau = transient_limit([0.5, 0.85], 600e6, 0.60, 0.3)
+    >>> [f"{t / 1e6:.6g}" for t in tau]
+    ['89.9598', 'nan']
+    """
     tau_c = permissible_continuous(speed_ratio, tensile_strength, design_factor, diameter)
     return permissible_transient(speed_ratio, tau_c, design_factor)
 
 
-def barred_limits(critical_speed, rated_speed, widening: str = "lr") -> tuple[float, float]:
-    """The least barred range (rad/s) a society's rule sets around a critical speed n_c (rad/s):
-    ``"lr"``: 16 n_c/(18 - lambda_c) to (18 - lambda_c) n_c/16 with lambda_c = n_c/n_0 (module
-    docstring); ``"none"``: (n_c, n_c)."""
+def barred_limits(
+    critical_speed: float, rated_speed: float, widening: str = "lr"
+) -> tuple[float, float]:
+    """The least barred speed range a society's rule sets around a critical speed.
+
+    ``"lr"`` (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5; module docstring):
+    16 n_c / (18 - lambda_c) <= n <= (18 - lambda_c) n_c / 16 with lambda_c = n_c / n_0;
+    ``"none"`` (IACS UR M68.4, no added margin): the critical speed alone.
+
+    Parameters
+    ----------
+    critical_speed : float
+        The critical speed n_c (rad/s).
+    rated_speed : float
+        The rated speed n_0 (rad/s).
+    widening : str
+        One of :data:`WIDENINGS` (default ``"lr"``).
+
+    Returns
+    -------
+    low, high : float
+        The least range (rad/s) to bar.
+
+    Examples
+    --------
+    A critical speed at 300 rpm, rated speed 500 rpm (rpm):
+
+    >>> from crankdyn.constants import RPM
+    >>> low, high = barred_limits(300 / RPM, 500 / RPM)
+    >>> f"{low * RPM:.6g}", f"{high * RPM:.6g}"
+    ('275.862', '326.25')
+    >>> barred_limits(31.4, 52.4, "none")
+    (31.4, 31.4)
+    """
     nc = float(critical_speed)
     if widening == "none":
         return nc, nc
@@ -120,7 +217,32 @@ def barred_limits(critical_speed, rated_speed, widening: str = "lr") -> tuple[fl
 
 @dataclass(frozen=True)
 class M68Shaft:
-    """One propulsion shaft's M68 data, resolved (Pa, m)."""
+    """One propulsion shaft's IACS UR M68 data, resolved (SI units).
+
+    Parameters
+    ----------
+    between : tuple of str
+        The names of the two masses the shaft connects.
+    tensile_strength : float
+        The specified minimum tensile strength sigma_B of the material (Pa).
+    design_factor : float
+        C_K of the shaft's design feature (dimensionless, :data:`DESIGN_FACTORS`).
+    diameter : float
+        Outer diameter d (m), for the size factor C_D.
+    strength_used : float
+        sigma_B the M68 formulas use (Pa): ``tensile_strength`` capped
+        (:func:`capped_strength`, :data:`STRENGTH_CAPS`).
+    feature : str or None
+        The design feature's name (a key of :data:`DESIGN_FACTORS`), None where C_K was given.
+
+    Examples
+    --------
+    >>> shaft = M68Shaft(("gearbox", "propeller"), 800e6, 1.0, 0.3, 760e6)
+    >>> round(shaft.size_factor, 6)
+    0.647207
+    >>> f"{shaft.tau_c([0.5])[0] / 1e6:.6g} MPa"
+    '82.6986 MPa'
+    """
 
     between: tuple[str, str]
     tensile_strength: float
@@ -129,14 +251,40 @@ class M68Shaft:
     strength_used: float
     feature: str | None = None
 
-    def tau_c(self, speed_ratio) -> np.ndarray:
+    def tau_c(self, speed_ratio: ArrayLike) -> NDArray[np.float64]:
+        """tau_C of this shaft for continuous operation (IACS UR M68.4, :func:`continuous_limit`).
+
+        Parameters
+        ----------
+        speed_ratio : array_like
+            lambda = n / n_0 (dimensionless), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            tau_C (Pa), the shape of ``speed_ratio``; NaN above lambda = 1.05.
+        """
         return continuous_limit(speed_ratio, self.strength_used, self.design_factor, self.diameter)
 
-    def tau_t(self, speed_ratio) -> np.ndarray:
+    def tau_t(self, speed_ratio: ArrayLike) -> NDArray[np.float64]:
+        """tau_T of this shaft while passing a barred range (IACS UR M68.4,
+        :func:`transient_limit`).
+
+        Parameters
+        ----------
+        speed_ratio : array_like
+            lambda = n / n_0 (dimensionless), any shape.
+
+        Returns
+        -------
+        numpy.ndarray
+            tau_T (Pa), the shape of ``speed_ratio``; NaN above lambda = 0.8.
+        """
         return transient_limit(speed_ratio, self.strength_used, self.design_factor, self.diameter)
 
     @property
     def size_factor(self) -> float:
+        """C_D = 0.35 + 0.93 d^-0.2, d in mm (IACS UR M68.4; dimensionless)."""
         return float(size_factor(self.diameter))
 
 
@@ -145,22 +293,44 @@ class CrankshaftLimit:
     """The engine builder's permissible additional vibratory load of the crankshaft, checked at
     every crank span (shafts of role ``"crankshaft"``).
 
+    IACS UR M68 does not cover crankshafts (their dimensions are IACS UR M53's); the engine
+    builder states the permissible additional vibratory stress or torque, which the TVC checks
+    the synthesised response of every span against (docs/tvc.md).
+
     Parameters
     ----------
-    stress
+    stress : float or None
         Permissible vibratory shear stress amplitude (Pa), or None.
-    torque
+    torque : float or None
         Permissible vibratory torque amplitude (N m), or None (one of the two is required).
-    diameter
+    diameter : float or None
         Journal (or pin) diameter for the nominal stress tau = K T / W_p, W_p = pi d^3/16 (m);
         None: the span's own diameters.
-    stress_concentration
-        K, the stated stress concentration factor on the nominal stress (default 1).
-    transient_stress, transient_torque
-        Permissible values while passing a barred range (None: no barred range is permitted
-        for the crankshaft).
-    source
+    stress_concentration : float
+        K, the stated stress concentration factor on the nominal stress (dimensionless, >= 1,
+        default 1).
+    transient_stress, transient_torque : float or None
+        Permissible values while passing a barred range (Pa, N m; None: no barred range is
+        permitted for the crankshaft).
+    source : str or None
         The engine builder's document.
+
+    Raises
+    ------
+    InputError
+        Naming the key ``permissible_stress`` when neither or both of ``stress`` and ``torque``
+        are given; naming the key and its value when a value is not positive or the stress
+        concentration factor is below 1.
+
+    Examples
+    --------
+    >>> limit = CrankshaftLimit(stress=30e6, diameter=0.2, source="maker's TVC data sheet")
+    >>> limit.by_stress, f"{limit.modulus(1e-3):.6g}"
+    (True, '0.0015708')
+    >>> CrankshaftLimit(torque=1e4, stress_concentration=0.5)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: stress_concentration = 0.5: a stress concentration ... at least 1
     """
 
     stress: float | None = None
@@ -190,10 +360,23 @@ class CrankshaftLimit:
 
     @property
     def by_stress(self) -> bool:
+        """Whether the limit is a stress (Pa) rather than a torque (N m)."""
         return self.stress is not None
 
     def modulus(self, shaft_modulus: float) -> float:
-        """W_p (m^3) of the nominal stress: pi d^3/16 of ``diameter``, else the shaft's own."""
+        """The polar section modulus W_p of the nominal stress tau = T / W_p.
+
+        Parameters
+        ----------
+        shaft_modulus : float
+            The crank span's own W_p (m^3), used where no ``diameter`` is given.
+
+        Returns
+        -------
+        float
+            W_p = pi d^3 / 16 of ``diameter`` (m^3; the torsion of a solid circular shaft), else
+            ``shaft_modulus``.
+        """
         if self.diameter is not None:
             return math.pi * self.diameter**3 / 16.0
         return shaft_modulus

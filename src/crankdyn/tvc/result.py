@@ -4,11 +4,24 @@ ranges, passages through them, one result per running condition and the whole TV
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from crankdyn.constants import RPM
 from crankdyn.results import Result, scalar
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from crankdyn.engine.model import Engine
+    from crankdyn.torsion.campbell import CampbellResult
+    from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.model import TorsionModel
+    from crankdyn.torsion.response import ResponseResult
+    from crankdyn.torsion.transient import TransientResult
+    from crankdyn.tvc.analysis import Check
+    from crankdyn.tvc.spec import TvcSpec
 
 __all__ = ["BarredSpeedRange", "ConditionResult", "Passage", "TvcResult", "Verdict"]
 
@@ -16,9 +29,30 @@ __all__ = ["BarredSpeedRange", "ConditionResult", "Passage", "TvcResult", "Verdi
 @dataclass(frozen=True)
 class Verdict(Result):
     """One row of the verdict table: a component's worst value of a quantity in a condition
-    against its limit. ``margin`` = 1 - worst / limit (negative where the limit is exceeded);
-    ``speed`` (rad/s) where the worst value occurs; ``source`` the rule or maker's document the
-    limit comes from."""
+    against its limit.
+
+    ``worst`` and ``limit`` are in ``unit`` (SI: Pa, N m, W, rad/s^2, rad, or dimensionless);
+    ``margin`` = 1 - worst / limit (negative where the limit is exceeded, -inf where no limit
+    applies); ``speed`` (rad/s) where the worst value occurs; ``source`` the rule (IACS UR M68.4,
+    a society's rule) or the maker's document (DIN 740-2 coupling catalogue, engine builder)
+    the limit comes from.
+
+    Parameters
+    ----------
+    kind : str
+        What the row checks, whatever its range (the worst misfiring cylinder is chosen per
+        component and kind; not exported).
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> v = Verdict(component="intermediate shaft", condition="normal firing",
+    ...             quantity="synthesised vibratory shear stress (half range)", worst=30e6,
+    ...             limit=40e6, unit="Pa", margin=0.25, passed=True, source="IACS UR M68.4",
+    ...             speed=300 / RPM)
+    >>> v.to_dict()["speed_rpm"], v.to_dict()["margin"]
+    (300.0, 0.25)
+    """
 
     component: str = scalar("component", "Component", "")
     condition: str = scalar("condition", "Condition", "")
@@ -32,16 +66,28 @@ class Verdict(Result):
     speed: float | None = scalar("speed_rpm", "At speed", "rpm", RPM, default=None)
     note: str | None = scalar("note", "Note", "", default=None)
     kind: str = field(default="", repr=False, compare=False)
-    """What the row checks, whatever its range (the worst misfiring cylinder is chosen per
-    component and kind)."""
 
 
 @dataclass(frozen=True)
 class BarredSpeedRange(Result):
-    """A barred speed range of one component in one condition (rad/s; exported in rpm):
+    """A barred speed range of one component in one condition (rad/s; exported in rpm).
+
     ``exceeds_start``/``exceeds_end`` where the response exceeds the continuous limit (ends
-    bisected to 0.01 rpm), ``start``/``end`` the declared range after the society's widening
-    and the tachometer tolerance; ``permitted`` whether the rule allows a barred range there."""
+    bisected to 0.01 rpm, :func:`crankdyn.torsion.rules.exceedances`), ``start``/``end`` the
+    declared range after the society's widening (:func:`crankdyn.tvc.limits.barred_limits`)
+    and the tachometer tolerance; ``permitted`` whether the rule allows a barred range there
+    (IACS UR M68.4: below 0.8 n_0 and under tau_T; a coupling under T_Kmax, DIN 740-2).
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> b = BarredSpeedRange(component="intermediate shaft", condition="normal firing",
+    ...                      start=280 / RPM, end=320 / RPM, permitted=True,
+    ...                      exceeds_start=290 / RPM, exceeds_end=310 / RPM,
+    ...                      critical_speed=300 / RPM, worst_ratio=1.2, reason="", margins="")
+    >>> b.to_dict()["start_rpm"], b.to_dict()["end_rpm"]
+    (280.0, 320.0)
+    """
 
     component: str = scalar("component", "Component", "")
     condition: str = scalar("condition", "Condition", "")
@@ -59,7 +105,19 @@ class BarredSpeedRange(Result):
 @dataclass(frozen=True)
 class Passage(Result):
     """A time-domain run-up through a barred range: the time spent in it (s) and the run's
-    speeds (rad/s)."""
+    speeds (rad/s; exported in rpm).
+
+    The time in the range is the integral of J dOmega / (T_engine - T_load) over it (Newton's
+    second law of the whole line; module docstring of :mod:`crankdyn.tvc.analysis`).
+
+    Parameters
+    ----------
+    transient : TransientResult or None
+        The time-domain run (:func:`crankdyn.torsion.transient.transient_response`; not
+        exported).
+    elements : tuple of int
+        The model's shaft indices of the component whose barred range this is (for plots).
+    """
 
     condition: str = scalar("condition", "Condition", "")
     start: float = scalar("start_rpm", "From", "rpm", RPM)
@@ -72,29 +130,53 @@ class Passage(Result):
     run_to: float = scalar("run_to_rpm", "Run to", "rpm", RPM)
     duration: float = scalar("duration_s", "Duration of the run", "s")
     note: str = scalar("note", "How", "")
-    transient: object = field(default=None, repr=False, compare=False)
-    elements: tuple = field(default=(), repr=False, compare=False)
-    """The model's shaft indices of the component whose barred range this is (for plots)."""
+    transient: TransientResult | None = field(default=None, repr=False, compare=False)
+    elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
 
 
 @dataclass(frozen=True)
 class ConditionResult(Result):
-    """One running condition: its response, verdicts and barred ranges."""
+    """One running condition: its response, verdicts and barred ranges (speeds in rad/s,
+    exported in rpm).
+
+    Parameters
+    ----------
+    response : ResponseResult or None
+        The condition's resolved forced response
+        (:func:`crankdyn.torsion.response.forced_response`; for the misfire conditions the
+        worst cylinder's); not exported.
+    curves : dict
+        The checks plotted, {(component, quantity): :class:`crankdyn.tvc.analysis.Check`}; not
+        exported.
+    """
 
     name: str = scalar("condition", "Condition", "")
     kind: str = scalar("kind", "Kind", "")
     low: float = scalar("from_rpm", "Speed range from", "rpm", RPM)
     high: float = scalar("to_rpm", "Speed range to", "rpm", RPM)
     description: str = scalar("description", "Description", "")
-    verdicts: tuple = scalar("verdicts", "Verdicts", "")
-    barred_ranges: tuple = scalar("barred_speed_ranges", "Barred speed ranges", "")
-    passages: tuple = scalar("passages", "Passages", "")
-    response: object = field(default=None, repr=False, compare=False)
-    curves: dict = field(default_factory=dict, repr=False, compare=False)
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "")
+    barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
+        "barred_speed_ranges", "Barred speed ranges", ""
+    )
+    passages: tuple[Passage, ...] = scalar("passages", "Passages", "")
+    response: ResponseResult | None = field(default=None, repr=False, compare=False)
+    curves: dict[tuple[str, str], Check] = field(default_factory=dict, repr=False, compare=False)
 
-    def plot(self, fig=None):
+    def plot(self, fig: Figure | None = None) -> Figure:
         """Every checked quantity as a fraction of its limit against speed, the barred ranges
-        shaded; returns the Figure."""
+        shaded.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.tvc import plot_condition
 
         return plot_condition(self, fig=fig)
@@ -103,29 +185,77 @@ class ConditionResult(Result):
 @dataclass(frozen=True)
 class TvcResult(Result):
     """A torsional vibration calculation (:func:`crankdyn.tvc.tvc`): the installation, modes,
-    every condition's verdicts and barred ranges, and the overall verdict. ``to_dict`` carries
-    every verdict row in ``verdicts`` and every barred range in ``barred_speed_ranges``."""
+    every condition's verdicts and barred ranges, and the overall verdict.
+
+    ``to_dict`` carries every verdict row in ``verdicts`` and every barred range in
+    ``barred_speed_ranges``. The fields below are not exported.
+
+    Parameters
+    ----------
+    model : TorsionModel or None
+        The model as calculated (with the load law's excitation).
+    engine : Engine or None
+        The engine whose cylinders excite it, or None.
+    modes : ModalResult or None
+        The model's natural modes (:func:`crankdyn.torsion.modal.natural_modes`).
+    campbell : CampbellResult or None
+        The Campbell diagram over the conditions' speeds
+        (:func:`crankdyn.torsion.campbell.campbell`), None where it could not be drawn.
+    spec : TvcSpec or None
+        The settings the calculation ran with.
+    condition_results : tuple of ConditionResult
+        Every condition, with its response (the same objects as ``conditions``).
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> row = dict(condition="normal firing", passed=True, speed=300 / RPM)
+    >>> shaft = Verdict(component="intermediate shaft", quantity="stress", worst=30e6,
+    ...                 limit=40e6, unit="Pa", margin=0.25, source="IACS UR M68.4", **row)
+    >>> row["passed"] = False
+    >>> coupling = Verdict(component="coupling C1", quantity="torque vs T_KW", worst=12e3,
+    ...                    limit=10e3, unit="N·m", margin=-0.2, source="DIN 740-2", **row)
+    >>> result = TvcResult(model_name="demo", rated_speed=500 / RPM, load="propeller",
+    ...                    passed=False, verdicts=(shaft, coupling), barred_ranges=(),
+    ...                    passages=(), conditions=(), notes=(), tachometer_tolerance=0.02,
+    ...                    widening="none")
+    >>> [v.component for v in result.failed()], result.worst_margin()
+    (['coupling C1'], -0.2)
+    >>> result.to_dict()["rated_speed_rpm"]
+    500.0
+    """
 
     title = "Torsional vibration calculation"
     model_name: str = scalar("model", "Installation", "")
     rated_speed: float = scalar("rated_speed_rpm", "Rated speed n_0", "rpm", RPM)
     load: str = scalar("load", "Load", "")
     passed: bool = scalar("passed", "Passed", "")
-    verdicts: tuple = scalar("verdicts", "Verdicts", "")
-    barred_ranges: tuple = scalar("barred_speed_ranges", "Barred speed ranges", "")
-    passages: tuple = scalar("passages", "Passages through barred ranges", "")
-    conditions: tuple = scalar("conditions", "Conditions", "")
-    notes: tuple = scalar("notes", "Notes", "")
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "")
+    barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
+        "barred_speed_ranges", "Barred speed ranges", ""
+    )
+    passages: tuple[Passage, ...] = scalar("passages", "Passages through barred ranges", "")
+    conditions: tuple[ConditionResult, ...] = scalar("conditions", "Conditions", "")
+    notes: tuple[str, ...] = scalar("notes", "Notes", "")
     tachometer_tolerance: float = scalar("tachometer_tolerance", "Tachometer tolerance", "")
     widening: str = scalar("barred_range_widening", "Barred-range widening", "")
-    model: object = field(default=None, repr=False, compare=False)
-    engine: object = field(default=None, repr=False, compare=False)
-    modes: object = field(default=None, repr=False, compare=False)
-    campbell: object = field(default=None, repr=False, compare=False)
-    spec: object = field(default=None, repr=False, compare=False)
-    condition_results: tuple = field(default=(), repr=False, compare=False)
+    model: TorsionModel | None = field(default=None, repr=False, compare=False)
+    engine: Engine | None = field(default=None, repr=False, compare=False)
+    modes: ModalResult | None = field(default=None, repr=False, compare=False)
+    campbell: CampbellResult | None = field(default=None, repr=False, compare=False)
+    spec: TvcSpec | None = field(default=None, repr=False, compare=False)
+    condition_results: tuple[ConditionResult, ...] = field(default=(), repr=False, compare=False)
 
-    def to_dict(self) -> dict:
+    def to_dict(self) -> dict[str, Any]:
+        """The result as a JSON-ready dict (:meth:`crankdyn.results.Result.to_dict`).
+
+        Returns
+        -------
+        dict
+            Every exported field (speeds in rpm, the unit in the key); the verdict rows and
+            barred ranges once, in ``verdicts`` and ``barred_speed_ranges``, not again under
+            each of ``conditions``.
+        """
         out = super().to_dict()
         out["conditions"] = [
             {k: v for k, v in c.items() if k not in ("verdicts", "barred_speed_ranges")}
@@ -133,10 +263,24 @@ class TvcResult(Result):
         ]
         return out
 
-    def failed(self) -> tuple:
-        """The verdict rows that did not pass."""
+    def failed(self) -> tuple[Verdict, ...]:
+        """The verdict rows that did not pass.
+
+        Returns
+        -------
+        tuple of Verdict
+            The rows with ``passed`` False, in table order.
+        """
         return tuple(v for v in self.verdicts if not v.passed)
 
     def worst_margin(self) -> float:
+        """The smallest finite margin of all verdict rows.
+
+        Returns
+        -------
+        float
+            min(1 - worst / limit) over the rows (dimensionless; negative where a limit is
+            exceeded), NaN when there is no row with a finite margin.
+        """
         margins = [v.margin for v in self.verdicts if np.isfinite(v.margin)]
         return min(margins) if margins else float("nan")

@@ -5,14 +5,20 @@ limit and the data of the passage through barred ranges (docs/tvc.md)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
 from crankdyn.tvc.limits import WIDENINGS, CrankshaftLimit
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["CONDITION_KINDS", "DEFAULT_STEP", "LOADS", "TvcSpec"]
 
@@ -22,6 +28,8 @@ propeller law) or ``"constant-speed"`` (a generating set: full load at every spe
 run up without load)."""
 
 CONDITION_KINDS = ("normal", "misfire", "damper-out")
+"""Kinds of running condition: ``"normal"`` firing, ``"misfire"`` (each cylinder not firing in
+turn) and ``"damper-out"`` (the damper out of order); the keys of :attr:`TvcSpec.ranges`."""
 
 DEFAULT_STEP = 10.0 / RPM
 """Speed step of the user grid of every condition's sweep (rad/s, 10 rpm); the peaks, barred
@@ -34,43 +42,65 @@ class TvcSpec:
 
     Parameters
     ----------
-    speed_range
+    speed_range : tuple of float or None
         (low, high) speeds (rad/s) of every condition; None: the model's operating range.
-    ranges
+    ranges : dict or None
         Per-condition speed ranges overriding ``speed_range``: a dict from a condition kind
-        (:data:`CONDITION_KINDS`) to (low, high) (rad/s).
-    step
-        Speed step of the user grid (rad/s).
-    load
+        (:data:`CONDITION_KINDS`) to (low, high) (rad/s); held as a dict (empty: none).
+    step : float
+        Speed step of the user grid (rad/s, default :data:`DEFAULT_STEP`, 10 rpm).
+    load : str or None
         :data:`LOADS`, or None: ``"propeller"`` when the model has a propeller, else
         ``"constant-speed"``.
-    misfire
+    misfire : bool
         Whether each single-cylinder misfire is a condition (default True where the engine's
         pressure is known).
-    damper_out
+    damper_out : bool
         Whether "damper out of order" is a condition (default True where there is a damper).
-    tachometer_tolerance
-        Relative accuracy of the speed indication, widening every barred range on both sides
-        (default 0.02).
-    widening
+    tachometer_tolerance : float
+        Relative accuracy of the speed indication (dimensionless, 0 <= tolerance < 0.2),
+        widening every barred range on both sides (default 0.02).
+    widening : str
         :data:`crankdyn.tvc.limits.WIDENINGS` (default ``"none"``: IACS UR M68 alone).
-    crankshaft
+    crankshaft : CrankshaftLimit or None
         The engine builder's crankshaft limit (:class:`CrankshaftLimit`), or None.
-    engine_torque
+    engine_torque : float or None
         Torque (N m, reference shaft) the engine delivers while passing a barred range; None: the
         mean load torque at the rated speed (the torque limit at rated load).
-    engine_torque_curve
+    engine_torque_curve : tuple of array_like or None
         Instead of ``engine_torque``: the engine's torque-speed curve, (speeds (rad/s,
-        increasing), torques (N m, > 0)), interpolated linearly and held at its ends.
-    passage_load
+        increasing), torques (N m, > 0)), interpolated linearly and held at its ends; held as
+        two float arrays.
+    passage_load : str or None
         ``"law"``: the load follows its law while passing; ``"none"``: no load (a generating set
         runs up before it is loaded). Default from ``load``.
-    source
+    source : str or None
         Where these settings come from, for reports.
+
+    Raises
+    ------
+    InputError
+        Naming the key (``speed_range``, ``speed_ranges.<kind>``, ``step``, ``load``,
+        ``tachometer_tolerance``, ``widening``, ``engine_torque``, ``engine_torque_curve``,
+        ``passage_load``) and its value where a setting is unknown, not positive, out of range
+        or an empty speed range, or where both ``engine_torque`` and ``engine_torque_curve``
+        are given.
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> spec = TvcSpec(speed_range=(300 / RPM, 600 / RPM))
+    >>> round(spec.step * RPM, 6), spec.tachometer_tolerance, spec.widening
+    (10.0, 0.02, 'none')
+    >>> TvcSpec(load="hybrid")
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: load = "hybrid": expected one of propeller, constant-speed
     """
 
     speed_range: tuple[float, float] | None = None
-    ranges: dict | None = None
+    # None on input: an empty dict after __post_init__ (the __init__ below tells the type checker)
+    ranges: dict[str, tuple[float, float]] = None  # type: ignore[assignment]
     step: float = DEFAULT_STEP
     load: str | None = None
     misfire: bool = True
@@ -79,9 +109,28 @@ class TvcSpec:
     widening: str = "none"
     crankshaft: CrankshaftLimit | None = None
     engine_torque: float | None = None
-    engine_torque_curve: tuple | None = None
+    engine_torque_curve: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
     passage_load: str | None = None
     source: str | None = None
+
+    if TYPE_CHECKING:  # what the constructor accepts; the fields hold the normalised values
+
+        def __init__(
+            self,
+            speed_range: Sequence[float] | None = None,
+            ranges: Mapping[str, Sequence[float]] | None = None,
+            step: float = DEFAULT_STEP,
+            load: str | None = None,
+            misfire: bool = True,
+            damper_out: bool = True,
+            tachometer_tolerance: float = 0.02,
+            widening: str = "none",
+            crankshaft: CrankshaftLimit | None = None,
+            engine_torque: float | None = None,
+            engine_torque_curve: tuple[ArrayLike, ArrayLike] | None = None,
+            passage_load: str | None = None,
+            source: str | None = None,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         if self.speed_range is not None:
@@ -145,9 +194,31 @@ class TvcSpec:
         if self.passage_load is not None and self.passage_load not in ("law", "none"):
             raise InputError("expected law or none", key="passage_load", value=self.passage_load)
 
-    def engine_torque_at(self, speeds, default: float) -> np.ndarray:
-        """The engine's torque (N m) at speeds (rad/s): the curve, the constant torque, or
-        ``default``."""
+    def engine_torque_at(self, speeds: ArrayLike, default: float) -> NDArray[np.float64]:
+        """The engine's torque while passing a barred range, at given speeds.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Reference-shaft speeds (rad/s), any shape.
+        default : float
+            The torque (N m) where neither ``engine_torque_curve`` nor ``engine_torque`` is given
+            (the TVC passes the mean load torque at the rated speed).
+
+        Returns
+        -------
+        numpy.ndarray
+            Torque (N m), the shape of ``speeds``: ``engine_torque_curve`` interpolated linearly
+            (held at its ends), else ``engine_torque``, else ``default``.
+
+        Examples
+        --------
+        >>> spec = TvcSpec(engine_torque_curve=([20.0, 40.0, 60.0], [1e4, 2e4, 2e4]))
+        >>> spec.engine_torque_at([10.0, 30.0, 70.0], 5e3)
+        array([10000., 15000., 20000.])
+        >>> TvcSpec().engine_torque_at([10.0, 30.0], 5e3)
+        array([5000., 5000.])
+        """
         w = np.asarray(speeds, dtype=float)
         if self.engine_torque_curve is not None:
             cw, cq = self.engine_torque_curve
@@ -155,8 +226,36 @@ class TvcSpec:
         value = self.engine_torque if self.engine_torque is not None else default
         return np.full(w.shape, float(value))
 
-    def range_of(self, kind: str, model) -> tuple[float, float]:
-        """The speed range (rad/s) of a condition kind."""
+    def range_of(self, kind: str, model: TorsionModel | None) -> tuple[float, float]:
+        """The speed range of a condition kind.
+
+        Parameters
+        ----------
+        kind : str
+            A condition kind (:data:`CONDITION_KINDS`).
+        model : TorsionModel or None
+            The model whose ``[operating]`` speed range is the last resort.
+
+        Returns
+        -------
+        low, high : float
+            The kind's own range from ``ranges``, else ``speed_range``, else the model's
+            operating range (rad/s).
+
+        Raises
+        ------
+        InputError
+            Naming the model's file and the key ``speed_range`` where none of them is given.
+
+        Examples
+        --------
+        >>> from crankdyn.constants import RPM
+        >>> spec = TvcSpec(speed_range=(300 / RPM, 600 / RPM), ranges={"misfire": (30.0, 50.0)})
+        >>> spec.range_of("misfire", None)
+        (30.0, 50.0)
+        >>> [round(w * RPM, 6) for w in spec.range_of("normal", None)]
+        [300.0, 600.0]
+        """
         if kind in self.ranges:
             return self.ranges[kind]
         if self.speed_range is not None:
@@ -171,7 +270,7 @@ class TvcSpec:
         return operating.low, operating.high
 
 
-def _range(pair, key: str) -> tuple[float, float]:
+def _range(pair: Sequence[float], key: str) -> tuple[float, float]:
     try:
         low, high = (float(v) for v in pair)
     except (TypeError, ValueError):
