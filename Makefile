@@ -40,7 +40,9 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
-	src/crankdyn/torsion/coupling.py
+	src/crankdyn/torsion/coupling.py \
+	src/crankdyn/torsion/driveline.py \
+	src/crankdyn/torsion/model.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -139,6 +139,8 @@ HELD = frozenset(
         "crankdyn.study.spec",
         "crankdyn.torsion",
         "crankdyn.torsion.coupling",
+        "crankdyn.torsion.driveline",
+        "crankdyn.torsion.model",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave
