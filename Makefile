@@ -42,6 +42,7 @@ TYPED := \
 	src/crankdyn/study \
 	src/crankdyn/torsion/coupling.py \
 	src/crankdyn/torsion/driveline.py \
+	src/crankdyn/torsion/loaded.py \
 	src/crankdyn/torsion/model.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python

@@ -140,6 +140,7 @@ HELD = frozenset(
         "crankdyn.torsion",
         "crankdyn.torsion.coupling",
         "crankdyn.torsion.driveline",
+        "crankdyn.torsion.loaded",
         "crankdyn.torsion.model",
     }
 )
