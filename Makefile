@@ -43,7 +43,8 @@ TYPED := \
 	src/crankdyn/torsion/coupling.py \
 	src/crankdyn/torsion/driveline.py \
 	src/crankdyn/torsion/loaded.py \
-	src/crankdyn/torsion/model.py
+	src/crankdyn/torsion/model.py \
+	src/crankdyn/torsion/opentorsion.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -142,6 +142,7 @@ HELD = frozenset(
         "crankdyn.torsion.driveline",
         "crankdyn.torsion.loaded",
         "crankdyn.torsion.model",
+        "crankdyn.torsion.opentorsion",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave
