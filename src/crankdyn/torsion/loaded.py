@@ -69,6 +69,9 @@ def coupling_stiffness(
     740-2 catalogue tables, :meth:`crankdyn.torsion.coupling.Coupling.stiffness_at`; the mean
     torques from the load laws, :func:`crankdyn.torsion.sources.mean_torques`).
 
+    The result is None when the model has no such coupling, no load law or no engine to drive
+    the loads (a shaft line alone carries no mean torque).
+
     Parameters
     ----------
     model : crankdyn.torsion.model.TorsionModel
@@ -85,8 +88,6 @@ def coupling_stiffness(
         (S, count).
     torque : numpy.ndarray
         Their mean torques |T| (N m), shape (S, count).
-
-    None when the model has no such coupling, no load law or no engine to drive the loads.
 
     Raises
     ------
@@ -217,7 +218,8 @@ def stiffness_change(
 ):
     """The change of the load-dependent couplings' reflected stiffness from the model's at the
     mean torque of every reference speed (module docstring). The dynamic stiffness at speed n
-    is D(omega) + (1 + i eta) Delta K(n).
+    is D(omega) + (1 + i eta) Delta K(n). The result is None when nothing depends on the load
+    (:func:`coupling_stiffness`).
 
     Parameters
     ----------
@@ -240,8 +242,6 @@ def stiffness_change(
         The couplings' indices in ``model.shafts``.
     k_actual : numpy.ndarray
         Their actual stiffness k(n) (N m/rad), shape (S, count).
-
-    None when nothing depends on the load.
 
     Raises
     ------
