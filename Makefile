@@ -40,8 +40,13 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
+	src/crankdyn/torsion/coupling.py \
 	src/crankdyn/torsion/damped.py \
 	src/crankdyn/torsion/dampers.py \
+	src/crankdyn/torsion/driveline.py \
+	src/crankdyn/torsion/loaded.py \
+	src/crankdyn/torsion/model.py \
+	src/crankdyn/torsion/opentorsion.py \
 	src/crankdyn/torsion/resolve.py \
 	src/crankdyn/torsion/response.py \
 	src/crankdyn/torsion/rules.py \

@@ -150,6 +150,11 @@ HELD = frozenset(
         "crankdyn.tvc.limits",
         "crankdyn.tvc.result",
         "crankdyn.tvc.spec",
+        "crankdyn.torsion.coupling",
+        "crankdyn.torsion.driveline",
+        "crankdyn.torsion.loaded",
+        "crankdyn.torsion.model",
+        "crankdyn.torsion.opentorsion",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave

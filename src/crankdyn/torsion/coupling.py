@@ -41,6 +41,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
@@ -55,18 +56,61 @@ PSI_MAX = 2.0 * math.pi
 
 
 def loss_factor_from_psi(psi: float) -> float:
-    """Loss factor eta = tan(delta) = psi / (2 pi) of a relative damping psi (dimensionless;
-    DIN 740-2, module docstring)."""
+    """Loss factor eta = tan(delta) = psi / (2 pi) of a relative damping psi.
+
+    From psi = A_D / A_el = 2 pi eta for a hysteretic element (DIN 740-2:1986; Renold's
+    definitions sheet, psi = 2 pi / M with M = 1 / tan(delta); module docstring).
+
+    Parameters
+    ----------
+    psi : float
+        Relative damping psi (dimensionless), the damping work per cycle over the elastic
+        strain energy.
+
+    Returns
+    -------
+    float
+        Loss factor eta (dimensionless).
+
+    Examples
+    --------
+    >>> round(loss_factor_from_psi(2.0 * math.pi), 12)
+    1.0
+    >>> f"{loss_factor_from_psi(1.0):.6g}"
+    '0.159155'
+    """
     return psi / (2.0 * math.pi)
 
 
 def psi_from_damping_ratio(zeta: float) -> float:
-    """Relative damping psi = 4 pi zeta equivalent to a damping ratio zeta at resonance
-    (eta = 2 zeta; module docstring)."""
+    """Relative damping psi = 4 pi zeta equivalent to a damping ratio zeta at resonance.
+
+    A single mass on a hysteretic spring of loss factor eta has at resonance the magnification
+    1 / eta of a viscous one with damping ratio zeta = eta / 2, so psi = 2 pi eta = 4 pi zeta
+    (DIN 740-2:1986; module docstring).
+
+    Parameters
+    ----------
+    zeta : float
+        Damping ratio zeta (dimensionless, fraction of critical).
+
+    Returns
+    -------
+    float
+        Relative damping psi (dimensionless).
+
+    Examples
+    --------
+    >>> f"{psi_from_damping_ratio(0.05):.6g}"
+    '0.628319'
+    >>> round(loss_factor_from_psi(psi_from_damping_ratio(0.05)), 12)
+    0.1
+    """
     return 4.0 * math.pi * zeta
 
 
-def _optional_positive(name: str, value, what: str):
+def _optional_positive(name: str, value: object, what: str) -> float | None:
+    """``value`` checked positive (:func:`~crankdyn.crank.geometry.check_positive`), or None."""
     if value is None:
         return None
     return check_positive(name, value, what)
@@ -78,29 +122,47 @@ class Coupling:
 
     Parameters
     ----------
-    stiffness
+    stiffness : float or None
         C_Tdyn (N m/rad) at the reference torque, > 0; or None with a table.
-    table_torque, table_stiffness
+    table_torque, table_stiffness : sequence of float or None
         C_Tdyn (N m/rad) against the mean torque (N m): a table, torques >= 0 increasing
-        strictly, interpolated linearly and never extrapolated.
-    relative_damping
+        strictly, interpolated linearly and never extrapolated; stored as read-only arrays,
+        shape (rows,).
+    relative_damping : float or None
         psi (dimensionless), 0 < psi <= 2 pi; or None with ``damping_ratio``.
-    damping_ratio
+    damping_ratio : float or None
         zeta (dimensionless) instead of psi (psi = 4 pi zeta), 0 < zeta <= 0.5.
-    temperature_factor
+    temperature_factor : float
         Factor on C_Tdyn at the operating temperature (dimensionless), > 0 (default 1).
-    damping_temperature_factor
+    damping_temperature_factor : float
         Factor on psi at the operating temperature (dimensionless), > 0 (default 1).
-    reference_torque
+    reference_torque : float or None
         Mean torque (N m) at which the table gives the stiffness of the model (its natural
         frequencies and, unless a load law gives the mean torque at each speed, the forced
         response); default the nominal torque T_KN, else the table's largest torque.
-    nominal_torque, maximum_torque, vibratory_torque
-        T_KN, T_Kmax, T_KW (N m), for the rule checks.
-    power_loss
+    nominal_torque, maximum_torque, vibratory_torque : float or None
+        T_KN, T_Kmax, T_KW (N m), for the rule checks; each > 0, T_Kmax >= T_KN >= T_KW.
+    power_loss : float or None
         P_KV, the permissible power loss (W), for the rule checks.
-    designation
+    designation : str or None
         Maker and type, for reports.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        On a missing, doubled or impossible value, naming its key (``dynamic_stiffness``,
+        ``stiffness_table``, ``stiffness_table_torque``, ``relative_damping``,
+        ``damping_ratio``, the torque or factor's own name) and the value given.
+
+    Examples
+    --------
+    >>> c = Coupling(stiffness=50e3, relative_damping=1.0, nominal_torque=2000.0)
+    >>> f"{c.model_stiffness:.6g} N·m/rad, eta {c.loss_factor:.4f}, V_R {c.resonance_factor:.4f}"
+    '50000 N·m/rad, eta 0.1592, V_R 6.2832'
+    >>> t = Coupling(table_torque=[0.0, 1000.0, 2000.0], table_stiffness=[40e3, 50e3, 70e3],
+    ...              damping_ratio=0.05, nominal_torque=1500.0)
+    >>> t.model_torque, float(t.model_stiffness), t.stiffness_at([500.0, -2000.0]).tolist()
+    (1500.0, 60000.0, [45000.0, 70000.0])
     """
 
     stiffness: float | None = None
@@ -255,11 +317,10 @@ class Coupling:
         return hash(self._key())
 
     def _key(self) -> tuple:
-        table = (
-            None
-            if self.table_torque is None
-            else (tuple(self.table_torque), tuple(self.table_stiffness))
-        )
+        table = None
+        if self.table_torque is not None:
+            assert self.table_stiffness is not None  # both or neither (__post_init__)
+            table = (tuple(self.table_torque), tuple(self.table_stiffness))
         return (
             self.stiffness,
             table,
@@ -279,11 +340,11 @@ class Coupling:
     @property
     def psi(self) -> float:
         """Relative damping psi at the operating temperature (dimensionless)."""
-        base = (
-            self.relative_damping
-            if self.relative_damping is not None
-            else psi_from_damping_ratio(self.damping_ratio)
-        )
+        if self.relative_damping is not None:
+            base = self.relative_damping
+        else:
+            assert self.damping_ratio is not None  # psi or zeta is given (__post_init__)
+            base = psi_from_damping_ratio(self.damping_ratio)
         return base * self.damping_temperature_factor
 
     @property
@@ -317,17 +378,21 @@ class Coupling:
     def model_stiffness(self) -> float:
         """C_Tdyn of the model (N m/rad): at :attr:`model_torque`, with the temperature
         factor."""
-        if self.table_torque is None:
+        torque = self.model_torque
+        if torque is None:
+            assert self.stiffness is not None  # a stiffness or a table (__post_init__)
             return self.stiffness * self.temperature_factor
-        return float(self.stiffness_at(self.model_torque))
+        return float(self.stiffness_at(torque))
 
     def _fits(self, torque: float) -> bool:
         t = self.table_torque
+        assert t is not None  # called with a table only
         return t[0] * (1 - 1e-9) - 1e-12 <= torque <= t[-1] * (1 + 1e-9)
 
     def _in_table(self, torque: float, key: str) -> None:
         if not self._fits(torque):
             t = self.table_torque
+            assert t is not None  # _fits needs a table
             raise InputError(
                 f"the mean torque lies outside the coupling's stiffness table ({t[0]:.6g} to "
                 f"{t[-1]:.6g} N·m, not extrapolated)",
@@ -335,11 +400,37 @@ class Coupling:
                 value=torque,
             )
 
-    def stiffness_at(self, mean_torque) -> np.ndarray:
-        """C_Tdyn (N m/rad) at mean torques |T| (N m), interpolated in the table, times the
-        temperature factor; a torque outside the table is refused (one line)."""
+    def stiffness_at(self, mean_torque: ArrayLike) -> NDArray[np.float64]:
+        """C_Tdyn at mean torques |T|: interpolated linearly in the table, times the
+        temperature factor (module docstring).
+
+        Parameters
+        ----------
+        mean_torque : array_like
+            Mean torques carried by the coupling (N m), any shape; the sign is ignored.
+
+        Returns
+        -------
+        numpy.ndarray
+            Dynamic torsional stiffness (N m/rad), the shape of ``mean_torque``; constant
+            without a table.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            When a torque lies outside the table (never extrapolated): key ``mean_torque``,
+            the first such torque as value.
+
+        Examples
+        --------
+        >>> c = Coupling(table_torque=[0.0, 1000.0], table_stiffness=[40e3, 60e3],
+        ...              relative_damping=1.0, temperature_factor=0.9)
+        >>> c.stiffness_at([0.0, 250.0, -1000.0]).tolist()
+        [36000.0, 40500.0, 54000.0]
+        """
         t = np.abs(np.asarray(mean_torque, dtype=float))
         if self.table_torque is None:
+            assert self.stiffness is not None  # a stiffness or a table (__post_init__)
             return np.full(t.shape, self.stiffness * self.temperature_factor)
         outside = ~(
             (t >= self.table_torque[0] * (1 - 1e-9) - 1e-12)
@@ -347,10 +438,25 @@ class Coupling:
         )
         if np.any(outside):
             self._in_table(float(np.atleast_1d(t)[np.atleast_1d(outside)][0]), "mean_torque")
+        assert self.table_stiffness is not None  # both or neither (__post_init__)
         return np.interp(t, self.table_torque, self.table_stiffness) * self.temperature_factor
 
     def limits(self) -> dict[str, float | None]:
-        """The permissible values kept for the rule checks (SI)."""
+        """The permissible values kept for the rule checks (DIN 740-2; SI).
+
+        Returns
+        -------
+        dict of str to float or None
+            ``nominal_torque_Nm``, ``maximum_torque_Nm``, ``vibratory_torque_Nm`` (N m) and
+            ``power_loss_W`` (W); None where not given.
+
+        Examples
+        --------
+        >>> c = Coupling(stiffness=1e4, relative_damping=1.0, nominal_torque=800.0, power_loss=90.0)
+        >>> c.limits()
+        {'nominal_torque_Nm': 800.0, 'maximum_torque_Nm': None, 'vibratory_torque_Nm': None,
+         'power_loss_W': 90.0}
+        """
         return {
             "nominal_torque_Nm": self.nominal_torque,
             "maximum_torque_Nm": self.maximum_torque,

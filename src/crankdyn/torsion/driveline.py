@@ -13,20 +13,51 @@ that two copies of a model (two identical engines on a twin-input gearbox) can b
 from __future__ import annotations
 
 import dataclasses
+from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import GROUND, Gear, TorsionModel
 
+if TYPE_CHECKING:
+    from crankdyn.torsion.sources import EngineSource, HarmonicSource
+
 __all__ = ["join", "rename", "strip_cylinders"]
 
 
-def _rename_pair(pair, mapping):
-    return tuple(mapping.get(n, n) if n != GROUND else n for n in pair)
+def _renamed(name: str, mapping: dict[str, str]) -> str:
+    """``name`` through ``mapping`` (unchanged when not in it; ``"ground"`` never renamed)."""
+    return mapping.get(name, name) if name != GROUND else name
+
+
+def _rename_pair(pair: tuple[str, str], mapping: dict[str, str]) -> tuple[str, str]:
+    """The two ends of a shaft or gear through ``mapping``."""
+    return _renamed(pair[0], mapping), _renamed(pair[1], mapping)
 
 
 def rename(model: TorsionModel, prefix: str) -> TorsionModel:
     """The model with ``prefix`` before every mass and damper-ring name (and every reference to
-    them: shafts, gears, dampers, sources, rule checks)."""
+    them: shafts, gears, dampers, sources, rule checks).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    prefix : str
+        Text put before every name (e.g. ``"port "``); empty: the model unchanged.
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        The renamed model (same values; ``"ground"`` stays ``"ground"``).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import TorsionModel
+    >>> line = TorsionModel.chain_of([1.0, 2.0], [5.0], ground_right=3.0)
+    >>> renamed = rename(line, "port ")
+    >>> renamed.mass_names, [s.between for s in renamed.shafts]
+    (('port 1', 'port 2'), [('port 1', 'port 2'), ('port 2', 'ground')])
+    """
     if not prefix:
         return model
     mapping = {m.name: f"{prefix}{m.name}" for m in model.masses}
@@ -67,7 +98,10 @@ def rename(model: TorsionModel, prefix: str) -> TorsionModel:
     )
 
 
-def _rename_source(source, mapping):
+def _rename_source(
+    source: HarmonicSource | EngineSource, mapping: dict[str, str]
+) -> HarmonicSource | EngineSource:
+    """An excitation source acting on the renamed masses."""
     from crankdyn.torsion.sources import EngineSource
 
     if isinstance(source, EngineSource):
@@ -79,7 +113,31 @@ def _rename_source(source, mapping):
 
 def strip_cylinders(model: TorsionModel) -> tuple[TorsionModel, tuple[tuple[int, str], ...]]:
     """The model with no cylinders on its masses, and the (cylinder, mass) pairs removed (for an
-    engine that becomes an :class:`~crankdyn.torsion.sources.EngineSource` of a larger model)."""
+    engine that becomes an :class:`~crankdyn.torsion.sources.EngineSource` of a larger model).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (an engine's equivalent system).
+
+    Returns
+    -------
+    stripped : crankdyn.torsion.model.TorsionModel
+        The model with no cylinders on its masses.
+    pairs : tuple of (int, str)
+        (cylinder number, mass name) of every cylinder removed, in listing order.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> engine = TorsionModel(
+    ...     masses=(Mass("throw 1", 1.0, cylinders=(1,)), Mass("throw 2", 1.0, cylinders=(2,))),
+    ...     shafts=(Shaft(("throw 1", "throw 2"), 1e6),),
+    ... )
+    >>> stripped, pairs = strip_cylinders(engine)
+    >>> pairs, stripped.cylinder_dofs
+    (((1, 'throw 1'), (2, 'throw 2')), {})
+    """
     pairs = tuple((c, m.name) for m in model.masses for c in m.cylinders)
     masses = tuple(dataclasses.replace(m, cylinders=()) for m in model.masses)
     return dataclasses.replace(model, masses=masses), pairs
@@ -97,10 +155,40 @@ def join(
     ``at_second`` (a mass of the second); the first model's excitation, operating range and
     rated speed prevail, the sources, dampers and rule checks of both are kept.
 
+    The joint is a rigid gear of ratio 1 that keeps the sense of rotation (``joint=True``): the
+    two masses become one degree of freedom and their inertias add (module docstring).
+
+    Parameters
+    ----------
+    first, second : crankdyn.torsion.model.TorsionModel
+        The two models (e.g. an engine and a shaft line); their mass and damper names must
+        differ (:func:`rename` gives one a prefix).
+    at_first, at_second : str
+        The mass of ``first`` and the mass of ``second`` bolted together.
+    name : str or None
+        Name of the joined model; default ``"<first> + <second>"``.
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        The driveline: the masses of ``first`` then those of ``second``.
+
     Raises
     ------
-    InputError
-        For an unknown joining mass, or a name used in both models.
+    crankdyn.errors.InputError
+        For an unknown joining mass (key ``mass``, the name as value), or a name used in both
+        models (key ``name``, the name as value).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import TorsionModel
+    >>> engine = rename(TorsionModel.chain_of([1.0, 4.0], [2e6], name="engine"), "e")
+    >>> line = rename(TorsionModel.chain_of([0.5, 9.0], [1e5], name="line"), "l")
+    >>> drive = join(engine, line, "e2", "l1")
+    >>> drive.name, drive.dof_names
+    ('engine + line', ('e1', 'e2 + l1', 'l2'))
+    >>> drive.dof_inertia.tolist()
+    [1.0, 4.5, 9.0]
     """
     first.index(at_first)
     second.index(at_second)
@@ -117,16 +205,17 @@ def join(
         )
     joint = Gear((at_first, at_second), 1.0, direction="same", joint=True)
     rules = first.rules
-    if second.rules is not None:
+    other = second.rules
+    if other is not None:
         if rules is None:
-            rules = second.rules
+            rules = other
         else:
             rules = dataclasses.replace(
                 rules,
                 rated_speed=rules.rated_speed
                 if rules.rated_speed is not None
-                else second.rules.rated_speed,
-                shafts=rules.shafts + second.rules.shafts,
+                else other.rated_speed,
+                shafts=rules.shafts + other.shafts,
             )
     return TorsionModel(
         masses=first.masses + second.masses,

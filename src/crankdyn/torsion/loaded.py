@@ -18,11 +18,18 @@ one speed's load.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.errors import InputError
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import TorsionModel
+    from crankdyn.torsion.response import LinearSystem
 
 __all__ = [
     "change_matrix",
@@ -33,7 +40,8 @@ __all__ = [
 ]
 
 
-def _dependent(model) -> list[int]:
+def _dependent(model: TorsionModel) -> list[int]:
+    """Indices of the shafts that are couplings with a stiffness table of more than one row."""
     return [
         i
         for i, s in enumerate(model.shafts)
@@ -41,11 +49,12 @@ def _dependent(model) -> list[int]:
     ]
 
 
-def _has_loads(model) -> bool:
+def _has_loads(model: TorsionModel) -> bool:
+    """Whether a source of the model carries a load law (a mean torque)."""
     return any(getattr(s, "load", None) is not None for s in model.sources)
 
 
-def _has_drivers(model) -> bool:
+def _has_drivers(model: TorsionModel) -> bool:
     """Whether an engine drives the loads (cylinders on the masses or an engine source): a
     shaft line alone has no mean torque, and keeps its couplings' model stiffness."""
     from crankdyn.torsion.sources import EngineSource
@@ -53,11 +62,60 @@ def _has_drivers(model) -> bool:
     return bool(model.cylinder_dofs) or any(isinstance(s, EngineSource) for s in model.sources)
 
 
-def coupling_stiffness(model, speeds):
-    """(shaft indices, C_Tdyn (N m/rad, actual, with temperature factors) of those shafts at
-    every speed, shape (S, count), and their mean torques (N m), shape (S, count)) for the
-    load-dependent couplings, at the mean torque of each reference speed (rad/s); None when the
-    model has no such coupling, no load law or no engine to drive the loads."""
+def coupling_stiffness(
+    model: TorsionModel, speeds: ArrayLike
+) -> tuple[list[int], NDArray[np.float64], NDArray[np.float64]] | None:
+    """The load-dependent couplings' stiffness C_Tdyn at the mean torque of every speed (DIN
+    740-2 catalogue tables, :meth:`crankdyn.torsion.coupling.Coupling.stiffness_at`; the mean
+    torques from the load laws, :func:`crankdyn.torsion.sources.mean_torques`).
+
+    The result is None when the model has no such coupling, no load law or no engine to drive
+    the loads (a shaft line alone carries no mean torque).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    speeds : array_like
+        Reference speeds (rad/s), shape (S,) (a scalar is taken as one speed).
+
+    Returns
+    -------
+    shafts : list of int
+        Indices (in ``model.shafts``) of the load-dependent couplings, count of them.
+    stiffness : numpy.ndarray
+        Their actual C_Tdyn (N m/rad, with temperature factors, not reflected), shape
+        (S, count).
+    torque : numpy.ndarray
+        Their mean torques |T| (N m), shape (S, count).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        When a mean torque lies outside a coupling's stiffness table (never extrapolated): the
+        model's file, key ``stiffness_table``, the torque (N m) as value, the speed in the
+        message.
+
+    Examples
+    --------
+    An engine driving a propeller (propeller law, 20 kN m at 600 rpm) through a rubber
+    coupling whose stiffness rises with the mean torque:
+
+    >>> from crankdyn.constants import RPM
+    >>> from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.sources import LoadLaw, propeller
+    >>> coupling = Coupling(table_torque=[0.0, 10e3, 20e3], table_stiffness=[1e5, 2e5, 2.5e5],
+    ...                     relative_damping=1.0, nominal_torque=20e3)
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 50.0, cylinders=(1,)), Mass("propeller", 200.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), coupling=coupling),),
+    ...     sources=(propeller("propeller", 4, fractions=[0.05],
+    ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
+    ... )
+    >>> shafts, k, torque = coupling_stiffness(model, [300 / RPM, 600 / RPM])
+    >>> shafts, k.ravel().tolist(), torque.ravel().round(6).tolist()
+    ([0], [150000.0, 250000.0], [5000.0, 20000.0])
+    """
     shafts = _dependent(model)
     if not shafts or not _has_loads(model) or not _has_drivers(model):
         return None
@@ -69,6 +127,7 @@ def coupling_stiffness(model, speeds):
     torques = np.empty_like(out)
     for j, i in enumerate(shafts):
         coupling = model.shafts[i].coupling
+        assert coupling is not None and coupling.table_torque is not None  # _dependent
         t = np.abs(mean[:, i])
         low, high = coupling.table_torque[0], coupling.table_torque[-1]
         outside = (t < low * (1 - 1e-9) - 1e-12) | (t > high * (1 + 1e-9))
@@ -88,9 +147,47 @@ def coupling_stiffness(model, speeds):
     return shafts, out, torques
 
 
-def model_at_speed(model, speed: float):
+def model_at_speed(model: TorsionModel, speed: float) -> TorsionModel:
     """The model with every load-dependent coupling's stiffness at the mean torque of the
-    reference speed ``speed`` (rad/s) (the model itself when nothing depends on the load)."""
+    reference speed ``speed`` (the model itself when nothing depends on the load).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    speed : float
+        Reference speed (rad/s).
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        The model with each such coupling's ``reference_torque`` set to its mean torque at
+        ``speed`` (its natural frequencies are those at that speed's load).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        As :func:`coupling_stiffness`, for a mean torque outside a coupling's table.
+
+    Examples
+    --------
+    An engine driving a propeller (propeller law, 20 kN m at 600 rpm) through a rubber
+    coupling whose stiffness rises with the mean torque:
+
+    >>> from crankdyn.constants import RPM
+    >>> from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.sources import LoadLaw, propeller
+    >>> coupling = Coupling(table_torque=[0.0, 10e3, 20e3], table_stiffness=[1e5, 2e5, 2.5e5],
+    ...                     relative_damping=1.0, nominal_torque=20e3)
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 50.0, cylinders=(1,)), Mass("propeller", 200.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), coupling=coupling),),
+    ...     sources=(propeller("propeller", 4, fractions=[0.05],
+    ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
+    ... )
+    >>> model.shafts[0].stiffness, model_at_speed(model, 300 / RPM).shafts[0].stiffness
+    (250000.0, 150000.0)
+    """
     found = coupling_stiffness(model, [speed])
     if found is None:
         return model
@@ -98,18 +195,80 @@ def model_at_speed(model, speed: float):
     changed = list(model.shafts)
     for j, i in enumerate(shafts):
         s = changed[i]
+        assert s.coupling is not None  # a load-dependent coupling (_dependent)
         coupling = dataclasses.replace(s.coupling, reference_torque=float(torque[0, j]))
-        changed[i] = dataclasses.replace(s, coupling=coupling, stiffness=None, loss_factor=0.0)
+        # stiffness None: derived again from the coupling in Shaft.__post_init__ (the field
+        # holds the normalised float; replace is typed by the fields, not by Shaft's __init__)
+        changed[i] = dataclasses.replace(
+            s,
+            coupling=coupling,
+            stiffness=None,  # type: ignore[arg-type]
+            loss_factor=0.0,
+        )
     return dataclasses.replace(model, shafts=tuple(changed))
 
 
-def stiffness_change(model, system, speeds):
+def stiffness_change(
+    model: TorsionModel, system: LinearSystem, speeds: ArrayLike
+) -> (
+    tuple[
+        NDArray[np.int_], NDArray[np.float64], NDArray[np.float64], list[int], NDArray[np.float64]
+    ]
+    | None
+):
     """The change of the load-dependent couplings' reflected stiffness from the model's at the
-    mean torque of every reference speed (rad/s): (ends, delta, eta, shafts, k_actual) with the
-    couplings' degrees of freedom ``ends`` (count, 2) in ``system``, ``delta`` (S, count) in
-    N m/rad (reflected: (k(n) - k_model) r^2), their loss factors ``eta`` (count,), their shaft
-    indices and their actual stiffness k(n) (S, count); None when nothing depends on the load
-    (module docstring). The dynamic stiffness at speed n is D(omega) + (1 + i eta) Delta K(n)."""
+    mean torque of every reference speed (module docstring). The dynamic stiffness at speed n
+    is D(omega) + (1 + i eta) Delta K(n). The result is None when nothing depends on the load
+    (:func:`coupling_stiffness`).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    system : crankdyn.torsion.response.LinearSystem
+        Its linear system (:func:`crankdyn.torsion.response.linear_system`).
+    speeds : array_like
+        Reference speeds (rad/s), shape (S,).
+
+    Returns
+    -------
+    ends : numpy.ndarray
+        The couplings' degrees of freedom in ``system``, shape (count, 2).
+    delta : numpy.ndarray
+        Reflected stiffness change (k(n) - k_model) r^2 (N m/rad), shape (S, count).
+    eta : numpy.ndarray
+        The couplings' loss factors (dimensionless), shape (count,).
+    shafts : list of int
+        The couplings' indices in ``model.shafts``.
+    k_actual : numpy.ndarray
+        Their actual stiffness k(n) (N m/rad), shape (S, count).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        As :func:`coupling_stiffness`, for a mean torque outside a coupling's table.
+
+    Examples
+    --------
+    An engine driving a propeller (propeller law, 20 kN m at 600 rpm) through a rubber
+    coupling whose stiffness rises with the mean torque:
+
+    >>> from crankdyn.constants import RPM
+    >>> from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.sources import LoadLaw, propeller
+    >>> coupling = Coupling(table_torque=[0.0, 10e3, 20e3], table_stiffness=[1e5, 2e5, 2.5e5],
+    ...                     relative_damping=1.0, nominal_torque=20e3)
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 50.0, cylinders=(1,)), Mass("propeller", 200.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), coupling=coupling),),
+    ...     sources=(propeller("propeller", 4, fractions=[0.05],
+    ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
+    ... )
+    >>> from crankdyn.torsion.response import linear_system
+    >>> ends, delta, eta, shafts, k = stiffness_change(model, linear_system(model), [300 / RPM])
+    >>> ends.tolist(), delta.tolist(), f"{eta[0]:.6f}"
+    ([[0, 1]], [[-100000.0]], '0.159155')
+    """
     found = coupling_stiffness(model, speeds)
     if found is None:
         return None
@@ -123,9 +282,32 @@ def stiffness_change(model, system, speeds):
     return ends, delta, eta, shafts, k_actual
 
 
-def change_matrix(ends, values, size: int) -> np.ndarray:
-    """Delta K (..., size, size) of the couplings between the degrees of freedom ``ends`` with
-    the stiffness changes ``values`` (..., count): each a spring between its two ends."""
+def change_matrix(
+    ends: Iterable[Sequence[int]] | NDArray[np.int_], values: ArrayLike, size: int
+) -> NDArray[Any]:
+    """Delta K of the couplings: each a spring between its two ends, assembled like a shaft
+    (k [[1, -1], [-1, 1]]; :meth:`crankdyn.torsion.model.TorsionModel.stiffness_matrix`).
+
+    Parameters
+    ----------
+    ends : array_like of int
+        Degrees of freedom (a, b) at the ends of every coupling, shape (count, 2).
+    values : array_like
+        Stiffness changes (N m/rad; complex for a dynamic stiffness change), shape
+        (..., count).
+    size : int
+        Number of degrees of freedom n.
+
+    Returns
+    -------
+    numpy.ndarray
+        Delta K (N m/rad, the dtype of ``values``), shape (..., n, n).
+
+    Examples
+    --------
+    >>> change_matrix([(0, 1)], [2.0], 3).tolist()
+    [[2.0, -2.0, 0.0], [-2.0, 2.0, 0.0], [0.0, 0.0, 0.0]]
+    """
     values = np.asarray(values)
     out = np.zeros((*values.shape[:-1], size, size), dtype=values.dtype)
     for j, (a, b) in enumerate(ends):  # the couplings (a few)
@@ -136,11 +318,79 @@ def change_matrix(ends, values, size: int) -> np.ndarray:
     return out
 
 
-def solve_at_speeds(model, system, speeds, omega, forcing, hysteretic_frequency=None):
-    """(X, k) for the forced response: the reflected complex amplitudes X (speeds, orders, dofs)
-    and the actual stiffness per element k (elements,) or (speeds, 1, elements) for the element
-    torques k (theta_b - theta_a) / r: ``system.solve`` when no coupling depends on the load,
-    else the batched solve with each speed's coupling stiffness (module docstring)."""
+def solve_at_speeds(
+    model: TorsionModel,
+    system: LinearSystem,
+    speeds: ArrayLike,
+    omega: ArrayLike,
+    forcing: ArrayLike,
+    hysteretic_frequency: float | None = None,
+) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+    """The forced response's complex amplitudes, each speed with its couplings' stiffness:
+    ``system.solve`` when no coupling depends on the load, else the batched solve of
+    (D(omega) + (1 + i eta) Delta K(n)) X = F (module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    system : crankdyn.torsion.response.LinearSystem
+        Its linear system (:func:`crankdyn.torsion.response.linear_system`).
+    speeds : array_like
+        Reference speeds n (rad/s), shape (S,).
+    omega : array_like
+        Circular frequencies of the orders at every speed (rad/s), shape (S, Q).
+    forcing : array_like
+        Complex harmonic torques on the degrees of freedom (N m, reflected), shape
+        (S, Q, dofs).
+    hysteretic_frequency : float or None
+        None: loss factors act as hysteretic damping (i eta k); else the circular frequency
+        omega_h (rad/s) at which they are turned into viscous damping eta k / omega_h.
+
+    Returns
+    -------
+    x : numpy.ndarray
+        Reflected complex angle amplitudes (rad), shape (S, Q, dofs).
+    k : numpy.ndarray
+        Actual stiffness of every element (N m/rad) for the element torques
+        k (theta_b - theta_a) / r: shape (elements,), or (S, 1, elements) with load-dependent
+        couplings (signed by the sense of rotation).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        As :func:`coupling_stiffness`, for a mean torque outside a coupling's table.
+
+    Examples
+    --------
+    The batched solve agrees with the ordinary solve of the model at each speed's load:
+
+    An engine driving a propeller (propeller law, 20 kN m at 600 rpm) through a rubber
+    coupling whose stiffness rises with the mean torque:
+
+    >>> from crankdyn.constants import RPM
+    >>> from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.sources import LoadLaw, propeller
+    >>> coupling = Coupling(table_torque=[0.0, 10e3, 20e3], table_stiffness=[1e5, 2e5, 2.5e5],
+    ...                     relative_damping=1.0, nominal_torque=20e3)
+    >>> model = TorsionModel(
+    ...     masses=(Mass("engine", 50.0, cylinders=(1,)), Mass("propeller", 200.0)),
+    ...     shafts=(Shaft(("engine", "propeller"), coupling=coupling),),
+    ...     sources=(propeller("propeller", 4, fractions=[0.05],
+    ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
+    ... )
+    >>> import numpy as np
+    >>> from crankdyn.torsion.response import linear_system
+    >>> speeds = np.array([300.0, 600.0]) / RPM
+    >>> omega = 4.0 * speeds[:, None]
+    >>> forcing = np.ones((2, 1, 2), dtype=complex)
+    >>> x, k = solve_at_speeds(model, linear_system(model), speeds, omega, forcing)
+    >>> x.shape, k[:, 0, 0].tolist()
+    ((2, 1, 2), [150000.0, 250000.0])
+    >>> one = linear_system(model_at_speed(model, speeds[0])).solve(omega[0], forcing[0])
+    >>> bool(np.allclose(x[0], one, rtol=1e-12, atol=0.0))
+    True
+    """
     base_k = system.element_stiffness / system.element_ratio
     found = stiffness_change(model, system, speeds)
     if found is None:

@@ -32,14 +32,26 @@ from __future__ import annotations
 
 import math
 from collections import deque
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.torsion.coupling import Coupling
+
+if TYPE_CHECKING:
+    from crankdyn.engine.model import Engine
+    from crankdyn.torsion.campbell import OperatingRange
+    from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.rules import RuleSet
+    from crankdyn.torsion.sources import EngineSource, HarmonicSource
+    from crankdyn.tvc.spec import TvcSpec
 
 __all__ = [
     "GEAR_DIRECTIONS",
@@ -98,6 +110,7 @@ mistake, and the products of the solvers (J omega^2 theta) approach overflow."""
 
 
 def _nonnegative(name: str, value: float, what: str) -> float:
+    """``value`` as a finite float >= 0, else an InputError naming ``name`` and the value."""
     number = check_finite(name, value)
     if number < 0.0:
         raise InputError(f"{what} must not be negative", key=name, value=value)
@@ -105,6 +118,7 @@ def _nonnegative(name: str, value: float, what: str) -> float:
 
 
 def _name(value: object, key: str = "name") -> str:
+    """``value`` when it is a non-empty string, else an InputError naming ``key``."""
     if not isinstance(value, str) or not value.strip():
         raise InputError("expected a non-empty name", key=key, value=value)
     return value
@@ -120,12 +134,27 @@ def shaft_stiffness(
 
     Parameters
     ----------
-    length
+    length : float
         Shaft length l (m).
-    outer_diameter, inner_diameter
+    outer_diameter, inner_diameter : float
         Outer diameter D and bore d (m), 0 <= d < D.
-    shear_modulus
+    shear_modulus : float
         Shear modulus G (Pa).
+
+    Returns
+    -------
+    float
+        Torsional stiffness k (N m/rad); the values are not checked (:class:`ShaftGeometry`
+        checks them).
+
+    Examples
+    --------
+    A steel shaft (G = 80 GPa) 1 m long, 100 mm across, solid and with a 50 mm bore:
+
+    >>> f"{shaft_stiffness(1.0, 0.1, 0.0, 80e9):.6g}"
+    '785398'
+    >>> f"{shaft_stiffness(1.0, 0.1, 0.05, 80e9):.6g}"
+    '736311'
     """
     polar = math.pi * (outer_diameter**4 - inner_diameter**4) / 32.0
     return shear_modulus * polar / length
@@ -138,14 +167,24 @@ class MassLimits:
 
     Parameters
     ----------
-    vibratory_torque
+    vibratory_torque : float or None
         Permissible vibratory torque amplitude at the component (N m), > 0, or None.
-    angular_acceleration
+    angular_acceleration : float or None
         Permissible angular acceleration amplitude (rad/s^2), > 0, or None.
-    amplitude
+    amplitude : float or None
         Permissible vibratory angle amplitude (rad), > 0, or None.
-    source
+    source : str or None
         Where the limits come from (the maker's document), for reports.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For a limit that is not a positive finite number, naming its key and value.
+
+    Examples
+    --------
+    >>> MassLimits(vibratory_torque=12e3, source="alternator data sheet").vibratory_torque
+    12000.0
     """
 
     vibratory_torque: float | None = None
@@ -166,22 +205,40 @@ class Mass:
 
     Parameters
     ----------
-    name
+    name : str
         Unique name (``"ground"`` is reserved).
-    inertia
+    inertia : float
         Moment of inertia J about the shaft axis (kg m^2), > 0.
-    damping
+    damping : float
         Absolute viscous damping to ground c (N m s/rad), >= 0 (e.g. piston friction at a
         crank throw).
-    cylinders
+    cylinders : tuple of int
         Engine cylinders whose gas and inertia torques act on this mass (1-based numbers), for
         the forced response; empty for masses that are not crank throws.
-    role
+    role : str or None
         What the mass is (:data:`MASS_ROLES`), or None. A gear wheel (``role="gear"``) may have
         no inertia when a rigid mesh joins it to a wheel that has some (the mesh's degree of
         freedom carries the sum).
-    limits
+    limits : MassLimits or None
         The maker's limits for the component (:class:`MassLimits`), or None.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For an empty or reserved name (key ``name``), an unknown role (``role``, with the
+        nearest valid one), a negative or non-finite inertia or damping (``inertia``,
+        ``damping``) or cylinder numbers that are not distinct whole numbers from 1
+        (``cylinders``); each message carries the value given.
+
+    Examples
+    --------
+    >>> m = Mass("throw 1", 1.8, damping=40.0, cylinders=[1], role="crank throw")
+    >>> m.cylinders, m.inertia
+    ((1,), 1.8)
+    >>> Mass("ground", 1.0)
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: name: "ground" is reserved for the fixed end of a grounded shaft
     """
 
     name: str
@@ -245,14 +302,28 @@ class ShaftGeometry:
 
     Parameters
     ----------
-    outer_diameter
-        Outer diameter D (m).
-    inner_diameter
+    outer_diameter : float
+        Outer diameter D (m), > 0.
+    inner_diameter : float
         Bore d (m), 0 <= d < D.
-    length
+    length : float or None
         Length l (m), or None when the stiffness is given directly.
-    shear_modulus
+    shear_modulus : float or None
         Shear modulus G (Pa), or None when the stiffness is given directly.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For a diameter, length or shear modulus that is not positive and finite, or a bore not
+        smaller than the outer diameter, naming the key and value.
+
+    Examples
+    --------
+    >>> g = ShaftGeometry(0.1, 0.05, length=1.0, shear_modulus=80e9)
+    >>> f"{g.polar_moment:.6g} m^4, {g.section_modulus:.6g} m^3, {g.stiffness:.6g} N m/rad"
+    '9.20388e-06 m^4, 0.000184078 m^3, 736311 N m/rad'
+    >>> ShaftGeometry(0.1).stiffness is None
+    True
     """
 
     outer_diameter: float
@@ -307,51 +378,70 @@ class Shaft:
 
     Parameters
     ----------
-    between
+    between : tuple of (str, str)
         The two mass names; one of them may be ``"ground"`` (a grounded end).
-    stiffness
+    stiffness : float or None
         Torsional stiffness k (N m/rad), > 0, referred to the first mass's speed; None to take
-        it from ``geometry`` or from ``coupling``.
-    damping
+        it from ``geometry`` (k = G I_p / l, :func:`shaft_stiffness`) or from ``coupling``.
+        Always a float after construction.
+    damping : float
         Relative viscous damping c between the two ends (N m s/rad), >= 0.
-    loss_factor
+    loss_factor : float
         Hysteretic loss factor eta (dimensionless), >= 0: a damping torque eta k times the twist,
         in phase with the twist rate (equivalent viscous c = eta k / omega).
-    geometry
+    geometry : ShaftGeometry or None
         Shaft cross-section, and length and shear modulus when the stiffness is not given
         (kept for nominal shear stresses).
-    name
+    name : str or None
         Name of the component (e.g. ``"intermediate shaft"``, a coupling's type), or None.
-    role
+    role : str or None
         What a plain shaft is (:data:`SHAFT_ROLES`), for the rule checks; None: a crank span
         for the generated crank throws, else unspecified.
-    coupling
+    coupling : crankdyn.torsion.coupling.Coupling or None
         Catalogue data of an elastic coupling (:class:`crankdyn.torsion.coupling.Coupling`):
         the stiffness (C_Tdyn at the coupling's model torque, with its temperature factor) and
         the loss factor (psi / 2 pi) come from it.
-    inertia
+    inertia : float
         The shaft's own polar moment of inertia (kg m^2), >= 0: a distributed-mass shaft, which
         the model divides into ``elements`` lumped elements (:mod:`crankdyn.torsion.distributed`).
-    elements
+    elements : int or None
         Number of elements of a distributed-mass shaft (>= 1), or None to set it from
         ``max_frequency``.
-    max_frequency
+    max_frequency : float or None
         Highest natural frequency (rad/s) the subdivision must resolve to 0.1 % (default
         :data:`crankdyn.torsion.distributed.DEFAULT_MAX_FREQUENCY`).
-    ratio
+    ratio : float
         Speed ratio n_b / n_a across the element (dimensionless, > 0): 1 for shafts and
         couplings; the gear ratio of an elastic gear mesh.
-    direction
+    direction : int
         +1 when the second mass turns in the sense of the first, -1 when it turns the other way
         (an external gear mesh).
-    gear
+    gear : Gear or None
         The :class:`Gear` an elastic mesh came from (its data for the rule checks), or None.
-    segment_of
+    segment_of : tuple of (str, str) or None
         For the elements of a subdivided shaft, the masses the whole shaft joins.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For ends that are not two different mass names (key ``between``), a missing or doubled
+        stiffness (``stiffness``: a value, a geometry with length and shear modulus, or a
+        coupling), a negative damping or loss factor, an unknown role, a direction other than
+        +1 or -1, an element count outside 1 to 10000, or distributed inertia on a mesh, a
+        coupling or a grounded shaft (``inertia``); each message carries the value given.
+
+    Examples
+    --------
+    >>> s = Shaft(("flywheel", "propeller"), geometry=ShaftGeometry(0.1, 0.0, 1.0, 80e9))
+    >>> f"{s.stiffness:.6g}", s.kind, s.label, s.grounded
+    ('785398', 'shaft', 'flywheel - propeller', False)
+    >>> Shaft(("ground", "hub"), 2e6, loss_factor=0.02).grounded
+    True
     """
 
     between: tuple[str, str]
-    stiffness: float | None = None
+    # None on input: derived in __post_init__ (the __init__ below tells the type checker)
+    stiffness: float = None  # type: ignore[assignment]
     damping: float = 0.0
     loss_factor: float = 0.0
     geometry: ShaftGeometry | None = None
@@ -365,6 +455,27 @@ class Shaft:
     direction: int = 1
     gear: Gear | None = field(default=None, compare=False)
     segment_of: tuple[str, str] | None = None
+
+    if TYPE_CHECKING:  # what the constructor accepts; the fields hold the normalised values
+
+        def __init__(
+            self,
+            between: tuple[str, str] | Sequence[str],
+            stiffness: float | None = None,
+            damping: float = 0.0,
+            loss_factor: float = 0.0,
+            geometry: ShaftGeometry | None = None,
+            name: str | None = None,
+            role: str | None = None,
+            coupling: Coupling | None = None,
+            inertia: float = 0.0,
+            elements: int | None = None,
+            max_frequency: float | None = None,
+            ratio: float = 1.0,
+            direction: int = 1,
+            gear: Gear | None = None,
+            segment_of: tuple[str, str] | None = None,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         ends = tuple(self.between) if isinstance(self.between, (list, tuple)) else ()
@@ -518,7 +629,8 @@ class Shaft:
         return f"{self.between[0]} - {self.between[1]}"
 
 
-def _teeth(value) -> tuple[int, int]:
+def _teeth(value: object) -> tuple[int, int]:
+    """Tooth numbers (z_a, z_b) as two whole numbers >= 1, else an InputError (key ``teeth``)."""
     pair = tuple(value) if isinstance(value, (list, tuple)) else ()
     if len(pair) != 2 or any(
         isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 1 for z in pair
@@ -537,34 +649,56 @@ class Gear:
 
     Parameters
     ----------
-    between
+    between : tuple of (str, str)
         The two meshing masses (gear wheels) ``(a, b)``.
-    ratio
-        Speed ratio n_b / n_a (dimensionless), > 0; None with ``teeth``.
-    teeth
+    ratio : float or None
+        Speed ratio n_b / n_a (dimensionless), > 0; None with ``teeth``. Always a float after
+        construction.
+    teeth : tuple of (int, int) or None
         Tooth numbers (z_a, z_b) instead of the ratio: n_b / n_a = z_a / z_b.
-    direction
+    direction : str
         ``"opposite"`` (default: an external mesh, the second wheel turns the other way) or
         ``"same"`` (an internal mesh, or a gear train given as one stage that keeps the sense).
         Angles and torques beyond a reversing mesh change sign (docs/torsion-file.md).
-    stiffness
+    stiffness : float or None
         Mesh stiffness as a torsional stiffness referred to wheel a (N m/rad): k_a = c r_b,a^2
         for a mesh stiffness c (N/m) along the line of action and the base radius r_b,a of
-        wheel a. None: a rigid mesh (the two wheels are one degree of freedom).
-    damping
+        wheel a (the tangential spring at the base circle, twist r_b theta; Ker Wilson, vol. 1,
+        ch. 3). None: a rigid mesh (the two wheels are one degree of freedom).
+    damping : float
         Viscous mesh damping referred to wheel a (N m s/rad), >= 0 (elastic meshes).
-    loss_factor
+    loss_factor : float
         Loss factor of the mesh stiffness (dimensionless), >= 0 (elastic meshes).
-    name
+    name : str or None
         Name of the gear stage, for reports.
-    joint
+    joint : bool
         True for a rigid joint of two masses bolted together (e.g. an engine's flywheel and a
         shaft line's first mass, :mod:`crankdyn.torsion.driveline`): ratio 1, same sense, no
         gear for the rule checks.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For ends that are not two different mass names or include ``"ground"`` (key
+        ``between``), a missing, zero, negative or non-finite ratio or one that disagrees with
+        the tooth numbers (``ratio``), bad tooth numbers (``teeth``), an unknown direction
+        (``direction``), a non-positive mesh stiffness (``stiffness``), damping on a rigid mesh,
+        or a joint that is not ratio 1 and ``"same"`` (``joint``); each with the value given.
+
+    Examples
+    --------
+    >>> g = Gear(("pinion", "wheel"), teeth=(23, 71))
+    >>> f"{g.ratio:.6g}", g.sign, g.elastic, g.label
+    ('0.323944', -1, False, 'pinion - wheel')
+    >>> e = Gear(("pinion", "wheel"), 3.0, stiffness=5e7, direction="same").mesh_shaft()
+    >>> e.kind, e.ratio, e.direction, e.stiffness
+    ('mesh', 3.0, 1, 50000000.0)
     """
 
     between: tuple[str, str]
-    ratio: float | None = None
+    # None on input with teeth: derived in __post_init__ (the __init__ below tells the type
+    # checker)
+    ratio: float = None  # type: ignore[assignment]
     teeth: tuple[int, int] | None = None
     direction: str = "opposite"
     stiffness: float | None = None
@@ -572,6 +706,21 @@ class Gear:
     loss_factor: float = 0.0
     name: str | None = None
     joint: bool = False
+
+    if TYPE_CHECKING:  # what the constructor accepts; the fields hold the normalised values
+
+        def __init__(
+            self,
+            between: tuple[str, str] | Sequence[str],
+            ratio: float | None = None,
+            teeth: tuple[int, int] | Sequence[int] | None = None,
+            direction: str = "opposite",
+            stiffness: float | None = None,
+            damping: float = 0.0,
+            loss_factor: float = 0.0,
+            name: str | None = None,
+            joint: bool = False,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         ends = tuple(self.between) if isinstance(self.between, (list, tuple)) else ()
@@ -656,11 +805,25 @@ class Gear:
 
     @property
     def label(self) -> str:
+        """``"a - b"`` for tables and messages."""
         return f"{self.between[0]} - {self.between[1]}"
 
     def mesh_shaft(self) -> Shaft:
         """The elastic mesh as an element of the model: a spring of the mesh stiffness (referred
-        to wheel a) between the wheels, carrying the speed ratio and the direction."""
+        to wheel a) between the wheels, carrying the speed ratio and the direction.
+
+        Returns
+        -------
+        Shaft
+            A shaft of kind ``"mesh"`` with this gear's stiffness (N m/rad, referred to wheel
+            a), damping (N m s/rad), loss factor, ratio and sense (+1 or -1), and ``gear`` set
+            to this gear.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For a rigid mesh (no stiffness; key ``stiffness``).
+        """
         return Shaft(
             self.between,
             self.stiffness,
@@ -677,23 +840,65 @@ class Gear:
 class ChainArrays:
     """A chain model in chain order: degree of freedom i is joined to i + 1 (SI arrays).
 
-    All values are reflected to the reference speed.
+    All values are reflected to the reference speed (module docstring: inertia and the
+    stiffness and damping of a shaft times r^2, Ker Wilson vol. 1 ch. 3); n is the number of
+    degrees of freedom (:attr:`TorsionModel.chain`).
+
+    Parameters
+    ----------
+    inertia : numpy.ndarray
+        Moment of inertia of every degree of freedom (kg m^2), shape (n,).
+    stiffness : numpy.ndarray
+        Stiffness between neighbours i and i + 1 (N m/rad), shape (n - 1,).
+    damping : numpy.ndarray
+        Relative viscous damping between neighbours (N m s/rad), shape (n - 1,).
+    hysteretic : numpy.ndarray
+        Sum of loss factor times stiffness between neighbours (N m/rad), shape (n - 1,).
+    ground_stiffness : numpy.ndarray
+        Stiffness of the shafts to ground at every degree of freedom (N m/rad), shape (n,).
+    ground_damping : numpy.ndarray
+        Absolute viscous damping (the masses' own and the grounded shafts') at every degree of
+        freedom (N m s/rad), shape (n,).
+    ground_hysteretic : numpy.ndarray
+        Loss factor times stiffness of the grounded shafts (N m/rad), shape (n,).
+
+    Examples
+    --------
+    >>> chain = TorsionModel.chain_of([1.0, 2.0, 3.0], [10.0, 20.0], ground_right=5.0).chain
+    >>> chain.size, chain.stiffness.tolist(), chain.ground_stiffness.tolist()
+    (3, [10.0, 20.0], [0.0, 0.0, 5.0])
     """
 
-    inertia: np.ndarray  # (n,) kg m^2
-    stiffness: np.ndarray  # (n-1,) N m/rad, between neighbours
-    damping: np.ndarray  # (n-1,) N m s/rad, relative viscous between neighbours
-    hysteretic: np.ndarray  # (n-1,) N m/rad, sum of loss factor x stiffness between neighbours
-    ground_stiffness: np.ndarray  # (n,) N m/rad, shafts to ground
-    ground_damping: np.ndarray  # (n,) N m s/rad, absolute dampers and grounded shafts' damping
-    ground_hysteretic: np.ndarray  # (n,) N m/rad, loss factor x stiffness of grounded shafts
+    inertia: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    hysteretic: NDArray[np.float64]
+    ground_stiffness: NDArray[np.float64]
+    ground_damping: NDArray[np.float64]
+    ground_hysteretic: NDArray[np.float64]
 
     @property
     def size(self) -> int:
+        """Number of degrees of freedom n."""
         return int(self.inertia.size)
 
-    def stiffness_diagonals(self) -> tuple[np.ndarray, np.ndarray]:
-        """Main and off diagonal of the tridiagonal stiffness matrix K."""
+    def stiffness_diagonals(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Main and off diagonal of the tridiagonal stiffness matrix K.
+
+        Returns
+        -------
+        diagonal : numpy.ndarray
+            K_ii (N m/rad), shape (n,): the stiffnesses of the shafts at degree of freedom i,
+            to its neighbours and to ground.
+        off_diagonal : numpy.ndarray
+            K_i,i+1 = K_i+1,i = -k_i (N m/rad), shape (n - 1,).
+
+        Examples
+        --------
+        >>> chain = TorsionModel.chain_of([1.0, 2.0, 3.0], [10.0, 20.0], ground_right=5.0).chain
+        >>> [a.tolist() for a in chain.stiffness_diagonals()]
+        [[10.0, 30.0, 25.0], [-10.0, -20.0]]
+        """
         k = self.stiffness
         diag = self.ground_stiffness.copy()
         diag[:-1] += k
@@ -701,7 +906,7 @@ class ChainArrays:
         return diag, -k
 
 
-def _positive_numbers(values: list) -> list[float] | None:
+def _positive_numbers(values: list[Any]) -> list[float] | None:
     """The values as floats when every one is a real number (not bool), finite and > 0, else
     None (so that the caller lets the constructors report the offending value)."""
     if any(
@@ -715,7 +920,8 @@ def _positive_numbers(values: list) -> list[float] | None:
     return arr.tolist()
 
 
-def _frozen(values, dtype=float) -> np.ndarray:
+def _frozen(values: Any, dtype: Any = float) -> NDArray[Any]:
+    """``values`` as a new read-only array."""
     arr = np.array(values, dtype=dtype)
     arr.setflags(write=False)
     return arr
@@ -723,6 +929,8 @@ def _frozen(values, dtype=float) -> np.ndarray:
 
 @dataclass(frozen=True)
 class _Structure:
+    """The topology of a model (:func:`_analyse`)."""
+
     speed_ratio: np.ndarray  # per mass
     rotation: np.ndarray  # per mass, +1 / -1: sense of rotation relative to the reference
     mass_dof: np.ndarray  # per mass, index of its degree of freedom
@@ -738,50 +946,73 @@ class TorsionModel:
 
     Parameters
     ----------
-    masses
+    masses : tuple of Mass
         The masses, listed from the free end (the listing order of every output).
-    shafts
+    shafts : tuple of Shaft
         Elastic connections between masses, or between a mass and ``"ground"``: shafts,
         couplings and elastic gear meshes. Shafts with distributed inertia are divided into
         lumped elements on construction (:mod:`crankdyn.torsion.distributed`: the generated
         masses are listed between the shaft's ends and its ends get half an element each).
-    gears
+    gears : tuple of Gear
         Gear meshes; the masses beyond a gear are reflected to the reference speed. Elastic
         meshes (with a stiffness) become elements of ``shafts`` on construction
         (:meth:`Gear.mesh_shaft`); rigid ones stay here and merge their wheels into one degree
         of freedom.
-    name
+    name : str
         Name for reports.
-    source
+    source : str or None
         The file the model came from, for messages.
-    excitation
+    excitation : crankdyn.torsion.excitation.ExcitationSpec or None
         How the model is excited in a forced response
         (:class:`crankdyn.torsion.excitation.ExcitationSpec`), or None.
-    dampers
+    dampers : tuple of crankdyn.torsion.dampers.Damper
         Vibration dampers (:class:`crankdyn.torsion.dampers.Damper`) added by the forced
         response; not part of the matrices above (model a tuned damper as a mass and a shaft to
         see it in the natural frequencies, or use :func:`crankdyn.torsion.campbell.with_dampers`).
-    rules
+    rules : crankdyn.torsion.rules.RuleSet or None
         Rule-check inputs (:class:`crankdyn.torsion.rules.RuleSet`), or None.
-    operating
+    operating : crankdyn.torsion.campbell.OperatingRange or None
         Operating speed range (:class:`crankdyn.torsion.campbell.OperatingRange`), or None.
-    sources
+    sources : tuple of HarmonicSource or EngineSource
         Excitation sources besides the cylinders on the masses
         (:mod:`crankdyn.torsion.sources`: propellers, electric machines, tabulated sources,
         further engines), each acting on a named mass at orders of that mass's speed.
-    engine
+    engine : crankdyn.engine.model.Engine or None
         The first engine of a model file that includes engines (``[[engine]]``; its cylinders
         sit on the model's masses), or None.
-    tvc
+    tvc : crankdyn.tvc.TvcSpec or None
         The settings of a torsional vibration calculation (:class:`crankdyn.tvc.TvcSpec`,
         ``[tvc]``), or None (the defaults).
 
     Raises
     ------
-    InputError
-        For duplicate or reserved names, a shaft or gear naming an unknown mass, a cylinder on
-        two masses, gear ratios that disagree around a loop, a shaft between two masses a gear
-        already ties together, or a disconnected model.
+    crankdyn.errors.InputError
+        For duplicate or reserved names (key ``name``), a shaft, gear, damper or source naming
+        an unknown mass (``between``, ``at``, with the nearest name), a cylinder on two masses
+        (``cylinders``), gear ratios or senses that disagree around a loop, a shaft between two
+        masses a gear already ties together (``between``), a disconnected model, a degree of
+        freedom without inertia (``inertia``), or magnitudes beyond :data:`MAGNITUDE_LIMIT` or
+        :data:`OMEGA2_LIMIT` (a unit mistake).
+    TypeError
+        When ``masses`` holds something other than :class:`Mass` objects.
+
+    Examples
+    --------
+    A flywheel, a coupling and a propeller, with a gearbox 3:1 between the last two (Ker Wilson
+    vol. 1 ch. 3: the propeller's inertia and its shaft's stiffness enter reflected by r^2):
+
+    >>> model = TorsionModel(
+    ...     masses=(Mass("flywheel", 10.0), Mass("pinion", 0.5, role="gear"),
+    ...             Mass("wheel", 4.0, role="gear"), Mass("propeller", 90.0)),
+    ...     shafts=(Shaft(("flywheel", "pinion"), 1e6), Shaft(("wheel", "propeller"), 9e6)),
+    ...     gears=(Gear(("pinion", "wheel"), 1 / 3),),
+    ... )
+    >>> model.dof_names, model.is_chain, model.is_free
+    (('flywheel', 'pinion + wheel', 'propeller'), True, True)
+    >>> [round(float(j), 6) for j in model.dof_inertia]
+    [10.0, 0.944444, 10.0]
+    >>> (model.stiffness_matrix() / 1e6).round(9).tolist()  # MN m/rad
+    [[1.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 1.0]]
     """
 
     masses: tuple[Mass, ...]
@@ -789,13 +1020,16 @@ class TorsionModel:
     gears: tuple[Gear, ...] = ()
     name: str = "torsional model"
     source: str | None = field(default=None, compare=False)
+    # an ExcitationSpec or None (documented above); typed loosely still because
+    # engine/session.py and io/engine_file.py narrow it with a cast and a type: ignore, which
+    # the precise type would make redundant (their owners tighten both together)
     excitation: object = None
-    dampers: tuple = ()
-    rules: object = None
-    operating: object = None
-    sources: tuple = ()
-    engine: object = field(default=None, compare=False, repr=False)
-    tvc: object = field(default=None, compare=False, repr=False)
+    dampers: tuple[Damper, ...] = ()
+    rules: RuleSet | None = None
+    operating: OperatingRange | None = None
+    sources: tuple[HarmonicSource | EngineSource, ...] = ()
+    engine: Engine | None = field(default=None, compare=False, repr=False)
+    tvc: TvcSpec | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "dampers", tuple(self.dampers))
@@ -926,7 +1160,33 @@ class TorsionModel:
         return {m.name: i for i, m in enumerate(self.masses)}
 
     def index(self, name: str) -> int:
-        """Listing index of a mass by name."""
+        """Listing index of a mass by name.
+
+        Parameters
+        ----------
+        name : str
+            Name of a mass.
+
+        Returns
+        -------
+        int
+            Its index in :attr:`masses` (0-based, from the free end).
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For an unknown name (key ``mass``, the name as value, with the nearest name).
+
+        Examples
+        --------
+        >>> model = TorsionModel.chain_of([1.0, 2.0], [5.0])
+        >>> model.index("2")
+        1
+        >>> model.index("3")
+        Traceback (most recent call last):
+        ...
+        crankdyn.errors.InputError: mass = "3": no mass named "3"
+        """
         try:
             return self._index[name]
         except KeyError:
@@ -936,10 +1196,12 @@ class TorsionModel:
 
     @property
     def mass_names(self) -> tuple[str, ...]:
+        """The names of the masses, in listing order."""
         return tuple(m.name for m in self.masses)
 
     @property
     def mass_count(self) -> int:
+        """Number of masses (distributed-mass shafts' elements included)."""
         return len(self.masses)
 
     # ---- structure ----------------------------------------------------------------------------
@@ -948,18 +1210,18 @@ class TorsionModel:
         return _analyse(self)
 
     @property
-    def speed_ratios(self) -> np.ndarray:
+    def speed_ratios(self) -> NDArray[np.float64]:
         """Speed of every mass over the reference speed (dimensionless, > 0, 1 without gears)."""
         return self._structure.speed_ratio
 
     @property
-    def rotation(self) -> np.ndarray:
+    def rotation(self) -> NDArray[np.float64]:
         """Sense of rotation of every mass relative to the reference (+1 or -1): -1 beyond an
         odd number of reversing gear meshes."""
         return self._structure.rotation
 
     @cached_property
-    def signed_speed_ratios(self) -> np.ndarray:
+    def signed_speed_ratios(self) -> NDArray[np.float64]:
         """Speed ratio times the sense of rotation of every mass: the actual angle of a mass,
         measured in the reference mass's positive sense, is this times its reflected angle."""
         return _frozen(self._structure.speed_ratio * self._structure.rotation)
@@ -971,7 +1233,7 @@ class TorsionModel:
         return _reference(self.masses)
 
     @property
-    def mass_dof(self) -> np.ndarray:
+    def mass_dof(self) -> NDArray[np.int_]:
         """Degree of freedom of every mass (meshing masses share one)."""
         return self._structure.mass_dof
 
@@ -982,6 +1244,7 @@ class TorsionModel:
 
     @property
     def dof_count(self) -> int:
+        """Number of degrees of freedom (masses joined by rigid gear meshes count once)."""
         return len(self._structure.dofs)
 
     @property
@@ -990,7 +1253,7 @@ class TorsionModel:
         return tuple(" + ".join(self.masses[i].name for i in d) for d in self.dofs)
 
     @property
-    def shaft_dofs(self) -> np.ndarray:
+    def shaft_dofs(self) -> NDArray[np.int_]:
         """(n_shafts, 2) degrees of freedom at the ends of every shaft, -1 for ground."""
         return self._structure.shaft_dofs
 
@@ -1017,7 +1280,7 @@ class TorsionModel:
 
     # ---- matrices -----------------------------------------------------------------------------
     @cached_property
-    def dof_inertia(self) -> np.ndarray:
+    def dof_inertia(self) -> NDArray[np.float64]:
         """Reflected moment of inertia of every degree of freedom (kg m^2)."""
         r2 = self.speed_ratios**2
         out = np.zeros(self.dof_count)
@@ -1025,14 +1288,16 @@ class TorsionModel:
         return _frozen(out)
 
     @cached_property
-    def _absolute_damping(self) -> np.ndarray:
+    def _absolute_damping(self) -> NDArray[np.float64]:
         r2 = self.speed_ratios**2
         out = np.zeros(self.dof_count)
         np.add.at(out, self.mass_dof, np.array([m.damping for m in self.masses]) * r2)
         return out
 
     @cached_property
-    def _shaft_arrays(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _shaft_arrays(
+        self,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         ratios = self.speed_ratios
         index = self._index
         first = [index[b[0] if b[0] != GROUND else b[1]] for b in (s.between for s in self.shafts)]
@@ -1042,11 +1307,17 @@ class TorsionModel:
         eta = np.array([s.loss_factor for s in self.shafts], dtype=float)
         return _frozen(k), _frozen(c), _frozen(eta * k)
 
-    def _shaft_values(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _shaft_values(
+        self,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """Reflected stiffness, viscous damping and eta*k of every shaft (read-only arrays)."""
         return self._shaft_arrays
 
-    def _assemble(self, values: np.ndarray, diagonal: np.ndarray | None = None) -> np.ndarray:
+    def _assemble(
+        self, values: NDArray[np.float64], diagonal: NDArray[np.float64] | None = None
+    ) -> NDArray[np.float64]:
+        """A symmetric (dof, dof) matrix of the shafts' ``values`` (each shaft a 2x2 block
+        [[v, -v], [-v, v]], a grounded one v on its diagonal), plus ``diagonal``."""
         n = self.dof_count
         out = np.zeros((n, n))
         if diagonal is not None:
@@ -1065,22 +1336,80 @@ class TorsionModel:
         np.add.at(out, (b, a), -v)
         return out
 
-    def mass_matrix(self) -> np.ndarray:
-        """Diagonal inertia matrix M (kg m^2), degrees of freedom in :attr:`dofs` order."""
+    def mass_matrix(self) -> NDArray[np.float64]:
+        """Diagonal inertia matrix M (kg m^2), degrees of freedom in :attr:`dofs` order.
+
+        Returns
+        -------
+        numpy.ndarray
+            M = diag(:attr:`dof_inertia`) (kg m^2), shape (dof, dof), reflected to the
+            reference speed.
+
+        Examples
+        --------
+        >>> TorsionModel.chain_of([1.0, 2.0], [5.0]).mass_matrix().tolist()
+        [[1.0, 0.0], [0.0, 2.0]]
+        """
         return np.diag(self.dof_inertia)
 
-    def stiffness_matrix(self) -> np.ndarray:
-        """Stiffness matrix K (N m/rad)."""
+    def stiffness_matrix(self) -> NDArray[np.float64]:
+        """Stiffness matrix K (N m/rad).
+
+        Every shaft adds k [[1, -1], [-1, 1]] at its two degrees of freedom (k at its one for a
+        grounded shaft), reflected to the reference speed (seed 003; Ker Wilson vol. 1 ch. 3).
+
+        Returns
+        -------
+        numpy.ndarray
+            K (N m/rad), shape (dof, dof), symmetric, in :attr:`dofs` order.
+
+        Examples
+        --------
+        >>> TorsionModel.chain_of([1.0, 2.0], [5.0], ground_left=3.0).stiffness_matrix().tolist()
+        [[8.0, -5.0], [-5.0, 5.0]]
+        """
         return self._assemble(self._shaft_values()[0])
 
-    def damping_matrix(self) -> np.ndarray:
+    def damping_matrix(self) -> NDArray[np.float64]:
         """Viscous damping matrix C (N m s/rad): absolute dampers and the shafts' relative
-        damping."""
+        damping.
+
+        Returns
+        -------
+        numpy.ndarray
+            C (N m s/rad), shape (dof, dof), symmetric: the masses' absolute damping on the
+            diagonal, the shafts' relative damping assembled like the stiffness.
+
+        Examples
+        --------
+        >>> model = TorsionModel(
+        ...     masses=(Mass("a", 1.0, damping=2.0), Mass("b", 1.0)),
+        ...     shafts=(Shaft(("a", "b"), 100.0, damping=0.5),),
+        ... )
+        >>> model.damping_matrix().tolist()
+        [[2.5, -0.5], [-0.5, 0.5]]
+        """
         return self._assemble(self._shaft_values()[1], self._absolute_damping)
 
-    def hysteretic_matrix(self) -> np.ndarray:
+    def hysteretic_matrix(self) -> NDArray[np.float64]:
         """Hysteretic damping matrix H = sum of eta_s K_s (N m/rad): the dynamic stiffness is
-        K + i H - omega^2 M + i omega C."""
+        K + i H - omega^2 M + i omega C.
+
+        Returns
+        -------
+        numpy.ndarray
+            H (N m/rad), shape (dof, dof), symmetric: every shaft's loss factor times its
+            stiffness, assembled like the stiffness.
+
+        Examples
+        --------
+        >>> model = TorsionModel(
+        ...     masses=(Mass("a", 1.0), Mass("b", 1.0)),
+        ...     shafts=(Shaft(("a", "b"), 100.0, loss_factor=0.1),),
+        ... )
+        >>> model.hysteretic_matrix().round(12).tolist()
+        [[10.0, -10.0], [-10.0, 10.0]]
+        """
         return self._assemble(self._shaft_values()[2])
 
     @cached_property
@@ -1116,30 +1445,90 @@ class TorsionModel:
         return torsion_model_html(self)
 
     @classmethod
-    def from_file(cls, path) -> TorsionModel:
+    def from_file(cls, path: str | Path) -> TorsionModel:
         """Load a torsional model file (TOML; docs/torsion-file.md), an engine file's
-        [torsion] section, or a mass-elastic table (.csv, :mod:`crankdyn.io.mass_elastic`)."""
+        [torsion] section, or a mass-elastic table (.csv, :mod:`crankdyn.io.mass_elastic`).
+
+        Parameters
+        ----------
+        path : str or pathlib.Path
+            The file.
+
+        Returns
+        -------
+        TorsionModel
+            The model, with its ``source`` set to the file.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For a missing, unreadable or malformed file, or a bad value, naming the file, the
+            key and the value (:func:`crankdyn.io.catalogue.load_torsion_model`).
+        """
         from crankdyn.io.catalogue import load_torsion_model  # boundary, on demand
 
         return load_torsion_model(path)
 
     @classmethod
     def example(cls, name: str) -> TorsionModel:
-        """A built-in torsional model by name (``crankdyn torsion examples`` lists them)."""
+        """A built-in torsional model by name (``crankdyn torsion examples`` lists them).
+
+        Parameters
+        ----------
+        name : str
+            Name of the example.
+
+        Returns
+        -------
+        TorsionModel
+            The example model.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For an unknown name (with the nearest one).
+        """
         from crankdyn.io.catalogue import load_example
 
         return load_example(name, "model")
 
     @classmethod
-    def from_opentorsion(cls, assembly, *, name: str = "openTorsion assembly") -> TorsionModel:
-        """A model from an openTorsion ``Assembly`` (:mod:`crankdyn.torsion.opentorsion`)."""
+    def from_opentorsion(cls, assembly: Any, *, name: str = "openTorsion assembly") -> TorsionModel:
+        """A model from an openTorsion ``Assembly`` (:mod:`crankdyn.torsion.opentorsion`).
+
+        Parameters
+        ----------
+        assembly : opentorsion.Assembly
+            The assembly (only its element attributes are read; openTorsion need not be
+            installed).
+        name : str
+            Name of the model, for reports.
+
+        Returns
+        -------
+        TorsionModel
+            One mass per node, named ``"node <i>"``
+            (:func:`crankdyn.torsion.opentorsion.from_opentorsion`).
+        """
         from crankdyn.torsion.opentorsion import from_opentorsion
 
         return from_opentorsion(assembly, name=name)
 
-    def to_opentorsion(self, *, hysteretic_frequency: float | None = None):
+    def to_opentorsion(self, *, hysteretic_frequency: float | None = None) -> Any:
         """The model as an openTorsion ``Assembly`` (:mod:`crankdyn.torsion.opentorsion`; needs
-        openTorsion installed)."""
+        openTorsion installed).
+
+        Parameters
+        ----------
+        hysteretic_frequency : float or None
+            Circular frequency omega_h (rad/s) at which loss factors are exported as viscous
+            damping eta k / omega_h; required when a shaft has a loss factor.
+
+        Returns
+        -------
+        opentorsion.Assembly
+            The assembly (:func:`crankdyn.torsion.opentorsion.to_opentorsion`).
+        """
         from crankdyn.torsion.opentorsion import to_opentorsion
 
         return to_opentorsion(self, hysteretic_frequency=hysteretic_frequency)
@@ -1147,15 +1536,49 @@ class TorsionModel:
     @classmethod
     def chain_of(
         cls,
-        inertias,
-        stiffnesses,
+        inertias: Iterable[float],
+        stiffnesses: Iterable[float],
         *,
         ground_left: float | None = None,
         ground_right: float | None = None,
         name: str = "chain",
     ) -> TorsionModel:
         """A chain of masses ``"1"``, ``"2"``... joined by the given shaft stiffnesses, with an
-        optional grounded shaft at either end (stiffness in N m/rad)."""
+        optional grounded shaft at either end.
+
+        Parameters
+        ----------
+        inertias : iterable of float
+            Moments of inertia of the masses (kg m^2), each > 0, shape (n,).
+        stiffnesses : iterable of float
+            Stiffnesses of the shafts between neighbours (N m/rad), each > 0, shape (n - 1,).
+        ground_left, ground_right : float or None
+            Stiffness (N m/rad) of a shaft from the first (last) mass to ground, or None.
+        name : str
+            Name of the model, for reports.
+
+        Returns
+        -------
+        TorsionModel
+            The chain, masses named ``"1"`` to ``"n"``.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For a stiffness count other than n - 1 (key ``stiffness``, the count as value), or a
+            value that is not positive and finite (its key and value).
+
+        Examples
+        --------
+        Two equal discs on a shaft: one rigid-body mode and omega^2 = 2 k / J (seed 003):
+
+        >>> import numpy as np
+        >>> model = TorsionModel.chain_of([2.0, 2.0], [100.0])
+        >>> model.mass_names, model.is_free
+        (('1', '2'), True)
+        >>> np.linalg.eigvalsh(model.stiffness_matrix() / 2.0).round(9).tolist()
+        [0.0, 100.0]
+        """
         inertias = list(inertias)
         stiffnesses = list(stiffnesses)
         if len(stiffnesses) != len(inertias) - 1:
@@ -1184,7 +1607,8 @@ class TorsionModel:
 # ---- topology ---------------------------------------------------------------------------------
 
 
-def _reference(masses) -> int:
+def _reference(masses: Sequence[Mass]) -> int:
+    """Index of the first mass that carries a cylinder, else 0."""
     for i, m in enumerate(masses):
         if m.cylinders:
             return i
@@ -1192,6 +1616,9 @@ def _reference(masses) -> int:
 
 
 def _analyse(model: TorsionModel) -> _Structure:
+    """The model's topology: degrees of freedom (rigid meshes merged), signed speed ratios
+    (a breadth-first walk from the reference mass), chain order or a junction; InputError for
+    inconsistent gear loops, shafts inside a rigid gear group or a disconnected model."""
     masses, shafts, gears = model.masses, model.shafts, model.gears
     n = len(masses)
     index = {m.name: i for i, m in enumerate(masses)}
@@ -1251,6 +1678,7 @@ def _analyse(model: TorsionModel) -> _Structure:
     while queue:
         i = queue.popleft()
         here = found[i]
+        assert here is not None  # queued once found
         for j, r, kind, k in neighbours[i]:
             value = here * r
             there = found[j]

@@ -22,7 +22,9 @@ semantics followed (openTorsion 0.3, ``opentorsion/elements``):
 
 from __future__ import annotations
 
+import importlib
 from collections import deque
+from typing import Any
 
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel
@@ -31,12 +33,60 @@ __all__ = ["from_opentorsion", "to_opentorsion"]
 
 
 def _node(i: int) -> str:
+    """The crankdyn name of openTorsion node ``i``."""
     return f"node {i}"
 
 
-def from_opentorsion(assembly, *, name: str = "openTorsion assembly") -> TorsionModel:
+def from_opentorsion(assembly: Any, *, name: str = "openTorsion assembly") -> TorsionModel:
     """A :class:`TorsionModel` from an openTorsion ``Assembly`` (module docstring): one mass per
-    node, named ``"node <i>"``."""
+    node, named ``"node <i>"``.
+
+    Only the element attributes are read (``shaft_elements``: ``nl``, ``nr``, ``k``, ``c``,
+    ``mass``, ``odl``, ``idl``; ``disk_elements``: ``node``, ``I``, ``c``, ``k``;
+    ``gear_elements`` and ``elastic_gear_elements``: ``node``, ``I``, ``R``, ``parent``,
+    ``k``, ``c``), so openTorsion need not be installed. Units are openTorsion's SI ones
+    (kg m^2, N m/rad, N m s/rad); the diameters ``odl``, ``idl`` are kept as given.
+
+    Parameters
+    ----------
+    assembly : opentorsion.Assembly
+        The assembly, or any object with its element lists.
+    name : str
+        Name of the model, for reports.
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        One mass per node in node order: a disk's inertia and damping, half of the own inertia
+        of each shaft at the node, a gear's inertia (``role="gear"``); a shaft per ``Shaft``
+        element, a grounded shaft per disk stiffness, a rigid gear per ``Gear`` and an elastic
+        one per ``ElasticGear`` (ratio R_parent / R, opposite sense).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For an assembly without elements (key ``assembly``), or an element the model refuses
+        (its key and value).
+
+    Examples
+    --------
+    Two disks on a shaft of 10 kN m/rad, the second held to ground by 2 kN m/rad (openTorsion's
+    ``Disk(node, I, c, k)`` and ``Shaft(nl, nr, ..., k)`` given here as plain objects):
+
+    >>> from types import SimpleNamespace as Element
+    >>> assembly = Element(
+    ...     shaft_elements=[Element(nl=0, nr=1, k=1e4, c=0.0, mass=0.0, odl=None)],
+    ...     disk_elements=[
+    ...         Element(node=0, I=0.4, c=0.0, k=0.0),
+    ...         Element(node=1, I=0.7, c=0.1, k=2e3),
+    ...     ],
+    ... )
+    >>> model = from_opentorsion(assembly)
+    >>> model.mass_names, [s.label for s in model.shafts]
+    (('node 0', 'node 1'), ['node 0 - node 1', 'ground - node 1'])
+    >>> model.stiffness_matrix().tolist(), model.damping_matrix().tolist()
+    ([[10000.0, -10000.0], [-10000.0, 12000.0]], [[0.0, 0.0], [0.0, 0.1]])
+    """
     shafts_in = list(getattr(assembly, "shaft_elements", None) or [])
     disks = list(getattr(assembly, "disk_elements", None) or [])
     gears = list(getattr(assembly, "gear_elements", None) or [])
@@ -57,7 +107,7 @@ def from_opentorsion(assembly, *, name: str = "openTorsion assembly") -> Torsion
         k = float(getattr(d, "k", 0.0) or 0.0)
         if k:
             ground[int(d.node)] = ground.get(int(d.node), 0.0) + k
-    gear_nodes = set()
+    gear_nodes: set[int] = set()
     for g in gears + elastic:
         inertia[int(g.node)] += float(g.I)
         gear_nodes.add(int(g.node))
@@ -109,15 +159,46 @@ def from_opentorsion(assembly, *, name: str = "openTorsion assembly") -> Torsion
     return TorsionModel(masses=masses, shafts=tuple(shafts), gears=tuple(meshes), name=name)
 
 
-def to_opentorsion(model: TorsionModel, *, hysteretic_frequency: float | None = None):
-    """An openTorsion ``Assembly`` of the model (module docstring): node i is the model's mass i
-    (listing order), its inertia a ``Disk`` (with its absolute damping and any grounded shaft's
-    stiffness), shafts and couplings ``Shaft`` elements of their stiffness and viscous damping,
-    rigid meshes ``Gear`` pairs and elastic meshes ``ElasticGear`` pairs. Loss factors have no
-    openTorsion counterpart: they are refused unless ``hysteretic_frequency`` (rad/s) is given,
-    and then exported as viscous damping eta k / omega_h. Dampers and excitation are not
-    exported."""
-    import opentorsion as ot
+def to_opentorsion(model: TorsionModel, *, hysteretic_frequency: float | None = None) -> Any:
+    """An openTorsion ``Assembly`` of the model (module docstring).
+
+    Node i is the model's mass i (listing order), its inertia a ``Disk`` (with its absolute
+    damping and any grounded shaft's stiffness), shafts and couplings ``Shaft`` elements of
+    their stiffness and viscous damping, rigid meshes ``Gear`` pairs and elastic meshes
+    ``ElasticGear`` pairs. Loss factors have no openTorsion counterpart: they are refused
+    unless ``hysteretic_frequency`` is given, and then exported as viscous damping
+    eta k / omega_h (the same damping torque at omega_h). Dampers and excitation are not
+    exported.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    hysteretic_frequency : float or None
+        Circular frequency omega_h (rad/s) at which loss factors become viscous damping.
+
+    Returns
+    -------
+    opentorsion.Assembly
+        The assembly (SI units, as openTorsion's).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        When a shaft has a loss factor and no ``hysteretic_frequency`` is given (key
+        ``hysteretic_frequency``, the shaft named in the message).
+    ModuleNotFoundError
+        Without openTorsion installed.
+
+    Examples
+    --------
+    >>> assembly = TorsionModel.chain_of([0.4, 0.7], [1e4]).to_opentorsion()  # doctest: +SKIP
+    >>> assembly.K  # doctest: +SKIP
+    array([[ 10000., -10000.],
+           [-10000.,  10000.]])
+    """
+    # optional and untyped: imported by name, so that the type checker needs neither
+    ot: Any = importlib.import_module("opentorsion")
 
     index = {m.name: i for i, m in enumerate(model.masses)}
     lossy = [s for s in model.shafts if s.loss_factor]
@@ -131,11 +212,13 @@ def to_opentorsion(model: TorsionModel, *, hysteretic_frequency: float | None = 
     ground_c: dict[int, float] = {}
     shafts = []
     elastic = []
-    parents: dict[int, object] = {}
+    parents: dict[int, Any] = {}
     for s in model.shafts:
-        c = s.damping + (
-            s.loss_factor * s.stiffness / hysteretic_frequency if s.loss_factor else 0.0
-        )
+        extra = 0.0
+        if s.loss_factor:
+            assert hysteretic_frequency is not None  # refused above without it
+            extra = s.loss_factor * s.stiffness / hysteretic_frequency
+        c = s.damping + extra
         if s.grounded:
             i = index[s.between[1] if s.between[0] == GROUND else s.between[0]]
             ground_k[i] = ground_k.get(i, 0.0) + s.stiffness
@@ -170,7 +253,7 @@ def to_opentorsion(model: TorsionModel, *, hysteretic_frequency: float | None = 
     )
 
 
-def _gear_tree(model: TorsionModel, index: dict[str, int], ot) -> list:
+def _gear_tree(model: TorsionModel, index: dict[str, int], ot: Any) -> list[Any]:
     """openTorsion ``Gear`` objects for the rigid meshes, walked as trees from their first
     wheel (a gear has one parent, so the meshes must not form a loop)."""
     links: dict[int, list[tuple[int, float]]] = {}
@@ -178,7 +261,7 @@ def _gear_tree(model: TorsionModel, index: dict[str, int], ot) -> list:
         a, b = index[g.between[0]], index[g.between[1]]
         links.setdefault(a, []).append((b, g.ratio))
         links.setdefault(b, []).append((a, 1.0 / g.ratio))
-    made: dict[int, object] = {}
+    made: dict[int, Any] = {}
     out = []
     for root in links:
         if root in made:
