@@ -18,6 +18,8 @@ LINTED := src tests bench docs/examples docs/conf.py docs/_ext setup.py notebook
 TYPED := \
 	src/crankdyn/constants.py \
 	src/crankdyn/crank \
+	src/crankdyn/cli/common.py \
+	src/crankdyn/cli/writer.py \
 	src/crankdyn/display.py \
 	src/crankdyn/engine/__init__.py \
 	src/crankdyn/engine/balance.py \
