@@ -26,7 +26,7 @@ import shutil
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import IO, TYPE_CHECKING, Any, Protocol, TypeVar, cast
+from typing import IO, TYPE_CHECKING, Any, Protocol, TypeVar, cast, overload
 
 import click
 import numpy as np
@@ -137,6 +137,24 @@ def warn(message: str) -> None:
         The warning; runs of white space (line breaks included) become one space.
     """
     click.echo(f"crankdyn: warning: {' '.join(str(message).split())}", err=True)
+
+
+@overload
+def option_quantity(
+    value: None, kind: str, option: str, default_unit: str | None = None
+) -> None: ...
+
+
+@overload
+def option_quantity(
+    value: str | float, kind: str, option: str, default_unit: str | None = None
+) -> float: ...
+
+
+@overload
+def option_quantity(
+    value: object, kind: str, option: str, default_unit: str | None = None
+) -> float | None: ...
 
 
 def option_quantity(
