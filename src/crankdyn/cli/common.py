@@ -296,6 +296,22 @@ def speeds_option(help: str | None = None) -> Decorator:
     )
 
 
+@overload
+def parse_speeds(text: None, option: str = "--speeds", *, need_step: bool = False) -> None: ...
+
+
+@overload
+def parse_speeds(
+    text: str, option: str = "--speeds", *, need_step: bool = False
+) -> tuple[float, float, float | None]: ...
+
+
+@overload
+def parse_speeds(
+    text: str | None, option: str = "--speeds", *, need_step: bool = False
+) -> tuple[float, float, float | None] | None: ...
+
+
 def parse_speeds(
     text: str | None, option: str = "--speeds", *, need_step: bool = False
 ) -> tuple[float, float, float | None] | None:
