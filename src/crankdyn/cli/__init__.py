@@ -78,6 +78,7 @@ class LazyGroup(click.Group):
 
     @commands.setter
     def commands(self, value: Mapping[str, click.Command] | None) -> None:
+        """Set the registered commands (click's Group sets them on construction)."""
         self._commands = dict(value or {})
 
     def _load(self, *modules: str) -> None:
@@ -213,6 +214,7 @@ def _terminate_like_interrupt() -> Iterator[list[int]]:
         return
 
     def handler(signum: int, _frame: FrameType | None) -> None:
+        """Note the signal and raise :class:`Terminated`."""
         received.append(signum)
         raise Terminated(signum)
 

@@ -88,7 +88,8 @@ def run_report(
     ) as progress:
         task = progress.add_task("Analysing", total=len(builders()))
 
-        def step(name):
+        def step(name: str) -> None:
+            """Advance the bar past the report section ``name``."""
             progress.update(task, description=f"Analysing: {name}", advance=1)
 
         report = build_report(
@@ -98,6 +99,7 @@ def run_report(
         task2 = progress.add_task("Writing plots", total=plots)
 
         def plot_step(name: str) -> None:
+            """Advance the bar past the plot ``name``."""
             progress.update(task2, description=f"Writing plots: {name}", advance=1)
 
         # the folder written: a numbered sibling when ``out`` appeared while the report was built

@@ -47,7 +47,9 @@ F = TypeVar("F", bound=Callable[..., Any])
 class Decorator(Protocol):
     """What the option factories return: a decorator that adds an option to a command."""
 
-    def __call__(self, f: F, /) -> F: ...
+    def __call__(self, f: F, /) -> F:
+        """Add the option to the command callback ``f`` and return it."""
+        ...
 
 
 __all__ = [
@@ -80,6 +82,7 @@ class _PlainConsole(Console):
     process with status 1); crankdyn.cli.main reports it in one line."""
 
     def on_broken_pipe(self) -> None:
+        """Raise BrokenPipeError (rich would exit with status 1)."""
         raise BrokenPipeError(errno.EPIPE, os.strerror(errno.EPIPE))
 
 
@@ -716,6 +719,7 @@ def plot_option(
     """
 
     def decorate(f: F) -> F:
+        """Add the option and the check of its file to ``f``."""
         f = before_work(lambda kw: check_plot_path(kw.get(param), bool(kw.get("force")), name))(f)
         return click.option(name, param, default=None, metavar="FILE", help=help)(f)
 
@@ -822,6 +826,7 @@ def deprecated_alias(old: str, new: str, param: str, metavar: str = "VALUE") -> 
     """
 
     def note(_ctx: click.Context, _param: click.Parameter, value: Any) -> Any:
+        """Print the deprecation line when the option is given; pass its value on."""
         if value is not None:
             warn(f"{old} is deprecated; use {new}")
         return value
@@ -886,8 +891,11 @@ def before_work(check: Callable[[Mapping[str, Any]], object]) -> Decorator:
     """
 
     def decorate(f: F) -> F:
+        """``f``, with ``check`` run first."""
+
         @functools.wraps(f)
         def command(*args: Any, **kwargs: Any) -> Any:
+            """The command: ``check`` of the options, then the body."""
             check(kwargs)
             return f(*args, **kwargs)
 

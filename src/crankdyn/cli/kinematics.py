@@ -112,6 +112,7 @@ def kinematics_command(
 
 
 def _parse_lambda(text: str) -> float:
+    """One --lambda value, a number or a fraction such as 1/3.8, between 0 and 1."""
     try:
         parts = [float(p) for p in text.split("/")]
         if len(parts) > 2:

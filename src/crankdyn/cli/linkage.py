@@ -92,6 +92,7 @@ def _single(data: dict[str, Any], keys: Collection[str]) -> dict[str, Any]:
     """For one --angle: the per-angle lists of length one become plain numbers."""
 
     def squeeze(v: Any) -> Any:
+        """A list of one number as the number, inside dicts too."""
         if isinstance(v, list) and len(v) == 1 and not isinstance(v[0], (list, dict)):
             return v[0]
         if isinstance(v, dict):

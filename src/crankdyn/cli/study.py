@@ -98,6 +98,7 @@ class _Bar:
     """A rich progress bar on stderr (only when stderr is a terminal)."""
 
     def __init__(self) -> None:
+        """A bar not yet shown."""
         self.console = console(stderr=True)
         self.progress: Progress | None = None
         self.task: TaskID | None = None

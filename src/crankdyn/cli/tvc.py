@@ -58,6 +58,7 @@ def tvc_command(
         pdf_note: list[str] = []
 
         def finish(folder: Path) -> None:
+            """Print the report folder's PDF (unless --no-pdf), or note why not."""
             if no_pdf:
                 return
             why = print_pdf(folder / "index.html", folder / "report.pdf")

@@ -315,6 +315,7 @@ def warnings_of(*sources: Any) -> list[PlausibilityWarning]:
     found: dict[str, Any] = {}
 
     def add(source: Any) -> None:
+        """Collect the warnings of one source (recursively through lists)."""
         if source is None:
             return
         if hasattr(source, "message") and hasattr(source, "to_dict"):
@@ -386,6 +387,7 @@ def _parts(table: TextTable, width: int) -> list[list[int]]:
 
 
 def _rich(table: TextTable, columns: list[int], title: str) -> RichTable:
+    """The ``columns`` of a table as a rich table, every cell a Text (never markup)."""
     # every string goes in as a Text: user text is never read as markup, whatever the console
     widths = _widths(table)
     rich = RichTable(title=Text(title) if title else None, header_style="bold")
