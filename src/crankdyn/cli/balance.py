@@ -424,13 +424,15 @@ def _balance_notes(result: BalanceResult) -> list[str]:
     "--rod-offset",
     default=None,
     metavar="MM",
-    help="Axial offset of the bank-B rod from the bank-A rod on a V throw (mm, or with a unit).",
+    help="Axial offset of the bank-B rod from the bank-A rod on a V throw (mm, or with a unit); "
+    "default: the file's [balance], else 0.",
 )
 @click.option(
     "--power",
     default=None,
     metavar="KW",
-    help="Engine power for the power-related unbalance (kW, or with a unit).",
+    help="Engine power for the power-related unbalance (kW, or with a unit); default: the "
+    "file's [balance], else the torque analysis's.",
 )
 @click.option(
     "--no-torque",
@@ -514,7 +516,8 @@ def balance_command(
     "--inertia",
     default=None,
     metavar="KGM2",
-    help="A given flywheel's inertia (kg·m², or with a unit), to find the δ it gives.",
+    help="A given flywheel's inertia (kg·m², or with a unit), to find the δ it gives; default: "
+    "none (the flywheel for the target δ).",
 )
 @step_option(
     "Crank-angle step of the rows of the torque, excess-work and speed curves (deg for a bare "

@@ -131,10 +131,16 @@ def linkage_group() -> None:
 
 
 @linkage_group.command("fourbar")
-@click.option("--crank", required=True, metavar="MM", help="Crank AB (input), e.g. 73.4mm.")
+@click.option(
+    "--crank", required=True, metavar="MM", help="Crank AB, the input (mm, or with a unit)."
+)
 @click.option("--coupler", required=True, metavar="MM", help="Coupler BC (mm, or with a unit).")
-@click.option("--rocker", required=True, metavar="MM", help="Rocker DC, the output (mm).")
-@click.option("--ground", required=True, metavar="MM", help="Ground AD, the frame (mm).")
+@click.option(
+    "--rocker", required=True, metavar="MM", help="Rocker DC, the output (mm, or with a unit)."
+)
+@click.option(
+    "--ground", required=True, metavar="MM", help="Ground AD, the frame (mm, or with a unit)."
+)
 @speed_option(
     "Crank speed, counter-clockwise positive (rpm for a bare number, or with a unit); "
     "default 1 rad/s."
@@ -147,7 +153,13 @@ def linkage_group() -> None:
     metavar="RAD/S2",
     help="Crank angular acceleration (rad/s² for a bare number, or with a unit).",
 )
-@click.option("--angle", default=None, metavar="DEG", help="One crank angle (from A->D).")
+@click.option(
+    "--angle",
+    default=None,
+    metavar="DEG",
+    help="One crank angle from A->D (deg for a bare number, or with a unit); default: a full "
+    "turn every --step.",
+)
 @step_option(
     "Crank-angle step over a full turn (deg for a bare number); default 10 for tables, 1 "
     "otherwise. Summaries always come from the 1 deg analysis."
@@ -163,7 +175,8 @@ def linkage_group() -> None:
     "--coupler-point",
     default=None,
     metavar="P,Q",
-    help="Coupler point: P along B->C and Q to its left (mm), e.g. 60mm,40mm.",
+    help="Coupler point: P along B->C and Q to its left (mm for bare numbers), e.g. 60mm,40mm; "
+    "default: none.",
 )
 @plot_option("Also write the four-bar figure (.png, .svg or .pdf).")
 @output_options
@@ -279,7 +292,13 @@ def _linkage_options(f: F) -> F:
         "Crank-angle step over a full turn (deg for a bare number); default 10 for tables, 1 "
         "otherwise. Summaries always come from the 1 deg analysis."
     )(f)
-    return click.option("--angle", default=None, metavar="DEG", help="One crank angle.")(f)
+    return click.option(
+        "--angle",
+        default=None,
+        metavar="DEG",
+        help="One crank angle (deg for a bare number, or with a unit); default: a full turn "
+        "every --step.",
+    )(f)
 
 
 def _analysed(
@@ -482,7 +501,10 @@ def _one_angle(angle: str | None, mech: Mechanism) -> float:
 @linkage_group.command("draw")
 @click.argument("linkage", metavar="LINKAGE")
 @click.option(
-    "--angle", default=None, metavar="DEG", help="Crank angle; default: the drawn position."
+    "--angle",
+    default=None,
+    metavar="DEG",
+    help="Crank angle (deg for a bare number, or with a unit); default: the drawn position.",
 )
 @speed_option(_SPEED_HELP)
 @click.option(

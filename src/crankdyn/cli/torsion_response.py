@@ -275,8 +275,8 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
     "--torque",
     default=None,
     metavar="NM",
-    help="Uniform harmonic torque per order at every cylinder instead of the engine's "
-    "(N·m, or with a unit).",
+    help="Uniform harmonic torque per order at every cylinder (N·m, or with a unit); default: "
+    "the engine's excitation.",
 )
 @click.option("--no-dampers", is_flag=True, help="Leave out the model's [[damper]] entries.")
 @plot_option("Write the response against speed per order and synthesised (.png, .svg or .pdf).")
@@ -624,9 +624,17 @@ def excitation_command(
 @torsion_group.command("transient")
 @_MODEL_ARG
 @speed_option("Constant speed (rpm for a bare number, or with a unit); default: the engine's own.")
-@speeds_option("A linear run-up START:END between two speeds (rpm), with --duration.")
+@speeds_option(
+    "A linear run-up START:END between two speeds (rpm), with --duration; default: a constant "
+    "--speed."
+)
 @deprecated_alias("--run-up", "--speeds", "run_up", "START:END")
-@click.option("--duration", default=None, metavar="S", help="Simulated time (s, or with a unit).")
+@click.option(
+    "--duration",
+    default=None,
+    metavar="S",
+    help="Simulated time (s, or with a unit); default: --cycles at a constant speed.",
+)
 @click.option(
     "--cycles",
     default=None,
