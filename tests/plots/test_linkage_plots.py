@@ -1,6 +1,7 @@
 """Linkage plots return figures with labelled axes; the animation is a GIF."""
 
 import dataclasses
+import io
 
 import numpy as np
 import pytest
@@ -51,6 +52,22 @@ def test_animation_is_a_gif():
     motion = mech.motion(np.radians(np.arange(0, 360, 90.0)))
     data = animate_mechanism(motion, kinetostatics(motion))
     assert data[:6] == b"GIF89a"
+
+
+def test_animation_dpi_sets_the_frame_size():
+    from PIL import Image
+
+    mech = Mechanism.example("fourbar-seed004")
+    motion = mech.motion(np.radians(np.arange(0, 360, 120.0)))
+    sizes = {}
+    for dpi in (40, 80):
+        with Image.open(io.BytesIO(animate_mechanism(motion, dpi=dpi))) as gif:
+            sizes[dpi] = gif.size
+            assert gif.n_frames == 3
+    # the 6.4 x 5.2 inch figure at dpi dots per inch
+    assert sizes == {40: (256, 208), 80: (512, 416)}
+    with pytest.raises(ValueError, match="dpi"):
+        animate_mechanism(motion, dpi=0)
 
 
 def _long_named(mech, name):

@@ -19,7 +19,9 @@ import os
 import signal
 import sys
 import threading
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping, MutableMapping
+from types import FrameType
+from typing import Any
 
 import click
 
@@ -51,40 +53,92 @@ class LazyGroup(click.Group):
     """A click group that imports a command's module on first use (:data:`COMMAND_MODULES`).
 
     ``commands`` (click's dict of every command) loads every module: the documentation build
-    and the tests walk it; running one command does not."""
+    and the tests walk it; running one command does not.
 
-    def __init__(self, *args, modules: dict[str, tuple[str, ...]], **kwargs) -> None:
+    Parameters
+    ----------
+    *args, **kwargs
+        What :class:`click.Group` takes (the name, ``context_settings``, ...).
+    modules : dict of str to tuple of str
+        The command modules (``crankdyn.cli.<module>``, each with a ``register(group)``
+        function) and the names of the commands each registers.
+    """
+
+    def __init__(self, *args: Any, modules: dict[str, tuple[str, ...]], **kwargs: Any) -> None:
         self._modules = modules
         self._loaded: set[str] = set()
         self._commands: dict[str, click.Command] = {}
         super().__init__(*args, **kwargs)
 
     @property
-    def commands(self) -> dict[str, click.Command]:  # type: ignore[override]
+    def commands(self) -> MutableMapping[str, click.Command]:
+        """Every command (name to command), every command module loaded."""
         self._load(*self._modules)
         return self._commands
 
     @commands.setter
-    def commands(self, value) -> None:
+    def commands(self, value: Mapping[str, click.Command] | None) -> None:
+        """Set the registered commands (click's Group sets them on construction)."""
         self._commands = dict(value or {})
 
     def _load(self, *modules: str) -> None:
+        """Import the command ``modules`` not yet loaded and let each register its commands."""
         for module in modules:
             if module not in self._loaded:
                 self._loaded.add(module)
                 importlib.import_module(f"crankdyn.cli.{module}").register(self)
 
     def add_command(self, cmd: click.Command, name: str | None = None) -> None:
+        """Register ``cmd`` under ``name`` (default its own name), as :class:`click.Group` does.
+
+        Parameters
+        ----------
+        cmd
+            The command.
+        name
+            The name it is run by.
+
+        Raises
+        ------
+        TypeError
+            When neither ``name`` nor the command has a name (a programming error).
+        """
         name = name or cmd.name
         if name is None:
             raise TypeError("Command has no name.")
         self._commands[name] = cmd
 
     def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        """The command ``cmd_name``, its module(s) loaded first; None for an unknown name.
+
+        Parameters
+        ----------
+        ctx
+            The group's click context.
+        cmd_name
+            The command's name.
+
+        Returns
+        -------
+        click.Command or None
+            The command.
+        """
         self._load(*(m for m, names in self._modules.items() if cmd_name in names))
         return self._commands.get(cmd_name)
 
     def list_commands(self, ctx: click.Context) -> list[str]:
+        """The names of the commands, sorted, without loading a module.
+
+        Parameters
+        ----------
+        ctx
+            The group's click context.
+
+        Returns
+        -------
+        list of str
+            Every name in the module index.
+        """
         return sorted({name for names in self._modules.values() for name in names})
 
 
@@ -92,7 +146,7 @@ class _OutputFailed(Exception):
     """An OSError raised by a command, carried past click (which would turn a closed pipe into
     a silent exit status 1) to :func:`main`."""
 
-    def __init__(self, error: OSError):
+    def __init__(self, error: OSError) -> None:
         super().__init__(error)
         self.error = error
 
@@ -100,7 +154,8 @@ class _OutputFailed(Exception):
 class _Group(LazyGroup):
     """The lazy group whose commands' operating-system errors reach :func:`main`."""
 
-    def invoke(self, ctx):
+    def invoke(self, ctx: click.Context) -> Any:
+        """Run the command as :class:`click.Group` does, an OSError carried to :func:`main`."""
         try:
             return super().invoke(ctx)
         except OSError as exc:
@@ -123,6 +178,7 @@ def cli() -> None:
 
 
 def _error(message: str) -> None:
+    """``crankdyn: error: MESSAGE`` on one line of standard error (white space runs joined)."""
     text = " ".join(str(message).split())
     with contextlib.suppress(OSError, ValueError):  # stderr itself may be gone
         click.echo(f"crankdyn: error: {text}", err=True)
@@ -130,9 +186,15 @@ def _error(message: str) -> None:
 
 class Terminated(KeyboardInterrupt):
     """SIGTERM (or SIGHUP), handled like Ctrl-C: the work stops, nothing is left half-written,
-    temporary outputs are removed; the exit status is 128 + the signal's number."""
+    temporary outputs are removed; the exit status is 128 + the signal's number.
 
-    def __init__(self, signum: int):
+    Parameters
+    ----------
+    signum : int
+        The signal's number.
+    """
+
+    def __init__(self, signum: int) -> None:
         super().__init__(signum)
         self.signum = signum
 
@@ -151,11 +213,12 @@ def _terminate_like_interrupt() -> Iterator[list[int]]:
         yield received
         return
 
-    def handler(signum, _frame):
+    def handler(signum: int, _frame: FrameType | None) -> None:
+        """Note the signal and raise :class:`Terminated`."""
         received.append(signum)
         raise Terminated(signum)
 
-    previous = {}
+    previous: dict[int, Any] = {}
     for sig in _TERMINATING:
         old = signal.getsignal(sig)
         if old == signal.SIG_DFL:
@@ -169,6 +232,7 @@ def _terminate_like_interrupt() -> Iterator[list[int]]:
 
 
 def _signal_name(signum: int) -> str:
+    """The signal's name (``SIGTERM``), or ``signal N`` for an unknown number."""
     try:
         return signal.Signals(signum).name
     except ValueError:
@@ -187,7 +251,24 @@ def _quiet_stdout() -> None:
 
 
 def main(argv: list[str] | None = None) -> int:
-    """Run the command line with ``argv`` (default: sys.argv[1:]); return the exit status."""
+    """Run the command line with ``argv`` (default: sys.argv[1:]); return the exit status.
+
+    Parameters
+    ----------
+    argv
+        The arguments after ``crankdyn``; default the process's own.
+
+    Returns
+    -------
+    int
+        0 on success, 2 after an input error or an output that failed (one line on standard
+        error), 128 + the signal's number after an interrupt or termination.
+
+    Examples
+    --------
+    >>> main(["kinematics", "--speed", "-5", "no-such-engine"])
+    2
+    """
     args = list(sys.argv[1:] if argv is None else argv)
     with _terminate_like_interrupt() as received:
         status = _run(args)
@@ -197,6 +278,7 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _run(args: list[str]) -> int:
+    """Run the group on ``args``; every error that is not a bug becomes a line and a status."""
     try:
         result = cli.main(args=args, prog_name="crankdyn", standalone_mode=False)
         sys.stdout.flush()  # an output error shows here, not at the interpreter's exit

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import click
 from rich.progress import BarColumn, Progress, SpinnerColumn, TextColumn, TimeElapsedColumn
@@ -28,13 +29,52 @@ from crankdyn.report.build import build_report
 from crankdyn.report.sections import builders
 from crankdyn.report.write import write_report
 
+if TYPE_CHECKING:
+    import numpy as np
+    from numpy.typing import NDArray
+
+    from crankdyn.report.sections.measurement import MeasurementInput
+
 DEMO_ENGINE = "inline6-diesel"
+"""The built-in engine of ``crankdyn demo``."""
 
 
 def run_report(
-    engine: Engine, out: Path, *, speed: float | None, speeds, force: bool, measurement=None
+    engine: Engine,
+    out: Path,
+    *,
+    speed: float | None,
+    speeds: NDArray[np.float64] | None,
+    force: bool,
+    measurement: MeasurementInput | None = None,
 ) -> int:
-    """Build and write the report with a progress bar, then print the summary table."""
+    """Build and write the report with a progress bar, then print the summary table.
+
+    Parameters
+    ----------
+    engine
+        The engine.
+    out
+        The report folder (checked before the work, :func:`crankdyn.io.output.check_output_dir`).
+    speed
+        The operating speed (rad/s); None: the engine's own.
+    speeds
+        The speeds of the sweeps (rad/s); None: the session's default range.
+    force
+        Whether an existing folder may be replaced.
+    measurement
+        A torsiograph signal to hold against the torsional model (the measurement section).
+
+    Returns
+    -------
+    int
+        The exit status, 0.
+
+    Raises
+    ------
+    InputError
+        When the folder cannot be written, naming it and the reason.
+    """
     check_output_dir(out, force=force)  # fail before the long work
     err = console(stderr=True)
     with Progress(
@@ -48,7 +88,8 @@ def run_report(
     ) as progress:
         task = progress.add_task("Analysing", total=len(builders()))
 
-        def step(name):
+        def step(name: str) -> None:
+            """Advance the bar past the report section ``name``."""
             progress.update(task, description=f"Analysing: {name}", advance=1)
 
         report = build_report(
@@ -57,7 +98,8 @@ def run_report(
         plots = sum(len(s.plots) for s in report.sections)
         task2 = progress.add_task("Writing plots", total=plots)
 
-        def plot_step(name):
+        def plot_step(name: str) -> None:
+            """Advance the bar past the plot ``name``."""
             progress.update(task2, description=f"Writing plots: {name}", advance=1)
 
         # the folder written: a numbered sibling when ``out`` appeared while the report was built
@@ -103,7 +145,17 @@ _OUTPUT_HELP = "Report folder (default: <engine name>-report); built aside and m
 @teeth_option()
 @at_option()
 @click.option("--force", is_flag=True, help="Replace an existing report folder.")
-def analyze_command(engine, output_dir, out, speed, speeds, measurement, teeth, mass, force) -> int:
+def analyze_command(
+    engine: str,
+    output_dir: str | None,
+    out: str | None,
+    speed: str | None,
+    speeds: str | None,
+    measurement: str | None,
+    teeth: int | None,
+    mass: str | None,
+    force: bool,
+) -> int:
     """Run every analysis that applies to ENGINE and write an HTML report with its data."""
     output_dir = merge_alias(output_dir, out, "--output", "--out")
     eng = resolve_engine(engine)
@@ -115,7 +167,9 @@ def analyze_command(engine, output_dir, out, speed, speeds, measurement, teeth, 
     return run_report(eng, target, speed=w, speeds=sweep, force=force, measurement=signal)
 
 
-def _measurement(engine: Engine, signal, teeth, mass):
+def _measurement(
+    engine: Engine, signal: str | None, teeth: int | None, mass: str | None
+) -> MeasurementInput | None:
     """--measurement SIGNAL --teeth N --at MASS, analysed before the report's long work."""
     if signal is None:
         if teeth is not None or mass is not None:
@@ -155,5 +209,6 @@ def demo_command(output_dir: str, out: str | None, force: bool) -> int:
 
 
 def register(group: click.Group) -> None:
+    """Add ``analyze`` and ``demo`` to the command ``group``."""
     group.add_command(analyze_command)
     group.add_command(demo_command)

@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import replace
+from typing import Any
 
 import click
 
@@ -31,9 +33,9 @@ from crankdyn.cli.writer import (
 )
 from crankdyn.constants import RPM
 from crankdyn.display import column_text, format_value
-from crankdyn.engine.balance import BALANCE_METHODS
+from crankdyn.engine.balance import BALANCE_METHODS, BalanceResult, OrderBalance
 from crankdyn.engine.firing_search import CRITERIA, FiringOrderRanking
-from crankdyn.engine.model import BalanceInputs
+from crankdyn.engine.model import BalanceInputs, Engine
 from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
@@ -41,9 +43,16 @@ from crankdyn.io.catalogue import resolve_engine
 __all__ = ["register"]
 
 
-def _numbers(text: str | None, option: str, *, integer: bool = False):
+def _numbers(text: str | None, option: str, *, integer: bool = False) -> list[Any] | None:
+    """A comma- (or semicolon-) separated list of finite numbers (ints with ``integer``), or
+    None for None; a bad list is an InputError naming ``option``."""
     if text is None:
         return None
+    return _number_list(text, option, integer=integer)
+
+
+def _number_list(text: str, option: str, *, integer: bool = False) -> list[Any]:
+    """:func:`_numbers` of a text."""
     parts = [p.strip() for p in text.replace(";", ",").split(",") if p.strip()]
     try:
         values = [int(p) if integer else float(p) for p in parts]
@@ -55,14 +64,15 @@ def _numbers(text: str | None, option: str, *, integer: bool = False):
     return values
 
 
-def _groups(text: str | None):
+def _groups(text: str | None) -> list[list[Any]] | None:
+    """--exhaust-groups "1,2,3;4,5,6" as lists of cylinder numbers, or None for None."""
     if text is None:
         return None
     groups = []
     for part in text.split(";"):
         if not part.strip():
             continue
-        groups.append(_numbers(part, "--exhaust-groups", integer=True))
+        groups.append(_number_list(part, "--exhaust-groups", integer=True))
     if not groups:
         raise InputError(
             'expected groups such as "1,2,3;4,5,6"', key="--exhaust-groups", value=text
@@ -71,6 +81,7 @@ def _groups(text: str | None):
 
 
 def _sentence(text: str) -> str:
+    """A note as a sentence: a capital first letter and a full stop."""
     return text[0].upper() + text[1:] + ("" if text.endswith(".") else ".")
 
 
@@ -88,7 +99,8 @@ _HEADERS = {
 }
 
 
-def _intervals_text(values) -> str:
+def _intervals_text(values: Iterable[float]) -> str:
+    """Firing intervals (deg): ``120 × 6`` when all are equal, else each."""
     rounded = [round(float(v), 6) for v in values]
     if len(set(rounded)) == 1:
         return f"{rounded[0]:g} × {len(rounded)}"
@@ -96,7 +108,21 @@ def _intervals_text(values) -> str:
 
 
 def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> TextTable:
-    """The ranked firing orders (the even-interval criterion is in the intervals column)."""
+    """The ranked firing orders (the even-interval criterion is in the intervals column).
+
+    Parameters
+    ----------
+    result
+        The ranking.
+    limit
+        The most firing orders shown; None: all.
+
+    Returns
+    -------
+    TextTable
+        One row per firing order: rank (``*`` marks the engine's own), order, intervals (deg)
+        and each criterion.
+    """
     crit = [c for c in result.criteria if c != "interval_deviation_deg"]
     shown = result.candidates if limit is None else result.candidates[:limit]
     dicts = [c.to_dict() for c in shown]
@@ -107,7 +133,7 @@ def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> TextT
         [_intervals_text(d["firing_intervals_deg"]) for d in dicts],
     ]
     for c in crit:
-        values = [d.get(c) for d in dicts]
+        values: list[Any] = [d.get(c) for d in dicts]
         header.append(_HEADERS.get(c, CRITERIA[c].label if c in CRITERIA else c))
         if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
             texts, _unit = column_text([float(v) for v in values], reference=1.0)
@@ -126,6 +152,7 @@ def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> TextT
 
 
 def _ranking_notes(result: FiringOrderRanking, shown: int) -> list[str]:
+    """The lines under the ranking: counts, the engine's own order's rank, the units."""
     lines = [
         f"{result.count} firing order(s) found, {result.even_count} evenly firing; "
         f"ranked by {', '.join(result.criteria)}.",
@@ -159,7 +186,9 @@ _OPTION_OF = {
 }
 
 
-def _mode_shape(eng, text: str | None):
+def _mode_shape(eng: Engine, text: str | None) -> list[Any] | None:
+    """--mode-shape: the amplitudes given, or None for the first mode of the engine's
+    [torsion] model (``torsion`` or no option)."""
     if text is None or text.strip().lower() != "torsion":
         return _numbers(text, "--mode-shape")
     if eng.torsion is None:
@@ -214,27 +243,27 @@ def _mode_shape(eng, text: str | None):
 @plot_option("Also write the crank end view and firing diagram of the best (.png, .svg or .pdf).")
 @output_options
 def firing_orders_command(
-    engine,
-    any_crankshaft,
-    include_uneven,
-    mode_shape,
-    orders,
-    torsion_orders,
-    exhaust_groups,
-    rank_by,
-    top,
-    plot_path,
-    fmt,
-    output_path,
-    force,
+    engine: str,
+    any_crankshaft: bool,
+    include_uneven: bool,
+    mode_shape: str | None,
+    orders: str | None,
+    torsion_orders: str | None,
+    exhaust_groups: str | None,
+    rank_by: str | None,
+    top: int | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Enumerate the firing orders ENGINE's crankshaft allows and rank them (seed 000 §2.3)."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
     orders = merge_alias(orders, torsion_orders, "--orders", "--torsion-orders")
-    session = Analysis(resolve_engine(engine))
-    eng = session.engine
+    eng = resolve_engine(engine)
+    session = Analysis(eng)
     if top is not None and top < 1:
         raise InputError("must be at least 1", key="--top", value=top)
     priority = None
@@ -255,7 +284,7 @@ def firing_orders_command(
         )
     except InputError as exc:
         if exc.key in _OPTION_OF and exc.file is None:
-            extra = {"value": exc.value} if exc.has_value else {}
+            extra: dict[str, Any] = {"value": exc.value} if exc.has_value else {}
             raise InputError(exc.message, key=_OPTION_OF[exc.key], **extra) from None
         raise
     limit = top if top is not None else 30
@@ -275,15 +304,31 @@ def firing_orders_command(
 # ---- balance ----------------------------------------------------------------------------------
 
 
-def _row_name(row) -> str:
+def _row_name(row: OrderBalance) -> str:
+    """The Order cell of a balance row: the order, ``1 rotating`` or ``1 total``."""
     if row.source == "reciprocating":
         return str(row.order)
     return "1 rotating" if row.source == "rotating" else "1 total"
 
 
-def balance_table(result, unit_force: float, pitch: float | None) -> TextTable:
+def balance_table(result: BalanceResult, unit_force: float, pitch: float | None) -> TextTable:
     """The free forces and moments by order: forces and moments in engineering units, round-off
-    next to the unit force m_j R ω² (and moment m_j R ω² a) as 0."""
+    next to the unit force m_j R ω² (and moment m_j R ω² a) as 0.
+
+    Parameters
+    ----------
+    result
+        The balance.
+    unit_force
+        m_j R ω², the reference of the force columns (N).
+    pitch
+        The cylinder pitch a (m), for the moments' reference m_j R ω² a; None: 1 m.
+
+    Returns
+    -------
+    TextTable
+        One row per order (then ``1 rotating`` and ``1 total``).
+    """
     rows = result.rows()
     moment_ref = unit_force * (pitch or 1.0)
     spec = [
@@ -319,7 +364,9 @@ def balance_table(result, unit_force: float, pitch: float | None) -> TextTable:
     return TextTable(title, header, [list(r) for r in zip(*columns, strict=True)], {0})
 
 
-def _balance_notes(result) -> list[str]:
+def _balance_notes(result: BalanceResult) -> list[str]:
+    """The lines under the balance table: the masses, what the rows are, the overturning
+    moment, the result's notes."""
     lines = [
         f"m_j = {format_value(result.reciprocating_mass)[0]} kg per cylinder; rotating "
         f"{format_value(result.rotating_mass)[0]} kg per throw; counterweights c = "
@@ -377,13 +424,15 @@ def _balance_notes(result) -> list[str]:
     "--rod-offset",
     default=None,
     metavar="MM",
-    help="Axial offset of the bank-B rod from the bank-A rod on a V throw (mm, or with a unit).",
+    help="Axial offset of the bank-B rod from the bank-A rod on a V throw (mm, or with a unit); "
+    "default: the file's [balance], else 0.",
 )
 @click.option(
     "--power",
     default=None,
     metavar="KW",
-    help="Engine power for the power-related unbalance (kW, or with a unit).",
+    help="Engine power for the power-related unbalance (kW, or with a unit); default: the "
+    "file's [balance], else the torque analysis's.",
 )
 @click.option(
     "--no-torque",
@@ -393,28 +442,28 @@ def _balance_notes(result) -> list[str]:
 @plot_option("Also write the free-force and free-moment polar plots (.png, .svg or .pdf).")
 @output_options
 def balance_command(
-    engine,
-    speed,
-    orders,
-    method,
-    counterweight_ratio,
-    reciprocating_balance_ratio,
-    rod_offset,
-    power,
-    no_torque,
-    plot_path,
-    fmt,
-    output_path,
-    force,
+    engine: str,
+    speed: str | None,
+    orders: str | None,
+    method: str,
+    counterweight_ratio: float | None,
+    reciprocating_balance_ratio: float | None,
+    rod_offset: str | None,
+    power: str | None,
+    no_torque: bool,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Free forces and moments of ENGINE's mass forces, order by order (seed 000 §2.2)."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
-    session = Analysis(resolve_engine(engine), speed=parse_speed(speed))
-    eng = session.engine
+    eng = resolve_engine(engine)
+    session = Analysis(eng, speed=parse_speed(speed))
     inputs = eng.balance or BalanceInputs()
-    changes = {}
+    changes: dict[str, float] = {}
     for key, value in (
         ("counterweight_ratio", counterweight_ratio),
         ("reciprocating_balance_ratio", reciprocating_balance_ratio),
@@ -467,7 +516,8 @@ def balance_command(
     "--inertia",
     default=None,
     metavar="KGM2",
-    help="A given flywheel's inertia (kg·m², or with a unit), to find the δ it gives.",
+    help="A given flywheel's inertia (kg·m², or with a unit), to find the δ it gives; default: "
+    "none (the flywheel for the target δ).",
 )
 @step_option(
     "Crank-angle step of the rows of the torque, excess-work and speed curves (deg for a bare "
@@ -476,7 +526,15 @@ def balance_command(
 @plot_option("Also write the torque, energy swing and crank speed figure (.png, .svg or .pdf).")
 @output_options
 def flywheel_command(
-    engine, speed, delta, inertia, step, plot_path, fmt, output_path, force
+    engine: str,
+    speed: str | None,
+    delta: str | None,
+    inertia: str | None,
+    step: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Speed fluctuation of ENGINE and the flywheel for a target δ (seed 000 §2.4)."""
     out = Output(fmt, output_path, force)
@@ -488,15 +546,15 @@ def flywheel_command(
     given = option_quantity(inertia, "inertia", "--inertia", "kg*m^2")
     if given is not None and not given > 0.0:
         raise InputError("the inertia must be positive", key="--inertia", value=inertia)
-    session = Analysis(resolve_engine(engine), speed=parse_speed(speed))
-    eng = session.engine
+    eng = resolve_engine(engine)
+    session = Analysis(eng, speed=parse_speed(speed))
     h = display_step(step, fmt, eng.cycle_angle)
     result = session.flywheel(delta=target, inertia=given, step=h)
     summary = [r for r in result.summary_rows() if r[0] not in ("Engine", "Notes")]
     notes = [_sentence(n) for n in result.notes]
     if target is None and given is None and session.flywheel_default_delta():
         notes.append("The target δ is the default 0.01 (give --delta or [flywheel] delta).")
-    blocks = [
+    blocks: list[TextTable | str] = [
         summary_table(summary, f"{eng.name}: speed fluctuation and flywheel"),
         *notes,
     ]
@@ -509,6 +567,7 @@ def flywheel_command(
 
 
 def _fraction(text: str, option: str) -> float:
+    """A number or a fraction such as 1/150; anything else is an InputError naming ``option``."""
     try:
         parts = [float(p) for p in text.split("/")]
         if len(parts) > 2 or not all(math.isfinite(p) for p in parts):
@@ -521,6 +580,7 @@ def _fraction(text: str, option: str) -> float:
 
 
 def register(group: click.Group) -> None:
+    """Add ``firing-orders``, ``balance`` and ``flywheel`` to the command ``group``."""
     group.add_command(firing_orders_command)
     group.add_command(balance_command)
     group.add_command(flywheel_command)

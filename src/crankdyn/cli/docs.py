@@ -27,6 +27,7 @@ def terminal_markdown(text: str) -> str:
     names = set(docs.topic_names())
 
     def replace(m: re.Match[str]) -> str:
+        """One link, as the command that shows its page (other links as they are)."""
         label, page = m.group(1), m.group(2)
         if page not in names:
             return m.group(0)
@@ -39,6 +40,7 @@ def terminal_markdown(text: str) -> str:
 
 
 def _list() -> None:
+    """The topics and their pages' titles, as a table."""
     if not docs.topics():
         docs.topic("")  # raises: the pages are not installed
     out = console()
@@ -54,6 +56,8 @@ def _list() -> None:
 
 
 def _show(name: str, raw: bool) -> None:
+    """The page of topic ``name``, rendered (paged on a terminal) or, with ``raw``, as
+    Markdown."""
     text = docs.read(name)
     if raw:
         click.echo(text, nl=not text.endswith("\n"))
@@ -72,6 +76,8 @@ def _show(name: str, raw: bool) -> None:
 
 
 def _open_html(name: str | None) -> None:
+    """Open the built HTML site (the page of topic ``name``) in a browser; a one-line error
+    when it is not built here."""
     page = docs.html_page(name)
     if page is None:
         raise click.ClickException(
@@ -106,4 +112,5 @@ def docs_command(topic: str | None, html: bool, raw: bool) -> int:
 
 
 def register(group: click.Group) -> None:
+    """Add ``docs`` to the command ``group``."""
     group.add_command(docs_command)

@@ -77,6 +77,7 @@ def write_example(name: str, output: str | None, force: bool, kind: str | None =
 
 
 def _relative(path: Path, folder: Path) -> Path:
+    """``path`` relative to ``folder``, or its bare name when it lies outside."""
     try:
         return path.relative_to(folder)
     except ValueError:  # outside the example's folder: beside the written file
@@ -120,9 +121,10 @@ def example_alias(kind: str) -> click.Command:
     @click.option("-o", "--output", default=None, metavar="PATH", help="File or folder.")
     @click.option("--force", is_flag=True, help="Overwrite existing files.")
     def alias(name: str, output: str | None, force: bool) -> int:
-        if example_kind(name) not in (None, kind):
+        found = example_kind(name)
+        if found is not None and found != kind:
             raise InputError(
-                f"{name} is a built-in {EXAMPLE_KINDS[example_kind(name)][1]}, not a "
+                f"{name} is a built-in {EXAMPLE_KINDS[found][1]}, not a "
                 f"{EXAMPLE_KINDS[kind][1]} (crankdyn example {name} writes it)",
                 key="example",
                 value=name,
@@ -135,5 +137,6 @@ def example_alias(kind: str) -> click.Command:
 
 
 def register(group: click.Group) -> None:
+    """Add ``examples`` and ``example`` to the command ``group``."""
     group.add_command(examples_command)
     group.add_command(example_command)

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
+from typing import Any
 
 import click
 
@@ -17,11 +19,12 @@ from crankdyn.cli.common import (
     step_option,
 )
 from crankdyn.cli.writer import Output, output_options, result_table, summary_table
+from crankdyn.engine.model import Engine
 from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
 
-FORCE_TABLE = (
+FORCE_TABLE = (  # the columns `crankdyn forces` shows
     "crank_angle_deg",
     "gas_force_N",
     "inertia_force_N",
@@ -35,13 +38,41 @@ FORCE_TABLE = (
 )
 
 
-def _session(engine: str, speed: str | None) -> Analysis:
-    return Analysis(resolve_engine(engine), speed=parse_speed(speed))
+def _session(engine: str, speed: str | None) -> tuple[Engine, Analysis]:
+    """The ENGINE argument's engine and its analysis session at --speed."""
+    eng = resolve_engine(engine)
+    return eng, Analysis(eng, speed=parse_speed(speed))
 
 
-def _write(out: Output, result, keys, title: str, plot_path, force, full) -> None:
+def _write(
+    out: Output,
+    result: Any,
+    keys: Sequence[str],
+    title: str,
+    plot_path: str | None,
+    force: bool,
+    full: Any,
+) -> None:
     """The rows (at the display step) as table, CSV or JSON; the figure from ``full``, the
-    session's full-resolution analysis, whatever --step the rows use."""
+    session's full-resolution analysis, whatever --step the rows use.
+
+    Parameters
+    ----------
+    out
+        The command's output.
+    result
+        The result at the display step (a :class:`crankdyn.results.Result`).
+    keys
+        The columns the table shows (CSV and JSON hold them all).
+    title
+        The table's title.
+    plot_path
+        The --plot file, or None.
+    force
+        Whether an existing figure file may be replaced.
+    full
+        The full-resolution result, whose ``plot()`` is the figure.
+    """
     out.write(
         blocks=[result_table(result, keys, title=title), summary_table(result)],
         json_data=result,
@@ -65,14 +96,22 @@ def _write(out: Output, result, keys, title: str, plot_path, force, full) -> Non
 )
 @plot_option("Also write the forces figure (.png, .svg or .pdf).")
 @output_options
-def forces_command(engine, speed, step, cylinder, plot_path, fmt, output_path, force) -> int:
+def forces_command(
+    engine: str,
+    speed: str | None,
+    step: str | None,
+    cylinder: int,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Gas, inertia, rod, side, tangential and radial forces and the crank-pin load of one
     cylinder of ENGINE over the working cycle."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
-    session = _session(engine, speed)
-    eng = session.engine
+    eng, session = _session(engine, speed)
     if not 1 <= cylinder <= eng.cylinders.count:
         raise InputError(
             f"the engine has cylinders 1 to {eng.cylinders.count}", key="--cylinder", value=cylinder
@@ -97,14 +136,22 @@ def forces_command(engine, speed, step, cylinder, plot_path, fmt, output_path, f
 @step_option()
 @plot_option("Also write the polar diagrams of the bearing loads (.png, .svg or .pdf).")
 @output_options
-def bearings_command(engine, speed, step, plot_path, fmt, output_path, force) -> int:
+def bearings_command(
+    engine: str,
+    speed: str | None,
+    step: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Crank-pin loads (crank frame) of every throw and main-bearing loads (engine frame) of
     ENGINE over the working cycle."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
-    session = _session(engine, speed)
-    result = session.bearings(step=display_step(step, fmt, session.engine.cycle_angle))
+    eng, session = _session(engine, speed)
+    result = session.bearings(step=display_step(step, fmt, eng.cycle_angle))
     keys = (
         "crank_angle_deg",
         *(k for k in result.columns() if k.startswith(("crank_pin_load_N", "main_bearing_load_N"))),
@@ -130,7 +177,14 @@ def bearings_command(engine, speed, step, plot_path, fmt, output_path, force) ->
 @plot_option("Also write the torque figure (.png, .svg or .pdf).")
 @output_options
 def torque_command(
-    engine, speed, step, mechanical_efficiency, plot_path, fmt, output_path, force
+    engine: str,
+    speed: str | None,
+    step: str | None,
+    mechanical_efficiency: float | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Cylinder, total, main-journal and crank-pin torques of ENGINE over the working cycle,
     with mean torque, power, IMEP and peak pressure."""
@@ -144,8 +198,7 @@ def torque_command(
             key="--mechanical-efficiency",
             value=eta,
         )
-    session = _session(engine, speed)
-    eng = session.engine
+    eng, session = _session(engine, speed)
     result = session.torque_rows(
         display_step(step, fmt, eng.cycle_angle), mechanical_efficiency=eta
     )
@@ -168,14 +221,22 @@ def torque_command(
 @step_option()
 @plot_option("Also write the p-φ and p-V diagrams (.png, .svg or .pdf).")
 @output_options
-def pressure_command(engine, step, plot_path, fmt, output_path, force) -> int:
+def pressure_command(
+    engine: str,
+    step: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Cylinder pressure of ENGINE over the cycle (its trace, or the synthetic Wiebe model) with
     the indicated work, IMEP and peak pressure."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
-    session = Analysis(resolve_engine(engine))
-    result = session.pressure_rows(display_step(step, fmt, session.engine.cycle_angle))
+    eng = resolve_engine(engine)
+    session = Analysis(eng)
+    result = session.pressure_rows(display_step(step, fmt, eng.cycle_angle))
     _write(
         out,
         result,
@@ -189,6 +250,7 @@ def pressure_command(engine, step, plot_path, fmt, output_path, force) -> int:
 
 
 def register(group: click.Group) -> None:
+    """Add ``forces``, ``bearings``, ``torque`` and ``pressure`` to the command ``group``."""
     group.add_command(forces_command)
     group.add_command(bearings_command)
     group.add_command(torque_command)

@@ -25,6 +25,20 @@ from crankdyn.io.catalogue import resolve_engine
 
 
 def check_order(method: str, order: int) -> None:
+    """Refuse a --order of the λ-series that is not even, from 2 to 64 (``--method series``).
+
+    Parameters
+    ----------
+    method
+        The --method (``exact``, ``approx`` or ``series``); only ``series`` reads the order.
+    order
+        The --order, the highest harmonic of the series.
+
+    Raises
+    ------
+    InputError
+        On a bad order with ``--method series``, naming ``--order`` and the value.
+    """
     if method == "series" and (order < 2 or order % 2 or order > 64):
         raise InputError(
             "the series order must be an even number from 2 to 64", key="--order", value=order
@@ -67,7 +81,15 @@ KINEMATICS_TABLE = (
 @plot_option("Also write the kinematics figure (.png, .svg or .pdf).")
 @output_options
 def kinematics_command(
-    engine, speed, step, method, order, plot_path, fmt, output_path, force
+    engine: str,
+    speed: str | None,
+    step: str | None,
+    method: str,
+    order: int,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Piston and connecting-rod kinematics of ENGINE over one revolution."""
     out = Output(fmt, output_path, force)
@@ -90,6 +112,7 @@ def kinematics_command(
 
 
 def _parse_lambda(text: str) -> float:
+    """One --lambda value, a number or a fraction such as 1/3.8, between 0 and 1."""
     try:
         parts = [float(p) for p in text.split("/")]
         if len(parts) > 2:
@@ -126,7 +149,14 @@ def _parse_lambda(text: str) -> float:
 @_ORDER
 @output_options
 def coefficients_command(
-    lambdas, offset_ratio, step, method, order, fmt, output_path, force
+    lambdas: str,
+    offset_ratio: float,
+    step: str | None,
+    method: str,
+    order: int,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """The seeds' dimensionless tables: A = x/R, B = v/(Rω), C = a/(Rω²) vs crank angle."""
     out = Output(fmt, output_path, force)
@@ -153,5 +183,6 @@ def coefficients_command(
 
 
 def register(group: click.Group) -> None:
+    """Add ``kinematics`` and ``coefficients`` to the command ``group``."""
     group.add_command(kinematics_command)
     group.add_command(coefficients_command)

@@ -3,9 +3,12 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Collection
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import click
 import numpy as np
+from numpy.typing import NDArray
 
 from crankdyn.cli.common import (
     angle_grid,
@@ -28,6 +31,14 @@ from crankdyn.io.output import check_writable, write_bytes
 from crankdyn.linkage.fourbar import BRANCHES, FourBar, fourbar_analysis
 from crankdyn.linkage.kinetostatics import kinetostatics
 from crankdyn.linkage.planar import linkage_kinematics
+from crankdyn.results import Result
+
+if TYPE_CHECKING:
+    from crankdyn.linkage.kinetostatics import KinetostaticsResult
+    from crankdyn.linkage.planar import Mechanism, MechanismMotion
+
+F = TypeVar("F", bound=Callable[..., Any])
+R = TypeVar("R", bound=Result)
 
 TWO_PI = 2.0 * math.pi
 PLOT_POINTS = 1441
@@ -35,12 +46,14 @@ PLOT_POINTS = 1441
 this resolution whatever --step the table uses, so a load step is drawn as a step."""
 
 
-def _plot_angles(start: float) -> np.ndarray:
+def _plot_angles(start: float) -> NDArray[np.float64]:
     """A full crank revolution from ``start`` (rad) at the plot resolution."""
     return start + np.linspace(0.0, TWO_PI, PLOT_POINTS)
 
 
-def _angles(angle: str | None, step: str | None, fmt: str, start: float = 0.0) -> np.ndarray:
+def _angles(
+    angle: str | None, step: str | None, fmt: str, start: float = 0.0
+) -> NDArray[np.float64]:
     """--angle (one position) or --step (a full turn from ``start``); deg for bare numbers."""
     if angle is not None and step is not None:
         raise InputError("give --angle or --step, not both", key="--angle", value=angle)
@@ -65,7 +78,7 @@ ANALYSIS_STEP = np.radians(1.0)
 """The analysis grid of a full turn: a table's coarser rows show its summary."""
 
 
-def _full_turn(theta: np.ndarray, start: float = 0.0) -> np.ndarray | None:
+def _full_turn(theta: NDArray[np.float64], start: float = 0.0) -> NDArray[np.float64] | None:
     """The 1 deg full turn the summary comes from, when ``theta`` is another full-turn grid."""
     if theta.size < 2:
         return None
@@ -75,10 +88,11 @@ def _full_turn(theta: np.ndarray, start: float = 0.0) -> np.ndarray | None:
     return full
 
 
-def _single(data: dict, keys) -> dict:
+def _single(data: dict[str, Any], keys: Collection[str]) -> dict[str, Any]:
     """For one --angle: the per-angle lists of length one become plain numbers."""
 
-    def squeeze(v):
+    def squeeze(v: Any) -> Any:
+        """A list of one number as the number, inside dicts too."""
         if isinstance(v, list) and len(v) == 1 and not isinstance(v[0], (list, dict)):
             return v[0]
         if isinstance(v, dict):
@@ -88,7 +102,8 @@ def _single(data: dict, keys) -> dict:
     return {k: (squeeze(v) if k in keys else v) for k, v in data.items()}
 
 
-def _json(result, *, single: bool, extra=None) -> dict:
+def _json(result: Result, *, single: bool, extra: dict[str, Any] | None = None) -> dict[str, Any]:
+    """A result's JSON data (one --angle: plain numbers, :func:`_single`), with ``extra``."""
     data = result.to_dict()
     if single:
         data = _single(data, set(result.columns()) | {k.split(".")[0] for k in result.columns()})
@@ -98,6 +113,7 @@ def _json(result, *, single: bool, extra=None) -> dict:
 
 
 def _length(value: str, option: str) -> float:
+    """A link length option (mm for a bare number) in m; it must be positive."""
     number = option_quantity(value, "length", option, "mm")
     if not number > 0.0:
         raise InputError("a link length must be positive", key=option, value=value)
@@ -115,10 +131,16 @@ def linkage_group() -> None:
 
 
 @linkage_group.command("fourbar")
-@click.option("--crank", required=True, metavar="MM", help="Crank AB (input), e.g. 73.4mm.")
+@click.option(
+    "--crank", required=True, metavar="MM", help="Crank AB, the input (mm, or with a unit)."
+)
 @click.option("--coupler", required=True, metavar="MM", help="Coupler BC (mm, or with a unit).")
-@click.option("--rocker", required=True, metavar="MM", help="Rocker DC, the output (mm).")
-@click.option("--ground", required=True, metavar="MM", help="Ground AD, the frame (mm).")
+@click.option(
+    "--rocker", required=True, metavar="MM", help="Rocker DC, the output (mm, or with a unit)."
+)
+@click.option(
+    "--ground", required=True, metavar="MM", help="Ground AD, the frame (mm, or with a unit)."
+)
 @speed_option(
     "Crank speed, counter-clockwise positive (rpm for a bare number, or with a unit); "
     "default 1 rad/s."
@@ -131,7 +153,13 @@ def linkage_group() -> None:
     metavar="RAD/S2",
     help="Crank angular acceleration (rad/s² for a bare number, or with a unit).",
 )
-@click.option("--angle", default=None, metavar="DEG", help="One crank angle (from A->D).")
+@click.option(
+    "--angle",
+    default=None,
+    metavar="DEG",
+    help="One crank angle from A->D (deg for a bare number, or with a unit); default: a full "
+    "turn every --step.",
+)
 @step_option(
     "Crank-angle step over a full turn (deg for a bare number); default 10 for tables, 1 "
     "otherwise. Summaries always come from the 1 deg analysis."
@@ -147,32 +175,33 @@ def linkage_group() -> None:
     "--coupler-point",
     default=None,
     metavar="P,Q",
-    help="Coupler point: P along B->C and Q to its left (mm), e.g. 60mm,40mm.",
+    help="Coupler point: P along B->C and Q to its left (mm for bare numbers), e.g. 60mm,40mm; "
+    "default: none.",
 )
 @plot_option("Also write the four-bar figure (.png, .svg or .pdf).")
 @output_options
 def fourbar_command(
-    crank,
-    coupler,
-    rocker,
-    ground,
-    speed,
-    crank_speed,
-    crank_acceleration,
-    angle,
-    step,
-    branch,
-    coupler_point,
-    plot_path,
-    fmt,
-    output_path,
-    force,
+    crank: str,
+    coupler: str,
+    rocker: str,
+    ground: str,
+    speed: str | None,
+    crank_speed: str | None,
+    crank_acceleration: str,
+    angle: str | None,
+    step: str | None,
+    branch: str,
+    coupler_point: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Four-bar kinematics in closed form: Grashof type, limits, link angles and rates."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
-    lengths = [
+    a, b, c, d = (
         _length(v, o)
         for v, o in (
             (crank, "--crank"),
@@ -180,7 +209,7 @@ def fourbar_command(
             (rocker, "--rocker"),
             (ground, "--ground"),
         )
-    ]
+    )
     point = None
     if coupler_point is not None:
         parts = coupler_point.split(",")
@@ -188,7 +217,8 @@ def fourbar_command(
             raise InputError(
                 "expected P,Q such as 60mm,40mm", key="--coupler-point", value=coupler_point
             )
-        point = tuple(option_quantity(p.strip(), "length", "--coupler-point", "mm") for p in parts)
+        p, q = (option_quantity(part.strip(), "length", "--coupler-point", "mm") for part in parts)
+        point = (p, q)
     merge_alias(speed, crank_speed, "--speed", "--crank-speed")
     if crank_speed is not None:  # the older option read rad/s for a bare number
         w = option_quantity(crank_speed, "speed", "--crank-speed", "rad/s")
@@ -200,7 +230,7 @@ def fourbar_command(
         crank_acceleration, "angular_acceleration", "--crank-acceleration", "rad/s^2"
     )
     try:
-        fb = FourBar(*lengths, branch=branch, coupler_point=point)
+        fb = FourBar(a, b, c, d, branch=branch, coupler_point=point)
     except InputError as exc:
         raise InputError(
             exc.message,
@@ -243,7 +273,7 @@ def fourbar_command(
     return 0
 
 
-def _speed(mech, speed):
+def _speed(mech: Mechanism, speed: str | None) -> float | None:
     """--speed (rpm for a bare number), else the linkage file's [driver] speed (rad/s)."""
     if speed is None:
         return mech.driver.speed
@@ -255,16 +285,29 @@ _SPEED_HELP = (
 )
 
 
-def _linkage_options(f):
+def _linkage_options(f: F) -> F:
+    """--speed, --step and --angle of the linkage commands that analyse a turn or a position."""
     f = speed_option(_SPEED_HELP)(f)
     f = step_option(
         "Crank-angle step over a full turn (deg for a bare number); default 10 for tables, 1 "
         "otherwise. Summaries always come from the 1 deg analysis."
     )(f)
-    return click.option("--angle", default=None, metavar="DEG", help="One crank angle.")(f)
+    return click.option(
+        "--angle",
+        default=None,
+        metavar="DEG",
+        help="One crank angle (deg for a bare number, or with a unit); default: a full turn "
+        "every --step.",
+    )(f)
 
 
-def _analysed(mech, theta, speed, angle, analyse):
+def _analysed(
+    mech: Mechanism,
+    theta: NDArray[np.float64],
+    speed: str | None,
+    angle: str | None,
+    analyse: Callable[[MechanismMotion], R],
+) -> tuple[R, R | None]:
     """(result at the rows, the full-turn result or None): a coarser table's summary is the
     full turn's."""
     w = _speed(mech, speed)
@@ -280,7 +323,15 @@ def _analysed(mech, theta, speed, angle, analyse):
 @click.argument("linkage", metavar="LINKAGE")
 @_linkage_options
 @output_options
-def kinematics_command(linkage, angle, step, speed, fmt, output_path, force) -> int:
+def kinematics_command(
+    linkage: str,
+    angle: str | None,
+    step: str | None,
+    speed: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Positions, velocities and accelerations of every link and point of LINKAGE."""
     out = Output(fmt, output_path, force)
     out.check()
@@ -307,7 +358,16 @@ def kinematics_command(linkage, angle, step, speed, fmt, output_path, force) -> 
 @plot_option("Also write the driving-torque and joint-force figure (.png, .svg or .pdf).")
 @output_options
 def forces_command(
-    linkage, angle, step, speed, no_friction, matrices, plot_path, fmt, output_path, force
+    linkage: str,
+    angle: str | None,
+    step: str | None,
+    speed: str | None,
+    no_friction: bool,
+    matrices: bool,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Joint reactions and driving torque of LINKAGE (matrix method and virtual work)."""
     out = Output(fmt, output_path, force)
@@ -320,9 +380,11 @@ def forces_command(
     result, _full = _analysed(
         mech, theta, speed, angle, lambda m: kinetostatics(m, friction=not no_friction)
     )
-    extra = None
+    extra: dict[str, Any] | None = None
     if matrices:
-        extra = {"matrices": [result.system.matrices(i) for i in range(theta.size)]}
+        system = result.system
+        assert system is not None  # kinetostatics() keeps its system of equations
+        extra = {"matrices": [system.matrices(i) for i in range(theta.size)]}
         if angle is not None:
             extra = {"matrices": extra["matrices"][0]}
     out.write(
@@ -337,7 +399,7 @@ def forces_command(
     return 0
 
 
-def _forces_table(result) -> TextTable:
+def _forces_table(result: KinetostaticsResult) -> TextTable:
     """The driving torque by both methods and the joint force magnitudes."""
     cols = [
         ("Crank angle", "deg", np.degrees(result.crank_angle)),
@@ -346,6 +408,7 @@ def _forces_table(result) -> TextTable:
     ]
     if result.efficiency is not None:
         cols.append(("Efficiency", "", result.efficiency))
+    assert result.joint_forces is not None  # a kinetostatics result carries its forces
     for name, f in result.joint_forces.items():
         cols.append((f"Force in joint {name}", "N", np.hypot(f["x"], f["y"])))
     header, columns = [], []
@@ -366,7 +429,7 @@ def _forces_table(result) -> TextTable:
 @linkage_group.command("check")
 @click.argument("linkage", metavar="LINKAGE")
 @output_options
-def check_command(linkage, fmt, output_path, force) -> int:
+def check_command(linkage: str, fmt: str, output_path: str | None, force: bool) -> int:
     """Structure of LINKAGE: mobility, link groups and their static determinacy (seed 004)."""
     out = Output(fmt, output_path, force)
     out.check()
@@ -428,7 +491,8 @@ def check_command(linkage, fmt, output_path, force) -> int:
     return 0
 
 
-def _one_angle(angle: str | None, mech) -> float:
+def _one_angle(angle: str | None, mech: Mechanism) -> float:
+    """--angle (deg for a bare number) in rad, else the drawn position's crank angle."""
     if angle is None:
         return mech.crank_angle_drawn
     return option_quantity(angle, "angle", "--angle", "deg")
@@ -437,7 +501,10 @@ def _one_angle(angle: str | None, mech) -> float:
 @linkage_group.command("draw")
 @click.argument("linkage", metavar="LINKAGE")
 @click.option(
-    "--angle", default=None, metavar="DEG", help="Crank angle; default: the drawn position."
+    "--angle",
+    default=None,
+    metavar="DEG",
+    help="Crank angle (deg for a bare number, or with a unit); default: the drawn position.",
 )
 @speed_option(_SPEED_HELP)
 @click.option(
@@ -450,7 +517,15 @@ def _one_angle(angle: str | None, mech) -> float:
 @click.option("--paths", is_flag=True, help="Draw the point paths (coupler curves) instead.")
 @click.option("-o", "--output", required=True, metavar="FILE", help="PNG, SVG or PDF to write.")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> int:
+def draw_command(
+    linkage: str,
+    angle: str | None,
+    speed: str | None,
+    show_forces: bool,
+    paths: bool,
+    output: str,
+    force: bool,
+) -> int:
     """Draw LINKAGE at one crank angle with its joint forces (or its point paths)."""
     from crankdyn.plots.linkage import plot_mechanism, plot_paths
 
@@ -496,7 +571,15 @@ def draw_command(linkage, angle, speed, show_forces, paths, output, force) -> in
 )
 @click.option("-o", "--output", required=True, metavar="FILE", help="The GIF to write (.gif).")
 @click.option("--force", is_flag=True, help="Overwrite an existing file.")
-def animate_command(linkage, frames, fps, speed, show_forces, output, force) -> int:
+def animate_command(
+    linkage: str,
+    frames: int,
+    fps: int,
+    speed: str | None,
+    show_forces: bool,
+    output: str,
+    force: bool,
+) -> int:
     """An animated GIF of LINKAGE through a full crank revolution."""
     from crankdyn.plots.linkage import animate_mechanism
 
@@ -517,4 +600,5 @@ linkage_group.add_command(example_alias("linkage"))
 
 
 def register(group: click.Group) -> None:
+    """Add the ``linkage`` group to the command ``group``."""
     group.add_command(linkage_group)

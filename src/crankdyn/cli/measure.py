@@ -4,9 +4,12 @@ analysis, the model held against the measurement). docs/measurement.md."""
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
+from typing import TYPE_CHECKING, Any, cast
 
 import click
 import numpy as np
+from numpy.typing import ArrayLike
 
 from crankdyn.cli.common import (
     at_option,
@@ -23,8 +26,11 @@ from crankdyn.cli.writer import Output, TextTable, output_options
 from crankdyn.constants import RPM
 from crankdyn.display import column_text, number
 from crankdyn.errors import InputError
-from crankdyn.measure.orders import ANALYSES, WINDOWS
+from crankdyn.measure.orders import ANALYSES, WINDOWS, OrderSpectrum, OrderTracking
 from crankdyn.measure.signals import MIN_TEETH, PulseTrain
+
+if TYPE_CHECKING:
+    from crankdyn.measure.compare import ModelComparison
 
 _CYCLES = ("four-stroke", "two-stroke")
 _SHOWN = 6
@@ -35,11 +41,13 @@ def _mrad(value: float) -> str:
     return number(float(value) * 1e3)
 
 
-def _zeta(value) -> str:
+def _zeta(value: float | None) -> str:
+    """A damping ratio or loss factor (dimensionless) as the tables show it."""
     return number(value)
 
 
 def _rpm(speed: float) -> str:
+    """A speed (rad/s) in the tables' rpm."""
     return number(float(speed) * RPM)
 
 
@@ -48,16 +56,54 @@ def load_measurement(
     teeth: int | None,
     *,
     cycle: str,
-    orders=None,
+    orders: ArrayLike | None = None,
     analysis: str = "auto",
     window: str = "hann",
     window_cycles: int = 4,
-    bin_width=None,
+    bin_width: float | None = None,
     reference_angle: float = 0.0,
     tooth_correction: str | None = None,
-):
+) -> OrderSpectrum | OrderTracking:
     """Read SIGNAL (a file or a built-in name) and analyse its orders; the options as the
-    command's (also used by ``crankdyn analyze --measurement``)."""
+    command's (also used by ``crankdyn analyze --measurement``).
+
+    Parameters
+    ----------
+    signal
+        The SIGNAL argument: a signal file or a built-in signal's name
+        (:func:`crankdyn.io.signals.resolve_signal`).
+    teeth
+        --teeth, the pulses per revolution (for a sampled speed signal, angle samples per
+        revolution); None: from the file, or automatic.
+    cycle
+        ``four-stroke`` or ``two-stroke``.
+    orders
+        The orders to analyse (per revolution); None: every order up to 12, below N/2.
+    analysis
+        ``steady``, ``tracking`` or ``auto``.
+    window
+        The window of order tracking.
+    window_cycles
+        Cycles per window of order tracking.
+    bin_width
+        The speed bin of order tracking (rad/s); None: 10 rpm.
+    reference_angle
+        The crank angle at the reference mark (rad).
+    tooth_correction
+        ``none`` or None, ``self``, or a calibration record of the same wheel (file or name).
+
+    Returns
+    -------
+    OrderSpectrum or OrderTracking
+        The orders of a steady record, or of a run-up or run-down
+        (:func:`crankdyn.measure.orders.order_analysis`).
+
+    Raises
+    ------
+    InputError
+        On a bad signal or option, naming the file or the option (``--teeth``, ``--orders``,
+        ``--window-cycles``, ``--tooth-correction``) and the value.
+    """
     from crankdyn.io.signals import resolve_signal
     from crankdyn.measure.orders import order_analysis
 
@@ -66,7 +112,7 @@ def load_measurement(
             f"at least {MIN_TEETH} pulses per revolution are needed", key="--teeth", value=teeth
         )
     data = resolve_signal(signal, teeth)
-    correction = None
+    correction: str | PulseTrain | None = None
     if tooth_correction not in (None, "none"):
         if tooth_correction == "self":
             correction = "self"
@@ -106,7 +152,9 @@ def load_measurement(
         ) from None
 
 
-def _table(title: str, columns, caption: str = "") -> TextTable:
+def _table(
+    title: str, columns: Iterable[tuple[str, Sequence[Any]]], caption: str = ""
+) -> TextTable:
     """A table from (header, cells) columns: cells are texts, or numbers (already in the
     header's unit) with five significant digits each (:func:`column_text`, not aligned: the
     amplitudes of the orders span decades)."""
@@ -122,13 +170,15 @@ def _table(title: str, columns, caption: str = "") -> TextTable:
     return TextTable(title, header, rows, caption=caption)
 
 
-def _mrad_values(values) -> list:
+def _mrad_values(values: Iterable[float | None]) -> list[float | None]:
+    """Angles (rad) in mrad, None kept (a cell that reads ``-``)."""
     return [None if v is None else float(v) * 1e3 for v in values]
 
 
-def _steady_tables(result) -> list:
-    cmp = result.comparison
-    columns = [
+def _steady_tables(result: OrderSpectrum) -> list[TextTable | str]:
+    """The tables and notes of a steady record: its orders (and the model's), a summary."""
+    cmp = cast("ModelComparison | None", result.comparison)
+    columns: list[tuple[str, Sequence[Any]]] = [
         ("Order", [f"{q:g}" for q in result.orders]),
         ("Amplitude (mrad)", _mrad_values(result.amplitude)),
         ("Phase (deg)", list(np.degrees(result.phase))),
@@ -156,7 +206,8 @@ def _steady_tables(result) -> list:
     return [table, summary, *_notes(result)]
 
 
-def _summary(result) -> TextTable:
+def _summary(result: OrderSpectrum | OrderTracking) -> TextTable:
+    """The analysis's settings as a Quantity / Value / Unit table."""
     rows = [
         [label, value, ""]
         for label, value in (
@@ -172,19 +223,22 @@ def _summary(result) -> TextTable:
     return TextTable("Analysis", ["Quantity", "Value", "Unit"], rows, text_columns={0, 1, 2})
 
 
-def _notes(result) -> list[str]:
+def _notes(result: OrderSpectrum | OrderTracking) -> list[str]:
+    """The notes of the analysis and of its comparison with the model, as lines."""
     notes = list(result.notes or ())
-    cmp = result.comparison
+    cmp = cast("ModelComparison | None", result.comparison)
     if cmp is not None:
         notes += list(cmp.notes or ())
     return [f"Note: {text}" for text in notes]
 
 
-def _tracking_tables(result) -> list:
-    cmp = result.comparison
+def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
+    """The tables and notes of a run-up or run-down: the largest bin per order, the speed
+    bins, the resonance fits, the damping identified, a summary."""
+    cmp = cast("ModelComparison | None", result.comparison)
     n = result.speed * RPM
     at = [int(np.argmax(result.amplitude[:, j])) for j in range(result.orders.size)]
-    columns = [
+    columns: list[tuple[str, Sequence[Any]]] = [
         ("Order", [f"{q:g}" for q in result.orders]),
         ("Largest bin (mrad)", _mrad_values(result.amplitude[k, j] for j, k in enumerate(at))),
         ("at (rpm)", [n[k] for k in at]),
@@ -218,7 +272,7 @@ def _tracking_tables(result) -> list:
         f"the {len(shown)} largest of {result.orders.size} orders; every order in "
         "--format csv or json",
     )
-    tables: list = [orders, bins]
+    tables: list[TextTable | str] = [orders, bins]
     fits = result.resonances
     columns = [
         ("Order", [f"{f.order:g}" for f in fits]),
@@ -367,25 +421,25 @@ def _tracking_tables(result) -> list:
 )
 @output_options
 def measure_command(
-    signal,
-    teeth,
-    cycle,
-    model,
-    mass,
-    orders,
-    analysis,
-    window,
-    window_cycles,
-    bin_width,
-    reference_angle,
-    tooth_correction,
-    plot_path,
-    map_path,
-    fit_path,
-    trace_path,
-    fmt,
-    output_path,
-    force,
+    signal: str,
+    teeth: int | None,
+    cycle: str | None,
+    model: str | None,
+    mass: str | None,
+    orders: str | None,
+    analysis: str,
+    window: str,
+    window_cycles: int,
+    bin_width: str | None,
+    reference_angle: str | None,
+    tooth_correction: str | None,
+    plot_path: str | None,
+    map_path: str | None,
+    fit_path: str | None,
+    trace_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Orders of the angular vibration measured by a torsiograph, held against a model.
 
@@ -416,8 +470,11 @@ def measure_command(
         raise InputError("the speed bin must be positive", key="--bin", value=bin_width)
     angle = option_quantity(reference_angle, "angle", "--reference-angle", "deg") or 0.0
     session = None
-    if model is not None:  # the model's analysis session: its excitation and forced response
+    if model is not None and mass is not None:  # (both or neither, checked above)
+        # the model's analysis session: its excitation and forced response
         session = model_session(model)
+        if session.model is None:  # (resolve_model_and_engine gives a model or refuses)
+            raise InputError("has no torsional model", key="--model", value=model)
         try:
             session.model.index(mass)
         except InputError as exc:
@@ -442,15 +499,15 @@ def measure_command(
         reference_angle=angle,
         tooth_correction=tooth_correction,
     )
-    if session is not None:
+    if session is not None and mass is not None:
         result = session.measurement(result, mass)
-    steady = result.kind == "steady"
+    steady = isinstance(result, OrderSpectrum)  # (kind "steady"; a run-up is OrderTracking)
     for path, option in ((map_path, "--plot-map"), (fit_path, "--plot-fit")):
         if path and steady:
             raise InputError(
                 "needs a run-up or run-down; this record is steady", key=option, value=path
             )
-    if fit_path and not result.resonances:
+    if fit_path and isinstance(result, OrderTracking) and not result.resonances:
         raise InputError(
             "no resonance was found in the record: nothing to fit", key="--plot-fit", value=fit_path
         )
@@ -463,7 +520,9 @@ def measure_command(
     if trace_path:
         save_figure(result.plot("trace"), trace_path, force, "--plot-trace")
     out.write(
-        blocks=_steady_tables(result) if steady else _tracking_tables(result),
+        blocks=_steady_tables(result)
+        if isinstance(result, OrderSpectrum)
+        else _tracking_tables(result),
         json_data=result,
         csv_text=result.to_csv(),
     )
@@ -471,4 +530,5 @@ def measure_command(
 
 
 def register(group: click.Group) -> None:
+    """Add ``measure`` to the command ``group``."""
     group.add_command(measure_command)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -11,8 +12,14 @@ from crankdyn.cli.common import console, deprecated_alias, merge_alias
 from crankdyn.cli.writer import Output, TextTable, summary_table
 from crankdyn.errors import InputError
 
+if TYPE_CHECKING:
+    from rich.progress import Progress, TaskID
+
+    from crankdyn.study.spec import StudySpec
+
 
 def _list() -> None:
+    """``--list``: the example studies, the figures and the [analysis] settings."""
     from crankdyn.cli.examples import print_examples
     from crankdyn.study.figures import FIGURES, SETTINGS
 
@@ -35,19 +42,21 @@ def _list() -> None:
     Output("table").write(blocks=[figures, settings])
 
 
-def _dry_run(spec) -> None:
+def _dry_run(spec: StudySpec) -> None:
+    """``--dry-run``: the parameters and the first five cases of ``spec``."""
     from crankdyn.study.cases import expand
 
     cases = expand(spec)
     rows = []
     for p in spec.parameters:
-        if p.is_random:
+        if p.distribution is not None:  # a random parameter (p.is_random)
             how = f"{p.distribution.name} {list(p.distribution.args)} {p.unit}".rstrip()
             count = f"{spec.samples} draws"
         else:
-            shown = ", ".join(str(v) for v in p.values[:6])
-            how = shown + (", ..." if len(p.values) > 6 else "")
-            count = str(len(p.values))
+            values = p.values or ()
+            shown = ", ".join(str(v) for v in values[:6])
+            how = shown + (", ..." if len(values) > 6 else "")
+            count = str(len(values))
         rows.append([p.key, how, count])
     table = TextTable(
         f"Study: {spec.name}", ["Parameter", "Varies as", "Values"], rows, text_columns={0, 1}
@@ -72,13 +81,15 @@ def _dry_run(spec) -> None:
     Output("table").write(blocks=[table, line, first])
 
 
-def _shown(value) -> str:
+def _shown(value: Any) -> str:
+    """A parameter's value as the case tables show it."""
     from crankdyn.study.cases import label
 
     return label(value)
 
 
 def _default_out(study: str) -> Path:
+    """The default output folder of the study STUDY: ``<stem>-results``."""
     stem = Path(study).stem if study.endswith(".toml") or "/" in study else study
     return Path(f"{stem}-results")
 
@@ -86,13 +97,15 @@ def _default_out(study: str) -> Path:
 class _Bar:
     """A rich progress bar on stderr (only when stderr is a terminal)."""
 
-    def __init__(self):
+    def __init__(self) -> None:
+        """A bar not yet shown."""
         self.console = console(stderr=True)
-        self.progress = None
-        self.task = None
+        self.progress: Progress | None = None
+        self.task: TaskID | None = None
         self.failed = 0
 
     def start(self, to_run: int, skipped: int, executor: str) -> None:
+        """Say how many cases run where, and how many an earlier run finished."""
         if skipped:
             click.echo(f"{skipped} cases finished in an earlier run are kept", err=True)
         if not to_run:
@@ -109,7 +122,7 @@ class _Bar:
             TimeRemainingColumn,
         )
 
-        self.progress = Progress(
+        progress = Progress(
             TextColumn("cases"),
             BarColumn(),
             MofNCompleteColumn(),
@@ -120,16 +133,19 @@ class _Bar:
             console=self.console,
             transient=False,
         )
-        self.progress.start()
-        self.task = self.progress.add_task("cases", total=to_run, failed=0)
+        self.progress = progress
+        progress.start()
+        self.task = progress.add_task("cases", total=to_run, failed=0)
 
-    def update(self, done: int, total: int, record: dict) -> None:
+    def update(self, done: int, total: int, record: dict[str, Any]) -> None:
+        """Count a finished case (``record``, its journal entry) and its failure."""
         if record.get("status") == "failed":
             self.failed += 1
-        if self.progress is not None:
+        if self.progress is not None and self.task is not None:
             self.progress.update(self.task, completed=done, failed=self.failed)
 
     def stop(self) -> None:
+        """Remove the bar, if one is shown."""
         if self.progress is not None:
             self.progress.stop()
             self.progress = None
@@ -177,7 +193,17 @@ class _Bar:
     help="How to print the run's summary.",
 )
 def study_command(
-    study, workers, scheduler, output_dir, out, force, retry_failed, no_summary, dry_run, list_, fmt
+    study: str | None,
+    workers: int | None,
+    scheduler: str | None,
+    output_dir: str | None,
+    out: str | None,
+    force: bool,
+    retry_failed: bool,
+    no_summary: bool,
+    dry_run: bool,
+    list_: bool,
+    fmt: str,
 ) -> int:
     """Run the parameter study STUDY (a study file, or a built-in example study; --list shows
     them): every case on a local process pool (all cores) or, with --scheduler, on a Dask
@@ -248,7 +274,7 @@ def study_command(
     return 0
 
 
-def _best(spec, folder: Path) -> list:
+def _best(spec: StudySpec, folder: Path) -> list[TextTable]:
     """The best case of every figure with a sense of better, from the written table."""
     from crankdyn.display import format_value
     from crankdyn.study.figures import FIGURES
@@ -286,4 +312,5 @@ def _best(spec, folder: Path) -> list:
 
 
 def register(group: click.Group) -> None:
+    """Add ``study`` to the command ``group``."""
     group.add_command(study_command)

@@ -6,6 +6,7 @@ shows and the damper comparison are the session's, as in the report and the stud
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any, cast
 
 import click
 import numpy as np
@@ -32,6 +33,11 @@ from crankdyn.display import column_text, format_value
 from crankdyn.docs import ref
 from crankdyn.errors import InputError
 
+if TYPE_CHECKING:
+    from crankdyn.engine.session import Analysis
+    from crankdyn.torsion.response import RelativeAngle, ResponseResult
+    from crankdyn.torsion.rules import RuleCheck
+
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
 _ORDERS_HELP = (
     "Orders, e.g. 0.5:12 or 1.5,3,4.5,6 (default 0.5:12 four-stroke, 1:12 two-stroke, with the "
@@ -41,6 +47,7 @@ _ORDERS_HELP = (
 
 
 def _pair(text: str | None, option: str) -> tuple[str, str] | None:
+    """Two mass names ``A,B`` (--relative), or None for None."""
     if text is None:
         return None
     parts = [p.strip() for p in text.split(",")]
@@ -50,6 +57,7 @@ def _pair(text: str | None, option: str) -> tuple[str, str] | None:
 
 
 def _int_list(text: str | None, option: str) -> tuple[int, ...]:
+    """Comma-separated cylinder numbers (--misfire); none for None or an empty text."""
     if not text:
         return ()
     try:
@@ -60,12 +68,13 @@ def _int_list(text: str | None, option: str) -> tuple[int, ...]:
         ) from None
 
 
-def _session(model: str, speeds: str | None, orders: str | None, **options):
+def _session(model: str, speeds: str | None, orders: str | None, **options: Any) -> Analysis:
     """The session of MODEL_OR_ENGINE with the --speeds sweep and the --orders."""
     return model_session(model, speeds=speed_sweep(speeds), orders=orders, **options)
 
 
 def _torque_amplitude(torque: str | None) -> float | None:
+    """--torque (N·m for a bare number): positive, or None for None."""
     t = option_quantity(torque, "torque", "--torque", "N*m")
     if t is not None and not t > 0.0:
         raise InputError("the torque amplitude must be positive", key="--torque", value=torque)
@@ -73,14 +82,33 @@ def _torque_amplitude(torque: str | None) -> float | None:
 
 
 def _at(speed: float) -> str:
+    """A speed (rad/s) as the tables' rpm, one decimal."""
     return f"{speed * RPM:.1f}"
 
 
 # ---- the response's tables -----------------------------------------------------------------------
-def response_tables(session, result, relative=None) -> list:
+def response_tables(
+    session: Analysis, result: ResponseResult, relative: RelativeAngle | None = None
+) -> list[TextTable | str]:
     """The peaks of the response (per mass, per shaft, the relative angle) from
     :meth:`~crankdyn.torsion.response.ResponseResult.peak` on the resolved curve, the rule
-    verdict, the speeds added to resolve the peaks and why, and the notes."""
+    verdict, the speeds added to resolve the peaks and why, and the notes.
+
+    Parameters
+    ----------
+    session
+        The analysis session the response comes from (its peaks, the most loaded shaft).
+    result
+        The forced response.
+    relative
+        The relative angle between two masses (--relative), or None.
+
+    Returns
+    -------
+    list of TextTable and str
+        The tables (angular amplitudes, shaft torques and stresses, the relative angle, the
+        rule check, the speeds added) and note lines, in the order shown.
+    """
     masses_peaks = [session.peak("amplitude", name, result) for name in result.masses]
     sum_peaks = [result.peak("order_sum_amplitude", name) for name in result.masses]
     amp, amp_unit = column_text([v for v, _ in masses_peaks], "rad")
@@ -155,7 +183,7 @@ def response_tables(session, result, relative=None) -> list:
                 [[text, _at(speed), osum_text, _at(osum.speed)]],
             )
         )
-    check = result.rule_check
+    check = cast("RuleCheck | None", result.rule_check)  # (declared as a Result)
     if check is not None:
         rows = [
             [
@@ -183,10 +211,21 @@ def response_tables(session, result, relative=None) -> list:
     return tables
 
 
-def added_speeds_table(result) -> TextTable | None:
+def added_speeds_table(result: ResponseResult) -> TextTable | None:
     """The speeds added to the grid to resolve the peaks and why: every critical speed on its
     own row, the others counted by kind (each is listed in the JSON, ``added_speeds_rpm`` and
-    ``added_speed_reasons``, and in the CSV, ``on_grid`` 0)."""
+    ``added_speed_reasons``, and in the CSV, ``on_grid`` 0).
+
+    Parameters
+    ----------
+    result
+        The forced response.
+
+    Returns
+    -------
+    TextTable or None
+        Speed (rpm) and why, or None when no speed was added.
+    """
     added = result.added_speeds
     if added is None or not len(added):
         return None
@@ -236,8 +275,8 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
     "--torque",
     default=None,
     metavar="NM",
-    help="Uniform harmonic torque per order at every cylinder instead of the engine's "
-    "(N·m, or with a unit).",
+    help="Uniform harmonic torque per order at every cylinder (N·m, or with a unit); default: "
+    "the engine's excitation.",
 )
 @click.option("--no-dampers", is_flag=True, help="Leave out the model's [[damper]] entries.")
 @plot_option("Write the response against speed per order and synthesised (.png, .svg or .pdf).")
@@ -264,20 +303,20 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
 )
 @output_options
 def response_command(
-    model,
-    speeds,
-    orders,
-    relative,
-    misfire,
-    torque,
-    no_dampers,
-    plot_path,
-    plot_quantity,
-    item,
-    stress_path,
-    fmt,
-    output_path,
-    force,
+    model: str,
+    speeds: str | None,
+    orders: str | None,
+    relative: str | None,
+    misfire: str | None,
+    torque: str | None,
+    no_dampers: bool,
+    plot_path: str | None,
+    plot_quantity: str | None,
+    item: str | None,
+    stress_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Steady-state forced response of MODEL_OR_ENGINE over a speed range.
 
@@ -348,7 +387,16 @@ def response_command(
 @orders_option(_ORDERS_HELP)
 @plot_option("Write the Campbell diagram (.png, .svg or .pdf).")
 @output_options
-def campbell_command(model, speeds, speed_span, orders, plot_path, fmt, output_path, force) -> int:
+def campbell_command(
+    model: str,
+    speeds: str | None,
+    speed_span: str | None,
+    orders: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Critical speeds (mode x order -> speed) of MODEL_OR_ENGINE in the operating range, with
     major orders marked, and the Campbell diagram."""
     out = Output(fmt, output_path, force)
@@ -427,7 +475,17 @@ def campbell_command(model, speeds, speed_span, orders, plot_path, fmt, output_p
 @plot_option("Write the synthesised amplitude at the damper's mass with and without it.")
 @output_options
 def damper_command(
-    model, hub, mode, inertia, kind, speeds, orders, plot_path, fmt, output_path, force
+    model: str,
+    hub: str,
+    mode: int,
+    inertia: str,
+    kind: str,
+    speeds: str | None,
+    orders: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Optimum damper (Den Hartog) on a mass of MODEL_OR_ENGINE for one mode, and the response
     with and without it."""
@@ -439,6 +497,8 @@ def damper_command(
         raise InputError("the ring's inertia must be positive", key="--inertia", value=inertia)
     session = _session(model, speeds, orders)
     model_obj = session.model
+    if model_obj is None:  # (model_session gives a model or refuses)
+        raise InputError("has no torsional model", key="MODEL_OR_ENGINE", value=model)
     try:
         model_obj.index(hub)
     except InputError as exc:
@@ -459,7 +519,7 @@ def damper_command(
             key="--plot",
             value=plot_path,
         )
-    blocks: list = [summary_table(design, "Optimum damper (Den Hartog)")]
+    blocks: list[TextTable | str] = [summary_table(design, "Optimum damper (Den Hartog)")]
     data = design.to_dict()
     if comparison is not None:
         with_d, without = comparison
@@ -499,7 +559,16 @@ def damper_command(
 @click.option("--misfire", default=None, metavar="LIST", help="Misfiring cylinders (motored).")
 @plot_option("Write the bar chart of the harmonics (.png, .svg or .pdf).")
 @output_options
-def excitation_command(model, speed, orders, misfire, plot_path, fmt, output_path, force) -> int:
+def excitation_command(
+    model: str,
+    speed: str | None,
+    orders: str | None,
+    misfire: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Harmonic analysis of the cylinder torque of ENGINE at one speed: per order the gas,
     inertia and total amplitude, the phase-vector sum over the cylinders (major orders), and,
     with a [torsion] section, the relative amplitude sums over its modes."""
@@ -528,16 +597,18 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output_pat
         columns.append(texts)
     header += ["Phase (deg)", "Phase-vector sum |Σ e^(-iqΦ)|", "Major order"]
     columns.append([f"{p * DEG:.1f}" for p in result.phase])
-    if result.phase_sum is None:  # no firing angles: the major orders are undetermined
+    if result.phase_sum is None or result.major is None:  # no firing angles (both None):
+        # the major orders are undetermined
         columns.append(["-"] * len(result.orders))
         columns.append(["undetermined"] * len(result.orders))
     else:
         columns.append(column_text(result.phase_sum, reference=1.0)[0])
         columns.append(["yes" if m else "no" for m in result.major])
-    if result.modes is not None:
+    sums = result.relative_amplitude_sums
+    if result.modes is not None and sums is not None:  # (both or neither: a model's modes)
         for r, m in enumerate(result.modes):
             header.append(f"Relative amplitude sum, mode {int(m)}")
-            columns.append([f"{v:.3g}" for v in result.relative_amplitude_sums[r]])
+            columns.append([f"{v:.3g}" for v in sums[r]])
     table = TextTable(
         f"{engine.name}: torque harmonics at {session.speed * RPM:.0f} rpm",
         header,
@@ -553,9 +624,17 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output_pat
 @torsion_group.command("transient")
 @_MODEL_ARG
 @speed_option("Constant speed (rpm for a bare number, or with a unit); default: the engine's own.")
-@speeds_option("A linear run-up START:END between two speeds (rpm), with --duration.")
+@speeds_option(
+    "A linear run-up START:END between two speeds (rpm), with --duration; default: a constant "
+    "--speed."
+)
 @deprecated_alias("--run-up", "--speeds", "run_up", "START:END")
-@click.option("--duration", default=None, metavar="S", help="Simulated time (s, or with a unit).")
+@click.option(
+    "--duration",
+    default=None,
+    metavar="S",
+    help="Simulated time (s, or with a unit); default: --cycles at a constant speed.",
+)
 @click.option(
     "--cycles",
     default=None,
@@ -567,7 +646,17 @@ def excitation_command(model, speed, orders, misfire, plot_path, fmt, output_pat
 @plot_option("Write the torque of the most loaded shaft against time (.png, .svg or .pdf).")
 @output_options
 def transient_command(
-    model, speed, speeds, run_up, duration, cycles, orders, plot_path, fmt, output_path, force
+    model: str,
+    speed: str | None,
+    speeds: str | None,
+    run_up: str | None,
+    duration: str | None,
+    cycles: float | None,
+    orders: str | None,
+    plot_path: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Time-domain response of MODEL_OR_ENGINE to the engine torque (scipy's solve_ivp), at a
     constant speed or in a run-up."""

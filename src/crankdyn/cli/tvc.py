@@ -28,7 +28,14 @@ _HELP_OUTPUT = "Report folder (default: <name>-tvc); built aside and moved into 
     help="Leave out the time-domain passage through the barred ranges.",
 )
 @click.option("--force", is_flag=True, help="Replace an existing report folder.")
-def tvc_command(model, output_dir, out, no_pdf, no_passage, force) -> int:
+def tvc_command(
+    model: str,
+    output_dir: str | None,
+    out: str | None,
+    no_pdf: bool,
+    no_passage: bool,
+    force: bool,
+) -> int:
     """The torsional vibration calculation of MODEL_OR_ENGINE: every running condition (normal
     firing, each cylinder misfiring, damper out of order) against every component's limit
     (IACS UR M68, the engine builder's, the coupling, gear, generator and damper makers'),
@@ -51,6 +58,7 @@ def tvc_command(model, output_dir, out, no_pdf, no_passage, force) -> int:
         pdf_note: list[str] = []
 
         def finish(folder: Path) -> None:
+            """Print the report folder's PDF (unless --no-pdf), or note why not."""
             if no_pdf:
                 return
             why = print_pdf(folder / "index.html", folder / "report.pdf")
@@ -106,9 +114,11 @@ def tvc_command(model, output_dir, out, no_pdf, no_passage, force) -> int:
     return 0
 
 
-def _value(value, unit) -> str:
+def _value(value: float, unit: str) -> str:
+    """A limit or margin in its display unit (a bare number when dimensionless)."""
     return number(value) if unit == "" else quantity(value, unit)
 
 
 def register(group: click.Group) -> None:
+    """Add ``tvc`` to the command ``group``."""
     group.add_command(tvc_command)

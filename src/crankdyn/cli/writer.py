@@ -18,9 +18,10 @@ from __future__ import annotations
 import io
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any, TypeVar
 
 import click
 import numpy as np
@@ -32,7 +33,10 @@ from crankdyn.cli.common import before_work, console, warn
 from crankdyn.display import column_text, format_value
 from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_text
+from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result
+
+F = TypeVar("F", bound=Callable[..., Any])
 
 __all__ = [
     "FORMATS",
@@ -48,6 +52,7 @@ __all__ = [
 ]
 
 FORMATS = ("table", "csv", "json")
+"""The values of ``--format``."""
 FILE_WIDTH = 120
 """Width of a table written to a file."""
 
@@ -55,7 +60,28 @@ FILE_WIDTH = 120
 @dataclass
 class TextTable:
     """A table for people: a title, headers (words with units), rows of text, which columns
-    hold text (left-aligned, may wrap) rather than numbers (right-aligned, never cut)."""
+    hold text (left-aligned, may wrap) rather than numbers (right-aligned, never cut).
+
+    Parameters
+    ----------
+    title : str
+        The title printed above the table ("" for none).
+    header : list of str
+        The column headers, each a word or words and the display unit in brackets.
+    rows : list of list of str
+        The cells, as shown (numbers already formatted in the header's unit).
+    text_columns : set of int
+        The indices of the columns that hold text.
+    caption : str
+        A line printed below the table.
+
+    Examples
+    --------
+    >>> t = TextTable("Speeds", ["Case", "Speed (rpm)"], [["idle", "800"]], {0})
+    >>> print(t.csv_text(), end="")
+    Case,Speed (rpm)
+    idle,800
+    """
 
     title: str
     header: list[str]
@@ -64,6 +90,13 @@ class TextTable:
     caption: str = ""
 
     def csv_text(self) -> str:
+        """The header and rows as CSV text (the cells as shown, so in the header's units).
+
+        Returns
+        -------
+        str
+            One line per row, the header first, each ended by a newline.
+        """
         import csv
 
         buffer = io.StringIO()
@@ -74,6 +107,7 @@ class TextTable:
 
 
 def _header(label: str, unit: str) -> str:
+    """``label (unit)``, or the label alone without a unit."""
     return f"{label} ({unit})" if unit else label
 
 
@@ -81,7 +115,24 @@ def result_table(
     result: Result, keys: Sequence[str] | None = None, title: str | None = None
 ) -> TextTable:
     """The columns of a result (all, or ``keys``) as a table: one engineering unit and one
-    number of decimals per column."""
+    number of decimals per column.
+
+    Parameters
+    ----------
+    result
+        The result (:class:`crankdyn.results.Result`) whose columns are shown.
+    keys
+        The columns to show, in order; keys the result does not have are skipped. Default:
+        all of its columns.
+    title
+        The table's title; default the result's ``title``.
+
+    Returns
+    -------
+    TextTable
+        Headers with the display unit (:func:`crankdyn.display.column_text`); text columns
+        (names, labels) as they are.
+    """
     cols = result.columns()
     labels = result.column_labels()
     keys = [k for k in (keys if keys is not None else list(cols)) if k in cols]
@@ -98,26 +149,85 @@ def result_table(
         header.append(_header(label, shown))
         columns.append(cells)
     rows = [list(r) for r in zip(*columns, strict=True)] if columns else []
-    return TextTable(title or getattr(result, "title", ""), header, rows, text)
+    return TextTable(title or getattr(result, "title", "") or "", header, rows, text)
 
 
-def summary_table(source, title: str = "Summary") -> TextTable:
-    """A result's scalar figures (or (label, value, unit) rows) as Quantity / Value / Unit."""
+def summary_table(source: Result | Iterable[Sequence[str]], title: str = "Summary") -> TextTable:
+    """A result's scalar figures (or (label, value, unit) rows) as Quantity / Value / Unit.
+
+    Parameters
+    ----------
+    source
+        A result (its :meth:`~crankdyn.results.Result.summary_rows`) or rows of three texts,
+        e.g. from :func:`figure_row`.
+    title
+        The table's title.
+
+    Returns
+    -------
+    TextTable
+        Three columns: Quantity, Value, Unit.
+
+    Examples
+    --------
+    >>> summary_table([figure_row("Peak torque", 1.2345e3, "N·m")]).rows
+    [['Peak torque', '1.2345', 'kN·m']]
+    """
     rows = source.summary_rows() if isinstance(source, Result) else list(source)
     return TextTable(
         title, ["Quantity", "Value", "Unit"], [list(r) for r in rows], text_columns={0, 2}
     )
 
 
-def figure_row(label: str, value, unit: str = "", *, reference=None) -> list[str]:
-    """One (label, value, unit) row of a summary in engineering units."""
+def figure_row(
+    label: str, value: object, unit: str = "", *, reference: float | None = None
+) -> list[str]:
+    """One (label, value, unit) row of a summary in engineering units.
+
+    Parameters
+    ----------
+    label
+        What the figure is.
+    value
+        The value, SI in ``unit`` (:func:`crankdyn.display.format_value`).
+    unit
+        Its SI unit.
+    reference
+        The magnitude the display unit is chosen for (same unit); default the value's own.
+
+    Returns
+    -------
+    list of str
+        The label, the digits and the display unit.
+
+    Examples
+    --------
+    >>> figure_row("Peak pressure", 1.89441e7, "Pa")
+    ['Peak pressure', '18.944', 'MPa']
+    """
     text, shown = format_value(value, unit, reference=reference)
     return [label, text, shown]
 
 
-def jsonable(value):
+def jsonable(value: Any) -> Any:
     """``value`` with numpy types as Python ones and NaN/inf as None (strict JSON); a Result's
-    :meth:`~crankdyn.results.Result.to_dict` is that already (its arrays through ``tolist``)."""
+    :meth:`~crankdyn.results.Result.to_dict` is that already (its arrays through ``tolist``).
+
+    Parameters
+    ----------
+    value
+        A result, or dicts, lists, tuples, arrays and numbers nested in any way.
+
+    Returns
+    -------
+    object
+        The same data as dicts (string keys), lists, bools, ints, floats, None and text.
+
+    Examples
+    --------
+    >>> jsonable({"speeds": np.array([1.0, np.nan]), 2: (np.int64(3), np.True_)})
+    {'speeds': [1.0, None], '2': [3, True]}
+    """
     if isinstance(value, Result):
         return value.to_dict()
     if isinstance(value, dict):
@@ -140,28 +250,72 @@ JSON_INDENTED = 1 << 20
 model's every mode) stays compact: json's C encoder writes only compact text."""
 
 
-def json_text(data) -> str:
+def json_text(data: Any) -> str:
     """Strict JSON text of ``data`` (from :func:`jsonable`) and a newline: indented by two
-    spaces, or compact when it is longer than :data:`JSON_INDENTED` characters."""
+    spaces, or compact when it is longer than :data:`JSON_INDENTED` characters.
+
+    Parameters
+    ----------
+    data
+        JSON data (:func:`jsonable`); numpy values left in it are converted.
+
+    Returns
+    -------
+    str
+        The JSON text and a newline.
+
+    Raises
+    ------
+    ValueError
+        On a NaN or infinity left in ``data`` (strict JSON has none; :func:`jsonable` makes
+        them None).
+    TypeError
+        On a value JSON cannot hold.
+
+    Examples
+    --------
+    >>> print(json_text({"speed": np.float64(157.08)}), end="")
+    {
+      "speed": 157.08
+    }
+    """
     text = json.dumps(data, allow_nan=False, separators=(",", ":"), default=_json_default)
     if len(text) <= JSON_INDENTED:
         text = json.dumps(data, indent=2, allow_nan=False, default=_json_default)
     return text + "\n"
 
 
-def _json_default(value):
+def _json_default(value: object) -> Any:
     """numpy values a result left in its dict (the encoder calls this only for those)."""
     if isinstance(value, (np.ndarray, np.generic)):
         return jsonable(value.tolist() if isinstance(value, np.ndarray) else value.item())
     raise TypeError(f"{type(value).__name__} is not JSON serialisable")
 
 
-def warnings_of(*sources) -> list:
+def warnings_of(*sources: Any) -> list[PlausibilityWarning]:
     """The plausibility warnings of ``sources`` (results carrying ``warnings``, warnings, or
-    lists of either), each once (by message), in order."""
-    found: dict[str, object] = {}
+    lists of either), each once (by message), in order.
 
-    def add(source):
+    Parameters
+    ----------
+    *sources
+        Results (anything with a ``warnings`` attribute), warnings
+        (:class:`crankdyn.plausibility.PlausibilityWarning`), lists or tuples of either, or None.
+
+    Returns
+    -------
+    list of PlausibilityWarning
+        The warnings, each message once, in the order first met.
+
+    Examples
+    --------
+    >>> warnings_of(None, [])
+    []
+    """
+    found: dict[str, Any] = {}
+
+    def add(source: Any) -> None:
+        """Collect the warnings of one source (recursively through lists)."""
         if source is None:
             return
         if hasattr(source, "message") and hasattr(source, "to_dict"):
@@ -233,6 +387,7 @@ def _parts(table: TextTable, width: int) -> list[list[int]]:
 
 
 def _rich(table: TextTable, columns: list[int], title: str) -> RichTable:
+    """The ``columns`` of a table as a rich table, every cell a Text (never markup)."""
     # every string goes in as a Text: user text is never read as markup, whatever the console
     widths = _widths(table)
     rich = RichTable(title=Text(title) if title else None, header_style="bold")
@@ -252,8 +407,17 @@ def _rich(table: TextTable, columns: list[int], title: str) -> RichTable:
     return rich
 
 
-def render(blocks, con: Console) -> None:
-    """Print tables (split to fit the console) and note lines."""
+def render(blocks: Iterable[TextTable | str | None], con: Console) -> None:
+    """Print tables (split to fit the console) and note lines.
+
+    Parameters
+    ----------
+    blocks
+        Tables, each split into parts that fit the console's width (every part repeating the
+        first column), and note lines, printed as written (empty ones skipped).
+    con
+        The console (:func:`crankdyn.cli.common.console`).
+    """
     for block in blocks:
         if isinstance(block, TextTable):
             parts = _parts(block, con.width)
@@ -268,9 +432,33 @@ def render(blocks, con: Console) -> None:
 
 # ---- the output of a command ------------------------------------------------------------------
 class Output:
-    """The ``--format``, ``-o/--output`` and ``--force`` of a command."""
+    """The ``--format``, ``-o/--output`` and ``--force`` of a command.
 
-    def __init__(self, fmt: str = "table", path: str | None = None, force: bool = False):
+    Parameters
+    ----------
+    fmt : str
+        ``table`` (for people), ``csv`` or ``json``.
+    path : str or None
+        The output file; None or ``-``: standard output.
+    force : bool
+        Whether an existing file may be replaced.
+
+    Raises
+    ------
+    InputError
+        On an unknown format, naming ``--format`` and the value.
+
+    Examples
+    --------
+    >>> Output("json", "-").path is None
+    True
+    >>> Output("xml")
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: --format = "xml": expected one of table, csv, json
+    """
+
+    def __init__(self, fmt: str = "table", path: str | None = None, force: bool = False) -> None:
         if fmt not in FORMATS:
             raise InputError(f"expected one of {', '.join(FORMATS)}", key="--format", value=fmt)
         self.fmt = fmt
@@ -279,31 +467,59 @@ class Output:
 
     @property
     def for_people(self) -> bool:
+        """Whether the output is a table for people (rather than CSV or JSON data)."""
         return self.fmt == "table"
 
     def check(self) -> None:
         """Refuse an output file crankdyn cannot write (an existing file without --force, a
         folder, a dangling link, a missing or unwritable folder:
         :func:`crankdyn.io.output.check_writable`) before any work is done;
-        :func:`output_options` calls it before the command runs."""
+        :func:`output_options` calls it before the command runs.
+
+        Raises
+        ------
+        InputError
+            On a target that cannot be written, naming the file and the reason.
+        """
         if self.path is not None:
             check_writable(self.path, force=self.force, option="--force")
 
     def write(
         self,
         *,
-        blocks=(),
-        json_data=None,
+        blocks: Sequence[TextTable | str | None] = (),
+        json_data: Any = None,
         csv_text: str | None = None,
         what: str = "this command",
-        warnings=(),
+        warnings: Any = (),
     ) -> None:
         """Write the result: ``blocks`` (tables and note lines) for ``table``, ``json_data``
         (a dict or a Result) for ``json``, ``csv_text`` (default: the first table's rows) for
         ``csv``; to a file atomically, never over one that appeared meanwhile, the path written
         said on stderr (:func:`crankdyn.io.output.write_text`). The plausibility warnings of
         ``json_data`` (a Result) and of ``warnings`` (results or warnings, :func:`warnings_of`)
-        are printed on standard error and listed in the JSON (``warnings``)."""
+        are printed on standard error and listed in the JSON (``warnings``).
+
+        Parameters
+        ----------
+        blocks
+            Tables and note lines, shown for ``table`` (:func:`render`).
+        json_data
+            The data for ``json``: a result, or a dict (:func:`jsonable`); None: the command
+            has no JSON output.
+        csv_text
+            The text for ``csv``; default the first table's rows (:meth:`TextTable.csv_text`).
+        what
+            The command, named when a format is missing.
+        warnings
+            Further sources of plausibility warnings (:func:`warnings_of`).
+
+        Raises
+        ------
+        InputError
+            When the format asked for has no output (no JSON data; no CSV text and no table),
+            naming ``--format`` and the format, or when the file cannot be written.
+        """
         if self.fmt == "json" and json_data is None:
             raise InputError(f"{what} has no JSON output", key="--format", value="json")
         tables = [b for b in blocks if isinstance(b, TextTable)]
@@ -336,13 +552,26 @@ class Output:
             click.echo(text, nl=False)
 
 
-def output_options(f):
+def output_options(f: F) -> F:
     """``--format``, ``-o/--output FILE`` and ``--force`` (the command's ``fmt``,
     ``output_path`` and ``force``; :class:`Output` holds them). The file is checked before the
-    command's work (:meth:`Output.check` through :func:`crankdyn.cli.common.before_work`)."""
+    command's work (:meth:`Output.check` through :func:`crankdyn.cli.common.before_work`).
+
+    Parameters
+    ----------
+    f
+        The command callback.
+
+    Returns
+    -------
+    callable
+        ``f`` with the three options and the check of the output file.
+    """
 
     f = before_work(
-        lambda kw: Output(kw.get("fmt", "table"), kw.get("output_path"), kw.get("force")).check()
+        lambda kw: Output(
+            kw.get("fmt", "table"), kw.get("output_path"), bool(kw.get("force"))
+        ).check()
     )(f)
     f = click.option("--force", is_flag=True, help="Overwrite an existing output file or folder.")(
         f
@@ -366,4 +595,21 @@ def output_options(f):
 
 
 def path_suffix(path: str | None) -> str:
+    """The suffix of ``path`` in lower case (``.csv``), or "" for none or no path.
+
+    Parameters
+    ----------
+    path
+        A file name, or None.
+
+    Returns
+    -------
+    str
+        The suffix with its dot, in lower case.
+
+    Examples
+    --------
+    >>> path_suffix("Run.JSON"), path_suffix(None)
+    ('.json', '')
+    """
     return Path(path).suffix.lower() if path else ""
