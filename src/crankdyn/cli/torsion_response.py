@@ -6,7 +6,7 @@ shows and the damper comparison are the session's, as in the report and the stud
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import click
 import numpy as np
@@ -36,7 +36,6 @@ from crankdyn.errors import InputError
 if TYPE_CHECKING:
     from crankdyn.engine.session import Analysis
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
-    from crankdyn.torsion.rules import RuleCheck
 
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
 _ORDERS_HELP = (
@@ -183,7 +182,7 @@ def response_tables(
                 [[text, _at(speed), osum_text, _at(osum.speed)]],
             )
         )
-    check = cast("RuleCheck | None", result.rule_check)  # (declared as a Result)
+    check = result.rule_check
     if check is not None:
         rows = [
             [

@@ -67,7 +67,7 @@ if TYPE_CHECKING:
     )
     from crankdyn.torsion.holzer import HolzerTable, ResidualCurve
     from crankdyn.torsion.modal import ModalResult
-    from crankdyn.torsion.response import RelativeAngle, ResponseResult
+    from crankdyn.torsion.response import Peak, RelativeAngle, ResponseResult
     from crankdyn.torsion.transient import TransientResult
     from crankdyn.tvc import TvcResult, TvcSpec
 
@@ -1143,7 +1143,9 @@ class Analysis:
                 "no shaft of the torsional model has diameters (outer_diameter): no stress",
                 key="stress",
             )
-        shaft = result.shafts[result.shaft_index(result.peak("synthesized_shaft_stress").item)]
+        shaft = result.shafts[
+            result.shaft_index(_shaft_of(result.peak("synthesized_shaft_stress")))
+        ]
         return cast("tuple[str, str]", tuple(shaft))
 
     def most_loaded_shaft(self, response: ResponseResult | None = None) -> tuple[str, str]:
@@ -1162,7 +1164,9 @@ class Analysis:
             The shaft's two masses.
         """
         result = self.response() if response is None else response
-        shaft = result.shafts[result.shaft_index(result.peak("synthesized_shaft_torque").item)]
+        shaft = result.shafts[
+            result.shaft_index(_shaft_of(result.peak("synthesized_shaft_torque")))
+        ]
         return cast("tuple[str, str]", tuple(shaft))
 
     def plot_response(
@@ -1347,6 +1351,14 @@ _PEAK_QUANTITIES = {
 }
 """The session's names of the synthesised quantities -> :data:`crankdyn.torsion.response.
 QUANTITIES`."""
+
+
+def _shaft_of(peak: Peak) -> str:
+    """The shaft a per-shaft peak was found on (``"a - b"``); a per-shaft quantity's peak
+    always names it."""
+    if peak.item is None:
+        raise ValueError(f"the peak of {peak.quantity} names no shaft")
+    return peak.item
 
 
 def _ring_name(model: TorsionModel) -> str:
