@@ -371,7 +371,7 @@ def damped_modes(
     eig = np.zeros(n, dtype=complex)
     shapes = np.zeros((n, n), dtype=complex)
     if not has_h or fixed is not None:
-        c_eff = c if not has_h else c + h / fixed
+        c_eff = c + h / fixed if (has_h and fixed is not None) else c
         lam, vec = np.linalg.eig(_state_matrices(m, k, c_eff))
         _assign(lam, vec[:n], phi, m, rigid, values, eig, shapes)
     else:

@@ -325,7 +325,7 @@ def solve_at_speeds(
     omega: ArrayLike,
     forcing: ArrayLike,
     hysteretic_frequency: float | None = None,
-) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
+) -> tuple[NDArray[np.complexfloating], NDArray[np.float64]]:
     """The forced response's complex amplitudes, each speed with its couplings' stiffness:
     ``system.solve`` when no coupling depends on the load, else the batched solve of
     (D(omega) + (1 + i eta) Delta K(n)) X = F (module docstring).
