@@ -39,7 +39,9 @@ TYPED := \
 	src/crankdyn/plots \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
-	src/crankdyn/study
+	src/crankdyn/study \
+	src/crankdyn/torsion/__init__.py \
+	src/crankdyn/torsion/excitation.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -138,6 +138,7 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.torsion.excitation",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave
