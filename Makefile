@@ -41,7 +41,8 @@ TYPED := \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
 	src/crankdyn/torsion/__init__.py \
-	src/crankdyn/torsion/excitation.py
+	src/crankdyn/torsion/excitation.py \
+	src/crankdyn/torsion/sources.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

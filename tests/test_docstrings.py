@@ -139,6 +139,7 @@ HELD = frozenset(
         "crankdyn.study.spec",
         "crankdyn.torsion",
         "crankdyn.torsion.excitation",
+        "crankdyn.torsion.sources",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave
