@@ -42,7 +42,10 @@ TYPED := \
 	src/crankdyn/study \
 	src/crankdyn/torsion/__init__.py \
 	src/crankdyn/torsion/excitation.py \
-	src/crankdyn/torsion/sources.py
+	src/crankdyn/torsion/roots.py \
+	src/crankdyn/torsion/sources.py \
+	src/crankdyn/torsion/synthesis.py \
+	src/crankdyn/torsion/tridiagonal.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -139,7 +139,10 @@ HELD = frozenset(
         "crankdyn.study.spec",
         "crankdyn.torsion",
         "crankdyn.torsion.excitation",
+        "crankdyn.torsion.roots",
         "crankdyn.torsion.sources",
+        "crankdyn.torsion.synthesis",
+        "crankdyn.torsion.tridiagonal",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave
