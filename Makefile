@@ -41,6 +41,8 @@ TYPED := \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
 	src/crankdyn/torsion/__init__.py \
+	src/crankdyn/torsion/closed_form.py \
+	src/crankdyn/torsion/distributed.py \
 	src/crankdyn/torsion/excitation.py \
 	src/crankdyn/torsion/roots.py \
 	src/crankdyn/torsion/sources.py \

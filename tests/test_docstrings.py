@@ -138,6 +138,8 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.torsion.closed_form",
+        "crankdyn.torsion.distributed",
         "crankdyn.torsion.excitation",
         "crankdyn.torsion.roots",
         "crankdyn.torsion.sources",
