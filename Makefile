@@ -44,9 +44,11 @@ TYPED := \
 	src/crankdyn/torsion/closed_form.py \
 	src/crankdyn/torsion/distributed.py \
 	src/crankdyn/torsion/excitation.py \
+	src/crankdyn/torsion/holzer.py \
 	src/crankdyn/torsion/roots.py \
 	src/crankdyn/torsion/sources.py \
 	src/crankdyn/torsion/synthesis.py \
+	src/crankdyn/torsion/transfer.py \
 	src/crankdyn/torsion/tridiagonal.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python

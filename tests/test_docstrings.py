@@ -141,9 +141,11 @@ HELD = frozenset(
         "crankdyn.torsion.closed_form",
         "crankdyn.torsion.distributed",
         "crankdyn.torsion.excitation",
+        "crankdyn.torsion.holzer",
         "crankdyn.torsion.roots",
         "crankdyn.torsion.sources",
         "crankdyn.torsion.synthesis",
+        "crankdyn.torsion.transfer",
         "crankdyn.torsion.tridiagonal",
     }
 )
