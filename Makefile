@@ -43,6 +43,7 @@ TYPED := \
 	src/crankdyn/torsion/__init__.py \
 	src/crankdyn/torsion/closed_form.py \
 	src/crankdyn/torsion/distributed.py \
+	src/crankdyn/torsion/equivalent.py \
 	src/crankdyn/torsion/excitation.py \
 	src/crankdyn/torsion/holzer.py \
 	src/crankdyn/torsion/roots.py \

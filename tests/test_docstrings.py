@@ -140,6 +140,7 @@ HELD = frozenset(
         "crankdyn.torsion",
         "crankdyn.torsion.closed_form",
         "crankdyn.torsion.distributed",
+        "crankdyn.torsion.equivalent",
         "crankdyn.torsion.excitation",
         "crankdyn.torsion.holzer",
         "crankdyn.torsion.roots",
