@@ -41,6 +41,7 @@ TYPED := \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
 	src/crankdyn/torsion/__init__.py \
+	src/crankdyn/torsion/campbell.py \
 	src/crankdyn/torsion/closed_form.py \
 	src/crankdyn/torsion/distributed.py \
 	src/crankdyn/torsion/equivalent.py \

@@ -138,6 +138,7 @@ HELD = frozenset(
         "crankdyn.study.sensitivity",
         "crankdyn.study.spec",
         "crankdyn.torsion",
+        "crankdyn.torsion.campbell",
         "crankdyn.torsion.closed_form",
         "crankdyn.torsion.distributed",
         "crankdyn.torsion.equivalent",
