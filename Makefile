@@ -55,17 +55,29 @@ TYPED := \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
 	src/crankdyn/study \
+	src/crankdyn/torsion/__init__.py \
+	src/crankdyn/torsion/campbell.py \
+	src/crankdyn/torsion/closed_form.py \
 	src/crankdyn/torsion/coupling.py \
 	src/crankdyn/torsion/damped.py \
 	src/crankdyn/torsion/dampers.py \
+	src/crankdyn/torsion/distributed.py \
 	src/crankdyn/torsion/driveline.py \
+	src/crankdyn/torsion/equivalent.py \
+	src/crankdyn/torsion/excitation.py \
+	src/crankdyn/torsion/holzer.py \
 	src/crankdyn/torsion/loaded.py \
 	src/crankdyn/torsion/model.py \
 	src/crankdyn/torsion/opentorsion.py \
 	src/crankdyn/torsion/resolve.py \
 	src/crankdyn/torsion/response.py \
+	src/crankdyn/torsion/roots.py \
 	src/crankdyn/torsion/rules.py \
+	src/crankdyn/torsion/sources.py \
+	src/crankdyn/torsion/synthesis.py \
+	src/crankdyn/torsion/transfer.py \
 	src/crankdyn/torsion/transient.py \
+	src/crankdyn/torsion/tridiagonal.py \
 	src/crankdyn/tvc/__init__.py \
 	src/crankdyn/tvc/analysis.py \
 	src/crankdyn/tvc/curves.py \

@@ -155,6 +155,17 @@ HELD = frozenset(
         "crankdyn.torsion.loaded",
         "crankdyn.torsion.model",
         "crankdyn.torsion.opentorsion",
+        "crankdyn.torsion.campbell",
+        "crankdyn.torsion.closed_form",
+        "crankdyn.torsion.distributed",
+        "crankdyn.torsion.equivalent",
+        "crankdyn.torsion.excitation",
+        "crankdyn.torsion.holzer",
+        "crankdyn.torsion.roots",
+        "crankdyn.torsion.sources",
+        "crankdyn.torsion.synthesis",
+        "crankdyn.torsion.transfer",
+        "crankdyn.torsion.tridiagonal",
     }
 )
 # Held modules whose docstrings (summaries, Returns sections) and annotations wait for the wave

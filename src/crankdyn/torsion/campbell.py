@@ -28,13 +28,16 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
+    Excitation,
     check_orders,
     cylinder_amplitudes,
     relative_amplitude_sums,
@@ -46,6 +49,9 @@ from crankdyn.torsion.sources import (
     line_major,
     order_sources,
 )
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "CampbellResult",
@@ -62,7 +68,26 @@ HZ = 1.0 / (2.0 * math.pi)
 
 @dataclass(frozen=True)
 class OperatingRange:
-    """The operating speed range (rad/s) and the rated speed n_0 (rad/s, or None)."""
+    """The operating speed range and the rated speed.
+
+    Parameters
+    ----------
+    low, high : float
+        Lowest and highest operating speed (rad/s), 0 < low < high.
+    rated : float or None
+        The rated speed n_0 (rad/s), > 0, or None.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A speed not positive, or an empty range (key ``speed_range`` or ``rated_speed`` and
+        the value).
+
+    Examples
+    --------
+    >>> OperatingRange(50.0, 150.0, rated=140.0).high
+    150.0
+    """
 
     low: float
     high: float
@@ -87,7 +112,20 @@ class OperatingRange:
 
 def with_dampers(model: TorsionModel) -> TorsionModel:
     """The model with its tuned dampers as masses and shafts (for natural frequencies); viscous
-    dampers are left out (module docstring)."""
+    dampers are left out (module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        The model itself when it has no tuned damper; else a copy with every tuned damper's
+        ring (kg m^2) as a mass, joined to its hub mass by a shaft of the damper's stiffness
+        (N m/rad), damping (N m s/rad) and loss factor, and no dampers.
+    """
     tuned = [d for d in model.dampers if d.kind == "tuned"]
     if not tuned:
         return model
@@ -101,7 +139,8 @@ def with_dampers(model: TorsionModel) -> TorsionModel:
 
 @dataclass(frozen=True)
 class CriticalSpeed(Result):
-    """One resonance: a mode met by an order at a speed (rad/s; exported in rpm)."""
+    """One resonance: a mode met by an order at a speed n_c = omega_r / q (rad/s; exported in
+    rpm; seed 003 ch. 5)."""
 
     mode: int = scalar("mode", "Mode", "")
     nodes: int = scalar("nodes", "Nodes", "")
@@ -123,7 +162,8 @@ class CriticalSpeed(Result):
 
 @dataclass(frozen=True)
 class CampbellResult(Result):
-    """Critical speeds in the operating range and the data of the Campbell diagram."""
+    """Critical speeds in the operating range and the data of the Campbell diagram
+    (:func:`campbell`)."""
 
     title = "Critical speeds"
     critical_speeds: tuple[CriticalSpeed, ...] = scalar("critical_speeds", "Critical speeds", "")
@@ -137,12 +177,27 @@ class CampbellResult(Result):
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
     @property
-    def frequencies_hz(self) -> np.ndarray:
+    def frequencies_hz(self) -> NDArray[np.float64]:
         """The natural frequencies (Hz)."""
         return np.asarray(self.natural_frequency) * HZ
 
-    def plot(self, fig=None, max_speed: float | None = None):
-        """The Campbell diagram; returns the Figure."""
+    def plot(self, fig: Figure | None = None, max_speed: float | None = None) -> Figure:
+        """The Campbell diagram: the order lines q n against the speed, the natural frequencies
+        and their crossings.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+        max_speed : float or None
+            Highest speed of the diagram (rad/s); None for the plot's default beyond the
+            operating range.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion_response import plot_campbell
 
         return plot_campbell(self, fig=fig, max_speed=max_speed)
@@ -150,33 +205,57 @@ class CampbellResult(Result):
 
 def campbell(
     model: TorsionModel,
-    orders,
+    orders: ArrayLike,
     speed_range: tuple[float, float] | None = None,
     *,
-    excitation=None,
+    excitation: Excitation | None = None,
     cycle: str | None = None,
 ) -> CampbellResult:
-    """Critical speeds of ``model`` for ``orders`` inside a speed range (rad/s).
+    """Critical speeds of ``model`` for ``orders`` inside a speed range: n_c = omega_r / q for
+    every elastic mode r and order q (seed 003 ch. 5; Ker Wilson vol. 2; module docstring).
 
     Parameters
     ----------
-    model
+    model : crankdyn.torsion.model.TorsionModel
         The torsional model (its tuned dampers are included).
-    orders
-        The orders to consider.
-    speed_range
+    orders : array_like
+        The orders to consider (dimensionless), shape (Q,).
+    speed_range : tuple of (float, float) or None
         (low, high) in rad/s; default the model's operating range.
-    excitation
+    excitation : crankdyn.torsion.excitation.Excitation or None
         An excitation (for the firing angles: major orders and relative amplitude sums); default
         :func:`~crankdyn.torsion.excitation.excitation_for` of the model when it has excitation
         points.
-    cycle
+    cycle : str or None
         The working cycle when there is no excitation (default four-stroke).
+
+    Returns
+    -------
+    CampbellResult
+        The critical speeds inside the range (rad/s, ascending), each with its mode, order,
+        natural frequency (rad/s), major flag and relative amplitude sum, and the diagram's data.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        No speed range (names the model file, key ``speed_range``), an empty range, or orders
+        that no excitation of the model has (key ``orders``).
+
+    Examples
+    --------
+    Two masses (20 rad/s, :func:`crankdyn.torsion.closed_form.two_mass`) and orders 1 and 2:
+
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> result = campbell(model, [1.0, 2.0], (5.0, 30.0))
+    >>> [(c.order, c.speed) for c in result.critical_speeds]
+    [(2.0, 10.0), (1.0, 20.0)]
     """
     from crankdyn.torsion.excitation import excitation_for
     from crankdyn.torsion.modal import natural_modes
 
-    notes = []
+    notes: list[str] = []
     if speed_range is None:
         if model.operating is None:
             raise InputError(
@@ -185,7 +264,7 @@ def campbell(
                 file=model.source,
                 key="speed_range",
             )
-        speed_range = (model.operating.low, model.operating.high)
+        speed_range = _range_of(model.operating)
     rng = OperatingRange(*speed_range)
     if excitation is None and (model.cylinder_dofs or model.sources):
         excitation = excitation_for(model, None)
@@ -200,7 +279,10 @@ def campbell(
     modes = natural_modes(full)
     elastic = np.flatnonzero(modes.natural_frequency > 0.0)
     omega = modes.natural_frequency[elastic]
-    major = rel = sources = order_major = None
+    major: NDArray[np.bool_] | None = None
+    rel: NDArray[np.float64] | None = None
+    sources: list[str] | None = None
+    order_major: list[bool | None] | None = None
     if excitation is not None:
         angles = excitation.firing_angles
         major = line_major(excitation, orders)
@@ -253,3 +335,8 @@ def campbell(
         model_name=model.name,
         notes=tuple(notes) or None,
     )
+
+
+def _range_of(operating: Any) -> tuple[float, float]:
+    """(low, high) of the model's operating range (an :class:`OperatingRange`; rad/s)."""
+    return operating.low, operating.high

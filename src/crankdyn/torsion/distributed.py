@@ -29,8 +29,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable, Iterable
+from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import Mass, Shaft, ShaftGeometry
 
 __all__ = ["DEFAULT_MAX_FREQUENCY", "TOLERANCE", "element_count", "subdivide", "transit_time"]
 
@@ -41,17 +46,68 @@ TOLERANCE = 1e-3
 
 
 def transit_time(inertia: float, stiffness: float) -> float:
-    """L / c = sqrt(J_s / k) (s): the time a torsional wave takes along the shaft, from its own
-    inertia J_s (kg m^2) and stiffness k (N m/rad) (module docstring)."""
+    """L / c = sqrt(J_s / k): the time a torsional wave takes along the shaft (module
+    docstring: J_s = rho I_p L and k = G I_p / L give J_s / k = L^2 rho / G = (L / c)^2).
+
+    Parameters
+    ----------
+    inertia : float
+        The shaft's own polar moment of inertia J_s (kg m^2), >= 0.
+    stiffness : float
+        Its stiffness k (N m/rad), > 0.
+
+    Returns
+    -------
+    float
+        L / c (s).
+
+    Examples
+    --------
+    A steel shaft, G = 80 GPa and rho = 7850 kg/m^3 (c = 3192 m/s), 1 m long, of I_p = 1e-6 m^4:
+
+    >>> k, j_s = 80e9 * 1e-6 / 1.0, 7850.0 * 1e-6 * 1.0
+    >>> round(transit_time(j_s, k) * 1e6, 3)
+    313.25
+    """
     return math.sqrt(inertia / stiffness)
 
 
 def element_count(
     inertia: float, stiffness: float, max_frequency: float, tolerance: float = TOLERANCE
 ) -> int:
-    """Elements N for a relative frequency error below ``tolerance`` up to ``max_frequency``
-    (rad/s) for a shaft of own inertia J_s (kg m^2) and stiffness k (N m/rad):
-    N = ceil(omega_max sqrt(J_s/k) / sqrt(24 eps)) (module docstring)."""
+    """Elements N for a relative frequency error below ``tolerance`` up to ``max_frequency``:
+    N = ceil(omega_max sqrt(J_s/k) / sqrt(24 eps)) (the lattice dispersion, Brillouin 1946
+    ch. 1; module docstring).
+
+    Parameters
+    ----------
+    inertia : float
+        The shaft's own polar moment of inertia J_s (kg m^2), >= 0.
+    stiffness : float
+        Its stiffness k (N m/rad), > 0.
+    max_frequency : float
+        omega_max (rad/s), the highest frequency to resolve.
+    tolerance : float
+        eps, the relative frequency error allowed there (dimensionless).
+
+    Returns
+    -------
+    int
+        N >= 1.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        More than 10000 elements needed (key ``max_frequency`` and its value).
+
+    Examples
+    --------
+    The shaft of :func:`transit_time` up to 300 Hz, then up to 3 kHz:
+
+    >>> k, j_s = 80e9 * 1e-6 / 1.0, 7850.0 * 1e-6 * 1.0
+    >>> element_count(j_s, k, 2 * math.pi * 300.0), element_count(j_s, k, 2 * math.pi * 3000.0)
+    (4, 39)
+    """
     n = max_frequency * transit_time(inertia, stiffness) / math.sqrt(24.0 * tolerance)
     if not math.isfinite(n) or n > 10_000:
         raise InputError(
@@ -63,26 +119,68 @@ def element_count(
     return max(1, math.ceil(n - 1e-9))
 
 
-def subdivide(masses, shafts, mass_type):
-    """Masses and shafts with every shaft that carries its own inertia divided into lumped
-    elements (module docstring). The new masses, made by ``mass_type(name, inertia,
-    role="shaft")`` (the model's :class:`~crankdyn.torsion.model.Mass`), are named
-    ``"<shaft> <i>/<N>"`` (the shaft's name, else ``"a - b"``) and listed after the
-    first-listed end, in order from it."""
+def subdivide(
+    masses: Iterable[Mass], shafts: Iterable[Shaft], mass_type: Callable[..., Mass]
+) -> tuple[tuple[Mass, ...], tuple[Shaft, ...]]:
+    """Masses and shafts with every shaft that carries its own inertia divided into N equal
+    lumped elements (module docstring): N - 1 new masses J_s / N, J_s / (2N) added to each end,
+    N springs N k (damping N c).
+
+    Parameters
+    ----------
+    masses : iterable of crankdyn.torsion.model.Mass
+        The model's masses, in order.
+    shafts : iterable of crankdyn.torsion.model.Shaft
+        Its shafts; those with ``inertia`` > 0 between known masses are divided into
+        ``elements`` (or :func:`element_count` elements for their ``max_frequency``, default
+        :data:`DEFAULT_MAX_FREQUENCY`).
+    mass_type : callable
+        Makes the new masses, ``mass_type(name, inertia, role="shaft")`` (the model's
+        :class:`~crankdyn.torsion.model.Mass`).
+
+    Returns
+    -------
+    masses : tuple of crankdyn.torsion.model.Mass
+        The masses, the new ones named ``"<shaft> <i>/<N>"`` (the shaft's name, else
+        ``"a - b"``) and listed after the first-listed end, in order from it.
+    shafts : tuple of crankdyn.torsion.model.Shaft
+        The shafts, each divided shaft replaced by its N elements (``segment_of`` its ends).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A new mass's name that exists (key ``name``), or too many elements
+        (:func:`element_count`).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import Mass, Shaft
+    >>> masses, shafts = subdivide(
+    ...     [Mass("a", 1.0), Mass("b", 2.0)],
+    ...     [Shaft(("a", "b"), stiffness=1e5, inertia=0.2, elements=2)],
+    ...     Mass,
+    ... )
+    >>> [(m.name, round(m.inertia, 9)) for m in masses]
+    [('a', 1.05), ('a - b 1/2', 0.1), ('b', 2.05)]
+    >>> [(s.between, s.stiffness) for s in shafts]
+    [(('a', 'a - b 1/2'), 200000.0), (('a - b 1/2', 'b'), 200000.0)]
+    """
     masses = list(masses)
     position = {m.name: i for i, m in enumerate(masses)}
     added: dict[str, float] = {}
-    inserts: dict[str, list] = {}
-    out_shafts = []
+    inserts: dict[str, list[Mass]] = {}
+    out_shafts: list[Shaft] = []
     for s in shafts:
         if not s.inertia > 0.0 or any(end not in position for end in s.between):
             out_shafts.append(s)  # unknown ends: the model names them in its own check
             continue
         a, b = s.between
+        k = s.stiffness
+        assert k is not None  # Shaft.__post_init__ sets it (given or from the geometry)
         n = s.elements
         if n is None:
             target = s.max_frequency if s.max_frequency is not None else DEFAULT_MAX_FREQUENCY
-            n = element_count(s.inertia, s.stiffness, target)
+            n = element_count(s.inertia, k, target)
         j_e = s.inertia / n
         base = s.name or f"{a} - {b}"
         nodes = [f"{base} {i}/{n}" for i in range(1, n)]
@@ -107,7 +205,7 @@ def subdivide(masses, shafts, mass_type):
                 dataclasses.replace(
                     s,
                     between=(points[i], points[i + 1]),
-                    stiffness=s.stiffness * n,
+                    stiffness=k * n,
                     damping=s.damping * n,
                     geometry=_segment_geometry(s.geometry, n),
                     inertia=0.0,
@@ -126,7 +224,7 @@ def subdivide(masses, shafts, mass_type):
     return tuple(listed), tuple(out_shafts)
 
 
-def _segment_geometry(geometry, n: int):
+def _segment_geometry(geometry: ShaftGeometry | None, n: int) -> ShaftGeometry | None:
     """The cross-section of a segment: the shaft's, with its length divided by n (the segment's
     stiffness is then given, not recomputed: the geometry is kept for the stress)."""
     if geometry is None:

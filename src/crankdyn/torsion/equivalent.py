@@ -40,6 +40,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.crank.masses import equivalent_mass_model
@@ -62,7 +63,23 @@ __all__ = [
 
 
 def throw_name(number: int) -> str:
-    """Name of the mass of crank throw ``number`` (1-based, from the free end)."""
+    """Name of the mass of a crank throw.
+
+    Parameters
+    ----------
+    number : int
+        The throw, 1-based, from the free end.
+
+    Returns
+    -------
+    str
+        ``"throw N"``.
+
+    Examples
+    --------
+    >>> throw_name(3)
+    'throw 3'
+    """
     return f"throw {number}"
 
 
@@ -72,14 +89,20 @@ class CrankThrowGeometry:
 
     Parameters
     ----------
-    journal_diameter, journal_bore, journal_length
-        Main journal outer diameter D_j, bore d_j (0 for solid) and length l_j.
-    pin_diameter, pin_bore, pin_length
-        Crank pin outer diameter D_p, bore d_p and length l_p.
-    web_thickness, web_width
-        Web thickness h (along the shaft axis) and width b.
-    shear_modulus
-        Shear modulus G of the crankshaft material.
+    journal_diameter, journal_bore, journal_length : float
+        Main journal outer diameter D_j, bore d_j (0 for solid) and length l_j (m).
+    pin_diameter, pin_bore, pin_length : float
+        Crank pin outer diameter D_p, bore d_p and length l_p (m).
+    web_thickness, web_width : float
+        Web thickness h (along the shaft axis) and width b (m).
+    shear_modulus : float
+        Shear modulus G of the crankshaft material (Pa).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A dimension or modulus not positive, or a bore not between 0 and its diameter (names
+        the key and value).
     """
 
     journal_diameter: float
@@ -128,10 +151,23 @@ def carter_throw_stiffness(crank_radius: float, g: CrankThrowGeometry) -> float:
 
     Parameters
     ----------
-    crank_radius
+    crank_radius : float
         Crank radius R (m).
-    g
-        The span's dimensions and shear modulus.
+    g : CrankThrowGeometry
+        The span's dimensions (m) and shear modulus (Pa).
+
+    Returns
+    -------
+    float
+        k (N m/rad).
+
+    Examples
+    --------
+    >>> span = CrankThrowGeometry(journal_diameter=0.1, journal_length=0.05, pin_diameter=0.08,
+    ...                           pin_length=0.04, web_thickness=0.025, web_width=0.12,
+    ...                           shear_modulus=80e9)
+    >>> f"{carter_throw_stiffness(0.06, span):.6g}"
+    '2.23394e+06'
     """
     journal = g.journal_diameter**4 - g.journal_bore**4
     pin = g.pin_diameter**4 - g.pin_bore**4
@@ -149,19 +185,25 @@ class ThrowSpec:
 
     Parameters
     ----------
-    crank_inertia
+    crank_inertia : float
         The crank's own inertia per throw (journal, webs and pin) J_crank (kg m^2), >= 0.
-    stiffness
+    stiffness : float or None
         Stiffness of a crank span between neighbouring throws (N m/rad); or None with
         ``geometry`` (Carter's formula).
-    geometry
+    geometry : CrankThrowGeometry or None
         Crank-span dimensions for Carter's formula.
-    damping
+    damping : float
         Absolute damping at every throw (N m s/rad), >= 0.
-    shaft_damping
+    shaft_damping : float
         Relative viscous damping of every crank span (N m s/rad), >= 0.
-    loss_factor
+    loss_factor : float
         Loss factor of every crank span (dimensionless), >= 0.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A negative inertia or damping, a stiffness not positive, or both or neither of
+        ``stiffness`` and ``geometry`` (names the key and value).
     """
 
     crank_inertia: float
@@ -193,21 +235,55 @@ class ThrowSpec:
             object.__setattr__(self, name, v)
 
     def span_stiffness(self, crank_radius: float) -> float:
-        """Stiffness of one crank span (N m/rad): given, or by Carter's formula."""
+        """Stiffness of one crank span: given, or by Carter's formula
+        (:func:`carter_throw_stiffness`).
+
+        Parameters
+        ----------
+        crank_radius : float
+            Crank radius R (m), for Carter's formula.
+
+        Returns
+        -------
+        float
+            k (N m/rad).
+
+        Examples
+        --------
+        >>> ThrowSpec(0.5, stiffness=1.0e6).span_stiffness(0.06)
+        1000000.0
+        """
         if self.stiffness is not None:
             return self.stiffness
+        assert self.geometry is not None  # one of the two (__post_init__)
         return carter_throw_stiffness(crank_radius, self.geometry)
 
 
 def throw_inertias(
     geometry: CrankGeometry, cylinders: Cylinders, masses: Masses, crank_inertia: float
-) -> np.ndarray:
-    """Equivalent moment of inertia of every crank throw (kg m^2), throw 1 first.
+) -> NDArray[np.float64]:
+    """Equivalent moment of inertia of every crank throw, throw 1 first.
 
     J_t = R^2 sum over the throw's n_t cylinders of (m_r + m_j / 2) + J_crank, with each
     cylinder's m_j and m_r from :func:`crankdyn.crank.masses.equivalent_mass_model` for n_t rods on
     the throw (so the crank's unbalance m_k is counted once per throw; seed 000 section 2.1,
-    seed 003; see the module docstring).
+    seed 003; Ker Wilson vol. 1 ch. 3; see the module docstring).
+
+    Parameters
+    ----------
+    geometry : crankdyn.crank.geometry.CrankGeometry
+        Crank radius R and rod length (m).
+    cylinders : crankdyn.engine.model.Cylinders
+        The cylinders and the throw each acts on.
+    masses : crankdyn.crank.masses.Masses
+        The running-gear masses of one cylinder (kg).
+    crank_inertia : float
+        The crank's own inertia per throw J_crank (kg m^2).
+
+    Returns
+    -------
+    numpy.ndarray
+        J_t (kg m^2), shape (throws,).
     """
     counts = np.bincount(np.asarray(cylinders.throws) - 1, minlength=cylinders.throw_count)
     out = np.empty(counts.size)
@@ -235,7 +311,40 @@ def equivalent_system(
     that join them to the throws by name.
 
     The throws are listed after the mass that a shaft joins to throw 1 (the free-end side), or
-    first when no listed mass is joined to throw 1.
+    first when no listed mass is joined to throw 1. Inertias by :func:`throw_inertias`, span
+    stiffnesses by :meth:`ThrowSpec.span_stiffness` (seed 003; module docstring).
+
+    Parameters
+    ----------
+    geometry : crankdyn.crank.geometry.CrankGeometry
+        The engine's crank geometry (m).
+    cylinders : crankdyn.engine.model.Cylinders
+        Its cylinders and their throws.
+    masses : crankdyn.crank.masses.Masses
+        The running-gear masses of one cylinder (kg).
+    throws : ThrowSpec
+        Crank inertia, span stiffness (or dimensions) and damping of the throws.
+    other_masses : tuple of crankdyn.torsion.model.Mass
+        The other masses of the line (pulley, damper, flywheel, driven machine...).
+    shafts : tuple of crankdyn.torsion.model.Shaft
+        The shafts joining them to the throws and to each other.
+    gears : tuple of crankdyn.torsion.model.Gear
+        Gears of the line.
+    name : str
+        The model's name.
+    source : str or None
+        The file it came from, for messages.
+
+    Returns
+    -------
+    crankdyn.torsion.model.TorsionModel
+        The equivalent system.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        The errors of :class:`~crankdyn.torsion.model.TorsionModel` (e.g. a shaft naming an
+        unknown mass).
     """
     inertias = throw_inertias(geometry, cylinders, masses, throws.crank_inertia)
     count = cylinders.throw_count

@@ -59,15 +59,26 @@ cylinders share the intake manifold, so at part load a misfiring cylinder compre
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
+from typing import TYPE_CHECKING, ClassVar, TypeAlias
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import DEG, RPM
 from crankdyn.engine.firing import CYCLE_ANGLE, even_firing_interval
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from crankdyn.crank.pressure import PressureTrace
+    from crankdyn.engine.model import Engine
+    from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
     "CYCLES",
@@ -91,6 +102,9 @@ __all__ = [
     "relative_amplitude_sums",
 ]
 
+Complex: TypeAlias = NDArray[np.complex128]
+"""Complex harmonic amplitudes (N m, or Pa for tangential pressures)."""
+
 CYCLES = ("four-stroke", "two-stroke")
 SAMPLES = 7200
 """Samples per cycle for the harmonic analysis (FFT length)."""
@@ -105,13 +119,65 @@ MAJOR_UNDETERMINED = (
 
 # ---- numeric core -------------------------------------------------------------------------------
 def fundamental_order(cycle: str) -> float:
-    """Lowest order of a working cycle: 0.5 for four-stroke, 1 for two-stroke engines."""
+    """Lowest order of a working cycle: 0.5 for four-stroke, 1 for two-stroke engines.
+
+    The cylinder torque repeats once per cycle Theta (720 deg four-stroke, 360 deg two-stroke),
+    so its orders are multiples of 2 pi / Theta (seed 003, ch. 4; module docstring).
+
+    Parameters
+    ----------
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    float
+        The fundamental order (per crankshaft revolution, dimensionless).
+
+    Examples
+    --------
+    >>> fundamental_order("four-stroke"), fundamental_order("two-stroke")
+    (0.5, 1.0)
+    """
     return 2.0 * math.pi / CYCLE_ANGLE[cycle]
 
 
-def check_orders(orders, cycle: str = "four-stroke", *, key: str = "orders") -> np.ndarray:
+def check_orders(
+    orders: ArrayLike, cycle: str = "four-stroke", *, key: str = "orders"
+) -> NDArray[np.float64]:
     """Validate orders: finite, positive, distinct, each a multiple of the cycle's fundamental
-    order (0.5 four-stroke, 1 two-stroke). Returns them as a float array (order kept)."""
+    order (0.5 four-stroke, 1 two-stroke).
+
+    Parameters
+    ----------
+    orders : array_like
+        Orders (per crankshaft revolution, dimensionless), shape (orders,) or a scalar.
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+    key : str
+        The input key named in an error message.
+
+    Returns
+    -------
+    numpy.ndarray
+        The orders as floats, snapped to the exact multiples of the fundamental order, in the
+        order given; shape (orders,).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        No order, an order not positive or not finite, not a multiple of the fundamental order,
+        or given twice; the message names ``key`` and the offending value.
+
+    Examples
+    --------
+    >>> check_orders([1, 0.5, 3])
+    array([1. , 0.5, 3. ])
+    >>> check_orders([1.0, -1.0], "two-stroke")
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: orders = -1.0: orders must be positive
+    """
     q = np.atleast_1d(np.asarray(orders, dtype=float))
     if q.ndim != 1 or q.size == 0:
         raise InputError("expected at least one order", key=key)
@@ -132,8 +198,38 @@ def check_orders(orders, cycle: str = "four-stroke", *, key: str = "orders") -> 
     return np.round(m) * base
 
 
-def order_grid(first: float, last: float, step: float | None = None, cycle="four-stroke"):
-    """Orders first, first + step, ... last (step defaults to the fundamental order)."""
+def order_grid(
+    first: float, last: float, step: float | None = None, cycle: str = "four-stroke"
+) -> NDArray[np.float64]:
+    """Orders first, first + step, ... last (step defaults to the fundamental order).
+
+    Parameters
+    ----------
+    first, last : float
+        First and last order (dimensionless); ``last`` is included when the steps reach it.
+    step : float or None
+        Step between orders (dimensionless), > 0; None for the cycle's fundamental order.
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The orders (:func:`check_orders`), shape (orders,).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A step not positive, an empty range, more than 10000 orders or orders that do not fit
+        the cycle (key ``orders``).
+
+    Examples
+    --------
+    >>> order_grid(0.5, 2.0)
+    array([0.5, 1. , 1.5, 2. ])
+    >>> order_grid(1, 6, 2, "two-stroke")
+    array([1., 3., 5.])
+    """
     step = fundamental_order(cycle) if step is None else step
     if not (math.isfinite(first) and math.isfinite(last) and math.isfinite(step)) or step <= 0:
         raise InputError("expected FIRST:LAST[:STEP] with a positive step", key="orders")
@@ -145,15 +241,61 @@ def order_grid(first: float, last: float, step: float | None = None, cycle="four
     return check_orders(first + step * np.arange(count), cycle)
 
 
-def harmonic_index(orders, cycle: str) -> np.ndarray:
-    """Index m of each order in the Fourier series over the cycle: m = q Theta / (2 pi)."""
+def harmonic_index(orders: ArrayLike, cycle: str) -> NDArray[np.int_]:
+    """Index m of each order in the Fourier series over the cycle: m = q Theta / (2 pi).
+
+    Parameters
+    ----------
+    orders : array_like
+        Orders (dimensionless).
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        The integer index of every order, same shape.
+
+    Examples
+    --------
+    >>> harmonic_index([0.5, 1.0, 3.0], "four-stroke")
+    array([1, 2, 6])
+    """
     return np.round(np.asarray(orders) / fundamental_order(cycle)).astype(int)
 
 
-def fourier_coefficients(samples, orders, cycle: str) -> np.ndarray:
+def fourier_coefficients(samples: ArrayLike, orders: ArrayLike, cycle: str) -> Complex:
     """Complex amplitudes c_q of a periodic signal sampled at N equally spaced angles over one
     cycle (last axis, endpoint excluded): f(theta) = mean + sum_q Re(c_q exp(i q theta)),
-    c_q = (2/N) sum_j f_j exp(-i q theta_j) (the FFT; module docstring)."""
+    c_q = (2/N) sum_j f_j exp(-i q theta_j) (the FFT; the trapezoidal rule over the period,
+    seed 003 eq. 5; module docstring).
+
+    Parameters
+    ----------
+    samples : array_like
+        The signal (any unit), shape (..., N): N samples over one cycle, at theta_j = j Theta/N.
+    orders : array_like
+        Orders to extract (dimensionless), shape (orders,), multiples of the fundamental order.
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"`` (the period Theta).
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex amplitudes c_q (unit of the signal), shape (..., orders).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        An order at or above the Nyquist order of the sampling.
+
+    Examples
+    --------
+    >>> theta = np.arange(8) * (2 * np.pi / 8)
+    >>> c = fourier_coefficients(3.0 * np.cos(2 * theta - 0.5), [1, 2], "two-stroke")
+    >>> np.round(np.abs(c), 12), round(float(np.angle(c[1])), 12)
+    (array([0., 3.]), -0.5)
+    """
     f = np.asarray(samples, dtype=float)
     n = f.shape[-1]
     m = harmonic_index(orders, cycle)
@@ -163,43 +305,145 @@ def fourier_coefficients(samples, orders, cycle: str) -> np.ndarray:
     return spectrum[..., m] * (2.0 / n)
 
 
-def phase_vectors(firing_angles, orders) -> np.ndarray:
+def phase_vectors(firing_angles: ArrayLike, orders: ArrayLike) -> Complex:
     """exp(-i q Phi_i), shape (orders, cylinders): the phase of order q of a cylinder firing at
-    Phi_i (rad) relative to one firing at 0."""
+    Phi_i (rad) relative to one firing at 0 (seed 003 section 4.2, phase-vector rule).
+
+    Parameters
+    ----------
+    firing_angles : array_like
+        Firing angle Phi_i of every cylinder (rad), shape (cylinders,).
+    orders : array_like
+        Orders q (dimensionless), shape (orders,).
+
+    Returns
+    -------
+    numpy.ndarray
+        Unit complex phase vectors (dimensionless), shape (orders, cylinders).
+    """
     q = np.asarray(orders, dtype=float)[:, None]
     return np.exp(-1j * q * np.asarray(firing_angles, dtype=float)[None, :])
 
 
-def phase_vector_sums(firing_angles, orders) -> np.ndarray:
-    """|sum_i exp(-i q Phi_i)| per order (dimensionless, 0 ... Z)."""
+def phase_vector_sums(firing_angles: ArrayLike, orders: ArrayLike) -> NDArray[np.float64]:
+    """Phase-vector sum |sum_i exp(-i q Phi_i)| of every order (seed 003 section 4.2; Ker
+    Wilson vol. 2; module docstring).
+
+    Parameters
+    ----------
+    firing_angles : array_like
+        Firing angle Phi_i of every cylinder (rad), shape (cylinders,).
+    orders : array_like
+        Orders q (dimensionless), shape (orders,).
+
+    Returns
+    -------
+    numpy.ndarray
+        The sums (dimensionless, 0 ... Z for Z cylinders), shape (orders,).
+
+    Examples
+    --------
+    An in-line four, four-stroke, firing 1-3-4-2 (cylinders at 0, 540, 180, 360 deg): only
+    the multiples of order 2 are major.
+
+    >>> phi = np.radians([0.0, 540.0, 180.0, 360.0])
+    >>> np.round(phase_vector_sums(phi, [0.5, 1.0, 2.0]), 12)
+    array([0., 0., 4.])
+    """
     return np.abs(np.sum(phase_vectors(firing_angles, orders), axis=1))
 
 
-def major_orders(firing_angles, orders) -> np.ndarray:
-    """Whether each order is major: the phase vectors of all cylinders line up (sum = Z)."""
+def major_orders(firing_angles: ArrayLike, orders: ArrayLike) -> NDArray[np.bool_]:
+    """Whether each order is major: the phase vectors of all cylinders line up (sum = Z).
+
+    Parameters
+    ----------
+    firing_angles : array_like
+        Firing angle Phi_i of every cylinder (rad), shape (cylinders,).
+    orders : array_like
+        Orders q (dimensionless), shape (orders,).
+
+    Returns
+    -------
+    numpy.ndarray
+        True for a major order (:func:`phase_vector_sums` equal to Z to a relative 1e-6),
+        shape (orders,).
+
+    Examples
+    --------
+    >>> major_orders(np.radians([0.0, 540.0, 180.0, 360.0]), [0.5, 1.0, 2.0, 4.0])
+    array([False, False,  True,  True])
+    """
     z = len(np.atleast_1d(firing_angles))
     return phase_vector_sums(firing_angles, orders) >= z * (1.0 - _MAJOR_TOL)
 
 
-def known_major_orders(excitation, orders) -> np.ndarray | None:
+def known_major_orders(excitation: Excitation, orders: ArrayLike) -> NDArray[np.bool_] | None:
     """:func:`major_orders` of an excitation's firing angles, or None when the excitation does
-    not know its cylinders' phases (module docstring: a model without firing angles)."""
+    not know its cylinders' phases (module docstring: a model without firing angles).
+
+    Parameters
+    ----------
+    excitation : Excitation
+        An :class:`EngineExcitation`, :class:`UniformExcitation` or :class:`SourceExcitation`.
+    orders : array_like
+        Orders (dimensionless), shape (orders,).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Whether each order is major, shape (orders,); None when the phases are an assumption.
+
+    Examples
+    --------
+    >>> known = UniformExcitation(1.0, np.radians([0.0, 360.0]))
+    >>> known_major_orders(known, [0.5, 1.0])
+    array([False,  True])
+    >>> print(known_major_orders(UniformExcitation(1.0, [0.0, 0.0], phases_known=False), [1.0]))
+    None
+    """
     if not getattr(excitation, "phases_known", True):
         return None
     return major_orders(excitation.firing_angles, orders)
 
 
-def relative_amplitude_sums(cylinder_amplitudes, firing_angles, orders) -> np.ndarray:
-    """Relative amplitude sums |sum_i beta_i exp(-i q Phi_i)|, shape (modes, orders).
+def relative_amplitude_sums(
+    cylinder_amplitudes: ArrayLike, firing_angles: ArrayLike, orders: ArrayLike
+) -> NDArray[np.float64]:
+    """Relative amplitude sums |sum_i beta_i exp(-i q Phi_i)| (seed 003 section 4.2; Ker Wilson
+    vol. 2; module docstring).
 
-    ``cylinder_amplitudes``: (modes, cylinders) relative amplitude beta_i of the mass carrying
-    each cylinder in each mode, normalised by the caller (e.g. largest cylinder amplitude 1)."""
+    Parameters
+    ----------
+    cylinder_amplitudes : array_like
+        Relative amplitude beta_i (dimensionless) of the mass carrying each cylinder in each
+        mode, shape (modes, cylinders), normalised by the caller (e.g. largest cylinder
+        amplitude 1).
+    firing_angles : array_like
+        Firing angle Phi_i of every cylinder (rad), shape (cylinders,).
+    orders : array_like
+        Orders q (dimensionless), shape (orders,).
+
+    Returns
+    -------
+    numpy.ndarray
+        The sums (dimensionless), shape (modes, orders).
+
+    Examples
+    --------
+    A mode in which cylinders 1 and 4 swing against 2 and 3 of an in-line four firing
+    1-3-4-2: the major order 2 cancels, the minor order 1 adds up.
+
+    >>> phi = np.radians([0.0, 540.0, 180.0, 360.0])
+    >>> np.round(relative_amplitude_sums([[1.0, -1.0, -1.0, 1.0]], phi, [1.0, 2.0]), 12)
+    array([[4., 0.]])
+    """
     beta = np.asarray(cylinder_amplitudes, dtype=float)
     return np.abs(beta @ phase_vectors(firing_angles, orders).T)
 
 
-def _cycle_grid(cycle: str, samples: int = SAMPLES) -> np.ndarray:
-    return np.arange(samples) * (CYCLE_ANGLE[cycle] / samples)
+def _cycle_grid(cycle: str, samples: int = SAMPLES) -> NDArray[np.float64]:
+    return np.arange(samples, dtype=float) * (CYCLE_ANGLE[cycle] / samples)
 
 
 # ---- domain: excitation data --------------------------------------------------------------------
@@ -213,18 +457,33 @@ class LoadCurve:
 
     Parameters
     ----------
-    speed
-        Speeds (rad/s), strictly increasing, > 0.
-    value
-        Peak pressure (Pa), IMEP (Pa) or load factor (dimensionless) at those speeds, > 0.
-    kind
+    speed : array_like
+        Speeds (rad/s), shape (points,), strictly increasing, > 0.
+    value : array_like
+        Peak pressure (Pa), IMEP (Pa) or load factor (dimensionless) at those speeds, shape
+        (points,), > 0.
+    kind : str
         ``"peak_pressure"``, ``"imep"`` or ``"load_factor"``.
-    source
+    source : str or None
         The file, for reports.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        An unknown kind (key ``kind``), mismatched or empty arrays, values not finite, speeds
+        not positive and strictly increasing, or values not positive.
+
+    Examples
+    --------
+    >>> curve = LoadCurve([100.0, 200.0], [1.0e7, 1.6e7])
+    >>> curve.at([50.0, 150.0, 250.0])
+    array([10000000., 13000000., 16000000.])
+    >>> curve.outside([150.0]), curve.outside([250.0])
+    (False, True)
     """
 
-    speed: np.ndarray
-    value: np.ndarray
+    speed: NDArray[np.float64]
+    value: NDArray[np.float64]
     kind: str = "peak_pressure"
     source: str | None = None
 
@@ -253,14 +512,37 @@ class LoadCurve:
             and np.array_equal(self.value, other.value)
         )
 
-    __hash__ = None  # array contents: not hashable
+    __hash__: ClassVar[None] = None  # type: ignore[assignment]  # arrays inside: not hashable
 
-    def at(self, speeds) -> np.ndarray:
-        """The value at speeds (rad/s)."""
+    def at(self, speeds: ArrayLike) -> NDArray[np.float64]:
+        """The value at speeds, interpolated linearly (held at the curve's end values).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Speeds (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            Peak pressure (Pa), IMEP (Pa) or load factor at those speeds, same shape.
+        """
         return np.interp(np.asarray(speeds, dtype=float), self.speed, self.value)
 
-    def outside(self, speeds) -> bool:
-        """Whether any speed lies outside the curve (its end values are used there)."""
+    def outside(self, speeds: ArrayLike) -> bool:
+        """Whether any speed lies outside the curve (its end values are used there).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Speeds (rad/s).
+
+        Returns
+        -------
+        bool
+            True when a speed is below the first or above the last point (to a relative 1e-9
+            below, 1e-6 above).
+        """
         s = np.asarray(speeds, dtype=float)
         return bool(np.any(s < self.speed[0] * (1 - 1e-9)) or np.any(s > self.speed[-1] * 1.000001))
 
@@ -272,22 +554,39 @@ class HarmonicTable:
 
     Parameters
     ----------
-    order
-        Order of every row.
-    imep
-        Mean indicated pressure of every row (Pa).
-    amplitude
-        T_q (Pa), >= 0.
-    phase
-        psi_q (rad) of every row, or None (gas and inertia harmonics then added in phase).
-    source
+    order : array_like
+        Order of every row (dimensionless), shape (rows,), > 0.
+    imep : array_like
+        Mean indicated pressure of every row (Pa), shape (rows,), >= 0.
+    amplitude : array_like
+        T_q (Pa) of every row, shape (rows,), >= 0.
+    phase : array_like or None
+        psi_q (rad) of every row, shape (rows,), or None (gas and inertia harmonics then added
+        in phase).
+    source : str or None
         The file, for reports.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        Mismatched or empty rows, values not finite, an order not positive (key ``order``), a
+        negative amplitude (key ``amplitude``) or IMEP (key ``imep``), two rows of one order
+        at the same IMEP (key ``imep``).
+
+    Examples
+    --------
+    >>> table = HarmonicTable(order=[1.0, 1.0, 2.0], imep=[0.0, 1.0e6, 1.0e6],
+    ...                       amplitude=[1.0e5, 3.0e5, 1.0e5])
+    >>> table.orders
+    array([1., 2.])
+    >>> np.abs(table.coefficients([1.0, 2.0], [5.0e5]))
+    array([[200000., 100000.]])
     """
 
-    order: np.ndarray
-    imep: np.ndarray
-    amplitude: np.ndarray
-    phase: np.ndarray | None = None
+    order: NDArray[np.float64]
+    imep: NDArray[np.float64]
+    amplitude: NDArray[np.float64]
+    phase: NDArray[np.float64] | None = None
     source: str | None = None
 
     def __post_init__(self) -> None:
@@ -336,17 +635,36 @@ class HarmonicTable:
             and np.array_equal(self.amplitude, other.amplitude)
         )
 
-    __hash__ = None  # array contents: not hashable
+    __hash__: ClassVar[None] = None  # type: ignore[assignment]  # arrays inside: not hashable
 
     @property
-    def orders(self) -> np.ndarray:
-        """The distinct orders of the table, ascending."""
+    def orders(self) -> NDArray[np.float64]:
+        """The distinct orders of the table, ascending (dimensionless)."""
         return np.unique(self.order)
 
-    def coefficients(self, orders, imep) -> np.ndarray:
-        """Complex tangential-pressure harmonics T_q exp(i (psi_q - pi/2)) (Pa), shape
-        (len(imep), len(orders)), interpolated linearly in IMEP (held at the table's ends);
-        with no phases the phase is 0 (the caller aligns it)."""
+    def coefficients(self, orders: ArrayLike, imep: ArrayLike) -> Complex:
+        """Complex tangential-pressure harmonics T_q exp(i (psi_q - pi/2)), interpolated
+        linearly in IMEP (held at the table's ends); with no phases the phase is 0 (the caller
+        aligns it). The sine form T_q sin(q theta + psi_q) of Ker Wilson's tables (vol. 2,
+        ch. 20) is Re(T_q exp(i (psi_q - pi/2)) exp(i q theta)).
+
+        Parameters
+        ----------
+        orders : array_like
+            Orders (dimensionless), shape (orders,); each must be in the table.
+        imep : array_like
+            Mean indicated pressures (Pa), shape (points,) or a scalar.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex harmonics (Pa), shape (points, orders).
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            An order not in the table (names the table's file, key ``order`` and the order).
+        """
         orders = np.asarray(orders, dtype=float)
         imep = np.atleast_1d(np.asarray(imep, dtype=float))
         out = np.zeros((imep.size, orders.size), dtype=complex)
@@ -378,10 +696,23 @@ class HarmonicTable:
 
 @dataclass(frozen=True)
 class SpeedTrace:
-    """A cylinder-pressure trace measured at one speed (rad/s)."""
+    """A cylinder-pressure trace measured at one speed.
+
+    Parameters
+    ----------
+    speed : float
+        Crankshaft speed of the measurement (rad/s), > 0.
+    trace : crankdyn.crank.pressure.PressureTrace
+        The cylinder pressure over the cycle.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A speed not positive (key ``speed`` and its value).
+    """
 
     speed: float
-    trace: object  # crankdyn.crank.pressure.PressureTrace
+    trace: PressureTrace
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.speed) and self.speed > 0.0):
@@ -394,27 +725,34 @@ class ExcitationSpec:
 
     Parameters
     ----------
-    cycle
+    cycle : str
         ``"four-stroke"`` or ``"two-stroke"`` (engine-less models; engines use their own).
-    firing_angles
+    firing_angles : tuple of float or None
         Firing angle of every cylinder (rad, cylinder 1 first), or None: the engine's, or for a
         model without engine even firing in ``firing_order`` (or all cylinders in phase when
         neither is given).
-    firing_order
+    firing_order : tuple of int or None
         Cylinder numbers in firing order (engine-less models; even firing).
-    torque
+    torque : float or None
         Harmonic torque amplitude of every order at every cylinder (N m) for an engine-less model
         (uniform excitation, e.g. 1 N m for receptances).
-    load_curve
+    load_curve : LoadCurve or None
         Load against speed (engines).
-    traces
-        Pressure traces at several speeds (engines).
-    harmonics
+    traces : tuple of SpeedTrace
+        Pressure traces at several speeds (engines), speeds increasing.
+    harmonics : HarmonicTable or None
         Gas harmonic-coefficient table (engines).
-    imep
+    imep : float or None
         Mean indicated pressure (Pa) for the table when no load curve gives it.
-    misfire
-        Cylinders that misfire (motored pressure).
+    misfire : tuple of int
+        Cylinders (1-based) that misfire (motored pressure).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        An unknown cycle, a torque or IMEP not positive, traces given with a peak-pressure or
+        load-factor curve or with a table, trace speeds not increasing, or repeated or
+        non-positive misfiring cylinders; the message names the key and value.
     """
 
     cycle: str = "four-stroke"
@@ -453,7 +791,7 @@ class ExcitationSpec:
 
 
 # ---- evaluation ---------------------------------------------------------------------------------
-def _check_cylinder_list(numbers, count: int, key: str) -> tuple[int, ...]:
+def _check_cylinder_list(numbers: Iterable[int], count: int, key: str) -> tuple[int, ...]:
     out = tuple(int(c) for c in numbers)
     for c in out:
         if not 1 <= c <= count:
@@ -469,21 +807,34 @@ class UniformExcitation:
 
     Parameters
     ----------
-    torque
+    torque : float
         T (N m), > 0.
-    firing_angles
-        Firing angle of every cylinder (rad), cylinder 1 first; zeros put all in phase.
-    cycle
-        The working cycle (sets the admissible orders).
-    note
+    firing_angles : array_like
+        Firing angle of every cylinder (rad), shape (cylinders,), cylinder 1 first; zeros put
+        all in phase.
+    cycle : str
+        The working cycle, ``"four-stroke"`` or ``"two-stroke"`` (sets the admissible orders).
+    note : str
         Text for reports.
-    phases_known
+    phases_known : bool
         Whether the firing angles are the engine's (False: an assumption, e.g. all in phase for
         a model without a firing order; major orders are then undetermined).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A torque not positive (key ``torque``).
+
+    Examples
+    --------
+    >>> exc = UniformExcitation(2.0, np.radians([0.0, 360.0]))
+    >>> np.round(exc.harmonics([100.0], [0.5, 1.0]), 12)
+    array([[[ 2.+0.j, -2.-0.j],
+            [ 2.+0.j,  2.+0.j]]])
     """
 
     torque: float
-    firing_angles: np.ndarray
+    firing_angles: NDArray[np.float64]
     cycle: str = "four-stroke"
     note: str = ""
     phases_known: bool = True
@@ -495,26 +846,65 @@ class UniformExcitation:
 
     @property
     def cylinder_count(self) -> int:
+        """Number of cylinders (one per firing angle)."""
         return int(self.firing_angles.size)
 
     @property
     def description(self) -> str:
+        """One line describing the excitation, for reports."""
         return f"uniform harmonic torque {self.torque:g} N·m per order at every cylinder"
 
-    def notes(self, speeds) -> tuple[str, ...]:
+    def notes(self, speeds: ArrayLike) -> tuple[str, ...]:
+        """Notes for reports on the excitation at these speeds.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s).
+
+        Returns
+        -------
+        tuple of str
+            The excitation's note, if any.
+        """
         return (self.note,) if self.note else ()
 
-    def parts(self, speeds, orders):
-        """(gas, inertia) harmonics, shape (speeds, orders, cylinders) complex (N m): the
-        uniform torque counts as gas, the inertia part is zero."""
+    def parts(self, speeds: ArrayLike, orders: ArrayLike) -> tuple[Complex, Complex]:
+        """(gas, inertia) harmonics: the uniform torque counts as gas, the inertia part is zero.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,).
+        orders : array_like
+            Orders (dimensionless), shape (orders,), valid for the cycle.
+
+        Returns
+        -------
+        gas, inertia : numpy.ndarray
+            Complex harmonic torques (N m), each of shape (speeds, orders, cylinders).
+        """
         speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
         orders = check_orders(orders, self.cycle)
         one = self.torque * phase_vectors(self.firing_angles, orders)
         gas = np.broadcast_to(one, (speeds.size, *one.shape)).copy()
         return gas, np.zeros_like(gas)
 
-    def harmonics(self, speeds, orders) -> np.ndarray:
-        """Harmonic torque of every cylinder, shape (speeds, orders, cylinders) (N m)."""
+    def harmonics(self, speeds: ArrayLike, orders: ArrayLike) -> Complex:
+        """Harmonic torque of every cylinder, T exp(-i q Phi_i).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,).
+        orders : array_like
+            Orders (dimensionless), shape (orders,), valid for the cycle.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex harmonic torques (N m), shape (speeds, orders, cylinders).
+        """
         gas, _ = self.parts(speeds, orders)
         return gas
 
@@ -525,16 +915,22 @@ class EngineExcitation:
 
     Parameters
     ----------
-    engine
+    engine : crankdyn.engine.model.Engine
         The engine (its masses are required for the inertia part).
-    spec
+    spec : ExcitationSpec or None
         Load curve, traces at speeds or harmonic table, and misfiring cylinders; None for the
         engine's trace at every speed.
-    misfire
-        Misfiring cylinders (in addition to ``spec.misfire``).
+    misfire : tuple of int
+        Misfiring cylinders, 1-based (in addition to ``spec.misfire``).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A misfiring cylinder the engine does not have (key ``misfire``), or a harmonic table
+        without a mean indicated pressure (key ``harmonics``, naming the engine file).
     """
 
-    engine: object  # crankdyn.engine.Engine
+    engine: Engine
     spec: ExcitationSpec | None = None
     misfire: tuple[int, ...] = ()
 
@@ -550,18 +946,22 @@ class EngineExcitation:
     # ---- properties ---------------------------------------------------------------------------
     @property
     def cycle(self) -> str:
+        """The engine's working cycle, ``"four-stroke"`` or ``"two-stroke"``."""
         return self.engine.cycle
 
     @property
-    def firing_angles(self) -> np.ndarray:
+    def firing_angles(self) -> NDArray[np.float64]:
+        """Firing angle of every cylinder (rad), cylinder 1 first."""
         return np.asarray(self.engine.cylinders.firing_angles, dtype=float)
 
     @property
     def cylinder_count(self) -> int:
+        """Number of cylinders of the engine."""
         return self.engine.cylinders.count
 
     @property
     def description(self) -> str:
+        """One line describing the excitation (pressure source, load, misfire), for reports."""
         spec = self.spec
         if spec is not None and spec.harmonics is not None:
             gas = f"harmonic table {spec.harmonics.source or ''}".strip()
@@ -578,19 +978,38 @@ class EngineExcitation:
             text += f"; cylinder(s) {', '.join(map(str, self.misfire))} misfiring (motored)"
         return text
 
-    def breakpoints(self) -> np.ndarray:
-        """Speeds (rad/s) where the excitation is not smooth in speed: the points of a load
-        curve (interpolated linearly) or of the traces at several speeds. A resolved forced
-        response samples them, so a peak at such a kink is found exactly."""
+    def breakpoints(self) -> NDArray[np.float64]:
+        """Speeds where the excitation is not smooth in speed: the points of a load curve
+        (interpolated linearly) or of the traces at several speeds. A resolved forced response
+        samples them, so a peak at such a kink is found exactly.
+
+        Returns
+        -------
+        numpy.ndarray
+            The speeds (rad/s), shape (points,); empty without a load curve or traces.
+        """
         spec = self.spec
-        points = []
+        points: list[NDArray[np.float64]] = []
         if spec is not None and spec.load_curve is not None:
             points.append(np.asarray(spec.load_curve.speed, dtype=float))
         if spec is not None and spec.traces:
             points.append(np.array([t.speed for t in spec.traces], dtype=float))
         return np.concatenate(points) if points else np.zeros(0)
 
-    def notes(self, speeds) -> tuple[str, ...]:
+    def notes(self, speeds: ArrayLike) -> tuple[str, ...]:
+        """Notes for reports on the excitation at these speeds: speeds outside the load curve or
+        the traces, a synthetic pressure trace, a harmonic table without phases.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s).
+
+        Returns
+        -------
+        tuple of str
+            The notes (empty when there is nothing to say).
+        """
         out = []
         curve = self.spec.load_curve if self.spec else None
         if curve is not None and curve.outside(speeds):
@@ -617,17 +1036,17 @@ class EngineExcitation:
 
     # ---- spectra of the basis signals (computed once) -----------------------------------------
     @cached_property
-    def _trace(self):
+    def _trace(self) -> PressureTrace:
         from crankdyn.crank.pressure_model import default_pressure
 
         return default_pressure(self.engine)
 
     @cached_property
-    def _theta(self) -> np.ndarray:
+    def _theta(self) -> NDArray[np.float64]:
         return _cycle_grid(self.cycle)
 
     @cached_property
-    def _lever(self) -> np.ndarray:
+    def _lever(self) -> NDArray[np.float64]:
         """R sin(phi + beta)/cos(beta) (m) of every cylinder over the cycle grid."""
         from crankdyn.engine.forces import rod_forces
 
@@ -636,22 +1055,22 @@ class EngineExcitation:
         return rod_forces(np.ones_like(phi), phi, g.lam, g.k)[2] * g.crank_radius
 
     @cached_property
-    def _phase(self) -> np.ndarray:
+    def _phase(self) -> NDArray[np.float64]:
         """Every cylinder's angle from its firing TDC over the grid (rad)."""
         return np.mod(self._theta[None, :] - self.firing_angles[:, None], self.engine.cycle_angle)
 
-    def _pressure_spectrum(self, trace) -> np.ndarray:
+    def _pressure_spectrum(self, trace: PressureTrace) -> Complex:
         """rfft of p A R lever (absolute pressure) of every cylinder, shape (Z, N/2+1)."""
         area = self.engine.geometry.piston_area
         return np.fft.rfft(trace.at(self._phase) * area * self._lever, axis=-1)
 
     @cached_property
-    def _crankcase_spectrum(self) -> np.ndarray:
+    def _crankcase_spectrum(self) -> Complex:
         area = self.engine.geometry.piston_area
         return np.fft.rfft(self.engine.crankcase_pressure * area * self._lever, axis=-1)
 
     @cached_property
-    def _inertia_spectrum(self) -> np.ndarray:
+    def _inertia_spectrum(self) -> Complex:
         """rfft of the inertia torque at 1 rad/s, shape (Z, N/2+1)."""
         from crankdyn.crank.kinematics import slider_crank_exact
         from crankdyn.engine.forces import engine_masses
@@ -663,15 +1082,16 @@ class EngineExcitation:
         return np.fft.rfft(-m_j * a * self._lever, axis=-1)
 
     @cached_property
-    def _trace_spectrum(self) -> np.ndarray:
+    def _trace_spectrum(self) -> Complex:
         return self._pressure_spectrum(self._trace)
 
     @cached_property
-    def _speed_trace_spectra(self) -> np.ndarray:
-        return np.stack([self._pressure_spectrum(t.trace) for t in self.spec.traces])
+    def _speed_trace_spectra(self) -> Complex:
+        traces = self.spec.traces if self.spec is not None else ()
+        return np.stack([self._pressure_spectrum(t.trace) for t in traces])
 
     @cached_property
-    def _motored_trace(self):
+    def _motored_trace(self) -> PressureTrace:
         from crankdyn.crank.pressure_model import WiebePressureModel
 
         trace = self._trace
@@ -689,15 +1109,37 @@ class EngineExcitation:
         return model.trace(self.engine.geometry, self.cycle, source="motored")
 
     @cached_property
-    def _motored_spectrum(self) -> np.ndarray:
+    def _motored_spectrum(self) -> Complex:
         return self._pressure_spectrum(self._motored_trace)
 
     # ---- load ----------------------------------------------------------------------------------
-    def load_factor(self, speeds) -> np.ndarray:
-        """Scale s of the absolute pressure at every speed (1 without a load curve)."""
+    def load_factor(self, speeds: ArrayLike) -> NDArray[np.float64]:
+        """Scale s(Omega) of the absolute pressure at every speed (module docstring; Mendes et
+        al. 2008): the load curve's peak pressure over the trace's, its IMEP over the trace's,
+        or the load factor itself; 1 without a load curve (or with an IMEP curve feeding a
+        harmonic table).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+
+        Returns
+        -------
+        numpy.ndarray
+            The scale (dimensionless), shape (speeds,).
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            An IMEP curve scaling a trace whose IMEP is not positive (key ``load_curve``).
+        """
         speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
-        curve = self.spec.load_curve if self.spec else None
-        if curve is None or (self.spec.harmonics is not None and curve.kind == "imep"):
+        spec = self.spec
+        curve = spec.load_curve if spec else None
+        if curve is None or (
+            spec is not None and spec.harmonics is not None and curve.kind == "imep"
+        ):
             return np.ones(speeds.size)
         value = curve.at(speeds)
         if curve.kind == "load_factor":
@@ -714,12 +1156,13 @@ class EngineExcitation:
             )
         return value / imep
 
-    def _table_imep_source(self):
+    def _table_imep_source(self) -> Callable[[ArrayLike], NDArray[np.float64]]:
         spec = self.spec
-        if spec.load_curve is not None and spec.load_curve.kind == "imep":
+        if spec is not None and spec.load_curve is not None and spec.load_curve.kind == "imep":
             return spec.load_curve.at
-        if spec.imep is not None:
-            return lambda s: np.full(np.size(s), spec.imep)
+        if spec is not None and spec.imep is not None:
+            imep = spec.imep
+            return lambda s: np.full(np.size(s), imep)
         raise InputError(
             "a harmonic table needs the mean indicated pressure: give imep, or a load curve "
             "of IMEP against speed",
@@ -727,16 +1170,48 @@ class EngineExcitation:
             key="harmonics",
         )
 
-    def imep(self, speeds) -> np.ndarray | None:
-        """Mean indicated pressure at every speed for a harmonic table (Pa), else None."""
+    def imep(self, speeds: ArrayLike) -> NDArray[np.float64] | None:
+        """Mean indicated pressure at every speed for a harmonic table, else None.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+
+        Returns
+        -------
+        numpy.ndarray or None
+            The IMEP (Pa) that enters the harmonic table, shape (speeds,); None without a table.
+        """
         if self.spec is None or self.spec.harmonics is None:
             return None
         return self._table_imep_source()(np.atleast_1d(np.asarray(speeds, dtype=float)))
 
     # ---- harmonics ------------------------------------------------------------------------------
-    def parts(self, speeds, orders):
-        """(gas, inertia) harmonic torques of every cylinder, each of shape
-        (speeds, orders, cylinders), complex (N m), phased by the firing angles."""
+    def parts(self, speeds: ArrayLike, orders: ArrayLike) -> tuple[Complex, Complex]:
+        """(gas, inertia) harmonic torques of every cylinder, phased by the firing angles: the
+        FFT of the cylinder torques over the cycle (seed 003 ch. 4; module docstring), the
+        inertia part scaled by Omega^2, the gas part by the load, traces or table.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+        orders : array_like
+            Orders (dimensionless), shape (orders,), multiples of the fundamental order below
+            1800 (four-stroke) or 3600 (two-stroke).
+
+        Returns
+        -------
+        gas, inertia : numpy.ndarray
+            Complex harmonic torques (N m), each of shape (speeds, orders, cylinders).
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            Orders that do not fit the cycle or are not resolved (key ``orders``), a misfire
+            without a compression ratio (key ``misfire``, naming the engine file).
+        """
         speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
         orders = check_orders(orders, self.cycle)
         m = harmonic_index(orders, self.cycle)
@@ -773,8 +1248,11 @@ class EngineExcitation:
             gas[:, :, idx] = motored[:, :, idx] - cc[None, :, idx]
         return gas, inertia
 
-    def _table_gas(self, speeds, orders, inertia) -> np.ndarray:
-        table = self.spec.harmonics
+    def _table_gas(
+        self, speeds: NDArray[np.float64], orders: NDArray[np.float64], inertia: Complex
+    ) -> Complex:
+        table = self.spec.harmonics if self.spec is not None else None
+        assert table is not None  # parts() calls this with a harmonic table only
         imep = self._table_imep_source()(speeds)
         g = self.engine.geometry
         t = table.coefficients(orders, imep) * g.piston_area * g.crank_radius  # (S, Q)
@@ -785,15 +1263,47 @@ class EngineExcitation:
             t = np.abs(t) * unit
         return t[:, :, None] * phase_vectors(self.firing_angles, orders)[None]
 
-    def harmonics(self, speeds, orders) -> np.ndarray:
-        """Harmonic torque of every cylinder (gas + inertia), shape (speeds, orders, cylinders),
-        complex (N m)."""
+    def harmonics(self, speeds: ArrayLike, orders: ArrayLike) -> Complex:
+        """Harmonic torque of every cylinder, gas + inertia (:meth:`parts`).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+        orders : array_like
+            Orders (dimensionless), shape (orders,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex harmonic torques (N m), shape (speeds, orders, cylinders).
+        """
         gas, inertia = self.parts(speeds, orders)
         return gas + inertia
 
 
-def interp_complex(x, xp, fp) -> np.ndarray:
-    """Linear interpolation along the first axis of fp (held at the ends), vectorised."""
+def interp_complex(x: ArrayLike, xp: NDArray[np.float64], fp: Complex) -> Complex:
+    """Linear interpolation along the first axis of fp (held at the ends), vectorised.
+
+    Parameters
+    ----------
+    x : array_like
+        Where to interpolate (unit of ``xp``), shape (points,).
+    xp : numpy.ndarray
+        Abscissae (e.g. speeds in rad/s), increasing, shape (n,).
+    fp : numpy.ndarray
+        Values, complex, shape (n, ...).
+
+    Returns
+    -------
+    numpy.ndarray
+        Interpolated values, shape (points, ...).
+
+    Examples
+    --------
+    >>> interp_complex([0.5, 2.0], np.array([0.0, 1.0]), np.array([0j, 2 + 2j]))
+    array([1.+1.j, 2.+2.j])
+    """
     x = np.asarray(x, dtype=float)
     if len(xp) == 1:
         return np.broadcast_to(fp[0], (x.size, *fp.shape[1:])).copy()
@@ -807,48 +1317,135 @@ def interp_complex(x, xp, fp) -> np.ndarray:
 @dataclass(frozen=True, eq=False)
 class SourceExcitation:
     """The excitation of a model whose masses carry no cylinders: only its sources act (the
-    interface of :class:`~crankdyn.torsion.excitation.UniformExcitation`, with no cylinder)."""
+    interface of :class:`~crankdyn.torsion.excitation.UniformExcitation`, with no cylinder).
+
+    Parameters
+    ----------
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+
+    Examples
+    --------
+    >>> SourceExcitation().harmonics([10.0, 20.0], [1.0]).shape
+    (2, 1, 0)
+    """
 
     cycle: str = "four-stroke"
 
     @property
-    def firing_angles(self) -> np.ndarray:
+    def firing_angles(self) -> NDArray[np.float64]:
+        """No firing angles (rad): an empty array."""
         return np.zeros(0)
 
     @property
     def cylinder_count(self) -> int:
+        """No cylinders: 0."""
         return 0
 
     @property
     def description(self) -> str:
+        """One line describing the excitation, for reports."""
         return "the model's excitation sources (no engine cylinders)"
 
-    def notes(self, speeds) -> tuple[str, ...]:
+    def notes(self, speeds: ArrayLike) -> tuple[str, ...]:
+        """Notes for reports: none.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s).
+
+        Returns
+        -------
+        tuple of str
+            An empty tuple.
+        """
         return ()
 
-    def parts(self, speeds, orders):
+    def parts(self, speeds: ArrayLike, orders: ArrayLike) -> tuple[Complex, Complex]:
+        """(gas, inertia) harmonics of no cylinder.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,).
+        orders : array_like
+            Orders (dimensionless), shape (orders,).
+
+        Returns
+        -------
+        gas, inertia : numpy.ndarray
+            Complex zeros (N m), each of shape (speeds, orders, 0).
+        """
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         q = np.atleast_1d(np.asarray(orders, dtype=float))
         zero = np.zeros((s.size, q.size, 0), dtype=complex)
         return zero, zero.copy()
 
-    def harmonics(self, speeds, orders) -> np.ndarray:
+    def harmonics(self, speeds: ArrayLike, orders: ArrayLike) -> Complex:
+        """Harmonic torques of no cylinder.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,).
+        orders : array_like
+            Orders (dimensionless), shape (orders,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex zeros (N m), shape (speeds, orders, 0).
+        """
         return self.parts(speeds, orders)[0]
 
 
-def excitation_for(model, engine=None, *, misfire=(), torque: float | None = None):
+Excitation: TypeAlias = UniformExcitation | EngineExcitation | SourceExcitation
+"""The excitation of a torsional model (:func:`excitation_for`): every kind has ``cycle``,
+``firing_angles``, ``cylinder_count``, ``description``, ``notes``, ``parts`` and ``harmonics``."""
+
+
+def excitation_for(
+    model: TorsionModel,
+    engine: Engine | None = None,
+    *,
+    misfire: Sequence[int] = (),
+    torque: float | None = None,
+) -> Excitation:
     """The excitation of a torsional model: the engine's cylinder torques when an engine is
     given (or attached), else the model's ``[excitation]`` (uniform torque, default 1 N m).
 
-    ``torque`` forces a uniform excitation of that amplitude (N m) even with an engine (its
-    firing angles are kept). A model that includes its engines (``[[engine]]``) uses its first
-    engine; a model with excitation sources but no cylinders gets a source-only excitation
-    (:class:`crankdyn.torsion.sources.SourceExcitation`)."""
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model; its masses' ``cylinders`` are the excitation points.
+    engine : crankdyn.engine.model.Engine or None
+        The engine whose cylinder torques excite the model; None for the model's own engine
+        (``[[engine]]``, the first) or, without one, its ``[excitation]`` table.
+    misfire : sequence of int
+        Misfiring cylinders (1-based); needs an engine.
+    torque : float or None
+        Forces a uniform excitation of that amplitude (N m) even with an engine (its firing
+        angles are kept).
+
+    Returns
+    -------
+    Excitation
+        An :class:`EngineExcitation`, a :class:`UniformExcitation`, or for a model with
+        excitation sources but no cylinders a :class:`SourceExcitation` (its sources act,
+        :mod:`crankdyn.torsion.sources`).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A model with no cylinder and no source (naming the model file), a misfire without an
+        engine (key ``misfire``), firing angles not one per cylinder (key ``firing_angles``).
+    """
     spec = getattr(model, "excitation", None)
     cylinders = sorted(model.cylinder_dofs)
     if engine is None:
         engine = getattr(model, "engine", None)
-    if not cylinders and getattr(model, "sources", ()):
+    if not cylinders and getattr(model, "sources", None):
         if misfire:
             raise InputError(
                 "a misfire needs engine cylinders on the model", key="misfire", value=list(misfire)
@@ -882,7 +1479,9 @@ def excitation_for(model, engine=None, *, misfire=(), torque: float | None = Non
     return UniformExcitation(torque, angles, cycle, note, phases_known=known)
 
 
-def _model_firing_angles(spec, count: int, cycle: str):
+def _model_firing_angles(
+    spec: ExcitationSpec | None, count: int, cycle: str
+) -> tuple[NDArray[np.float64], str]:
     """Firing angles of an engine-less model's cylinders and a note on where they came from."""
     if spec is not None and spec.firing_angles is not None:
         angles = np.asarray(spec.firing_angles, dtype=float)
@@ -910,51 +1509,95 @@ def _model_firing_angles(spec, count: int, cycle: str):
 class HarmonicResult(Result):
     """Harmonic analysis of the cylinder torque at one speed: per order the single-cylinder
     amplitude (gas, inertia, total), phase, the phase-vector sum over the cylinders and whether
-    the order is major; with a model, the relative amplitude sums over its modes."""
+    the order is major; with a model, the relative amplitude sums over its modes
+    (:func:`harmonic_analysis`; module docstring)."""
 
     title = "Torque harmonics"
-    orders: np.ndarray = array("orders", "Order", "")
-    amplitude: np.ndarray = array("amplitude_Nm", "Single-cylinder amplitude", "N·m")
-    gas_amplitude: np.ndarray = array("gas_amplitude_Nm", "Gas part", "N·m")
-    inertia_amplitude: np.ndarray = array("inertia_amplitude_Nm", "Inertia part", "N·m")
-    phase: np.ndarray = array("phase_deg", "Phase from firing TDC", "deg", DEG)
-    phase_sum: np.ndarray | None = array("phase_vector_sum", "Phase-vector sum |Σ e^(-iqΦ)|", "")
+    orders: NDArray[np.float64] = array("orders", "Order", "")
+    amplitude: NDArray[np.float64] = array("amplitude_Nm", "Single-cylinder amplitude", "N·m")
+    gas_amplitude: NDArray[np.float64] = array("gas_amplitude_Nm", "Gas part", "N·m")
+    inertia_amplitude: NDArray[np.float64] = array("inertia_amplitude_Nm", "Inertia part", "N·m")
+    phase: NDArray[np.float64] = array("phase_deg", "Phase from firing TDC", "deg", DEG)
+    phase_sum: NDArray[np.float64] | None = array(
+        "phase_vector_sum", "Phase-vector sum |Σ e^(-iqΦ)|", ""
+    )
     """None when the firing angles are unknown (module docstring)."""
-    major: np.ndarray | None = array("major", "Major order", "")
+    major: NDArray[np.bool_] | None = array("major", "Major order", "")
     """None when the firing angles are unknown (module docstring)."""
-    engine_amplitude: np.ndarray = array("engine_amplitude_Nm", "All cylinders |Σ c|", "N·m")
-    relative_amplitude_sums: np.ndarray | None = array(
+    engine_amplitude: NDArray[np.float64] = array(
+        "engine_amplitude_Nm", "All cylinders |Σ c|", "N·m"
+    )
+    relative_amplitude_sums: NDArray[np.float64] | None = array(
         "relative_amplitude_sums", "Relative amplitude sums (mode x order)", ""
     )
-    modes: np.ndarray | None = array("modes", "Modes", "")
+    modes: NDArray[np.int_] | None = array("modes", "Modes", "")
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     cylinders: int = scalar("cylinders", "Cylinders", "")
-    firing_angles: np.ndarray = array("firing_angles_deg", "Firing angles", "deg", DEG)
+    firing_angles: NDArray[np.float64] = array("firing_angles_deg", "Firing angles", "deg", DEG)
     source: str = scalar("excitation", "Excitation", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
-    def plot(self, fig=None):
-        """Bar chart of the single-cylinder harmonics per order; returns the Figure."""
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """Bar chart of the single-cylinder harmonics per order.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion_response import plot_harmonics
 
         return plot_harmonics(self, fig=fig)
 
 
-def harmonic_analysis(excitation, speed: float, orders, modes=None, model=None) -> HarmonicResult:
-    """Harmonic analysis of the excitation at one speed (rad/s).
+def harmonic_analysis(
+    excitation: Excitation,
+    speed: float,
+    orders: ArrayLike,
+    modes: ModalResult | None = None,
+    model: TorsionModel | None = None,
+) -> HarmonicResult:
+    """Harmonic analysis of the excitation at one speed: the Fourier coefficients of the
+    cylinder torque (seed 003 ch. 4 and eq. 5), the phase-vector sums and major orders (seed 003
+    section 4.2) and, with modes, the relative amplitude sums (module docstring).
 
     Parameters
     ----------
-    excitation
+    excitation : Excitation
         An :class:`EngineExcitation` or :class:`UniformExcitation`.
-    speed
+    speed : float
         Crankshaft speed (rad/s), > 0.
-    orders
-        Orders to list.
-    modes, model
-        Optionally the :class:`~crankdyn.torsion.modal.ModalResult` of ``model`` for the
-        relative amplitude sums (elastic modes; each mode's shape normalised to a largest
-        amplitude of 1 over the cylinder masses).
+    orders : array_like
+        Orders to list (dimensionless), shape (orders,).
+    modes : crankdyn.torsion.modal.ModalResult or None
+        Optionally the modes of ``model`` for the relative amplitude sums (elastic modes; each
+        mode's shape normalised to a largest amplitude of 1 over the cylinder masses).
+    model : crankdyn.torsion.model.TorsionModel or None
+        The model of ``modes`` (which mass carries which cylinder).
+
+    Returns
+    -------
+    HarmonicResult
+        Per order the single-cylinder amplitudes (N m), phase (rad), phase-vector sum, major
+        flag and the engine's total amplitude (N m).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A speed not positive (key ``speed``) or orders that do not fit the cycle (key
+        ``orders``).
+
+    Examples
+    --------
+    >>> exc = UniformExcitation(1.0, np.radians([0.0, 540.0, 180.0, 360.0]))
+    >>> res = harmonic_analysis(exc, 100.0, [1.0, 2.0])
+    >>> res.major, np.round(res.engine_amplitude, 12)
+    (array([False,  True]), array([0., 4.]))
     """
     if not (math.isfinite(speed) and speed > 0.0):
         raise InputError("the speed must be positive", key="speed", value=speed)
@@ -992,9 +1635,24 @@ def harmonic_analysis(excitation, speed: float, orders, modes=None, model=None) 
     )
 
 
-def cylinder_amplitudes(modes, model, count: int) -> np.ndarray:
-    """(modes, cylinders) mode-shape amplitude of the mass carrying each cylinder, each mode
-    normalised to a largest absolute cylinder amplitude of 1 (0 for cylinders on no mass)."""
+def cylinder_amplitudes(modes: ModalResult, model: TorsionModel, count: int) -> NDArray[np.float64]:
+    """Mode-shape amplitude of the mass carrying each cylinder, each mode normalised to a
+    largest absolute cylinder amplitude of 1 (0 for cylinders on no mass).
+
+    Parameters
+    ----------
+    modes : crankdyn.torsion.modal.ModalResult
+        The modes of ``model``.
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its masses' ``cylinders``).
+    count : int
+        Number of cylinders.
+
+    Returns
+    -------
+    numpy.ndarray
+        Relative amplitudes beta (dimensionless), shape (modes, cylinders).
+    """
     shapes = np.asarray(modes.mode_shapes)  # mode x mass
     out = np.zeros((shapes.shape[0], count))
     for i, m in enumerate(model.masses):

@@ -21,13 +21,18 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
 from crankdyn.torsion.model import ChainArrays, TorsionModel
 from crankdyn.torsion.roots import eigenvalue_bound, isolate_and_refine, require_chain
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "HolzerTable",
@@ -44,7 +49,14 @@ HZ = 1.0 / (2.0 * math.pi)  # scale rad/s -> Hz for exported keys
 
 @dataclass(frozen=True)
 class HolzerTable(Result):
-    """Holzer's table of a chain at one trial frequency (one row per degree of freedom)."""
+    """Holzer's table of a chain at one trial frequency (one row per degree of freedom;
+    :func:`holzer_table`, module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel or None
+        The model the table is of (not exported).
+    """
 
     title = "Holzer table"
     mass: np.ndarray = column("mass", "Mass", "")
@@ -70,7 +82,7 @@ class HolzerTable(Result):
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
 
 
-def _trial_lambda(omega) -> np.ndarray:
+def _trial_lambda(omega: ArrayLike) -> NDArray[np.float64]:
     omega = np.asarray(omega, dtype=float)
     if np.any(~np.isfinite(omega)) or np.any(omega < 0.0):
         raise InputError("a trial frequency must be a finite number >= 0", key="frequency")
@@ -80,7 +92,40 @@ def _trial_lambda(omega) -> np.ndarray:
 
 
 def holzer_table(model: TorsionModel, omega: float) -> HolzerTable:
-    """Holzer's table of a chain at the trial circular frequency omega (rad/s)."""
+    """Holzer's table of a chain at a trial circular frequency (Holzer 1921; seed 003; Den
+    Hartog 1956; the recurrence in the module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+    omega : float
+        The trial frequency (rad/s), >= 0.
+
+    Returns
+    -------
+    HolzerTable
+        Amplitudes (theta_1 = 1), torques per radian of theta_1 (N m/rad) of every mass, and
+        the residual torque (N m/rad), zero at a natural frequency.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model (names the model file), a trial frequency that is negative, not
+        finite or so high that the table overflows (key ``frequency``).
+
+    Examples
+    --------
+    Two masses, 1 and 3 kg m^2, on a shaft of 300 N m/rad: at its natural frequency, 20 rad/s,
+    the residual vanishes.
+
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> table = holzer_table(model, 20.0)
+    >>> [round(float(x), 9) for x in table.angle], round(table.residual_torque, 9)
+    ([1.0, -0.333333333], 0.0)
+    """
     chain = require_chain(model, "Holzer's method")
     lam = float(_trial_lambda(omega))
     J, k, kg = chain.inertia, chain.stiffness, chain.ground_stiffness
@@ -125,9 +170,35 @@ def holzer_table(model: TorsionModel, omega: float) -> HolzerTable:
     )
 
 
-def holzer_residual(model: TorsionModel, omega) -> np.ndarray:
-    """Holzer's residual torque T_n (N m per rad of theta_1) at every omega (rad/s), vectorised
-    over omega; its zeros are the natural frequencies."""
+def holzer_residual(model: TorsionModel, omega: ArrayLike) -> NDArray[np.float64]:
+    """Holzer's residual torque T_n at every trial frequency, vectorised over omega; its zeros
+    are the natural frequencies (module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+    omega : array_like
+        Trial frequencies (rad/s), >= 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        T_n (N m per rad of theta_1), the shape of ``omega`` (inf or NaN where it overflows).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model, or a trial frequency that is negative or not finite.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> np.round(holzer_residual(model, [0.0, 10.0, 20.0]), 9)
+    array([  0., 300.,   0.])
+    """
     chain = require_chain(model, "Holzer's method")
     lam = _trial_lambda(omega)
     J, k, kg = chain.inertia, chain.stiffness, chain.ground_stiffness
@@ -141,7 +212,9 @@ def holzer_residual(model: TorsionModel, omega) -> np.ndarray:
     return t
 
 
-def _ratio_walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _ratio_walk(
+    chain: ChainArrays, lam: NDArray[np.float64]
+) -> tuple[NDArray[np.int_], NDArray[np.float64]]:
     """Holzer's walk in ratio form (no overflow): tau_i = T_i / theta_i and
     rho_i = theta_{i+1} / theta_i = 1 - tau_i / k_i. Returns the number of eigenvalues below
     every lambda (negative rho_i, and tau_n > 0 for the last minor D_n / D_{n-1} = -tau_n) and
@@ -164,7 +237,9 @@ def _ratio_walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.nda
     return count, sign * np.sign(tau)
 
 
-def _walk_ratios(J, k, kg, lam: float) -> tuple[np.ndarray, np.ndarray]:
+def _walk_ratios(
+    J: NDArray[np.float64], k: NDArray[np.float64], kg: NDArray[np.float64], lam: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """One Holzer walk at lambda in ratio form: the carried torque per angle arriving at every
     mass (T_{i-1} / theta_i) and the ratios rho_i = theta_{i+1} / theta_i."""
     n = J.size
@@ -181,7 +256,7 @@ def _walk_ratios(J, k, kg, lam: float) -> tuple[np.ndarray, np.ndarray]:
     return carry, rho
 
 
-def _amplitudes(chain: ChainArrays, lam: float) -> np.ndarray:
+def _amplitudes(chain: ChainArrays, lam: float) -> NDArray[np.float64]:
     """The mode shape at an eigenvalue lambda from Holzer walks from both free ends.
 
     A walk from one end alone loses accuracy where the mode dies away (the recurrence then
@@ -207,11 +282,42 @@ def _amplitudes(chain: ChainArrays, lam: float) -> np.ndarray:
     return theta
 
 
-def holzer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
-    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode) of a chain by
-    Holzer's method: every root of the residual torque, isolated by the sign count of Holzer's
-    amplitudes (:mod:`crankdyn.torsion.roots`); the shapes from Holzer walks from both ends
-    (:func:`_amplitudes`)."""
+def holzer_frequencies(model: TorsionModel) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Natural circular frequencies and mode shapes of a chain by Holzer's method: every root
+    of the residual torque, isolated by the sign count of Holzer's amplitudes (a Sturm
+    sequence, :mod:`crankdyn.torsion.roots`); the shapes from Holzer walks from both ends
+    (the twisted factorisation of Dhillon and Parlett 2004).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+
+    Returns
+    -------
+    omega : numpy.ndarray
+        Natural frequencies (rad/s), ascending (0 for the rigid-body mode of a free chain),
+        shape (dofs,).
+    shapes : numpy.ndarray
+        Mode shapes (dimensionless, relative), shape (dofs, modes).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model (names the model file).
+
+    Examples
+    --------
+    Against the closed form of two masses (:func:`crankdyn.torsion.closed_form.two_mass`:
+    omega^2 = k (J_1 + J_2) / (J_1 J_2) = 400 rad^2/s^2):
+
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> omega, shapes = holzer_frequencies(model)
+    >>> np.round(omega, 9), round(float(shapes[1, 1] / shapes[0, 1]), 9)
+    (array([ 0., 20.]), -0.333333333)
+    """
     chain = require_chain(model, "Holzer's method")
     lam = isolate_and_refine(
         lambda x: _ratio_walk(chain, x)[0],
@@ -226,7 +332,7 @@ def holzer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
 
 @dataclass(frozen=True)
 class ResidualCurve(Result):
-    """Holzer's residual torque against the trial frequency."""
+    """Holzer's residual torque against the trial frequency (:func:`residual_curve`)."""
 
     title = "Holzer residual torque"
     frequency: np.ndarray = column("frequency_hz", "Trial frequency", "Hz", HZ)
@@ -236,8 +342,19 @@ class ResidualCurve(Result):
     )
     model_name: str = scalar("model", "Model", "")
 
-    def plot(self, fig=None):
-        """The residual torque vs frequency with its zeros marked; returns the Figure."""
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """The residual torque against the frequency, with its zeros marked.
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion import plot_residual_curve
 
         return plot_residual_curve(self, fig=fig)
@@ -246,8 +363,40 @@ class ResidualCurve(Result):
 def residual_curve(
     model: TorsionModel, omega_max: float | None = None, points: int = 2001
 ) -> ResidualCurve:
-    """Holzer's residual torque from 0 to omega_max (rad/s; default 1.15 times the highest
-    natural frequency), with the natural frequencies found by :func:`holzer_frequencies`."""
+    """Holzer's residual torque from 0 to omega_max, with the natural frequencies found by
+    :func:`holzer_frequencies` (sampled exactly, so the curve's zeros show at them).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+    omega_max : float or None
+        The highest trial frequency (rad/s), > 0; None for 1.15 times the highest natural
+        frequency (1 rad/s when that is 0).
+    points : int
+        Equally spaced trial frequencies from 0 to ``omega_max`` (the natural frequencies
+        are added).
+
+    Returns
+    -------
+    ResidualCurve
+        Trial frequencies (rad/s; exported in Hz), residual torques (N m/rad) and the natural
+        frequencies (rad/s).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model, or ``omega_max`` not positive (key ``frequency``).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> curve = residual_curve(model, points=5)
+    >>> curve.frequency
+    array([ 0.  ,  5.75, 11.5 , 17.25, 20.  , 23.  ])
+    """
     natural, _ = holzer_frequencies(model)
     if omega_max is None:
         omega_max = 1.15 * float(natural[-1]) if natural[-1] > 0 else 1.0

@@ -51,17 +51,25 @@ import math
 from dataclasses import dataclass
 from fractions import Fraction
 from functools import reduce
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.excitation import (
+    Complex,
+    Excitation,
     SourceExcitation,
     fundamental_order,
     known_major_orders,
     order_grid,
 )
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.model import TorsionModel
+    from crankdyn.torsion.response import LinearSystem
 
 __all__ = [
     "SOURCE_KINDS",
@@ -106,21 +114,38 @@ class LoadLaw:
 
     Parameters
     ----------
-    torque
+    torque : float or None
         Q_0 (N m), >= 0, at ``speed``.
-    speed
+    speed : float or None
         n_0 (rad/s) of the mass, > 0.
-    exponent
-        e (dimensionless).
-    table_speed, table_torque
-        Instead of the law: speeds (rad/s, increasing) and torques (N m, >= 0).
+    exponent : float
+        e (dimensionless), between -10 and 10.
+    table_speed, table_torque : array_like or None
+        Instead of the law: speeds (rad/s, increasing) and torques (N m, >= 0), shape (points,).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        Both a law and a table, a table of mismatched, non-finite, non-increasing or negative
+        values (key ``load``), a law without torque or speed, a negative torque, a speed not
+        positive or an exponent out of range (keys ``torque``, ``speed``, ``exponent``).
+
+    Examples
+    --------
+    The propeller law, 100 kN m at 10 rad/s:
+
+    >>> law = LoadLaw(100e3, 10.0)
+    >>> law.at([5.0, 10.0])
+    array([ 25000., 100000.])
+    >>> law.describe()
+    'propeller law: 100 kN·m at 95.493 rpm'
     """
 
     torque: float | None = None
     speed: float | None = None
     exponent: float = 2.0
-    table_speed: np.ndarray | None = None
-    table_torque: np.ndarray | None = None
+    table_speed: NDArray[np.float64] | None = None
+    table_torque: NDArray[np.float64] | None = None
 
     def __post_init__(self) -> None:
         if self.table_speed is not None or self.table_torque is not None:
@@ -152,16 +177,37 @@ class LoadLaw:
         if not math.isfinite(self.exponent) or abs(self.exponent) > 10.0:
             raise InputError("expected an exponent between -10 and 10", key="exponent")
 
-    def at(self, speeds) -> np.ndarray:
-        """Q at speeds of the mass (rad/s), N m."""
+    def at(self, speeds: ArrayLike) -> NDArray[np.float64]:
+        """The mean load torque Q(n) at speeds of the mass.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Speeds n of the mass (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            Q (N m), same shape.
+        """
         n = np.asarray(speeds, dtype=float)
         if self.table_speed is not None:
+            assert self.table_torque is not None  # set together (__post_init__)
             return np.interp(n, self.table_speed, self.table_torque)
+        assert self.torque is not None and self.speed is not None  # a law (__post_init__)
         return self.torque * (n / self.speed) ** self.exponent
 
     def describe(self) -> str:
+        """One line describing the law, for reports.
+
+        Returns
+        -------
+        str
+            The law's name, Q_0 (kN m) and n_0 (rpm), or the table's size.
+        """
         if self.table_speed is not None:
             return f"tabulated load ({self.table_speed.size} points)"
+        assert self.torque is not None and self.speed is not None  # a law (__post_init__)
         names = {2.0: "propeller law", 0.0: "constant torque", -1.0: "constant power"}
         law = names.get(self.exponent, f"Q ∝ n^{self.exponent:g}")
         return f"{law}: {self.torque / 1e3:.6g} kN·m at {self.speed * RPM:.6g} rpm"
@@ -174,25 +220,41 @@ class HarmonicSource:
 
     Parameters
     ----------
-    at
+    at : str
         The mass it acts on.
-    orders
-        Orders p_k of the mass's speed (dimensionless, > 0, distinct).
-    amplitude
+    orders : array_like
+        Orders p_k of the mass's speed (dimensionless, > 0, distinct), shape (K,).
+    amplitude : array_like or None
         Amplitudes (N m, >= 0): shape (K,), or (T, K) against ``speed``; or None with
         ``fraction``.
-    fraction
+    fraction : array_like or None
         Amplitudes as fractions of the mean torque of ``load`` (dimensionless, >= 0), shape (K,).
-    phase
+    phase : array_like or None
         Phases (rad): T = Re(c exp(i p phi_m)), c = A exp(i psi); shape (K,) or (T, K); default 0.
-    speed
-        Speeds of the mass (rad/s, increasing) of tabulated amplitudes and phases.
-    load
+    speed : array_like or None
+        Speeds of the mass (rad/s, increasing) of tabulated amplitudes and phases, shape (T,).
+    load : LoadLaw or None
         The mean load torque law of the mass (for ``fraction`` and the mean torque along the line).
-    kind
+    kind : str
         ``"propeller"``, ``"machine"`` or ``"source"``.
-    name
-        For reports.
+    name : str
+        For reports (default: the kind and the mass).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        No mass name (key ``at``), an unknown kind, orders not positive or not distinct (key
+        ``orders``), table speeds not positive or increasing (key ``speed``), both or neither of
+        amplitudes and fractions, arrays of the wrong shape or out of range (keys
+        ``amplitudes``, ``fractions``, ``phases``), fractions without a load law.
+
+    Examples
+    --------
+    >>> src = HarmonicSource("prop", [4.0, 8.0], amplitude=[1000.0, 200.0], phase=[0.0, np.pi])
+    >>> np.round(src.coefficients([10.0]), 9)
+    array([[1000.+0.j, -200.+0.j]])
+    >>> src.describe()
+    'source at prop: orders 4, 8 of its speed, N·m 1000, 200'
     """
 
     at: str
@@ -275,25 +337,58 @@ class HarmonicSource:
             object.__setattr__(self, "name", f"{self.kind} at {self.at}")
 
     def mass_names(self) -> tuple[str, ...]:
+        """The masses the source acts on.
+
+        Returns
+        -------
+        tuple of str
+            The one mass ``at``.
+        """
         return (self.at,)
 
-    def coefficients(self, speeds) -> np.ndarray:
-        """Complex amplitudes c_k (N m) at speeds of the mass (rad/s), shape (S, K)."""
+    def coefficients(self, speeds: ArrayLike) -> Complex:
+        """Complex amplitudes c_k = A_k exp(i psi_k) at speeds of the mass: the amplitudes
+        (tabulated ones interpolated linearly, held at the ends) or the fractions of the load
+        law's mean torque, the phases interpolated on the unit circle (module docstring).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Speeds of the mass (rad/s), shape (S,) or a scalar.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex amplitudes (N m), shape (S, K).
+        """
         n = np.atleast_1d(np.asarray(speeds, dtype=float))
+        phase = self.phase
+        assert phase is not None  # set by __post_init__
+        amp: NDArray[np.float64]
         if self.fraction is not None:
+            assert self.load is not None  # required with fractions (__post_init__)
             amp = self.load.at(n)[:, None] * self.fraction[None, :]
         elif self.speed is not None:
+            assert self.amplitude is not None  # amplitudes when no fractions (__post_init__)
             amp = _interp_rows(n, self.speed, self.amplitude)
         else:
+            assert self.amplitude is not None  # amplitudes when no fractions (__post_init__)
             amp = np.broadcast_to(self.amplitude, (n.size, self.orders.size))
-        if self.speed is not None and self.phase.ndim == 2:
-            z = _interp_rows(n, self.speed, np.exp(1j * self.phase))
-            unit = np.where(np.abs(z) > 0.0, z / np.where(z == 0, 1.0, np.abs(z)), 1.0)
+        if self.speed is not None and phase.ndim == 2:
+            z = _interp_rows(n, self.speed, np.exp(1j * phase))
+            unit: Complex = np.where(np.abs(z) > 0.0, z / np.where(z == 0, 1.0, np.abs(z)), 1.0)
         else:
-            unit = np.exp(1j * np.broadcast_to(self.phase, (self.orders.size,)))[None, :]
+            unit = np.exp(1j * np.broadcast_to(phase, (self.orders.size,)))[None, :]
         return amp * unit
 
     def describe(self) -> str:
+        """One line describing the source (orders, amplitudes, load law), for reports.
+
+        Returns
+        -------
+        str
+            The description.
+        """
         orders = ", ".join(f"{p:g}" for p in self.orders[:6]) + (
             ", ..." if self.orders.size > 6 else ""
         )
@@ -302,6 +397,7 @@ class HarmonicSource:
         elif self.speed is not None:
             how = f"tabulated at {self.speed.size} speeds"
         else:
+            assert self.amplitude is not None  # amplitudes when no fractions (__post_init__)
             how = "N·m " + ", ".join(f"{a:.4g}" for a in self.amplitude[:6])
         text = f"{self.name}: orders {orders} of its speed, {how}"
         if self.load is not None:
@@ -309,7 +405,7 @@ class HarmonicSource:
         return text
 
 
-def _interp_rows(x, xp, fp) -> np.ndarray:
+def _interp_rows(x: NDArray[np.float64], xp: NDArray[np.float64], fp: np.ndarray) -> np.ndarray:
     """Linear interpolation of the rows of fp (T, K) at x (held at the ends), vectorised."""
     if xp.size == 1:
         return np.broadcast_to(fp[0], (x.size, fp.shape[1])).copy()
@@ -322,15 +418,54 @@ def propeller(
     at: str,
     blades: int,
     *,
-    fractions=None,
-    torques=None,
-    phases=None,
+    fractions: ArrayLike | None = None,
+    torques: ArrayLike | None = None,
+    phases: ArrayLike | None = None,
     load: LoadLaw | None = None,
     name: str = "",
 ) -> HarmonicSource:
     """A propeller with ``blades`` blades: harmonic torques at the blade orders k z, k = 1 ...
     (one per entry of ``fractions`` (of the mean torque) or ``torques`` (N m)); the mean torque
-    from ``load`` (e.g. the propeller law LoadLaw(Q0, n0, 2))."""
+    from ``load`` (e.g. the propeller law LoadLaw(Q0, n0, 2), Q = K_Q rho n^2 D^5: Carlton
+    2012, ch. 6; module docstring).
+
+    Parameters
+    ----------
+    at : str
+        The mass the propeller acts on.
+    blades : int
+        Number of blades z, >= 1.
+    fractions : array_like or None
+        Blade-order amplitudes as fractions of the mean torque Q(n) (dimensionless), shape (K,);
+        needs ``load``.
+    torques : array_like or None
+        Blade-order amplitudes (N m), shape (K,), instead of ``fractions``.
+    phases : array_like or None
+        Phases (rad), shape (K,); default 0.
+    load : LoadLaw or None
+        The mean load torque law.
+    name : str
+        For reports (default: "propeller (z blades) at MASS").
+
+    Returns
+    -------
+    HarmonicSource
+        The source, at orders z, 2 z, ... K z of the propeller's speed.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A number of blades that is not a whole number >= 1 (key ``blades``), no amplitudes (key
+        ``fractions``), or the errors of :class:`HarmonicSource`.
+
+    Examples
+    --------
+    >>> prop = propeller("prop", 4, fractions=[0.05, 0.01], load=LoadLaw(100e3, 10.0))
+    >>> prop.orders
+    array([4., 8.])
+    >>> np.abs(prop.coefficients([10.0]))
+    array([[5000., 1000.]])
+    """
     if isinstance(blades, bool) or not isinstance(blades, (int, np.integer)) or blades < 1:
         raise InputError("expected the number of blades (a whole number >= 1)", key="blades")
     given = fractions if fractions is not None else torques
@@ -355,16 +490,53 @@ def propeller(
 def electric_machine(
     at: str,
     pole_pairs: int,
-    harmonics,
+    harmonics: ArrayLike,
     *,
-    fractions=None,
-    torques=None,
-    phases=None,
+    fractions: ArrayLike | None = None,
+    torques: ArrayLike | None = None,
+    phases: ArrayLike | None = None,
     load: LoadLaw | None = None,
     name: str = "",
 ) -> HarmonicSource:
     """An electric machine with ``pole_pairs`` pole pairs: torque harmonics at the electrical
-    harmonics h (of the supply frequency f_e = p_p n), mechanical orders h p_p."""
+    harmonics h (of the supply frequency f_e = p_p n), mechanical orders h p_p (module
+    docstring).
+
+    Parameters
+    ----------
+    at : str
+        The mass the machine acts on.
+    pole_pairs : int
+        Number of pole pairs p_p, >= 1.
+    harmonics : array_like
+        Electrical harmonics h (dimensionless, e.g. 6 and 12), shape (K,).
+    fractions : array_like or None
+        Amplitudes as fractions of the mean torque (dimensionless), shape (K,); needs ``load``.
+    torques : array_like or None
+        Amplitudes (N m), shape (K,), instead of ``fractions``.
+    phases : array_like or None
+        Phases (rad), shape (K,); default 0.
+    load : LoadLaw or None
+        The mean load torque law.
+    name : str
+        For reports (default: "electric machine (p_p pole pairs) at MASS").
+
+    Returns
+    -------
+    HarmonicSource
+        The source, at mechanical orders h p_p of the machine's speed.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A number of pole pairs that is not a whole number >= 1 (key ``pole_pairs``), or the
+        errors of :class:`HarmonicSource`.
+
+    Examples
+    --------
+    >>> electric_machine("gen", 2, [6, 12], torques=[300.0, 50.0]).orders
+    array([12., 24.])
+    """
     if (
         isinstance(pole_pairs, bool)
         or not isinstance(pole_pairs, (int, np.integer))
@@ -392,20 +564,33 @@ class EngineSource:
 
     Parameters
     ----------
-    name
+    name : str
         The engine, for reports.
-    excitation
+    excitation : crankdyn.torsion.excitation.Excitation
         Its :class:`~crankdyn.torsion.excitation.EngineExcitation` (or a uniform excitation).
-    cylinders
+    cylinders : tuple of (int, str)
         (cylinder number, mass name) of every cylinder placed on the model.
-    phase
+    phase : float
         Its crank angle (rad) when the reference engine's cylinder 1 is at firing TDC.
-    share
-        Its share of the load's mean torque (relative weight), > 0.
+    share : float
+        Its share of the load's mean torque (relative weight, dimensionless), > 0.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        No cylinder placed (key ``engine``), a phase not finite (key ``phase``) or a share
+        not positive (key ``share``).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> twin = EngineSource("B", UniformExcitation(1.0, [0.0, np.pi]), ((1, "b1"), (2, "b2")))
+    >>> twin.mass_names()
+    ('b1', 'b2')
     """
 
     name: str
-    excitation: object
+    excitation: Excitation
     cylinders: tuple[tuple[int, str], ...]
     phase: float = 0.0
     share: float = 1.0
@@ -423,9 +608,23 @@ class EngineSource:
     load = None
 
     def mass_names(self) -> tuple[str, ...]:
+        """The masses carrying the engine's cylinders, in the order first placed.
+
+        Returns
+        -------
+        tuple of str
+            The mass names, each once.
+        """
         return tuple(dict.fromkeys(m for _c, m in self.cylinders))
 
     def describe(self) -> str:
+        """One line describing the engine (cylinders, firing phase, excitation), for reports.
+
+        Returns
+        -------
+        str
+            The description.
+        """
         return (
             f"{self.name}: {len(self.cylinders)} cylinders, firing phase "
             f"{math.degrees(self.phase):.6g}°; {self.excitation.description}"
@@ -433,21 +632,55 @@ class EngineSource:
 
 
 # ---- orders --------------------------------------------------------------------------------------
-def _fits(values: np.ndarray, base: float) -> np.ndarray:
+def _fits(values: NDArray[np.float64], base: float) -> NDArray[np.bool_]:
     m = values / base
     return np.abs(m - np.round(m)) <= _ORDER_TOL * np.maximum(m, 1.0)
 
 
-def engine_orders_mask(orders, cycle: str) -> np.ndarray:
+def engine_orders_mask(orders: ArrayLike, cycle: str) -> NDArray[np.bool_]:
     """Whether each order is a harmonic of the engine's working cycle (a multiple of 0.5 for a
-    four-stroke, of 1 for a two-stroke engine)."""
+    four-stroke, of 1 for a two-stroke engine;
+    :func:`~crankdyn.torsion.excitation.fundamental_order`).
+
+    Parameters
+    ----------
+    orders : array_like
+        Orders of the engine's speed (dimensionless).
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    numpy.ndarray
+        True where the order is a multiple of the fundamental order (to a relative 1e-9), same
+        shape.
+
+    Examples
+    --------
+    >>> engine_orders_mask([0.5, 1.0, 1.25], "four-stroke")
+    array([ True,  True, False])
+    """
     return _fits(np.asarray(orders, dtype=float), fundamental_order(cycle))
 
 
-def source_orders(model) -> list[tuple[object, np.ndarray]]:
+def source_orders(
+    model: TorsionModel,
+) -> list[tuple[HarmonicSource | EngineSource, NDArray[np.float64]]]:
     """(source, its orders in the reference speed q = p |r_m|) of every harmonic source of the
-    model (for engine sources: the first 24 harmonics of their cycle)."""
-    out = []
+    model (for engine sources: the first 24 harmonics of their cycle; module docstring, Ker
+    Wilson vol. 1 ch. 3).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its ``sources`` and speed ratios).
+
+    Returns
+    -------
+    list of (HarmonicSource or EngineSource, numpy.ndarray)
+        Every source with its orders of the reference speed (dimensionless), shape (K,).
+    """
+    out: list[tuple[HarmonicSource | EngineSource, np.ndarray]] = []
     for source in model.sources:
         r = float(model.speed_ratios[model.index(source.mass_names()[0])])
         if isinstance(source, EngineSource):
@@ -458,10 +691,41 @@ def source_orders(model) -> list[tuple[object, np.ndarray]]:
     return out
 
 
-def check_model_orders(model, excitation, orders, *, key: str = "orders") -> np.ndarray:
+def check_model_orders(
+    model: TorsionModel,
+    excitation: Excitation | None,
+    orders: ArrayLike,
+    *,
+    key: str = "orders",
+) -> NDArray[np.float64]:
     """Validate orders (of the reference speed) for a model: finite, positive, distinct, and
     each either a harmonic of the engine's cycle (when cylinders excite the model) or an order
-    at which one of the model's sources acts (q = p |r_m|). Returns them as a float array."""
+    at which one of the model's sources acts (q = p |r_m|, module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its sources).
+    excitation : Excitation or None
+        The excitation of the cylinders on the masses
+        (:func:`~crankdyn.torsion.excitation.excitation_for`); None for none.
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (Q,).
+    key : str
+        The input key named in an error message.
+
+    Returns
+    -------
+    numpy.ndarray
+        The orders as floats, engine orders snapped to their exact multiples; shape (Q,).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        No order, an order not positive, excited by nothing or given twice (names ``key`` and
+        the order, listing the sources' orders); a model with no excitation at all (names the
+        model file).
+    """
     q = np.atleast_1d(np.asarray(orders, dtype=float))
     if q.ndim != 1 or q.size == 0:
         raise InputError("expected at least one order", key=key)
@@ -516,13 +780,49 @@ def check_model_orders(model, excitation, orders, *, key: str = "orders") -> np.
 
 
 def fundamental_order_of(source: EngineSource) -> float:
+    """Fundamental order of a further engine's cycle, in its own speed.
+
+    Parameters
+    ----------
+    source : EngineSource
+        The engine.
+
+    Returns
+    -------
+    float
+        0.5 for a four-stroke, 1 for a two-stroke engine (dimensionless).
+    """
     return fundamental_order(source.excitation.cycle)
 
 
-def default_orders(model, cycle: str, *, engine: bool = True, last: float = 12.0) -> np.ndarray:
+def default_orders(
+    model: TorsionModel, cycle: str, *, engine: bool = True, last: float = 12.0
+) -> NDArray[np.float64]:
     """The default orders of a model (reference speed), ascending: the engine's harmonics up to
     ``last`` (when cylinders excite it) and every order of its harmonic sources (engine sources:
-    their harmonics up to ``last`` in their own speed)."""
+    their harmonics up to ``last`` in their own speed).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its sources).
+    cycle : str
+        The engine's cycle, ``"four-stroke"`` or ``"two-stroke"``.
+    engine : bool
+        Whether cylinders on the masses excite the model.
+    last : float
+        Highest engine order (dimensionless).
+
+    Returns
+    -------
+    numpy.ndarray
+        The distinct orders (dimensionless), ascending.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A model with no excitation (no engine, no source; names the model file).
+    """
     parts = []
     if engine:
         base = fundamental_order(cycle)
@@ -545,9 +845,26 @@ def default_orders(model, cycle: str, *, engine: bool = True, last: float = 12.0
     return q[keep]
 
 
-def order_sources(model, excitation, orders) -> list[str]:
+def order_sources(
+    model: TorsionModel, excitation: Excitation | None, orders: ArrayLike
+) -> list[str]:
     """What excites each order (reference speed): ``"engine"`` for the harmonics of the cycle of
-    the cylinders on the masses, and the names of the sources acting at it, joined by ", "."""
+    the cylinders on the masses, and the names of the sources acting at it, joined by ", ".
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its sources).
+    excitation : Excitation or None
+        The excitation of the cylinders on the masses; None for none.
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (Q,).
+
+    Returns
+    -------
+    list of str
+        One entry per order (empty when nothing acts at it).
+    """
     q = np.asarray(orders, dtype=float)
     names: list[list[str]] = [[] for _ in range(q.size)]
     if excitation is not None and excitation.cylinder_count > 0:
@@ -568,13 +885,32 @@ def order_sources(model, excitation, orders) -> list[str]:
     return [", ".join(n) for n in names]
 
 
-def line_major(excitation, orders) -> np.ndarray | None:
+def line_major(excitation: Excitation, orders: ArrayLike) -> NDArray[np.bool_] | None:
     """Major-order marking (:func:`~crankdyn.torsion.excitation.major_orders`) restricted to the
     engine's own orders: an order that is not a harmonic of the cycle is not an engine order,
-    so never major (a propeller's blade orders, a machine's harmonics). None when an engine
-    order is among the orders but the excitation does not know its cylinders' phases (a model
-    without firing angles: :data:`~crankdyn.torsion.excitation.MAJOR_UNDETERMINED`); a model
-    without cylinders has no major order."""
+    so never major (a propeller's blade orders, a machine's harmonics).
+
+    Parameters
+    ----------
+    excitation : Excitation
+        The excitation of the cylinders on the masses.
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (Q,).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Whether each order is major, shape (Q,); None when an engine order is among the orders
+        but the excitation does not know its cylinders' phases (a model without firing angles:
+        :data:`~crankdyn.torsion.excitation.MAJOR_UNDETERMINED`); all False for a model
+        without cylinders.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.excitation import UniformExcitation
+    >>> line_major(UniformExcitation(1.0, np.radians([0.0, 360.0])), [1.0, 1.5, 4.0, 4.2])
+    array([ True, False,  True, False])
+    """
     q = np.asarray(orders, dtype=float)
     if excitation.cylinder_count == 0:
         return np.zeros(q.size, dtype=bool)
@@ -588,11 +924,22 @@ def line_major(excitation, orders) -> np.ndarray | None:
     return out
 
 
-def source_breakpoints(model) -> np.ndarray:
-    """Reference speeds (rad/s) where a source's excitation is not smooth in the speed: the
-    points of its tables (amplitudes and phases against the speed, a tabulated load law, a
-    further engine's load curve or traces), each converted from the speed of its mass (n / |r|).
-    A resolved forced response samples them (:mod:`crankdyn.torsion.resolve`)."""
+def source_breakpoints(model: TorsionModel) -> NDArray[np.float64]:
+    """Reference speeds where a source's excitation is not smooth in the speed: the points of
+    its tables (amplitudes and phases against the speed, a tabulated load law, a further
+    engine's load curve or traces), each converted from the speed of its mass (n / |r|). A
+    resolved forced response samples them (:mod:`crankdyn.torsion.resolve`).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model (its sources and speed ratios).
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds (rad/s, reference speed), unsorted, possibly repeated; empty without tables.
+    """
     points = []
     for source in model.sources:
         r = float(model.speed_ratios[model.index(source.mass_names()[0])])
@@ -615,20 +962,43 @@ def _fraction(value: float) -> Fraction | None:
     return f if abs(float(f) - value) <= _ORDER_TOL * max(abs(value), 1.0) else None
 
 
-def synthesis_index(orders, cycle: str) -> np.ndarray | None:
+def synthesis_index(orders: ArrayLike, cycle: str) -> NDArray[np.int_] | None:
     """Integer harmonic indices m_k of the orders over their common period: q_k = m_k b with b
     the largest order dividing every q_k and the cycle's fundamental order (0.5 or 1), so that
     x(phi) = sum_k Re(c_k exp(i m_k phi)) over phi = b theta in [0, 2 pi) covers every
     combination of phases. For the engine's orders alone b is the fundamental order and m_k the
-    usual index. None when the orders have no common period with m_k up to
-    :data:`MAX_SYNTHESIS_INDEX` (then the synthesis is bounded by the sum of the amplitudes,
-    :func:`synthesize`)."""
+    usual index.
+
+    Parameters
+    ----------
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (K,).
+    cycle : str
+        The engine's cycle, ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        The indices m_k, shape (K,); None when the orders have no common period with m_k up to
+        :data:`MAX_SYNTHESIS_INDEX` (then the synthesis is bounded by the sum of the
+        amplitudes, :func:`synthesize`).
+
+    Examples
+    --------
+    >>> synthesis_index([0.5, 1.0, 3.0], "four-stroke")
+    array([1, 2, 6])
+    >>> synthesis_index([1.0, 4.0 / 3.0], "two-stroke")
+    array([3, 4])
+    >>> print(synthesis_index([1.0, np.sqrt(2.0)], "two-stroke"))
+    None
+    """
     q = np.asarray(orders, dtype=float)
     base = fundamental_order(cycle)
     if np.all(_fits(q, base)):
         return np.round(q / base).astype(int)
-    fractions = [_fraction(v) for v in q.tolist()] + [Fraction(base).limit_denominator(10)]
-    if any(f is None for f in fractions):
+    maybe = [_fraction(v) for v in q.tolist()] + [Fraction(base).limit_denominator(10)]
+    fractions = [f for f in maybe if f is not None]
+    if len(fractions) != len(maybe):
         return None
     num = reduce(math.gcd, (f.numerator for f in fractions))
     den = reduce(lambda a, b: a * b // math.gcd(a, b), (f.denominator for f in fractions))
@@ -639,18 +1009,62 @@ def synthesis_index(orders, cycle: str) -> np.ndarray | None:
     return np.array([int(m) for m in index], dtype=int)
 
 
-def synthesize(coefficients, orders, cycle: str) -> tuple[np.ndarray, np.ndarray]:
-    """(max, min) over time of x = sum_k Re(c_k exp(i q_k theta)) for complex coefficients
-    (..., K): over the orders' common period (:func:`synthesis_index`,
-    :func:`crankdyn.torsion.response.half_range`), or +/- the sum of |c_k| when they have none
+def synthesize(
+    coefficients: ArrayLike, orders: ArrayLike, cycle: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(max, min) over time of x = sum_k Re(c_k exp(i q_k theta)) for complex coefficients: over
+    the orders' common period (:func:`synthesis_index`,
+    :func:`crankdyn.torsion.synthesis.half_range`), or +/- the sum of |c_k| when they have none
     (the supremum of a sum of incommensurate harmonics, which comes arbitrarily close to every
-    phase combination: Kronecker's theorem)."""
+    phase combination: Kronecker's theorem).
+
+    Parameters
+    ----------
+    coefficients : array_like
+        Complex amplitudes c_k (any unit, e.g. N m or rad), shape (..., K).
+    orders : array_like
+        Their orders q_k of the reference speed (dimensionless), shape (K,).
+    cycle : str
+        The engine's cycle, ``"four-stroke"`` or ``"two-stroke"``.
+
+    Returns
+    -------
+    max, min : numpy.ndarray
+        Largest and smallest value of x over time (unit of the coefficients), shape (...).
+
+    Examples
+    --------
+    >>> top, low = synthesize([[1.0 + 0j, 1.0 + 0j]], [1.0, 2.0], "two-stroke")
+    >>> round(float(top[0]), 9), round(float(low[0]), 9)
+    (2.0, -1.125)
+    """
     return synthesize_at(coefficients, synthesis_index(orders, cycle))
 
 
-def synthesize_at(coefficients, index) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`synthesize` with the harmonic indices of :func:`synthesis_index` computed once
-    (``index``; None: the orders have no common period, the bound +/- sum |c_k|)."""
+def synthesize_at(
+    coefficients: ArrayLike, index: ArrayLike | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """:func:`synthesize` with the harmonic indices of :func:`synthesis_index` computed once.
+
+    Parameters
+    ----------
+    coefficients : array_like
+        Complex amplitudes c_k (any unit), shape (..., K).
+    index : array_like or None
+        The integer indices m_k of :func:`synthesis_index`, shape (K,); None: the orders have
+        no common period, the bound +/- sum |c_k|.
+
+    Returns
+    -------
+    max, min : numpy.ndarray
+        Largest and smallest value over time (unit of the coefficients), shape (...).
+
+    Examples
+    --------
+    >>> top, low = synthesize_at([[3.0 + 0j, 1.0 + 0j]], None)
+    >>> top, low
+    (array([4.]), array([-4.]))
+    """
     from crankdyn.torsion.synthesis import half_range
 
     if index is not None:
@@ -660,7 +1074,9 @@ def synthesize_at(coefficients, index) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ---- forcing ------------------------------------------------------------------------------------
-def _incidence(model, system, owners, count: int) -> np.ndarray:
+def _incidence(
+    model: TorsionModel, system: LinearSystem, owners: dict[int, str], count: int
+) -> NDArray[np.float64]:
     """(count, n) incidence: cylinder c (1-based) on mass ``owners[c]`` -> its dof, |r|."""
     out = np.zeros((count, system.size))
     ratios = model.speed_ratios
@@ -670,24 +1086,43 @@ def _incidence(model, system, owners, count: int) -> np.ndarray:
     return out
 
 
-def assemble_forcing(model, system, excitation, speeds, orders):
+def assemble_forcing(
+    model: TorsionModel,
+    system: LinearSystem,
+    excitation: Excitation,
+    speeds: ArrayLike,
+    orders: ArrayLike,
+) -> tuple[Complex, list[str]]:
     """The harmonic torques on the degrees of freedom of ``system`` (the model's linear system
-    with its dampers): (forcing, notes) with forcing of shape (speeds, orders, dofs), complex
-    (N m, reflected: |r| T), from the cylinders on the masses (``excitation``) and every source
-    of the model (module docstring).
+    with its dampers), from the cylinders on the masses (``excitation``) and every source of the
+    model, each reflected to the reference speed as |r| T (virtual work; Ker Wilson vol. 1
+    ch. 3; module docstring).
 
     Parameters
     ----------
-    model
+    model : crankdyn.torsion.model.TorsionModel
         The torsional model.
-    system
+    system : crankdyn.torsion.response.LinearSystem
         :func:`crankdyn.torsion.response.linear_system` of the model.
-    excitation
+    excitation : Excitation
         The engine excitation of the cylinders on the masses (or a uniform or source-only one).
-    speeds
-        Reference speeds (rad/s), (S,).
-    orders
-        Orders of the reference speed, (Q,), checked by :func:`check_model_orders`.
+    speeds : array_like
+        Reference speeds (rad/s), shape (S,).
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (Q,), checked by
+        :func:`check_model_orders`.
+
+    Returns
+    -------
+    forcing : numpy.ndarray
+        Complex harmonic torques (N m, reflected), shape (S, Q, dofs).
+    notes : list of str
+        The notes of :func:`forcing_notes`.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        The errors of :func:`forcing_notes`.
     """
     speeds = np.asarray(speeds, dtype=float)
     orders = np.asarray(orders, dtype=float)
@@ -708,12 +1143,37 @@ def assemble_forcing(model, system, excitation, speeds, orders):
     return forcing, notes
 
 
-def forcing_notes(model, excitation, speeds, orders) -> tuple[str, ...]:
+def forcing_notes(
+    model: TorsionModel, excitation: Excitation, speeds: ArrayLike, orders: ArrayLike
+) -> tuple[str, ...]:
     """Check the excitation points of a model (cylinders on its masses, sources) against the
-    excitation, and give the notes of :func:`assemble_forcing` at reference speeds (rad/s)
-    without assembling the forcing: the excitation's own notes (e.g. speeds beyond a load
-    curve), cylinders on no mass, further engines' notes, and a synthesis bounded by the sum
-    of the amplitudes."""
+    excitation, and give the notes of :func:`assemble_forcing` without assembling the forcing:
+    the excitation's own notes (e.g. speeds beyond a load curve), cylinders on no mass, further
+    engines' notes, and a synthesis bounded by the sum of the amplitudes.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The torsional model.
+    excitation : Excitation
+        The excitation of the cylinders on the masses.
+    speeds : array_like
+        Reference speeds (rad/s), shape (S,).
+    orders : array_like
+        Orders of the reference speed (dimensionless), shape (Q,).
+
+    Returns
+    -------
+    tuple of str
+        The notes.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A model with no excitation point, or a mass carrying a cylinder the excitation does not
+        have (key ``cylinders``; both name the model file); a further engine whose masses turn
+        at different speeds (key ``engine``).
+    """
     speeds = np.asarray(speeds, dtype=float)
     notes: list[str] = []
     count = excitation.cylinder_count
@@ -751,7 +1211,14 @@ def forcing_notes(model, excitation, speeds, orders) -> tuple[str, ...]:
     return tuple(notes)
 
 
-def _add_harmonic(forcing, model, system, source, speeds, orders) -> None:
+def _add_harmonic(
+    forcing: Complex,
+    model: TorsionModel,
+    system: LinearSystem,
+    source: HarmonicSource,
+    speeds: NDArray[np.float64],
+    orders: NDArray[np.float64],
+) -> None:
     i = model.index(source.at)
     r = float(model.speed_ratios[i])
     p = orders / r
@@ -766,7 +1233,7 @@ def _add_harmonic(forcing, model, system, source, speeds, orders) -> None:
     forcing[:, hit, int(system.mass_dof[i])] += r * c[:, k]
 
 
-def _engine_ratio(model, source) -> float:
+def _engine_ratio(model: TorsionModel, source: EngineSource) -> float:
     """The speed ratio |r| of a further engine's masses (one: its crankshaft has no gear)."""
     names = source.mass_names()
     ratios = {float(model.speed_ratios[model.index(n)]) for n in names}
@@ -780,7 +1247,14 @@ def _engine_ratio(model, source) -> float:
     return ratios.pop()
 
 
-def _add_engine(forcing, model, system, source, speeds, orders) -> None:
+def _add_engine(
+    forcing: Complex,
+    model: TorsionModel,
+    system: LinearSystem,
+    source: EngineSource,
+    speeds: NDArray[np.float64],
+    orders: NDArray[np.float64],
+) -> None:
     ex = source.excitation
     r = _engine_ratio(model, source)
     p = orders / r
@@ -799,36 +1273,70 @@ def _add_engine(forcing, model, system, source, speeds, orders) -> None:
 @dataclass(frozen=True)
 class MeanTorqueResult(Result):
     """Mean torque of every element (shaft, coupling, elastic mesh) against the speed, from the
-    load laws (module docstring): positive when the element transmits torque from its first mass
-    to its second, in the sense of rotation of its first mass."""
+    load laws (:func:`mean_torques`; module docstring): positive when the element transmits
+    torque from its first mass to its second, in the sense of rotation of its first mass."""
 
     title = "Mean torque along the line"
-    speed: np.ndarray = array("speed_rpm", "Speed", "rpm", RPM)
+    speed: NDArray[np.float64] = array("speed_rpm", "Speed", "rpm", RPM)
     shafts: tuple[tuple[str, str], ...] = scalar("shafts", "Shafts", "")
-    mean_torque: np.ndarray = array("mean_torque_Nm", "Mean torque (speed x shaft)", "N·m")
-    load_torque: np.ndarray = array(
+    mean_torque: NDArray[np.float64] = array("mean_torque_Nm", "Mean torque (speed x shaft)", "N·m")
+    load_torque: NDArray[np.float64] = array(
         "load_torque_Nm", "Mean load torque on every mass (speed x mass)", "N·m"
     )
     masses: tuple[str, ...] = scalar("masses", "Masses", "")
     loads: tuple[str, ...] = scalar("loads", "Load laws", "")
 
     def columns(self) -> dict[str, np.ndarray]:
+        """The speed and the mean torque of every element, as columns in export units.
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            ``speed_rpm`` (rpm) and ``mean_torque_Nm.A - B`` (N m) for the element between
+            masses A and B.
+        """
         out = {"speed_rpm": np.asarray(self.speed) * RPM}
         for s, (a, b) in enumerate(self.shafts):
             out[f"mean_torque_Nm.{a} - {b}"] = self.mean_torque[:, s]
         return out
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
+        """Label and unit of every column of :meth:`columns`.
+
+        Returns
+        -------
+        dict of str to (str, str)
+            {column key: (label, unit)}.
+        """
         out = {"speed_rpm": ("Speed", "rpm")}
         for a, b in self.shafts:
             out[f"mean_torque_Nm.{a} - {b}"] = (f"Mean torque {a} - {b}", "N·m")
         return out
 
 
-def mean_torques(model, speeds) -> MeanTorqueResult:
-    """Mean torque of every element at reference speeds (rad/s) from the sources' load laws
-    (module docstring). Raises when the model has no load law, or loads but no engine to
-    drive them."""
+def mean_torques(model: TorsionModel, speeds: ArrayLike) -> MeanTorqueResult:
+    """Mean torque of every element from the sources' load laws: the engines share the total
+    reflected load, and the static equilibrium K X = F of the reflected model gives every
+    element's torque k (X_a - X_b) / |r_a| (module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model; its sources carry the load laws.
+    speeds : array_like
+        Reference speeds (rad/s), shape (S,) or a scalar.
+
+    Returns
+    -------
+    MeanTorqueResult
+        The mean torque of every element (N m) and the load on every mass (N m) at every speed.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A model with no load law, or with loads but no engine to drive them (names the model
+        file).
+    """
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
     ratios = model.speed_ratios
     n_m = model.mass_count
@@ -885,7 +1393,7 @@ def mean_torques(model, speeds) -> MeanTorqueResult:
     torque = k_ref * (xa - xb) / r_a if index else np.zeros((speeds.size, 0))
     return MeanTorqueResult(
         speed=freeze(speeds),
-        shafts=tuple(tuple(s.between) for s in model.shafts),
+        shafts=tuple((s.between[0], s.between[1]) for s in model.shafts),
         mean_torque=freeze(torque),
         load_torque=freeze(-np.minimum(external, 0.0)),
         masses=model.mass_names,

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["NEWTON", "half_range"]
 
@@ -16,7 +17,9 @@ NEWTON = 4  # evaluations per crest in the time-domain synthesis (the last step 
 
 
 # ---- the synthesis ----------------------------------------------------------------------
-def half_range(coefficients, harmonic) -> tuple[np.ndarray, np.ndarray]:
+def half_range(
+    coefficients: ArrayLike, harmonic: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """(max, min) over one cycle of x(phi) = sum_k Re(c_k exp(i m_k phi)), phi in [0, 2 pi),
     for complex coefficients (..., K) at integer harmonic indices m_k (module docstring).
 
@@ -27,7 +30,30 @@ def half_range(coefficients, harmonic) -> tuple[np.ndarray, np.ndarray]:
     parabola through its three grid points, by Newton's method on x'(phi) = 0 (three steps,
     each kept within one grid step; the fourth taken in the Taylor expansion of x). The
     harmonics exp(i m phi) are products of exp(i phi) where the indices are small. Vectorised
-    over the leading axes and the crests, in blocks to bound memory."""
+    over the leading axes and the crests, in blocks to bound memory. The bound B is the Taylor
+    remainder of x about a crest, |x''| <= sum_k m_k^2 |c_k|, over half a grid step.
+
+    Parameters
+    ----------
+    coefficients : array_like
+        Complex amplitudes c_k (any unit, e.g. N m or rad), shape (..., K).
+    harmonic : array_like
+        Integer harmonic indices m_k >= 0 over the period, shape (K,), distinct.
+
+    Returns
+    -------
+    max, min : numpy.ndarray
+        Largest and smallest value of x over the period (unit of the coefficients), shape
+        (...); NaN for rows with a coefficient that is not finite.
+
+    Examples
+    --------
+    x = cos(phi) + cos(2 phi) peaks at 2 (phi = 0) and dips to -9/8 (cos(phi) = -1/4):
+
+    >>> top, low = half_range([[1.0 + 0j, 1.0 + 0j]], [1, 2])
+    >>> round(float(top[0]), 12), round(float(low[0]), 12)
+    (2.0, -1.125)
+    """
     c = np.asarray(coefficients, dtype=complex)
     m = np.asarray(harmonic, dtype=int)
     lead = c.shape[:-1]
@@ -49,7 +75,9 @@ def half_range(coefficients, harmonic) -> tuple[np.ndarray, np.ndarray]:
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
-def _crests(sx, bound):
+def _crests(
+    sx: NDArray[np.float64], bound: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
     """(row, position in grid steps, grid value) of every crest of the rows of ``sx`` within
     ``bound`` of the row's largest value, the position from the parabola through the crest's
     three grid points."""
@@ -65,7 +93,9 @@ def _crests(sx, bound):
     return row, j + np.clip(shift, -0.5, 0.5), y1
 
 
-def _extremes(block, m, samples) -> tuple[np.ndarray, np.ndarray]:
+def _extremes(
+    block: NDArray[np.complex128], m: NDArray[np.int_], samples: int
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Largest and smallest value over the cycle of every row of ``block`` (:func:`half_range`)."""
     count = block.shape[0]
     spectrum = np.zeros((count, samples // 2 + 1), dtype=complex)

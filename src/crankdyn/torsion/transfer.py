@@ -21,6 +21,7 @@ k -> k + i omega c + i eta k, and k_g - omega^2 J -> k_g + i omega c_g + i eta_g
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import ChainArrays, TorsionModel
@@ -29,16 +30,40 @@ from crankdyn.torsion.roots import eigenvalue_bound, isolate_and_refine, require
 __all__ = ["chain_transfer_matrix", "point_matrices", "transfer_frequencies"]
 
 
-def _omega(omega) -> np.ndarray:
+def _omega(omega: ArrayLike) -> NDArray[np.float64]:
     omega = np.asarray(omega, dtype=float)
     if np.any(~np.isfinite(omega)) or np.any(omega < 0.0):
         raise InputError("a frequency must be a finite number >= 0", key="frequency")
     return omega
 
 
-def point_matrices(chain: ChainArrays, omega, damped: bool = False):
-    """Point matrices of every mass, shape omega.shape + (n, 2, 2) (complex when damped), and
-    field matrices of every shaft, shape omega.shape + (n - 1, 2, 2)."""
+def point_matrices(
+    chain: ChainArrays, omega: ArrayLike, damped: bool = False
+) -> tuple[NDArray[np.inexact], NDArray[np.inexact]]:
+    """Point matrices of every mass and field matrices of every shaft (Pestel and Leckie 1963;
+    seed 003; module docstring).
+
+    Parameters
+    ----------
+    chain : crankdyn.torsion.model.ChainArrays
+        The chain (inertias kg m^2, stiffnesses N m/rad, damping N m s/rad, loss factors).
+    omega : array_like
+        Frequencies (rad/s), >= 0.
+    damped : bool
+        Whether to include damping (complex matrices).
+
+    Returns
+    -------
+    point : numpy.ndarray
+        P_i, shape omega.shape + (n, 2, 2); entry (1, 0) in N m/rad.
+    field : numpy.ndarray
+        F_i, shape omega.shape + (n - 1, 2, 2); entry (0, 1) in rad/(N m).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A frequency that is negative or not finite (key ``frequency``).
+    """
     w = _omega(omega)[..., None]
     ground = chain.ground_stiffness - w**2 * chain.inertia
     k = chain.stiffness + 0.0 * w
@@ -55,9 +80,40 @@ def point_matrices(chain: ChainArrays, omega, damped: bool = False):
     return p, f
 
 
-def chain_transfer_matrix(model: TorsionModel, omega, damped: bool = False) -> np.ndarray:
-    """Overall transfer matrix U from the left of the first mass to the right of the last,
-    shape omega.shape + (2, 2), vectorised over omega (rad/s)."""
+def chain_transfer_matrix(
+    model: TorsionModel, omega: ArrayLike, damped: bool = False
+) -> NDArray[np.inexact]:
+    """Overall transfer matrix U = P_n F_{n-1} ... F_1 P_1 from the left of the first mass to
+    the right of the last, vectorised over omega (module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+    omega : array_like
+        Frequencies (rad/s), >= 0.
+    damped : bool
+        Whether to include damping (complex matrices).
+
+    Returns
+    -------
+    numpy.ndarray
+        U, shape omega.shape + (2, 2), acting on (theta in rad, T in N m); U_21 (N m/rad)
+        vanishes at the natural frequencies of a free chain.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model, or a frequency that is negative or not finite.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> shaft = Shaft(("a", "b"), stiffness=300.0)
+    >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
+    >>> np.round(chain_transfer_matrix(model, [10.0, 20.0])[:, 1, 0], 9)
+    array([-300.,    0.])
+    """
     chain = require_chain(model, "the transfer-matrix method")
     p, f = point_matrices(chain, omega, damped)
     u = p[..., 0, :, :]
@@ -66,7 +122,9 @@ def chain_transfer_matrix(model: TorsionModel, omega, damped: bool = False) -> n
     return u
 
 
-def _walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _walk(
+    chain: ChainArrays, lam: NDArray[np.float64]
+) -> tuple[NDArray[np.int_], NDArray[np.float64]]:
     """Carry z = (1, 0) through the point and field matrices at omega^2 = lam, scaling it at
     every station (the signs are kept). Returns the number of eigenvalues below each lam (sign
     changes of theta between stations, and theta_n T_n^R < 0 for the last minor) and the sign
@@ -91,7 +149,7 @@ def _walk(chain: ChainArrays, lam: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return count, np.sign(torque)
 
 
-def _twisted_shape(chain: ChainArrays, lam: float) -> np.ndarray:
+def _twisted_shape(chain: ChainArrays, lam: float) -> NDArray[np.float64]:
     """The mode shape at an eigenvalue: the state carried from the left end up to a joining
     mass m and from the right end (through the inverse matrices) beyond it, m being the mass
     where the two carried torques balance best (smallest |gamma_m|, gamma_m = T^R/theta from
@@ -133,11 +191,43 @@ def _twisted_shape(chain: ChainArrays, lam: float) -> np.ndarray:
     return theta
 
 
-def transfer_frequencies(model: TorsionModel) -> tuple[np.ndarray, np.ndarray]:
-    """Natural circular frequencies (rad/s, ascending) and mode shapes (dof x mode) of a chain
-    by the transfer-matrix method: the roots of U_21(omega), isolated by the sign count of the
-    carried state (:mod:`crankdyn.torsion.roots`); the shapes carried from both ends
-    (:func:`_twisted_shape`)."""
+def transfer_frequencies(model: TorsionModel) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Natural circular frequencies and mode shapes of a chain by the transfer-matrix method:
+    the roots of U_21(omega), isolated by the sign count of the carried state (a Sturm
+    sequence, :mod:`crankdyn.torsion.roots`); the shapes carried from both ends (the twisted
+    factorisation of Dhillon and Parlett 2004).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        An unbranched chain.
+
+    Returns
+    -------
+    omega : numpy.ndarray
+        Natural frequencies (rad/s), ascending, shape (dofs,).
+    shapes : numpy.ndarray
+        Mode shapes (dimensionless, relative), shape (dofs, modes).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A branched model (names the model file).
+
+    Examples
+    --------
+    Three equal masses on equal shafts, against :func:`crankdyn.torsion.closed_form.three_mass`
+    (omega^2 = k/J and 3 k/J):
+
+    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     (Mass("a", 1.0), Mass("b", 1.0), Mass("c", 1.0)),
+    ...     (Shaft(("a", "b"), stiffness=100.0), Shaft(("b", "c"), stiffness=100.0)),
+    ... )
+    >>> omega, shapes = transfer_frequencies(model)
+    >>> np.round(omega**2, 9)
+    array([  0., 100., 300.])
+    """
     chain = require_chain(model, "the transfer-matrix method")
     lam = isolate_and_refine(
         lambda x: _walk(chain, x)[0],

@@ -5,16 +5,19 @@ every speed and order at once (:mod:`crankdyn.torsion.response`,
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import NDArray
 
 __all__ = ["solve_tridiagonal"]
 
 
 # ---- batched tridiagonal solve ---------------------------------------------------
-def _abs1(z):
+def _abs1(z: np.ndarray) -> np.ndarray:
     return np.abs(z.real) + np.abs(z.imag)
 
 
-def solve_tridiagonal(lower, diag, upper, rhs) -> np.ndarray:
+def solve_tridiagonal(
+    lower: np.ndarray, diag: np.ndarray, upper: np.ndarray, rhs: np.ndarray
+) -> NDArray[np.inexact]:
     """Solve tridiagonal systems A x = b for a batch of matrices and right-hand sides.
 
     Gaussian elimination with partial pivoting (rows i and i+1 swapped when the sub-diagonal
@@ -23,16 +26,30 @@ def solve_tridiagonal(lower, diag, upper, rhs) -> np.ndarray:
 
     Parameters
     ----------
-    lower, diag, upper
+    lower, diag, upper : numpy.ndarray
         Sub-diagonal (..., n-1), diagonal (..., n) and super-diagonal (..., n-1), complex or
-        real, broadcast together.
-    rhs
-        Right-hand sides (..., n) or (..., n, r).
+        real, broadcast together (any consistent unit, e.g. the dynamic stiffness in N m/rad).
+    rhs : numpy.ndarray
+        Right-hand sides (..., n) or (..., n, r) (e.g. torques in N m). Arrays, not lists
+        (their common type is taken with :func:`numpy.result_type`).
 
     Returns
     -------
     numpy.ndarray
-        x with the shape of ``rhs`` (broadcast against the matrices' batch shape).
+        x with the shape of ``rhs`` (broadcast against the matrices' batch shape), in the unit
+        of ``rhs`` over that of the matrix (e.g. rad); float or complex as the inputs.
+
+    Examples
+    --------
+    A chain of three unit stiffnesses, loaded at its free end (the exact solution 1, 2, 3), and
+    a zero pivot that partial pivoting handles:
+
+    >>> off = np.array([-1.0, -1.0])
+    >>> solve_tridiagonal(off, np.array([2.0, 2.0, 1.0]), off, np.array([0.0, 0.0, 1.0]))
+    array([1., 2., 3.])
+    >>> one = np.array([1.0])
+    >>> solve_tridiagonal(one, np.array([0.0, 1.0]), one, np.array([2.0, 3.0]))
+    array([1., 2.])
     """
     d = np.asarray(diag)
     dtype = np.result_type(lower, d, upper, rhs, 1.0)
