@@ -60,10 +60,9 @@ if TYPE_CHECKING:
     from crankdyn.torsion.damped import DampedModalResult
     from crankdyn.torsion.dampers import Damper, DamperDesign
     from crankdyn.torsion.excitation import (
-        EngineExcitation,
+        Excitation,
         ExcitationSpec,
         HarmonicResult,
-        UniformExcitation,
     )
     from crankdyn.torsion.holzer import HolzerTable, ResidualCurve
     from crankdyn.torsion.modal import ModalResult
@@ -850,9 +849,7 @@ class Analysis:
 
         return residual_curve(self._need_model(), max_frequency)
 
-    def excitation(
-        self, *, misfire: Sequence[int] = (), torque: float | None = None
-    ) -> UniformExcitation | EngineExcitation:
+    def excitation(self, *, misfire: Sequence[int] = (), torque: float | None = None) -> Excitation:
         """The excitation of the torsional model: the engine's cylinder torques, or a uniform
         torque per order, with the model's excitation sources (a propeller, an electric
         machine, further engines); a shaft line without cylinders: its sources alone

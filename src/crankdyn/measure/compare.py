@@ -45,7 +45,7 @@ from crankdyn.torsion.response import ResponseResult, forced_response
 if TYPE_CHECKING:
     from crankdyn.measure.orders import OrderSpectrum, OrderTracking
     from crankdyn.torsion.dampers import Damper
-    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
@@ -281,7 +281,7 @@ def _model_peak(model, excitation, order, mass, speeds, amplitude, near, dampers
 
 def _model_fit(
     model: TorsionModel,
-    excitation: UniformExcitation | EngineExcitation,
+    excitation: Excitation,
     order: float,
     mass: int,
     centre: float,
@@ -307,7 +307,7 @@ def _model_fit(
 def compare_with_model(
     measured: OrderSpectrum | OrderTracking,
     model: TorsionModel,
-    excitation: UniformExcitation | EngineExcitation,
+    excitation: Excitation,
     at: str,
     *,
     dampers: Sequence[Damper] | None = None,
@@ -320,7 +320,7 @@ def compare_with_model(
         The measured orders (:func:`crankdyn.measure.orders.order_analysis`).
     model : crankdyn.torsion.model.TorsionModel
         The torsional model.
-    excitation : UniformExcitation or EngineExcitation
+    excitation : crankdyn.torsion.excitation.Excitation
         Its excitation (:func:`crankdyn.torsion.excitation.excitation_for`).
     at : str
         The mass that carries the measured wheel.

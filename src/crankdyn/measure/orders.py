@@ -62,7 +62,7 @@ from crankdyn.torsion.response import half_range
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
@@ -643,7 +643,7 @@ class OrderSpectrum(Result):
     def with_model(
         self,
         model: TorsionModel,
-        excitation: UniformExcitation | EngineExcitation,
+        excitation: Excitation,
         at: str,
         **kw: Any,
     ) -> OrderSpectrum:
@@ -654,7 +654,7 @@ class OrderSpectrum(Result):
         ----------
         model : crankdyn.torsion.model.TorsionModel
             The torsional model.
-        excitation : UniformExcitation or EngineExcitation
+        excitation : crankdyn.torsion.excitation.Excitation
             Its excitation (:func:`crankdyn.torsion.excitation.excitation_for`).
         at : str
             The mass that carries the measured wheel.
@@ -777,7 +777,7 @@ class OrderTracking(Result):
     def with_model(
         self,
         model: TorsionModel,
-        excitation: UniformExcitation | EngineExcitation,
+        excitation: Excitation,
         at: str,
         **kw: Any,
     ) -> OrderTracking:
@@ -788,7 +788,7 @@ class OrderTracking(Result):
         ----------
         model : crankdyn.torsion.model.TorsionModel
             The torsional model.
-        excitation : UniformExcitation or EngineExcitation
+        excitation : crankdyn.torsion.excitation.Excitation
             Its excitation (:func:`crankdyn.torsion.excitation.excitation_for`).
         at : str
             The mass that carries the measured wheel.

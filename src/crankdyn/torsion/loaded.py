@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import dataclasses
 from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -426,4 +426,4 @@ def solve_at_speeds(
     # element torques k_actual (actual twist) = k_actual rho (reflected twist), rho signed
     k = np.broadcast_to(base_k, (w.shape[0], 1, base_k.size)).copy()
     k[:, 0, shafts] = k_actual * model.signed_speed_ratios[first][None, :]
-    return x, k
+    return cast("NDArray[np.complexfloating]", x), k

@@ -101,7 +101,7 @@ from crankdyn.torsion.tridiagonal import solve_tridiagonal
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.rules import RuleCheck, RuleSet
 
 __all__ = [
@@ -1569,7 +1569,7 @@ class _Sweep:
     def __init__(
         self,
         model: TorsionModel,
-        excitation: EngineExcitation | UniformExcitation,
+        excitation: Excitation,
         orders: NDArray[np.float64],
         dampers: Iterable[Damper],
         hysteretic_frequency: float | None,
@@ -1989,7 +1989,7 @@ def _per_order(k: int, count: int, names: Sequence[str], orders: np.ndarray) -> 
 
 def forced_response(
     model: TorsionModel,
-    excitation: EngineExcitation | UniformExcitation,
+    excitation: Excitation,
     speeds: ArrayLike,
     orders: ArrayLike,
     *,

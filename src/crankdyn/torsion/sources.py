@@ -1343,8 +1343,8 @@ def mean_torques(model: TorsionModel, speeds: ArrayLike) -> MeanTorqueResult:
     external = np.zeros((speeds.size, n_m))  # own-sense mean torque on every mass
     loads = []
     for source in model.sources:
-        if getattr(source, "load", None) is None:
-            continue
+        if not isinstance(source, HarmonicSource) or source.load is None:
+            continue  # an engine carries no load law
         i = model.index(source.at)
         external[:, i] -= source.load.at(ratios[i] * speeds)
         loads.append(f"{source.name}: {source.load.describe()}")

@@ -46,7 +46,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crankdyn.torsion.dampers import Damper
-    from crankdyn.torsion.excitation import EngineExcitation, UniformExcitation
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["TransientResult", "transient_response"]
@@ -180,7 +180,7 @@ class TransientResult(Result):
 
 def transient_response(
     model: TorsionModel,
-    excitation: EngineExcitation | UniformExcitation,
+    excitation: Excitation,
     orders: ArrayLike,
     *,
     speed: float | None = None,

@@ -684,9 +684,7 @@ def _evaluate(
     for check in checks:
         if not check.barred:
             continue
-        for ex in exceedances(
-            r, lambda x, c=check: c.curve(x)[:, None], lambda w, c=check: c.limit(w)[:, None]
-        ):
+        for ex in exceedances(r, _column(check.curve), _column(check.limit)):
             lo, hi = barred_limits(ex.peak_speed, n0, spec.widening)
             start = min(ex.start, lo) * (1.0 - tol)
             end = max(ex.end, hi) * (1.0 + tol)
@@ -901,17 +899,26 @@ def _merge(intervals: Iterable[tuple[float, float]]) -> list[tuple[float, float]
 
 
 # ---- passage through barred ranges ---------------------------------------------------------------
+def _column(
+    func: Callable[[Any], NDArray[np.float64]],
+) -> Callable[[Any], NDArray[np.float64]]:
+    """``func`` with its result as one column (speeds x 1), the layout
+    :func:`~crankdyn.torsion.rules.exceedances` reads."""
+    return lambda x: func(x)[:, None]
+
+
 def _load_torque(model: TorsionModel, speeds: ArrayLike) -> NDArray[np.float64]:
     """Mean load torque reflected to the reference shaft (N m) at reference speeds (rad/s)."""
+    from crankdyn.torsion.sources import HarmonicSource
+
     n = np.asarray(speeds, dtype=float)
     total = np.zeros(n.shape)
     ratios = model.speed_ratios
     for source in model.sources:
-        load = getattr(source, "load", None)
-        if load is None:
-            continue
+        if not isinstance(source, HarmonicSource) or source.load is None:
+            continue  # an engine carries no load law
         r = abs(float(ratios[model.index(source.at)]))
-        total = total + r * load.at(r * n)
+        total = total + r * source.load.at(r * n)
     return total
 
 
