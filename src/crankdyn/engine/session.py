@@ -61,7 +61,6 @@ if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper, DamperDesign
     from crankdyn.torsion.excitation import (
         Excitation,
-        ExcitationSpec,
         HarmonicResult,
     )
     from crankdyn.torsion.holzer import HolzerTable, ResidualCurve
@@ -888,7 +887,7 @@ class Analysis:
                 raise InputError(
                     "a uniform torque needs a torsional model with cylinder masses", key="torque"
                 )
-            spec = cast("ExcitationSpec | None", model.excitation if model is not None else None)
+            spec = model.excitation if model is not None else None
             return self._cached(key, lambda: EngineExcitation(engine, spec, tuple(misfire)))
         return self._cached(
             key, lambda: excitation_for(model, self.engine, misfire=misfire, torque=torque)

@@ -542,9 +542,7 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
             stripped, cylinders = strip_cylinders(part)
             source = EngineSource(
                 name=name,
-                # an engine's [torsion] excitation is an ExcitationSpec (TorsionModel types
-                # the field loosely)
-                excitation=EngineExcitation(engine, engine.torsion.excitation),  # type: ignore[arg-type]
+                excitation=EngineExcitation(engine, engine.torsion.excitation),
                 cylinders=cylinders,
                 phase=math.fmod(phase, engine.cycle_angle),
                 share=share,

@@ -49,6 +49,7 @@ if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
     from crankdyn.torsion.campbell import OperatingRange
     from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.excitation import ExcitationSpec
     from crankdyn.torsion.rules import RuleSet
     from crankdyn.torsion.sources import EngineSource, HarmonicSource
     from crankdyn.tvc.spec import TvcSpec
@@ -1020,10 +1021,7 @@ class TorsionModel:
     gears: tuple[Gear, ...] = ()
     name: str = "torsional model"
     source: str | None = field(default=None, compare=False)
-    # an ExcitationSpec or None (documented above); typed loosely still because
-    # engine/session.py and io/engine_file.py narrow it with a cast and a type: ignore, which
-    # the precise type would make redundant (their owners tighten both together)
-    excitation: object = None
+    excitation: ExcitationSpec | None = None
     dampers: tuple[Damper, ...] = ()
     rules: RuleSet | None = None
     operating: OperatingRange | None = None
