@@ -54,6 +54,7 @@ from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 
 import numpy as np
+from numpy.typing import NDArray
 
 from crankdyn.docs import ref
 from crankdyn.errors import InputError
@@ -125,7 +126,6 @@ class ModalResult(Result):
     """Set when only the lowest modes were computed (``natural_modes(..., count=)``)."""
     all_natural_frequency: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Every natural frequency of the model (rad/s) when only the lowest modes were computed."""
-    eigenvectors: np.ndarray | None = field(default=None, repr=False, compare=False)
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     shapes_dof: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Normalised mode shapes by degree of freedom (mode x dof), for locating nodes."""
@@ -151,6 +151,14 @@ class ModalResult(Result):
                 value=mode,
             )
         return int(mode) - first
+
+    @cached_property
+    def eigenvectors(self) -> NDArray[np.float64] | None:
+        """Mass-normalised eigenvectors (dof x mode, phi^T M phi = I; rad per sqrt(kg·m²)),
+        made from :attr:`shapes_dof` when first asked for (no copy is held otherwise)."""
+        if self.shapes_dof is None:
+            return None
+        return _readonly(self.shapes_dof.T / np.sqrt(self.modal_inertia)[None, :])
 
     @cached_property
     def nodes(self) -> tuple[tuple[Node, ...], ...]:
@@ -540,27 +548,52 @@ def _graph_nodes(model, shapes_dof, resolved) -> _NodeArrays:
 
 def _find_nodes(
     model: TorsionModel,
-    shapes_dof: np.ndarray,
-    modal_inertia: np.ndarray,
-    omega: np.ndarray,
-    all_omega: np.ndarray | None = None,
+    shapes_dof: NDArray[np.float64],
+    modal_inertia: NDArray[np.float64],
+    tau: NDArray[np.float64],
+    rigid: bool,
 ) -> _NodeArrays:
-    """Nodes and round-off regions of every mode (module docstring); ``all_omega``: every
-    natural frequency of the model (rad/s) when ``omega`` holds only the lowest (the gaps and
-    the norm of the thresholds are the whole spectrum's)."""
-    if all_omega is None:
-        tau = roundoff_thresholds(omega * omega)
-    else:
-        tau = roundoff_thresholds(all_omega * all_omega)[: omega.size]
+    """Nodes and round-off regions of the modes in the rows of ``shapes_dof`` (module
+    docstring); ``tau``: their round-off thresholds (:func:`roundoff_thresholds` of the whole
+    spectrum), ``rigid``: the first row is the rigid-body mode."""
     # |u_i| = |phi_i| sqrt(J_i) / sqrt(J_r) > tau_r: the component is resolved
     size = np.abs(shapes_dof) * np.sqrt(model.dof_inertia)
     with np.errstate(invalid="ignore", over="ignore"):
         resolved = size > (tau * np.sqrt(modal_inertia))[:, None]
-    if model.is_free and resolved.shape[0]:
+    del size
+    if rigid and resolved.shape[0]:
         resolved[0] = True  # the rigid-body mode: exactly ones
     if model.is_chain:
         return _chain_nodes(model, shapes_dof, resolved)
     return _graph_nodes(model, shapes_dof, resolved)
+
+
+@dataclass(frozen=True)
+class _Rows:
+    """The per-mode results of some modes (rows): shapes by mass and by dof, modal inertias,
+    nodes (mode indices counted from the first row)."""
+
+    shapes: NDArray[np.float64]  # mode x mass (listing order), largest amplitude 1
+    shapes_dof: NDArray[np.float64]  # mode x dof
+    modal_inertia: NDArray[np.float64]  # kg·m²
+    nodes: _NodeArrays
+
+
+def _rows(
+    model: TorsionModel, phi_t: NDArray[np.float64], tau: NDArray[np.float64], rigid: bool
+) -> _Rows:
+    """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
+    J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_find_nodes`)."""
+    shapes_dof, size = _normalise(phi_t)  # mode x dof, in place
+    del size
+    dof = model.mass_dof
+    in_order = dof.size == shapes_dof.shape[1] and np.array_equal(dof, np.arange(dof.size))
+    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
+    square = shapes_dof * shapes_dof
+    modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
+    del square
+    nodes = _find_nodes(model, shapes_dof, modal_inertia, tau, rigid)
+    return _Rows(shapes, shapes_dof, modal_inertia, nodes)
 
 
 def natural_modes(
@@ -600,36 +633,44 @@ def natural_modes(
         omega[0] = 0.0
     if solver != "eigen" or not phi.flags.writeable:
         phi = phi.copy()  # normalised in place below: only the eigen solver's own array
-    shapes_dof, size = _normalise(phi.T)  # mode x dof, in place
-    del phi, size
-    dof = model.mass_dof
-    in_order = dof.size == shapes_dof.shape[1] and np.array_equal(dof, np.arange(dof.size))
-    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
-    square = shapes_dof * shapes_dof
-    modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
-    del square
-    # mass-normalised eigenvectors for later analyses (phi^T M phi = 1)
-    eigenvectors = shapes_dof.T / np.sqrt(modal_inertia)[None, :]
     all_omega = chain_frequencies(model) if partial else None
-    nodes = _find_nodes(model, shapes_dof, modal_inertia, omega, all_omega)
-    first = 0 if free else 1  # mode numbers: docs/conventions.md
+    spectrum = omega if all_omega is None else all_omega
+    tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
+    rows = _rows(model, phi.T, tau, free)
+    del phi
+    return _result(model, solver, omega, rows, 0, total if partial else None, all_omega)
+
+
+def _result(
+    model: TorsionModel,
+    solver: str,
+    omega: NDArray[np.float64],
+    rows: _Rows,
+    start: int,
+    total: int | None,
+    all_omega: NDArray[np.float64] | None = None,
+) -> ModalResult:
+    """The ModalResult of the modes ``start``, ``start + 1``, ... (indices into the model's
+    ascending modes) held by ``rows``."""
+    free = model.is_free
+    first = (0 if free else 1) + start  # mode numbers: docs/conventions.md
+    inertia = rows.modal_inertia
     return ModalResult(
         mode=freeze(np.arange(first, first + omega.size), dtype=int),
         natural_frequency=freeze(omega),
-        node_count=freeze(nodes.counts(omega.size), dtype=int),
-        nodes_resolved=freeze(nodes.resolved(omega.size), dtype=bool),
-        modal_inertia=freeze(modal_inertia),
-        modal_stiffness=freeze(omega**2 * modal_inertia),
-        mode_shapes=_readonly(shapes),
+        node_count=freeze(rows.nodes.counts(omega.size), dtype=int),
+        nodes_resolved=freeze(rows.nodes.resolved(omega.size), dtype=bool),
+        modal_inertia=freeze(inertia),
+        modal_stiffness=freeze(omega**2 * inertia),
+        mode_shapes=_readonly(rows.shapes),
         masses=model.mass_names,
         solver=solver,
         structure="chain" if model.is_chain else "branched",
         free=free,
         model_name=model.name,
-        modes_of_the_model=total if partial else None,
+        modes_of_the_model=total,
         all_natural_frequency=None if all_omega is None else freeze(all_omega),
-        eigenvectors=_readonly(eigenvectors),
         model=model,
-        shapes_dof=_readonly(shapes_dof),
-        node_arrays=nodes,
+        shapes_dof=_readonly(rows.shapes_dof),
+        node_arrays=rows.nodes,
     )
