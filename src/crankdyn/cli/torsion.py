@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import click
 
@@ -18,7 +19,13 @@ from crankdyn.display import column_text
 from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
-from crankdyn.torsion.modal import SOLVERS
+from crankdyn.torsion.modal import (
+    SOLVERS,
+    STREAMED_SIZE,
+    ModeBlocks,
+    modes_csv_chunks,
+    modes_json_chunks,
+)
 
 _MODEL_HELP = (
     "MODEL_OR_ENGINE is a torsional model file, an engine file with a [torsion] section, a "
@@ -218,11 +225,11 @@ def _ratio(value: float) -> str:
     "--modes",
     "tabled",
     type=click.IntRange(min=1),
-    default=TABLED_MODES,
-    show_default=True,
+    default=None,
     metavar="N",
-    help=f"How many of the lowest modes the table lists (their shapes: the first "
-    f"{SHAPE_MODES}); --format json and csv write every mode.",
+    help=f"The lowest N modes only (default: the table lists {TABLED_MODES} and the shapes of the "
+    f"first {SHAPE_MODES}; --format json and csv write every mode, a large chain's a block of "
+    "modes at a time).",
 )
 @click.option(
     "--damped",
@@ -244,9 +251,11 @@ def modes_command(
     """Natural frequencies, mode shapes, nodes and modal inertias of MODEL_OR_ENGINE.
 
     The modes are listed ascending (the lowest --modes of them in the table, which says what it
-    leaves out; every mode in JSON and CSV): elastic modes numbered from 1, a free model's
-    rigid-body mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest absolute
-    amplitude of 1.
+    leaves out; every mode, or the lowest --modes, in JSON and CSV): elastic modes numbered from
+    1, a free model's rigid-body mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest
+    absolute amplitude of 1. The JSON and CSV of a large chain (more than a million mode-shape
+    amplitudes) are computed and written a block of modes at a time, in bounded memory (crankdyn
+    docs torsion-file).
     With --damped: the damped modes (complex eigenvalues of the damped system), one per mode,
     ascending, numbered the same way.
     """
@@ -278,24 +287,64 @@ def modes_command(
             raise InputError(exc.message, key="--modal-damping", value=modal_damping) from None
         out.write(blocks=[damped_table(result)], json_data=result, csv_text=result.to_csv())
         return 0
+    size = session.model.dof_inertia.size
+    needed = max([*(m + 1 for m in chosen or ()), 7 if plot_path else 0], default=0)
+    shown = TABLED_MODES if tabled is None else tabled
+    result = None
     if out.for_people:  # the lowest modes only: a large model's shapes are N x N
-        needed = max([tabled, *(m + 1 for m in chosen or ()), 7 if plot_path else 0])
-        result = session.modes_by(solver, count=needed)
-    else:
-        result = session.modes_by(solver)
-    if chosen is not None:
+        result = session.modes_by(solver, count=max(shown, needed))
+    elif not streamed(session.model, solver, tabled):
+        result = session.modes_by(solver, count=tabled)
+    shapes = result
+    if needed and (shapes is None or shapes.mode.size < min(needed, size)):
+        shapes = session.modes_by(solver, count=needed)  # the plotted modes
+    if shapes is not None and chosen is not None:
         for m in chosen:
             try:
-                result.index(m)
+                shapes.index(m)
             except InputError as exc:
                 raise InputError(exc.message, key="--plot-modes", value=plot_modes) from None
     if out.for_people:
-        out.write(blocks=modes_tables(result, tabled))
+        out.write(blocks=modes_tables(result, shown))
+    elif result is None:  # a large chain: block by block, never N x N (ModeBlocks)
+        write_streamed(out, ModeBlocks(session.model, tabled))
     else:
         out.write(json_data=result, csv_text=result.to_csv() if out.fmt == "csv" else None)
     if plot_path:
-        save_figure(result.plot(modes=chosen), plot_path, force)
+        save_figure(shapes.plot(modes=chosen), plot_path, force)
     return 0
+
+
+def streamed(model, solver: str, count: int | None) -> bool:
+    """Whether ``torsion modes --format json/csv`` writes the modes of ``model`` block by block
+    (:class:`crankdyn.torsion.modal.ModeBlocks`): a chain solved by the eigen solver with more
+    than :data:`crankdyn.torsion.modal.STREAMED_SIZE` mode-shape amplitudes."""
+    n = model.dof_inertia.size
+    listed = n if count is None else min(count, n)
+    return solver == "eigen" and model.is_chain and listed * n > STREAMED_SIZE
+
+
+def write_streamed(out: Output, modes) -> None:
+    """Write the JSON or CSV of ``modes`` (a ModeBlocks) a piece at a time: to standard output
+    as it comes, or to the ``-o`` file atomically (:func:`crankdyn.io.output.atomic_file`: a
+    temporary file in the target's folder, moved into place when complete), the path written
+    said on stderr as :meth:`Output.write` does."""
+    from crankdyn.io.output import atomic_file
+
+    if out.fmt == "json":
+        spool = None if out.path is None else str(Path(out.path).resolve().parent)
+        chunks = modes_json_chunks(modes, spool_dir=spool)
+    else:
+        chunks = modes_csv_chunks(modes)
+    if out.path is None:
+        for chunk in chunks:
+            click.echo(chunk, nl=False)
+        return
+    target = atomic_file(out.path, force=out.force)
+    with target as handle:
+        for chunk in chunks:
+            handle.write(chunk.encode("utf-8"))
+    click.echo(f"wrote {target.path}", err=True)
 
 
 def _ratios(text: str | None):
