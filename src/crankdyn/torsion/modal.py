@@ -397,9 +397,14 @@ def roundoff_thresholds(eigenvalues) -> np.ndarray:
     n = lam.size
     if n < 2:
         return np.zeros(n)
-    order = np.argsort(lam, kind="stable")
-    sorted_lam = lam[order]
-    step = np.diff(sorted_lam)
+    step = np.diff(lam)
+    ascending = bool(np.all(step >= 0.0))  # as the solvers give them: no sort
+    if ascending:
+        order, sorted_lam = None, lam
+    else:
+        order = np.argsort(lam, kind="stable")
+        sorted_lam = lam[order]
+        step = np.diff(sorted_lam)
     gap = np.full(n, np.inf)
     gap[:-1] = step
     gap[1:] = np.minimum(gap[1:], step)
@@ -408,6 +413,8 @@ def roundoff_thresholds(eigenvalues) -> np.ndarray:
         tau_sorted = np.where(
             gap > 0.0, EIGENVECTOR_SAFETY * np.finfo(float).eps * norm / gap, np.inf
         )
+    if order is None:
+        return tau_sorted
     tau = np.empty(n)
     tau[order] = tau_sorted
     return tau
@@ -468,14 +475,19 @@ def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
     previous = np.maximum.accumulate(np.where(resolved, index, -1), axis=1)
     before = previous[:, :-1]  # for dof j = 1 .. n-1: the last resolved dof before it
     later = resolved[:, 1:] & (before >= 0)
-    flip = negative[:, 1:] != np.take_along_axis(negative, np.maximum(before, 0), axis=1)
+    flip = negative[:, 1:] != negative[np.arange(count)[:, None], np.maximum(before, 0)]
     mode, j = np.nonzero(later & flip)
     j = j + 1
     p = before[mode, j - 1]
     adjacent = j - p == 1
-    a, _, edge_shaft = _edge_shafts(model)
     shaft_of = np.full(max(n - 1, 0), -1, dtype=int)
-    shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
+    ends = model.shaft_dofs
+    inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
+    if inner.size == n - 1:  # no parallel shafts: one per edge, no search for the first
+        shaft_of[np.minimum(ends[inner, 0], ends[inner, 1])] = inner
+    else:
+        a, _, edge_shaft = _edge_shafts(model)
+        shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
     located_mode = mode[adjacent]
     located_shaft = shaft_of[p[adjacent]]
     fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
@@ -591,7 +603,7 @@ def _rows(
     shapes_dof, size = _normalise(phi_t)  # mode x dof, in place
     del size
     dof = model.mass_dof
-    in_order = dof.size == shapes_dof.shape[1] and np.array_equal(dof, np.arange(dof.size))
+    in_order = dof.size == shapes_dof.shape[1] and bool((dof == np.arange(dof.size)).all())
     shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
     square = shapes_dof * shapes_dof
     modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
@@ -642,7 +654,7 @@ def natural_modes(
     tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
     rows = _rows(model, phi.T, tau, free)
     del phi
-    return _result(model, solver, omega, rows, 0, total if partial else None, all_omega)
+    return _result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
 
 
 def _result(
@@ -653,10 +665,11 @@ def _result(
     start: int,
     total: int | None,
     all_omega: NDArray[np.float64] | None = None,
+    free: bool | None = None,
 ) -> ModalResult:
     """The ModalResult of the modes ``start``, ``start + 1``, ... (indices into the model's
-    ascending modes) held by ``rows``."""
-    free = model.is_free
+    ascending modes) held by ``rows``; ``free``: ``model.is_free`` when the caller has it."""
+    free = model.is_free if free is None else free
     first = (0 if free else 1) + start  # mode numbers: docs/conventions.md
     inertia = rows.modal_inertia
     return ModalResult(
