@@ -16,6 +16,7 @@ LINTED := src tests bench docs/examples docs/conf.py docs/_ext setup.py notebook
 # is the whole package; `make typecheck` shows what the rest still lacks). Errors in the modules
 # they import but that are not listed here are not reported (--follow-imports=silent).
 TYPED := \
+	src/crankdyn/cli/torsion.py \
 	src/crankdyn/constants.py \
 	src/crankdyn/crank \
 	src/crankdyn/display.py \
@@ -39,7 +40,8 @@ TYPED := \
 	src/crankdyn/plots \
 	src/crankdyn/report \
 	src/crankdyn/results.py \
-	src/crankdyn/study
+	src/crankdyn/study \
+	src/crankdyn/torsion/modal.py
 
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .

@@ -45,6 +45,15 @@ has exactly k - 1 sign changes) gives mode r exactly r nodes in a free chain (th
 mode 0 none) and r - 1 in a grounded chain (the node at the ground not counted); the counted
 nodes never exceed it and equal it wherever the shape is resolved (tested on chains of 10 to
 1000 masses).
+
+Large chains in blocks. Every mode of an N-mass model has N x N amplitudes (800 MB of float64 at
+N = 10,000). :class:`ModeBlocks` computes a chain's modes a block at a time: all eigenvalues
+first (``dsterf``; those whose absolute accuracy eps ||T|| is not small against them again by
+bisection, ``dstebz``), then each block's eigenvectors by inverse iteration (``dstein``:
+Anderson et al. 1999, section 2.4.4; the same error bound eps ||A|| / gap_r), normalised, their
+nodes found with the whole spectrum's thresholds, and handed to :func:`modes_json_chunks` or
+:func:`modes_csv_chunks`, which write what :meth:`ModalResult.to_dict` and
+:meth:`~crankdyn.results.Result.to_csv` would, a block at a time.
 """
 
 from __future__ import annotations
@@ -55,9 +64,10 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 from numpy.typing import NDArray
 
 from crankdyn.docs import ref
@@ -65,7 +75,25 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["SOLVERS", "ModalResult", "Node", "chain_frequencies", "eigen_modes", "natural_modes"]
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "BLOCK_MODES",
+    "SOLVERS",
+    "STREAMED_SIZE",
+    "ModalResult",
+    "ModeBlocks",
+    "Node",
+    "chain_frequencies",
+    "eigen_modes",
+    "modes_csv_chunks",
+    "modes_json_chunks",
+    "natural_modes",
+    "roundoff_thresholds",
+]
 
 SOLVERS = ("eigen", "holzer", "transfer", "closed-form")
 HZ = 1.0 / (2.0 * math.pi)
@@ -80,7 +108,19 @@ most accurate eigenvalues (0 would mean eps x ||T||: 1e-9 relative on the lowest
 class Node(Result):
     """A node of a mode: on a shaft (at a fraction of its length from its first mass), or, when
     the shape is round-off there (module docstring), somewhere in a round-off region of masses
-    (``determined`` False; ``mass`` set when the region is a single mass)."""
+    (``determined`` False; ``mass`` set when the region is a single mass).
+
+    The fraction is t = theta_a / (theta_a - theta_b) of the amplitudes at the shaft's ends, the
+    twist being uniform along a uniform shaft (seed 003, 多质量扭振系统: the node of a two-mass
+    system divides the shaft in the inverse ratio of the inertias).
+
+    Examples
+    --------
+    >>> Node(shaft=("a", "b"), fraction=0.25).describe()
+    'a - b at 0.250'
+    >>> Node(mass="c", region=("c", "c"), determined=False).describe()
+    'at or near c (round-off, undetermined)'
+    """
 
     shaft: tuple[str, str] | None = scalar("shaft", "Shaft", "", default=None)
     mass: str | None = scalar("mass", "At or near mass", "", default=None)
@@ -93,18 +133,53 @@ class Node(Result):
     determined: bool = scalar("determined", "Position determined", "", default=True)
 
     def describe(self) -> str:
+        """The node in words, as the modes table shows it.
+
+        Returns
+        -------
+        str
+            ``"a - b at 0.250"`` (on the shaft from a to b, at that fraction of its length from
+            a), ``"at m"`` (at rest at a mass) or, in a round-off region, ``"at or near m"`` /
+            ``"between a and b"`` with ``(round-off, undetermined)``.
+        """
         if not self.determined:
             if self.mass is not None:
                 return f"at or near {self.mass} (round-off, undetermined)"
-            return f"between {self.region[0]} and {self.region[1]} (round-off, undetermined)"
+            first, last = self.region if self.region is not None else ("?", "?")
+            return f"between {first} and {last} (round-off, undetermined)"
         if self.mass is not None:
             return f"at {self.mass}"
-        return f"{self.shaft[0]} - {self.shaft[1]} at {self.fraction:.3f}"
+        a, b = self.shaft if self.shaft is not None else ("?", "?")
+        return f"{a} - {b} at {self.fraction:.3f}"
 
 
 @dataclass(frozen=True)
 class ModalResult(Result):
-    """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model."""
+    """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model
+    (:func:`natural_modes`; module docstring).
+
+    Parameters
+    ----------
+    all_natural_frequency : numpy.ndarray or None
+        Every natural frequency of the model (rad/s, ascending; not exported) when only the
+        lowest modes were computed, else None.
+    model : TorsionModel or None
+        The model (not exported): names the shafts and masses of the nodes.
+    shapes_dof : numpy.ndarray or None
+        The normalised mode shapes by degree of freedom (mode x dof, dimensionless; not
+        exported), for locating nodes and the mass-normalised :attr:`eigenvectors`.
+    node_arrays : _NodeArrays or None
+        The nodes and round-off regions of every mode in compact form (indices; not exported).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> r = natural_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> [round(float(f), 4) for f in r.frequencies_hz]  # sqrt(2 k / J) / 2 pi
+    [0.0, 22.5079]
+    >>> r.index(1), r.nodes[1][0].describe()
+    (1, '1 - 2 at 0.500')
+    """
 
     title = "Natural frequencies"
     mode: np.ndarray = column("mode", "Mode", "")
@@ -139,7 +214,24 @@ class ModalResult(Result):
 
     def index(self, mode: int) -> int:
         """Row of a mode number (docs/conventions.md: elastic modes from 1, a free model's
-        rigid-body mode 0); unknown numbers: one-line error."""
+        rigid-body mode 0).
+
+        Parameters
+        ----------
+        mode : int
+            The mode number.
+
+        Returns
+        -------
+        int
+            Its row in the per-mode arrays.
+
+        Raises
+        ------
+        InputError
+            For a number the result does not hold (key ``mode``, the value given; the message
+            says which modes there are).
+        """
         first = int(self.mode[0]) if self.mode.size else 1
         if (
             isinstance(mode, bool)
@@ -201,42 +293,83 @@ class ModalResult(Result):
             out[r].append((names[a], names[b]))
         return tuple(tuple(n) for n in out)
 
-    def to_dict(self) -> dict:
-        """JSON-ready dict; ``nodes`` holds one list per mode of {shaft, fraction_from_first,
-        determined} or, for a node in a round-off region, {roundoff_region, determined: false}
-        entries; ``roundoff_regions`` one list per mode of [first, last] masses."""
+    def to_dict(self) -> dict[str, Any]:
+        """The result as a JSON-ready dict (:meth:`crankdyn.results.Result.to_dict`) with the
+        nodes.
+
+        Returns
+        -------
+        dict
+            The exported fields (frequencies in Hz, modal inertias in kg·m², modal stiffnesses
+            in N·m/rad, shapes dimensionless), then ``nodes``: one list per mode of {shaft,
+            fraction_from_first, determined} or, for a node in a round-off region,
+            {roundoff_region, determined: false} entries; ``roundoff_regions``: one list per mode
+            of [first, last] masses.
+        """
         out = super().to_dict()
         out["nodes"] = [[n.to_dict() for n in mode] for mode in self.nodes]
         out["roundoff_regions"] = [[list(r) for r in mode] for mode in self.roundoff_regions]
         return out
 
     def key_rows(self) -> list[tuple[str, str, str]]:
-        """The natural frequency and node count of every mode (the notebook view)."""
+        """The natural frequency and node count of every mode (the notebook view).
+
+        Returns
+        -------
+        list of (str, str, str)
+            ("Mode r", "f Hz", "n node(s)") per mode.
+        """
         return [
             (f"Mode {int(m)}", f"{f:.6g} Hz", f"{int(n)} node(s)")
             for m, f, n in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
         ]
 
     @property
-    def frequencies_hz(self) -> np.ndarray:
-        """Natural frequencies (Hz)."""
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies (Hz), omega_r / 2 pi."""
         return self.natural_frequency * HZ
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The per-mode columns, then one amplitude column per mass (``amplitude_<n>``)."""
+        """The per-mode columns, then one amplitude column per mass (``amplitude_<n>``).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            {key: values per mode} in the units of the keys; the amplitudes dimensionless.
+        """
         out = super().columns()
         for i in range(len(self.masses)):
             out[f"amplitude_{i + 1}"] = np.asarray(self.mode_shapes[:, i], dtype=float)
         return out
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
+        """Label and unit of every column of :meth:`columns`.
+
+        Returns
+        -------
+        dict of str to (str, str)
+            {column key: (label, unit)}; ``amplitude_<n>``: ("Amplitude <mass>", "").
+        """
         out = super().column_labels()
         for i, name in enumerate(self.masses):
             out[f"amplitude_{i + 1}"] = (f"Amplitude {name}", "")
         return out
 
-    def plot(self, modes=None, fig=None):
-        """Mode shapes of the elastic modes (default: the first six); returns the Figure."""
+    def plot(self, modes: Iterable[int] | None = None, fig: Figure | None = None) -> Figure:
+        """Mode shapes of the elastic modes (:func:`crankdyn.plots.torsion.plot_mode_shapes`).
+
+        Parameters
+        ----------
+        modes : iterable of int or None
+            Mode numbers to draw (elastic modes from 1); None: the first six.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion import plot_mode_shapes
 
         return plot_mode_shapes(self, modes=modes, fig=fig)
@@ -244,12 +377,36 @@ class ModalResult(Result):
 
 def eigen_modes(
     model: TorsionModel, count: int | None = None, *, free: bool | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """omega^2 (ascending, rad^2/s^2) and mass-normalised eigenvectors (dof x mode,
-    phi^T M phi = I) by the structured symmetric solver (see the module docstring); with
-    ``count``, the lowest ``count`` modes only (a chain's by bisection and inverse iteration,
-    LAPACK ``dstebz`` and ``dstein``: memory of N x count, not N x N; scipy's ``dstemr``
-    wrapper allocates N x N). ``free``: ``model.is_free`` when the caller has it."""
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Eigenvalues and mass-normalised eigenvectors of K phi = omega^2 M phi by the structured
+    symmetric solver (module docstring: seed 003, eq. 4-13 generalised; LAPACK ``dstevd`` on a
+    chain's tridiagonal matrix, ``scipy.linalg.eigh(K, M)`` otherwise).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The lumped model.
+    count : int or None
+        The lowest ``count`` modes only (a chain's by bisection and inverse iteration, LAPACK
+        ``dstebz`` and ``dstein``: memory of N x count, not N x N; scipy's ``dstemr`` wrapper
+        allocates N x N); None: every mode.
+    free : bool or None
+        ``model.is_free`` when the caller has it (None: asked of the model).
+
+    Returns
+    -------
+    lam : numpy.ndarray
+        omega^2 (rad²/s², ascending; exactly 0 for a free model's rigid-body mode).
+    phi : numpy.ndarray
+        Eigenvectors (dof x mode, rad per sqrt(kg·m²)), phi^T M phi = I.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> lam, phi = eigen_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> [round(float(v), 6) for v in lam]  # 0 and 2 k / J
+    [0.0, 20000.0]
+    """
     J = model.dof_inertia
     chain = model.chain
     n = J.size
@@ -267,7 +424,7 @@ def eigen_modes(
                 d,
                 off / (s[:-1] * s[1:]),
                 select="i",
-                select_range=(0, count - 1),
+                select_range=(0, (count or n) - 1),
                 lapack_driver="stebz",
                 tol=_BISECTION_TOL,
             )
@@ -281,7 +438,7 @@ def eigen_modes(
         lam, phi = scipy.linalg.eigh(
             model.stiffness_matrix(),
             np.diag(J),
-            subset_by_index=(0, count - 1) if partial else None,
+            subset_by_index=(0, count - 1) if partial and count is not None else None,
         )
     lam = np.maximum(lam, 0.0)
     if model.is_free if free is None else free:
@@ -299,9 +456,27 @@ def _tridiagonal_eigh(d: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndar
     return lam, u
 
 
-def chain_frequencies(model: TorsionModel) -> np.ndarray:
-    """Every natural frequency omega (ascending, rad/s) without the mode shapes (LAPACK
-    ``dsterf`` on a chain's tridiagonal matrix, the dense symmetric-definite solver otherwise)."""
+def chain_frequencies(model: TorsionModel) -> NDArray[np.float64]:
+    """Every natural frequency without the mode shapes (LAPACK ``dsterf``, the Pal-Walker-Kahan
+    QL/QR iteration, on a chain's tridiagonal matrix; the dense symmetric-definite solver
+    otherwise; module docstring).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The lumped model.
+
+    Returns
+    -------
+    numpy.ndarray
+        omega (rad/s, ascending; exactly 0 for a free model's rigid-body mode).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> [round(float(w), 4) for w in chain_frequencies(TorsionModel.chain_of([1.0, 1.0], [1e4]))]
+    [0.0, 141.4214]
+    """
     import scipy.linalg  # imported here: keeps the start-up light
 
     J = model.dof_inertia
@@ -388,11 +563,28 @@ EIGENVECTOR_SAFETY = 10.0
 docstring)."""
 
 
-def roundoff_thresholds(eigenvalues) -> np.ndarray:
-    """tau_r = 10 eps ||A||_2 / gap_r for every mode (module docstring): the size of a component
-    of the unit eigenvector u_r = M^1/2 phi_r / |M^1/2 phi_r| below which its sign is not
-    determined. ``eigenvalues``: omega_r^2 (rad^2/s^2) in any order; returns one threshold per
-    eigenvalue (dimensionless; inf for a (near) repeated eigenvalue, 0 for a single mode)."""
+def roundoff_thresholds(eigenvalues: npt.ArrayLike) -> NDArray[np.float64]:
+    """tau_r = 10 eps ||A||_2 / gap_r for every mode: the size of a component of the unit
+    eigenvector u_r = M^1/2 phi_r / |M^1/2 phi_r| below which its sign is not determined (the
+    error bound of the symmetric eigenproblem, E. Anderson et al., *LAPACK Users' Guide*, 3rd
+    ed., SIAM 1999, section 4.7.1; module docstring).
+
+    Parameters
+    ----------
+    eigenvalues : array_like
+        omega_r^2 (rad²/s²), in any order.
+
+    Returns
+    -------
+    numpy.ndarray
+        One threshold per eigenvalue (dimensionless; inf for a repeated eigenvalue, 0 for a
+        single mode).
+
+    Examples
+    --------
+    >>> [f"{t:.3g}" for t in roundoff_thresholds([0.0, 1.0, 4.0])]
+    ['8.88e-15', '8.88e-15', '2.96e-15']
+    """
     lam = np.asarray(eigenvalues, dtype=float)
     n = lam.size
     if n < 2:
@@ -444,7 +636,9 @@ class _NodeArrays:
         return np.bincount(self.region_mode, minlength=modes) == 0
 
 
-def _edge_shafts(model: TorsionModel):
+def _edge_shafts(
+    model: TorsionModel,
+) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
     """(a, b, shaft) for every pair of degrees of freedom joined by a shaft (the first shaft of
     parallel ones), a < b."""
     ends = model.shaft_dofs
@@ -456,7 +650,12 @@ def _edge_shafts(model: TorsionModel):
     return lo[first], hi[first], inner[first]
 
 
-def _fractions(model, shapes_dof, mode, shaft):
+def _fractions(
+    model: TorsionModel,
+    shapes_dof: NDArray[np.float64],
+    mode: NDArray[np.int_],
+    shaft: NDArray[np.int_],
+) -> NDArray[np.float64]:
     """Node position along each shaft from its first mass, t = theta_a / (theta_a - theta_b)."""
     ends = model.shaft_dofs[shaft]
     ta = shapes_dof[mode, ends[:, 0]]
@@ -464,7 +663,9 @@ def _fractions(model, shapes_dof, mode, shaft):
     return ta / (ta - tb)
 
 
-def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
+def _chain_nodes(
+    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
+) -> _NodeArrays:
     """Nodes of a chain (dofs in chain order), all modes at once: a sign change between
     neighbouring resolved components is a node on their shaft; one across a run of round-off
     components a node somewhere in that run."""
@@ -510,7 +711,9 @@ def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
     )
 
 
-def _graph_nodes(model, shapes_dof, resolved) -> _NodeArrays:
+def _graph_nodes(
+    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
+) -> _NodeArrays:
     """Nodes of a branched model: sign changes across shafts between resolved components
     (all modes at once), and for every connected round-off region whose resolved neighbours
     have both signs one node somewhere in it (a loop over the modes that have such regions:
@@ -615,17 +818,18 @@ def _rows(
 def natural_modes(
     model: TorsionModel, solver: str = "eigen", count: int | None = None
 ) -> ModalResult:
-    """Natural frequencies and mode shapes of a torsional model.
+    """Natural frequencies and mode shapes of a torsional model (K phi = omega^2 M phi, seed
+    003 eq. 4-13 generalised; module docstring).
 
     Parameters
     ----------
-    model
-        The lumped model.
-    solver
+    model : TorsionModel
+        The lumped model (inertias in kg·m², stiffnesses in N·m/rad).
+    solver : str
         ``"eigen"`` (structured symmetric eigen solver, any model), ``"holzer"`` (Holzer's
         method), ``"transfer"`` (transfer-matrix method), both for chains, or ``"closed-form"``
         (seed 003's one-, two- and three-mass formulas).
-    count
+    count : int or None
         The lowest ``count`` modes only (default: every mode). The eigen solver then computes
         only their shapes (memory N x count); ``modes_of_the_model`` and
         ``all_natural_frequency`` say what the model has beyond them.
@@ -633,7 +837,23 @@ def natural_modes(
     Returns
     -------
     ModalResult
-        Every mode (or the lowest ``count``), ascending (0.0 first for a free model).
+        Every mode (or the lowest ``count``), ascending (0.0 first for a free model):
+        frequencies in rad/s (exported in Hz), shapes with a largest amplitude of 1, nodes.
+
+    Raises
+    ------
+    InputError
+        For ``count`` below 1 (key ``count``) or an unknown ``solver`` (key ``solver``, naming
+        the solvers).
+
+    Examples
+    --------
+    Two equal masses on a shaft: omega = sqrt(2 k / J), the node in the middle (seed 003):
+
+    >>> from crankdyn.torsion import TorsionModel
+    >>> r = natural_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> round(float(r.natural_frequency[1]), 4), r.node_count.tolist()
+    (141.4214, [0, 1])
     """
     total = model.dof_inertia.size
     if count is not None and count < 1:
@@ -848,7 +1068,14 @@ class ModeBlocks:
         return u
 
     def blocks(self) -> Iterator[_Block]:
-        """The blocks of modes, ascending (each computed when reached)."""
+        """The blocks of modes, ascending, each computed when reached.
+
+        Returns
+        -------
+        iterator of _Block
+            Per block: the index of its first mode, omega (rad/s) and the normalised shapes,
+            modal inertias (kg·m²) and nodes of its modes.
+        """
         for lo in range(0, self.count, self.block):
             hi = min(lo + self.block, self.count)
             u = self._vectors(lo, hi)
@@ -860,7 +1087,25 @@ class ModeBlocks:
             yield _Block(lo, self.omega[lo:hi], rows)
 
     def result(self, solver: str = "eigen") -> ModalResult:
-        """All the listed modes as one :class:`ModalResult` (small models; for tests)."""
+        """All the listed modes as one :class:`ModalResult` (small models; for tests).
+
+        Parameters
+        ----------
+        solver : str
+            The solver named in the result.
+
+        Returns
+        -------
+        ModalResult
+            The modes, as :func:`natural_modes` gives them (to round-off).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import TorsionModel
+        >>> r = ModeBlocks(TorsionModel.chain_of([1.0, 1.0, 1.0], [1e4, 1e4]), block=2).result()
+        >>> [round(float(w), 4) for w in r.natural_frequency]  # sqrt(k / J), sqrt(3 k / J)
+        [0.0, 100.0, 173.2051]
+        """
         parts = list(self.blocks())
         rows = _Rows(
             np.concatenate([p.rows.shapes for p in parts]),
