@@ -893,12 +893,14 @@ def _result(
     first = (0 if free else 1) + start  # mode numbers: docs/conventions.md
     inertia = rows.modal_inertia
     return ModalResult(
-        mode=freeze(np.arange(first, first + omega.size), dtype=int),
-        natural_frequency=freeze(omega),
-        node_count=freeze(rows.nodes.counts(omega.size), dtype=int),
-        nodes_resolved=freeze(rows.nodes.resolved(omega.size), dtype=bool),
-        modal_inertia=freeze(inertia),
-        modal_stiffness=freeze(omega**2 * inertia),
+        # arrays made here are handed over read-only, without a copy; another solver's
+        # frequencies are copied (it may hold on to them)
+        mode=_readonly(np.arange(first, first + omega.size)),
+        natural_frequency=_readonly(omega) if solver == "eigen" else freeze(omega),
+        node_count=_readonly(rows.nodes.counts(omega.size)),
+        nodes_resolved=_readonly(rows.nodes.resolved(omega.size)),
+        modal_inertia=_readonly(inertia),
+        modal_stiffness=_readonly(omega**2 * inertia),
         mode_shapes=_readonly(rows.shapes),
         masses=model.mass_names,
         solver=solver,
