@@ -28,6 +28,7 @@ TYPED := \
 	src/crankdyn/cli/linkage.py \
 	src/crankdyn/cli/measure.py \
 	src/crankdyn/cli/study.py \
+	src/crankdyn/cli/torsion.py \
 	src/crankdyn/cli/torsion_response.py \
 	src/crankdyn/cli/tvc.py \
 	src/crankdyn/cli/writer.py \
@@ -67,6 +68,7 @@ TYPED := \
 	src/crankdyn/torsion/excitation.py \
 	src/crankdyn/torsion/holzer.py \
 	src/crankdyn/torsion/loaded.py \
+	src/crankdyn/torsion/modal.py \
 	src/crankdyn/torsion/model.py \
 	src/crankdyn/torsion/opentorsion.py \
 	src/crankdyn/torsion/resolve.py \

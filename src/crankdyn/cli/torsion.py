@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -18,7 +20,18 @@ from crankdyn.display import column_text
 from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
-from crankdyn.torsion.modal import SOLVERS
+from crankdyn.torsion.modal import (
+    SOLVERS,
+    STREAMED_SIZE,
+    ModalResult,
+    ModeBlocks,
+    modes_csv_chunks,
+    modes_json_chunks,
+)
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.damped import DampedModalResult
+    from crankdyn.torsion.model import TorsionModel
 
 _MODEL_HELP = (
     "MODEL_OR_ENGINE is a torsional model file, an engine file with a [torsion] section, a "
@@ -38,7 +51,7 @@ def torsion_group() -> None:
 
 
 def model_session(
-    spec: str, *, orders: str | None = None, option: str = "--orders", **options
+    spec: str, *, orders: str | None = None, option: str = "--orders", **options: Any
 ) -> Analysis:
     """The analysis session of a MODEL_OR_ENGINE argument (with the engine when it is one),
     with the ``--orders`` text read for its cycle: a range gives the cycle's harmonics, a list
@@ -66,7 +79,7 @@ DESCRIBED_NODES = 10
 """A mode with more nodes shows their number in the table (JSON and CSV locate every one)."""
 
 
-def _node_text(result, r: int) -> str:
+def _node_text(result: ModalResult, r: int) -> str:
     """The nodes of mode row ``r``: located ones, then the round-off regions where they are
     undetermined; their number only beyond :data:`DESCRIBED_NODES`."""
     if result.free and int(result.mode[r]) == 0:
@@ -82,7 +95,7 @@ def _node_text(result, r: int) -> str:
     return "; ".join(parts) or "-"
 
 
-def modes_tables(result, tabled: int | None = None) -> list:
+def modes_tables(result: ModalResult, tabled: int | None = None) -> list[TextTable | str]:
     """The lowest ``tabled`` modes of ``result`` (default every one: frequency, modal inertia
     and stiffness, nodes), the shapes of the first :data:`SHAPE_MODES`, and a note of what the
     tables leave out and where it is; elastic modes numbered from 1, a free model's rigid-body
@@ -139,7 +152,7 @@ def modes_tables(result, tabled: int | None = None) -> list:
     return [summary, shapes, *_left_out(result, n, shown)]
 
 
-def _left_out(result, n: int, shown: int) -> list[str]:
+def _left_out(result: ModalResult, n: int, shown: int) -> list[str]:
     """Notes of the modes and shapes the tables leave out (nothing is dropped unsaid)."""
     total = result.modes_of_the_model or result.mode.size
     notes = []
@@ -163,7 +176,7 @@ def _left_out(result, n: int, shown: int) -> list[str]:
     return notes
 
 
-def damped_table(result) -> TextTable:
+def damped_table(result: DampedModalResult) -> TextTable:
     """The damped modes: undamped |λ| and damped frequencies, damping ratios and logarithmic
     decrements, numbered as the undamped modes."""
     hz, hz_unit = column_text(result.natural_frequency / (2.0 * math.pi), "Hz", aligned=False)
@@ -218,11 +231,11 @@ def _ratio(value: float) -> str:
     "--modes",
     "tabled",
     type=click.IntRange(min=1),
-    default=TABLED_MODES,
-    show_default=True,
+    default=None,
     metavar="N",
-    help=f"How many of the lowest modes the table lists (their shapes: the first "
-    f"{SHAPE_MODES}); --format json and csv write every mode.",
+    help=f"The lowest N modes only (default: the table lists {TABLED_MODES} and the shapes of the "
+    f"first {SHAPE_MODES}; --format json and csv write every mode, a large chain's a block of "
+    "modes at a time).",
 )
 @click.option(
     "--damped",
@@ -239,14 +252,25 @@ def _ratio(value: float) -> str:
 )
 @output_options
 def modes_command(
-    model, solver, plot_path, plot_modes, tabled, damped, modal_damping, fmt, output_path, force
+    model: str,
+    solver: str,
+    plot_path: str | None,
+    plot_modes: str | None,
+    tabled: int | None,
+    damped: bool,
+    modal_damping: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
 ) -> int:
     """Natural frequencies, mode shapes, nodes and modal inertias of MODEL_OR_ENGINE.
 
     The modes are listed ascending (the lowest --modes of them in the table, which says what it
-    leaves out; every mode in JSON and CSV): elastic modes numbered from 1, a free model's
-    rigid-body mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest absolute
-    amplitude of 1.
+    leaves out; every mode, or the lowest --modes, in JSON and CSV): elastic modes numbered from
+    1, a free model's rigid-body mode is mode 0 (0.0 Hz). Mode shapes are normalised to a largest
+    absolute amplitude of 1. The JSON and CSV of a large chain (more than a million mode-shape
+    amplitudes) are computed and written a block of modes at a time, in bounded memory (crankdyn
+    docs torsion-file).
     With --damped: the damped modes (complex eigenvalues of the damped system), one per mode,
     ascending, numbered the same way.
     """
@@ -271,34 +295,80 @@ def modes_command(
     session = model_session(model)
     if damped:
         try:
-            result = session.damped_modes(modal_damping=ratios)
+            damped_result = session.damped_modes(modal_damping=ratios)
         except InputError as exc:
             if exc.key != "modal_damping":
                 raise
             raise InputError(exc.message, key="--modal-damping", value=modal_damping) from None
-        out.write(blocks=[damped_table(result)], json_data=result, csv_text=result.to_csv())
+        out.write(
+            blocks=[damped_table(damped_result)],
+            json_data=damped_result,
+            csv_text=damped_result.to_csv(),
+        )
         return 0
+    torsion_model = session.model
+    assert torsion_model is not None  # resolve_model_and_engine always gives a model
+    size = torsion_model.dof_inertia.size
+    needed = max([*(m + 1 for m in chosen or ()), 7 if plot_path else 0], default=0)
+    shown = TABLED_MODES if tabled is None else tabled
+    result: ModalResult | None = None
     if out.for_people:  # the lowest modes only: a large model's shapes are N x N
-        needed = max([tabled, *(m + 1 for m in chosen or ()), 7 if plot_path else 0])
-        result = session.modes_by(solver, count=needed)
-    else:
-        result = session.modes_by(solver)
-    if chosen is not None:
+        result = session.modes_by(solver, count=max(shown, needed))
+    elif not streamed(torsion_model, solver, tabled):
+        result = session.modes_by(solver, count=tabled)
+    shapes = result
+    if needed and (shapes is None or shapes.mode.size < min(needed, size)):
+        shapes = session.modes_by(solver, count=needed)  # the plotted modes
+    if shapes is not None and chosen is not None:
         for m in chosen:
             try:
-                result.index(m)
+                shapes.index(m)
             except InputError as exc:
                 raise InputError(exc.message, key="--plot-modes", value=plot_modes) from None
-    if out.for_people:
-        out.write(blocks=modes_tables(result, tabled))
+    if result is None:  # a large chain: block by block, never N x N (ModeBlocks)
+        write_streamed(out, ModeBlocks(torsion_model, tabled))
+    elif out.for_people:
+        out.write(blocks=modes_tables(result, shown))
     else:
         out.write(json_data=result, csv_text=result.to_csv() if out.fmt == "csv" else None)
-    if plot_path:
-        save_figure(result.plot(modes=chosen), plot_path, force)
+    if plot_path and shapes is not None:
+        save_figure(shapes.plot(modes=chosen), plot_path, force)
     return 0
 
 
-def _ratios(text: str | None):
+def streamed(model: TorsionModel, solver: str, count: int | None) -> bool:
+    """Whether ``torsion modes --format json/csv`` writes the modes of ``model`` block by block
+    (:class:`crankdyn.torsion.modal.ModeBlocks`): a chain solved by the eigen solver with more
+    than :data:`crankdyn.torsion.modal.STREAMED_SIZE` mode-shape amplitudes."""
+    n = model.dof_inertia.size
+    listed = n if count is None else min(count, n)
+    return solver == "eigen" and model.is_chain and listed * n > STREAMED_SIZE
+
+
+def write_streamed(out: Output, modes: ModeBlocks) -> None:
+    """Write the JSON or CSV of ``modes`` (a ModeBlocks) a piece at a time: to standard output
+    as it comes, or to the ``-o`` file atomically (:func:`crankdyn.io.output.atomic_file`: a
+    temporary file in the target's folder, moved into place when complete), the path written
+    said on stderr as :meth:`Output.write` does."""
+    from crankdyn.io.output import atomic_file
+
+    if out.fmt == "json":
+        spool = None if out.path is None else str(Path(out.path).resolve().parent)
+        chunks = modes_json_chunks(modes, spool_dir=spool)
+    else:
+        chunks = modes_csv_chunks(modes)
+    if out.path is None:
+        for chunk in chunks:
+            click.echo(chunk, nl=False)
+        return
+    target = atomic_file(out.path, force=out.force)
+    with target as handle:
+        for chunk in chunks:
+            handle.write(chunk.encode("utf-8"))
+    click.echo(f"wrote {target.path}", err=True)
+
+
+def _ratios(text: str | None) -> float | list[float] | None:
     if text is None:
         return None
     try:
@@ -346,7 +416,15 @@ def _mode_list(text: str | None) -> list[int] | None:
     help="Upper end of the plotted curve (default: 1.15 x the highest natural frequency).",
 )
 @output_options
-def holzer_command(model, frequency, plot_path, max_frequency, fmt, output_path, force) -> int:
+def holzer_command(
+    model: str,
+    frequency: str,
+    plot_path: str | None,
+    max_frequency: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
     """Holzer's table of MODEL_OR_ENGINE (a chain) at a trial frequency.
 
     Per mass: the angle (the first mass's is 1), the inertia torque J ω² θ, the accumulated
@@ -393,7 +471,7 @@ def holzer_command(model, frequency, plot_path, max_frequency, fmt, output_path,
     help="Write to FILE (atomically) instead of standard output.",
 )
 @click.option("--force", is_flag=True, help="Overwrite an existing output file.")
-def table_command(model, output_path, force) -> int:
+def table_command(model: str, output_path: str | None, force: bool) -> int:
     """Write the mass-elastic table of MODEL_OR_ENGINE (a chain) as CSV: one row per mass with
     its inertia, damping and cylinders, and the shaft, coupling or gear to the next mass, in SI
     with the unit in the header. The table read back (a .csv MODEL_OR_ENGINE) is the same
@@ -402,7 +480,9 @@ def table_command(model, output_path, force) -> int:
 
     out = Output("csv", output_path, force)
     out.check()
-    out.write(csv_text=mass_elastic_csv(model_session(model).model))
+    torsion_model = model_session(model).model
+    assert torsion_model is not None  # resolve_model_and_engine always gives a model
+    out.write(csv_text=mass_elastic_csv(torsion_model))
     return 0
 
 

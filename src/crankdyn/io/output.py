@@ -7,8 +7,10 @@ Every output goes through this module:
   reverse), a dangling symbolic link, a device or FIFO, a missing or unwritable parent folder are
   refused with one line. Commands call them first, so a mistake costs no computing time.
 - :func:`write_bytes` / :func:`write_text` write a file to a temporary sibling (created with the
-  user's umask, like any file the user makes) and move it into place; :func:`atomic_directory`
-  builds a folder of outputs (a report) in a temporary sibling folder the same way.
+  user's umask, like any file the user makes) and move it into place; :func:`atomic_file` does
+  the same for an output written a piece at a time (a large model's modes, streamed);
+  :func:`atomic_directory` builds a folder of outputs (a report) in a temporary sibling folder
+  the same way.
 - The move never replaces what was not checked: without ``force`` it is a *no-replace* rename
   (:func:`rename_noreplace`: Linux ``renameat2(RENAME_NOREPLACE)``; elsewhere ``link`` + ``unlink``
   for a file and, for a folder, ``mkdir`` of the target as a lock followed by a rename that
@@ -44,7 +46,9 @@ from typing import IO, Literal
 from crankdyn.errors import InputError
 
 __all__ = [
+    "AtomicFile",
     "atomic_directory",
+    "atomic_file",
     "check_output_dir",
     "check_writable",
     "deferred_signals",
@@ -416,6 +420,117 @@ def _remove(path: Path) -> None:
             path.unlink()
 
 
+class AtomicFile:
+    """A file written through a handle to a temporary sibling and moved into place on success
+    (:func:`atomic_file`); :attr:`path` is where it went.
+
+    Parameters
+    ----------
+    path
+        The output file (checked at once by :func:`check_writable`).
+    force
+        Whether an existing file may be replaced.
+    """
+
+    def __init__(self, path: str | Path, *, force: bool = False) -> None:
+        self.shown = str(path)
+        self.force = force
+        self.target = check_writable(path, force=force)
+        self.path = self.target
+        self.tmp = _temporary(self.target)
+        self._handle: IO[bytes] | None = None
+
+    def __enter__(self) -> IO[bytes]:
+        try:
+            # the user's umask applies (0o666 & ~umask), as for any file the user makes
+            flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0)
+            self._handle = os.fdopen(os.open(self.tmp, flags, 0o666), "wb")
+        except BaseException as exc:
+            self._discard()
+            if isinstance(exc, OSError):
+                raise self._error(exc) from None
+            raise
+        return self._handle
+
+    def __exit__(
+        self,
+        kind: type[BaseException] | None,
+        exc: BaseException | None,
+        tb: TracebackType | None,
+    ) -> Literal[False]:
+        handle = self._handle
+        if exc is None and handle is not None:
+            try:
+                _sync(handle)
+                handle.close()
+                self.path = _place_held(
+                    self.tmp, self.target, self.shown, force=self.force, folder=False
+                )
+            except BaseException as err:
+                self._discard()
+                if isinstance(err, OSError):
+                    raise self._error(err) from None
+                raise
+            return False
+        self._discard()
+        # an error of the handle (no space, an I/O error) names no file, or the temporary one
+        if isinstance(exc, OSError) and (exc.filename is None or _within(exc.filename, self.tmp)):
+            raise self._error(exc) from None
+        return False
+
+    def _discard(self) -> None:
+        with deferred_signals():
+            if self._handle is not None:
+                with contextlib.suppress(OSError):
+                    self._handle.close()
+            _remove(self.tmp)
+
+    def _error(self, exc: OSError) -> InputError:
+        return InputError(f"cannot write: {os_error_message(exc)}", file=self.shown)
+
+
+def atomic_file(path: str | Path, *, force: bool = False) -> AtomicFile:
+    """Write a file through a handle, a piece at a time, atomically (a large output streamed).
+
+    ``with atomic_file(path, force=...) as handle:`` yields a binary handle to a temporary
+    sibling of ``path`` (created with the user's umask); on success it is flushed to disk and
+    moved into place as :func:`write_bytes` does (never over a file that appeared meanwhile
+    without ``force``: a numbered sibling then, said on stderr); on any error or interrupt it is
+    removed and ``path`` is left as it was. The target is checked when this is called
+    (:func:`check_writable`). The returned object's ``path`` is where the file went.
+
+    Parameters
+    ----------
+    path
+        The output file.
+    force
+        Whether an existing file may be replaced (only once the new one is complete).
+
+    Returns
+    -------
+    AtomicFile
+        The context manager; entering it gives the binary handle to write to.
+
+    Raises
+    ------
+    InputError
+        On a refused target (at the call), or an operating-system error while writing or moving
+        the file, naming the target.
+
+    Examples
+    --------
+    >>> import tempfile, pathlib
+    >>> folder = pathlib.Path(tempfile.mkdtemp())
+    >>> out = atomic_file(folder / "modes.csv")
+    >>> with out as handle:
+    ...     _ = handle.write(b"mode,")
+    ...     _ = handle.write(b"1")
+    >>> out.path.read_text()
+    'mode,1'
+    """
+    return AtomicFile(path, force=force)
+
+
 def write_bytes(path: str | Path, data: bytes, *, force: bool = False) -> Path:
     """Write ``data`` to ``path`` atomically (module docstring); an existing file needs
     ``force``. Returns the path written: ``path``, or a numbered sibling when ``path`` appeared
@@ -442,22 +557,10 @@ def write_bytes(path: str | Path, data: bytes, *, force: bool = False) -> Path:
         On a refused target (:func:`check_writable`) or an operating-system error while
         writing, naming the target; nothing is left half-written.
     """
-    shown = str(path)
-    p = check_writable(path, force=force)
-    tmp = _temporary(p)
-    try:
-        # the user's umask applies (0o666 & ~umask), as for any file the user makes
-        fd = os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666)
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            _sync(handle)
-        return _place_held(tmp, p, shown, force=force, folder=False)
-    except OSError as exc:
-        raise InputError(f"cannot write: {os_error_message(exc)}", file=shown) from None
-    finally:
-        if os.path.lexists(tmp):
-            with deferred_signals():
-                _remove(tmp)
+    out = atomic_file(path, force=force)
+    with out as handle:
+        handle.write(data)
+    return out.path
 
 
 def write_text(path: str | Path, text: str, *, force: bool = False) -> Path:

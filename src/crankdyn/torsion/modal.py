@@ -45,22 +45,55 @@ has exactly k - 1 sign changes) gives mode r exactly r nodes in a free chain (th
 mode 0 none) and r - 1 in a grounded chain (the node at the ground not counted); the counted
 nodes never exceed it and equal it wherever the shape is resolved (tested on chains of 10 to
 1000 masses).
+
+Large chains in blocks. Every mode of an N-mass model has N x N amplitudes (800 MB of float64 at
+N = 10,000). :class:`ModeBlocks` computes a chain's modes a block at a time: all eigenvalues
+first (``dsterf``; those whose absolute accuracy eps ||T|| is not small against them again by
+bisection, ``dstebz``), then each block's eigenvectors by inverse iteration (``dstein``:
+Anderson et al. 1999, section 2.4.4; the same error bound eps ||A|| / gap_r), normalised, their
+nodes found with the whole spectrum's thresholds, and handed to :func:`modes_json_chunks` or
+:func:`modes_csv_chunks`, which write what :meth:`ModalResult.to_dict` and
+:meth:`~crankdyn.results.Result.to_csv` would, a block at a time.
 """
 
 from __future__ import annotations
 
+import contextlib
+import itertools
 import math
+from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
+from numpy.typing import NDArray
 
 from crankdyn.docs import ref
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["SOLVERS", "ModalResult", "Node", "chain_frequencies", "eigen_modes", "natural_modes"]
+if TYPE_CHECKING:
+    from collections.abc import Iterable
+
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "BLOCK_MODES",
+    "SOLVERS",
+    "STREAMED_SIZE",
+    "ModalResult",
+    "ModeBlocks",
+    "Node",
+    "chain_frequencies",
+    "eigen_modes",
+    "modes_csv_chunks",
+    "modes_json_chunks",
+    "natural_modes",
+    "roundoff_thresholds",
+]
 
 SOLVERS = ("eigen", "holzer", "transfer", "closed-form")
 HZ = 1.0 / (2.0 * math.pi)
@@ -75,7 +108,19 @@ most accurate eigenvalues (0 would mean eps x ||T||: 1e-9 relative on the lowest
 class Node(Result):
     """A node of a mode: on a shaft (at a fraction of its length from its first mass), or, when
     the shape is round-off there (module docstring), somewhere in a round-off region of masses
-    (``determined`` False; ``mass`` set when the region is a single mass)."""
+    (``determined`` False; ``mass`` set when the region is a single mass).
+
+    The fraction is t = theta_a / (theta_a - theta_b) of the amplitudes at the shaft's ends, the
+    twist being uniform along a uniform shaft (seed 003, 多质量扭振系统: the node of a two-mass
+    system divides the shaft in the inverse ratio of the inertias).
+
+    Examples
+    --------
+    >>> Node(shaft=("a", "b"), fraction=0.25).describe()
+    'a - b at 0.250'
+    >>> Node(mass="c", region=("c", "c"), determined=False).describe()
+    'at or near c (round-off, undetermined)'
+    """
 
     shaft: tuple[str, str] | None = scalar("shaft", "Shaft", "", default=None)
     mass: str | None = scalar("mass", "At or near mass", "", default=None)
@@ -88,18 +133,53 @@ class Node(Result):
     determined: bool = scalar("determined", "Position determined", "", default=True)
 
     def describe(self) -> str:
+        """The node in words, as the modes table shows it.
+
+        Returns
+        -------
+        str
+            ``"a - b at 0.250"`` (on the shaft from a to b, at that fraction of its length from
+            a), ``"at m"`` (at rest at a mass) or, in a round-off region, ``"at or near m"`` /
+            ``"between a and b"`` with ``(round-off, undetermined)``.
+        """
         if not self.determined:
             if self.mass is not None:
                 return f"at or near {self.mass} (round-off, undetermined)"
-            return f"between {self.region[0]} and {self.region[1]} (round-off, undetermined)"
+            first, last = self.region if self.region is not None else ("?", "?")
+            return f"between {first} and {last} (round-off, undetermined)"
         if self.mass is not None:
             return f"at {self.mass}"
-        return f"{self.shaft[0]} - {self.shaft[1]} at {self.fraction:.3f}"
+        a, b = self.shaft if self.shaft is not None else ("?", "?")
+        return f"{a} - {b} at {self.fraction:.3f}"
 
 
 @dataclass(frozen=True)
 class ModalResult(Result):
-    """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model."""
+    """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model
+    (:func:`natural_modes`; module docstring).
+
+    Parameters
+    ----------
+    all_natural_frequency : numpy.ndarray or None
+        Every natural frequency of the model (rad/s, ascending; not exported) when only the
+        lowest modes were computed, else None.
+    model : TorsionModel or None
+        The model (not exported): names the shafts and masses of the nodes.
+    shapes_dof : numpy.ndarray or None
+        The normalised mode shapes by degree of freedom (mode x dof, dimensionless; not
+        exported), for locating nodes and the mass-normalised :attr:`eigenvectors`.
+    node_arrays : _NodeArrays or None
+        The nodes and round-off regions of every mode in compact form (indices; not exported).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> r = natural_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> [round(float(f), 4) for f in r.frequencies_hz]  # sqrt(2 k / J) / 2 pi
+    [0.0, 22.5079]
+    >>> r.index(1), r.nodes[1][0].describe()
+    (1, '1 - 2 at 0.500')
+    """
 
     title = "Natural frequencies"
     mode: np.ndarray = column("mode", "Mode", "")
@@ -125,7 +205,6 @@ class ModalResult(Result):
     """Set when only the lowest modes were computed (``natural_modes(..., count=)``)."""
     all_natural_frequency: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Every natural frequency of the model (rad/s) when only the lowest modes were computed."""
-    eigenvectors: np.ndarray | None = field(default=None, repr=False, compare=False)
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     shapes_dof: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Normalised mode shapes by degree of freedom (mode x dof), for locating nodes."""
@@ -135,7 +214,24 @@ class ModalResult(Result):
 
     def index(self, mode: int) -> int:
         """Row of a mode number (docs/conventions.md: elastic modes from 1, a free model's
-        rigid-body mode 0); unknown numbers: one-line error."""
+        rigid-body mode 0).
+
+        Parameters
+        ----------
+        mode : int
+            The mode number.
+
+        Returns
+        -------
+        int
+            Its row in the per-mode arrays.
+
+        Raises
+        ------
+        InputError
+            For a number the result does not hold (key ``mode``, the value given; the message
+            says which modes there are).
+        """
         first = int(self.mode[0]) if self.mode.size else 1
         if (
             isinstance(mode, bool)
@@ -151,6 +247,14 @@ class ModalResult(Result):
                 value=mode,
             )
         return int(mode) - first
+
+    @cached_property
+    def eigenvectors(self) -> NDArray[np.float64] | None:
+        """Mass-normalised eigenvectors (dof x mode, phi^T M phi = I; rad per sqrt(kg·m²)),
+        made from :attr:`shapes_dof` when first asked for (no copy is held otherwise)."""
+        if self.shapes_dof is None:
+            return None
+        return _readonly(self.shapes_dof.T / np.sqrt(self.modal_inertia)[None, :])
 
     @cached_property
     def nodes(self) -> tuple[tuple[Node, ...], ...]:
@@ -189,42 +293,83 @@ class ModalResult(Result):
             out[r].append((names[a], names[b]))
         return tuple(tuple(n) for n in out)
 
-    def to_dict(self) -> dict:
-        """JSON-ready dict; ``nodes`` holds one list per mode of {shaft, fraction_from_first,
-        determined} or, for a node in a round-off region, {roundoff_region, determined: false}
-        entries; ``roundoff_regions`` one list per mode of [first, last] masses."""
+    def to_dict(self) -> dict[str, Any]:
+        """The result as a JSON-ready dict (:meth:`crankdyn.results.Result.to_dict`) with the
+        nodes.
+
+        Returns
+        -------
+        dict
+            The exported fields (frequencies in Hz, modal inertias in kg·m², modal stiffnesses
+            in N·m/rad, shapes dimensionless), then ``nodes``: one list per mode of {shaft,
+            fraction_from_first, determined} or, for a node in a round-off region,
+            {roundoff_region, determined: false} entries; ``roundoff_regions``: one list per mode
+            of [first, last] masses.
+        """
         out = super().to_dict()
         out["nodes"] = [[n.to_dict() for n in mode] for mode in self.nodes]
         out["roundoff_regions"] = [[list(r) for r in mode] for mode in self.roundoff_regions]
         return out
 
     def key_rows(self) -> list[tuple[str, str, str]]:
-        """The natural frequency and node count of every mode (the notebook view)."""
+        """The natural frequency and node count of every mode (the notebook view).
+
+        Returns
+        -------
+        list of (str, str, str)
+            ("Mode r", "f Hz", "n node(s)") per mode.
+        """
         return [
             (f"Mode {int(m)}", f"{f:.6g} Hz", f"{int(n)} node(s)")
             for m, f, n in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
         ]
 
     @property
-    def frequencies_hz(self) -> np.ndarray:
-        """Natural frequencies (Hz)."""
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies (Hz), omega_r / 2 pi."""
         return self.natural_frequency * HZ
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The per-mode columns, then one amplitude column per mass (``amplitude_<n>``)."""
+        """The per-mode columns, then one amplitude column per mass (``amplitude_<n>``).
+
+        Returns
+        -------
+        dict of str to numpy.ndarray
+            {key: values per mode} in the units of the keys; the amplitudes dimensionless.
+        """
         out = super().columns()
         for i in range(len(self.masses)):
             out[f"amplitude_{i + 1}"] = np.asarray(self.mode_shapes[:, i], dtype=float)
         return out
 
     def column_labels(self) -> dict[str, tuple[str, str]]:
+        """Label and unit of every column of :meth:`columns`.
+
+        Returns
+        -------
+        dict of str to (str, str)
+            {column key: (label, unit)}; ``amplitude_<n>``: ("Amplitude <mass>", "").
+        """
         out = super().column_labels()
         for i, name in enumerate(self.masses):
             out[f"amplitude_{i + 1}"] = (f"Amplitude {name}", "")
         return out
 
-    def plot(self, modes=None, fig=None):
-        """Mode shapes of the elastic modes (default: the first six); returns the Figure."""
+    def plot(self, modes: Iterable[int] | None = None, fig: Figure | None = None) -> Figure:
+        """Mode shapes of the elastic modes (:func:`crankdyn.plots.torsion.plot_mode_shapes`).
+
+        Parameters
+        ----------
+        modes : iterable of int or None
+            Mode numbers to draw (elastic modes from 1); None: the first six.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
         from crankdyn.plots.torsion import plot_mode_shapes
 
         return plot_mode_shapes(self, modes=modes, fig=fig)
@@ -232,12 +377,36 @@ class ModalResult(Result):
 
 def eigen_modes(
     model: TorsionModel, count: int | None = None, *, free: bool | None = None
-) -> tuple[np.ndarray, np.ndarray]:
-    """omega^2 (ascending, rad^2/s^2) and mass-normalised eigenvectors (dof x mode,
-    phi^T M phi = I) by the structured symmetric solver (see the module docstring); with
-    ``count``, the lowest ``count`` modes only (a chain's by bisection and inverse iteration,
-    LAPACK ``dstebz`` and ``dstein``: memory of N x count, not N x N; scipy's ``dstemr``
-    wrapper allocates N x N). ``free``: ``model.is_free`` when the caller has it."""
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Eigenvalues and mass-normalised eigenvectors of K phi = omega^2 M phi by the structured
+    symmetric solver (module docstring: seed 003, eq. 4-13 generalised; LAPACK ``dstevd`` on a
+    chain's tridiagonal matrix, ``scipy.linalg.eigh(K, M)`` otherwise).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The lumped model.
+    count : int or None
+        The lowest ``count`` modes only (a chain's by bisection and inverse iteration, LAPACK
+        ``dstebz`` and ``dstein``: memory of N x count, not N x N; scipy's ``dstemr`` wrapper
+        allocates N x N); None: every mode.
+    free : bool or None
+        ``model.is_free`` when the caller has it (None: asked of the model).
+
+    Returns
+    -------
+    lam : numpy.ndarray
+        omega^2 (rad²/s², ascending; exactly 0 for a free model's rigid-body mode).
+    phi : numpy.ndarray
+        Eigenvectors (dof x mode, rad per sqrt(kg·m²)), phi^T M phi = I.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> lam, phi = eigen_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> [round(float(v), 6) for v in lam]  # 0 and 2 k / J
+    [0.0, 20000.0]
+    """
     J = model.dof_inertia
     chain = model.chain
     n = J.size
@@ -255,7 +424,7 @@ def eigen_modes(
                 d,
                 off / (s[:-1] * s[1:]),
                 select="i",
-                select_range=(0, count - 1),
+                select_range=(0, (count or n) - 1),
                 lapack_driver="stebz",
                 tol=_BISECTION_TOL,
             )
@@ -269,7 +438,7 @@ def eigen_modes(
         lam, phi = scipy.linalg.eigh(
             model.stiffness_matrix(),
             np.diag(J),
-            subset_by_index=(0, count - 1) if partial else None,
+            subset_by_index=(0, count - 1) if partial and count is not None else None,
         )
     lam = np.maximum(lam, 0.0)
     if model.is_free if free is None else free:
@@ -287,9 +456,27 @@ def _tridiagonal_eigh(d: np.ndarray, e: np.ndarray) -> tuple[np.ndarray, np.ndar
     return lam, u
 
 
-def chain_frequencies(model: TorsionModel) -> np.ndarray:
-    """Every natural frequency omega (ascending, rad/s) without the mode shapes (LAPACK
-    ``dsterf`` on a chain's tridiagonal matrix, the dense symmetric-definite solver otherwise)."""
+def chain_frequencies(model: TorsionModel) -> NDArray[np.float64]:
+    """Every natural frequency without the mode shapes (LAPACK ``dsterf``, the Pal-Walker-Kahan
+    QL/QR iteration, on a chain's tridiagonal matrix; the dense symmetric-definite solver
+    otherwise; module docstring).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The lumped model.
+
+    Returns
+    -------
+    numpy.ndarray
+        omega (rad/s, ascending; exactly 0 for a free model's rigid-body mode).
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import TorsionModel
+    >>> [round(float(w), 4) for w in chain_frequencies(TorsionModel.chain_of([1.0, 1.0], [1e4]))]
+    [0.0, 141.4214]
+    """
     import scipy.linalg  # imported here: keeps the start-up light
 
     J = model.dof_inertia
@@ -376,18 +563,40 @@ EIGENVECTOR_SAFETY = 10.0
 docstring)."""
 
 
-def roundoff_thresholds(eigenvalues) -> np.ndarray:
-    """tau_r = 10 eps ||A||_2 / gap_r for every mode (module docstring): the size of a component
-    of the unit eigenvector u_r = M^1/2 phi_r / |M^1/2 phi_r| below which its sign is not
-    determined. ``eigenvalues``: omega_r^2 (rad^2/s^2) in any order; returns one threshold per
-    eigenvalue (dimensionless; inf for a (near) repeated eigenvalue, 0 for a single mode)."""
+def roundoff_thresholds(eigenvalues: npt.ArrayLike) -> NDArray[np.float64]:
+    """tau_r = 10 eps ||A||_2 / gap_r for every mode: the size of a component of the unit
+    eigenvector u_r = M^1/2 phi_r / |M^1/2 phi_r| below which its sign is not determined (the
+    error bound of the symmetric eigenproblem, E. Anderson et al., *LAPACK Users' Guide*, 3rd
+    ed., SIAM 1999, section 4.7.1; module docstring).
+
+    Parameters
+    ----------
+    eigenvalues : array_like
+        omega_r^2 (rad²/s²), in any order.
+
+    Returns
+    -------
+    numpy.ndarray
+        One threshold per eigenvalue (dimensionless; inf for a repeated eigenvalue, 0 for a
+        single mode).
+
+    Examples
+    --------
+    >>> [f"{t:.3g}" for t in roundoff_thresholds([0.0, 1.0, 4.0])]
+    ['8.88e-15', '8.88e-15', '2.96e-15']
+    """
     lam = np.asarray(eigenvalues, dtype=float)
     n = lam.size
     if n < 2:
         return np.zeros(n)
-    order = np.argsort(lam, kind="stable")
-    sorted_lam = lam[order]
-    step = np.diff(sorted_lam)
+    step = np.diff(lam)
+    ascending = bool(np.all(step >= 0.0))  # as the solvers give them: no sort
+    if ascending:
+        order, sorted_lam = None, lam
+    else:
+        order = np.argsort(lam, kind="stable")
+        sorted_lam = lam[order]
+        step = np.diff(sorted_lam)
     gap = np.full(n, np.inf)
     gap[:-1] = step
     gap[1:] = np.minimum(gap[1:], step)
@@ -396,6 +605,8 @@ def roundoff_thresholds(eigenvalues) -> np.ndarray:
         tau_sorted = np.where(
             gap > 0.0, EIGENVECTOR_SAFETY * np.finfo(float).eps * norm / gap, np.inf
         )
+    if order is None:
+        return tau_sorted
     tau = np.empty(n)
     tau[order] = tau_sorted
     return tau
@@ -425,7 +636,9 @@ class _NodeArrays:
         return np.bincount(self.region_mode, minlength=modes) == 0
 
 
-def _edge_shafts(model: TorsionModel):
+def _edge_shafts(
+    model: TorsionModel,
+) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
     """(a, b, shaft) for every pair of degrees of freedom joined by a shaft (the first shaft of
     parallel ones), a < b."""
     ends = model.shaft_dofs
@@ -437,7 +650,12 @@ def _edge_shafts(model: TorsionModel):
     return lo[first], hi[first], inner[first]
 
 
-def _fractions(model, shapes_dof, mode, shaft):
+def _fractions(
+    model: TorsionModel,
+    shapes_dof: NDArray[np.float64],
+    mode: NDArray[np.int_],
+    shaft: NDArray[np.int_],
+) -> NDArray[np.float64]:
     """Node position along each shaft from its first mass, t = theta_a / (theta_a - theta_b)."""
     ends = model.shaft_dofs[shaft]
     ta = shapes_dof[mode, ends[:, 0]]
@@ -445,7 +663,9 @@ def _fractions(model, shapes_dof, mode, shaft):
     return ta / (ta - tb)
 
 
-def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
+def _chain_nodes(
+    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
+) -> _NodeArrays:
     """Nodes of a chain (dofs in chain order), all modes at once: a sign change between
     neighbouring resolved components is a node on their shaft; one across a run of round-off
     components a node somewhere in that run."""
@@ -456,14 +676,19 @@ def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
     previous = np.maximum.accumulate(np.where(resolved, index, -1), axis=1)
     before = previous[:, :-1]  # for dof j = 1 .. n-1: the last resolved dof before it
     later = resolved[:, 1:] & (before >= 0)
-    flip = negative[:, 1:] != np.take_along_axis(negative, np.maximum(before, 0), axis=1)
+    flip = negative[:, 1:] != negative[np.arange(count)[:, None], np.maximum(before, 0)]
     mode, j = np.nonzero(later & flip)
     j = j + 1
     p = before[mode, j - 1]
     adjacent = j - p == 1
-    a, _, edge_shaft = _edge_shafts(model)
     shaft_of = np.full(max(n - 1, 0), -1, dtype=int)
-    shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
+    ends = model.shaft_dofs
+    inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
+    if inner.size == n - 1:  # no parallel shafts: one per edge, no search for the first
+        shaft_of[np.minimum(ends[inner, 0], ends[inner, 1])] = inner
+    else:
+        a, _, edge_shaft = _edge_shafts(model)
+        shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
     located_mode = mode[adjacent]
     located_shaft = shaft_of[p[adjacent]]
     fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
@@ -486,7 +711,9 @@ def _chain_nodes(model, shapes_dof, resolved) -> _NodeArrays:
     )
 
 
-def _graph_nodes(model, shapes_dof, resolved) -> _NodeArrays:
+def _graph_nodes(
+    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
+) -> _NodeArrays:
     """Nodes of a branched model: sign changes across shafts between resolved components
     (all modes at once), and for every connected round-off region whose resolved neighbours
     have both signs one node somewhere in it (a loop over the modes that have such regions:
@@ -540,43 +767,69 @@ def _graph_nodes(model, shapes_dof, resolved) -> _NodeArrays:
 
 def _find_nodes(
     model: TorsionModel,
-    shapes_dof: np.ndarray,
-    modal_inertia: np.ndarray,
-    omega: np.ndarray,
-    all_omega: np.ndarray | None = None,
+    shapes_dof: NDArray[np.float64],
+    modal_inertia: NDArray[np.float64],
+    tau: NDArray[np.float64],
+    rigid: bool,
 ) -> _NodeArrays:
-    """Nodes and round-off regions of every mode (module docstring); ``all_omega``: every
-    natural frequency of the model (rad/s) when ``omega`` holds only the lowest (the gaps and
-    the norm of the thresholds are the whole spectrum's)."""
-    if all_omega is None:
-        tau = roundoff_thresholds(omega * omega)
-    else:
-        tau = roundoff_thresholds(all_omega * all_omega)[: omega.size]
+    """Nodes and round-off regions of the modes in the rows of ``shapes_dof`` (module
+    docstring); ``tau``: their round-off thresholds (:func:`roundoff_thresholds` of the whole
+    spectrum), ``rigid``: the first row is the rigid-body mode."""
     # |u_i| = |phi_i| sqrt(J_i) / sqrt(J_r) > tau_r: the component is resolved
     size = np.abs(shapes_dof) * np.sqrt(model.dof_inertia)
     with np.errstate(invalid="ignore", over="ignore"):
         resolved = size > (tau * np.sqrt(modal_inertia))[:, None]
-    if model.is_free and resolved.shape[0]:
+    del size
+    if rigid and resolved.shape[0]:
         resolved[0] = True  # the rigid-body mode: exactly ones
     if model.is_chain:
         return _chain_nodes(model, shapes_dof, resolved)
     return _graph_nodes(model, shapes_dof, resolved)
 
 
+@dataclass(frozen=True)
+class _Rows:
+    """The per-mode results of some modes (rows): shapes by mass and by dof, modal inertias,
+    nodes (mode indices counted from the first row)."""
+
+    shapes: NDArray[np.float64]  # mode x mass (listing order), largest amplitude 1
+    shapes_dof: NDArray[np.float64]  # mode x dof
+    modal_inertia: NDArray[np.float64]  # kg·m²
+    nodes: _NodeArrays
+
+
+def _rows(
+    model: TorsionModel, phi_t: NDArray[np.float64], tau: NDArray[np.float64], rigid: bool
+) -> _Rows:
+    """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
+    J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_find_nodes`)."""
+    shapes_dof, size = _normalise(phi_t)  # mode x dof, in place
+    del size
+    dof = model.mass_dof
+    in_order = dof.size == shapes_dof.shape[1] and bool((dof == np.arange(dof.size)).all())
+    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
+    square = shapes_dof * shapes_dof
+    modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
+    del square
+    nodes = _find_nodes(model, shapes_dof, modal_inertia, tau, rigid)
+    return _Rows(shapes, shapes_dof, modal_inertia, nodes)
+
+
 def natural_modes(
     model: TorsionModel, solver: str = "eigen", count: int | None = None
 ) -> ModalResult:
-    """Natural frequencies and mode shapes of a torsional model.
+    """Natural frequencies and mode shapes of a torsional model (K phi = omega^2 M phi, seed
+    003 eq. 4-13 generalised; module docstring).
 
     Parameters
     ----------
-    model
-        The lumped model.
-    solver
+    model : TorsionModel
+        The lumped model (inertias in kg·m², stiffnesses in N·m/rad).
+    solver : str
         ``"eigen"`` (structured symmetric eigen solver, any model), ``"holzer"`` (Holzer's
         method), ``"transfer"`` (transfer-matrix method), both for chains, or ``"closed-form"``
         (seed 003's one-, two- and three-mass formulas).
-    count
+    count : int or None
         The lowest ``count`` modes only (default: every mode). The eigen solver then computes
         only their shapes (memory N x count); ``modes_of_the_model`` and
         ``all_natural_frequency`` say what the model has beyond them.
@@ -584,7 +837,23 @@ def natural_modes(
     Returns
     -------
     ModalResult
-        Every mode (or the lowest ``count``), ascending (0.0 first for a free model).
+        Every mode (or the lowest ``count``), ascending (0.0 first for a free model):
+        frequencies in rad/s (exported in Hz), shapes with a largest amplitude of 1, nodes.
+
+    Raises
+    ------
+    InputError
+        For ``count`` below 1 (key ``count``) or an unknown ``solver`` (key ``solver``, naming
+        the solvers).
+
+    Examples
+    --------
+    Two equal masses on a shaft: omega = sqrt(2 k / J), the node in the middle (seed 003):
+
+    >>> from crankdyn.torsion import TorsionModel
+    >>> r = natural_modes(TorsionModel.chain_of([1.0, 1.0], [1e4]))
+    >>> round(float(r.natural_frequency[1]), 4), r.node_count.tolist()
+    (141.4214, [0, 1])
     """
     total = model.dof_inertia.size
     if count is not None and count < 1:
@@ -600,36 +869,491 @@ def natural_modes(
         omega[0] = 0.0
     if solver != "eigen" or not phi.flags.writeable:
         phi = phi.copy()  # normalised in place below: only the eigen solver's own array
-    shapes_dof, size = _normalise(phi.T)  # mode x dof, in place
-    del phi, size
-    dof = model.mass_dof
-    in_order = dof.size == shapes_dof.shape[1] and np.array_equal(dof, np.arange(dof.size))
-    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
-    square = shapes_dof * shapes_dof
-    modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
-    del square
-    # mass-normalised eigenvectors for later analyses (phi^T M phi = 1)
-    eigenvectors = shapes_dof.T / np.sqrt(modal_inertia)[None, :]
     all_omega = chain_frequencies(model) if partial else None
-    nodes = _find_nodes(model, shapes_dof, modal_inertia, omega, all_omega)
-    first = 0 if free else 1  # mode numbers: docs/conventions.md
+    spectrum = omega if all_omega is None else all_omega
+    tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
+    rows = _rows(model, phi.T, tau, free)
+    del phi
+    return _result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
+
+
+def _result(
+    model: TorsionModel,
+    solver: str,
+    omega: NDArray[np.float64],
+    rows: _Rows,
+    start: int,
+    total: int | None,
+    all_omega: NDArray[np.float64] | None = None,
+    free: bool | None = None,
+) -> ModalResult:
+    """The ModalResult of the modes ``start``, ``start + 1``, ... (indices into the model's
+    ascending modes) held by ``rows``; ``free``: ``model.is_free`` when the caller has it."""
+    free = model.is_free if free is None else free
+    first = (0 if free else 1) + start  # mode numbers: docs/conventions.md
+    inertia = rows.modal_inertia
     return ModalResult(
-        mode=freeze(np.arange(first, first + omega.size), dtype=int),
-        natural_frequency=freeze(omega),
-        node_count=freeze(nodes.counts(omega.size), dtype=int),
-        nodes_resolved=freeze(nodes.resolved(omega.size), dtype=bool),
-        modal_inertia=freeze(modal_inertia),
-        modal_stiffness=freeze(omega**2 * modal_inertia),
-        mode_shapes=_readonly(shapes),
+        # arrays made here are handed over read-only, without a copy; another solver's
+        # frequencies are copied (it may hold on to them)
+        mode=_readonly(np.arange(first, first + omega.size)),
+        natural_frequency=_readonly(omega) if solver == "eigen" else freeze(omega),
+        node_count=_readonly(rows.nodes.counts(omega.size)),
+        nodes_resolved=_readonly(rows.nodes.resolved(omega.size)),
+        modal_inertia=_readonly(inertia),
+        modal_stiffness=_readonly(omega**2 * inertia),
+        mode_shapes=_readonly(rows.shapes),
         masses=model.mass_names,
         solver=solver,
         structure="chain" if model.is_chain else "branched",
         free=free,
         model_name=model.name,
-        modes_of_the_model=total if partial else None,
+        modes_of_the_model=total,
         all_natural_frequency=None if all_omega is None else freeze(all_omega),
-        eigenvectors=_readonly(eigenvectors),
         model=model,
-        shapes_dof=_readonly(shapes_dof),
-        node_arrays=nodes,
+        shapes_dof=_readonly(rows.shapes_dof),
+        node_arrays=rows.nodes,
     )
+
+
+# ---- every mode of a large chain, block by block ------------------------------------------------
+
+BLOCK_MODES = 32
+"""Modes per block of :class:`ModeBlocks`: the eigenvectors of one block (N x 32 floats, 2.6 MB
+at N = 10,000) are computed by inverse iteration, written and dropped. ``dstein``
+reorthogonalises the vectors of close eigenvalues within a block (Gram-Schmidt, quadratic in
+the block size): blocks of 8 to 64 modes took the same time at N = 10,000."""
+
+STREAMED_SIZE = 1_000_000
+"""Modes x masses above which ``torsion modes --format json/csv`` writes a chain's modes block by
+block (:class:`ModeBlocks`) instead of from one :class:`ModalResult` (N x N shapes: 8 MB here,
+800 MB at N = 10,000)."""
+
+_REFINED = 1e-10
+"""Eigenvalues whose absolute accuracy eps ||T|| (``dsterf``) is above this relative to them are
+recomputed by bisection to full relative accuracy (``dstebz``, :data:`_BISECTION_TOL`)."""
+
+
+def _chain_matrix(
+    model: TorsionModel,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """(d, e, sqrt(J)) of a chain's symmetric tridiagonal matrix M^-1/2 K M^-1/2 (module
+    docstring): diagonal (rad²/s², N), off-diagonal (rad²/s², N - 1), sqrt(J) (sqrt(kg·m²))."""
+    chain = model.chain
+    assert chain is not None
+    J = model.dof_inertia
+    diag, off = chain.stiffness_diagonals()
+    s = np.sqrt(J)
+    return diag / J, off / (s[:-1] * s[1:]), s
+
+
+def _chain_spectrum(
+    d: NDArray[np.float64], e: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.int32], NDArray[np.int32]]:
+    """Every eigenvalue of the tridiagonal (d, e), ascending, with its split-off block (1-based)
+    and the blocks' last rows (1-based), as ``dstebz`` gives them to ``dstein``.
+
+    The matrix splits where e_j² <= |d_j d_j+1| ulp² + safe minimum (``dstebz``'s test); each
+    block's eigenvalues by ``dsterf`` (absolute accuracy eps ||T||), those of relative accuracy
+    worse than :data:`_REFINED` again by bisection (``dstebz`` by index, full relative
+    accuracy, as the lowest modes of :func:`eigen_modes`)."""
+    import scipy.linalg.lapack as lapack  # imported here: keeps the start-up light
+
+    n = d.size
+    finfo = np.finfo(float)
+    cut = np.flatnonzero(np.abs(d[1:] * d[:-1]) * finfo.eps**2 + finfo.tiny > e * e) + 1
+    bounds = [0, *cut.tolist(), n]
+    values, blocks = [], []
+    for b, (lo, hi) in enumerate(itertools.pairwise(bounds), start=1):
+        if hi - lo == 1:
+            w = d[lo : lo + 1].copy()
+        else:
+            w, info = lapack.dsterf(d[lo:hi], e[lo : hi - 1])
+            if info != 0:
+                raise np.linalg.LinAlgError(f"the tridiagonal eigensolver failed (dsterf {info})")
+        values.append(w)
+        blocks.append(np.full(w.size, b, dtype=np.int32))
+    lam = np.concatenate(values)
+    order = np.argsort(lam, kind="stable")
+    lam, iblock = lam[order], np.concatenate(blocks)[order]
+    isplit = np.zeros(n, dtype=np.int32)
+    isplit[: len(bounds) - 1] = bounds[1:]
+    norm = float(np.max(np.abs(lam)))
+    refine = int(np.searchsorted(np.abs(lam), finfo.eps * norm / _REFINED)) if n > 1 else 0
+    if refine:
+        m, w, ib, _, info = lapack.dstebz(d, e, 2, 0.0, 0.0, 1, refine, _BISECTION_TOL, b"E")
+        if info != 0 or m != refine:
+            raise np.linalg.LinAlgError(f"the bisection failed (dstebz info {info})")
+        lam[:refine], iblock[:refine] = w[:refine], ib[:refine]
+    return lam, iblock, isplit
+
+
+@dataclass(frozen=True)
+class _Block:
+    """The modes ``start`` .. ``start + omega.size - 1`` (indices into the listed modes)."""
+
+    start: int
+    omega: NDArray[np.float64]  # rad/s
+    rows: _Rows
+
+
+class ModeBlocks:
+    """Every mode of a chain (or the lowest ``count``), computed and exported block by block.
+
+    The eigenvalues come first, all of them (:func:`_chain_spectrum`: ``dsterf``, the lowest
+    refined by bisection); then the eigenvectors of :data:`BLOCK_MODES` modes at a time by
+    inverse iteration (LAPACK ``dstein``, E. Anderson et al., *LAPACK Users' Guide*, 3rd ed.,
+    SIAM 1999, section 2.4.4), each block normalised, its nodes found (the round-off thresholds
+    of the whole spectrum, module docstring) and handed out, never the N x N matrix. Memory:
+    N x :data:`BLOCK_MODES` floats and the per-mode columns. The numbers are those of
+    :func:`natural_modes` (eigenvectors to round-off: the same bound eps ||A|| / gap_r).
+
+    Parameters
+    ----------
+    model
+        A chain model (:attr:`TorsionModel.is_chain`).
+    count
+        The lowest ``count`` modes only (default: every mode).
+    block
+        Modes per block.
+
+    Raises
+    ------
+    InputError
+        If ``count`` is below 1 (key ``count``).
+    ValueError
+        If the model is not a chain.
+    """
+
+    def __init__(
+        self, model: TorsionModel, count: int | None = None, *, block: int = BLOCK_MODES
+    ) -> None:
+        if model.chain is None:
+            raise ValueError("ModeBlocks needs a chain model")
+        if count is not None and count < 1:
+            raise InputError("expected at least one mode", key="count", value=count)
+        self.model = model
+        self.total = model.dof_inertia.size
+        self.count = self.total if count is None else min(count, self.total)
+        self.block = max(1, int(block))
+        self.free = model.is_free
+        self._d, self._e, self._s = _chain_matrix(model)
+        if self.total == 1:
+            lam = self._d.copy()
+            self._iblock = np.ones(1, dtype=np.int32)
+            self._isplit = np.ones(1, dtype=np.int32)
+        else:
+            lam, self._iblock, self._isplit = _chain_spectrum(self._d, self._e)
+        self._lam = lam
+        lam = np.maximum(lam, 0.0)
+        if self.free:
+            lam[0] = 0.0
+        self.all_omega: NDArray[np.float64] = np.sqrt(lam)
+        self.tau = roundoff_thresholds(lam)
+        self.omega: NDArray[np.float64] = self.all_omega[: self.count]
+
+    def _vectors(self, lo: int, hi: int) -> NDArray[np.float64]:
+        """Orthonormal eigenvectors u (dof x mode) of modes ``lo`` .. ``hi - 1`` (``dstein``;
+        the eigenvalues grouped by split-off block as it requires)."""
+        import scipy.linalg.lapack as lapack  # imported here: keeps the start-up light
+
+        n = self.total
+        if n == 1:
+            return np.ones((1, hi - lo))
+        group = np.argsort(self._iblock[lo:hi], kind="stable")
+        iblock = np.zeros(n, dtype=np.int32)
+        iblock[: hi - lo] = self._iblock[lo:hi][group]
+        z, info = lapack.dstein(self._d, self._e, self._lam[lo:hi][group], iblock, self._isplit)
+        if info != 0:
+            raise np.linalg.LinAlgError(f"inverse iteration failed (dstein info {info})")
+        u = np.empty_like(z)
+        u[:, group] = z
+        return u
+
+    def blocks(self) -> Iterator[_Block]:
+        """The blocks of modes, ascending, each computed when reached.
+
+        Returns
+        -------
+        iterator of _Block
+            Per block: the index of its first mode, omega (rad/s) and the normalised shapes,
+            modal inertias (kg·m²) and nodes of its modes.
+        """
+        for lo in range(0, self.count, self.block):
+            hi = min(lo + self.block, self.count)
+            u = self._vectors(lo, hi)
+            u /= self._s[:, None]  # phi = M^-1/2 u
+            rigid = self.free and lo == 0
+            if rigid:
+                u[:, 0] = 1.0
+            rows = _rows(self.model, u.T, self.tau[lo:hi], rigid)
+            yield _Block(lo, self.omega[lo:hi], rows)
+
+    def result(self, solver: str = "eigen") -> ModalResult:
+        """All the listed modes as one :class:`ModalResult` (small models; for tests).
+
+        Parameters
+        ----------
+        solver : str
+            The solver named in the result.
+
+        Returns
+        -------
+        ModalResult
+            The modes, as :func:`natural_modes` gives them (to round-off).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import TorsionModel
+        >>> r = ModeBlocks(TorsionModel.chain_of([1.0, 1.0, 1.0], [1e4, 1e4]), block=2).result()
+        >>> [round(float(w), 4) for w in r.natural_frequency]  # sqrt(k / J), sqrt(3 k / J)
+        [0.0, 100.0, 173.2051]
+        """
+        parts = list(self.blocks())
+        rows = _Rows(
+            np.concatenate([p.rows.shapes for p in parts]),
+            np.concatenate([p.rows.shapes_dof for p in parts]),
+            np.concatenate([p.rows.modal_inertia for p in parts]),
+            _concat_nodes([(p.start, p.rows.nodes) for p in parts]),
+        )
+        total = self.total if self.count < self.total else None
+        all_omega = self.all_omega if total is not None else None
+        return _result(self.model, solver, self.omega.copy(), rows, 0, total, all_omega)
+
+
+def _concat_nodes(parts: list[tuple[int, _NodeArrays]]) -> _NodeArrays:
+    """The node arrays of consecutive blocks as one (mode indices shifted by each start)."""
+
+    def cat(name: str, shift: bool) -> NDArray[np.int_] | NDArray[np.float64]:
+        return np.concatenate([getattr(a, name) + (s if shift else 0) for s, a in parts])
+
+    return _NodeArrays(
+        shaft_mode=cat("shaft_mode", True),
+        shaft=cat("shaft", False),
+        fraction=cat("fraction", False),
+        open_mode=cat("open_mode", True),
+        open_first=cat("open_first", False),
+        open_last=cat("open_last", False),
+        region_mode=cat("region_mode", True),
+        region_first=cat("region_first", False),
+        region_last=cat("region_last", False),
+    )
+
+
+def _slices(result: ModalResult, block: int) -> Iterator[_Block]:
+    """The modes of an in-memory result in blocks (the same numbers; nodes re-indexed)."""
+    arrays = result.node_arrays
+    assert arrays is not None and result.shapes_dof is not None
+    for lo in range(0, result.mode.size, block):
+        hi = min(lo + block, result.mode.size)
+
+        sm, sh, fr = _part(lo, hi, arrays.shaft_mode, arrays.shaft, arrays.fraction)
+        om, of, ol = _part(lo, hi, arrays.open_mode, arrays.open_first, arrays.open_last)
+        rm, rf, rl = _part(lo, hi, arrays.region_mode, arrays.region_first, arrays.region_last)
+        rows = _Rows(
+            result.mode_shapes[lo:hi],
+            result.shapes_dof[lo:hi],
+            result.modal_inertia[lo:hi],
+            _NodeArrays(sm, sh, fr, om, of, ol, rm, rf, rl),
+        )
+        yield _Block(lo, result.natural_frequency[lo:hi], rows)
+
+
+def _part(lo: int, hi: int, mode: NDArray[np.int_], *others: NDArray[Any]) -> list[NDArray[Any]]:
+    """The entries of modes ``lo`` .. ``hi - 1`` of node arrays, the modes counted from ``lo``."""
+    keep = (mode >= lo) & (mode < hi)
+    return [mode[keep] - lo, *(o[keep] for o in others)]
+
+
+def _source(
+    source: ModeBlocks | ModalResult, block: int
+) -> tuple[TorsionModel, str, int | None, Iterator[_Block]]:
+    """(model, solver, modes of the model when only the lowest are listed, the blocks)."""
+    if isinstance(source, ModeBlocks):
+        total = source.total if source.count < source.total else None
+        return source.model, "eigen", total, source.blocks()
+    assert source.model is not None
+    return source.model, source.solver, source.modes_of_the_model, _slices(source, block)
+
+
+_MARK = "\x00{}\x00"
+
+
+def _number(value: float) -> str:
+    """A float as JSON writes it (``repr``; NaN and inf as null, as :meth:`Result.to_dict`)."""
+    return repr(value) if math.isfinite(value) else "null"
+
+
+def modes_json_chunks(
+    source: ModeBlocks | ModalResult, *, block: int = BLOCK_MODES, spool_dir: str | None = None
+) -> Iterator[str]:
+    """The compact JSON text of the modes, piece by piece, as ``json.dumps(result.to_dict(),
+    separators=(",", ":"))`` writes it (the same keys, layout and digits), a block of modes at a
+    time: never the N x N shapes in memory.
+
+    The per-mode columns come before the shapes in the JSON and the nodes after them, all known
+    only once every block is done: the shapes, nodes and round-off regions are spooled to
+    anonymous temporary files (in ``spool_dir``, default the system's) and copied out at the
+    end.
+
+    Parameters
+    ----------
+    source
+        The modes: a :class:`ModeBlocks` (computed block by block) or a :class:`ModalResult`.
+    block
+        Modes per block when ``source`` is a ModalResult.
+    spool_dir
+        Folder of the spool files (the output's folder: the same file system).
+
+    Yields
+    ------
+    str
+        Consecutive pieces of the JSON text, the last ending in a newline.
+    """
+    import json
+    import tempfile
+
+    model, solver, total, blocks = _source(source, block)
+    names = [json.dumps(n) for n in model.dof_names]
+    shaft_text = [json.dumps(list(s.between), separators=(",", ":")) for s in model.shafts]
+    counts: list[NDArray[np.int_]] = []
+    resolved: list[NDArray[np.bool_]] = []
+    inertia: list[NDArray[np.float64]] = []
+    omega: list[NDArray[np.float64]] = []
+    with contextlib.ExitStack() as stack:
+        spools = [
+            stack.enter_context(
+                tempfile.TemporaryFile("w+", encoding="utf-8", dir=spool_dir, newline="")
+            )
+            for _ in range(3)
+        ]
+        shapes_spool, nodes_spool, regions_spool = spools
+        for b in blocks:
+            rows, m = b.rows, b.omega.size
+            comma = "," if b.start else ""
+            text = json.dumps(rows.shapes.tolist(), separators=(",", ":"), allow_nan=False)
+            shapes_spool.write(comma + text[1:-1])
+            arrays = rows.nodes
+            located = [
+                f'{{"shaft":{shaft_text[s]},"fraction_from_first":{_number(t)},"determined":true}}'
+                for s, t in zip(arrays.shaft.tolist(), arrays.fraction.tolist(), strict=True)
+            ]
+            loose = [
+                (f'{{"mass":{names[a]},' if a == z else "{")
+                + f'"roundoff_region":[{names[a]},{names[z]}],"determined":false}}'
+                for a, z in zip(arrays.open_first.tolist(), arrays.open_last.tolist(), strict=True)
+            ]
+            regions = [
+                f"[{names[a]},{names[z]}]"
+                for a, z in zip(
+                    arrays.region_first.tolist(), arrays.region_last.tolist(), strict=True
+                )
+            ]
+            edges = np.arange(m + 1)
+            ls = np.searchsorted(arrays.shaft_mode, edges).tolist()
+            us = np.searchsorted(arrays.open_mode, edges).tolist()
+            rs = np.searchsorted(arrays.region_mode, edges).tolist()
+            nodes_spool.write(
+                comma
+                + ",".join(
+                    "[" + ",".join(located[ls[r] : ls[r + 1]] + loose[us[r] : us[r + 1]]) + "]"
+                    for r in range(m)
+                )
+            )
+            regions_spool.write(
+                comma + ",".join("[" + ",".join(regions[rs[r] : rs[r + 1]]) + "]" for r in range(m))
+            )
+            counts.append(arrays.counts(m))
+            resolved.append(arrays.resolved(m))
+            inertia.append(rows.modal_inertia)
+            omega.append(b.omega)
+            del rows, arrays, located, loose, regions, text
+        head = _header(model, solver, total, omega, counts, resolved, inertia)
+        data = head.to_dict()
+        for key in ("mode_shapes", "nodes", "roundoff_regions"):
+            data[key] = _MARK.format(key)
+        text = json.dumps(data, separators=(",", ":"), allow_nan=False) + "\n"
+        for key, spool in zip(("mode_shapes", "nodes", "roundoff_regions"), spools, strict=True):
+            before, text = text.split(json.dumps(_MARK.format(key)), 1)
+            yield before + "["
+            spool.seek(0)
+            while piece := spool.read(1 << 16):
+                yield piece
+            yield "]"
+        yield text
+
+
+def _header(
+    model: TorsionModel,
+    solver: str,
+    total: int | None,
+    omega: list[NDArray[np.float64]],
+    counts: list[NDArray[np.int_]],
+    resolved: list[NDArray[np.bool_]],
+    inertia: list[NDArray[np.float64]],
+) -> ModalResult:
+    """A ModalResult of the per-mode columns without shapes or nodes (the exported keys in
+    their order, for the streamed writers)."""
+    w = np.concatenate(omega)
+    j = np.concatenate(inertia)
+    first = 0 if model.is_free else 1
+    return ModalResult(
+        mode=freeze(np.arange(first, first + w.size), dtype=int),
+        natural_frequency=freeze(w),
+        node_count=freeze(np.concatenate(counts), dtype=int),
+        nodes_resolved=freeze(np.concatenate(resolved), dtype=bool),
+        modal_inertia=freeze(j),
+        modal_stiffness=freeze(w**2 * j),
+        mode_shapes=np.zeros((w.size, 0)),
+        masses=model.mass_names,
+        solver=solver,
+        structure="chain" if model.is_chain else "branched",
+        free=model.is_free,
+        model_name=model.name,
+        modes_of_the_model=total,
+    )
+
+
+def modes_csv_chunks(
+    source: ModeBlocks | ModalResult, *, block: int = BLOCK_MODES
+) -> Iterator[str]:
+    """The CSV text of the modes (:meth:`ModalResult.to_csv`: one row per mode, the per-mode
+    columns, then ``amplitude_1`` ... ``amplitude_N``), a block of rows at a time.
+
+    Parameters
+    ----------
+    source
+        The modes: a :class:`ModeBlocks` (computed block by block) or a :class:`ModalResult`.
+    block
+        Modes per block when ``source`` is a ModalResult.
+
+    Yields
+    ------
+    str
+        The header line, then the rows of one block at a time.
+    """
+    model, _solver, _total, blocks = _source(source, block)
+    first = 0 if model.is_free else 1
+    keys = list(
+        Result.columns(
+            _header(
+                model, "", None, [np.zeros(1)], [np.zeros(1, int)], [np.ones(1, bool)], [np.ones(1)]
+            )
+        )
+    )
+    keys += [f"amplitude_{i + 1}" for i in range(len(model.mass_names))]
+    yield ",".join(keys) + "\n"
+    line = ",".join(["%.10g"] * len(keys)) + "\n"
+    for b in blocks:
+        rows, m = b.rows, b.omega.size
+        table = np.column_stack(
+            [
+                np.arange(first + b.start, first + b.start + m, dtype=float),
+                b.omega * HZ,
+                rows.nodes.counts(m).astype(float),
+                rows.nodes.resolved(m).astype(float),
+                rows.modal_inertia,
+                b.omega**2 * rows.modal_inertia,
+                rows.shapes,
+            ]
+        )
+        yield "".join([line % tuple(r) for r in table.tolist()])
