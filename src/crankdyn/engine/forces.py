@@ -77,6 +77,7 @@ __all__ = [
     "engine_warnings",
     "inertia_harmonics",
     "load_angle",
+    "refined_extrema",
     "refined_extremum",
     "reuse_train",
     "rod_forces",
@@ -294,6 +295,41 @@ class CrankTrain:
     trace: PressureTrace
     engine: Engine = field(repr=False)
     motion: SliderCrankMotion | None = field(default=None, repr=False)
+    _derived: dict[str, Any] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )  # what summary_train() and warnings() computed once
+
+    def summary_train(self) -> CrankTrain:
+        """The crank train of this engine, speed and pressure on the :data:`SUMMARY_STEP` grid
+        over one cycle, on which the summary figures are found: computed once and shared by
+        the analyses that reuse this train (torque and bearing loads of one cycle).
+
+        Returns
+        -------
+        CrankTrain
+            The train on ``cycle_grid(engine, SUMMARY_STEP)``.
+        """
+        if "summary" not in self._derived:
+            grid = cycle_grid(self.engine, SUMMARY_STEP)
+            self._derived["summary"] = crank_train(
+                self.engine, self.speed, grid, pressure=self.trace
+            )
+        train: CrankTrain = self._derived["summary"]
+        return train
+
+    def warnings(self) -> tuple[PlausibilityWarning, ...]:
+        """The plausibility warnings of this engine at this speed and pressure
+        (:func:`engine_warnings`), computed once for the analyses sharing this train.
+
+        Returns
+        -------
+        tuple of crankdyn.plausibility.PlausibilityWarning
+            The warnings.
+        """
+        if "warnings" not in self._derived:
+            self._derived["warnings"] = engine_warnings(self.engine, self.speed, self.trace)
+        found: tuple[PlausibilityWarning, ...] = self._derived["warnings"]
+        return found
 
     @property
     def crank_radius(self) -> float:
@@ -509,19 +545,77 @@ def refined_extremum(
     >>> round(value, 12), round(at, 6)
     (1.0, 1.0)
     """
+    best, at = refined_extrema(
+        lambda local: np.asarray(f(local[0]), dtype=float)[None, :],
+        theta,
+        np.asarray(values, dtype=float)[None, :],
+        period=period,
+        passes=passes,
+        points=points,
+    )
+    return float(best[0]), float(at[0])
+
+
+def refined_extrema(
+    f: Callable[[NDArray[np.float64]], ArrayLike],
+    theta: ArrayLike,
+    values: ArrayLike,
+    *,
+    period: float,
+    passes: int = 4,
+    points: int = 33,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """:func:`refined_extremum` of several quantities at once, each refined around its own
+    largest grid value, with one call of ``f`` per pass for all of them.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(angles)`` with angles (rad) of shape (rows, samples), row k the samples of
+        quantity k, returns the quantities there: row k quantity k at row k's angles.
+    theta : array_like
+        The grid (rad, increasing, spanning the cycle), shape (angles,).
+    values : array_like
+        The quantities on the grid, shape (rows, angles) (their units).
+    period : float
+        The cycle angle (rad).
+    passes : int
+        Refinement passes; default 4.
+    points : int
+        Samples per pass; default 33.
+
+    Returns
+    -------
+    value : numpy.ndarray
+        The largest value of every quantity, shape (rows,); each equal to
+        :func:`refined_extremum` of that quantity alone.
+    angle : numpy.ndarray
+        Their angles (rad), in [0, period).
+
+    Examples
+    --------
+    >>> grid = np.radians(np.arange(0.0, 361.0, 10.0))
+    >>> f = lambda t: np.cos(t - np.array([[1.0], [2.0]]))
+    >>> value, at = refined_extrema(f, grid, f(grid[None, :]), period=2 * np.pi)
+    >>> value.round(12).tolist(), at.round(6).tolist()
+    ([1.0, 1.0], [1.0, 2.0])
+    """
     theta = np.asarray(theta, dtype=float)
     values = np.asarray(values, dtype=float)
-    i = int(np.argmax(values))
-    best, at = float(values[i]), float(theta[i])
+    rows = np.arange(values.shape[0])
+    i = np.argmax(values, axis=1)
+    best, at = values[rows, i], theta[i]
     h = float(np.max(np.diff(theta))) if theta.size > 1 else period
     for _ in range(passes):
-        local = at + np.linspace(-h, h, points)
+        local = at[:, None] + np.linspace(-h, h, points)[None, :]
         sampled = np.asarray(f(local), dtype=float)
-        j = int(np.argmax(sampled))
-        if sampled[j] > best:
-            best, at = float(sampled[j]), float(local[j])
+        j = np.argmax(sampled, axis=1)
+        top = sampled[rows, j]
+        better = top > best
+        best = np.where(better, top, best)
+        at = np.where(better, local[rows, j], at)
         h = 2.0 * h / (points - 1)
-    return best, float(np.mod(at, period))
+    return best, np.mod(at, period)
 
 
 def reuse_train(
@@ -814,40 +908,28 @@ def _force_summary(
     """The summary figures of one cylinder's forces over the whole cycle (on the summary grid,
     the maxima refined), whatever grid ``train`` holds."""
     if not (full and np.allclose(np.diff(train.theta), SUMMARY_STEP, rtol=0.0, atol=1e-12)):
-        train = crank_train(
-            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=pressure
-        )
+        train = train.summary_train()
     i = cylinder - 1
     t = engine.cylinders.throws[i] - 1
-    period = engine.cycle_angle
+    names = ("gas", "side", "rod", "tension", "pin")
 
-    def quantity(name: str) -> Callable[[NDArray[np.float64]], Any]:
-        def f(theta: NDArray[np.float64]) -> Any:
-            local = crank_train(engine, train.speed, np.asarray(theta), pressure=train.trace)
-            if name == "pin":
-                tp, zp = local.pin_loads()
-                return np.hypot(tp[t], zp[t])
-            if name == "side":
-                return np.abs(local.side[i])
-            if name == "tension":
-                return -local.rod[i]
-            return getattr(local, name)[i]
+    def quantities(local: CrankTrain) -> NDArray[np.float64]:
+        """Every summary quantity of the cylinder (rows in the order of ``names``)."""
+        tp, zp = local.pin_loads()
+        rod = local.rod[i]
+        return np.vstack([local.gas[i], np.abs(local.side[i]), rod, -rod, np.hypot(tp[t], zp[t])])
 
-        return f
+    def f(angles: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Quantity k at row k's angles: one crank train over every row's samples."""
+        local = crank_train(engine, train.speed, angles.reshape(-1), pressure=train.trace)
+        count, samples = angles.shape
+        every = quantities(local).reshape(count, count, samples)
+        return every[np.arange(count), np.arange(count)]
 
-    t_pin, z_pin = train.pin_loads()
-    pin = np.hypot(t_pin[t], z_pin[t])
-    grid = {
-        "gas": train.gas[i],
-        "side": np.abs(train.side[i]),
-        "rod": train.rod[i],
-        "tension": -train.rod[i],
-        "pin": pin,
-    }
-    peak = {
-        name: refined_extremum(quantity(name), train.theta, values, period=period)[0]
-        for name, values in grid.items()
-    }
+    grid = quantities(train)
+    pin = grid[4]
+    peaks = refined_extrema(f, train.theta, grid, period=engine.cycle_angle)[0]
+    peak = {name: float(value) for name, value in zip(names, peaks, strict=True)}
     return {
         "max_gas_force": peak["gas"],
         "max_side_force": peak["side"],
