@@ -592,17 +592,17 @@ def local_extrema(
     def slope(t: float) -> float:
         return float(np.asarray(df(np.array([t])))[0])
 
-    for i in range(n):
-        d0, d1 = d[i], d[i + 1]
-        if d0 == 0.0:
+    d0, d1 = d[:-1], d[1:]
+    # the intervals that hold a zero: signs, not d0 * d1 (it may underflow)
+    bracketed = (d0 == 0.0) | (((d0 < 0.0) != (d1 < 0.0)) & (d1 != 0.0))
+    for i in np.flatnonzero(bracketed).tolist():
+        if d[i] == 0.0:
             root = grid[i]
-        elif (d0 < 0.0) != (d1 < 0.0) and d1 != 0.0:  # signs, not d0 * d1: it may underflow
+        else:
             try:
                 root = brentq(slope, grid[i], grid[i + 1], xtol=1e-14)
             except ValueError:  # at 2 pi the derivative is round-off of the one at 0: the root
                 root = grid[i + 1]  # is the end of the revolution
-        else:
-            continue
         before = np.asarray(df(np.array([root - 1e-6])))[0]
         after = np.asarray(df(np.array([root + 1e-6])))[0]
         if before > 0.0 > after:

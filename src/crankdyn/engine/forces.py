@@ -81,6 +81,7 @@ __all__ = [
     "refined_extremum",
     "reuse_train",
     "rod_forces",
+    "throw_sums",
 ]
 
 _SERIES_ORDER = 24
@@ -205,6 +206,46 @@ def load_angle(along: ArrayLike, across: ArrayLike) -> NDArray[np.float64]:
     270.0
     """
     return np.mod(np.arctan2(across, along), 2.0 * math.pi)
+
+
+def throw_sums(values: ArrayLike, throws: tuple[int, ...], count: int) -> NDArray[np.float64]:
+    """Per-cylinder rows summed per throw: row t of the result is the sum of the rows of the
+    cylinders on throw t + 1, added in cylinder order (equal to the bit to
+    ``np.add.at(zeros, throws - 1, values)``).
+
+    Parameters
+    ----------
+    values : array_like
+        One row per cylinder, shape (cylinders, angles) (any unit).
+    throws : tuple of int
+        Every cylinder's throw (1-based).
+    count : int
+        Number of throws.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (count, angles), the unit of ``values``.
+
+    Examples
+    --------
+    >>> throw_sums([[1.0], [2.0], [4.0]], (1, 2, 1), 2).ravel().tolist()
+    [5.0, 2.0]
+    """
+    values = np.asarray(values, dtype=float)
+    index = np.asarray(throws) - 1
+    out = np.zeros((count, *values.shape[1:]))
+    # layer k: the k-th cylinder of every throw (at most one row per throw, so that a fancy
+    # index adds each once); the layers in turn add as add.at does, in cylinder order
+    rank = np.zeros(index.size, dtype=int)
+    seen: dict[int, int] = {}
+    for c, t in enumerate(index.tolist()):
+        rank[c] = seen.get(t, 0)
+        seen[t] = rank[c] + 1
+    for k in range(int(rank.max(initial=-1)) + 1):
+        rows = np.flatnonzero(rank == k)
+        out[index[rows]] += values[rows]
+    return out
 
 
 # ---- the crank train of an engine ----------------------------------------------------------------
@@ -356,11 +397,8 @@ class CrankTrain:
         w2r = self.speed**2 * self.crank_radius
         big_end = np.array([m.rod_big_end or 0.0 for m in self.masses])
         radial = self.radial - (big_end * w2r)[:, None]
-        index = np.asarray(cyl.throws) - 1
-        t_pin = np.zeros((cyl.throw_count, self.theta.size))
-        z_pin = np.zeros_like(t_pin)
-        np.add.at(t_pin, index, self.tangential)
-        np.add.at(z_pin, index, radial)
+        t_pin = throw_sums(self.tangential, cyl.throws, cyl.throw_count)
+        z_pin = throw_sums(radial, cyl.throws, cyl.throw_count)
         return t_pin, z_pin
 
     def throw_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -385,11 +423,8 @@ class CrankTrain:
         chi = self.throw_direction
         fx = fx + centrifugal * np.sin(chi)
         fy = fy + centrifugal * np.cos(chi)
-        index = np.asarray(cyl.throws) - 1
-        hx = np.zeros((cyl.throw_count, self.theta.size))
-        hy = np.zeros_like(hx)
-        np.add.at(hx, index, fx)
-        np.add.at(hy, index, fy)
+        hx = throw_sums(fx, cyl.throws, cyl.throw_count)
+        hy = throw_sums(fy, cyl.throws, cyl.throw_count)
         return hx, hy
 
 

@@ -37,6 +37,7 @@ from crankdyn.engine.forces import (
     cycle_grid,
     refined_extrema,
     reuse_train,
+    throw_sums,
 )
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
@@ -256,9 +257,7 @@ def engine_torque(
     r = engine.geometry.crank_radius
     cyl = engine.cylinders
     per_cylinder = train.tangential * r
-    index = np.asarray(cyl.throws) - 1
-    throw_torque = np.zeros((cyl.throw_count, theta.size))
-    np.add.at(throw_torque, index, per_cylinder)
+    throw_torque = throw_sums(per_cylinder, cyl.throws, cyl.throw_count)
     journal, pin = journal_torques(throw_torque)
     total = per_cylinder.sum(axis=0)
     mean = _mean_torque(engine, train)
