@@ -79,3 +79,13 @@ def test_summary_train_and_warnings_are_shared_and_equal_a_fresh_evaluation():
     assert (torque.max_torque, torque.min_torque) == (alone_t.max_torque, alone_t.min_torque)
     assert np.array_equal(loads.max_pin_load, alone_b.max_pin_load)
     assert np.array_equal(loads.max_bearing_load, alone_b.max_bearing_load)
+
+
+def test_half_binomial_equals_scipy_binom_to_the_bit():
+    """C(1/2, n) without scipy.special (crank.kinematics.half_binomial) is scipy's number."""
+    from scipy.special import binom
+
+    from crankdyn.crank.kinematics import half_binomial
+
+    for n in range(26):
+        assert half_binomial(n) == float(binom(0.5, n)), n
