@@ -89,3 +89,25 @@ def test_half_binomial_equals_scipy_binom_to_the_bit():
 
     for n in range(26):
         assert half_binomial(n) == float(binom(0.5, n)), n
+
+
+@pytest.mark.parametrize("name", ["inline6-diesel", "v8-crossplane", "vaz2108"])
+def test_session_forces_on_the_shared_train_equal_a_call_of_their_own(name):
+    """Analysis.forces() reuses the session's crank train (its summary grid and warnings):
+    every number equals engine_forces evaluated alone."""
+    from crankdyn.engine.forces import engine_forces
+    from crankdyn.engine.session import Analysis
+
+    engine = crankdyn.Engine.example(name)
+    analysis = Analysis(engine, speed=2500.0 * math.pi / 30.0)
+    analysis.torque  # noqa: B018  (the train's summary grid and warnings computed first)
+    shared = analysis.forces(2)
+    alone = engine_forces(engine, analysis.speed, cylinder=2, step=analysis.step)
+    for key, value in vars(alone).items():
+        other = getattr(shared, key)
+        if isinstance(value, np.ndarray):
+            assert np.array_equal(value, other, equal_nan=True), key
+        elif key == "warnings":
+            assert repr(value) == repr(other)
+        else:
+            assert value == other, key

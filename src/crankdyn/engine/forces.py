@@ -815,6 +815,7 @@ def engine_forces(
     cylinder: int = 1,
     step: float = math.radians(1.0),
     pressure: PressureTrace | None = None,
+    train: CrankTrain | None = None,
 ) -> ForcesResult:
     """Forces of cylinder ``cylinder`` (1-based, numbered from the free end) over the cycle.
 
@@ -832,6 +833,11 @@ def engine_forces(
         Angle step of the default grid (rad); it must divide the cycle. Default 1 deg.
     pressure : PressureTrace or None
         Pressure trace; default the engine's own or its synthetic model.
+    train : CrankTrain or None
+        The crank train of this engine at this speed and pressure at exactly these angles, when
+        already computed (e.g. shared with :func:`crankdyn.engine.torque.engine_torque` and
+        :func:`crankdyn.engine.bearings.engine_bearings`, which then share its summary grid and
+        warnings too); default: evaluated here.
 
     Returns
     -------
@@ -868,7 +874,7 @@ def engine_forces(
             f"the engine has cylinders 1 to {cyl.count}", key="cylinder", value=cylinder
         )
     theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
-    train = crank_train(engine, speed, theta, pressure=pressure)
+    train = reuse_train(train, engine, speed, theta, pressure)
     summary = _force_summary(engine, train, cylinder, pressure, full=angles is None)
     i = cylinder - 1
     g = engine.geometry
@@ -883,9 +889,16 @@ def engine_forces(
     error = None
     couple = None
     if m.inertia_error is not None:
-        motion = slider_crank_exact(phi, r, g.rod_length, g.offset, w)
-        error = -m.inertia_error * motion.rod_angular_velocity * motion.rod_angular_acceleration / w
-        couple = float(m.inertia_error * np.max(np.abs(motion.rod_angular_acceleration)))
+        if train.motion is not None:  # the crank train's kinematics: the same numbers
+            w_rod, e_rod = (
+                train.motion.rod_angular_velocity[i],
+                train.motion.rod_angular_acceleration[i],
+            )
+        else:
+            motion = slider_crank_exact(phi, r, g.rod_length, g.offset, w)
+            w_rod, e_rod = motion.rod_angular_velocity, motion.rod_angular_acceleration
+        error = -m.inertia_error * w_rod * e_rod / w
+        couple = float(m.inertia_error * np.max(np.abs(e_rod)))
     if not m.pin_mass_known:
         notes.append(
             "rod big-end mass unknown (give [masses] rod and rod_cg_from_big_end): the crank-pin "
@@ -928,7 +941,7 @@ def engine_forces(
         max_rod_couple_error=couple,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
-        warnings=engine_warnings(engine, train.speed, train.trace),
+        warnings=train.warnings(),
     )
 
 
