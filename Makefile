@@ -139,7 +139,7 @@ BENCH_ARGS ?=
 $(BENCH_VENV)/.stamp: pyproject.toml bench/requirements.txt
 	$(PYTHON) -m venv $(BENCH_VENV)
 	$(BENCH_VENV)/bin/python -m pip install -q --upgrade pip
-	$(BENCH_VENV)/bin/python -m pip install -q -e . -r bench/requirements.txt
+	$(BENCH_VENV)/bin/python -m pip install -q -e '.[studies]' -r bench/requirements.txt
 	$(BENCH_VENV)/bin/python -m pip install -q numba || echo "bench: numba did not install; pylinkage's compiled path is reported as not measured"
 	@touch $@
 

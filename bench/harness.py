@@ -4,6 +4,10 @@ A :class:`Case` is one row group of the table: a problem (e.g. "free chain, N = 
 crankdyn and by one or more peers (:class:`Contender`). Every contender is called once as a
 warm-up (its output is kept for the agreement check; imports, JIT compilation and caches happen
 here), then ``repeats`` more times under :func:`time.perf_counter`; the table reports the median.
+A case with ``interleave`` set times its contenders in turn (A B, B A, A B, ...: every round
+calls each once, the order reversed from one round to the next), so that a change in the
+machine's load during the run reaches all of them alike (the whole-process cases, old version
+against new).
 Garbage collection runs before, and is disabled during, each timed call (as :mod:`timeit` does).
 The agreement check compares the peers' outputs with crankdyn's and raises
 :class:`AgreementError` (the run stops, loudly) when a deviation exceeds the case's tolerance.
@@ -90,6 +94,7 @@ class Case:
     repeats: int = 7
     notes: tuple[str, ...] = ()
     extra: Callable[[Any], dict[str, Any]] | None = None  # figures from crankdyn's output
+    interleave: bool = False  # time the contenders in turn, round by round (module docstring)
 
 
 @dataclass(frozen=True)
@@ -155,6 +160,41 @@ def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, flo
     return output, statistics.median(times), len(times)
 
 
+def _time_interleaved(
+    runs: dict[str, Callable[[], Any]], repeats: int, budget: float
+) -> dict[str, tuple[Any, float, int]]:
+    """:func:`_time` for several contenders at once: every warm-up call first, then rounds of
+    one timed call each, the order reversed every other round; stops once the timed calls have
+    used ``budget`` seconds (at least three rounds). {name: (output, median, calls)}."""
+    outputs: dict[str, Any] = {}
+    times: dict[str, list[float]] = {name: [] for name in runs}
+    for name, run in runs.items():
+        start = time.perf_counter()
+        outputs[name] = run()
+        times[name].append(time.perf_counter() - start)
+    if repeats <= 0:
+        return {name: (outputs[name], times[name][0], 1) for name in runs}
+    for name in runs:
+        times[name].clear()
+    order = list(runs)
+    spent = 0.0
+    for round_ in range(repeats):
+        for name in order if round_ % 2 == 0 else order[::-1]:
+            gc.collect()
+            gc.disable()
+            try:
+                start = time.perf_counter()
+                runs[name]()
+                elapsed = time.perf_counter() - start
+            finally:
+                gc.enable()
+            times[name].append(elapsed)
+            spent += elapsed
+        if spent > budget and round_ >= 2:
+            break
+    return {name: (outputs[name], statistics.median(t), len(t)) for name, t in times.items()}
+
+
 def run_case(
     case: Case,
     *,
@@ -173,13 +213,21 @@ def run_case(
     outputs: dict[str, Any] = {}
     timings: dict[str, Timing] = {}
     n = case.repeats if repeats is None else repeats
+    if case.interleave:
+        ready = {c.name: c.run for c in case.contenders if c.run is not None}
+        if log:
+            log(f"{case.title} [{case.size}]: {', '.join(ready)} (interleaved)")
+        timed = _time_interleaved(ready, n, budget)
     for c in case.contenders:
         if c.run is None:
             timings[c.name] = Timing(c.name, None, 0, c.missing, c.note)
             continue
-        if log:
-            log(f"{case.title} [{case.size}]: {c.name}")
-        out, median, runs = _time(c.run, n, budget)
+        if case.interleave:
+            out, median, runs = timed[c.name]
+        else:
+            if log:
+                log(f"{case.title} [{case.size}]: {c.name}")
+            out, median, runs = _time(c.run, n, budget)
         outputs[c.name] = out
         timings[c.name] = Timing(c.name, median, runs, None, c.note)
     deviations: dict[str, Deviation] = {}

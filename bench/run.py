@@ -219,6 +219,11 @@ def markdown(results: list[CaseResult], memory: list[dict], info: dict[str, str]
                 f"| {r.case.title}: {r.case.size} | {r.extra['peak_rss_mb']:.0f} MB | — | — | "
                 f"< {r.extra['memory_target_mb']:g} MB | {met} |"
             )
+    for r in results:
+        for peer, peak in r.extra.get("peer_peak_rss_mb", {}).items():
+            lines.append(
+                f"| {r.case.title}: {r.case.size}: {peer} | {peak:.0f} MB | — | — | reference | |"
+            )
     lines += ["", "Measured on:", ""]
     lines += [f"- {k}: {v}" for k, v in info.items()]
     return "\n".join(lines)
@@ -255,6 +260,9 @@ def print_table(results: list[CaseResult], memory: list[dict], info: dict[str, s
                 "—",
                 f"< {r.extra['memory_target_mb']:g} MB",
             )
+    for r in results:
+        for peer, peak in r.extra.get("peer_peak_rss_mb", {}).items():
+            mem.add_row(f"{r.case.title}: {r.case.size}: {peer}", f"{peak:.0f} MB", "—", "—", "")
     console.print(mem)
     console.print(", ".join(f"{k}: {v}" for k, v in info.items()))
 

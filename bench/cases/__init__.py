@@ -11,8 +11,8 @@ MODULES = (
     "fourbar",
     "sixbar",
     "engine_cycle",
-    "analyze",
     "process",
+    "baseline",
 )
 
 

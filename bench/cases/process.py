@@ -48,13 +48,16 @@ ANALYSIS = (
 )
 
 
-def run_process(module_args: list[str], runs: list[dict] | None = None) -> dict:
+def run_process(
+    module_args: list[str], runs: list[dict] | None = None, *, env: dict[str, str] | None = None
+) -> dict:
     """One fresh process ``python -m bench.peak <file> *module_args``: wall time (s), peak RSS
-    (MB), status, standard output and error."""
+    (MB), status, standard output and error; ``env`` is added to the environment (e.g. a
+    ``PYTHONPATH`` that puts another version of crankdyn first)."""
     with tempfile.TemporaryDirectory() as scratch:
         peak_file = Path(scratch) / "peak"
         argv = [sys.executable, "-m", "bench.peak", str(peak_file), *module_args]
-        env = {**os.environ, "COLUMNS": "120"}
+        env = {**os.environ, "COLUMNS": "120", **(env or {})}
         env.pop("PYTHONDONTWRITEBYTECODE", None)  # as installed: bytecode cached
         start = time.perf_counter()
         proc = subprocess.run(argv, capture_output=True, text=True, env=env, cwd=ROOT, check=False)

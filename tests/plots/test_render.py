@@ -34,3 +34,32 @@ def test_the_pool_writes_what_one_process_writes(tmp_path):
 
 def test_workers_never_exceed_the_figures():
     assert workers_for(1) == 1 and 1 <= workers_for(50) <= 50
+
+
+def _without_ids(svg: str) -> str:
+    """An SVG file with matplotlib's random element ids (clip paths, markers) and its date
+    left out."""
+    import re
+
+    svg = re.sub(r"<dc:date>.*?</dc:date>", "", svg, flags=re.S)
+    return re.sub(r"\b([pm])[0-9a-f]{10}\b", r"\1", svg)
+
+
+def test_one_figure_drawn_as_png_and_svg_by_two_workers_is_what_one_process_writes(tmp_path):
+    """Fewer figures than cores (a study summary): the PNG and the SVG of a figure are drawn
+    by workers of their own, the SVG's laid out again; the files are those of one process."""
+    fig = _figures(1)[0]
+    fig.subplots(1, 3)  # more axes: a layout with something to lay out
+    one = tmp_path / "one"
+    two = tmp_path / "two"
+    one.mkdir()
+    two.mkdir()
+    serial = render_figures([(fig, one / "f.png", one / "f.svg")], workers=1)
+    fig = _figures(1)[0]
+    fig.subplots(1, 3)
+    seen = []
+    split = render_figures([(fig, two / "f.png", two / "f.svg")], progress=seen.append)
+    assert split == serial and seen == [0]
+    assert (two / "f.png").read_bytes() == serial[0]
+    svg = [_without_ids((d / "f.svg").read_text(encoding="utf-8")) for d in (one, two)]
+    assert svg[0] == svg[1]

@@ -19,7 +19,6 @@ of the journal on the bearing.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -33,9 +32,8 @@ from crankdyn.engine.forces import (
     CrankTrain,
     crank_train,
     cycle_grid,
-    engine_warnings,
     load_angle,
-    refined_extremum,
+    refined_extrema,
     reuse_train,
 )
 from crankdyn.engine.model import Engine
@@ -237,7 +235,7 @@ def engine_bearings(
         speed=train.speed,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
-        warnings=engine_warnings(engine, train.speed, train.trace),
+        warnings=train.warnings(),
     )
 
 
@@ -253,9 +251,7 @@ def _load_summary(
         and np.allclose(np.diff(train.theta), SUMMARY_STEP, atol=1e-12, rtol=0.0)
     )
     if not on_grid:
-        train = crank_train(
-            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=train.trace
-        )
+        train = train.summary_train()  # shared with the torque of the same train
 
     def loads(theta: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
         local = crank_train(engine, train.speed, np.asarray(theta), pressure=train.trace)
@@ -263,24 +259,22 @@ def _load_summary(
         bx, by = main_bearing_loads(*local.throw_forces())
         return np.hypot(t_pin, z_pin), np.hypot(bx, by)
 
-    def load(which: int, k: int) -> Callable[[ArrayLike], np.ndarray]:
-        return lambda th: loads(th)[which][k]  # which: 0 pins, 1 bearings; k: the row
-
     pin, bearing = loads(train.theta)
-    period = engine.cycle_angle
-    max_pin = [
-        refined_extremum(load(0, k), train.theta, pin[k], period=period)[0]
-        for k in range(pin.shape[0])
-    ]
-    max_bearing = [
-        refined_extremum(load(1, k), train.theta, bearing[k], period=period)[0]
-        for k in range(bearing.shape[0])
-    ]
+    rows = np.vstack([pin, bearing])  # every throw's pin, then every main bearing
+
+    def row_loads(angles: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Row k's load at row k's angles: one crank train over every row's samples."""
+        count, samples = angles.shape
+        both = np.vstack(loads(angles.reshape(-1)))  # (rows, rows x samples)
+        return both.reshape(count, count, samples)[np.arange(count), np.arange(count)]
+
+    peaks = refined_extrema(row_loads, train.theta, rows, period=engine.cycle_angle)[0]
+    max_pin, max_bearing = peaks[: pin.shape[0]], peaks[pin.shape[0] :]
     body = slice(0, -1)  # the cycle's end repeats its start
     return (
-        np.array(max_pin),
+        max_pin,
         pin[:, body].mean(axis=1),
-        np.array(max_bearing),
+        max_bearing,
         bearing[:, body].mean(axis=1),
     )
 

@@ -77,9 +77,11 @@ __all__ = [
     "engine_warnings",
     "inertia_harmonics",
     "load_angle",
+    "refined_extrema",
     "refined_extremum",
     "reuse_train",
     "rod_forces",
+    "throw_sums",
 ]
 
 _SERIES_ORDER = 24
@@ -206,6 +208,46 @@ def load_angle(along: ArrayLike, across: ArrayLike) -> NDArray[np.float64]:
     return np.mod(np.arctan2(across, along), 2.0 * math.pi)
 
 
+def throw_sums(values: ArrayLike, throws: tuple[int, ...], count: int) -> NDArray[np.float64]:
+    """Per-cylinder rows summed per throw: row t of the result is the sum of the rows of the
+    cylinders on throw t + 1, added in cylinder order (equal to the bit to
+    ``np.add.at(zeros, throws - 1, values)``).
+
+    Parameters
+    ----------
+    values : array_like
+        One row per cylinder, shape (cylinders, angles) (any unit).
+    throws : tuple of int
+        Every cylinder's throw (1-based).
+    count : int
+        Number of throws.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (count, angles), the unit of ``values``.
+
+    Examples
+    --------
+    >>> throw_sums([[1.0], [2.0], [4.0]], (1, 2, 1), 2).ravel().tolist()
+    [5.0, 2.0]
+    """
+    values = np.asarray(values, dtype=float)
+    index = np.asarray(throws) - 1
+    out = np.zeros((count, *values.shape[1:]))
+    # layer k: the k-th cylinder of every throw (at most one row per throw, so that a fancy
+    # index adds each once); the layers in turn add as add.at does, in cylinder order
+    rank = np.zeros(index.size, dtype=int)
+    seen: dict[int, int] = {}
+    for c, t in enumerate(index.tolist()):
+        rank[c] = seen.get(t, 0)
+        seen[t] = rank[c] + 1
+    for k in range(int(rank.max(initial=-1)) + 1):
+        rows = np.flatnonzero(rank == k)
+        out[index[rows]] += values[rows]
+    return out
+
+
 # ---- the crank train of an engine ----------------------------------------------------------------
 
 
@@ -294,6 +336,41 @@ class CrankTrain:
     trace: PressureTrace
     engine: Engine = field(repr=False)
     motion: SliderCrankMotion | None = field(default=None, repr=False)
+    _derived: dict[str, Any] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )  # what summary_train() and warnings() computed once
+
+    def summary_train(self) -> CrankTrain:
+        """The crank train of this engine, speed and pressure on the :data:`SUMMARY_STEP` grid
+        over one cycle, on which the summary figures are found: computed once and shared by
+        the analyses that reuse this train (torque and bearing loads of one cycle).
+
+        Returns
+        -------
+        CrankTrain
+            The train on ``cycle_grid(engine, SUMMARY_STEP)``.
+        """
+        if "summary" not in self._derived:
+            grid = cycle_grid(self.engine, SUMMARY_STEP)
+            self._derived["summary"] = crank_train(
+                self.engine, self.speed, grid, pressure=self.trace
+            )
+        train: CrankTrain = self._derived["summary"]
+        return train
+
+    def warnings(self) -> tuple[PlausibilityWarning, ...]:
+        """The plausibility warnings of this engine at this speed and pressure
+        (:func:`engine_warnings`), computed once for the analyses sharing this train.
+
+        Returns
+        -------
+        tuple of crankdyn.plausibility.PlausibilityWarning
+            The warnings.
+        """
+        if "warnings" not in self._derived:
+            self._derived["warnings"] = engine_warnings(self.engine, self.speed, self.trace)
+        found: tuple[PlausibilityWarning, ...] = self._derived["warnings"]
+        return found
 
     @property
     def crank_radius(self) -> float:
@@ -320,11 +397,8 @@ class CrankTrain:
         w2r = self.speed**2 * self.crank_radius
         big_end = np.array([m.rod_big_end or 0.0 for m in self.masses])
         radial = self.radial - (big_end * w2r)[:, None]
-        index = np.asarray(cyl.throws) - 1
-        t_pin = np.zeros((cyl.throw_count, self.theta.size))
-        z_pin = np.zeros_like(t_pin)
-        np.add.at(t_pin, index, self.tangential)
-        np.add.at(z_pin, index, radial)
+        t_pin = throw_sums(self.tangential, cyl.throws, cyl.throw_count)
+        z_pin = throw_sums(radial, cyl.throws, cyl.throw_count)
         return t_pin, z_pin
 
     def throw_forces(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -349,11 +423,8 @@ class CrankTrain:
         chi = self.throw_direction
         fx = fx + centrifugal * np.sin(chi)
         fy = fy + centrifugal * np.cos(chi)
-        index = np.asarray(cyl.throws) - 1
-        hx = np.zeros((cyl.throw_count, self.theta.size))
-        hy = np.zeros_like(hx)
-        np.add.at(hx, index, fx)
-        np.add.at(hy, index, fy)
+        hx = throw_sums(fx, cyl.throws, cyl.throw_count)
+        hy = throw_sums(fy, cyl.throws, cyl.throw_count)
         return hx, hy
 
 
@@ -509,19 +580,77 @@ def refined_extremum(
     >>> round(value, 12), round(at, 6)
     (1.0, 1.0)
     """
+    best, at = refined_extrema(
+        lambda local: np.asarray(f(local[0]), dtype=float)[None, :],
+        theta,
+        np.asarray(values, dtype=float)[None, :],
+        period=period,
+        passes=passes,
+        points=points,
+    )
+    return float(best[0]), float(at[0])
+
+
+def refined_extrema(
+    f: Callable[[NDArray[np.float64]], ArrayLike],
+    theta: ArrayLike,
+    values: ArrayLike,
+    *,
+    period: float,
+    passes: int = 4,
+    points: int = 33,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """:func:`refined_extremum` of several quantities at once, each refined around its own
+    largest grid value, with one call of ``f`` per pass for all of them.
+
+    Parameters
+    ----------
+    f : callable
+        ``f(angles)`` with angles (rad) of shape (rows, samples), row k the samples of
+        quantity k, returns the quantities there: row k quantity k at row k's angles.
+    theta : array_like
+        The grid (rad, increasing, spanning the cycle), shape (angles,).
+    values : array_like
+        The quantities on the grid, shape (rows, angles) (their units).
+    period : float
+        The cycle angle (rad).
+    passes : int
+        Refinement passes; default 4.
+    points : int
+        Samples per pass; default 33.
+
+    Returns
+    -------
+    value : numpy.ndarray
+        The largest value of every quantity, shape (rows,); each equal to
+        :func:`refined_extremum` of that quantity alone.
+    angle : numpy.ndarray
+        Their angles (rad), in [0, period).
+
+    Examples
+    --------
+    >>> grid = np.radians(np.arange(0.0, 361.0, 10.0))
+    >>> f = lambda t: np.cos(t - np.array([[1.0], [2.0]]))
+    >>> value, at = refined_extrema(f, grid, f(grid[None, :]), period=2 * np.pi)
+    >>> value.round(12).tolist(), at.round(6).tolist()
+    ([1.0, 1.0], [1.0, 2.0])
+    """
     theta = np.asarray(theta, dtype=float)
     values = np.asarray(values, dtype=float)
-    i = int(np.argmax(values))
-    best, at = float(values[i]), float(theta[i])
+    rows = np.arange(values.shape[0])
+    i = np.argmax(values, axis=1)
+    best, at = values[rows, i], theta[i]
     h = float(np.max(np.diff(theta))) if theta.size > 1 else period
     for _ in range(passes):
-        local = at + np.linspace(-h, h, points)
+        local = at[:, None] + np.linspace(-h, h, points)[None, :]
         sampled = np.asarray(f(local), dtype=float)
-        j = int(np.argmax(sampled))
-        if sampled[j] > best:
-            best, at = float(sampled[j]), float(local[j])
+        j = np.argmax(sampled, axis=1)
+        top = sampled[rows, j]
+        better = top > best
+        best = np.where(better, top, best)
+        at = np.where(better, local[rows, j], at)
         h = 2.0 * h / (points - 1)
-    return best, float(np.mod(at, period))
+    return best, np.mod(at, period)
 
 
 def reuse_train(
@@ -686,6 +815,7 @@ def engine_forces(
     cylinder: int = 1,
     step: float = math.radians(1.0),
     pressure: PressureTrace | None = None,
+    train: CrankTrain | None = None,
 ) -> ForcesResult:
     """Forces of cylinder ``cylinder`` (1-based, numbered from the free end) over the cycle.
 
@@ -703,6 +833,11 @@ def engine_forces(
         Angle step of the default grid (rad); it must divide the cycle. Default 1 deg.
     pressure : PressureTrace or None
         Pressure trace; default the engine's own or its synthetic model.
+    train : CrankTrain or None
+        The crank train of this engine at this speed and pressure at exactly these angles, when
+        already computed (e.g. shared with :func:`crankdyn.engine.torque.engine_torque` and
+        :func:`crankdyn.engine.bearings.engine_bearings`, which then share its summary grid and
+        warnings too); default: evaluated here.
 
     Returns
     -------
@@ -739,7 +874,7 @@ def engine_forces(
             f"the engine has cylinders 1 to {cyl.count}", key="cylinder", value=cylinder
         )
     theta = cycle_grid(engine, step) if angles is None else np.asarray(angles, dtype=float)
-    train = crank_train(engine, speed, theta, pressure=pressure)
+    train = reuse_train(train, engine, speed, theta, pressure)
     summary = _force_summary(engine, train, cylinder, pressure, full=angles is None)
     i = cylinder - 1
     g = engine.geometry
@@ -754,9 +889,16 @@ def engine_forces(
     error = None
     couple = None
     if m.inertia_error is not None:
-        motion = slider_crank_exact(phi, r, g.rod_length, g.offset, w)
-        error = -m.inertia_error * motion.rod_angular_velocity * motion.rod_angular_acceleration / w
-        couple = float(m.inertia_error * np.max(np.abs(motion.rod_angular_acceleration)))
+        if train.motion is not None:  # the crank train's kinematics: the same numbers
+            w_rod, e_rod = (
+                train.motion.rod_angular_velocity[i],
+                train.motion.rod_angular_acceleration[i],
+            )
+        else:
+            motion = slider_crank_exact(phi, r, g.rod_length, g.offset, w)
+            w_rod, e_rod = motion.rod_angular_velocity, motion.rod_angular_acceleration
+        error = -m.inertia_error * w_rod * e_rod / w
+        couple = float(m.inertia_error * np.max(np.abs(e_rod)))
     if not m.pin_mass_known:
         notes.append(
             "rod big-end mass unknown (give [masses] rod and rod_cg_from_big_end): the crank-pin "
@@ -799,7 +941,7 @@ def engine_forces(
         max_rod_couple_error=couple,
         pressure_source=train.trace.source or "",
         notes=tuple(notes) or None,
-        warnings=engine_warnings(engine, train.speed, train.trace),
+        warnings=train.warnings(),
     )
 
 
@@ -814,40 +956,28 @@ def _force_summary(
     """The summary figures of one cylinder's forces over the whole cycle (on the summary grid,
     the maxima refined), whatever grid ``train`` holds."""
     if not (full and np.allclose(np.diff(train.theta), SUMMARY_STEP, rtol=0.0, atol=1e-12)):
-        train = crank_train(
-            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=pressure
-        )
+        train = train.summary_train()
     i = cylinder - 1
     t = engine.cylinders.throws[i] - 1
-    period = engine.cycle_angle
+    names = ("gas", "side", "rod", "tension", "pin")
 
-    def quantity(name: str) -> Callable[[NDArray[np.float64]], Any]:
-        def f(theta: NDArray[np.float64]) -> Any:
-            local = crank_train(engine, train.speed, np.asarray(theta), pressure=train.trace)
-            if name == "pin":
-                tp, zp = local.pin_loads()
-                return np.hypot(tp[t], zp[t])
-            if name == "side":
-                return np.abs(local.side[i])
-            if name == "tension":
-                return -local.rod[i]
-            return getattr(local, name)[i]
+    def quantities(local: CrankTrain) -> NDArray[np.float64]:
+        """Every summary quantity of the cylinder (rows in the order of ``names``)."""
+        tp, zp = local.pin_loads()
+        rod = local.rod[i]
+        return np.vstack([local.gas[i], np.abs(local.side[i]), rod, -rod, np.hypot(tp[t], zp[t])])
 
-        return f
+    def f(angles: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Quantity k at row k's angles: one crank train over every row's samples."""
+        local = crank_train(engine, train.speed, angles.reshape(-1), pressure=train.trace)
+        count, samples = angles.shape
+        every = quantities(local).reshape(count, count, samples)
+        return every[np.arange(count), np.arange(count)]
 
-    t_pin, z_pin = train.pin_loads()
-    pin = np.hypot(t_pin[t], z_pin[t])
-    grid = {
-        "gas": train.gas[i],
-        "side": np.abs(train.side[i]),
-        "rod": train.rod[i],
-        "tension": -train.rod[i],
-        "pin": pin,
-    }
-    peak = {
-        name: refined_extremum(quantity(name), train.theta, values, period=period)[0]
-        for name, values in grid.items()
-    }
+    grid = quantities(train)
+    pin = grid[4]
+    peaks = refined_extrema(f, train.theta, grid, period=engine.cycle_angle)[0]
+    peak = {name: float(value) for name, value in zip(names, peaks, strict=True)}
     return {
         "max_gas_force": peak["gas"],
         "max_side_force": peak["side"],

@@ -483,7 +483,12 @@ class Analysis:
         def compute(h: float) -> ForcesResult:
             return engine_forces(engine, self.speed, cylinder=cylinder, step=h)
 
-        full = self._cached(("forces", cylinder), lambda: compute(self.step))
+        full = self._cached(
+            ("forces", cylinder),
+            lambda: engine_forces(
+                engine, self.speed, cylinder=cylinder, step=self.step, train=self._train()
+            ),
+        )
         return self._rows(step, ("forces", cylinder), full, lambda: compute(cast(float, step)))
 
     def bearings(self, *, step: float | None = None) -> BearingsResult:

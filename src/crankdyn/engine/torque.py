@@ -21,7 +21,6 @@ power (seed 000 sections 2.2-2.3).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -36,9 +35,9 @@ from crankdyn.engine.forces import (
     CrankTrain,
     crank_train,
     cycle_grid,
-    engine_warnings,
-    refined_extremum,
+    refined_extrema,
     reuse_train,
+    throw_sums,
 )
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
@@ -66,27 +65,23 @@ def _mean_torque(engine: Engine, train: CrankTrain) -> float:
 
 def _torque_extrema(engine: Engine, train: CrankTrain) -> tuple[float, float]:
     """(max, min) of the total torque over the whole cycle: on the summary grid, refined
-    (:func:`crankdyn.engine.forces.refined_extremum`), whatever grid the rows use."""
+    (:func:`crankdyn.engine.forces.refined_extrema`), whatever grid the rows use."""
     r = engine.geometry.crank_radius
     if not (
         train.theta.size > 1 and np.allclose(np.diff(train.theta), SUMMARY_STEP, atol=1e-12, rtol=0)
     ):
-        train = crank_train(
-            engine, train.speed, cycle_grid(engine, SUMMARY_STEP), pressure=train.trace
-        )
+        train = train.summary_train()  # shared with the bearing loads of the same train
     total = train.tangential.sum(axis=0) * r
+    sign = np.array([[1.0], [-1.0]])  # the largest torque, and the largest of its negative
 
-    def f(sign: float) -> Callable[[NDArray[np.float64]], NDArray[np.float64]]:
-        return lambda th: (
-            sign
-            * crank_train(engine, train.speed, np.asarray(th), pressure=train.trace).tangential.sum(
-                axis=0
-            )
-            * r
-        )
+    def f(angles: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Row 0 the total torque at row 0's angles, row 1 its negative at row 1's."""
+        local = crank_train(engine, train.speed, angles.reshape(-1), pressure=train.trace)
+        both = local.tangential.sum(axis=0) * r
+        return sign * both.reshape(angles.shape)
 
-    top = refined_extremum(f(1.0), train.theta, total, period=engine.cycle_angle)[0]
-    low = -refined_extremum(f(-1.0), train.theta, -total, period=engine.cycle_angle)[0]
+    peaks = refined_extrema(f, train.theta, sign * total, period=engine.cycle_angle)[0]
+    top, low = float(peaks[0]), -float(peaks[1])
     return top, low
 
 
@@ -262,9 +257,7 @@ def engine_torque(
     r = engine.geometry.crank_radius
     cyl = engine.cylinders
     per_cylinder = train.tangential * r
-    index = np.asarray(cyl.throws) - 1
-    throw_torque = np.zeros((cyl.throw_count, theta.size))
-    np.add.at(throw_torque, index, per_cylinder)
+    throw_torque = throw_sums(per_cylinder, cyl.throws, cyl.throw_count)
     journal, pin = journal_torques(throw_torque)
     total = per_cylinder.sum(axis=0)
     mean = _mean_torque(engine, train)
@@ -301,7 +294,7 @@ def engine_torque(
         notes=tuple(notes) or None,
         cycle_angle=engine.cycle_angle,
         throws=tuple(cyl.throws),
-        warnings=engine_warnings(engine, train.speed, train.trace),
+        warnings=train.warnings(),
     )
 
 

@@ -44,6 +44,29 @@ def _render(index: int) -> bytes:
     return png
 
 
+def _render_part(index: int, part: str) -> bytes | None:
+    """One part of figure ``index`` of :data:`_JOBS`, in a worker of its own: ``"png"`` its
+    PNG (bytes returned, and written when a path is given); ``"svg"`` its SVG, laid out first
+    as the PNG's draw lays it out (the layout engine run at :data:`PNG_DPI` on the same kind of
+    renderer, without drawing: the same layout to the last digit of the file, which the tests
+    check), then kept."""
+    figure, png_path, svg_path = _JOBS[index]
+    if part == "png":
+        buffer = io.BytesIO()
+        figure.savefig(buffer, format="png", dpi=PNG_DPI)
+        png = buffer.getvalue()
+        if png_path is not None:
+            Path(png_path).write_bytes(png)
+        return png
+    dpi = figure.dpi
+    figure.set_dpi(PNG_DPI)
+    figure.draw_without_rendering()
+    figure.set_dpi(dpi)
+    figure.set_layout_engine("none")
+    figure.savefig(svg_path, format="svg")
+    return None
+
+
 def _fresh_streams() -> None:
     """A worker's own standard output and error objects on the same files: a lock that a
     thread of the parent (a progress display) held at the fork is not inherited held."""
@@ -117,21 +140,40 @@ def render_figures(
     """
     global _JOBS
     jobs = list(jobs)
-    n = workers_for(len(jobs)) if workers is None else max(1, min(workers, len(jobs)))
+    # fewer figures than cores (a study's summary: one figure): each figure's PNG and SVG are
+    # drawn by workers of their own, the SVG's worker laying the figure out again
+    parts = sum(1 for job in jobs if job[2] is not None)
+    split = workers is None and len(jobs) < workers_for(len(jobs) + parts) and _can_fork()
+    if split:
+        n = workers_for(len(jobs) + parts)
+    else:
+        n = workers_for(len(jobs)) if workers is None else max(1, min(workers, len(jobs)))
     if n > 1 and _can_fork():
-        from concurrent.futures import ProcessPoolExecutor, as_completed
+        from concurrent.futures import Future, ProcessPoolExecutor, as_completed
 
         _JOBS = jobs
         pool = ProcessPoolExecutor(
             n, mp_context=multiprocessing.get_context("fork"), initializer=_fresh_streams
         )
         try:
-            futures = {pool.submit(_render, i): i for i in range(len(jobs))}
+            futures: dict[Future[bytes | None], int] = {}
+            left = [1] * len(jobs)  # parts of each figure still rendering
+            for i, job in enumerate(jobs):
+                if split:
+                    futures[pool.submit(_render_part, i, "png")] = i
+                    if job[2] is not None:
+                        futures[pool.submit(_render_part, i, "svg")] = i
+                        left[i] += 1
+                else:
+                    futures[pool.submit(_render, i)] = i
             out: list[bytes | None] = [None] * len(jobs)
             for future in as_completed(futures):
                 i = futures[future]
-                out[i] = future.result()
-                if progress is not None:
+                png = future.result()
+                if png is not None:
+                    out[i] = png
+                left[i] -= 1
+                if progress is not None and left[i] == 0:
                     progress(i)
             return [png for png in out if png is not None]
         finally:
