@@ -12,81 +12,6 @@ $(BIN)/python:
 
 LINTED := src tests bench docs/examples docs/conf.py docs/_ext setup.py notebooks
 
-# The modules held to mypy in `make test` (a ratchet: issue 21's typing waves extend it until it
-# is the whole package; `make typecheck` shows what the rest still lacks). Errors in the modules
-# they import but that are not listed here are not reported (--follow-imports=silent).
-TYPED := \
-	src/crankdyn/__main__.py \
-	src/crankdyn/cli/__init__.py \
-	src/crankdyn/cli/analyze.py \
-	src/crankdyn/cli/balance.py \
-	src/crankdyn/cli/common.py \
-	src/crankdyn/cli/docs.py \
-	src/crankdyn/cli/examples.py \
-	src/crankdyn/cli/forces.py \
-	src/crankdyn/cli/kinematics.py \
-	src/crankdyn/cli/linkage.py \
-	src/crankdyn/cli/measure.py \
-	src/crankdyn/cli/study.py \
-	src/crankdyn/cli/torsion.py \
-	src/crankdyn/cli/torsion_response.py \
-	src/crankdyn/cli/tvc.py \
-	src/crankdyn/cli/writer.py \
-	src/crankdyn/constants.py \
-	src/crankdyn/crank \
-	src/crankdyn/display.py \
-	src/crankdyn/docs \
-	src/crankdyn/engine/__init__.py \
-	src/crankdyn/engine/balance.py \
-	src/crankdyn/engine/bearings.py \
-	src/crankdyn/engine/firing.py \
-	src/crankdyn/engine/firing_search.py \
-	src/crankdyn/engine/flywheel.py \
-	src/crankdyn/engine/forces.py \
-	src/crankdyn/engine/model.py \
-	src/crankdyn/engine/session.py \
-	src/crankdyn/engine/torque.py \
-	src/crankdyn/errors.py \
-	src/crankdyn/extras.py \
-	src/crankdyn/io \
-	src/crankdyn/linkage \
-	src/crankdyn/measure \
-	src/crankdyn/plausibility.py \
-	src/crankdyn/plots \
-	src/crankdyn/report \
-	src/crankdyn/results.py \
-	src/crankdyn/study \
-	src/crankdyn/torsion/__init__.py \
-	src/crankdyn/torsion/campbell.py \
-	src/crankdyn/torsion/closed_form.py \
-	src/crankdyn/torsion/coupling.py \
-	src/crankdyn/torsion/damped.py \
-	src/crankdyn/torsion/dampers.py \
-	src/crankdyn/torsion/distributed.py \
-	src/crankdyn/torsion/driveline.py \
-	src/crankdyn/torsion/equivalent.py \
-	src/crankdyn/torsion/excitation.py \
-	src/crankdyn/torsion/holzer.py \
-	src/crankdyn/torsion/loaded.py \
-	src/crankdyn/torsion/modal.py \
-	src/crankdyn/torsion/model.py \
-	src/crankdyn/torsion/opentorsion.py \
-	src/crankdyn/torsion/resolve.py \
-	src/crankdyn/torsion/response.py \
-	src/crankdyn/torsion/roots.py \
-	src/crankdyn/torsion/rules.py \
-	src/crankdyn/torsion/sources.py \
-	src/crankdyn/torsion/synthesis.py \
-	src/crankdyn/torsion/transfer.py \
-	src/crankdyn/torsion/transient.py \
-	src/crankdyn/torsion/tridiagonal.py \
-	src/crankdyn/tvc/__init__.py \
-	src/crankdyn/tvc/analysis.py \
-	src/crankdyn/tvc/curves.py \
-	src/crankdyn/tvc/limits.py \
-	src/crankdyn/tvc/result.py \
-	src/crankdyn/tvc/spec.py
-
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
 	$(BIN)/python -m pip install -q -e .
 	@touch $@
@@ -99,14 +24,14 @@ $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
 demo: $(VENV)/.stamp-base
 	$(BIN)/crankdyn demo -o $(OUT) --force
 
-## make test: install with test extras (studies, docs tools), lint, type-check the TYPED modules,
+## make test: install with test extras (studies, docs tools), lint, type-check the package,
 ## run the whole suite (with the docstring examples of the modules in pyproject's testpaths; it
 ## builds the documentation site with warnings as errors and opens it in a headless browser)
 test: $(VENV)/.stamp-test
 	@bash scripts/install-browser.sh
 	$(BIN)/ruff check $(LINTED)
 	$(BIN)/ruff format --check $(LINTED)
-	$(BIN)/mypy --follow-imports=silent $(TYPED)
+	$(BIN)/mypy
 	$(BIN)/python -m pytest -n 2 -q
 
 ## make docs: the documentation site in docs/_build/html (user guide, theory, command and API
@@ -115,8 +40,7 @@ docs: $(VENV)/.stamp-test
 	$(BIN)/python -m sphinx -W --keep-going -q -b html -d docs/_build/doctrees docs docs/_build/html
 	@echo "docs: open docs/_build/html/index.html (or: crankdyn docs --html)"
 
-## make typecheck: mypy on the whole package (configuration in pyproject.toml; make test checks
-## the TYPED modules)
+## make typecheck: mypy on the whole package (configuration in pyproject.toml), as make test runs it
 typecheck: $(VENV)/.stamp-test
 	$(BIN)/mypy
 

@@ -413,7 +413,8 @@ def _mode_list(text: str | None) -> list[int] | None:
     "--max-frequency",
     default=None,
     metavar="HZ",
-    help="Upper end of the plotted curve (default: 1.15 x the highest natural frequency).",
+    help="Upper end of the plotted curve (Hz for a bare number, or with a unit; default: 1.15 x "
+    "the highest natural frequency).",
 )
 @output_options
 def holzer_command(
