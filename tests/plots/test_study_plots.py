@@ -54,3 +54,34 @@ def test_distributions():
     assert fig.axes[0].get_xlabel() == "Max load (kN)"
     assert fig.axes[0].get_ylabel() == "cases"
     assert _png(fig).startswith(b"\x89PNG")
+
+
+def test_sensitivity_fixed_layout_keeps_labels_inside():
+    """The grid is laid out once (no layout engine): every label inside the figure, no two
+    panels' labels over each other, the panels the same size."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    a = np.repeat([0.22, 0.24, 0.26], 4)
+    order = np.array(["[1, 3, 4, 2]", "[1, 2, 4, 3]"] * 6, dtype=object)
+    fig = plot_sensitivity(
+        [
+            Series("Max main-bearing load (largest of the bearings)", "kN", 15.8 + a),
+            Series("Max piston acceleration |a|", "m/s²", 14900.0 + 1e4 * a),
+        ],
+        [Series("geometry.rod_ratio", "", a), Series("firing_order", "", order, numeric=False)],
+    )
+    assert fig.get_layout_engine() is None
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    page = fig.bbox
+    boxes = [ax.get_tightbbox(renderer) for ax in fig.axes]
+    for box in boxes:
+        assert page.x0 <= box.x0 and box.x1 <= page.x1 and page.y0 <= box.y0 and box.y1 <= page.y1
+    for i, one in enumerate(boxes):
+        for other in boxes[i + 1 :]:
+            assert not one.overlaps(other)
+    sizes = {
+        (round(ax.get_position().width, 9), round(ax.get_position().height, 9)) for ax in fig.axes
+    }
+    assert len(sizes) == 1
+    title = fig._suptitle.get_window_extent(renderer)
+    assert title.y1 <= page.y1 and all(title.y0 >= box.y1 for box in boxes[:2])

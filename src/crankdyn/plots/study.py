@@ -10,11 +10,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from matplotlib.ticker import MaxNLocator
 
-from crankdyn.plots.style import COLORS, new_figure
+from crankdyn.plots.style import COLORS, new_figure, plain_text
+from crankdyn.plots.style import Figure as _Figure
 from crankdyn.study.sensitivity import main_effect, negligible_spread, spearman
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.backend_bases import RendererBase
     from matplotlib.figure import Figure
 
 __all__ = ["Series", "plot_distributions", "plot_sensitivity"]
@@ -149,12 +151,14 @@ def plot_sensitivity(
         The figure.
     """
     nrows, ncols = len(figures), len(parameters)
+    width, height = min(3.3 * ncols + 0.9, 16.0), 2.3 * nrows + 0.8
+    fixed = fig is None
     fig, axes = new_figure(
         nrows,
         ncols,
-        width=min(3.3 * ncols + 0.9, 16.0),
-        height=2.3 * nrows + 0.8,
-        fig=fig,
+        width=width,
+        height=height,
+        fig=_Figure(figsize=(width, height)) if fixed else fig,
         sharex="col",
         sharey="row",
     )
@@ -177,7 +181,115 @@ def plot_sensitivity(
             pad = 0.01 * abs(middle) or 1.0
             axes[i, 0].set_ylim(middle - pad, middle + pad)
     fig.suptitle("Sensitivity of the figures to the parameters")
+    if fixed:
+        grid_layout(fig, axes)
     return fig
+
+
+LAYOUT_PAD = 4 / 72
+"""Space around and between the panels of a fixed grid layout (inches)."""
+
+
+def _outer_extents(
+    axes: np.ndarray, renderer: RendererBase, dpi: float
+) -> dict[tuple[int, int], tuple[float, float, float, float]]:
+    """How far the outer panels' axis labels reach beyond their frames (inches: left, right,
+    below, above): the y axes of the first column and the x axes of the bottom row, where a
+    grid whose rows share y and columns share x shows its tick labels and axis labels (inner
+    panels show tick marks only, which :data:`LAYOUT_PAD` covers)."""
+    nrows, ncols = axes.shape
+    reach: dict[tuple[int, int], tuple[float, float, float, float]] = {}
+    for key, axis in [((i, 0), axes[i, 0].yaxis) for i in range(nrows)] + [
+        ((nrows - 1, j), axes[nrows - 1, j].xaxis) for j in range(ncols)
+    ]:
+        frame = axis.axes.get_window_extent(renderer)
+        tight = axis.get_tightbbox(renderer)
+        mine = (
+            (0.0, 0.0, 0.0, 0.0)
+            if tight is None
+            else (
+                max(0.0, frame.x0 - tight.x0) / dpi,
+                max(0.0, tight.x1 - frame.x1) / dpi,
+                max(0.0, frame.y0 - tight.y0) / dpi,
+                max(0.0, tight.y1 - frame.y1) / dpi,
+            )
+        )
+        before = reach.get(key, (0.0, 0.0, 0.0, 0.0))
+        reach[key] = (
+            max(before[0], mine[0]),
+            max(before[1], mine[1]),
+            max(before[2], mine[2]),
+            max(before[3], mine[3]),
+        )
+    return reach
+
+
+def grid_layout(fig: Figure, axes: np.ndarray, passes: int = 2) -> None:
+    """Lay out a grid of panels whose rows share y and columns share x once, as a fixed
+    layout: the margins and gaps measured from the outer panels' labels (the first column's
+    y labels, the bottom row's x labels, the suptitle), every panel the same size. Constrained
+    layout finds the same kind of grid by measuring every panel twice at every draw (most of a
+    large grid's drawing time, paid again for its SVG); this measures the outer ones, at the
+    PNG's resolution, ``passes`` times (the tick labels may change with the panels' size).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure without a layout engine, holding ``axes`` and perhaps a suptitle.
+    axes : numpy.ndarray
+        (rows, columns) array of its Axes, made by ``fig.subplots``.
+    passes : int
+        Measurements (>= 1).
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from crankdyn.plots.render import PNG_DPI
+
+    plain_text(fig)  # measured as drawn
+    dpi, canvas = fig.get_dpi(), fig.canvas
+    fig.set_dpi(PNG_DPI)
+    renderer = FigureCanvasAgg(fig).get_renderer()
+    width, height = fig.get_size_inches()
+    nrows, ncols = axes.shape
+    pad = LAYOUT_PAD
+    title = getattr(fig, "_suptitle", None)  # the figure's suptitle, when it has one
+    title_height = 0.0
+    if title is not None:
+        extent = title.get_window_extent(renderer)
+        title_height = extent.height / PNG_DPI
+        title.set_y(1.0 - pad / height)
+        title.set_verticalalignment("top")
+    try:
+        for _ in range(max(1, passes)):
+            reach = _outer_extents(axes, renderer, PNG_DPI)
+            left = max(reach[i, 0][0] for i in range(nrows)) + pad
+            right = reach[nrows - 1, ncols - 1][1] + pad
+            bottom = max(reach[nrows - 1, j][2] for j in range(ncols)) + pad
+            top = reach[0, 0][3] + pad
+            if title_height:
+                top += title_height + pad
+            wgap = pad + max(
+                (reach[nrows - 1, j][1] + reach[nrows - 1, j + 1][0] for j in range(ncols - 1)),
+                default=0.0,
+            )
+            hgap = pad + max(
+                (reach[i, 0][2] + reach[i + 1, 0][3] for i in range(nrows - 1)), default=0.0
+            )
+            panel_w = (width - left - right - (ncols - 1) * wgap) / ncols
+            panel_h = (height - top - bottom - (nrows - 1) * hgap) / nrows
+            if panel_w <= 0 or panel_h <= 0:  # labels larger than the figure: leave as made
+                return
+            fig.subplots_adjust(
+                left=left / width,
+                right=1.0 - right / width,
+                bottom=bottom / height,
+                top=1.0 - top / height,
+                wspace=wgap / panel_w,
+                hspace=hgap / panel_h,
+            )
+    finally:
+        fig.set_dpi(dpi)
+        fig.set_canvas(canvas)
 
 
 def _wrap(text: str, width: int = 26) -> str:
