@@ -44,7 +44,15 @@ if TYPE_CHECKING:
 
     from crankdyn.report.model import Report
 
-__all__ = ["CaseTable", "TableColumn", "read_table", "write_outputs"]
+__all__ = [
+    "SUMMARY_MODULES",
+    "WRITING_MODULES",
+    "CaseTable",
+    "TableColumn",
+    "import_writers",
+    "read_table",
+    "write_outputs",
+]
 
 BEST_ROWS = 5
 """Rows of each best-cases table of the summary."""
@@ -326,6 +334,42 @@ def read_table(path: str | Path) -> pa.Table:
 
 
 # ---- writing -------------------------------------------------------------------------------------
+
+WRITING_MODULES = ("pyarrow.parquet", "crankdyn.study.sensitivity")
+"""Modules :func:`write_outputs` imports for the tables (Parquet) and the best cases."""
+SUMMARY_MODULES = (
+    "crankdyn.plots.study",
+    "crankdyn.report.model",
+    "crankdyn.report.html",
+    "crankdyn.report.write",
+    "crankdyn.plots.render",
+    "matplotlib.backends.backend_agg",
+    "matplotlib.backends.backend_svg",
+    "PIL.PngImagePlugin",
+)
+"""Modules it imports for the HTML summary: matplotlib (about half a second), the report, the
+PNG and SVG writers (imported here, the forked workers that render the plots inherit them)."""
+
+
+def import_writers(summary: bool = True) -> None:
+    """Import what :func:`write_outputs` will need, ahead of it: the runner calls this while
+    the local pool's or the cluster's workers run the first cases and this process waits
+    (the imports take a core that would otherwise idle before the summary is built, instead
+    of a second of its own after the cases). A module that fails to import is left for
+    :func:`write_outputs` to report.
+
+    Parameters
+    ----------
+    summary : bool
+        Also the summary's modules (matplotlib, the report); default True.
+    """
+    import importlib
+
+    for name in WRITING_MODULES + (SUMMARY_MODULES if summary else ()):
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            return
 
 
 def write_outputs(

@@ -511,8 +511,11 @@ def _drive(
     records: dict[str, dict[str, Any]],
     progress: Progress | None,
     count: list[int],
+    meanwhile: Callable[[], None] | None = None,
 ) -> None:
-    """Hand out the cases, record each as it finishes (``count[0]`` counts them)."""
+    """Hand out the cases, record each as it finishes (``count[0]`` counts them);
+    ``meanwhile()`` runs once the first cases are handed to workers of their own (not in this
+    process), before the first is waited for."""
     queue = iter(todo)
     pending: set[Any] = set()
     owner: dict[Any, Case] = {}
@@ -527,6 +530,8 @@ def _drive(
             pending.add(future)
 
     fill()
+    if meanwhile is not None and not isinstance(executor, _InProcess):
+        meanwhile()
     while pending:
         done, pending = executor.wait(pending)
         for future in done:
@@ -589,7 +594,7 @@ def run_study(
         are wrong or unreachable, or a worker process died (the finished cases are kept).
     """
     require("studies", "pyarrow", *(("distributed",) if scheduler else ()))
-    from crankdyn.study.run.results import CaseTable, write_outputs
+    from crankdyn.study.run.results import CaseTable, import_writers, write_outputs
 
     cases = expand(spec)
     info = {
@@ -630,7 +635,15 @@ def run_study(
                 on_start(len(todo), skipped, description)
             journal = Journal(folder.journal_path)
             try:
-                _drive(executor, todo, journal, records, progress, count)
+                _drive(
+                    executor,
+                    todo,
+                    journal,
+                    records,
+                    progress,
+                    count,
+                    meanwhile=lambda: import_writers(summary),
+                )
             except KeyboardInterrupt:
                 interrupted = True
             except _PoolBroken as exc:
