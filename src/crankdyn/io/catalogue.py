@@ -20,7 +20,6 @@ from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.engine_file import load_engine, parse_engine, parse_model_file
 from crankdyn.io.examples import EXAMPLE_KINDS, example_kind, example_names, example_path
 from crankdyn.io.files import display_name, load_toml
-from crankdyn.io.linkage_file import load_linkage, parse_linkage
 
 if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
@@ -83,6 +82,8 @@ def load_example(name: str, kind: str | None = None) -> Any:
     if found == "model":
         return parse_model_file(data, file=source, base_dir=path.parent)
     if found == "linkage":
+        from crankdyn.io.linkage_file import parse_linkage  # the linkage solvers: on demand
+
         return parse_linkage(data, file=source)
     from crankdyn.io.study_file import parse_study  # scipy and the study registry: on demand
 
@@ -261,6 +262,8 @@ def resolve_linkage(spec: str) -> Mechanism:
         For neither a file nor a built-in linkage, or any error of the linkage file.
     """
     if _looks_like_path(spec):
+        from crankdyn.io.linkage_file import load_linkage
+
         return load_linkage(Path(spec))
     if example_kind(spec) == "linkage":
         return load_example(spec, "linkage")
