@@ -44,7 +44,13 @@ from crankdyn.results import Result, scalar
 from crankdyn.study.cases import Case, expand
 from crankdyn.study.figures import FIGURES
 from crankdyn.study.run.journal import Journal, StudyFolder
-from crankdyn.study.run.worker import Payload, evaluate_case, prepare_worker, warm_up
+from crankdyn.study.run.worker import (
+    Payload,
+    evaluate_case,
+    import_analyses,
+    prepare_worker,
+    warm_up,
+)
 from crankdyn.study.spec import StudySpec
 
 __all__ = [
@@ -217,6 +223,8 @@ class _LocalPool:
         self.capacity = 2 * workers
         self.description = f"local pool of {workers} processes"
         method = start_method()
+        if method == "fork":  # the workers inherit the analyses instead of importing them each
+            import_analyses()
         self.pool = cf.ProcessPoolExecutor(
             max_workers=workers,
             mp_context=_mp_context(method),
