@@ -5,7 +5,5 @@ second and more of work that every worker would otherwise repeat)."""
 from __future__ import annotations
 
 from crankdyn.io.units import registry
-from crankdyn.study.run.worker import import_analyses
 
 registry()
-import_analyses()

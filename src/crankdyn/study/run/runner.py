@@ -45,6 +45,7 @@ from crankdyn.study.cases import Case, expand
 from crankdyn.study.figures import FIGURES
 from crankdyn.study.run.journal import Journal, StudyFolder
 from crankdyn.study.run.worker import (
+    ANALYSIS_MODULES,
     Payload,
     evaluate_case,
     import_analyses,
@@ -213,7 +214,8 @@ def start_method() -> str:
 def _mp_context(method: str) -> Any:
     ctx = multiprocessing.get_context(method)
     if method == "forkserver":
-        ctx.set_forkserver_preload(["crankdyn.study.run.preload"])  # ignored once the server runs
+        # ignored once the server runs
+        ctx.set_forkserver_preload(["crankdyn.study.run.preload", *ANALYSIS_MODULES])
     return ctx
 
 

@@ -99,6 +99,8 @@ def warm_up() -> str:
         The crankdyn version, checked against the client's.
     """
     import crankdyn.study.run.preload  # noqa: F401
+
+    import_analyses()
     from crankdyn import __version__
 
     return __version__
