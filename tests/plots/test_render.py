@@ -63,3 +63,15 @@ def test_one_figure_drawn_as_png_and_svg_by_two_workers_is_what_one_process_writ
     assert (two / "f.png").read_bytes() == serial[0]
     svg = [_without_ids((d / "f.svg").read_text(encoding="utf-8")) for d in (one, two)]
     assert svg[0] == svg[1]
+
+
+def test_the_svg_writes_its_words_as_text_in_a_font_stack(tmp_path):
+    """The SVG's words are text (searchable, escaped), not glyph outlines; the PNG is a PNG."""
+    fig = _figures(1)[0]
+    fig.axes[0].set_xlabel("Crank angle <&> (deg)")
+    (png,) = render_figures([(fig, None, tmp_path / "f.svg")], workers=1)
+    svg = (tmp_path / "f.svg").read_text(encoding="utf-8")
+    assert png.startswith(b"\x89PNG")
+    assert "Crank angle &lt;&amp;&gt; (deg)</text>" in svg and "figure 0</text>" in svg
+    assert "font-family: 'DejaVu Sans'" in svg and "sans-serif" in svg
+    assert "DejaVuSans-" not in svg  # no glyph definitions

@@ -25,6 +25,32 @@ __all__ = ["PNG_DPI", "render_figures", "workers_for"]
 PNG_DPI = 110
 """Resolution of the PNG files (dots per inch)."""
 
+PNG_COMPRESSION = 1
+"""zlib level of the PNG files: the fastest (level 6, Pillow's default, took about twice as long
+for files 5-25 % smaller)."""
+
+SVG_RC = {"svg.fonttype": "none"}
+"""The SVG's words written as text in the figure's font stack (``'DejaVu Sans', ..., 'Arial',
+'Helvetica', ..., sans-serif``) rather than as glyph outlines: smaller files, drawn faster, and
+the words searchable and selectable."""
+
+
+def _png(figure: Any) -> bytes:
+    """The PNG file of ``figure`` at :data:`PNG_DPI`."""
+    buffer = io.BytesIO()
+    figure.savefig(
+        buffer, format="png", dpi=PNG_DPI, pil_kwargs={"compress_level": PNG_COMPRESSION}
+    )
+    return buffer.getvalue()
+
+
+def _svg(figure: Any, path: str | Path) -> None:
+    """Write the SVG file of ``figure`` (its words as text, :data:`SVG_RC`)."""
+    import matplotlib
+
+    with matplotlib.rc_context(SVG_RC):
+        figure.savefig(path, format="svg")
+
 # (figure, png path or None, svg path or None) of the pool's figures
 _JOBS: Sequence[tuple[Any, str | Path | None, str | Path | None]] = ()
 
@@ -33,14 +59,12 @@ def _render(index: int) -> bytes:
     """Draw figure ``index`` of :data:`_JOBS`: its PNG (bytes returned, and written when a path
     is given), then its SVG with the PNG's layout."""
     figure, png_path, svg_path = _JOBS[index]
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=PNG_DPI)
-    png = buffer.getvalue()
+    png = _png(figure)
     if png_path is not None:
         Path(png_path).write_bytes(png)
     if svg_path is not None:
         figure.set_layout_engine("none")  # keep the layout the PNG's draw computed
-        figure.savefig(svg_path, format="svg")
+        _svg(figure, svg_path)
     return png
 
 
@@ -52,9 +76,7 @@ def _render_part(index: int, part: str) -> bytes | None:
     check), then kept."""
     figure, png_path, svg_path = _JOBS[index]
     if part == "png":
-        buffer = io.BytesIO()
-        figure.savefig(buffer, format="png", dpi=PNG_DPI)
-        png = buffer.getvalue()
+        png = _png(figure)
         if png_path is not None:
             Path(png_path).write_bytes(png)
         return png
@@ -63,7 +85,7 @@ def _render_part(index: int, part: str) -> bytes | None:
     figure.draw_without_rendering()
     figure.set_dpi(dpi)
     figure.set_layout_engine("none")
-    figure.savefig(svg_path, format="svg")
+    _svg(figure, svg_path)
     return None
 
 
