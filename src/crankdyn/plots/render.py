@@ -29,11 +29,6 @@ PNG_COMPRESSION = 1
 """zlib level of the PNG files: the fastest (level 6, Pillow's default, took about twice as long
 for files 5-25 % smaller)."""
 
-SVG_RC = {"svg.fonttype": "none"}
-"""The SVG's words written as text in the figure's font stack (``'DejaVu Sans', ..., 'Arial',
-'Helvetica', ..., sans-serif``) rather than as glyph outlines: smaller files, drawn faster, and
-the words searchable and selectable."""
-
 
 def _png(figure: Any) -> bytes:
     """The PNG file of ``figure`` at :data:`PNG_DPI`."""
@@ -45,11 +40,14 @@ def _png(figure: Any) -> bytes:
 
 
 def _svg(figure: Any, path: str | Path) -> None:
-    """Write the SVG file of ``figure`` (its words as text, :data:`SVG_RC`)."""
+    """Write the SVG file of ``figure``, its words written as text in the figure's font stack
+    (``'DejaVu Sans', ..., 'Arial', 'Helvetica', ..., sans-serif``) rather than as glyph
+    outlines: smaller files, the words searchable and selectable."""
     import matplotlib
 
-    with matplotlib.rc_context(SVG_RC):
+    with matplotlib.rc_context({"svg.fonttype": "none"}):
         figure.savefig(path, format="svg")
+
 
 # (figure, png path or None, svg path or None) of the pool's figures
 _JOBS: Sequence[tuple[Any, str | Path | None, str | Path | None]] = ()
@@ -80,11 +78,13 @@ def _render_part(index: int, part: str) -> bytes | None:
         if png_path is not None:
             Path(png_path).write_bytes(png)
         return png
-    dpi = figure.dpi
-    figure.set_dpi(PNG_DPI)
-    figure.draw_without_rendering()
-    figure.set_dpi(dpi)
-    figure.set_layout_engine("none")
+    assert svg_path is not None  # only figures with an SVG are split
+    if figure.get_layout_engine() is not None:  # a figure laid out by hand needs no pass
+        dpi = figure.dpi
+        figure.set_dpi(PNG_DPI)
+        figure.draw_without_rendering()
+        figure.set_dpi(dpi)
+        figure.set_layout_engine("none")
     _svg(figure, svg_path)
     return None
 
