@@ -671,16 +671,10 @@ def _chain_nodes(
     components a node somewhere in that run."""
     count, n = resolved.shape
     negative = np.signbit(shapes_dof)
-    index = np.arange(n)
-    # the last resolved dof at or before every dof (-1: none yet)
-    previous = np.maximum.accumulate(np.where(resolved, index, -1), axis=1)
-    before = previous[:, :-1]  # for dof j = 1 .. n-1: the last resolved dof before it
-    later = resolved[:, 1:] & (before >= 0)
-    flip = negative[:, 1:] != negative[np.arange(count)[:, None], np.maximum(before, 0)]
-    mode, j = np.nonzero(later & flip)
-    j = j + 1
-    p = before[mode, j - 1]
-    adjacent = j - p == 1
+    # a node between neighbours that are both resolved (the common case): a sign change
+    both = resolved[:, 1:] & resolved[:, :-1]
+    both &= negative[:, 1:] != negative[:, :-1]
+    located_mode, located_first = np.nonzero(both)
     shaft_of = np.full(max(n - 1, 0), -1, dtype=int)
     ends = model.shaft_dofs
     inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
@@ -689,22 +683,25 @@ def _chain_nodes(
     else:
         a, _, edge_shaft = _edge_shafts(model)
         shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
-    located_mode = mode[adjacent]
-    located_shaft = shaft_of[p[adjacent]]
+    located_shaft = shaft_of[located_first]
     fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
     # round-off runs: first and last dof of every run of unresolved components
     loose = ~resolved
     starts = loose & np.concatenate([np.ones((count, 1), bool), resolved[:, :-1]], axis=1)
-    ends = loose & np.concatenate([resolved[:, 1:], np.ones((count, 1), bool)], axis=1)
+    run_ends = loose & np.concatenate([resolved[:, 1:], np.ones((count, 1), bool)], axis=1)
     region_mode, region_first = np.nonzero(starts)
-    _, region_last = np.nonzero(ends)
+    _, region_last = np.nonzero(run_ends)
+    # a node somewhere in a run whose resolved neighbours on both sides differ in sign
+    inside = (region_first > 0) & (region_last < n - 1)
+    o_mode, o_first, o_last = region_mode[inside], region_first[inside], region_last[inside]
+    flips = negative[o_mode, o_first - 1] != negative[o_mode, o_last + 1]
     return _NodeArrays(
         shaft_mode=located_mode,
         shaft=located_shaft,
         fraction=fraction,
-        open_mode=mode[~adjacent],
-        open_first=p[~adjacent] + 1,
-        open_last=j[~adjacent] - 1,
+        open_mode=o_mode[flips],
+        open_first=o_first[flips],
+        open_last=o_last[flips],
         region_mode=region_mode,
         region_first=region_first,
         region_last=region_last,

@@ -70,7 +70,6 @@ from functools import cached_property
 from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
-import scipy.linalg
 from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError, did_you_mean
@@ -1726,6 +1725,8 @@ class _Sweep:
     def undamped(self) -> np.ndarray:
         """The elastic undamped natural frequencies (rad/s) of the system with its damper
         rings, ascending: mode r is row r - 1 (docs/conventions.md)."""
+        import scipy.linalg  # here, not at start-up (the command line's help imports this module)
+
         system = self.system
         if system.chain is not None and system.size > 1:
             kb, _, _, kg, _, _ = system.chain
