@@ -75,3 +75,45 @@ def test_the_svg_writes_its_words_as_text_in_a_font_stack(tmp_path):
     assert "Crank angle &lt;&amp;&gt; (deg)</text>" in svg and "figure 0</text>" in svg
     assert "font-family: 'DejaVu Sans'" in svg and "sans-serif" in svg
     assert "DejaVuSans-" not in svg  # no glyph definitions
+
+
+def _report_like_figure(title: str = "Bearing loads") -> Figure:
+    """A crankdyn figure with constrained layout, a suptitle, legends outside their axes and
+    axes of different label widths: something for the layout to do."""
+    from crankdyn.plots.style import legend_outside, new_figure
+
+    fig, axes = new_figure(2, 2, width=8.0)
+    x = np.linspace(0.0, 720.0, 200)
+    for k, ax in enumerate(axes.flat):
+        ax.plot(x, (10.0 ** (2 * k)) * np.sin(np.radians(x)), label=f"{title} {k}")
+        ax.set_ylabel(f"load {k} (N)" * (k + 1))
+        legend_outside(ax)
+    fig.suptitle(title)
+    return fig
+
+
+def test_laid_out_once_the_files_are_those_of_matplotlibs_own_save(tmp_path):
+    """Laying a figure out once (lay_out) and drawing it once per format writes the PNG that
+    matplotlib's own savefig writes with constrained layout, and the SVG it writes with that
+    layout kept (``set_layout_engine("none")``, which costs each save an extra undrawn pass)."""
+    import matplotlib
+
+    reference = _report_like_figure()
+    reference.savefig(tmp_path / "ref.png", dpi=110, pil_kwargs={"compress_level": 1})
+    reference.set_layout_engine("none")
+    with matplotlib.rc_context({"svg.fonttype": "none"}):
+        reference.savefig(tmp_path / "ref.svg", format="svg")
+    fig = _report_like_figure()
+    (png,) = render_figures([(fig, tmp_path / "f.png", tmp_path / "f.svg")], workers=1)
+    assert fig.get_layout_engine() is None
+    assert png == (tmp_path / "ref.png").read_bytes()
+    svg = [_without_ids((tmp_path / n).read_text(encoding="utf-8")) for n in ("f.svg", "ref.svg")]
+    assert svg[0] == svg[1]
+
+
+def test_lay_out_measures_a_hostile_title_as_written(tmp_path):
+    """A name that matplotlib's math parser rejects is laid out and drawn literally."""
+    fig = _report_like_figure(r"$\undefinedcmd{x}$ & <b>")
+    (png,) = render_figures([(fig, None, tmp_path / "f.svg")], workers=1)
+    assert png.startswith(b"\x89PNG")
+    assert r"$\undefinedcmd{x}$ &amp; &lt;b&gt;" in (tmp_path / "f.svg").read_text("utf-8")

@@ -1,12 +1,15 @@
 """Write many figures at once: each laid out once, drawn once per format, on every core.
 
-A figure's PNG draw runs its layout engine (constrained layout: a third to a half of the draw);
-the SVG then keeps that layout (the engine is switched off) instead of computing it again. The
-figures are shared out over a pool of worker processes forked from this one, so the figures
-already built here are rendered where they are, without pickling them: a worker renders figure
-``i`` of the list it inherited, writes its files and returns the PNG bytes. Where a fork is not
-safe (not Linux, or inside a daemonic process) or of no use (one figure, one core), the figures
-are rendered here, one after another.
+A figure with a layout engine (constrained layout) is laid out once, by the engine run on its
+own at the PNG's resolution (:func:`lay_out`), and then drawn without an engine: once for the
+PNG, once for the SVG. Saving a figure that still has an engine, even a placeholder left by
+``set_layout_engine("none")``, costs one more whole (undrawn) pass over every artist per file;
+the files come out identical to the byte either way (tests/plots/test_render.py). The figures
+are shared out over a pool of worker processes forked from this one, so the figures already
+built here are rendered where they are, without pickling them: a worker renders figure ``i``
+of the list it inherited, writes its files and returns the PNG bytes. Where a fork is not safe
+(not Linux, or inside a daemonic process) or of no use (one figure, one core), the figures are
+rendered here, one after another.
 """
 
 from __future__ import annotations
@@ -20,7 +23,7 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["PNG_DPI", "render_figures", "workers_for"]
+__all__ = ["PNG_DPI", "lay_out", "render_figures", "workers_for"]
 
 PNG_DPI = 110
 """Resolution of the PNG files (dots per inch)."""
@@ -49,6 +52,52 @@ def _svg(figure: Any, path: str | Path) -> None:
         figure.savefig(path, format="svg")
 
 
+def lay_out(figure: Any) -> None:
+    """Lay ``figure`` out once, as its PNG's draw would, and fix that layout.
+
+    The figure's layout engine (constrained layout) is run on its own, on an Agg canvas at
+    :data:`PNG_DPI` with the figure's words made literal first (as
+    :class:`crankdyn.plots.style.Figure` draws them), and then removed
+    (``set_layout_engine(None)``): the PNG and the SVG drawn afterwards keep the layout and
+    draw every artist once each. A figure without an engine, or whose engine is a placeholder,
+    keeps its layout as it is.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        The figure (changed in place).
+
+    Examples
+    --------
+    >>> from crankdyn.plots.style import new_figure
+    >>> fig, axes = new_figure()
+    >>> _ = axes[0, 0].set_ylabel("a rather long label (N·m)")
+    >>> before = axes[0, 0].get_position().x0
+    >>> lay_out(fig)
+    >>> fig.get_layout_engine() is None, axes[0, 0].get_position().x0 > before
+    (True, True)
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    from crankdyn.plots.style import plain_text
+
+    engine = figure.get_layout_engine()
+    if engine is None:
+        return
+    if not isinstance(engine, PlaceHolderLayoutEngine) and figure.axes:
+        plain_text(figure)
+        dpi, canvas = figure.get_dpi(), figure.canvas
+        figure.set_dpi(PNG_DPI)
+        FigureCanvasAgg(figure)  # the engine measures the words with the PNG's renderer
+        try:
+            engine.execute(figure)
+        finally:
+            figure.set_dpi(dpi)
+            figure.set_canvas(canvas)
+    figure.set_layout_engine(None)
+
+
 # (figure, png path or None, svg path or None) of the pool's figures
 _JOBS: Sequence[tuple[Any, str | Path | None, str | Path | None]] = ()
 
@@ -57,34 +106,28 @@ def _render(index: int) -> bytes:
     """Draw figure ``index`` of :data:`_JOBS`: its PNG (bytes returned, and written when a path
     is given), then its SVG with the PNG's layout."""
     figure, png_path, svg_path = _JOBS[index]
+    lay_out(figure)
     png = _png(figure)
     if png_path is not None:
         Path(png_path).write_bytes(png)
     if svg_path is not None:
-        figure.set_layout_engine("none")  # keep the layout the PNG's draw computed
         _svg(figure, svg_path)
     return png
 
 
 def _render_part(index: int, part: str) -> bytes | None:
     """One part of figure ``index`` of :data:`_JOBS`, in a worker of its own: ``"png"`` its
-    PNG (bytes returned, and written when a path is given); ``"svg"`` its SVG, laid out first
-    as the PNG's draw lays it out (the layout engine run at :data:`PNG_DPI` on the same kind of
-    renderer, without drawing: the same layout to the last digit of the file, which the tests
-    check), then kept."""
+    PNG (bytes returned, and written when a path is given); ``"svg"`` its SVG. Each worker
+    lays the figure out itself (:func:`lay_out`, the same layout to the last digit of the file,
+    which the tests check)."""
     figure, png_path, svg_path = _JOBS[index]
+    lay_out(figure)
     if part == "png":
         png = _png(figure)
         if png_path is not None:
             Path(png_path).write_bytes(png)
         return png
     assert svg_path is not None  # only figures with an SVG are split
-    if figure.get_layout_engine() is not None:  # a figure laid out by hand needs no pass
-        dpi = figure.dpi
-        figure.set_dpi(PNG_DPI)
-        figure.draw_without_rendering()
-        figure.set_dpi(dpi)
-        figure.set_layout_engine("none")
     _svg(figure, svg_path)
     return None
 
