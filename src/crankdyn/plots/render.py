@@ -72,9 +72,9 @@ def lay_out(figure: Any) -> None:
     >>> from crankdyn.plots.style import new_figure
     >>> fig, axes = new_figure()
     >>> _ = axes[0, 0].set_ylabel("a rather long label (N·m)")
-    >>> before = axes[0, 0].get_position().x0
+    >>> before = axes[0, 0].get_position().bounds
     >>> lay_out(fig)
-    >>> fig.get_layout_engine() is None, axes[0, 0].get_position().x0 > before
+    >>> fig.get_layout_engine() is None, axes[0, 0].get_position().bounds != before
     (True, True)
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
