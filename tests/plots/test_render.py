@@ -117,3 +117,90 @@ def test_lay_out_measures_a_hostile_title_as_written(tmp_path):
     (png,) = render_figures([(fig, None, tmp_path / "f.svg")], workers=1)
     assert png.startswith(b"\x89PNG")
     assert r"$\undefinedcmd{x}$ &amp; &lt;b&gt;" in (tmp_path / "f.svg").read_text("utf-8")
+
+
+def _temp_folders() -> set[str]:
+    import tempfile
+    from pathlib import Path
+
+    return {p.name for p in Path(tempfile.gettempdir()).glob("crankdyn-plots-*")}
+
+
+def test_a_renderer_draws_figures_submitted_while_busy_as_one_process_does():
+    """Figures submitted one by one while this process is busy (a report's sections) come back
+    as one process draws them, in the order submitted, each reported done once; the children's
+    folder is gone afterwards."""
+    from crankdyn.plots.render import Renderer
+
+    before = _temp_folders()
+    with Renderer(1) as here:
+        for fig in _figures(4):
+            here.submit(fig)
+        serial = here.results()
+    seen: list[int] = []
+    with Renderer(2) as renderer:
+        renderer.busy()
+        figures = _figures(4)
+        for fig in figures:
+            renderer.submit(fig)
+        assert renderer.submit(figures[0]) == 0 and figures[2] in renderer
+        pooled = renderer.results(progress=seen.append)
+    assert sorted(seen) == [0, 1, 2, 3]
+    assert [png for png, _ in pooled] == [png for png, _ in serial]
+    for (_, a), (_, b) in zip(pooled, serial, strict=True):
+        assert a is not None and b is not None
+        assert _without_ids(a.decode("utf-8")) == _without_ids(b.decode("utf-8"))
+    assert _temp_folders() <= before
+
+
+class _Fails(Exception):
+    pass
+
+
+def _failing_figure() -> Figure:
+    from matplotlib.artist import Artist
+
+    class Broken(Artist):
+        def draw(self, renderer):
+            raise _Fails("drawn")
+
+    fig = _figures(1)[0]
+    fig.axes[0].add_artist(Broken())
+    return fig
+
+
+def test_a_figure_that_fails_in_its_child_is_drawn_here_and_its_error_raised_here():
+    """A child that fails leaves no file; the figure is then drawn in this process, where the
+    error is raised as it would be without children, and no child is left behind."""
+    import pytest
+
+    from crankdyn.plots.render import Renderer
+
+    before = _temp_folders()
+    with Renderer(2) as renderer:
+        renderer.submit(_figures(1)[0])
+        renderer.submit(_failing_figure())
+        with pytest.raises(_Fails):
+            renderer.results()
+    assert _temp_folders() <= before
+
+
+def test_closing_a_renderer_stops_its_children():
+    """Leaving the block early (an error in the analyses) stops the children still drawing and
+    removes their folder."""
+    import os
+
+    from crankdyn.plots.render import Renderer
+
+    before = _temp_folders()
+    with Renderer(2) as renderer:
+        for fig in _figures(3):
+            renderer.submit(fig)
+        pids = [pid for pid, _, _ in renderer._running.values()]
+    for pid in pids:  # reaped: no such child any more
+        try:
+            os.waitpid(pid, os.WNOHANG)
+        except ChildProcessError:
+            continue
+        raise AssertionError(f"child {pid} left behind")
+    assert _temp_folders() <= before

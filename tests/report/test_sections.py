@@ -52,3 +52,11 @@ def test_report_with_the_sections(tmp_path, monkeypatch):
         assert (out / "plots" / f"{plot}.png").exists()
     assert (out / "data" / "balance.csv").read_text().startswith("Order,")
     assert (out / "data" / "flywheel.csv").read_text().startswith("crank_angle_deg,")
+
+
+def test_build_report_hands_over_each_section_as_it_is_made():
+    """``built`` sees every section of the report, in order, as it is made (the command line
+    starts drawing its figures then)."""
+    seen = []
+    report = build_report(Engine.example("vaz2108"), built=lambda s: seen.append(s.key))
+    assert seen == [s.key for s in report.sections] and seen

@@ -25,6 +25,7 @@ from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import load_example, resolve_engine
 from crankdyn.io.output import check_output_dir
+from crankdyn.plots.render import Renderer
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import builders
 from crankdyn.report.write import write_report
@@ -33,6 +34,7 @@ if TYPE_CHECKING:
     import numpy as np
     from numpy.typing import NDArray
 
+    from crankdyn.report.model import Section
     from crankdyn.report.sections.measurement import MeasurementInput
 
 DEMO_ENGINE = "inline6-diesel"
@@ -92,18 +94,32 @@ def run_report(
             """Advance the bar past the report section ``name``."""
             progress.update(task, description=f"Analysing: {name}", advance=1)
 
-        report = build_report(
-            engine, speed=speed, speeds=speeds, progress=step, measurement=measurement
-        )
-        plots = sum(len(s.plots) for s in report.sections)
-        task2 = progress.add_task("Writing plots", total=plots)
+        with Renderer() as renderer:  # each section's figures drawn while the next is made
+            renderer.busy()
 
-        def plot_step(name: str) -> None:
-            """Advance the bar past the plot ``name``."""
-            progress.update(task2, description=f"Writing plots: {name}", advance=1)
+            def built(section: Section) -> None:
+                """Start drawing the figures of ``section``."""
+                for plot in section.plots:
+                    renderer.submit(plot.figure)
 
-        # the folder written: a numbered sibling when ``out`` appeared while the report was built
-        out = write_report(report, out, force=force, progress=plot_step)
+            report = build_report(
+                engine,
+                speed=speed,
+                speeds=speeds,
+                progress=step,
+                measurement=measurement,
+                built=built,
+            )
+            plots = sum(len(s.plots) for s in report.sections)
+            task2 = progress.add_task("Writing plots", total=plots)
+
+            def plot_step(name: str) -> None:
+                """Advance the bar past the plot ``name``."""
+                progress.update(task2, description=f"Writing plots: {name}", advance=1)
+
+            # the folder written: a numbered sibling when ``out`` appeared while the report
+            # was built
+            out = write_report(report, out, force=force, progress=plot_step, renderer=renderer)
     table = TextTable(
         f"{engine.name}: key figures",
         ["Quantity", "Value", "Status"],

@@ -1,15 +1,20 @@
-"""Write many figures at once: each laid out once, drawn once per format, on every core.
+"""Write many figures at once: each laid out once, drawn once per format, on every core, from
+the moment it is made.
 
 A figure with a layout engine (constrained layout) is laid out once, by the engine run on its
 own at the PNG's resolution (:func:`lay_out`), and then drawn without an engine: once for the
 PNG, once for the SVG. Saving a figure that still has an engine, even a placeholder left by
 ``set_layout_engine("none")``, costs one more whole (undrawn) pass over every artist per file;
-the files come out identical to the byte either way (tests/plots/test_render.py). The figures
-are shared out over a pool of worker processes forked from this one, so the figures already
-built here are rendered where they are, without pickling them: a worker renders figure ``i``
-of the list it inherited, writes its files and returns the PNG bytes. Where a fork is not safe
-(not Linux, or inside a daemonic process) or of no use (one figure, one core), the figures are
-rendered here, one after another.
+the files come out identical to the byte either way (tests/plots/test_render.py).
+
+A :class:`Renderer` draws each figure submitted to it in a child process forked from this one
+at once, so the figure is drawn where it was made, without pickling, while this process goes
+on (a report's later analyses run while its first figures are drawn): as many children at a
+time as there are cores, one fewer while this process is still busy making figures
+(:meth:`Renderer.busy`). A child writes its files into the renderer's private temporary
+folder and exits; :meth:`Renderer.results` waits for them and reads them back. Where a fork is
+not safe (not Linux, or inside a daemonic process) or of no use (one core), or when a child
+fails, the figures are drawn here, one after another, when their results are asked for.
 """
 
 from __future__ import annotations
@@ -18,12 +23,16 @@ import contextlib
 import io
 import multiprocessing
 import os
+import select
+import shutil
+import signal
 import sys
+import tempfile
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["PNG_DPI", "lay_out", "render_figures", "workers_for"]
+__all__ = ["PNG_DPI", "Renderer", "lay_out", "render_figures", "workers_for"]
 
 PNG_DPI = 110
 """Resolution of the PNG files (dots per inch)."""
@@ -42,7 +51,7 @@ def _png(figure: Any) -> bytes:
     return buffer.getvalue()
 
 
-def _svg(figure: Any, path: str | Path) -> None:
+def _svg(figure: Any, path: str | Path | io.BytesIO) -> None:
     """Write the SVG file of ``figure``, its words written as text in the figure's font stack
     (``'DejaVu Sans', ..., 'Arial', 'Helvetica', ..., sans-serif``) rather than as glyph
     outlines: smaller files, the words searchable and selectable."""
@@ -98,40 +107,6 @@ def lay_out(figure: Any) -> None:
     figure.set_layout_engine(None)
 
 
-# (figure, png path or None, svg path or None) of the pool's figures
-_JOBS: Sequence[tuple[Any, str | Path | None, str | Path | None]] = ()
-
-
-def _render(index: int) -> bytes:
-    """Draw figure ``index`` of :data:`_JOBS`: its PNG (bytes returned, and written when a path
-    is given), then its SVG with the PNG's layout."""
-    figure, png_path, svg_path = _JOBS[index]
-    lay_out(figure)
-    png = _png(figure)
-    if png_path is not None:
-        Path(png_path).write_bytes(png)
-    if svg_path is not None:
-        _svg(figure, svg_path)
-    return png
-
-
-def _render_part(index: int, part: str) -> bytes | None:
-    """One part of figure ``index`` of :data:`_JOBS`, in a worker of its own: ``"png"`` its
-    PNG (bytes returned, and written when a path is given); ``"svg"`` its SVG. Each worker
-    lays the figure out itself (:func:`lay_out`, the same layout to the last digit of the file,
-    which the tests check)."""
-    figure, png_path, svg_path = _JOBS[index]
-    lay_out(figure)
-    if part == "png":
-        png = _png(figure)
-        if png_path is not None:
-            Path(png_path).write_bytes(png)
-        return png
-    assert svg_path is not None  # only figures with an SVG are split
-    _svg(figure, svg_path)
-    return None
-
-
 def _fresh_streams() -> None:
     """A worker's own standard output and error objects on the same files: a lock that a
     thread of the parent (a progress display) held at the fork is not inherited held."""
@@ -172,11 +147,266 @@ def workers_for(count: int) -> int:
     >>> 1 <= workers_for(1000) <= (os.cpu_count() or 1)
     True
     """
+    return max(1, min(_cores(), count))
+
+
+def _cores() -> int:
+    """Cores this process may run on."""
     try:
-        cores = len(os.sched_getaffinity(0))
+        return len(os.sched_getaffinity(0))
     except (AttributeError, OSError):
-        cores = os.cpu_count() or 1
-    return max(1, min(cores, count))
+        return os.cpu_count() or 1
+
+
+def _prepare_for_children() -> None:
+    """Load here, once, what every child would otherwise load for itself: the Agg and SVG
+    backends, the PNG writer and the default font (its file read and its glyph tables built by a
+    measured word)."""
+    import matplotlib.backends.backend_agg as agg
+    import matplotlib.backends.backend_svg  # noqa: F401
+    import PIL.PngImagePlugin  # noqa: F401
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(1.0, 1.0))
+    text = figure.text(0.5, 0.5, "Crank angle (deg) 0123456789")
+    text.get_window_extent(agg.FigureCanvasAgg(figure).get_renderer())
+
+
+class Renderer:
+    """Figures drawn to PNG and SVG in forked children from the moment they are submitted (module
+    docstring).
+
+    Parameters
+    ----------
+    workers : int or None
+        Children drawing at a time (default: one per core); 1 draws every figure here, when its
+        results are asked for.
+
+    Examples
+    --------
+    >>> from crankdyn.plots.style import new_figure
+    >>> fig, axes = new_figure()
+    >>> _ = axes[0, 0].plot([0.0, 1.0], [0.0, 1.0])
+    >>> with Renderer() as renderer:
+    ...     index = renderer.submit(fig)
+    ...     ((png, svg),) = renderer.results()
+    >>> png[:4], svg.lstrip()[:5]
+    (b'\\x89PNG', b'<?xml')
+    """
+
+    def __init__(self, workers: int | None = None) -> None:
+        self.workers = _cores() if workers is None else max(1, workers)
+        """Children drawing at a time."""
+        self._forking = self.workers > 1 and _can_fork()
+        self._figures: list[Any] = []
+        self._parts: list[tuple[str, ...]] = []  # per figure: ("both",), ("png",), ("png", "svg")
+        self._index: dict[int, int] = {}  # id(figure) -> index
+        self._queue: list[tuple[int, str]] = []  # (figure, part) not started yet
+        self._running: dict[int, tuple[int, int, str]] = {}  # read end -> (pid, figure, part)
+        self._left: list[int] = []  # per figure: parts not finished by a child
+        self._failed: set[tuple[int, str]] = set()
+        self._finished: list[int] = []  # figures whose children are all done, in that order
+        self._busy = False
+        self._folder: Path | None = None
+
+    # -- submitting ------------------------------------------------------------------------
+    def submit(self, figure: Any, *, svg: bool = True, split: bool = False) -> int:
+        """Draw ``figure`` (its PNG, and its SVG unless ``svg`` is false) as soon as a child is
+        free; submitting a figure again returns its first index.
+
+        Parameters
+        ----------
+        figure : matplotlib.figure.Figure
+            The figure; not to be changed after it is submitted.
+        svg : bool
+            Whether its SVG is drawn too.
+        split : bool
+            Draw its PNG and its SVG in two children of their own (each lays the figure out
+            itself): for fewer figures than cores.
+
+        Returns
+        -------
+        int
+            The figure's index in :meth:`results`.
+        """
+        known = self._index.get(id(figure))
+        if known is not None:
+            return known
+        index = len(self._figures)
+        self._figures.append(figure)
+        self._index[id(figure)] = index
+        parts = ("png", "svg") if svg and split else ("both",) if svg else ("png",)
+        self._parts.append(parts)
+        self._left.append(len(parts))
+        self._queue.extend((index, part) for part in parts)
+        self._start()
+        return index
+
+    def busy(self, busy: bool = True) -> None:
+        """Say whether this process is still making figures: while it is, one child fewer
+        draws (its own work takes a core).
+
+        Parameters
+        ----------
+        busy : bool
+            True while figures are still being made here.
+        """
+        self._busy = busy
+        self._start()
+
+    def __contains__(self, figure: object) -> bool:
+        return id(figure) in self._index
+
+    # -- children --------------------------------------------------------------------------
+    def _reap(self, block: bool) -> None:
+        """Collect the children that have finished (waiting for one at least when ``block``):
+        a child's pipe reads as ended when it exits."""
+        if not self._running:
+            return
+        ready, _, _ = select.select(list(self._running), [], [], None if block else 0.0)
+        for fd in ready:
+            pid, index, part = self._running.pop(fd)
+            os.close(fd)
+            _, status = os.waitpid(pid, 0)
+            if os.waitstatus_to_exitcode(status) != 0:
+                self._failed.add((index, part))
+            self._left[index] -= 1
+            if self._left[index] == 0:
+                self._finished.append(index)
+
+    def _start(self) -> None:
+        """Start children for queued figures while there is room."""
+        if not self._forking or not self._queue:
+            return
+        self._reap(block=False)
+        if self._folder is None:
+            try:
+                self._folder = Path(tempfile.mkdtemp(prefix="crankdyn-plots-"))
+            except OSError:  # no temporary folder: draw here instead
+                self._forking = False
+                return
+            _prepare_for_children()
+        room = max(1, self.workers - 1) if self._busy else self.workers
+        while self._queue and len(self._running) < room:
+            index, part = self._queue[0]
+            try:
+                read, write = os.pipe()
+                pid = os.fork()
+            except OSError:  # no more processes: the rest are drawn here
+                self._forking = False
+                return
+            if pid == 0:  # the child: draw, write, exit without running this process's exits
+                code = 1
+                try:
+                    os.close(read)
+                    _fresh_streams()
+                    with contextlib.suppress(ValueError):  # not the main thread
+                        signal.signal(signal.SIGINT, signal.SIG_DFL)
+                    self._draw(index, part)
+                    code = 0
+                finally:
+                    os._exit(code)
+            os.close(write)
+            self._queue.pop(0)
+            self._running[read] = (pid, index, part)
+
+    def _files(self, index: int) -> tuple[Path, Path]:
+        assert self._folder is not None
+        return self._folder / f"{index}.png", self._folder / f"{index}.svg"
+
+    def _draw(self, index: int, part: str) -> None:
+        """In a child: draw figure ``index``'s ``part`` into the private folder (each file
+        written aside and renamed, so that a file there is complete)."""
+        figure = self._figures[index]
+        lay_out(figure)
+        png_path, svg_path = self._files(index)
+        if part in ("png", "both"):
+            aside = png_path.with_suffix(".part")
+            aside.write_bytes(_png(figure))
+            os.replace(aside, png_path)
+        if part in ("svg", "both"):
+            aside = svg_path.with_suffix(".svg-part")
+            _svg(figure, aside)
+            os.replace(aside, svg_path)
+
+    # -- results ---------------------------------------------------------------------------
+    def results(
+        self, progress: Callable[[int], object] | None = None
+    ) -> list[tuple[bytes, bytes | None]]:
+        """Wait for every figure submitted and return its files.
+
+        Parameters
+        ----------
+        progress : callable or None
+            ``progress(i)`` is called as figure ``i`` is done (in the order they finish).
+
+        Returns
+        -------
+        list of (bytes, bytes or None)
+            Each figure's PNG file and its SVG file (None when not asked for), in the order
+            they were submitted.
+        """
+        self._busy = False
+        told = 0
+        while self._forking and (self._queue or self._running):
+            self._start()
+            self._reap(block=True)
+            for index in self._finished[told:]:
+                if progress is not None:
+                    progress(index)
+            told = len(self._finished)
+        drawn = set(self._finished)
+        out: list[tuple[bytes, bytes | None]] = []
+        for i, figure in enumerate(self._figures):
+            wants_svg = self._parts[i] != ("png",)
+            png = svg = None
+            if i in drawn and self._folder is not None:
+                png_path, svg_path = self._files(i)
+                png = _read(png_path)
+                svg = _read(svg_path) if wants_svg else None
+            if png is None or (wants_svg and svg is None):  # not drawn by a child: here
+                lay_out(figure)
+                png = _png(figure)
+                if wants_svg:
+                    buffer = io.BytesIO()
+                    _svg(figure, buffer)
+                    svg = buffer.getvalue()
+                if progress is not None:
+                    progress(i)
+            out.append((png, svg))
+        return out
+
+    def close(self) -> None:
+        """Stop the children still drawing and remove the private folder."""
+        for pid, _, _ in self._running.values():
+            with contextlib.suppress(OSError):
+                os.kill(pid, signal.SIGTERM)
+        for fd, (pid, _, _) in self._running.items():
+            with contextlib.suppress(OSError):
+                os.close(fd)
+            with contextlib.suppress(OSError):
+                os.waitpid(pid, 0)
+        self._running.clear()
+        self._queue.clear()
+        if self._folder is not None:
+            shutil.rmtree(self._folder, ignore_errors=True)
+            self._folder = None
+
+    def __enter__(self) -> Renderer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def _read(path: Path | None) -> bytes | None:
+    """The contents of ``path``, or None when it is not there."""
+    if path is None:
+        return None
+    try:
+        return path.read_bytes()
+    except OSError:
+        return None
 
 
 def render_figures(
@@ -184,9 +414,9 @@ def render_figures(
     *,
     progress: Callable[[int], object] | None = None,
     workers: int | None = None,
+    renderer: Renderer | None = None,
 ) -> list[bytes]:
-    """Render figures to PNG (and SVG with the PNG's layout), in a forked pool where that is
-    safe and useful, else one after another.
+    """Render figures to PNG (and SVG with the PNG's layout) on every core, and write them.
 
     Parameters
     ----------
@@ -194,63 +424,46 @@ def render_figures(
         Each a matplotlib Figure, the PNG file to write (None: bytes only) and the SVG file to
         write (None: none). PNGs are drawn at :data:`PNG_DPI` dots per inch.
     progress : callable or None
-        ``progress(i)`` is called as figure ``i`` starts (serially) or is done (in the pool).
+        ``progress(i)`` is called as figure ``i`` is done.
     workers : int or None
-        Worker processes (default :func:`workers_for`); 1 renders here.
+        Children drawing at a time (default :func:`workers_for`); 1 renders here.
+    renderer : Renderer or None
+        A renderer the figures may already have been submitted to (drawing since); None: one
+        made here.
 
     Returns
     -------
     list of bytes
         Every figure's PNG file contents, in the order of ``jobs``.
     """
-    global _JOBS
     jobs = list(jobs)
-    # fewer figures than cores (a study's summary: one figure): each figure's PNG and SVG are
-    # drawn by workers of their own, the SVG's worker laying the figure out again
-    parts = sum(1 for job in jobs if job[2] is not None)
-    split = workers is None and len(jobs) < workers_for(len(jobs) + parts) and _can_fork()
-    if split:
-        n = workers_for(len(jobs) + parts)
-    else:
-        n = workers_for(len(jobs)) if workers is None else max(1, min(workers, len(jobs)))
-    if n > 1 and _can_fork():
-        from concurrent.futures import Future, ProcessPoolExecutor, as_completed
-
-        _JOBS = jobs
-        pool = ProcessPoolExecutor(
-            n, mp_context=multiprocessing.get_context("fork"), initializer=_fresh_streams
-        )
-        try:
-            futures: dict[Future[bytes | None], int] = {}
-            left = [1] * len(jobs)  # parts of each figure still rendering
-            for i, job in enumerate(jobs):
-                if split:
-                    futures[pool.submit(_render_part, i, "png")] = i
-                    if job[2] is not None:
-                        futures[pool.submit(_render_part, i, "svg")] = i
-                        left[i] += 1
-                else:
-                    futures[pool.submit(_render, i)] = i
-            out: list[bytes | None] = [None] * len(jobs)
-            for future in as_completed(futures):
-                i = futures[future]
-                png = future.result()
-                if png is not None:
-                    out[i] = png
-                left[i] -= 1
-                if progress is not None and left[i] == 0:
-                    progress(i)
-            return [png for png in out if png is not None]
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
-            _JOBS = ()
-    _JOBS = jobs
+    own = renderer is None
+    if renderer is None:
+        renderer = Renderer(workers)
     try:
-        out_serial = []
-        for i in range(len(jobs)):
-            if progress is not None:
-                progress(i)
-            out_serial.append(_render(i))
-        return out_serial
+        # fewer figures than cores (a study's summary: one figure): the PNG and the SVG of a
+        # figure are drawn by children of their own, each laying the figure out
+        split = own and workers is None and len(jobs) < renderer.workers
+        indices = [
+            renderer.submit(figure, svg=svg_path is not None, split=split)
+            for figure, _, svg_path in jobs
+        ]
+        by_index = {index: k for k, index in enumerate(indices)}
+
+        def told(index: int) -> None:
+            if progress is not None and index in by_index:
+                progress(by_index[index])
+
+        results = renderer.results(progress=told)
     finally:
-        _JOBS = ()
+        if own:
+            renderer.close()
+    pngs = []
+    for (_, png_path, svg_path), index in zip(jobs, indices, strict=True):
+        png, svg = results[index]
+        if png_path is not None:
+            Path(png_path).write_bytes(png)
+        if svg_path is not None and svg is not None:
+            Path(svg_path).write_bytes(svg)
+        pngs.append(png)
+    return pngs

@@ -13,7 +13,7 @@ from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.engine.model import Engine
 from crankdyn.engine.session import Analysis
-from crankdyn.report.model import Report
+from crankdyn.report.model import Report, Section
 from crankdyn.report.sections import Context, NotApplicable, NotRequested, builders
 
 if TYPE_CHECKING:
@@ -93,6 +93,7 @@ def build_report(
     speeds: ArrayLike | None = None,
     progress: Callable[[str], object] | None = None,
     measurement: MeasurementInput | None = None,
+    built: Callable[[Section], object] | None = None,
 ) -> Report:
     """Run every analysis that applies to ``engine``.
 
@@ -108,6 +109,9 @@ def build_report(
         ``progress(name)`` is called before each analysis, with the section's name.
     measurement : crankdyn.report.sections.measurement.MeasurementInput or None
         A measurement to hold against the torsional model, or None.
+    built : callable or None
+        ``built(section)`` is called as each section is made (the command line starts drawing
+        its figures while the next analyses run: :class:`crankdyn.plots.render.Renderer`).
 
     Returns
     -------
@@ -127,11 +131,15 @@ def build_report(
         if progress is not None:
             progress(name)
         try:
-            sections.append(build(ctx))
+            section = build(ctx)
         except NotRequested:
             continue
         except NotApplicable as why:
             notes.append(f"{name}: {why}")
+            continue
+        sections.append(section)
+        if built is not None:
+            built(section)
     return Report(
         title=engine.name,
         inputs=engine_inputs(engine),

@@ -5,10 +5,14 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from crankdyn.io.output import atomic_directory
 from crankdyn.report.html import render_html
 from crankdyn.report.model import Report
+
+if TYPE_CHECKING:
+    from crankdyn.plots.render import Renderer
 
 __all__ = ["write_report"]
 
@@ -20,6 +24,7 @@ def write_report(
     force: bool = False,
     progress: Callable[[str], object] | None = None,
     finish: Callable[[Path], object] | None = None,
+    renderer: Renderer | None = None,
 ) -> Path:
     """Write ``report`` into the folder ``out``: ``index.html``, ``summary.json`` (SI values,
     the unit in each key; NaN and infinity as null), ``data/*.csv`` and ``plots/*.png`` and
@@ -40,6 +45,9 @@ def write_report(
     finish : callable or None
         ``finish(folder)`` is called on the complete temporary folder before it is moved into
         place (e.g. to print the page to PDF).
+    renderer : crankdyn.plots.render.Renderer or None
+        A renderer the report's figures were submitted to as they were made (already drawn
+        or drawing); None: they are drawn here.
 
     Returns
     -------
@@ -65,6 +73,7 @@ def write_report(
                 for p in plots
             ],
             progress=None if progress is None else (lambda i: progress(plots[i].name)),
+            renderer=renderer,
         )
         images: dict[str, bytes] = {p.name: png for p, png in zip(plots, pngs, strict=True)}
         for section in report.sections:
