@@ -20,6 +20,7 @@ fails, the figures are drawn here, one after another, when their results are ask
 from __future__ import annotations
 
 import contextlib
+import gc
 import io
 import multiprocessing
 import os
@@ -299,6 +300,9 @@ class Renderer:
                 code = 1
                 try:
                     os.close(read)
+                    # no collector passes: they would touch, and so copy, every page of this
+                    # process's objects; a child lives for one figure
+                    gc.disable()
                     _fresh_streams()
                     with contextlib.suppress(ValueError):  # not the main thread
                         signal.signal(signal.SIGINT, signal.SIG_DFL)
