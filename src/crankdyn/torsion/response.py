@@ -546,7 +546,8 @@ class _ChainBlocks:
         (class docstring); ``off`` (n-1, F) and ``d`` (n, F) the eliminated rows, ``high`` and
         ``low`` (2F,) the running extremes of the multipliers' parts."""
         count = w.size
-        candidate = ~((high <= _CANDIDATE) & (low >= -_CANDIDATE)).reshape(count, 2).any(axis=1)
+        inside = (high <= _CANDIDATE) & (low >= -_CANDIDATE)  # False also for NaN
+        candidate = np.any(~inside.reshape(count, 2), axis=1)
         flagged = np.zeros(count, dtype=bool)
         idx = np.flatnonzero(candidate)
         if idx.size:
