@@ -24,8 +24,12 @@ orders are solved at once with the chain along the rows of the arrays: eliminati
 interchanges (the Thomas algorithm), and for the rare frequencies with a multiplier above 1e8 (a
 small pivot) elimination with partial pivoting (LAPACK's ``gtsv`` algorithm,
 :func:`solve_tridiagonal`), both vectorised over every frequency and right-hand side, the Python
-loop running over the chain's length only. Branched models use numpy's batched dense solve. No
-loop over speeds or orders.
+loop running over the chain's length only. The frequencies go in blocks whose buffers are
+allocated once; each row of the dynamic stiffness is built when the elimination reaches it, the
+small-pivot test is made exactly only on the systems a cheap filter inside the loop picks (the
+same systems flagged as by the test on all of them) and the solved rows go to the result in
+tiles while in cache (:class:`_ChainBlocks`). Branched models use numpy's batched dense solve.
+No loop over speeds or orders.
 
 Forcing and drivelines. F holds the cylinders' harmonic torques and those of the model's sources
 (propellers, electric machines, tabulated sources and further engines at any mass, at orders of
