@@ -24,8 +24,12 @@ orders are solved at once with the chain along the rows of the arrays: eliminati
 interchanges (the Thomas algorithm), and for the rare frequencies with a multiplier above 1e8 (a
 small pivot) elimination with partial pivoting (LAPACK's ``gtsv`` algorithm,
 :func:`solve_tridiagonal`), both vectorised over every frequency and right-hand side, the Python
-loop running over the chain's length only. Branched models use numpy's batched dense solve. No
-loop over speeds or orders.
+loop running over the chain's length only. The frequencies go in blocks whose buffers are
+allocated once; each row of the dynamic stiffness is built when the elimination reaches it, the
+small-pivot test is made exactly only on the systems a cheap filter inside the loop picks (the
+same systems flagged as by the test on all of them) and the solved rows go to the result in
+tiles while in cache (:class:`_ChainBlocks`). Branched models use numpy's batched dense solve.
+No loop over speeds or orders.
 
 Forcing and drivelines. F holds the cylinders' harmonic torques and those of the model's sources
 (propellers, electric machines, tabulated sources and further engines at any mass, at orders of
@@ -345,11 +349,12 @@ class LinearSystem:
     ) -> NDArray[np.complexfloating]:
         """The chain's symmetric tridiagonal systems for all frequencies, in blocks of about
         :data:`_FREQUENCY_BLOCK` frequencies laid out with the chain along the first axis
-        (contiguous rows, a block's arrays in cache): elimination without interchanges (the
-        Thomas algorithm) in place, every row operation into preallocated buffers, then the
-        pivoting solver for the few systems whose pivots came out small relative to their rows
-        (where elimination without interchanges can lose accuracy), their rows recomputed. The
-        forcing is read block by block (never expanded); memory: the result and one block."""
+        (contiguous rows of one block's frequencies): elimination without interchanges (the
+        Thomas algorithm, :class:`_ChainBlocks`), every row operation into buffers allocated
+        once and reused by every block, then the pivoting solver for the few systems whose
+        pivots came out small relative to their rows (where elimination without interchanges
+        can lose accuracy), their rows recomputed. The forcing is read block by block (never
+        expanded); memory: the result and one block's buffers."""
         n = self.size
         scalar_omega = omega.ndim == 0
         vector = f.ndim == omega.ndim + 1
@@ -361,12 +366,13 @@ class LinearSystem:
         out = np.empty((*batch, n, r), dtype=complex)
         inner = math.prod(batch[1:])
         rows = max(1, _FREQUENCY_BLOCK // max(inner, 1))
+        flat_omega = omega.reshape(-1)
+        flat_out = out.reshape(-1, n, r)
+        blocks = _ChainBlocks(self, min(batch[0], rows) * inner, r, hysteretic_frequency)
         for s0 in range(0, batch[0], rows):
             s1 = min(batch[0], s0 + rows)
-            w = np.ascontiguousarray(omega[s0:s1]).reshape(-1)
-            rhs = fb[s0:s1].reshape(w.size, n, r)
-            x = self._eliminate(w, rhs, hysteretic_frequency)  # (n, r, block)
-            out[s0:s1] = np.moveaxis(x, 2, 0).reshape(s1 - s0, *batch[1:], n, r)
+            a, b = s0 * inner, s1 * inner
+            blocks.solve(flat_omega[a:b], fb[s0:s1].reshape(b - a, n, r), flat_out[a:b])
         if scalar_omega:
             out = out[0]
         return out[..., 0] if vector else out
@@ -375,7 +381,7 @@ class LinearSystem:
         self, w: NDArray[np.float64], hysteretic_frequency: float | None
     ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
         """(off, diag) of D(w) in chain order for frequencies w (1-D): off (n-1, F) the negated
-        off-diagonal, diag (n, F)."""
+        off-diagonal, diag (n, F) (the pivoting fallback's systems)."""
         kb, cb, hb, kg, cg, hg = self._chain()
         factor = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
         off = np.empty((kb.size, w.size), dtype=complex)
@@ -388,42 +394,183 @@ class LinearSystem:
         diag[1:] += off
         return off, diag
 
-    def _eliminate(
-        self, w: NDArray[np.float64], rhs: np.ndarray, hysteretic_frequency: float | None
-    ) -> NDArray[np.complexfloating]:
-        """X (n, r, F) of one block: w (F,) rad/s, rhs (F, n, r) N m (module docstring)."""
-        n = self.size
+
+_GROWTH = 1e8
+"""The largest multiplier |off / pivot| of elimination without interchanges; a system with a
+larger one (a small pivot) is solved again with partial pivoting."""
+
+_CANDIDATE = 1e7
+"""A multiplier with a real or imaginary part above this in magnitude makes its system a
+candidate for the exact growth test (:class:`_ChainBlocks`)."""
+
+_TINY, _HUGE = 1e-140, 1e140
+"""The range of |off| in which the candidate filter's argument holds (:class:`_ChainBlocks`)."""
+
+_TILE = 8
+"""Chain rows copied to the result at a time (a cache-friendly transposition)."""
+
+
+class _ChainBlocks:
+    """The chain solve of :meth:`LinearSystem._solve_chain` for one block of frequencies at a
+    time, its buffers allocated once (module docstring, "Solving it fast").
+
+    Elimination without interchanges (the Thomas algorithm) with the chain along the rows:
+    the negated off-diagonal ``off`` and the diagonal of every row are built inside the forward
+    loop, when the row is reached (the same operations in the same order as
+    :meth:`LinearSystem._diagonals_of`, so the same numbers), the right-hand side copied in at
+    the same time; the back substitution divides by the stored pivots and copies the solved
+    rows to the result :data:`_TILE` rows at a time while they are in cache.
+
+    Small pivots. A system is solved again with partial pivoting (:func:`solve_tridiagonal`)
+    when, for some row, not ``|off|^2 <= 1e16 |pivot|^2`` (a multiplier above
+    :data:`_GROWTH` = 1e8, or not a number). That test is exact but costs a pass over every
+    row; it is made only on *candidates*: the systems with a computed multiplier
+    m = off / pivot whose real or imaginary part exceeds :data:`_CANDIDATE` = 1e7 in magnitude
+    or is not a number (tracked inside the forward loop by a running maximum and minimum of
+    the multipliers, which the loop computes anyway), and for every system on the rows whose
+    |off| may leave [1e-140, 1e140] (no stiffness, or huge values). The flagged systems are
+    exactly those of the test on every system: a system that is not a candidate has, on each
+    remaining row, |m| <= sqrt(2) 1e7; numpy divides complex numbers by Smith's method,
+    whose computed quotient has |m| >= |off| / (sqrt(2) |pivot|) (1 - 16 eps) (the
+    numerator's norm is at least |off|, the denominator at most |pivot_r| + |pivot_i|), so
+    |off| <= 2.01e7 |pivot|, far from the 1e8 bound; with |off| in [1e-140, 1e140], |off|^2
+    and |pivot|^2 >= 2e-295 are normal numbers computed to a few rounding errors, so the test
+    holds. A multiplier that overflows or is not a number makes a candidate.
+    """
+
+    def __init__(
+        self, system: LinearSystem, block: int, r: int, hysteretic_frequency: float | None
+    ) -> None:
+        n = system.size
+        kb, cb, hb, kg, cg, hg = system._chain()
+        self.system = system
+        self.n = n
+        self.hysteretic_frequency = hysteretic_frequency
+        self.values = (
+            kb.tolist(),
+            cb.tolist(),
+            hb.tolist(),
+            kg.tolist(),
+            cg.tolist(),
+            hg.tolist(),
+            system.inertia.tolist(),
+        )
+        self.magnitudes = (np.abs(kb), np.abs(cb), np.abs(hb))  # |off| >= |kb| (class docstring)
+        # the loss factors' terms: hb * factor, added unless they are zero (factor 1.0)
+        self.hysteretic = hysteretic_frequency is not None or bool(np.any(hb) or np.any(hg))
+        self.off = np.empty((max(n - 1, 0), block), dtype=complex)
+        self.diag = np.empty((n, block), dtype=complex)
+        self.x = np.empty((n, r, block), dtype=complex)
+        self.mult = np.empty(block, dtype=complex)
+        self.tmp = np.empty(block, dtype=complex)
+        self.tmp_b = np.empty((r, block), dtype=complex)
+        self.w2 = np.empty(block)
+        self.factor = np.empty(block)
+        self.term = np.empty(block)
+        self.high = np.empty(2 * block)
+        self.low = np.empty(2 * block)
+
+    def solve(self, w: NDArray[np.float64], rhs: np.ndarray, out: np.ndarray) -> None:
+        """Solve one block into ``out``: w (F,) rad/s, rhs (F, n, r) N m, out (F, n, r)."""
+        n = self.n
         count = w.size
-        r = rhs.shape[-1]
-        off, d = self._diagonals_of(w, hysteretic_frequency)
-        b = np.empty((n, r, count), dtype=complex)
-        b[...] = np.moveaxis(rhs, 0, 2)
-        mult = np.empty(count, dtype=complex)
-        tmp = np.empty(count, dtype=complex)
-        tmp_b = np.empty((r, count), dtype=complex)
+        kb, cb, hb, kg, cg, hg, inertia = self.values
+        off, d = self.off[:, :count], self.diag[:, :count]
+        x = self.x[:, :, :count]
+        mult, tmp, tmp_b = self.mult[:count], self.tmp[:count], self.tmp_b[:, :count]
+        w2, factor, term = self.w2[:count], self.factor[:count], self.term[:count]
+        high, low = self.high[: 2 * count], self.low[: 2 * count]
+        np.multiply(w, w, out=w2)
+        hysteretic = self.hysteretic
+        if hysteretic:
+            if self.hysteretic_frequency is None:
+                factor.fill(1.0)
+            else:
+                np.divide(w, self.hysteretic_frequency, out=factor)
+        high.fill(0.0)
+        low.fill(0.0)
+        parts = mult.view(float)  # the multipliers' real and imaginary parts
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            for i in range(1, n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
-                np.divide(off[i - 1], d[i - 1], out=mult)
-                np.multiply(mult, off[i - 1], out=tmp)
-                np.subtract(d[i], tmp, out=d[i])
-                np.multiply(mult, b[i - 1], out=tmp_b)
-                np.add(b[i], tmp_b, out=b[i])
-            # a multiplier off/pivot above 1e8 (or not a number): a small pivot, elimination
-            # may have lost accuracy; checked on all rows at once
-            growth = ~np.all(_abs2(off) <= 1e16 * _abs2(d[:-1]), axis=0) if n > 1 else None
-            np.divide(1.0, d, out=d)  # the pivots' reciprocals, in place
-            np.multiply(b[n - 1], d[n - 1], out=b[n - 1])
-            for i in range(n - 2, -1, -1):  # back substitution, in place: b becomes X
-                np.multiply(off[i], b[i + 1], out=tmp_b)
-                np.add(b[i], tmp_b, out=b[i])
-                np.multiply(b[i], d[i], out=b[i])
-        if growth is not None and np.any(growth):  # rare: part of the chain at its resonance
-            idx = np.flatnonzero(growth)
-            off_k, diag_k = self._diagonals_of(w[idx], hysteretic_frequency)  # their rows only
+            for i in range(n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
+                di = d[i]
+                if i < n - 1:  # off = k + i (w c + h factor)
+                    oi = off[i]
+                    oi.real = kb[i]
+                    np.multiply(w, cb[i], out=oi.imag)
+                    if hysteretic:
+                        np.multiply(factor, hb[i], out=term)
+                        np.add(oi.imag, term, out=oi.imag)
+                np.multiply(w2, inertia[i], out=di.real)  # k_g - w^2 J + i (w c_g + h_g)
+                np.subtract(kg[i], di.real, out=di.real)
+                np.multiply(w, cg[i], out=di.imag)
+                if hysteretic:
+                    np.multiply(factor, hg[i], out=term)
+                    np.add(di.imag, term, out=di.imag)
+                if i < n - 1:
+                    np.add(di, off[i], out=di)
+                x[i] = rhs[:, i, :].T
+                if i == 0:
+                    continue
+                prev = off[i - 1]
+                np.add(di, prev, out=di)
+                np.divide(prev, d[i - 1], out=mult)
+                np.maximum(high, parts, out=high)
+                np.minimum(low, parts, out=low)
+                np.multiply(mult, prev, out=tmp)
+                np.subtract(di, tmp, out=di)
+                np.multiply(mult, x[i - 1], out=tmp_b)
+                np.add(x[i], tmp_b, out=x[i])
+            flagged = self._flagged(w, off, d, high, low) if n > 1 else np.empty(0, dtype=int)
+            np.divide(x[n - 1], d[n - 1], out=x[n - 1])
+            top = n
+            for i in range(n - 2, -1, -1):  # back substitution, in place: x becomes X
+                np.multiply(off[i], x[i + 1], out=tmp_b)
+                np.add(x[i], tmp_b, out=x[i])
+                np.divide(x[i], d[i], out=x[i])
+                if i % _TILE == 0:  # rows i..top-1 solved, still in cache
+                    out[:, i:top] = np.moveaxis(x[i:top], 2, 0)
+                    top = i
+            if top > 0:  # n == 1
+                out[:, :top] = np.moveaxis(x[:top], 2, 0)
+        if flagged.size:  # rare: part of the chain at its resonance
+            off_k, diag_k = self.system._diagonals_of(w[flagged], self.hysteretic_frequency)
             lower = -off_k.T
-            solved = solve_tridiagonal(lower, diag_k.T, lower, rhs[idx])  # (k, n, r)
-            b[:, :, idx] = np.moveaxis(solved, 0, 2)
-        return b
+            out[flagged] = solve_tridiagonal(lower, diag_k.T, lower, rhs[flagged])
+
+    def _flagged(
+        self,
+        w: NDArray[np.float64],
+        off: NDArray[np.complex128],
+        d: NDArray[np.complex128],
+        high: NDArray[np.float64],
+        low: NDArray[np.float64],
+    ) -> NDArray[np.intp]:
+        """The block's systems (indices) with a multiplier above :data:`_GROWTH` or not a
+        number: the exact test on the candidates and on the rows outside the filter's range
+        (class docstring); ``off`` (n-1, F) and ``d`` (n, F) the eliminated rows, ``high`` and
+        ``low`` (2F,) the running extremes of the multipliers' parts."""
+        count = w.size
+        inside = (high <= _CANDIDATE) & (low >= -_CANDIDATE)  # False also for NaN
+        candidate = np.any(~inside.reshape(count, 2), axis=1)
+        flagged = np.zeros(count, dtype=bool)
+        idx = np.flatnonzero(candidate)
+        if idx.size:
+            flagged[idx] = _growth(off[:, idx], d[:-1, idx])
+        top_w = float(np.max(np.abs(w))) if count else 0.0
+        top_f = 1.0 if self.hysteretic_frequency is None else top_w / abs(self.hysteretic_frequency)
+        k, c, h = self.magnitudes
+        bound = k + top_w * c + top_f * h  # at least every |off| of the block
+        rows = np.flatnonzero(~((k >= _TINY) & (bound <= _HUGE)))
+        for i in rows:  # outside the filter's range: the exact test on the row
+            flagged |= _growth(off[i : i + 1], d[i : i + 1])
+        return np.flatnonzero(flagged)
+
+
+def _growth(off: NDArray[np.complex128], pivot: NDArray[np.complex128]) -> NDArray[np.bool_]:
+    """Per system (column), a multiplier |off / pivot| above :data:`_GROWTH` on some row (a
+    small pivot, elimination may have lost accuracy) or not a number: not
+    |off|^2 <= 1e16 |pivot|^2 (arrays (rows, F))."""
+    return ~np.all(_abs2(off) <= 1e16 * _abs2(pivot), axis=0)
 
 
 def _hyst(h: np.ndarray, w: np.ndarray, hysteretic_frequency: float | None) -> np.ndarray:
