@@ -166,7 +166,8 @@ def _prepare_for_children() -> None:
     import matplotlib.backends.backend_agg as agg
     import matplotlib.backends.backend_svg  # noqa: F401
     import PIL.PngImagePlugin  # noqa: F401
-    from matplotlib.figure import Figure
+
+    from crankdyn.plots.style import Figure
 
     figure = Figure(figsize=(1.0, 1.0))
     text = figure.text(0.5, 0.5, "Crank angle (deg) 0123456789")
