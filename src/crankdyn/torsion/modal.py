@@ -551,26 +551,29 @@ def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     division, which then gives the absolute values."""
     count = shapes.shape[0]
     peak = np.maximum(shapes.max(axis=1), -shapes.min(axis=1))  # max |x|
-    peak[~(peak > 0.0)] = 1.0
+    if not peak.min() > 0.0:  # a row of zeros (or NaN)
+        peak[~(peak > 0.0)] = 1.0
     head = np.abs(shapes[:, 0]) / peak > _ZERO
-    later = np.flatnonzero(~head) if not head.all() else head[:0]
+    later = count - np.count_nonzero(head)
     size = None
-    if 8 * later.size > count:  # many: |x| / peak of all the rows, searched in place
+    if 8 * later > count:  # many: |x| / peak of all the rows, searched in place
         size = np.divide(shapes, peak[:, None])
         np.abs(size, out=size)
         first = np.argmax(size > _ZERO, axis=1)
-    elif later.size:  # a few: in those rows only
+    elif later:  # a few: in those rows only
+        rows = np.flatnonzero(~head)
         first = np.zeros(count, dtype=int)
-        first[later] = np.argmax(np.abs(shapes[later]) / peak[later, None] > _ZERO, axis=1)
-    sign = np.sign(shapes[np.arange(count), first] if later.size else shapes[:, 0])
-    sign[sign == 0.0] = 1.0
+        first[rows] = np.argmax(np.abs(shapes[rows]) / peak[rows, None] > _ZERO, axis=1)
+    sign = np.sign(shapes[np.arange(count), first] if later else shapes[:, 0])
+    if not sign.all():
+        sign[sign == 0.0] = 1.0
     np.divide(shapes, (peak * sign)[:, None], out=shapes)  # exactly sign * (shapes / peak)
     if size is None:
         size = np.abs(shapes)
     tiny = size < 1e-14
     if tiny.any():
-        shapes[tiny] = 0.0  # round-off to 0 (a positive 0: no negative zeros)
-        size[tiny] = 0.0
+        np.copyto(shapes, 0.0, where=tiny)  # round-off to 0 (a positive 0: no negative zeros)
+        np.copyto(size, 0.0, where=tiny)
     return shapes, size
 
 
@@ -881,10 +884,31 @@ def _chain_counts(
     del both
     whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
     if not whole.all():
-        rough = np.flatnonzero(~whole)
-        runs = _roundoff_runs(resolved[rough], negative[rough])
-        counts[rough] += np.bincount(runs[3], minlength=rough.size)
+        counts += _open_counts(resolved, negative)
     return counts, whole
+
+
+def _open_counts(resolved: NDArray[np.bool_], negative: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """Per mode (row) of a chain the round-off runs between resolved components of opposite
+    sign (the nodes somewhere in a run, :func:`_roundoff_runs`), from the flat indices of the
+    runs' ends: a row padded with a resolved component at either end changes from resolved to
+    round-off and back once per run."""
+    count, n = resolved.shape
+    pad = np.ones((count, n + 2), dtype=bool)
+    pad[:, 1:-1] = resolved
+    width = n + 1
+    edges = np.flatnonzero(pad[:, 1:] != pad[:, :-1])  # per row: each run's start, its end + 1
+    first = edges[0::2]
+    row = first // width
+    at = row * width
+    first -= at  # the run's first column
+    last = edges[1::2] - at - 1  # its last column
+    inside = (first > 0) & (last < n - 1)
+    row, first, last = row[inside], first[inside], last[inside]
+    at = row * n - 1
+    flat = negative.ravel()
+    flips = flat[at + first] != flat[at + last + 2]
+    return np.bincount(row[flips], minlength=count)
 
 
 @dataclass(frozen=True)
@@ -931,9 +955,8 @@ def _rows(
     J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_resolved`). ``lazy``: a
     chain's nodes are only counted (:func:`_chain_counts`) and located when first asked for."""
     shapes_dof, size = _normalise(phi_t)  # mode x dof, in place; size = |shapes_dof|
-    dof = model.mass_dof
-    in_order = dof.size == shapes_dof.shape[1] and bool((dof == np.arange(dof.size)).all())
-    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
+    # mode x mass (listing order)
+    shapes = shapes_dof if model._dofs_in_listing_order else shapes_dof[:, model.mass_dof]
     square = size * size  # phi_i^2
     modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
     del square

@@ -1235,6 +1235,13 @@ class TorsionModel:
         """Degree of freedom of every mass (meshing masses share one)."""
         return self._structure.mass_dof
 
+    @cached_property
+    def _dofs_in_listing_order(self) -> bool:
+        """Whether degree of freedom i is mass i for every mass (no rigid gear meshes, a chain
+        listed in chain order): results by degree of freedom are then by mass."""
+        dof = self.mass_dof
+        return dof.size == self.dof_count and bool((dof == np.arange(dof.size)).all())
+
     @property
     def dofs(self) -> tuple[tuple[int, ...], ...]:
         """Mass indices of every degree of freedom (in chain order for a chain)."""
