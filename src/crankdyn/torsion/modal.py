@@ -571,9 +571,11 @@ def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     if size is None:
         size = np.abs(shapes)
     tiny = size < 1e-14
-    if tiny.any():
-        np.copyto(shapes, 0.0, where=tiny)  # round-off to 0 (a positive 0: no negative zeros)
-        np.copyto(size, 0.0, where=tiny)
+    if tiny.any():  # round-off to 0 (a positive 0: no negative zeros), without a masked write
+        keep = ~tiny
+        np.multiply(shapes, keep, out=shapes)  # x * 1 = x; x * 0 = +0 or -0
+        np.add(shapes, 0.0, out=shapes)  # -0 + 0 = +0; x + 0 = x for every other x
+        np.multiply(size, keep, out=size)  # size >= 0: +0
     return shapes, size
 
 
