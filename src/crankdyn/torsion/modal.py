@@ -629,8 +629,12 @@ def roundoff_thresholds(eigenvalues: npt.ArrayLike) -> NDArray[np.float64]:
     gap[:-1] = step
     gap[-1] = np.inf
     np.minimum(gap[1:], step, out=gap[1:])
-    tau_sorted = np.full(n, np.inf)  # inf where there is no gap
-    np.divide(EIGENVECTOR_SAFETY * _EPS * norm, gap, out=tau_sorted, where=gap > 0.0)
+    scale = EIGENVECTOR_SAFETY * _EPS * norm
+    if gap.min() > 0.0:  # distinct eigenvalues (the rule)
+        tau_sorted = scale / gap
+    else:  # inf where there is no gap
+        tau_sorted = np.full(n, np.inf)
+        np.divide(scale, gap, out=tau_sorted, where=gap > 0.0)
     if order is None:
         return tau_sorted
     tau = np.empty(n)
