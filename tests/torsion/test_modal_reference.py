@@ -125,6 +125,7 @@ CASES = [
         (80, 8, "wide", "both"),
         (100, 9, "random", "none"),
         (120, 10, "wide", "none"),
+        (300, 11, "wide", "left"),  # beyond _FLAT_COUNTS: the whole-array count
     ]
 ]
 

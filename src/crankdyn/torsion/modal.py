@@ -882,16 +882,31 @@ def _chain_counts(
     """(node count, whether resolved) of every mode of a chain without locating the nodes: the
     sign changes between resolved neighbours, plus, in the modes with round-off runs, the runs
     between resolved components of opposite sign (:func:`_chain_nodes` counts the same)."""
+    count, n = resolved.shape
+    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
+    if count * n <= _FLAT_COUNTS:
+        # small: the sign changes between consecutive resolved components of a mode (a node
+        # between neighbours or across a run), from their flat indices in a few calls
+        at = np.flatnonzero(resolved)
+        row = at // n
+        sign = np.signbit(shapes_dof.ravel()[at])
+        change = sign[1:] != sign[:-1]
+        change &= row[1:] == row[:-1]
+        return np.bincount(row[1:][change], minlength=count), whole
     negative = np.signbit(shapes_dof)
     both = negative[:, 1:] != negative[:, :-1]
     both &= resolved[:, 1:]
     both &= resolved[:, :-1]
     counts = both.sum(axis=1, dtype=np.intp)
     del both
-    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
     if not whole.all():
         counts += _open_counts(resolved, negative)
     return counts, whole
+
+
+_FLAT_COUNTS = 1 << 16
+"""Modes x degrees of freedom up to which :func:`_chain_counts` counts from the flat indices of
+the resolved components (fewer calls); beyond, by whole-array passes (less memory traffic)."""
 
 
 def _open_counts(resolved: NDArray[np.bool_], negative: NDArray[np.bool_]) -> NDArray[np.intp]:
