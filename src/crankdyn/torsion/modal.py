@@ -64,7 +64,7 @@ import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -98,6 +98,7 @@ __all__ = [
 SOLVERS = ("eigen", "holzer", "transfer", "closed-form")
 HZ = 1.0 / (2.0 * math.pi)
 _ZERO = 1e-9  # the first amplitude above this (of the largest) sets a shape's sign
+_EPS = float(np.finfo(float).eps)
 _BISECTION_TOL = 2.0 * np.finfo(float).tiny
 """Absolute tolerance of ``dstebz``: twice the underflow threshold, LAPACK's setting for the
 most accurate eigenvalues (0 would mean eps x ||T||: 1e-9 relative on the lowest modes of a
@@ -168,8 +169,9 @@ class ModalResult(Result):
     shapes_dof : numpy.ndarray or None
         The normalised mode shapes by degree of freedom (mode x dof, dimensionless; not
         exported), for locating nodes and the mass-normalised :attr:`eigenvectors`.
-    node_arrays : _NodeArrays or None
-        The nodes and round-off regions of every mode in compact form (indices; not exported).
+    node_source : _Nodes or None
+        The nodes and round-off regions of every mode in compact form (indices; not exported),
+        found when first asked for (:attr:`node_arrays`).
 
     Examples
     --------
@@ -209,8 +211,16 @@ class ModalResult(Result):
     shapes_dof: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Normalised mode shapes by degree of freedom (mode x dof), for locating nodes."""
 
-    node_arrays: _NodeArrays | None = field(default=None, repr=False, compare=False)
-    """The nodes and round-off regions of all modes in compact form."""
+    node_source: _Nodes | None = field(default=None, repr=False, compare=False)
+    """The nodes and round-off regions of all modes, found when first asked for."""
+
+    @property
+    def node_arrays(self) -> _NodeArrays | None:
+        """The nodes and round-off regions of all modes in compact form (indices into the
+        modes, the model's shafts and its degrees of freedom), located when first asked for:
+        the node counts and :attr:`nodes_resolved` are computed with the modes, the positions
+        only for the nodes, the JSON and the streamed writers."""
+        return None if self.node_source is None else self.node_source.arrays
 
     def index(self, mode: int) -> int:
         """Row of a mode number (docs/conventions.md: elastic modes from 1, a free model's
@@ -415,7 +425,7 @@ def eigen_modes(
         diag, off = chain.stiffness_diagonals()
         s = np.sqrt(J)
         d = diag / J
-        if chain.size == 1:
+        if n == 1:
             lam, u = d.copy(), np.ones((1, 1))
         elif partial:
             import scipy.linalg  # imported here: keeps the start-up light
@@ -443,7 +453,7 @@ def eigen_modes(
     lam = np.maximum(lam, 0.0)
     if model.is_free if free is None else free:
         lam[0] = 0.0
-        phi[:, 0] = 1.0 / math.sqrt(float(np.sum(J)))
+        phi[:, 0] = 1.0 / math.sqrt(float(J.sum()))
     return lam, phi
 
 
@@ -529,26 +539,43 @@ def _solve(
 
 def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Scale every row, in place, to a largest absolute amplitude of 1, first non-zero
-    amplitude > 0.
+    amplitude > 0; amplitudes below 1e-14 of the largest become 0 (a positive 0: no negative
+    zeros).
 
-    Returns the array and its absolute values (before amplitudes below 1e-14 are set to 0).
-    Five passes over the data (this runs on n x n shapes): the amplitude that fixes a row's
-    sign is looked for beyond the first column only in the rows where that one is at rest."""
-    size = np.abs(shapes)
-    peak = np.max(size, axis=1)
-    peak[~(peak > 0.0)] = 1.0
-    np.divide(size, peak[:, None], out=size)  # |shapes / peak|, exactly (peak > 0)
-    rows = np.arange(shapes.shape[0])
-    first = np.zeros(rows.size, dtype=int)
-    later = np.flatnonzero(~(size[:, 0] > _ZERO)) if size.shape[1] else rows[:0]
-    if later.size:  # the first amplitude that counts
-        first[later] = np.argmax(size[later] > _ZERO, axis=1)
-    sign = np.sign(shapes[rows, first])
-    sign[sign == 0.0] = 1.0
+    Returns the array and its absolute values (a new array the caller may overwrite). The
+    largest amplitude comes from the row's maximum and minimum (no array of absolute values),
+    then the division and the absolute values of the result (|x / (peak sign)| = |x| / peak
+    exactly). The amplitude that fixes a row's sign (the first above 1e-9 of the largest) is
+    looked for beyond the first column only in the rows where that one is at rest; when they
+    are many (the localised modes of a long chain), on |x| / peak of every row before the
+    division, which then gives the absolute values."""
+    count = shapes.shape[0]
+    peak = np.maximum(shapes.max(axis=1), -shapes.min(axis=1))  # max |x|
+    if not peak.min() > 0.0:  # a row of zeros (or NaN)
+        peak[~(peak > 0.0)] = 1.0
+    head = np.abs(shapes[:, 0]) / peak > _ZERO
+    later = count - np.count_nonzero(head)
+    size = None
+    if 8 * later > count:  # many: |x| / peak of all the rows, searched in place
+        size = np.divide(shapes, peak[:, None])
+        np.abs(size, out=size)
+        first = np.argmax(size > _ZERO, axis=1)
+    elif later:  # a few: in those rows only
+        rows = np.flatnonzero(~head)
+        first = np.zeros(count, dtype=int)
+        first[rows] = np.argmax(np.abs(shapes[rows]) / peak[rows, None] > _ZERO, axis=1)
+    sign = np.sign(shapes[np.arange(count), first] if later else shapes[:, 0])
+    if not sign.all():
+        sign[sign == 0.0] = 1.0
     np.divide(shapes, (peak * sign)[:, None], out=shapes)  # exactly sign * (shapes / peak)
+    if size is None:
+        size = np.abs(shapes)
     tiny = size < 1e-14
-    if tiny.any():
-        shapes[tiny] = 0.0  # round-off to 0 (a positive 0: no negative zeros)
+    if tiny.any():  # round-off to 0 (a positive 0: no negative zeros), without a masked write
+        keep = ~tiny
+        np.multiply(shapes, keep, out=shapes)  # x * 1 = x; x * 0 = +0 or -0
+        np.add(shapes, 0.0, out=shapes)  # -0 + 0 = +0; x + 0 = x for every other x
+        np.multiply(size, keep, out=size)  # size >= 0: +0
     return shapes, size
 
 
@@ -589,22 +616,25 @@ def roundoff_thresholds(eigenvalues: npt.ArrayLike) -> NDArray[np.float64]:
     n = lam.size
     if n < 2:
         return np.zeros(n)
-    step = np.diff(lam)
-    ascending = bool(np.all(step >= 0.0))  # as the solvers give them: no sort
-    if ascending:
+    step = lam[1:] - lam[:-1]
+    if (step >= 0.0).all():  # ascending, as the solvers give them: no sort (and no NaN)
         order, sorted_lam = None, lam
+        norm = max(abs(float(lam[0])), abs(float(lam[-1])))  # the largest |lambda|
     else:
         order = np.argsort(lam, kind="stable")
         sorted_lam = lam[order]
-        step = np.diff(sorted_lam)
-    gap = np.full(n, np.inf)
+        step = sorted_lam[1:] - sorted_lam[:-1]
+        norm = float(np.max(np.abs(sorted_lam)))
+    gap = np.empty(n)
     gap[:-1] = step
-    gap[1:] = np.minimum(gap[1:], step)
-    norm = float(np.max(np.abs(sorted_lam)))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        tau_sorted = np.where(
-            gap > 0.0, EIGENVECTOR_SAFETY * np.finfo(float).eps * norm / gap, np.inf
-        )
+    gap[-1] = np.inf
+    np.minimum(gap[1:], step, out=gap[1:])
+    scale = EIGENVECTOR_SAFETY * _EPS * norm
+    if gap.min() > 0.0:  # distinct eigenvalues (the rule)
+        tau_sorted = scale / gap
+    else:  # inf where there is no gap
+        tau_sorted = np.full(n, np.inf)
+        np.divide(scale, gap, out=tau_sorted, where=gap > 0.0)
     if order is None:
         return tau_sorted
     tau = np.empty(n)
@@ -663,18 +693,29 @@ def _fractions(
     return ta / (ta - tb)
 
 
+def _nonzero(mask: NDArray[np.bool_]) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+    """(rows, columns) of the True entries of a 2-D mask in row-major order, as
+    ``np.nonzero`` gives them, from the flat indices (``np.nonzero`` tracks a 2-D index per
+    entry: ten times slower on an n x n mask)."""
+    columns = mask.shape[1]
+    flat = np.flatnonzero(mask)
+    if not columns:
+        return flat, flat.copy()
+    return np.divmod(flat, columns)
+
+
 def _chain_nodes(
     model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
 ) -> _NodeArrays:
     """Nodes of a chain (dofs in chain order), all modes at once: a sign change between
     neighbouring resolved components is a node on their shaft; one across a run of round-off
     components a node somewhere in that run."""
-    count, n = resolved.shape
+    n = resolved.shape[1]
     negative = np.signbit(shapes_dof)
     # a node between neighbours that are both resolved (the common case): a sign change
     both = resolved[:, 1:] & resolved[:, :-1]
     both &= negative[:, 1:] != negative[:, :-1]
-    located_mode, located_first = np.nonzero(both)
+    located_mode, located_first = _nonzero(both)
     shaft_of = np.full(max(n - 1, 0), -1, dtype=int)
     ends = model.shaft_dofs
     inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
@@ -685,27 +726,38 @@ def _chain_nodes(
         shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
     located_shaft = shaft_of[located_first]
     fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
-    # round-off runs: first and last dof of every run of unresolved components
-    loose = ~resolved
-    starts = loose & np.concatenate([np.ones((count, 1), bool), resolved[:, :-1]], axis=1)
-    run_ends = loose & np.concatenate([resolved[:, 1:], np.ones((count, 1), bool)], axis=1)
-    region_mode, region_first = np.nonzero(starts)
-    _, region_last = np.nonzero(run_ends)
-    # a node somewhere in a run whose resolved neighbours on both sides differ in sign
-    inside = (region_first > 0) & (region_last < n - 1)
-    o_mode, o_first, o_last = region_mode[inside], region_first[inside], region_last[inside]
-    flips = negative[o_mode, o_first - 1] != negative[o_mode, o_last + 1]
+    region_mode, region_first, region_last, open_mode, open_first, open_last = _roundoff_runs(
+        resolved, negative
+    )
     return _NodeArrays(
         shaft_mode=located_mode,
         shaft=located_shaft,
         fraction=fraction,
-        open_mode=o_mode[flips],
-        open_first=o_first[flips],
-        open_last=o_last[flips],
+        open_mode=open_mode,
+        open_first=open_first,
+        open_last=open_last,
         region_mode=region_mode,
         region_first=region_first,
         region_last=region_last,
     )
+
+
+def _roundoff_runs(
+    resolved: NDArray[np.bool_], negative: NDArray[np.bool_]
+) -> tuple[NDArray[np.intp], ...]:
+    """The round-off runs of a chain's modes (rows): (mode, first dof, last dof) of every run of
+    unresolved components, then (mode, first, last) of the runs whose resolved neighbours on
+    both sides differ in sign (a node somewhere in the run)."""
+    count, n = resolved.shape
+    loose = ~resolved
+    starts = loose & np.concatenate([np.ones((count, 1), bool), resolved[:, :-1]], axis=1)
+    run_ends = loose & np.concatenate([resolved[:, 1:], np.ones((count, 1), bool)], axis=1)
+    region_mode, region_first = _nonzero(starts)
+    region_last = _nonzero(run_ends)[1]
+    inside = (region_first > 0) & (region_last < n - 1)
+    o_mode, o_first, o_last = region_mode[inside], region_first[inside], region_last[inside]
+    flips = negative[o_mode, o_first - 1] != negative[o_mode, o_last + 1]
+    return region_mode, region_first, region_last, o_mode[flips], o_first[flips], o_last[flips]
 
 
 def _graph_nodes(
@@ -722,7 +774,7 @@ def _graph_nodes(
     negative = np.signbit(shapes_dof)
     a, b, edge_shaft = _edge_shafts(model)
     crossing = resolved[:, a] & resolved[:, b] & (negative[:, a] != negative[:, b])
-    located_mode, e = np.nonzero(crossing)
+    located_mode, e = _nonzero(crossing)
     located_shaft = edge_shaft[e]
     fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
     open_mode, open_first, open_last = [], [], []
@@ -762,6 +814,26 @@ def _graph_nodes(
     )
 
 
+def _resolved(
+    model: TorsionModel,
+    size: NDArray[np.float64],
+    modal_inertia: NDArray[np.float64],
+    tau: NDArray[np.float64],
+    rigid: bool,
+) -> NDArray[np.bool_]:
+    """Which components of the modes are resolved (above round-off, module docstring): ``size``
+    the absolute normalised amplitudes (mode x dof; overwritten), ``tau`` the modes' round-off
+    thresholds (:func:`roundoff_thresholds` of the whole spectrum), ``rigid``: the first row is
+    the rigid-body mode."""
+    # |u_i| = |phi_i| sqrt(J_i) / sqrt(J_r) > tau_r: the component is resolved
+    np.multiply(size, np.sqrt(model.dof_inertia), out=size)
+    with np.errstate(invalid="ignore", over="ignore"):
+        resolved = size > (tau * np.sqrt(modal_inertia))[:, None]
+    if rigid and resolved.shape[0]:
+        resolved[0] = True  # the rigid-body mode: exactly ones
+    return resolved
+
+
 def _find_nodes(
     model: TorsionModel,
     shapes_dof: NDArray[np.float64],
@@ -770,46 +842,158 @@ def _find_nodes(
     rigid: bool,
 ) -> _NodeArrays:
     """Nodes and round-off regions of the modes in the rows of ``shapes_dof`` (module
-    docstring); ``tau``: their round-off thresholds (:func:`roundoff_thresholds` of the whole
-    spectrum), ``rigid``: the first row is the rigid-body mode."""
-    # |u_i| = |phi_i| sqrt(J_i) / sqrt(J_r) > tau_r: the component is resolved
-    size = np.abs(shapes_dof) * np.sqrt(model.dof_inertia)
-    with np.errstate(invalid="ignore", over="ignore"):
-        resolved = size > (tau * np.sqrt(modal_inertia))[:, None]
-    del size
-    if rigid and resolved.shape[0]:
-        resolved[0] = True  # the rigid-body mode: exactly ones
+    docstring); ``tau``, ``rigid``: :func:`_resolved`."""
+    resolved = _resolved(model, np.abs(shapes_dof), modal_inertia, tau, rigid)
     if model.is_chain:
         return _chain_nodes(model, shapes_dof, resolved)
     return _graph_nodes(model, shapes_dof, resolved)
 
 
+class _Nodes:
+    """The node arrays of some modes: given, or located from their inputs when first asked for
+    (:func:`_find_nodes`; the inputs are dropped then)."""
+
+    __slots__ = ("_arrays", "_inputs")
+
+    def __init__(
+        self,
+        arrays: _NodeArrays | None = None,
+        inputs: tuple[
+            TorsionModel, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool
+        ]
+        | None = None,
+    ) -> None:
+        self._arrays = arrays
+        self._inputs = inputs
+
+    @property
+    def arrays(self) -> _NodeArrays:
+        """The node arrays (:class:`_NodeArrays`)."""
+        if self._arrays is None:
+            assert self._inputs is not None
+            self._arrays = _find_nodes(*self._inputs)
+            self._inputs = None
+        return self._arrays
+
+
+def _chain_counts(
+    shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
+) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
+    """(node count, whether resolved) of every mode of a chain without locating the nodes: the
+    sign changes between resolved neighbours, plus, in the modes with round-off runs, the runs
+    between resolved components of opposite sign (:func:`_chain_nodes` counts the same)."""
+    count, n = resolved.shape
+    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
+    if count * n <= _FLAT_COUNTS:
+        # small: the sign changes between consecutive resolved components of a mode (a node
+        # between neighbours or across a run), from their flat indices in a few calls
+        at = np.flatnonzero(resolved)
+        row = at // n
+        sign = np.signbit(shapes_dof.ravel()[at])
+        change = sign[1:] != sign[:-1]
+        change &= row[1:] == row[:-1]
+        return np.bincount(row[1:][change], minlength=count), whole
+    negative = np.signbit(shapes_dof)
+    both = negative[:, 1:] != negative[:, :-1]
+    both &= resolved[:, 1:]
+    both &= resolved[:, :-1]
+    counts = both.sum(axis=1, dtype=np.intp)
+    del both
+    if not whole.all():
+        counts += _open_counts(resolved, negative)
+    return counts, whole
+
+
+_FLAT_COUNTS = 1 << 16
+"""Modes x degrees of freedom up to which :func:`_chain_counts` counts from the flat indices of
+the resolved components (fewer calls); beyond, by whole-array passes (less memory traffic)."""
+
+
+def _open_counts(resolved: NDArray[np.bool_], negative: NDArray[np.bool_]) -> NDArray[np.intp]:
+    """Per mode (row) of a chain the round-off runs between resolved components of opposite
+    sign (the nodes somewhere in a run, :func:`_roundoff_runs`), from the flat indices of the
+    runs' ends: a row padded with a resolved component at either end changes from resolved to
+    round-off and back once per run."""
+    count, n = resolved.shape
+    pad = np.ones((count, n + 2), dtype=bool)
+    pad[:, 1:-1] = resolved
+    width = n + 1
+    edges = np.flatnonzero(pad[:, 1:] != pad[:, :-1])  # per row: each run's start, its end + 1
+    first = edges[0::2]
+    row = first // width
+    at = row * width
+    first -= at  # the run's first column
+    last = edges[1::2] - at - 1  # its last column
+    inside = (first > 0) & (last < n - 1)
+    row, first, last = row[inside], first[inside], last[inside]
+    at = row * n - 1
+    flat = negative.ravel()
+    flips = flat[at + first] != flat[at + last + 2]
+    return np.bincount(row[flips], minlength=count)
+
+
 @dataclass(frozen=True)
 class _Rows:
     """The per-mode results of some modes (rows): shapes by mass and by dof, modal inertias,
-    nodes (mode indices counted from the first row)."""
+    node counts, whether resolved, the nodes (mode indices counted from the first row)."""
 
     shapes: NDArray[np.float64]  # mode x mass (listing order), largest amplitude 1
     shapes_dof: NDArray[np.float64]  # mode x dof
     modal_inertia: NDArray[np.float64]  # kg·m²
-    nodes: _NodeArrays
+    counts: NDArray[np.intp]  # nodes per mode
+    resolved: NDArray[np.bool_]  # whether the mode's shape is above round-off throughout
+    found: _Nodes
+
+    @property
+    def nodes(self) -> _NodeArrays:
+        """The node arrays (located when first asked for)."""
+        return self.found.arrays
+
+    @classmethod
+    def of(
+        cls,
+        shapes: NDArray[np.float64],
+        shapes_dof: NDArray[np.float64],
+        modal_inertia: NDArray[np.float64],
+        nodes: _NodeArrays,
+    ) -> _Rows:
+        """The rows with their nodes located already."""
+        m = modal_inertia.size
+        return cls(
+            shapes, shapes_dof, modal_inertia, nodes.counts(m), nodes.resolved(m), _Nodes(nodes)
+        )
 
 
 def _rows(
-    model: TorsionModel, phi_t: NDArray[np.float64], tau: NDArray[np.float64], rigid: bool
+    model: TorsionModel,
+    phi_t: NDArray[np.float64],
+    tau: NDArray[np.float64],
+    rigid: bool,
+    *,
+    lazy: bool = False,
 ) -> _Rows:
     """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
-    J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_find_nodes`)."""
-    shapes_dof, size = _normalise(phi_t)  # mode x dof, in place
-    del size
-    dof = model.mass_dof
-    in_order = dof.size == shapes_dof.shape[1] and bool((dof == np.arange(dof.size)).all())
-    shapes = shapes_dof if in_order else shapes_dof[:, dof]  # mode x mass (listing order)
-    square = shapes_dof * shapes_dof
+    J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_resolved`). ``lazy``: a
+    chain's nodes are only counted (:func:`_chain_counts`) and located when first asked for."""
+    shapes_dof, size = _normalise(phi_t)  # mode x dof, in place; size = |shapes_dof|
+    # mode x mass (listing order)
+    shapes = shapes_dof if model._dofs_in_listing_order else shapes_dof[:, model.mass_dof]
+    square = size * size  # phi_i^2
     modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
     del square
-    nodes = _find_nodes(model, shapes_dof, modal_inertia, tau, rigid)
-    return _Rows(shapes, shapes_dof, modal_inertia, nodes)
+    if lazy and model.is_chain:
+        resolved = _resolved(model, size, modal_inertia, tau, rigid)
+        del size
+        counts, whole = _chain_counts(shapes_dof, resolved)
+        found = _Nodes(inputs=(model, shapes_dof, modal_inertia, tau, rigid))
+        return _Rows(shapes, shapes_dof, modal_inertia, counts, whole, found)
+    resolved = _resolved(model, size, modal_inertia, tau, rigid)
+    del size
+    if model.is_chain:
+        nodes = _chain_nodes(model, shapes_dof, resolved)
+    else:
+        nodes = _graph_nodes(model, shapes_dof, resolved)
+    return _Rows.of(shapes, shapes_dof, modal_inertia, nodes)
 
 
 def natural_modes(
@@ -869,7 +1053,7 @@ def natural_modes(
     all_omega = chain_frequencies(model) if partial else None
     spectrum = omega if all_omega is None else all_omega
     tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
-    rows = _rows(model, phi.T, tau, free)
+    rows = _rows(model, phi.T, tau, free, lazy=True)
     del phi
     return _result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
 
@@ -894,8 +1078,8 @@ def _result(
         # frequencies are copied (it may hold on to them)
         mode=_readonly(np.arange(first, first + omega.size)),
         natural_frequency=_readonly(omega) if solver == "eigen" else freeze(omega),
-        node_count=_readonly(rows.nodes.counts(omega.size)),
-        nodes_resolved=_readonly(rows.nodes.resolved(omega.size)),
+        node_count=_readonly(rows.counts),
+        nodes_resolved=_readonly(rows.resolved),
         modal_inertia=_readonly(inertia),
         modal_stiffness=_readonly(omega**2 * inertia),
         mode_shapes=_readonly(rows.shapes),
@@ -908,7 +1092,7 @@ def _result(
         all_natural_frequency=None if all_omega is None else freeze(all_omega),
         model=model,
         shapes_dof=_readonly(rows.shapes_dof),
-        node_arrays=rows.nodes,
+        node_source=rows.found,
     )
 
 
@@ -1106,7 +1290,7 @@ class ModeBlocks:
         [0.0, 100.0, 173.2051]
         """
         parts = list(self.blocks())
-        rows = _Rows(
+        rows = _Rows.of(
             np.concatenate([p.rows.shapes for p in parts]),
             np.concatenate([p.rows.shapes_dof for p in parts]),
             np.concatenate([p.rows.modal_inertia for p in parts]),
@@ -1146,7 +1330,7 @@ def _slices(result: ModalResult, block: int) -> Iterator[_Block]:
         sm, sh, fr = _part(lo, hi, arrays.shaft_mode, arrays.shaft, arrays.fraction)
         om, of, ol = _part(lo, hi, arrays.open_mode, arrays.open_first, arrays.open_last)
         rm, rf, rl = _part(lo, hi, arrays.region_mode, arrays.region_first, arrays.region_last)
-        rows = _Rows(
+        rows = _Rows.of(
             result.mode_shapes[lo:hi],
             result.shapes_dof[lo:hi],
             result.modal_inertia[lo:hi],
@@ -1326,7 +1510,7 @@ def modes_csv_chunks(
     Yields
     ------
     str
-        The header line, then the rows of one block at a time.
+        The header line, then one row (mode) at a time.
     """
     model, _solver, _total, blocks = _source(source, block)
     first = 0 if model.is_free else 1
@@ -1346,11 +1530,13 @@ def modes_csv_chunks(
             [
                 np.arange(first + b.start, first + b.start + m, dtype=float),
                 b.omega * HZ,
-                rows.nodes.counts(m).astype(float),
-                rows.nodes.resolved(m).astype(float),
+                rows.counts.astype(float),
+                rows.resolved.astype(float),
                 rows.modal_inertia,
                 b.omega**2 * rows.modal_inertia,
                 rows.shapes,
             ]
         )
-        yield "".join([line % tuple(r) for r in table.tolist()])
+        del rows
+        for r in table:  # a row at a time: never the block as Python floats
+            yield line % tuple(r.tolist())

@@ -1192,7 +1192,7 @@ class TorsionModel:
                 f'no mass named "{name}"{did_you_mean(name, self._index)}', key="mass", value=name
             ) from None
 
-    @property
+    @cached_property
     def mass_names(self) -> tuple[str, ...]:
         """The names of the masses, in listing order."""
         return tuple(m.name for m in self.masses)
@@ -1235,6 +1235,13 @@ class TorsionModel:
         """Degree of freedom of every mass (meshing masses share one)."""
         return self._structure.mass_dof
 
+    @cached_property
+    def _dofs_in_listing_order(self) -> bool:
+        """Whether degree of freedom i is mass i for every mass (no rigid gear meshes, a chain
+        listed in chain order): results by degree of freedom are then by mass."""
+        dof = self.mass_dof
+        return dof.size == self.dof_count and bool((dof == np.arange(dof.size)).all())
+
     @property
     def dofs(self) -> tuple[tuple[int, ...], ...]:
         """Mass indices of every degree of freedom (in chain order for a chain)."""
@@ -1245,7 +1252,7 @@ class TorsionModel:
         """Number of degrees of freedom (masses joined by rigid gear meshes count once)."""
         return len(self._structure.dofs)
 
-    @property
+    @cached_property
     def dof_names(self) -> tuple[str, ...]:
         """A name per degree of freedom: the mass name, or ``"a + b"`` for meshing masses."""
         return tuple(" + ".join(self.masses[i].name for i in d) for d in self.dofs)
@@ -1265,10 +1272,10 @@ class TorsionModel:
         """A mass at which a branched model branches (None for a chain)."""
         return self._structure.junction
 
-    @property
+    @cached_property
     def is_free(self) -> bool:
         """Whether no shaft is grounded (the model then has one rigid-body mode)."""
-        return not any(s.grounded for s in self.shafts)
+        return not bool((self.shaft_dofs < 0).any())
 
     @property
     def cylinder_dofs(self) -> dict[int, int]:

@@ -1,0 +1,173 @@
+"""The post-processing of a chain's modes (issue 16: vectorised, node counts without locating
+the nodes, positions located on demand) against a plain reference written here element by
+element from the definitions of the module docstring of crankdyn.torsion.modal: the shapes
+normalised (largest amplitude 1, first amplitude above 1e-9 of it positive, below 1e-14 set to
+0), a component resolved where |phi_i| sqrt(J_i) > tau_r sqrt(J_r) (tau_r = 10 eps ||A|| / gap_r),
+a located node between resolved neighbours of opposite sign at t = theta_a / (theta_a -
+theta_b), one undetermined node across a round-off run between resolved components of opposite
+sign. Both start from the same eigenvectors (``eigen_modes``), so the shapes, counts, flags,
+positions and regions must agree exactly."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from crankdyn.torsion import TorsionModel
+from crankdyn.torsion.modal import eigen_modes, natural_modes
+
+EPS = float(np.finfo(float).eps)
+
+
+def _reference(model: TorsionModel, modal_inertia=None):
+    """(shapes, node counts, resolved flags, located nodes (mode, first dof, fraction), nodes
+    in round-off runs (mode, first, last), round-off regions per mode, modal inertias);
+    ``modal_inertia``: the J_r for the thresholds (the code's, checked against the sum here to
+    round-off: a BLAS may sum in another order)."""
+    lam, phi = eigen_modes(model)
+    omega = np.sqrt(lam)
+    omega2 = [float(w) * float(w) for w in omega]
+    n = len(omega2)
+    J = [float(j) for j in model.dof_inertia]
+    norm = max(abs(v) for v in omega2)
+    shapes, counts, flags, located, loose, regions, inertias = [], [], [], [], [], [], []
+    for r in range(n):
+        x = [float(v) for v in phi[:, r]]
+        peak = max(abs(v) for v in x)
+        if not peak > 0.0:
+            peak = 1.0
+        size = [abs(v) / peak for v in x]
+        first = next((i for i, s in enumerate(size) if s > 1e-9), 0)
+        sign = math.copysign(1.0, x[first]) if x[first] != 0.0 else 1.0
+        shape = [0.0 if s < 1e-14 else v / (peak * sign) for v, s in zip(x, size, strict=True)]
+        shapes.append(shape)
+        # the thresholds (omega_r^2 ascending)
+        gaps = []
+        if r + 1 < n:
+            gaps.append(omega2[r + 1] - omega2[r])
+        if r > 0:
+            gaps.append(omega2[r] - omega2[r - 1])
+        gap = min(gaps) if gaps else math.inf
+        tau = 10.0 * EPS * norm / gap if gap > 0.0 else math.inf
+        if n < 2:
+            tau = 0.0
+        jr = sum(j * v * v for j, v in zip(J, shape, strict=True))
+        inertias.append(jr)
+        if modal_inertia is not None:
+            jr = float(modal_inertia[r])
+        limit = tau * math.sqrt(jr)
+        ok = [abs(v) * math.sqrt(j) > limit for v, j in zip(shape, J, strict=True)]
+        if model.is_free and r == 0:
+            ok = [True] * n
+        # regions: maximal runs of unresolved components
+        i = 0
+        mode_regions = []
+        while i < n:
+            if ok[i]:
+                i += 1
+                continue
+            k = i
+            while k + 1 < n and not ok[k + 1]:
+                k += 1
+            mode_regions.append((i, k))
+            i = k + 1
+        regions.append(mode_regions)
+        flags.append(not mode_regions)
+        # nodes: sign changes between consecutive resolved components
+        count = 0
+        previous = None
+        for q in range(n):
+            if not ok[q]:
+                continue
+            if previous is not None and math.copysign(1.0, shape[previous]) != math.copysign(
+                1.0, shape[q]
+            ):
+                count += 1
+                if q == previous + 1:
+                    a, b = shape[previous], shape[q]
+                    located.append((r, previous, a / (a - b)))
+                else:
+                    loose.append((r, previous + 1, q - 1))
+            previous = q
+        counts.append(count)
+    return shapes, counts, flags, located, loose, regions, inertias
+
+
+def _chain(n: int, seed: int, kind: str, ground: str) -> TorsionModel:
+    rng = np.random.default_rng(seed)
+    if kind == "wide":  # ill-conditioned: localised high modes with round-off stretches
+        inertia, stiffness = 10 ** rng.uniform(-4, 2, n), 10 ** rng.uniform(3, 9, n - 1)
+    elif kind == "uniform":  # nodes at masses (round-off components in the middle)
+        inertia, stiffness = np.ones(n), np.full(n - 1, 1e5)
+    else:
+        inertia, stiffness = rng.uniform(0.05, 2.0, n), rng.uniform(2e5, 5e6, n - 1)
+    return TorsionModel.chain_of(
+        inertia,
+        stiffness,
+        ground_left=3e5 if ground in ("left", "both") else None,
+        ground_right=1e7 if ground == "both" else None,
+    )
+
+
+CASES = [
+    (n, seed, kind, ground)
+    for n, seed, kind, ground in [
+        (1, 0, "random", "none"),
+        (2, 1, "random", "none"),
+        (3, 2, "wide", "left"),
+        (7, 3, "uniform", "none"),
+        (9, 4, "uniform", "left"),
+        (12, 5, "random", "both"),
+        (40, 6, "wide", "none"),
+        (60, 7, "wide", "left"),
+        (80, 8, "wide", "both"),
+        (100, 9, "random", "none"),
+        (120, 10, "wide", "none"),
+        (300, 11, "wide", "left"),  # beyond _FLAT_COUNTS: the whole-array count
+    ]
+]
+
+
+def test_the_reference_sees_round_off_runs_and_their_nodes():
+    """The cases exercise what the vectorised code handles specially."""
+    runs = nodes_in_runs = 0
+    for case in CASES:
+        *_, loose, regions, _ = _reference(_chain(*case))
+        runs += sum(len(r) for r in regions)
+        nodes_in_runs += len(loose)
+    assert runs > 50 and nodes_in_runs > 10
+
+
+@pytest.mark.parametrize(("n", "seed", "kind", "ground"), CASES)
+def test_chain_post_processing_equals_the_reference(n, seed, kind, ground):
+    model = _chain(n, seed, kind, ground)
+    r = natural_modes(model)
+    shapes, counts, flags, located, loose, regions, inertias = _reference(model, r.modal_inertia)
+    np.testing.assert_allclose(r.modal_inertia, inertias, rtol=1e-13)
+    got = np.asarray(r.mode_shapes)
+    want = np.array(shapes)
+    assert np.array_equal(got, want)
+    assert np.array_equal(np.signbit(got), np.signbit(want))  # no negative zeros
+    assert r.node_count.tolist() == counts
+    assert r.nodes_resolved.tolist() == flags
+    a = r.node_arrays
+    assert a is not None
+    shaft_first = [int(model.shaft_dofs[s].min()) for s in a.shaft]
+    assert list(zip(a.shaft_mode.tolist(), shaft_first, a.fraction.tolist(), strict=True)) == [
+        (m, i, t) for m, i, t in located
+    ]
+    assert (
+        list(zip(a.open_mode.tolist(), a.open_first.tolist(), a.open_last.tolist(), strict=True))
+        == loose
+    )
+    assert [
+        [
+            (f, z)
+            for m, f, z in zip(a.region_mode, a.region_first, a.region_last, strict=True)
+            if m == k
+        ]
+        for k in range(n)
+    ] == regions
+    assert [len(x) for x in r.nodes] == counts
