@@ -206,7 +206,6 @@ class Renderer:
         self._queue: list[tuple[int, str]] = []  # (figure, part) not started yet
         self._running: dict[int, tuple[int, int, str]] = {}  # read end -> (pid, figure, part)
         self._left: list[int] = []  # per figure: parts not finished by a child
-        self._failed: set[tuple[int, str]] = set()
         self._finished: list[int] = []  # figures whose children are all done, in that order
         self._busy = False
         self._folder: Path | None = None
@@ -267,11 +266,9 @@ class Renderer:
             return
         ready, _, _ = select.select(list(self._running), [], [], None if block else 0.0)
         for fd in ready:
-            pid, index, part = self._running.pop(fd)
+            pid, index, _ = self._running.pop(fd)
             os.close(fd)
-            _, status = os.waitpid(pid, 0)
-            if os.waitstatus_to_exitcode(status) != 0:
-                self._failed.add((index, part))
+            os.waitpid(pid, 0)  # a child that failed left no file: its figure is drawn here
             self._left[index] -= 1
             if self._left[index] == 0:
                 self._finished.append(index)
