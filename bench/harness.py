@@ -8,7 +8,9 @@ A case with ``interleave`` set times its contenders in turn (A B, B A, A B, ...:
 calls each once, the order reversed from one round to the next), so that a change in the
 machine's load during the run reaches all of them alike (the whole-process cases, old version
 against new).
-Garbage collection runs before, and is disabled during, each timed call (as :mod:`timeit` does).
+Calls quicker than :data:`BATCH_SECONDS` are timed in batches (as :mod:`timeit` does), the median
+taken over the batches' times per call. Garbage collection runs before, and is disabled during,
+each timing (as :mod:`timeit` does).
 The agreement check compares the peers' outputs with crankdyn's and raises
 :class:`AgreementError` (the run stops, loudly) when a deviation exceeds the case's tolerance.
 """
@@ -132,31 +134,60 @@ class CaseResult:
         return None if ratio is None else ratio >= target.ratio
 
 
+BATCH_SECONDS = 0.02
+"""Calls quicker than this are timed in batches lasting about this long (:func:`_batch`)."""
+
+MAX_BATCH = 10_000
+"""Most calls in one batch."""
+
+
+def _batch(run: Callable[[], Any]) -> tuple[int, float | None]:
+    """(calls per timing of ``run``, the time of a timed probe call that counts as the first
+    timing or None): one call when a call (timed after the warm-up) takes
+    :data:`BATCH_SECONDS` or more, otherwise enough for a batch of about that long, as
+    :mod:`timeit`'s ``autorange`` does. A lone call of a few microseconds or milliseconds right
+    after the collector has walked the benchmark's whole heap (the peers, numba) runs on cold
+    caches, and would measure the cache refill (tens to hundreds of microseconds, the same for
+    every contender) rather than the call; a batch measures the call."""
+    probe = _timed(run, 1)
+    if probe >= BATCH_SECONDS:
+        return 1, probe
+    return max(1, min(MAX_BATCH, int(BATCH_SECONDS / max(probe, 1e-9)) + 1)), None
+
+
+def _timed(run: Callable[[], Any], number: int) -> float:
+    """Seconds per call of ``number`` calls of ``run``, the collector run before and off during
+    them (as :mod:`timeit` does)."""
+    gc.collect()  # garbage of earlier calls is not charged to these
+    gc.disable()  # no collector pass over unrelated objects in the timing
+    try:
+        start = time.perf_counter()
+        for _ in range(number):
+            run()
+        elapsed = time.perf_counter() - start
+    finally:
+        gc.enable()
+    return elapsed / number
+
+
 def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, float, int]:
-    """Warm-up call (output kept), then up to ``repeats`` timed calls; stops early once the
-    timed calls have used ``budget`` seconds (at least three calls when a call is quicker than
-    the budget). Returns (output, median seconds, timed calls). ``repeats`` 0 (the tests' smoke
-    runs): the single call's time, warm-up included."""
+    """Warm-up call (output kept), then up to ``repeats`` timings (each of one call, or of a
+    batch of quick calls: :func:`_batch`); stops early once the timings have used ``budget``
+    seconds (at least three when a call is quicker than the budget). Returns (output, median
+    seconds per call, timings). ``repeats`` 0 (the tests' smoke runs): the single call's time,
+    warm-up included."""
     start = time.perf_counter()
     output = run()
     first = time.perf_counter() - start
     if repeats <= 0:
         return output, first, 1
-    times: list[float] = []
-    spent = 0.0
-    for _ in range(repeats):
-        gc.collect()  # garbage of earlier calls is not charged to this one
-        gc.disable()  # as timeit does: no collector pass over unrelated objects in the timing
-        try:
-            start = time.perf_counter()
-            run()
-            elapsed = time.perf_counter() - start
-        finally:
-            gc.enable()
-        times.append(elapsed)
-        spent += elapsed
-        if spent > budget and len(times) >= 3:
-            break
+    number, probe = _batch(run)
+    times = [] if probe is None else [probe]
+    spent = sum(times)
+    while len(times) < repeats and not (spent > budget and len(times) >= 3):
+        per_call = _timed(run, number)
+        times.append(per_call)
+        spent += per_call * number
     return output, statistics.median(times), len(times)
 
 
@@ -164,33 +195,31 @@ def _time_interleaved(
     runs: dict[str, Callable[[], Any]], repeats: int, budget: float
 ) -> dict[str, tuple[Any, float, int]]:
     """:func:`_time` for several contenders at once: every warm-up call first, then rounds of
-    one timed call each, the order reversed every other round; stops once the timed calls have
-    used ``budget`` seconds (at least three rounds). {name: (output, median, calls)}."""
+    one timing each, the order reversed every other round; stops once the timings have used
+    ``budget`` seconds (at least three rounds). {name: (output, median, timings)}."""
     outputs: dict[str, Any] = {}
-    times: dict[str, list[float]] = {name: [] for name in runs}
+    firsts: dict[str, float] = {}
     for name, run in runs.items():
         start = time.perf_counter()
         outputs[name] = run()
-        times[name].append(time.perf_counter() - start)
+        firsts[name] = time.perf_counter() - start
     if repeats <= 0:
-        return {name: (outputs[name], times[name][0], 1) for name in runs}
-    for name in runs:
-        times[name].clear()
+        return {name: (outputs[name], firsts[name], 1) for name in runs}
+    numbers: dict[str, int] = {}
+    times: dict[str, list[float]] = {}
+    for name, run in runs.items():  # the probes: the first round when they are single calls
+        numbers[name], probe = _batch(run)
+        times[name] = [] if probe is None else [probe]
     order = list(runs)
-    spent = 0.0
-    for round_ in range(repeats):
+    spent = sum(sum(t) for t in times.values())
+    for round_ in range(1, repeats + 1):
         for name in order if round_ % 2 == 0 else order[::-1]:
-            gc.collect()
-            gc.disable()
-            try:
-                start = time.perf_counter()
-                runs[name]()
-                elapsed = time.perf_counter() - start
-            finally:
-                gc.enable()
-            times[name].append(elapsed)
-            spent += elapsed
-        if spent > budget and round_ >= 2:
+            if len(times[name]) >= repeats:
+                continue
+            per_call = _timed(runs[name], numbers[name])
+            times[name].append(per_call)
+            spent += per_call * numbers[name]
+        if all(len(t) >= repeats for t in times.values()) or (spent > budget and round_ >= 2):
             break
     return {name: (outputs[name], statistics.median(t), len(t)) for name, t in times.items()}
 

@@ -6,6 +6,7 @@ test environment need not have. No times are asserted."""
 from __future__ import annotations
 
 import math
+import time
 
 import bench.cases as case_modules
 import numpy as np
@@ -135,3 +136,34 @@ def test_table_and_docs_block_are_rewritten_between_markers(tmp_path, results):
     second = doc.read_text()
     assert second.count("bench:begin") == 1 and "- CPU: other" in second
     assert "- CPU: test" not in second and "Keep me." in second
+
+
+def test_quick_calls_are_timed_in_batches_and_slow_ones_one_by_one(monkeypatch):
+    """A call quicker than BATCH_SECONDS is timed in batches (timeit's method: the caches stay
+    warm, the collector runs once per batch); a slow call's timed probe counts as its first
+    timing (no extra call); both ways, ``repeats`` timings and the warm-up's output."""
+    import bench.harness as harness
+
+    monkeypatch.setattr(harness, "BATCH_SECONDS", 0.005)
+    calls = {"quick": 0, "slow": 0}
+
+    def quick():
+        calls["quick"] += 1
+        return "q"
+
+    def slow():
+        calls["slow"] += 1
+        time.sleep(0.006)
+        return "s"
+
+    out, median, timings = harness._time(quick, 5, budget=60.0)
+    assert (out, timings) == ("q", 5)
+    assert calls["quick"] > 1 + 1 + 5  # warm-up, probe, and 5 batches of several calls
+    assert 0.0 < median < 0.005
+    out, median, timings = harness._time(slow, 5, budget=60.0)
+    assert (out, timings, calls["slow"]) == ("s", 5, 1 + 5)  # warm-up, probe = first, 4 more
+    assert median >= 0.006
+    calls.update(quick=0, slow=0)
+    both = harness._time_interleaved({"quick": quick, "slow": slow}, 4, budget=60.0)
+    assert {k: (v[0], v[2]) for k, v in both.items()} == {"quick": ("q", 4), "slow": ("s", 4)}
+    assert calls["slow"] == 1 + 4 and calls["quick"] > 2 + 4
