@@ -111,6 +111,44 @@ def test_laid_out_once_the_files_are_those_of_matplotlibs_own_save(tmp_path):
     assert svg[0] == svg[1]
 
 
+def test_laid_out_on_a_kept_canvas_the_files_are_the_same_and_no_word_is_measured_again(
+    tmp_path,
+):
+    """A renderer's child keeps the Agg canvas the layout was measured on (``keep_canvas``):
+    the PNG is drawn by that renderer, whose cache holds every word's size, so no word is
+    measured again, and the PNG and SVG are those of a figure laid out without it."""
+    import io
+
+    from matplotlib.backends.backend_agg import RendererAgg
+
+    from crankdyn.plots.render import _png, _svg, lay_out
+
+    files = []
+    measured = []
+    original = RendererAgg.get_text_width_height_descent
+
+    def counting(self, *args, **kwargs):
+        measured[-1] += 1
+        return original(self, *args, **kwargs)
+
+    RendererAgg.get_text_width_height_descent = counting
+    try:
+        for keep in (False, True):
+            fig = _report_like_figure()
+            measured.append(0)
+            lay_out(fig, keep_canvas=keep)
+            measured[-1] = 0  # the words measured by the PNG's draw only
+            png = _png(fig)
+            svg = io.BytesIO()
+            _svg(fig, svg)
+            files.append((png, _without_ids(svg.getvalue().decode("utf-8"))))
+    finally:
+        RendererAgg.get_text_width_height_descent = original
+    assert files[0] == files[1]
+    assert measured[0] > 0
+    assert measured[1] == 0
+
+
 def test_lay_out_measures_a_hostile_title_as_written(tmp_path):
     """A name that matplotlib's math parser rejects is laid out and drawn literally."""
     fig = _report_like_figure(r"$\undefinedcmd{x}$ & <b>")

@@ -11,10 +11,14 @@ A :class:`Renderer` draws each figure submitted to it in a child process forked 
 at once, so the figure is drawn where it was made, without pickling, while this process goes
 on (a report's later analyses run while its first figures are drawn): as many children at a
 time as there are cores, one fewer while this process is still busy making figures
-(:meth:`Renderer.busy`). A child writes its files into the renderer's private temporary
-folder and exits; :meth:`Renderer.results` waits for them and reads them back. Where a fork is
-not safe (not Linux, or inside a daemonic process) or of no use (one core), or when a child
-fails, the figures are drawn here, one after another, when their results are asked for.
+(:meth:`Renderer.busy`); of the figures waiting, the one with the most axes is started first,
+so that the small ones keep both cores busy at the end. A child lays its figure out on an Agg
+canvas at the PNG's resolution and draws the PNG with that canvas's renderer, which has every
+word's size cached already (:func:`lay_out`, ``keep_canvas``). A child writes its files into
+the renderer's private temporary folder and exits; :meth:`Renderer.results` waits for them and
+reads them back. Where a fork is not safe (not Linux, or inside a daemonic process) or of no use
+(one core), or when a child fails, the figures are drawn here, one after another, when their
+results are asked for.
 """
 
 from __future__ import annotations
@@ -62,7 +66,7 @@ def _svg(figure: Any, path: str | Path | io.BytesIO) -> None:
         figure.savefig(path, format="svg")
 
 
-def lay_out(figure: Any) -> None:
+def lay_out(figure: Any, *, keep_canvas: bool = False) -> None:
     """Lay ``figure`` out once, as its PNG's draw would, and fix that layout.
 
     The figure's layout engine (constrained layout) is run on its own, on an Agg canvas at
@@ -76,6 +80,12 @@ def lay_out(figure: Any) -> None:
     ----------
     figure : matplotlib.figure.Figure
         The figure (changed in place).
+    keep_canvas : bool
+        Leave the figure on the Agg canvas the layout was measured on: its PNG (:func:`_png`,
+        same resolution) is then drawn by the same renderer, whose cache already holds the
+        size of every word, instead of measuring them all again on a new canvas (the file is
+        the same to the byte). The renderer holds a full-size image buffer as long as the
+        figure lives: for a figure drawn and then dropped (a renderer's child).
 
     Examples
     --------
@@ -104,7 +114,8 @@ def lay_out(figure: Any) -> None:
             engine.execute(figure)
         finally:
             figure.set_dpi(dpi)
-            figure.set_canvas(canvas)
+            if not keep_canvas:
+                figure.set_canvas(canvas)
     figure.set_layout_engine(None)
 
 
@@ -201,6 +212,7 @@ class Renderer:
         """Children drawing at a time."""
         self._forking = self.workers > 1 and _can_fork()
         self._figures: list[Any] = []
+        self._cost: list[int] = []  # per figure: its axes (the largest is started first)
         self._parts: list[tuple[str, ...]] = []  # per figure: ("both",), ("png",), ("png", "svg")
         self._index: dict[int, int] = {}  # id(figure) -> index
         self._queue: list[tuple[int, str]] = []  # (figure, part) not started yet
@@ -235,6 +247,7 @@ class Renderer:
             return known
         index = len(self._figures)
         self._figures.append(figure)
+        self._cost.append(len(getattr(figure, "axes", ())))
         self._index[id(figure)] = index
         parts = ("png", "svg") if svg and split else ("both",) if svg else ("png",)
         self._parts.append(parts)
@@ -287,7 +300,10 @@ class Renderer:
             _prepare_for_children()
         room = max(1, self.workers - 1) if self._busy else self.workers
         while self._queue and len(self._running) < room:
-            index, part = self._queue[0]
+            # the figure with the most axes first (their count is a fair measure of the drawing
+            # time): the small ones left for the end fill both cores to the last
+            at = max(range(len(self._queue)), key=lambda k: self._cost[self._queue[k][0]])
+            index, part = self._queue[at]
             try:
                 read, write = os.pipe()
                 pid = os.fork()
@@ -309,7 +325,7 @@ class Renderer:
                 finally:
                     os._exit(code)
             os.close(write)
-            self._queue.pop(0)
+            self._queue.pop(at)
             self._running[read] = (pid, index, part)
 
     def _files(self, index: int) -> tuple[Path, Path]:
@@ -320,7 +336,7 @@ class Renderer:
         """In a child: draw figure ``index``'s ``part`` into the private folder (each file
         written aside and renamed, so that a file there is complete)."""
         figure = self._figures[index]
-        lay_out(figure)
+        lay_out(figure, keep_canvas=True)  # this process ends with the figure drawn
         png_path, svg_path = self._files(index)
         if part in ("png", "both"):
             aside = png_path.with_suffix(".part")
