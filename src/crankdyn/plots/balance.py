@@ -47,10 +47,14 @@ def _locus(
     ax.axhline(0.0, color="#9a9a9a", linewidth=0.6)
     ax.axvline(0.0, color="#9a9a9a", linewidth=0.6)
     if amplitude <= tiny:
+        # nothing to scale: no ticks (numbers on a balanced order's axes would suggest a scale
+        # it does not have), the point at the origin
         ax.plot(0.0, 0.0, "o", color=color, markersize=5)
         ax.text(0.0, 0.25, "balanced", ha="center", fontsize=8, transform=ax.transData)
         ax.set_xlim(-1.0, 1.0)
         ax.set_ylim(-1.0, 1.0)
+        ax.set_xticks([])
+        ax.set_yticks([])
     else:
         e = np.exp(1j * _T)
         hx, hy = np.real(x * e) * factor, np.real(y * e) * factor
