@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
-from matplotlib.ticker import NullFormatter
+from matplotlib.ticker import FuncFormatter, NullFormatter
 from numpy.typing import ArrayLike
 
 from crankdyn.constants import RPM
@@ -103,13 +103,27 @@ def plot_pressure(
         ax_log.set_yticks([])
     else:
         ax_log.loglog(v, p, color=COLORS[0], linewidth=1.3)
-        ax_log.xaxis.set_minor_formatter(NullFormatter())
-        ax_log.yaxis.set_minor_formatter(NullFormatter())
+        for axis in (ax_log.xaxis, ax_log.yaxis):
+            # the decades as plain numbers (100, 1000 cm³; 1, 10 MPa), as an engineer reads
+            # them, rather than powers of ten in mathtext
+            axis.set_major_formatter(FuncFormatter(_plain_decade))
+            axis.set_minor_formatter(NullFormatter())
         ax_log.set_xlabel("Cylinder volume V (cm³)")
         ax_log.set_ylabel("p (MPa)")
         ax_log.set_title("log p - log V", fontsize=9)
     fig.suptitle(f"Cylinder pressure: {result.source}", fontsize=10)
     return fig
+
+
+def _plain_decade(value: float, _pos: object = None) -> str:
+    """A log axis's tick as a plain number (``100``, ``0.1``; ``1e+06`` beyond six digits).
+
+    Examples
+    --------
+    >>> [_plain_decade(v) for v in (0.1, 1.0, 10.0, 1000.0, 1e7)]
+    ['0.1', '1', '10', '1000', '1e+07']
+    """
+    return f"{value:g}"
 
 
 def plot_cylinder_forces(
