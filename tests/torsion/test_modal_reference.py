@@ -10,6 +10,7 @@ positions and regions must agree exactly."""
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -171,3 +172,30 @@ def test_chain_post_processing_equals_the_reference(n, seed, kind, ground):
         for k in range(n)
     ] == regions
     assert [len(x) for x in r.nodes] == counts
+
+
+@pytest.mark.parametrize("n", [1, 2, 5, 40, 91, 100, 150, 300])
+def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
+    """The counts (each way _chain_counts takes: by rows found by division, by cumulative sums,
+    by whole-array passes) on random shapes and random resolved patterns, with rows that have
+    no resolved component at all (a repeated eigenvalue: tau = inf), against the definition:
+    the sign changes between a mode's consecutive resolved components."""
+    from crankdyn.torsion.modal import _chain_counts
+
+    rng = np.random.default_rng(n)
+    for k in range(12):
+        shapes = rng.standard_normal((n, n))
+        shapes[rng.random((n, n)) < 0.2] = -0.0 if k % 2 else 0.0
+        resolved = rng.random((n, n)) < rng.uniform(0.05, 1.0)
+        resolved[rng.integers(0, n)] = False
+        if k == 3:
+            resolved[-1] = False  # the last rows with none: the sums end past every component
+        if k == 5:
+            resolved[:] = False
+        counts, whole = _chain_counts(shapes, resolved)
+        want = []
+        for row, keep in zip(shapes, resolved, strict=True):
+            signs = [math.copysign(1.0, v) < 0 for v, ok in zip(row, keep, strict=True) if ok]
+            want.append(sum(a != b for a, b in itertools.pairwise(signs)))
+        assert counts.tolist() == want
+        assert whole.tolist() == resolved.all(axis=1).tolist()

@@ -543,39 +543,39 @@ def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     zeros).
 
     Returns the array and its absolute values (a new array the caller may overwrite). The
-    largest amplitude comes from the row's maximum and minimum (no array of absolute values),
-    then the division and the absolute values of the result (|x / (peak sign)| = |x| / peak
-    exactly). The amplitude that fixes a row's sign (the first above 1e-9 of the largest) is
-    looked for beyond the first column only in the rows where that one is at rest; when they
-    are many (the localised modes of a long chain), on |x| / peak of every row before the
-    division, which then gives the absolute values."""
+    absolute values come first, |x|, then the row's largest, and are divided by it in place:
+    |x| / peak is exactly |x / (peak sign)|, the absolute value of the result. The amplitude
+    that fixes a row's sign (the first above 1e-9 of the largest) is looked for beyond the first
+    column only in the rows where that one is at rest."""
     count = shapes.shape[0]
-    peak = np.maximum(shapes.max(axis=1), -shapes.min(axis=1))  # max |x|
+    size = np.abs(shapes)
+    peak = size.max(axis=1)  # max |x|
     if not peak.min() > 0.0:  # a row of zeros (or NaN)
         peak[~(peak > 0.0)] = 1.0
-    head = np.abs(shapes[:, 0]) / peak > _ZERO
+    np.divide(size, peak[:, None], out=size)  # |x| / peak
+    head = size[:, 0] > _ZERO
     later = count - np.count_nonzero(head)
-    size = None
-    if 8 * later > count:  # many: |x| / peak of all the rows, searched in place
-        size = np.divide(shapes, peak[:, None])
-        np.abs(size, out=size)
-        first = np.argmax(size > _ZERO, axis=1)
-    elif later:  # a few: in those rows only
-        rows = np.flatnonzero(~head)
-        first = np.zeros(count, dtype=int)
-        first[rows] = np.argmax(np.abs(shapes[rows]) / peak[rows, None] > _ZERO, axis=1)
-    sign = np.sign(shapes[np.arange(count), first] if later else shapes[:, 0])
+    if not later:
+        sign = np.sign(shapes[:, 0])
+    else:  # the first amplitude above _ZERO in the rows at rest in the first column
+        if 8 * later > count:  # many (the localised modes of a long chain): in every row
+            first = np.argmax(size > _ZERO, axis=1)
+        else:  # a few: in those rows only
+            rows = np.flatnonzero(~head)
+            first = np.zeros(count, dtype=np.intp)
+            first[rows] = np.argmax(size[rows] > _ZERO, axis=1)
+        sign = np.sign(shapes[np.arange(count), first])
     if not sign.all():
         sign[sign == 0.0] = 1.0
     np.divide(shapes, (peak * sign)[:, None], out=shapes)  # exactly sign * (shapes / peak)
-    if size is None:
-        size = np.abs(shapes)
     tiny = size < 1e-14
-    if tiny.any():  # round-off to 0 (a positive 0: no negative zeros), without a masked write
-        keep = ~tiny
-        np.multiply(shapes, keep, out=shapes)  # x * 1 = x; x * 0 = +0 or -0
-        np.add(shapes, 0.0, out=shapes)  # -0 + 0 = +0; x + 0 = x for every other x
-        np.multiply(size, keep, out=size)  # size >= 0: +0
+    if tiny.any():  # round-off to 0 (a positive 0: no negative zeros)
+        if np.isfinite(sign).all():
+            np.copyto(shapes, 0.0, where=tiny)
+        else:  # a row of NaN (its sign is NaN) stays NaN: x * 0 + 0, not a written 0
+            np.multiply(shapes, ~tiny, out=shapes)
+            np.add(shapes, 0.0, out=shapes)
+        np.copyto(size, 0.0, where=tiny)
     return shapes, size
 
 
@@ -888,11 +888,23 @@ def _chain_counts(
         # small: the sign changes between consecutive resolved components of a mode (a node
         # between neighbours or across a run), from their flat indices in a few calls
         at = np.flatnonzero(resolved)
-        row = at // n
         sign = np.signbit(shapes_dof.ravel()[at])
-        change = sign[1:] != sign[:-1]
-        change &= row[1:] == row[:-1]
-        return np.bincount(row[1:][change], minlength=count), whole
+        if count * n < _ROW_SUMS or not at.size:  # each component's row by a division
+            row = at // n
+            change = sign[1:] != sign[:-1]
+            change &= row[1:] == row[:-1]
+            return np.bincount(row[1:][change], minlength=count), whole
+        # the changes summed up to each component; a row's count is the sum from its first
+        # resolved component to its last (0 in a row with none resolved)
+        changes = np.empty(at.size, dtype=np.intp)
+        changes[0] = 0
+        np.cumsum(sign[1:] != sign[:-1], out=changes[1:])
+        per_row = np.count_nonzero(resolved, axis=1)
+        end = np.cumsum(per_row)
+        start = end - per_row
+        np.maximum(end - 1, start, out=end)
+        last = at.size - 1  # (rows with none resolved at the end: start = end = at.size)
+        return changes[np.minimum(end, last)] - changes[np.minimum(start, last)], whole
     negative = np.signbit(shapes_dof)
     both = negative[:, 1:] != negative[:, :-1]
     both &= resolved[:, 1:]
@@ -903,6 +915,11 @@ def _chain_counts(
         counts += _open_counts(resolved, negative)
     return counts, whole
 
+
+_ROW_SUMS = 1 << 13
+"""Modes x degrees of freedom from which :func:`_chain_counts` sums a mode's sign changes
+between its first and last resolved components (two cumulative sums) rather than finding
+each component's mode by a division (fewer calls below)."""
 
 _FLAT_COUNTS = 1 << 16
 """Modes x degrees of freedom up to which :func:`_chain_counts` counts from the flat indices of
