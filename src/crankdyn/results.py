@@ -428,6 +428,24 @@ class Result:
             text = text[:597] + "..."
         return f"{type(self).__name__}({text})"
 
+    @classmethod
+    def _assembled(cls, **values: Any) -> Self:
+        """The result from values its analysis made, every field given, without the dataclass
+        ``__init__``: a frozen dataclass sets each field through ``object.__setattr__``, which
+        is most of the cost of a small model's result (3 µs of a 10-mass chain's 60 µs of
+        modes). Only for results that check nothing in ``__post_init__``.
+
+        Raises
+        ------
+        TypeError
+            Unless the values are exactly the class's fields (a programming error).
+        """
+        if len(values) != len(cls.__dataclass_fields__):
+            raise TypeError(f"{cls.__name__}._assembled needs every field")
+        result = object.__new__(cls)
+        result.__dict__.update(values)
+        return result
+
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
         # set in the class itself, so that @dataclass keeps it rather than writing a repr of

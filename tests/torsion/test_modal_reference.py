@@ -199,3 +199,132 @@ def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
             want.append(sum(a != b for a, b in itertools.pairwise(signs)))
         assert counts.tolist() == want
         assert whole.tolist() == resolved.all(axis=1).tolist()
+
+
+# ---- the one-pass path of a chain (natural_modes up to _ONE_PASS dofs) ---------------------------
+
+
+def _one_pass_models() -> list[TorsionModel]:
+    """Chains that take each branch of _chain_modes: every mode resolved; modes at rest in the
+    first amplitude, with round-off amplitudes and round-off runs (wide); nodes at masses
+    (uniform); inertias and stiffnesses over 14 decades (extreme); repeated eigenvalues (two
+    equal halves joined by a shaft of 1e-12 N m/rad); grounded at either or both ends; masses
+    listed out of chain order; rigid gear meshes (degrees of freedom not the masses)."""
+    from crankdyn.torsion import Gear, Mass, Shaft
+
+    out = []
+    rng = np.random.default_rng(16)
+    for n in (2, 3, 5, 10, 17, 33, 64, 150):
+        for kind in ("random", "wide", "uniform", "extreme"):
+            if kind == "extreme":
+                inertia, stiffness = 10 ** rng.uniform(-8, 6, n), 10 ** rng.uniform(0, 12, n - 1)
+            else:
+                model = _chain(n, int(rng.integers(1 << 30)), kind, "none")
+                inertia, stiffness = model.dof_inertia, model.chain.stiffness
+            for ground in ("none", "left", "right", "both"):
+                out.append(
+                    TorsionModel.chain_of(
+                        inertia,
+                        stiffness,
+                        ground_left=3e5 if ground in ("left", "both") else None,
+                        ground_right=1e7 if ground in ("right", "both") else None,
+                    )
+                )
+    out.append(TorsionModel.chain_of([1.0] * 4, [1e6, 1e-12, 1e6]))
+    out.append(
+        TorsionModel(
+            masses=(Mass("a", 1.0), Mass("c", 0.3), Mass("d", 0.2), Mass("b", 0.5)),
+            shafts=(
+                Shaft(("c", "d"), 3e5),
+                Shaft(("a", "b"), 1e5),
+                Shaft(("b", "c"), 2e5),
+                Shaft(("ground", "d"), 4e4),
+            ),
+        )
+    )
+    out.append(
+        TorsionModel(
+            masses=(
+                Mass("engine", 0.5),
+                Mass("pinion", 0.01),
+                Mass("wheel", 0.05),
+                Mass("load", 1),
+            ),
+            shafts=(Shaft(("engine", "pinion"), 2e5), Shaft(("wheel", "load"), 5e4)),
+            gears=(Gear(("pinion", "wheel"), teeth=(20, 64)),),
+        )
+    )
+    return out
+
+
+def _same(a, b) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    return a.dtype == b.dtype and a.shape == b.shape and a.tobytes() == b.tobytes()
+
+
+def test_the_one_pass_chain_modes_are_the_step_by_step_ones_to_the_bit():
+    """_chain_modes (dstevd and the post-processing fused, the common case of each step in few
+    numpy calls) against _modes (eigen_modes, _rows, _result: the general helpers, checked
+    against the reference above): every array identical to the bit, nodes included, on 131
+    chains that take every branch (counted here)."""
+    from crankdyn.torsion.modal import _chain_modes, _distinct_thresholds, _modes
+
+    seen = {"at rest first": 0, "round-off zeros": 0, "unresolved": 0, "repeated": 0}
+    models = _one_pass_models()
+    for model in models:
+        free = model.is_free
+        one = _chain_modes(model, model.chain, free)
+        steps = _modes(model, "eigen", None, False, free)
+        for name in (
+            "mode",
+            "natural_frequency",
+            "node_count",
+            "nodes_resolved",
+            "modal_inertia",
+            "modal_stiffness",
+            "mode_shapes",
+            "shapes_dof",
+        ):
+            assert _same(getattr(one, name), getattr(steps, name)), name
+            assert not getattr(one, name).flags.writeable, name
+        for name in ("masses", "solver", "structure", "free", "model_name", "modes_of_the_model"):
+            assert getattr(one, name) == getattr(steps, name), name
+        for name in one.node_arrays.__dataclass_fields__:
+            assert _same(getattr(one.node_arrays, name), getattr(steps.node_arrays, name)), name
+        shapes = np.asarray(one.shapes_dof)
+        seen["at rest first"] += bool((np.abs(shapes[:, 0]) <= 1e-9).any())
+        seen["round-off zeros"] += bool((shapes == 0.0).any())
+        seen["unresolved"] += not one.nodes_resolved.all()
+        seen["repeated"] += _distinct_thresholds(np.asarray(one.natural_frequency) ** 2) is None
+    assert len(models) == 131
+    assert min(seen.values()) >= 1, seen
+
+
+def test_natural_modes_takes_the_one_pass_path_for_chains_up_to_its_size(monkeypatch):
+    from crankdyn.torsion import modal
+
+    calls = []
+    monkeypatch.setattr(modal, "_chain_modes", lambda *a: calls.append(a[0]) or "one pass")
+    small = _chain(modal._ONE_PASS, 1, "random", "none")
+    assert natural_modes(small) == "one pass"
+    assert natural_modes(small, count=modal._ONE_PASS) == "one pass"  # all of them: the same
+    for model, kw in [
+        (_chain(modal._ONE_PASS + 1, 1, "random", "none"), {}),
+        (small, {"count": 3}),
+        (small, {"solver": "transfer"}),
+        (_chain(1, 1, "random", "none"), {}),
+    ]:
+        assert natural_modes(model, **kw) != "one pass"
+    assert len(calls) == 2
+
+
+def test_a_result_assembled_without_init_is_the_one_init_makes():
+    from crankdyn.torsion.modal import ModalResult
+
+    r = natural_modes(_chain(5, 1, "random", "left"))
+    values = {name: getattr(r, name) for name in ModalResult.__dataclass_fields__}
+    assert ModalResult._assembled(**values).__dict__ == ModalResult(**values).__dict__
+    assert not hasattr(ModalResult, "__post_init__")  # nothing checked there to skip
+    del values["solver"]
+    with pytest.raises(TypeError, match="every field"):
+        ModalResult._assembled(**values)
