@@ -181,6 +181,7 @@ def limit_cases(size: str = "full") -> list[Case]:
                 check=check,
                 targets=(target,) if size == "full" or n >= 100 else (),
                 repeats=15 if n < 1000 else 5,
+                interleave=True,  # a ratio to the limit: both under the same load
             )
         )
     return out

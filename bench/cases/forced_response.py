@@ -221,6 +221,7 @@ def limit_cases(size: str = "full") -> list[Case]:
                 check=check,
                 targets=(Target(BARE, 1.0 / LIMIT_RATIO, f"within {LIMIT_RATIO:g}x of it"),),
                 repeats=5,
+                interleave=True,  # a ratio to the limit: both under the same load
             )
         )
     return out

@@ -537,10 +537,56 @@ def _solve(
     raise InputError(f"expected one of {', '.join(SOLVERS)}", key="solver", value=solver)
 
 
-def _normalise(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Scale every row, in place, to a largest absolute amplitude of 1, first non-zero
-    amplitude > 0; amplitudes below 1e-14 of the largest become 0 (a positive 0: no negative
-    zeros).
+def _normalise(
+    shapes: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray, NDArray[np.float64] | None]:
+    """Scale every row to a largest absolute amplitude of 1, the first amplitude above 1e-9 of
+    the largest positive; amplitudes below 1e-14 of the largest become 0 (a positive 0: no
+    negative zeros). The array given is overwritten.
+
+    Returns the normalised rows (the array given or a new one), their absolute values (the
+    other) and each row's smallest absolute value (None when amplitudes were zeroed or a row has
+    no finite largest amplitude). Each row x is divided once by its largest |x| signed as its
+    first amplitude, x / (sign(x_0) peak), and its absolute value taken, |x| / peak exactly;
+    where the first amplitude is at rest (at most 1e-9 of the largest) and the first above that
+    is negative, the row is negated: x / (-sign(x_0) peak) = -(x / (sign(x_0) peak)) exactly.
+    A row of zeros, inf or NaN: :func:`_normalise_rows`, the rule row by row."""
+    count = shapes.shape[0]
+    size = np.abs(shapes)
+    peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
+    if _least_positive(peak) is None:  # a row of zeros, inf or NaN
+        shapes, size = _normalise_rows(shapes)
+        return shapes, size, None
+    few = count <= _FEW
+    np.divide(shapes, np.copysign(peak, shapes[:, 0])[:, None], out=size)
+    shapes, size = size, np.abs(size, out=shapes)  # finite from here: a finite peak bounds a row
+    head = size[:, 0]
+    if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
+        # the rows at rest in the first amplitude: the sign of the first above 1e-9
+        rows = np.flatnonzero(head <= _ZERO)
+        if 8 * rows.size > count:  # many (the localised modes of a long chain): every row
+            above = np.argmax(size > _ZERO, axis=1)[rows]
+        else:  # a few: those rows only
+            above = np.argmax(size[rows] > _ZERO, axis=1)
+        flip = rows[shapes[rows, above] < 0.0]
+        if 8 * flip.size > count:
+            sign = np.ones(count)
+            sign[flip] = -1.0
+            np.multiply(shapes, sign[:, None], out=shapes)
+        else:
+            shapes[flip] = np.negative(shapes[flip])
+    least = np.minimum.reduce(size, axis=1)
+    if not (min(least.tolist()) if few else np.minimum.reduce(least)) >= 1e-14:
+        tiny = size < 1e-14  # round-off amplitudes: a positive 0
+        np.copyto(shapes, 0.0, where=tiny)
+        np.copyto(size, 0.0, where=tiny)
+        return shapes, size, None
+    return shapes, size, least
+
+
+def _normalise_rows(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_normalise` of rows that may be zeros, inf or NaN, in place: a row of zeros stays
+    zeros, a row with NaN NaN.
 
     Returns the array and its absolute values (a new array the caller may overwrite). The
     absolute values come first, |x|, then the row's largest, and are divided by it in place:
@@ -928,28 +974,33 @@ def _chain_counts(
     sign changes between resolved neighbours, plus, in the modes with round-off runs, the runs
     between resolved components of opposite sign (:func:`_chain_nodes` counts the same)."""
     count, n = resolved.shape
-    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
     if count * n <= _FLAT_COUNTS:
         # small: the sign changes between consecutive resolved components of a mode (a node
         # between neighbours or across a run), from their flat indices in a few calls
-        at = np.flatnonzero(resolved)
-        sign = np.signbit(shapes_dof.ravel()[at])
-        if count * n < _ROW_SUMS or not at.size:  # each component's row by a division
+        if count * n < _ROW_SUMS:  # each component's row by a division
+            at = np.flatnonzero(resolved)
+            sign = np.signbit(shapes_dof.ravel()[at])
             row = at // n
             change = sign[1:] != sign[:-1]
             change &= row[1:] == row[:-1]
+            whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
             return np.bincount(row[1:][change], minlength=count), whole
         # the changes summed up to each component; a row's count is the sum from its first
         # resolved component to its last (0 in a row with none resolved)
-        changes = np.empty(at.size, dtype=np.intp)
+        per_row = np.add.reduce(resolved, axis=1, dtype=np.intp)
+        whole = per_row == n
+        sign = np.signbit(shapes_dof).ravel()[resolved.ravel()]  # row-major, as flatnonzero
+        if not sign.size:
+            return np.zeros(count, dtype=np.intp), whole
+        changes = np.empty(sign.size, dtype=np.intp)
         changes[0] = 0
         np.cumsum(sign[1:] != sign[:-1], out=changes[1:])
-        per_row = np.count_nonzero(resolved, axis=1)
         end = np.cumsum(per_row)
         start = end - per_row
         np.maximum(end - 1, start, out=end)
-        last = at.size - 1  # (rows with none resolved at the end: start = end = at.size)
+        last = sign.size - 1  # (rows with none resolved at the end: start = end = sign.size)
         return changes[np.minimum(end, last)] - changes[np.minimum(start, last)], whole
+    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
     negative = np.signbit(shapes_dof)
     both = negative[:, 1:] != negative[:, :-1]
     both &= resolved[:, 1:]
@@ -1037,7 +1088,7 @@ def _rows(
     """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
     J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_resolved`). ``lazy``: a
     chain's nodes are only counted (:func:`_chain_counts`) and located when first asked for."""
-    shapes_dof, size = _normalise(phi_t)  # mode x dof, in place; size = |shapes_dof|
+    shapes_dof, size, _ = _normalise(phi_t)  # mode x dof; size = |shapes_dof|
     # mode x mass (listing order)
     shapes = shapes_dof if model._dofs_in_listing_order else shapes_dof[:, model.mass_dof]
     square = size * size  # phi_i^2
@@ -1147,15 +1198,11 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
 
     Each step takes the common case directly and hands any other to the general helper: the
     thresholds of strictly ascending eigenvalues (:func:`_distinct_thresholds`, else
-    :func:`roundoff_thresholds`); each shape divided once by its largest amplitude signed as its
-    first, and negated where the first is at rest (at most 1e-9 of the largest) and the first
-    amplitude above that is negative (a row of zeros, inf or NaN: :func:`_normalise`);
-    amplitudes below 1e-14 zeroed only when there are any; every component resolved when each
-    mode's smallest amplitude times the smallest sqrt(J_i) is above its threshold (a sufficient
-    test, rounding being monotone), the nodes then counted as the sign changes between
-    neighbours (else each component tested and :func:`_chain_counts`). Up to :data:`_FEW`
-    values a 1-D reduction is Python's ``min`` on a list; values that may be NaN are reduced
-    by :func:`_least_positive`.
+    :func:`roundoff_thresholds`); the shapes by :func:`_normalise`; every component resolved
+    when each mode's smallest amplitude times the smallest sqrt(J_i) is above its threshold (a
+    sufficient test, rounding being monotone), the nodes then counted as the sign changes
+    between neighbours (else each component tested and :func:`_chain_counts`). Up to
+    :data:`_FEW` values a 1-D reduction is Python's ``min`` on a list.
     """
     J = model.dof_inertia
     n = J.size
@@ -1181,32 +1228,8 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         tau, largest = roundoff_thresholds(omega2), math.inf
     else:
         tau, largest = distinct
-    # the shapes: largest amplitude 1, the first (above 1e-9 of it) positive
-    size = np.abs(shapes)
-    peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
+    shapes, size, least = _normalise(shapes)  # largest amplitude 1, the first positive
     few = n <= _FEW
-    least = None
-    if _least_positive(peak) is None:  # a row of zeros, inf or NaN
-        shapes, size = _normalise(shapes)
-    else:
-        # x / (sign(x_0) peak), into the buffer of |x|: its first column is |x_0| / peak
-        np.divide(shapes, np.copysign(peak, shapes[:, 0])[:, None], out=size)
-        head = size[:, 0]  # (finite from here on: a finite peak bounds each row)
-        if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-            # a row at rest in the first amplitude: its sign from the first above 1e-9 of the
-            # peak, x / (-sign peak) = -(x / (sign peak)) exactly
-            rows = np.flatnonzero(head <= _ZERO)
-            scaled = size[rows]
-            above = np.argmax(np.abs(scaled) > _ZERO, axis=1)
-            flip = rows[scaled[np.arange(rows.size), above] < 0.0]
-            size[flip] = np.negative(size[flip])
-        shapes, size = size, np.abs(size, out=shapes)  # |x / (sign peak)| = |x| / peak
-        least = np.minimum.reduce(size, axis=1)
-        if not (min(least.tolist()) if few else np.minimum.reduce(least)) >= 1e-14:
-            tiny = size < 1e-14  # round-off amplitudes: a positive 0
-            np.copyto(shapes, 0.0, where=tiny)
-            np.copyto(size, 0.0, where=tiny)
-            least = None
     modal_inertia = np.multiply(size, size) @ J  # sum of J_i phi_i^2
     # resolved components: |phi_i| sqrt(J_i) > tau_r sqrt(J_r) (module docstring, _resolved)
     if largest * math.sqrt(2.0 * total) < 1e300:  # tau sqrt(J_r) cannot overflow
