@@ -328,3 +328,32 @@ def test_a_result_assembled_without_init_is_the_one_init_makes():
     del values["solver"]
     with pytest.raises(TypeError, match="every field"):
         ModalResult._assembled(**values)
+
+
+def test_shapes_normalised_in_one_division_follow_the_rule_row_by_row():
+    """_normalise (each row divided once by its largest amplitude signed as its first, rows at
+    rest in the first amplitude negated where needed) against _normalise_rows (the rule row by
+    row: the sign of the first amplitude above 1e-9 of the largest) on random rows with
+    amplitudes at rest first, round-off amplitudes, zeros of both signs and scales of 1e+-200,
+    few and many rows at rest (both branches of each), to the bit; rows of zeros, inf or NaN go
+    to the rule itself."""
+    from crankdyn.torsion.modal import _normalise, _normalise_rows
+
+    rng = np.random.default_rng(1616)
+    for count, n in [(1, 1), (3, 4), (10, 10), (40, 40), (100, 100), (64, 300)]:
+        for k in range(12):
+            x = rng.standard_normal((count, n)) * 10.0 ** rng.uniform(-200, 200, (count, 1))
+            x[rng.random((count, n)) < 0.1] *= 1e-16  # round-off amplitudes
+            x[rng.random((count, n)) < 0.05] = -0.0 if k % 2 else 0.0
+            rest = rng.random(count) < (0.9 if k % 3 == 0 else 0.1)  # many / few rows at rest
+            x[rest, : rng.integers(1, n + 1)] *= 1e-12
+            if k == 5:
+                x[0] = 0.0  # a row of zeros: the rule itself
+            if k == 7:
+                x[-1, -1] = np.nan
+            shapes, size, least = _normalise(x.copy())
+            want, want_size = _normalise_rows(x.copy())
+            assert _same(shapes, want)
+            assert _same(size, want_size)
+            if least is not None:
+                assert _same(least, size.min(axis=1))
