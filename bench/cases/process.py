@@ -126,6 +126,7 @@ def cases(size: str = "full") -> list[Case]:
             check=lambda _o: _ok(mine + peer, "crankdyn --help", IMPORTS),
             targets=(Target(IMPORTS, 1 / 3, "within 3x of it"),),
             repeats=repeats,
+            interleave=True,  # a ratio to the bare start-up: both under the same load
         )
     )
 
@@ -145,6 +146,7 @@ def cases(size: str = "full") -> list[Case]:
             check=lambda _o: _ok(mine_k + peer_k, "crankdyn kinematics", KINEMATICS_BARE),
             targets=(Target(KINEMATICS_BARE, 0.5, "within 2x of it"),),
             repeats=repeats,
+            interleave=True,  # a ratio to the bare analysis: both under the same load
         )
     )
 
