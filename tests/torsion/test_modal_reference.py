@@ -176,9 +176,10 @@ def test_chain_post_processing_equals_the_reference(n, seed, kind, ground):
 
 @pytest.mark.parametrize("n", [1, 2, 5, 40, 91, 100, 150, 300])
 def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
-    """The counts (each way _chain_counts takes: by rows found by division, by cumulative sums,
-    by whole-array passes) on random shapes and random resolved patterns, with rows that have
-    no resolved component at all (a repeated eigenvalue: tau = inf), against the definition:
+    """The counts (each way _chain_counts takes: by rows found by division, by sums per row
+    (reduceat), by whole-array passes) on random shapes and random resolved patterns, with rows
+    that have no resolved component at all (a repeated eigenvalue: tau = inf), first, last or
+    every row, and rows with a single resolved component, against the definition:
     the sign changes between a mode's consecutive resolved components."""
     from crankdyn.torsion.modal import _chain_counts
 
@@ -192,6 +193,12 @@ def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
             resolved[-1] = False  # the last rows with none: the sums end past every component
         if k == 5:
             resolved[:] = False
+        if k == 7:
+            resolved[0] = False  # the first row with none: its sum would start in the next row
+        if k == 9:  # a single resolved component in every row, ending the last row
+            resolved[:] = False
+            resolved[np.arange(n), rng.integers(0, n, n)] = True
+            resolved[-1, -1] = True
         counts, whole = _chain_counts(shapes, resolved)
         want = []
         for row, keep in zip(shapes, resolved, strict=True):

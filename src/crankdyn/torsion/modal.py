@@ -538,19 +538,23 @@ def _solve(
 
 
 def _normalise(
-    shapes: np.ndarray,
+    shapes: np.ndarray, least: bool = True
 ) -> tuple[np.ndarray, np.ndarray, NDArray[np.float64] | None]:
     """Scale every row to a largest absolute amplitude of 1, the first amplitude above 1e-9 of
     the largest positive; amplitudes below 1e-14 of the largest become 0 (a positive 0: no
     negative zeros). The array given is overwritten.
 
     Returns the normalised rows (the array given or a new one), their absolute values (the
-    other) and each row's smallest absolute value (None when amplitudes were zeroed or a row has
-    no finite largest amplitude). Each row x is divided once by its largest |x| signed as its
-    first amplitude, x / (sign(x_0) peak), and its absolute value taken, |x| / peak exactly;
-    where the first amplitude is at rest (at most 1e-9 of the largest) and the first above that
-    is negative, the row is negated: x / (-sign(x_0) peak) = -(x / (sign(x_0) peak)) exactly.
-    A row of zeros, inf or NaN: :func:`_normalise_rows`, the rule row by row."""
+    other) and, when ``least`` is asked for, each row's smallest absolute value (None when not
+    asked for, when amplitudes were zeroed or when a row has no finite largest amplitude).
+
+    Each row x with largest |x| = p is divided once, by p signed as the amplitude that sets its
+    sign: its first, x_0, or, where that is at rest (|x_0| / p at most 1e-9), the first with
+    |x_j| / p above 1e-9. Its absolute values are |x| / p, exactly the absolute values of that
+    quotient, and the amplitude x_j / (sign(x_j) p) = |x_j| / p is positive. This is, to the
+    bit, the rule applied as a division by sign(x_0) p and a negation of the rows whose
+    amplitude j then came out negative: x / (-q) = -(x / q) exactly. A row of zeros, inf or NaN:
+    :func:`_normalise_rows`, the rule row by row."""
     count = shapes.shape[0]
     size = np.abs(shapes)
     peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
@@ -558,30 +562,31 @@ def _normalise(
         shapes, size = _normalise_rows(shapes)
         return shapes, size, None
     few = count <= _FEW
-    np.divide(shapes, np.copysign(peak, shapes[:, 0])[:, None], out=size)
-    shapes, size = size, np.abs(size, out=shapes)  # finite from here: a finite peak bounds a row
+    np.divide(size, peak[:, None], out=size)  # |x| / p: finite, a finite peak bounds its row
     head = size[:, 0]
+    signed = shapes[:, 0]  # the amplitude that sets each row's sign
     if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-        # the rows at rest in the first amplitude: the sign of the first above 1e-9
+        # the rows at rest in the first amplitude: the first above 1e-9 sets their sign
         rows = np.flatnonzero(head <= _ZERO)
         if 8 * rows.size > count:  # many (the localised modes of a long chain): every row
             above = np.argmax(size > _ZERO, axis=1)[rows]
         else:  # a few: those rows only
             above = np.argmax(size[rows] > _ZERO, axis=1)
-        flip = rows[shapes[rows, above] < 0.0]
-        if 8 * flip.size > count:
-            sign = np.ones(count)
-            sign[flip] = -1.0
-            np.multiply(shapes, sign[:, None], out=shapes)
-        else:
-            shapes[flip] = np.negative(shapes[flip])
-    least = np.minimum.reduce(size, axis=1)
-    if not (min(least.tolist()) if few else np.minimum.reduce(least)) >= 1e-14:
-        tiny = size < 1e-14  # round-off amplitudes: a positive 0
-        np.copyto(shapes, 0.0, where=tiny)
-        np.copyto(size, 0.0, where=tiny)
-        return shapes, size, None
-    return shapes, size, least
+        signed = signed.copy()
+        signed[rows] = shapes[rows, above]
+    np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
+    if least:
+        smallest = np.minimum.reduce(size, axis=1)
+        if (min(smallest.tolist()) if few else np.minimum.reduce(smallest)) >= 1e-14:
+            return shapes, size, smallest
+        tiny = size < 1e-14
+    else:
+        tiny = size < 1e-14
+        if not tiny.any():
+            return shapes, size, None
+    np.copyto(shapes, 0.0, where=tiny)  # round-off amplitudes: a positive 0
+    np.copyto(size, 0.0, where=tiny)
+    return shapes, size, None
 
 
 def _normalise_rows(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -985,21 +990,21 @@ def _chain_counts(
             change &= row[1:] == row[:-1]
             whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
             return np.bincount(row[1:][change], minlength=count), whole
-        # the changes summed up to each component; a row's count is the sum from its first
-        # resolved component to its last (0 in a row with none resolved)
+        # the changes between consecutive resolved components summed row by row: the change
+        # after a row's last resolved component (into the next row) is not counted
         per_row = np.add.reduce(resolved, axis=1, dtype=np.intp)
         whole = per_row == n
         sign = np.signbit(shapes_dof).ravel()[resolved.ravel()]  # row-major, as flatnonzero
-        if not sign.size:
-            return np.zeros(count, dtype=np.intp), whole
-        changes = np.empty(sign.size, dtype=np.intp)
-        changes[0] = 0
-        np.cumsum(sign[1:] != sign[:-1], out=changes[1:])
+        m = sign.size
+        change = np.empty(m + 1, dtype=bool)  # padded: a row's first index is at most m
+        np.not_equal(sign[1:], sign[:-1], out=change[: m - 1])
+        change[m - 1 :] = False
         end = np.cumsum(per_row)
-        start = end - per_row
-        np.maximum(end - 1, start, out=end)
-        last = sign.size - 1  # (rows with none resolved at the end: start = end = sign.size)
-        return changes[np.minimum(end, last)] - changes[np.minimum(start, last)], whole
+        change[end - 1] = False  # after each row's last (-1, a row ending before any: the pad)
+        counts = np.add.reduceat(change, end - per_row, dtype=np.intp)
+        if not per_row.all():  # reduceat gives a row of none resolved the next row's first
+            counts[per_row == 0] = 0
+        return counts, whole
     whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
     negative = np.signbit(shapes_dof)
     both = negative[:, 1:] != negative[:, :-1]
@@ -1014,8 +1019,8 @@ def _chain_counts(
 
 _ROW_SUMS = 1 << 13
 """Modes x degrees of freedom from which :func:`_chain_counts` sums a mode's sign changes
-between its first and last resolved components (two cumulative sums) rather than finding
-each component's mode by a division (fewer calls below)."""
+between its first and last resolved components (one ``reduceat``) rather than finding each
+component's mode by a division (fewer calls below)."""
 
 _FLAT_COUNTS = 1 << 16
 """Modes x degrees of freedom up to which :func:`_chain_counts` counts from the flat indices of
@@ -1088,7 +1093,7 @@ def _rows(
     """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
     J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_resolved`). ``lazy``: a
     chain's nodes are only counted (:func:`_chain_counts`) and located when first asked for."""
-    shapes_dof, size, _ = _normalise(phi_t)  # mode x dof; size = |shapes_dof|
+    shapes_dof, size, _ = _normalise(phi_t, least=False)  # mode x dof; size = |shapes_dof|
     # mode x mass (listing order)
     shapes = shapes_dof if model._dofs_in_listing_order else shapes_dof[:, model.mass_dof]
     square = size * size  # phi_i^2
