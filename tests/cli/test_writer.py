@@ -217,6 +217,42 @@ def test_plain_console_is_where_rich_prints_no_styles(monkeypatch, tty, encoding
     assert (con.color_system is None and con.encoding.startswith("utf")) is plain
 
 
+def test_no_standard_output_is_left_to_rich():
+    """Standard output closed (None): rich discards what it prints."""
+    assert plain_console(None) is False
+
+
+class _Recorder(io.StringIO):
+    """A standard output that records its writes and flushes."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.calls: list[tuple[str, ...]] = []
+
+    def write(self, text: str) -> int:
+        self.calls.append(("write", text))
+        return super().write(text)
+
+    def flush(self) -> None:
+        self.calls.append(("flush",))
+        super().flush()
+
+
+def test_standard_output_is_written_as_rich_writes_it(monkeypatch):
+    """The same writes and flushes (one write and a flush per table part and note, as rich
+    prints them): a pipe closed half-way fails at the same point."""
+    blocks = [*_kinematics_blocks(), "a note"]
+
+    def calls(plain: bool) -> list[tuple[str, ...]]:
+        monkeypatch.setattr(writer, "plain_console", lambda _file: plain)
+        recorder = _Recorder()
+        monkeypatch.setattr("sys.stdout", recorder)
+        Output("table").write(blocks=blocks)
+        return recorder.calls
+
+    assert calls(True) == calls(False)
+
+
 @pytest.mark.parametrize("output", [None, "table.txt"])
 def test_the_table_output_is_the_same_with_rich(monkeypatch, capsys, tmp_path, output):
     """Output.write (standard output, a file): the plain text is what rich writes."""

@@ -477,7 +477,7 @@ def _one_cell(text: str) -> bool:
     return (text.isascii() and text.isprintable()) or _ONE_CELL.issuperset(text)
 
 
-def plain_console(file: IO[str]) -> bool:
+def plain_console(file: IO[str] | None) -> bool:
     """Whether rich would print to ``file`` without styles, boxes in Unicode, as on a pipe or
     in a file: not a terminal (nor told to act as one by ``TTY_COMPATIBLE`` or
     ``FORCE_COLOR``), not in Jupyter, on a platform without the legacy Windows console, in a
@@ -486,16 +486,17 @@ def plain_console(file: IO[str]) -> bool:
     Parameters
     ----------
     file
-        The text stream the console writes to.
+        The text stream the console writes to (None: there is none, standard output closed;
+        rich discards what it prints).
 
     Returns
     -------
     bool
         True when rich's output would be plain text.
     """
-    if sys.platform == "win32" or hasattr(builtins, "get_ipython"):
-        return False
     file = getattr(file, "rich_proxied_file", file)  # what rich writes to under a live display
+    if file is None or sys.platform == "win32" or hasattr(builtins, "get_ipython"):
+        return False
     encoding = (getattr(file, "encoding", "utf-8") or "utf-8").lower()
     if not encoding.startswith("utf"):
         return False
@@ -584,6 +585,13 @@ def plain_text(blocks: Iterable[TextTable | str | None], width: int) -> str | No
     str or None
         The text, every line ended by a newline; None: print through rich.
     """
+    prints = _plain_prints(blocks, width)
+    return None if prints is None else "".join(prints)
+
+
+def _plain_prints(blocks: Iterable[TextTable | str | None], width: int) -> list[str] | None:
+    """:func:`plain_text` as the texts of rich's print calls (one per table part and note,
+    each of which rich writes and flushes on its own), or None."""
     out = []
     for block in blocks:
         if isinstance(block, TextTable):
@@ -597,7 +605,7 @@ def plain_text(blocks: Iterable[TextTable | str | None], width: int) -> str | No
             if len(note) > width or not _one_cell(note):
                 return None
             out.append(note + "\n")
-    return "".join(out)
+    return out
 
 
 # ---- the output of a command ------------------------------------------------------------------
@@ -710,11 +718,11 @@ class Output:
             text = csv_text if csv_text is not None else tables[0].csv_text()
         elif self.path is None:
             stdout = getattr(sys.stdout, "rich_proxied_file", sys.stdout)
-            plain = plain_text(blocks, stdout_width()) if plain_console(stdout) else None
-            if plain is None:
+            prints = _plain_prints(blocks, stdout_width()) if plain_console(stdout) else None
+            if prints is None:
                 render(blocks, console())
-            else:  # as rich writes it: one write, flushed
-                stdout.write(plain)
+            for text in prints or ():  # as rich writes them: each print one write, flushed
+                stdout.write(text)
                 stdout.flush()
             return
         else:
