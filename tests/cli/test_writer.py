@@ -4,12 +4,24 @@ from __future__ import annotations
 
 import io
 import json
+import math
+import random
 
 import numpy as np
 import pytest
+from rich.cells import cell_len
 from rich.console import Console
 
-from crankdyn.cli.writer import Output, TextTable, render, result_table
+from crankdyn.cli import writer
+from crankdyn.cli.writer import (
+    Output,
+    TextTable,
+    plain_console,
+    plain_text,
+    render,
+    result_table,
+    summary_table,
+)
 from crankdyn.display import column_text, format_value
 from crankdyn.engine.model import Engine
 from crankdyn.engine.session import Analysis, speed_grid
@@ -69,3 +81,189 @@ def test_json_grids_read_round(capsys):
     data = json.loads(capsys.readouterr().out)
     grid = [s for s, on in zip(data["speed_rpm"], data["on_grid"], strict=True) if on]
     assert grid == [5000.0 + 100.0 * k for k in range(11)]
+
+
+# ---- the plain text written without rich is rich's own text ------------------------------------
+def _rich_text(blocks, width: int) -> str:
+    """What :func:`render` prints through rich on a plain console ``width`` columns wide."""
+    buffer = io.StringIO()
+    con = Console(
+        file=buffer, width=width, soft_wrap=False, highlight=False, markup=False, emoji=False
+    )
+    render(blocks, con)
+    return buffer.getvalue()
+
+
+def _kinematics_blocks():
+    from crankdyn.cli.kinematics import KINEMATICS_TABLE
+
+    result = Analysis(Engine.example("vaz2108")).kinematics(step=math.radians(10.0))
+    return [
+        result_table(result, KINEMATICS_TABLE, title="Piston and rod kinematics"),
+        summary_table(result.summary, "Summary (exact extrema)"),
+    ]
+
+
+@pytest.mark.parametrize("width", [120, 160, 250])
+def test_plain_text_of_a_command_is_rich_text(width):
+    """The kinematics command's tables (headers over four lines, units such as m/s², text and
+    number columns) and the bearing loads of a V12 (split into parts at 120), as plain text."""
+    bearings = result_table(
+        Analysis(Engine.example("v12-60")).bearings(step=np.radians(30.0)), title="Bearings"
+    )
+    for blocks in (_kinematics_blocks(), [bearings, "a note", TextTable("", ["x"], [], set())]):
+        text = plain_text(blocks, width)
+        assert text is not None
+        assert text == _rich_text(blocks, width)
+
+
+_WORDS = [*"abcXYZ019.-+ ()/", "²", "·", "λ", "°", "µ", "Ω", "\xa0", "é", "Ж"]
+_ODD = ["–", "…", "\t", "\n", "中", "\u0301", "\x1b"]  # not one column each: rich's layout
+
+
+def _word(r: random.Random, n: int) -> str:
+    return "".join(
+        r.choice(_WORDS[:16] if r.random() < 0.97 else _WORDS + _ODD)
+        for _ in range(r.randint(0, n))
+    )
+
+
+def test_plain_text_is_rich_text_or_none():
+    """Tables of every shape (text and number columns, headers of several lines or none,
+    leading, trailing and no-break spaces, empty cells, no rows, titles, captions, notes,
+    splits into parts) on consoles of several widths: the plain text is rich's to the
+    character, or None where rich's layout is needed (too wide, wrapped, odd characters)."""
+    r = random.Random(16)
+    plain = 0
+    for _ in range(600):
+        ncol = r.randint(1, 9)
+        header = [" ".join(_word(r, 8) for _ in range(r.randint(0, 4))) for _ in range(ncol)]
+        text_columns = {c for c in range(ncol) if r.random() < 0.3}
+        rows = [
+            [_word(r, r.choice([3, 8, 30]) if c in text_columns else 12) for c in range(ncol)]
+            for _ in range(r.randint(0, 6))
+        ]
+        title = r.choice(["", "Title", _word(r, 40), " padded  "])
+        caption = r.choice(["", "", "a caption", _word(r, 50)])
+        blocks: list = [TextTable(title, header, rows, text_columns, caption)]
+        if r.random() < 0.5:
+            blocks.append(r.choice(["note", _word(r, 30), "", None, "x" * 130]))
+        width = r.choice([40, 60, 80, 120, 200])
+        text = plain_text(blocks, width)
+        if text is not None:
+            plain += 1
+            assert text == _rich_text(blocks, width), (blocks, width)
+    assert plain > 200  # the comparison covered many layouts
+
+
+@pytest.mark.parametrize(
+    "blocks",
+    [
+        [TextTable("T", ["A (m)", "B (m)"], [["1" * 70, "2" * 70]], set())],  # wider than 120
+        [TextTable("T", ["Name"], [["a\tb"]], {0})],
+        [TextTable("T", ["Name"], [["two\nlines"]], {0})],
+        [TextTable("T", ["Name"], [["中文"]], {0})],
+        [TextTable("A title much longer than the narrow table below it", ["x"], [["1"]], set())],
+        ["a note longer than the console " * 5],
+        [TextTable("", [], [], set())],
+    ],
+)
+def test_plain_text_leaves_what_needs_rich_to_rich(blocks):
+    assert plain_text(blocks, 120) is None
+    _rich_text(blocks, 120)  # rich prints it
+
+
+def test_one_cell_characters_are_one_cell_to_rich():
+    for c in writer._ONE_CELL:
+        assert cell_len(c) == 1, hex(ord(c))
+
+
+class _Stream(io.StringIO):
+    def __init__(self, tty: bool, encoding: str = "utf-8") -> None:
+        super().__init__()
+        self._tty, self._encoding = tty, encoding
+
+    def isatty(self) -> bool:
+        return self._tty
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return self._encoding
+
+
+@pytest.mark.parametrize(
+    ("tty", "encoding", "env", "plain"),
+    [
+        (False, "utf-8", {}, True),
+        (True, "utf-8", {}, False),
+        (False, "latin-1", {}, False),
+        (False, "utf-8", {"FORCE_COLOR": "1"}, False),
+        (False, "utf-8", {"FORCE_COLOR": ""}, True),
+        (True, "utf-8", {"FORCE_COLOR": ""}, True),
+        (False, "utf-8", {"TTY_COMPATIBLE": "1"}, False),
+        (True, "utf-8", {"TTY_COMPATIBLE": "0"}, True),
+        (True, "utf-8", {"TTY_COMPATIBLE": "0", "FORCE_COLOR": "1"}, True),
+    ],
+)
+def test_plain_console_is_where_rich_prints_no_styles(monkeypatch, tty, encoding, env, plain):
+    """plain_console agrees with rich: no colour system and a Unicode box, or not plain."""
+    for name in ("FORCE_COLOR", "TTY_COMPATIBLE"):
+        monkeypatch.delenv(name, raising=False)
+    for name, value in env.items():
+        monkeypatch.setenv(name, value)
+    stream = _Stream(tty, encoding)
+    assert plain_console(stream) is plain
+    con = Console(file=stream, width=120)
+    assert (con.color_system is None and con.encoding.startswith("utf")) is plain
+
+
+def test_no_standard_output_is_left_to_rich():
+    """Standard output closed (None): rich discards what it prints."""
+    assert plain_console(None) is False
+
+
+class _Recorder(io.StringIO):
+    """A standard output that records its writes and flushes."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.calls: list[tuple[str, ...]] = []
+
+    def write(self, text: str) -> int:
+        self.calls.append(("write", text))
+        return super().write(text)
+
+    def flush(self) -> None:
+        self.calls.append(("flush",))
+        super().flush()
+
+
+def test_standard_output_is_written_as_rich_writes_it(monkeypatch):
+    """The same writes and flushes (one write and a flush per table part and note, as rich
+    prints them): a pipe closed half-way fails at the same point."""
+    blocks = [*_kinematics_blocks(), "a note"]
+
+    def calls(plain: bool) -> list[tuple[str, ...]]:
+        monkeypatch.setattr(writer, "plain_console", lambda _file: plain)
+        recorder = _Recorder()
+        monkeypatch.setattr("sys.stdout", recorder)
+        Output("table").write(blocks=blocks)
+        return recorder.calls
+
+    assert calls(True) == calls(False)
+
+
+@pytest.mark.parametrize("output", [None, "table.txt"])
+def test_the_table_output_is_the_same_with_rich(monkeypatch, capsys, tmp_path, output):
+    """Output.write (standard output, a file): the plain text is what rich writes."""
+    path = None if output is None else str(tmp_path / output)
+
+    def written(plain: bool) -> str:
+        monkeypatch.setattr(writer, "plain_console", lambda _file: plain)
+        if path is not None:
+            Output("table", path, force=True).write(blocks=_kinematics_blocks())
+            return (tmp_path / output).read_text(encoding="utf-8")
+        Output("table").write(blocks=_kinematics_blocks())
+        return capsys.readouterr().out
+
+    assert written(True) == written(False)

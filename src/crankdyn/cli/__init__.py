@@ -5,8 +5,9 @@ line on stderr, ``crankdyn: error: ...``, and exit status 2; anything else that 
 keeps its traceback. Command groups live in sibling modules listed in :data:`COMMAND_MODULES`, each
 with a ``register(group)`` function.
 
-The group is lazy: a command's module is imported when that command runs (or when ``--help``
-lists the commands), so ``crankdyn kinematics`` never imports what ``crankdyn study`` needs.
+The group is lazy: a command's module is imported when that command runs, so ``crankdyn
+kinematics`` never imports what ``crankdyn study`` needs, and ``crankdyn --help`` lists the
+commands from :data:`COMMAND_SUMMARIES` without importing any.
 Command modules keep their module-level imports light (click, the shared vocabulary, the
 domain's names); scipy, matplotlib, pint, Dask and pyarrow are imported where they are used.
 """
@@ -20,6 +21,7 @@ import signal
 import sys
 import threading
 from collections.abc import Iterator, Mapping, MutableMapping
+from gettext import gettext as _
 from types import FrameType
 from typing import Any
 
@@ -28,7 +30,7 @@ import click
 from crankdyn import __version__
 from crankdyn.errors import InputError
 
-__all__ = ["COMMAND_MODULES", "LazyGroup", "Terminated", "cli", "main", "run"]
+__all__ = ["COMMAND_MODULES", "COMMAND_SUMMARIES", "LazyGroup", "Terminated", "cli", "main", "run"]
 
 COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "examples": ("examples", "example"),
@@ -48,6 +50,66 @@ COMMAND_MODULES: dict[str, tuple[str, ...]] = {
 a command two modules name is complete once both are loaded (``tests/cli/test_lazy.py`` holds
 this index to what the modules register)."""
 
+COMMAND_SUMMARIES: dict[str, str] = {
+    "analyze": "Run every analysis that applies to ENGINE and write an HTML report with its data.",
+    "balance": "Free forces and moments of ENGINE's mass forces, order by order (seed 000 §2.2).",
+    "bearings": (
+        "Crank-pin loads (crank frame) of every throw and main-bearing loads (engine frame) of "
+        "ENGINE over the working cycle."
+    ),
+    "coefficients": (
+        "The seeds' dimensionless tables: A = x/R, B = v/(Rω), C = a/(Rω²) vs crank angle."
+    ),
+    "demo": "The full report on the built-in inline-6 diesel (crankdyn analyze inline6-diesel).",
+    "docs": (
+        "Read the user documentation offline: without TOPIC, list the topics; with one, show its "
+        "page in the terminal (paged when the output is a terminal)."
+    ),
+    "example": (
+        "Write the built-in example NAME (engine, torsional model, linkage or study, with any file "
+        "it names, such as a pressure trace) to a file to edit."
+    ),
+    "examples": "List the built-in examples: engines, torsional models, linkages and studies.",
+    "firing-orders": (
+        "Enumerate the firing orders ENGINE's crankshaft allows and rank them (seed 000 §2.3)."
+    ),
+    "flywheel": "Speed fluctuation of ENGINE and the flywheel for a target δ (seed 000 §2.4).",
+    "forces": (
+        "Gas, inertia, rod, side, tangential and radial forces and the crank-pin load of one "
+        "cylinder of ENGINE over the working cycle."
+    ),
+    "kinematics": "Piston and connecting-rod kinematics of ENGINE over one revolution.",
+    "linkage": (
+        "Planar linkages: four-bar, slider-crank and general mechanisms (kinematics, forces)."
+    ),
+    "measure": "Orders of the angular vibration measured by a torsiograph, held against a model.",
+    "pressure": (
+        "Cylinder pressure of ENGINE over the cycle (its trace, or the synthetic Wiebe model) with "
+        "the indicated work, IMEP and peak pressure."
+    ),
+    "study": (
+        "Run the parameter study STUDY (a study file, or a built-in example study; --list shows "
+        "them): every case on a local process pool (all cores) or, with --scheduler, on a Dask "
+        "cluster."
+    ),
+    "torque": (
+        "Cylinder, total, main-journal and crank-pin torques of ENGINE over the working cycle, "
+        "with mean torque, power, IMEP and peak pressure."
+    ),
+    "torsion": "Crankshaft torsional vibration: lumped models, free and forced vibration.",
+    "tvc": (
+        "The torsional vibration calculation of MODEL_OR_ENGINE: every running condition (normal "
+        "firing, each cylinder misfiring, damper out of order) against every component's limit "
+        "(IACS UR M68, the engine builder's, the coupling, gear, generator and damper makers'), "
+        "barred speed ranges and their passage, as a report folder with index.html, report.pdf "
+        "(headless Chromium, where installed) and summary.json (crankdyn docs tvc)."
+    ),
+}
+"""What ``crankdyn --help`` lists for each top-level command: its help up to the first word
+that ends a sentence (click shortens a command's help to that, or less, for the listing; the
+rest of the help never shows there), so listing the commands imports no command module
+(``tests/cli/test_lazy.py`` holds this index to the commands' own help)."""
+
 
 class LazyGroup(click.Group):
     """A click group that imports a command's module on first use (:data:`COMMAND_MODULES`).
@@ -62,10 +124,20 @@ class LazyGroup(click.Group):
     modules : dict of str to tuple of str
         The command modules (``crankdyn.cli.<module>``, each with a ``register(group)``
         function) and the names of the commands each registers.
+    summaries : dict of str to str, optional
+        The first sentence of the help of commands (by name): the help's listing of those
+        commands imports no module (:meth:`format_commands`).
     """
 
-    def __init__(self, *args: Any, modules: dict[str, tuple[str, ...]], **kwargs: Any) -> None:
+    def __init__(
+        self,
+        *args: Any,
+        modules: dict[str, tuple[str, ...]],
+        summaries: dict[str, str] | None = None,
+        **kwargs: Any,
+    ) -> None:
         self._modules = modules
+        self._summaries = dict(summaries or {})
         self._loaded: set[str] = set()
         self._commands: dict[str, click.Command] = {}
         super().__init__(*args, **kwargs)
@@ -141,6 +213,36 @@ class LazyGroup(click.Group):
         """
         return sorted({name for names in self._modules.values() for name in names})
 
+    def _listed(self, ctx: click.Context, name: str) -> click.Command | None:
+        """The command ``name`` as the help lists it: the command itself once its modules are
+        loaded, else a stand-in carrying its summary (no module imported for it)."""
+        modules = {m for m, names in self._modules.items() if name in names}
+        if name in self._summaries and not modules <= self._loaded:
+            return click.Command(name, help=self._summaries[name])
+        return self.get_command(ctx, name)
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        """The help's list of commands, as :class:`click.Group` writes it, a command not yet
+        loaded listed from its summary (``summaries``) rather than by importing its module.
+
+        Parameters
+        ----------
+        ctx
+            The group's click context.
+        formatter
+            The help formatter written to.
+        """
+        commands = []
+        for name in self.list_commands(ctx):
+            cmd = self._listed(ctx, name)
+            if cmd is not None and not cmd.hidden:
+                commands.append((name, cmd))
+        if commands:  # as click.Group.format_commands
+            limit = formatter.width - 6 - max(len(name) for name, _cmd in commands)
+            rows = [(name, cmd.get_short_help_str(limit)) for name, cmd in commands]
+            with formatter.section(_("Commands")):
+                formatter.write_dl(rows)
+
 
 class _OutputFailed(Exception):
     """An OSError raised by a command, carried past click (which would turn a closed pipe into
@@ -165,6 +267,7 @@ class _Group(LazyGroup):
 @click.group(
     cls=_Group,
     modules=COMMAND_MODULES,
+    summaries=COMMAND_SUMMARIES,
     context_settings={"help_option_names": ["-h", "--help"], "max_content_width": 100},
 )
 @click.version_option(__version__, prog_name="crankdyn")

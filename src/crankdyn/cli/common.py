@@ -31,7 +31,6 @@ from typing import IO, TYPE_CHECKING, Any, Protocol, TypeVar, cast, overload
 import click
 import numpy as np
 from numpy.typing import NDArray
-from rich.console import Console
 
 from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_bytes
@@ -39,6 +38,7 @@ from crankdyn.io.units import parse_quantity
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as MplFigure
+    from rich.console import Console
 
 F = TypeVar("F", bound=Callable[..., Any])
 """A command callback (or a click command) being decorated."""
@@ -71,19 +71,40 @@ __all__ = [
     "save_figure",
     "speed_option",
     "speeds_option",
+    "stdout_width",
     "step_option",
     "teeth_option",
     "warn",
 ]
 
 
-class _PlainConsole(Console):
-    """A rich console whose closed pipe is an ordinary BrokenPipeError (rich would end the
-    process with status 1); crankdyn.cli.main reports it in one line."""
+@functools.cache
+def _plain_console_class() -> type[Console]:
+    """The rich console class of the command line, made on first use: rich is imported only
+    by a command that prints through it (:func:`console`)."""
+    from rich.console import Console
 
-    def on_broken_pipe(self) -> None:
-        """Raise BrokenPipeError (rich would exit with status 1)."""
-        raise BrokenPipeError(errno.EPIPE, os.strerror(errno.EPIPE))
+    class _PlainConsole(Console):
+        """A rich console whose closed pipe is an ordinary BrokenPipeError (rich would end the
+        process with status 1); crankdyn.cli.main reports it in one line."""
+
+        def on_broken_pipe(self) -> None:
+            """Raise BrokenPipeError (rich would exit with status 1)."""
+            raise BrokenPipeError(errno.EPIPE, os.strerror(errno.EPIPE))
+
+    return _PlainConsole
+
+
+def stdout_width() -> int:
+    """The width of a console on standard output: the terminal's, at least 120 columns (what
+    :func:`console` gives standard output by default).
+
+    Returns
+    -------
+    int
+        The width in columns.
+    """
+    return max(shutil.get_terminal_size((120, 24)).columns, 120)
 
 
 def console(
@@ -120,8 +141,8 @@ def console(
     'an engine named x [/] y\\n'
     """
     if width is None and not stderr:
-        width = max(shutil.get_terminal_size((120, 24)).columns, 120)
-    return _PlainConsole(
+        width = stdout_width()
+    return _plain_console_class()(
         file=file or (sys.stderr if stderr else sys.stdout),
         width=width,
         soft_wrap=False,

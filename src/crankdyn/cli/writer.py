@@ -15,26 +15,30 @@ each on standard error, whatever the format, and a ``warnings`` list in the JSON
 
 from __future__ import annotations
 
+import builtins
 import io
 import json
 import math
+import os
+import sys
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import IO, TYPE_CHECKING, Any, TypeVar
 
 import click
 import numpy as np
-from rich.console import Console
-from rich.table import Table as RichTable
-from rich.text import Text
 
-from crankdyn.cli.common import before_work, console, warn
+from crankdyn.cli.common import before_work, console, stdout_width, warn
 from crankdyn.display import column_text, format_value
 from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_text
 from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result
+
+if TYPE_CHECKING:
+    from rich.console import Console
+    from rich.table import Table as RichTable
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -46,6 +50,8 @@ __all__ = [
     "json_text",
     "jsonable",
     "output_options",
+    "plain_console",
+    "plain_text",
     "result_table",
     "summary_table",
     "warnings_of",
@@ -388,6 +394,9 @@ def _parts(table: TextTable, width: int) -> list[list[int]]:
 
 def _rich(table: TextTable, columns: list[int], title: str) -> RichTable:
     """The ``columns`` of a table as a rich table, every cell a Text (never markup)."""
+    from rich.table import Table as RichTable
+    from rich.text import Text
+
     # every string goes in as a Text: user text is never read as markup, whatever the console
     widths = _widths(table)
     rich = RichTable(title=Text(title) if title else None, header_style="bold")
@@ -418,16 +427,185 @@ def render(blocks: Iterable[TextTable | str | None], con: Console) -> None:
     con
         The console (:func:`crankdyn.cli.common.console`).
     """
+    from rich.text import Text
+
     for block in blocks:
         if isinstance(block, TextTable):
-            parts = _parts(block, con.width)
-            for n, cols in enumerate(parts):
-                title = block.title
-                if len(parts) > 1:
-                    title = f"{block.title} (part {n + 1} of {len(parts)})".strip()
+            for title, cols in _titled_parts(block, con.width):
                 con.print(_rich(block, cols, title))
         elif block:
             con.print(Text(str(block)), soft_wrap=False)
+
+
+def _titled_parts(table: TextTable, width: int) -> list[tuple[str, list[int]]]:
+    """The parts of a table that fit ``width`` (:func:`_parts`), each with its title."""
+    parts = _parts(table, width)
+    if len(parts) == 1:
+        return [(table.title, parts[0])]
+    return [
+        (f"{table.title} (part {n + 1} of {len(parts)})".strip(), cols)
+        for n, cols in enumerate(parts)
+    ]
+
+
+# ---- the same text without rich ---------------------------------------------------------------
+# What rich prints for these tables on a console that is not a terminal (no styles) is plain
+# text in a fixed layout; :func:`plain_text` writes it directly, in a fraction of the time
+# (and without importing rich), whenever the layout is the simple one: every column at its
+# natural width within the console, no cell wrapped, every character one column wide.
+# tests/cli/test_writer.py holds it to rich's own output, character for character.
+
+_ONE_CELL = frozenset(
+    chr(c)
+    for start, end in (
+        (0x20, 0x7E),
+        (0xA0, 0xAC),
+        (0xAE, 0x2FF),
+        (0x370, 0x482),
+        (0x2500, 0x25FC),
+        (0x2800, 0x28FF),
+    )
+    for c in range(start, end + 1)
+)
+"""The characters rich measures one column wide whatever the Unicode version (its own
+single-cell ranges, rich.cells): no control character (no line break, no tab), nothing wide,
+nothing of zero width."""
+
+
+def _one_cell(text: str) -> bool:
+    """Whether every character of ``text`` is one column wide to rich (:data:`_ONE_CELL`)."""
+    return (text.isascii() and text.isprintable()) or _ONE_CELL.issuperset(text)
+
+
+def plain_console(file: IO[str] | None) -> bool:
+    """Whether rich would print to ``file`` without styles, boxes in Unicode, as on a pipe or
+    in a file: not a terminal (nor told to act as one by ``TTY_COMPATIBLE`` or
+    ``FORCE_COLOR``), not in Jupyter, on a platform without the legacy Windows console, in a
+    UTF encoding. Only then does :func:`plain_text` stand in for rich.
+
+    Parameters
+    ----------
+    file
+        The text stream the console writes to (None: there is none, standard output closed;
+        rich discards what it prints).
+
+    Returns
+    -------
+    bool
+        True when rich's output would be plain text.
+    """
+    file = getattr(file, "rich_proxied_file", file)  # what rich writes to under a live display
+    if file is None or sys.platform == "win32" or hasattr(builtins, "get_ipython"):
+        return False
+    encoding = (getattr(file, "encoding", "utf-8") or "utf-8").lower()
+    if not encoding.startswith("utf"):
+        return False
+    tty = os.environ.get("TTY_COMPATIBLE", "")
+    if tty == "1":
+        return False
+    if tty != "0":
+        if "FORCE_COLOR" in os.environ:
+            return os.environ["FORCE_COLOR"] == ""
+        isatty = getattr(file, "isatty", None)
+        try:
+            return isatty is None or not isatty()
+        except ValueError:  # a closed file: rich takes it for no terminal
+            return True
+    return True
+
+
+def _centred(text: str, width: int) -> str:
+    """``text`` (its trailing blanks dropped) centred in ``width`` columns, as rich centres a
+    table's title and caption."""
+    text = text.rstrip()
+    left = (width - len(text)) // 2
+    return " " * left + text + " " * (width - len(text) - left)
+
+
+def _plain_table(table: TextTable, columns: list[int], title: str, width: int) -> str | None:
+    """The ``columns`` of a table as rich prints them (:func:`_rich`, without styles) on a
+    console ``width`` columns wide, or None when the layout is not the simple one."""
+    least = _widths(table)
+    heads = [_wrap(table.header[c], least[c]).split("\n") for c in columns]
+    cells = [[row[c] for c in columns] for row in table.rows]
+    texts = [*(h for head in heads for h in head), *(x for row in cells for x in row)]
+    if not all(_one_cell(t) for t in texts):
+        return None
+    widths = []
+    for n, c in enumerate(columns):
+        longest = max((len(row[n]) for row in cells), default=0)
+        widths.append(max(least[c], longest, *(len(h) for h in heads[n])))
+    inner = sum(w + 3 for w in widths) + 1  # each column padded by one space either side
+    if not columns or inner > width:
+        return None
+    notes = [t for t in (title, table.caption) if t]
+    if any(len(t) > inner or not _one_cell(t) for t in notes):
+        return None
+    right = [c not in table.text_columns for c in columns]  # numbers: right-aligned
+
+    def line(texts: Sequence[str], edge: str) -> str:
+        """One line of cells between ``edge`` characters."""
+        parts = [
+            f" {t.rstrip().rjust(w)} " if r else f" {t.ljust(w)} "
+            for t, w, r in zip(texts, widths, right, strict=True)
+        ]
+        return edge + edge.join(parts) + edge
+
+    def rule(ends: str, fill: str) -> str:
+        """A horizontal rule: ``ends`` is left, crossing, right."""
+        return ends[0] + ends[1].join(fill * (w + 2) for w in widths) + ends[2]
+
+    out = [_centred(title, inner)] if title else []
+    out.append(rule("┏┳┓", "━"))
+    height = max(len(h) for h in heads)
+    padded = [[""] * (height - len(h)) + h for h in heads]  # headers aligned at the bottom
+    out.extend(line([h[i] for h in padded], "┃") for i in range(height))
+    out.append(rule("┡╇┩", "━"))
+    out.extend(line(row, "│") for row in cells)
+    out.append(rule("└┴┘", "─"))
+    if table.caption:
+        out.append(_centred(table.caption, inner))
+    return "\n".join(out) + "\n"
+
+
+def plain_text(blocks: Iterable[TextTable | str | None], width: int) -> str | None:
+    """What :func:`render` prints on a plain console (:func:`plain_console`) ``width`` columns
+    wide, made without rich; None when a block needs rich's layout (a table wider than the
+    console, a cell or title that would wrap, a character that is not one column wide).
+
+    Parameters
+    ----------
+    blocks
+        Tables and note lines, as for :func:`render`.
+    width
+        The console's width in columns.
+
+    Returns
+    -------
+    str or None
+        The text, every line ended by a newline; None: print through rich.
+    """
+    prints = _plain_prints(blocks, width)
+    return None if prints is None else "".join(prints)
+
+
+def _plain_prints(blocks: Iterable[TextTable | str | None], width: int) -> list[str] | None:
+    """:func:`plain_text` as the texts of rich's print calls (one per table part and note,
+    each of which rich writes and flushes on its own), or None."""
+    out = []
+    for block in blocks:
+        if isinstance(block, TextTable):
+            for title, cols in _titled_parts(block, width):
+                text = _plain_table(block, cols, title, width)
+                if text is None:
+                    return None
+                out.append(text)
+        elif block:
+            note = str(block)
+            if len(note) > width or not _one_cell(note):
+                return None
+            out.append(note + "\n")
+    return out
 
 
 # ---- the output of a command ------------------------------------------------------------------
@@ -538,13 +716,21 @@ class Output:
             text = json_text(data)
         elif self.fmt == "csv":
             text = csv_text if csv_text is not None else tables[0].csv_text()
-        else:
-            if self.path is None:
+        elif self.path is None:
+            stdout = getattr(sys.stdout, "rich_proxied_file", sys.stdout)
+            prints = _plain_prints(blocks, stdout_width()) if plain_console(stdout) else None
+            if prints is None:
                 render(blocks, console())
-                return
+            for text in prints or ():  # as rich writes them: each print one write, flushed
+                stdout.write(text)
+                stdout.flush()
+            return
+        else:
             buffer = io.StringIO()
-            render(blocks, console(file=buffer, width=FILE_WIDTH))  # the shared console's settings
-            text = buffer.getvalue()
+            plain = plain_text(blocks, FILE_WIDTH) if plain_console(buffer) else None
+            if plain is None:  # the shared console's settings
+                render(blocks, console(file=buffer, width=FILE_WIDTH))
+            text = buffer.getvalue() if plain is None else plain
         if self.path is not None:
             written = write_text(self.path, text, force=self.force)
             click.echo(f"wrote {written}", err=True)

@@ -827,6 +827,7 @@ def piston_kinematics(
     method: str = "exact",
     order: int = SERIES_ORDER,
     fuel: str | None = None,
+    summary: KinematicsSummary | None = None,
 ) -> KinematicsResult:
     """Slider-crank kinematics of one cylinder at a constant crank speed.
 
@@ -848,6 +849,10 @@ def piston_kinematics(
     fuel : str or None
         ``"petrol"``, ``"diesel"`` or None: the engine type whose typical piston acceleration
         the plausibility check uses (:func:`crankdyn.plausibility.kinematics_warnings`).
+    summary : KinematicsSummary or None
+        The summary, when it is known already: that of the same geometry, speed, method and
+        order on any grid (the summary does not depend on the grid), e.g. the analysis
+        session's rows on a display grid; default: computed here.
 
     Returns
     -------
@@ -885,7 +890,8 @@ def piston_kinematics(
         angles = np.linspace(0.0, 2.0 * math.pi, count + 1)
     phi = np.asarray(angles, dtype=float)
     m = motion(phi, r, l, e, w)
-    summary = _summary(motion, geometry, w, method)
+    if summary is None:
+        summary = _summary(motion, geometry, w, method)
     return KinematicsResult(
         crank_angle=freeze(phi),
         displacement=freeze(m.displacement),

@@ -46,7 +46,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crankdyn.crank.indicated import PressureResult
-    from crankdyn.crank.kinematics import KinematicsResult
+    from crankdyn.crank.kinematics import KinematicsResult, KinematicsSummary
     from crankdyn.engine.balance import BalanceResult
     from crankdyn.engine.bearings import BearingsResult
     from crankdyn.engine.firing_search import FiringCandidate, FiringOrderRanking
@@ -407,15 +407,24 @@ class Analysis:
 
         engine = self._need_engine("the kinematics")
 
-        def compute(h: float) -> KinematicsResult:
+        def compute(h: float, summary: KinematicsSummary | None = None) -> KinematicsResult:
             check_step(h, 2.0 * math.pi)
             return piston_kinematics(
-                engine.geometry, self.speed, step=h, method=method, order=order, fuel=engine.fuel
+                engine.geometry,
+                self.speed,
+                step=h,
+                method=method,
+                order=order,
+                fuel=engine.fuel,
+                summary=summary,
             )
 
         full = self._cached(("kinematics", method, order), lambda: compute(self.step))
-        return self._rows(
-            step, ("kinematics", method, order), full, lambda: compute(cast(float, step))
+        return self._rows(  # the rows carry the full grid's summary: not computed again
+            step,
+            ("kinematics", method, order),
+            full,
+            lambda: compute(cast(float, step), full.summary),
         )
 
     @property

@@ -32,7 +32,6 @@ import contextlib
 import errno
 import functools
 import os
-import secrets
 import shutil
 import signal
 import stat
@@ -348,7 +347,7 @@ def _sync(handle: IO[bytes]) -> None:
 
 
 def _temporary(p: Path, suffix: str = ".tmp") -> Path:
-    return _parent_of(p) / f".{p.name}.{secrets.token_hex(6)}{suffix}"
+    return _parent_of(p) / f".{p.name}.{os.urandom(6).hex()}{suffix}"  # secrets.token_hex(6)
 
 
 def _sibling(p: Path, n: int, folder: bool) -> Path:
