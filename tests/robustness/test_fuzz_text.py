@@ -206,3 +206,29 @@ def test_standard_output_closed():
     finally:
         os.close(write)
     assert (status, err) == (2, "crankdyn: error: cannot write to standard output: Broken pipe\n")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX descriptors")
+def test_started_with_standard_output_closed(tmp_path):
+    """``crankdyn ... >&-`` (Python sets sys.stdout to None): a command that prints ends in one
+    line and status 2, no traceback; one that writes only a file runs and writes it."""
+
+    def closed(*args):
+        process = subprocess.run(
+            [sys.executable, "-m", "crankdyn", *args],
+            stdin=subprocess.DEVNULL,
+            stderr=subprocess.PIPE,
+            text=True,
+            timeout=300,
+            preexec_fn=lambda: os.close(1),
+        )
+        return process.returncode, process.stderr
+
+    message = "crankdyn: error: cannot write to standard output: standard output is closed\n"
+    assert closed("kinematics", "vaz2108") == (2, message)
+    assert closed("kinematics", "vaz2108", "--format", "json") == (2, message)
+    target = tmp_path / "k.csv"
+    status, err = closed("kinematics", "vaz2108", "--format", "csv", "-o", str(target))
+    assert status == 0, err
+    assert "Traceback" not in err
+    assert target.read_text().startswith("crank_angle")

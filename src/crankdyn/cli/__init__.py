@@ -15,7 +15,9 @@ domain's names); scipy, matplotlib, pint, Dask and pyarrow are imported where th
 from __future__ import annotations
 
 import contextlib
+import errno
 import importlib
+import io
 import os
 import signal
 import sys
@@ -380,8 +382,25 @@ def main(argv: list[str] | None = None) -> int:
     return status
 
 
+class _ClosedStdout(io.TextIOBase):
+    """Standard output of a process started with it closed (``crankdyn ... >&-``: Python sets
+    ``sys.stdout`` to None): writing to it fails as writing to a closed descriptor does, so a
+    command that prints ends in one line and status 2, and one that only writes files runs."""
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        raise OSError(errno.EBADF, "standard output is closed")
+
+    def flush(self) -> None:
+        """Nothing is buffered."""
+
+
 def _run(args: list[str]) -> int:
     """Run the group on ``args``; every error that is not a bug becomes a line and a status."""
+    if sys.stdout is None:
+        sys.stdout = _ClosedStdout()
     try:
         result = cli.main(args=args, prog_name="crankdyn", standalone_mode=False)
         sys.stdout.flush()  # an output error shows here, not at the interpreter's exit
