@@ -125,6 +125,11 @@ def _sub(a, b):
     return a - b
 
 
+def _zero(a: Any) -> bool:
+    """Whether a is the number 0 (a product with it is the number 0, :func:`_mul`)."""
+    return type(a) is float and a == 0.0
+
+
 def _vec(p: np.ndarray, g0: np.ndarray) -> tuple[float, float]:
     """p - g0 of two drawn points as plain numbers (a constant offset on a link)."""
     return float(p[0] - g0[0]), float(p[1] - g0[1])
@@ -228,9 +233,7 @@ def _pose_sliding(known, v, d, u, rows):
     (mx, my), (m1x, m1y), (m2x, m2y) = _material(known, v)
     (dx, dy), (d1x, d1y), (d2x, d2y) = d
     u0, u1, u2 = u
-    u12 = 0.0  # 2 u', needed only where the guide turns (d' not the number 0)
-    if not (type(d1x) is float and d1x == 0.0 and type(d1y) is float and d1y == 0.0):
-        u12 = 2.0 * u1
+    u12 = 0.0 if _zero(d1x) and _zero(d1y) else 2.0 * u1  # 2 u', needed where the guide turns
     return (
         _plus_to(rows[0, 0], mx, _mul(u0, dx)),
         _plus_to(rows[0, 1], my, _mul(u0, dy)),
@@ -462,7 +465,7 @@ class _Dyad:
                 k2.append((p2[0] - w2[X] * r[X][0], p2[1] - w2[X] * r[X][1]))
             else:
                 (_c, _c1, c2), (_d, d1, d2) = end[1], end[2]
-                u2 = 2.0 * x1[X]
+                u2 = 0.0 if _zero(d1[0]) and _zero(d1[1]) else 2.0 * x1[X]  # 2 u' (d' turns)
                 k2.append(
                     (
                         _add(_add(c2[0], _mul(u2, d1[0])), _mul(u[X], d2[0])),

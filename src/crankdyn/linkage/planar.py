@@ -1459,12 +1459,12 @@ class _Model:
             sb = src[sl]
             if inline:
                 cols = column[sl]
-                angles = np.take(rotations, cols, axis=2)
+                angles = _gather(rotations, cols)
             else:
                 mine = sb >= 0
                 cols = sb[mine]
                 angles = np.empty((3, k, sb.shape[0]))
-                angles[:, :, mine] = np.take(rotations, cols, axis=2)
+                angles[:, :, mine] = rotations[:, :, cols]
                 if not np.all(mine):
                     angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, cf.rotation_rows, :]
             if prev is None:  # the path's first angle: no turn
@@ -1474,7 +1474,8 @@ class _Model:
             else:
                 steps = pt[sl.start - 1 : sl.stop]
                 turns = self._continue(steps, np.concatenate([prev[0], angles], axis=2), prev[1])
-            prev = (angles[:, :, -1:], np.zeros(k) if turns is None else turns[:, -1])
+            # (a copy: ``angles`` may be a view of the rotations, which the turns then change)
+            prev = (angles[:, :, -1:].copy(), np.zeros(k) if turns is None else turns[:, -1])
             if turns is not None and turns.any():
                 rotations[0][:, cols] += TWO_PI * (turns if inline else turns[:, mine])
             if sl.start <= drawn < sl.stop and turns is not None:
@@ -1500,6 +1501,18 @@ class _Model:
         if carry is not None:
             turns += carry[:, None]
         return turns
+
+
+def _gather(rotations, cols):
+    """rotations[:, :, cols] (3, k, B) for a block of the path: its runs of consecutive
+    columns (sorted requested angles around the drawn one) as one view or one concatenation of
+    views, many short runs (anchors) by one gather (never a copy of all the rotations)."""
+    starts = np.flatnonzero(cols[1:] - cols[:-1] != 1) + 1
+    if starts.size > 8:
+        return rotations[:, :, cols]
+    bounds = [0, *starts.tolist(), cols.shape[0]]
+    runs = [rotations[:, :, cols[i] : cols[i] + j - i] for i, j in itertools.pairwise(bounds)]
+    return runs[0] if len(runs) == 1 else np.concatenate(runs, axis=2)
 
 
 def _turns(h, lo, hi):
