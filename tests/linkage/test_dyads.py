@@ -430,14 +430,18 @@ def test_whole_turns_carried_across_blocks_give_the_same_result(monkeypatch):
     import crankdyn.linkage.planar as planar
 
     fb = FourBar(0.1, 0.12, 0.1, 0.04)
-    theta = np.radians(np.concatenate([np.arange(-400.0, 420.0, 2.5), [-3000.0, 4000.0]]))
-    whole = fourbar_mechanism(fb, math.radians(30.0))._model._solve_closed(theta)
-    monkeypatch.setattr(planar, "_PATH_BLOCK", 16)
-    fresh = fourbar_mechanism(fb, math.radians(30.0))
-    for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):
-        np.testing.assert_array_equal(a, b)
-    ref = fresh._model.solve(theta[::20], method="newton")
-    assert max(_deviations(fresh, [a[::20] for a in whole], ref)) < 1e-9
+    grids = (
+        np.radians(np.arange(-400.0, 420.0, 2.5)),  # blocks of one run each, but one
+        np.radians(np.concatenate([np.arange(-400.0, 420.0, 2.5), [-3000.0, 4000.0]])),
+    )
+    wholes = [fourbar_mechanism(fb, math.radians(30.0))._model._solve_closed(t) for t in grids]
+    monkeypatch.setattr(planar, "_PATH_BLOCK", 16)  # the second: anchors apart from the rest
+    for theta, whole in zip(grids, wholes, strict=True):
+        fresh = fourbar_mechanism(fb, math.radians(30.0))
+        for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):
+            np.testing.assert_array_equal(a, b)
+        ref = fresh._model.solve(theta[::20], method="newton")
+        assert max(_deviations(fresh, [a[::20] for a in whole], ref)) < 1e-9
 
 
 def test_determinant_test_scaled_after_the_reduction_is_the_same():
