@@ -3,6 +3,7 @@ own (slider-crank, Scotch yoke, slotted crank), branch continuity, and the behav
 points and change points (the closed form hands those to the general solver)."""
 
 import math
+import types
 
 import numpy as np
 import pytest
@@ -315,3 +316,153 @@ def test_blocks_of_angles_give_the_same_result(monkeypatch):
         np.testing.assert_array_equal(a, b)
     for a, b in zip(fresh._model.solve(theta[:40], method="newton"), newton, strict=True):
         np.testing.assert_allclose(a, b, rtol=0, atol=1e-13 * max(1.0, np.max(np.abs(b))))
+
+
+# ---- the continuation's shortcuts and their general branches -----------------------------------
+
+
+def test_every_row_of_the_closed_form_is_written_and_closes_the_loops():
+    # the dyads write each link's rows of the output once, in place: none may be left out
+    for name, (build, theta) in MECHANISMS.items():
+        mech = build()
+        model = mech._model
+        out = np.full((3, model.nq, theta.shape[0]), np.nan)
+        model.closed.evaluate(theta, out=out)
+        assert not np.any(np.isnan(out)), name
+        np.testing.assert_array_equal(out, model.closed.evaluate(theta), err_msg=name)
+        # loop closure (the general solver's constraint equations), rotations continued or not
+        phi = model.constraints(out[0].T, theta)
+        assert np.max(np.abs(phi)) < 1e-12 * mech.length_scale, name
+
+
+def test_path_without_and_with_anchors_against_its_rule():
+    # the path: the requested angles in order, the drawn angle, and equal steps in every gap
+    # wider than 3 deg; the test for "no gap needs anchors" and the anchored path agree at the
+    # limit (a gap of exactly 3 deg needs none, one just above needs one)
+    from crankdyn.linkage.planar import _MAX_STEP
+
+    mech = Mechanism.example("conveyor-seed004")
+    model = mech._model
+    t0 = model.theta0
+    cases = {
+        "fine": t0 + np.radians(np.arange(-10.0, 10.0, 0.1)) + 1e-3,
+        "coarse, unsorted": np.radians([300.0, -20.0, 91.0, 91.0, 400.0]),
+    }
+    for name, theta in cases.items():
+        pt, src = model._path(theta)
+        order = np.argsort(theta, kind="stable")
+        np.testing.assert_array_equal(pt[src >= 0], theta[order], err_msg=name)
+        np.testing.assert_array_equal(src[src >= 0], order, err_msg=name)
+        assert pt[src == -2].tolist() == [t0], name
+        assert np.all(np.diff(pt) >= 0.0) and np.all(np.diff(pt) <= _MAX_STEP * (1 + 1e-12))
+        # anchors only where the gap between neighbours of the path without them exceeds 3 deg
+        bare = np.sort(np.append(theta, t0))
+        wanted = np.maximum(np.ceil(np.diff(bare) / _MAX_STEP) - 1, 0).sum()
+        assert np.count_nonzero(src == -1) == wanted, name
+    # at the limit (a path drawn at 0: gaps of exactly 3 deg, and one a bit wider)
+    at_zero = types.SimpleNamespace(theta0=0.0)
+    for theta, wanted in (
+        ([_MAX_STEP, 2 * _MAX_STEP, 4 * _MAX_STEP], [-2, 0, 1, -1, 2]),
+        ([np.nextafter(_MAX_STEP, 1.0)], [-2, -1, 0]),
+        ([-2 * _MAX_STEP, -_MAX_STEP], [0, 1, -2]),
+    ):
+        pt, src = model._path.__func__(at_zero, np.array(theta))
+        assert src.tolist() == wanted
+        assert np.all(np.diff(pt) <= _MAX_STEP * (1 + 1e-12))
+
+
+def _wrapped_rotation(total, n, turns_per_unit):
+    """A rotation phi = turns_per_unit * 2 pi x^2 / 2 over x in [0, total] wrapped to (-pi, pi]:
+    (3, 1, n) values, first and second derivatives along the n path angles x."""
+    x = np.linspace(0.0, total, n)
+    c = TWO_PI_TEST * turns_per_unit
+    phi = 0.5 * c * x * x
+    wrapped = np.arctan2(np.sin(phi), np.cos(phi))
+    return x, np.stack([wrapped, c * x, np.full_like(x, c)])[:, None, :], phi
+
+
+TWO_PI_TEST = 2.0 * math.pi
+
+
+def test_turns_shortcut_and_the_full_test_agree():
+    from crankdyn.linkage.planar import _Model, _turns
+
+    # a rotation accelerating to many turns (wrapped): whole turns are found step by step and
+    # the continued rotation is the true one; the same rotation slower than half a turn in all
+    # takes the shortcut (no turn) and leaves the values alone
+    x, angles, phi = _wrapped_rotation(1.0, 2001, 3.0)
+    turns = _Model._continue(x, angles, None)
+    assert turns is not None
+    np.testing.assert_allclose(angles[0, 0, 1:] + TWO_PI_TEST * turns[0], phi[1:], atol=1e-9)
+    x, angles, phi = _wrapped_rotation(1.0, 2001, 0.2)
+    assert np.all(np.abs(phi) < math.pi)
+    assert _Model._continue(x, angles, None) is None
+    # a carried turn from a block before is kept, with and without new turns
+    carry = np.array([2.0])
+    np.testing.assert_array_equal(_Model._continue(x, angles, carry), np.full((1, 2000), 2.0))
+    x, angles, phi = _wrapped_rotation(1.0, 2001, 3.0)
+    np.testing.assert_array_equal(
+        _Model._continue(x, angles, carry), 2.0 + _Model._continue(x, angles, None)
+    )
+    # a step that disagrees with its prediction (a branch change) fails in both branches: a
+    # jump of a quarter turn (no whole turn near), and a whole turn plus a quarter
+    h = np.diff(x)
+    for extra in (0.5 * math.pi, TWO_PI_TEST + 0.5 * math.pi):
+        bad = angles.copy()
+        bad[0, 0, 1000:] += extra
+        with pytest.raises(NoClosedForm, match="disagrees"):
+            _turns(h, bad[:, :, :-1], bad[:, :, 1:])
+    # a rotation predicted above 90 deg in one step, of either sign, and NaN
+    for sign in (1.0, -1.0):
+        fast = angles.copy()
+        fast[1] *= sign * 1e4
+        with pytest.raises(NoClosedForm, match="too fast"):
+            _turns(h, fast[:, :, :-1], fast[:, :, 1:])
+    nan = angles.copy()
+    nan[0, 0, 7] = np.nan
+    with pytest.raises(NoClosedForm):
+        _turns(h, nan[:, :, :-1], nan[:, :, 1:])
+
+
+def test_whole_turns_carried_across_blocks_give_the_same_result(monkeypatch):
+    # a double crank over two turns: the rotations gain whole turns in every block; blocks of
+    # 16 angles (turns carried from block to block, anchors solved apart) change no number
+    import crankdyn.linkage.planar as planar
+
+    fb = FourBar(0.1, 0.12, 0.1, 0.04)
+    grids = (
+        np.radians(np.arange(-400.0, 420.0, 2.5)),  # blocks of one run each, but one
+        np.radians(np.concatenate([np.arange(-400.0, 420.0, 2.5), [-3000.0, 4000.0]])),
+    )
+    wholes = [fourbar_mechanism(fb, math.radians(30.0))._model._solve_closed(t) for t in grids]
+    monkeypatch.setattr(planar, "_PATH_BLOCK", 16)  # the second: anchors apart from the rest
+    for theta, whole in zip(grids, wholes, strict=True):
+        fresh = fourbar_mechanism(fb, math.radians(30.0))
+        for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):
+            np.testing.assert_array_equal(a, b)
+        ref = fresh._model.solve(theta[::20], method="newton")
+        assert max(_deviations(fresh, [a[::20] for a in whole], ref)) < 1e-9
+
+
+def test_determinant_test_scaled_after_the_reduction_is_the_same():
+    # min(det * scale) == min(det) * scale to the bit (rounding is monotonic), NaN fails
+    from crankdyn.linkage.dyads import DET_LIMIT, _check_det
+
+    rng = np.random.default_rng(4)
+    for _ in range(200):
+        det = rng.normal(size=50) * 10.0 ** rng.uniform(-12, 2)
+        scale = 10.0 ** rng.uniform(-3, 3)
+        assert np.min(det * scale) == np.min(det) * scale
+        assert np.max(det * scale) == np.max(det) * scale
+        for sign in (1.0, -1.0):
+            ref = (
+                np.min(det * scale) >= DET_LIMIT if sign > 0 else np.max(det * scale) <= -DET_LIMIT
+            )
+            try:
+                _check_det(det, sign, scale)
+                got = True
+            except NoClosedForm:
+                got = False
+            assert got == ref
+    with pytest.raises(NoClosedForm):
+        _check_det(np.array([1.0, np.nan]), 1.0, 2.0)

@@ -125,11 +125,55 @@ def _sub(a, b):
     return a - b
 
 
-def _material(state, g0, p):
-    """Position, first and second derivative of the material point of a link drawn at p,
-    for the link's state (module docstring). Returns ((x, y), (x', y'), (x'', y''))."""
+def _zero(a: Any) -> bool:
+    """Whether a is the number 0 (a product with it is the number 0, :func:`_mul`)."""
+    return type(a) is float and a == 0.0
+
+
+def _vec(p: np.ndarray, g0: np.ndarray) -> tuple[float, float]:
+    """p - g0 of two drawn points as plain numbers (a constant offset on a link)."""
+    return float(p[0] - g0[0]), float(p[1] - g0[1])
+
+
+def _put(row, value):
+    """Write a value (a number or an array over the crank angles) into its row of the output
+    and return what a link's state holds: the number, or the row (the state's arrays are the
+    rows of the output, written once)."""
+    row[...] = value
+    return value if type(value) is float else row
+
+
+def _plus_to(row, a, b):
+    """a + b into ``row`` (:func:`_put`); numbers stay numbers."""
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.add(a, b, out=row)
+    return _put(row, a + b)
+
+
+def _add_to(row, a, b):
+    """:func:`_add` into ``row`` (:func:`_put`)."""
+    if type(a) is float and a == 0.0:
+        return _put(row, b)
+    if type(b) is float and b == 0.0:
+        return _put(row, a)
+    return _plus_to(row, a, b)
+
+
+def _sub_to(row, a, b):
+    """:func:`_sub` into ``row`` (:func:`_put`)."""
+    if type(b) is float and b == 0.0:
+        return _put(row, a)
+    if isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        return np.subtract(a, b, out=row)
+    return _put(row, a - b)
+
+
+def _material(state, v):
+    """Position, first and second derivative of the material point of a link at the drawn
+    offset v = p - G_drawn (plain numbers) from its centre of gravity, for the link's state
+    (module docstring). Returns ((x, y), (x', y'), (x'', y''))."""
     gx, gy, c, s, _phi, gxp, gyp, w, gxpp, gypp, al = state
-    vx, vy = float(p[0] - g0[0]), float(p[1] - g0[1])
+    vx, vy = v
     ax = c * vx - s * vy
     ay = s * vx + c * vy
     w2 = _mul(w, w)
@@ -156,62 +200,76 @@ def _direction(state, d0):
     )
 
 
-def _pose_about(pin, c, s, w, al, v):
+def _pose_about(pin, c, s, w, al, v, rows, w2=None):
     """State of a link turning about a pin: pin = (P, P', P''), rotation (c, s, omega, alpha),
-    v = drawn centre of gravity minus drawn pin point."""
+    v = drawn centre of gravity minus drawn pin point (plain numbers); written into the link's
+    ``rows`` of the output ((3, 3, B): x, y, phi and their derivatives; the caller writes phi)
+    as the state's arrays. ``w2``: omega^2 when the caller has it."""
     (px, py), (p1x, p1y), (p2x, p2y) = pin
-    vx, vy = float(v[0]), float(v[1])
+    vx, vy = v
     ax = c * vx - s * vy
     ay = s * vx + c * vy
-    w2 = _mul(w, w)
+    if w2 is None:
+        w2 = _mul(w, w)
     return (
-        px + ax,
-        py + ay,
+        _plus_to(rows[0, 0], px, ax),
+        _plus_to(rows[0, 1], py, ay),
         c,
         s,
         None,
-        _sub(p1x, _mul(w, ay)),
-        _add(p1y, _mul(w, ax)),
-        w,
-        _sub(_sub(p2x, _mul(al, ay)), _mul(w2, ax)),
-        _sub(_add(p2y, _mul(al, ax)), _mul(w2, ay)),
-        al,
+        _sub_to(rows[1, 0], p1x, _mul(w, ay)),
+        _add_to(rows[1, 1], p1y, _mul(w, ax)),
+        _put(rows[1, 2], w),
+        _sub_to(rows[2, 0], _sub(p2x, _mul(al, ay)), _mul(w2, ax)),
+        _sub_to(rows[2, 1], _add(p2y, _mul(al, ax)), _mul(w2, ay)),
+        _put(rows[2, 2], al),
     )
 
 
-def _pose_sliding(known, kg0, g0, d, u):
+def _pose_sliding(known, v, d, u, rows):
     """State of a link translating by u (with u', u'') along d (with d', d'') from the pose it
-    would have moving with the known link."""
-    (mx, my), (m1x, m1y), (m2x, m2y) = _material(known, kg0, g0)
+    would have moving with the known link (v: the link's drawn centre of gravity minus the
+    known link's), written into the link's ``rows`` of the output (:func:`_pose_about`)."""
+    (mx, my), (m1x, m1y), (m2x, m2y) = _material(known, v)
     (dx, dy), (d1x, d1y), (d2x, d2y) = d
     u0, u1, u2 = u
-    u12 = 2.0 * u1
+    u12 = 0.0 if _zero(d1x) and _zero(d1y) else 2.0 * u1  # 2 u', needed where the guide turns
     return (
-        mx + _mul(u0, dx),
-        my + _mul(u0, dy),
+        _plus_to(rows[0, 0], mx, _mul(u0, dx)),
+        _plus_to(rows[0, 1], my, _mul(u0, dy)),
         known[2],
         known[3],
-        known[4],
-        _add(_add(m1x, _mul(u1, dx)), _mul(u0, d1x)),
-        _add(_add(m1y, _mul(u1, dy)), _mul(u0, d1y)),
-        known[7],
-        _add(_add(_add(m2x, _mul(u2, dx)), _mul(u12, d1x)), _mul(u0, d2x)),
-        _add(_add(_add(m2y, _mul(u2, dy)), _mul(u12, d1y)), _mul(u0, d2y)),
-        known[10],
+        _put(rows[0, 2], known[4]),
+        _add_to(rows[1, 0], _add(m1x, _mul(u1, dx)), _mul(u0, d1x)),
+        _add_to(rows[1, 1], _add(m1y, _mul(u1, dy)), _mul(u0, d1y)),
+        _put(rows[1, 2], known[7]),
+        _add_to(rows[2, 0], _add(_add(m2x, _mul(u2, dx)), _mul(u12, d1x)), _mul(u0, d2x)),
+        _add_to(rows[2, 1], _add(_add(m2y, _mul(u2, dy)), _mul(u12, d1y)), _mul(u0, d2y)),
+        _put(rows[2, 2], known[10]),
     )
+
+
+def _least(x):
+    """The smallest value of a number or an array (NaN if any is NaN)."""
+    return x.min() if isinstance(x, np.ndarray) else x
 
 
 def _check(margin: Any) -> None:
     """Feasibility: a negative margin is an imaginary intersection (the links do not reach);
     NaN fails the test too."""
-    if not np.min(margin) >= 0.0:
+    if not _least(margin) >= 0.0:
         raise NoClosedForm("a dyad cannot be assembled")
 
 
-def _check_det(normalised: Any, sign: float) -> None:
-    """Regularity: the normalised determinant keeps its drawn sign and stays away from zero
-    (a sign change between two samples is a singular position passed between them)."""
-    ok = np.min(normalised) >= DET_LIMIT if sign > 0.0 else np.max(normalised) <= -DET_LIMIT
+def _check_det(det: Any, sign: float, scale: float = 1.0) -> None:
+    """Regularity: the normalised determinant det * scale (scale > 0) keeps its drawn sign and
+    stays away from zero (a sign change between two samples is a singular position passed
+    between them). The extreme is scaled after the reduction: rounding x * scale is monotonic
+    in x, so min(det * scale) = min(det) * scale to the bit."""
+    if sign > 0.0:
+        ok = _least(det) * scale >= DET_LIMIT
+    else:
+        ok = (det.max() if isinstance(det, np.ndarray) else det) * scale <= -DET_LIMIT
     if not ok:
         raise NoClosedForm("a dyad is at or near a singular position")
 
@@ -222,22 +280,6 @@ def _solve2(ea, eb, rhs, det):
     x1 = (ry * ebx - rx * eby) / det  # rhs x (-e_b)
     x2 = (eax * ry - eay * rx) / det  # e_a x rhs
     return x1, x2
-
-
-def _store(state, out, i):
-    """Write link i's state into its rows of ``out`` (3, 3n, B) and return the state with its
-    arrays replaced by those rows (plain numbers stay numbers)."""
-    gx, gy, c, s, ph, gxp, gyp, w, gxpp, gypp, al = state
-    k = 3 * (i - 1)
-    values = ((gx, gy, ph), (gxp, gyp, w), (gxpp, gypp, al))
-    rows = []
-    for which, triple in enumerate(values):
-        for j, value in enumerate(triple):
-            row = out[which, k + j]
-            row[...] = value
-            rows.append(value if type(value) is float else row)
-    (gx, gy, ph), (gxp, gyp, w), (gxpp, gypp, al) = rows[0:3], rows[3:6], rows[6:9]
-    return (gx, gy, c, s, ph, gxp, gyp, w, gxpp, gypp, al)
 
 
 class _Outer:
@@ -278,6 +320,20 @@ class _Dyad:
                 self.r0_scaled[X] = (float(r0[0] / l2), float(r0[1] / l2))
                 norm *= math.sqrt(l2)
         self.inv_norm = 1.0 / norm
+        # constant offsets (plain numbers), computed once: of each end's joint point on its
+        # known link (the inner point q for a prismatic end) from that link's centre of gravity,
+        # of each link's centre of gravity from its outer point (a turning link) or from the
+        # known link's (a sliding link), and of q from each link's centre of gravity
+        self.end_v = [_vec(o.point if o.kind == "R" else inner_point, o.kg0) for o in outer]
+        self.pose_v = [
+            _vec(g0[X], o.point if o.kind == "R" else o.kg0) for X, o in enumerate(outer)
+        ]
+        self.q_v = [_vec(inner_point, g0[X]) for X in (0, 1)]
+        # squared lengths |q - o|^2 of the turning ends (circles)
+        self.l2 = [float(np.sum((inner_point - o.point) ** 2)) for o in outer]
+        if inner_kind == "P":
+            g, sl = outer[guide], outer[1 - guide]
+            self.c0 = float(inner_normal @ (sl.point - g.point))
 
     def _drawn_sign(self) -> float:
         """Branch sign sigma of the drawn configuration (module docstring)."""
@@ -328,28 +384,28 @@ class _Dyad:
         o = self.outer[X]
         known = states[o.k]
         if o.kind == "R":
-            return ("R", _material(known, o.kg0, o.point))
-        return ("P", _material(known, o.kg0, self.q0), _direction(known, o.d0))
+            return ("R", _material(known, self.end_v[X]))
+        return ("P", _material(known, self.end_v[X]), _direction(known, o.d0))
 
-    def solve(self, states: _States) -> None:
-        """Add the states of both links to ``states`` (dict index -> state)."""
+    def solve(self, states: _States, out: np.ndarray) -> None:
+        """Add the states of both links to ``states`` (dict index -> state), their arrays
+        written into their rows of ``out`` ((3, 3n, B), :meth:`ClosedForm.evaluate`)."""
+        rows = [out[:, 3 * (i - 1) : 3 * i] for i in self.links]
         if self.inner_kind == "R":
-            self._inner_revolute(states)
+            self._inner_revolute(states, rows)
         elif self.kinds == "RR":
-            self._rpr(states)
+            self._rpr(states, rows)
         else:
-            self._rpp(states)
+            self._rpp(states, rows)
 
     # ---- inner revolute: RRR, RRP, PRP -----------------------------------------------------
-    def _inner_revolute(self, states: _States) -> None:
+    def _inner_revolute(self, states: _States, rows: list[np.ndarray]) -> None:
         ends = [self._end(states, 0), self._end(states, 1)]
-        q0 = self.q0
         sig = self.sigma
         u: list[Any] = [None, None]
         if self.kinds == "RR":
             (pa, _pa1, _pa2), (pb, _pb1, _pb2) = ends[0][1], ends[1][1]
-            la2 = float(np.sum((q0 - self.outer[0].point) ** 2))
-            lb2 = float(np.sum((q0 - self.outer[1].point) ** 2))
+            la2, lb2 = self.l2
             wx, wy = pb[0] - pa[0], pb[1] - pa[1]
             d2 = wx * wx + wy * wy
             f = 0.5 * (la2 - lb2 + d2) / d2
@@ -372,7 +428,7 @@ class _Dyad:
             ip = 1 - ir
             (p, _p1, _p2) = ends[ir][1]
             (c, _c1, _c2), (d, _d1, _d2) = ends[ip][1], ends[ip][2]
-            l2 = float(np.sum((q0 - self.outer[ir].point) ** 2))
+            l2 = self.l2[ir]
             vx, vy = c[0] - p[0], c[1] - p[1]
             beta = d[0] * vx + d[1] * vy
             disc = beta * beta - (vx * vx + vy * vy - l2)
@@ -398,17 +454,18 @@ class _Dyad:
         ea, eb = e
         det = eb[0] * ea[1] - eb[1] * ea[0]
         if self.kinds != "PP":  # |e_X| is the constant |q - o| of a turning end, 1 of a slide
-            _check_det(det * self.inv_norm, self.det_sign)
+            _check_det(det, self.det_sign, self.inv_norm)
         x1 = _solve2(ea, eb, (_sub(k1[1][0], k1[0][0]), _sub(k1[1][1], k1[0][1])), det)
         k2 = []
+        w2: list[Any] = [None, None]
         for X, end in enumerate(ends):
             if end[0] == "R":
                 (_p, _p1, p2) = end[1]
-                w2 = x1[X] * x1[X]
-                k2.append((p2[0] - w2 * r[X][0], p2[1] - w2 * r[X][1]))
+                w2[X] = x1[X] * x1[X]
+                k2.append((p2[0] - w2[X] * r[X][0], p2[1] - w2[X] * r[X][1]))
             else:
                 (_c, _c1, c2), (_d, d1, d2) = end[1], end[2]
-                u2 = 2.0 * x1[X]
+                u2 = 0.0 if _zero(d1[0]) and _zero(d1[1]) else 2.0 * x1[X]  # 2 u' (d' turns)
                 k2.append(
                     (
                         _add(_add(c2[0], _mul(u2, d1[0])), _mul(u[X], d2[0])),
@@ -423,21 +480,20 @@ class _Dyad:
                 rx, ry = r[X]
                 c = rx * u0x + ry * u0y
                 s = ry * u0x - rx * u0y
-                st = _pose_about(end[1], c, s, x1[X], x2[X], self.g0[X] - o.point)
-                states[link] = (*st[:4], np.arctan2(s, c), *st[5:])
+                st = _pose_about(end[1], c, s, x1[X], x2[X], self.pose_v[X], rows[X], w2[X])
+                states[link] = (*st[:4], np.arctan2(s, c, out=rows[X][0, 2]), *st[5:])
             else:
                 states[link] = _pose_sliding(
-                    states[o.k], o.kg0, self.g0[X], end[2], (u[X], x1[X], x2[X])
+                    states[o.k], self.pose_v[X], end[2], (u[X], x1[X], x2[X]), rows[X]
                 )
 
     # ---- inner prismatic, both outer joints revolute: RPR ------------------------------------
-    def _rpr(self, states: _States) -> None:
+    def _rpr(self, states: _States, rows: list[np.ndarray]) -> None:
         gi, si = self.guide, 1 - self.guide
         (pg, pg1, pg2) = self._end(states, gi)[1]
         (ps, ps1, ps2) = self._end(states, si)[1]
         n0 = self.n0
-        og, os_ = self.outer[gi].point, self.outer[si].point
-        c0 = float(n0 @ (os_ - og))
+        c0 = self.c0
         wx, wy = ps[0] - pg[0], ps[1] - pg[1]
         a = n0[0] * wx + n0[1] * wy
         b = n0[0] * wy - n0[1] * wx
@@ -453,31 +509,30 @@ class _Dyad:
         w1x, w1y = ps1[0] - pg1[0], ps1[1] - pg1[1]
         w2x, w2y = ps2[0] - pg2[0], ps2[1] - pg2[1]
         omega = -(nx * w1x + ny * w1y) / det
+        omega2 = omega * omega
         alpha = (
-            omega * omega * (nx * wx + ny * wy)
+            omega2 * (nx * wx + ny * wy)
             - 2.0 * omega * (nx * w1y - ny * w1x)
             - (nx * w2x + ny * w2y)
         ) / det
-        phi = np.arctan2(s, c)
+        phi = np.arctan2(s, c, out=rows[0][0, 2])
         for X in (0, 1):
-            o = self.outer[X]
             pin = (pg, pg1, pg2) if gi == X else (ps, ps1, ps2)
-            st = _pose_about(pin, c, s, omega, alpha, self.g0[X] - o.point)
-            states[self.links[X]] = (*st[:4], phi, *st[5:])
+            st = _pose_about(pin, c, s, omega, alpha, self.pose_v[X], rows[X], omega2)
+            states[self.links[X]] = (*st[:4], _put(rows[X][0, 2], phi), *st[5:])
 
     # ---- inner prismatic, one outer prismatic: RPP -------------------------------------------
-    def _rpp(self, states: _States) -> None:
+    def _rpp(self, states: _States, rows: list[np.ndarray]) -> None:
         ir = 0 if self.kinds == "RP" else 1
         ip = 1 - ir
-        o_r, o_p = self.outer[ir], self.outer[ip]
+        o_p = self.outer[ip]
         known = states[o_p.k]  # both links turn with it
         _gx, _gy, c, s, phi, _gxp, _gyp, w, _gxpp, _gypp, al = known
         pin = self._end(states, ir)[1]
-        st = _pose_about(pin, c, s, w, al, self.g0[ir] - o_r.point)
-        states[self.links[ir]] = (*st[:4], phi, *st[5:])
-        p = self.q0
-        (kx, ky), (k1x, k1y), (k2x, k2y) = _material(known, o_p.kg0, p)
-        (rx, ry), (r1x, r1y), (r2x, r2y) = _material(states[self.links[ir]], self.g0[ir], p)
+        st = _pose_about(pin, c, s, w, al, self.pose_v[ir], rows[ir])
+        states[self.links[ir]] = (*st[:4], _put(rows[ir][0, 2], phi), *st[5:])
+        (kx, ky), (k1x, k1y), (k2x, k2y) = _material(known, self.end_v[ip])
+        (rx, ry), (r1x, r1y), (r2x, r2y) = _material(states[self.links[ir]], self.q_v[ir])
         mx, my, m1x, m1y, m2x, m2y = kx - rx, ky - ry, k1x - r1x, k1y - r1y, k2x - r2x, k2y - r2y
         (nx, ny), (n1x, n1y), (n2x, n2y) = _direction(known, self.n0)
         d = _direction(known, o_p.d0)
@@ -498,7 +553,7 @@ class _Dyad:
             )
             / nd
         )
-        states[self.links[ip]] = _pose_sliding(known, o_p.kg0, self.g0[ip], d, (u0, u1, u2))
+        states[self.links[ip]] = _pose_sliding(known, self.pose_v[ip], d, (u0, u1, u2), rows[ip])
 
 
 class ClosedForm:
@@ -542,6 +597,8 @@ class ClosedForm:
         self.theta0 = model.theta0
         self.crank_g0 = g0[crank]
         self.pivot = mech.point_map[joints[mech.driver.joint].point]
+        self.pivot_pin = ((float(self.pivot[0]), float(self.pivot[1])), (0.0, 0.0), (0.0, 0.0))
+        self.crank_v = _vec(self.crank_g0, self.pivot)
         known = {0, crank}
         self.dyads: list[_Dyad] = []
         pm = mech.point_map
@@ -628,18 +685,15 @@ class ClosedForm:
             Where a dyad is infeasible or nearly singular.
         """
         theta = np.asarray(theta, dtype=float)
-        phi = theta - self.theta0
-        c, s = np.cos(phi), np.sin(phi)
-        pivot = ((float(self.pivot[0]), float(self.pivot[1])), (0.0, 0.0), (0.0, 0.0))
         if out is None:
             out = np.empty((3, 3 * self.n, theta.shape[0]))
-        st = _pose_about(pivot, c, s, 1.0, 0.0, self.crank_g0 - self.pivot)
-        states = {0: _GROUND_STATE}
-        states[self.crank] = _store((*st[:4], phi, *st[5:]), out, self.crank)
-        for dyad in self.dyads:
-            dyad.solve(states)
-            for i in dyad.links:  # written out at once: the state's arrays are then freed
-                states[i] = _store(states[i], out, i)
+        rows = out[:, 3 * (self.crank - 1) : 3 * self.crank]
+        phi = np.subtract(theta, self.theta0, out=rows[0, 2])
+        c, s = np.cos(phi), np.sin(phi)
+        st = _pose_about(self.pivot_pin, c, s, 1.0, 0.0, self.crank_v, rows)
+        states = {0: _GROUND_STATE, self.crank: (*st[:4], phi, *st[5:])}
+        for dyad in self.dyads:  # each writes its links' rows of ``out`` once
+            dyad.solve(states, out)
         return out
 
 

@@ -1391,16 +1391,20 @@ class _Model:
         general solver's continuation step). Returns (angles, source) with source the index of
         the requested angle, -1 for an anchor, -2 for the drawn angle."""
         n = theta.shape[0]
-        order = np.arange(n)
-        if n > 1 and np.any(theta[1:] < theta[:-1]):
+        if n > 1 and (theta[1:] < theta[:-1]).any():
             order = np.argsort(theta, kind="stable")
-        ts = theta[order]
+            ts = theta[order]
+        else:  # already in order (the common case): no sort, no gather
+            order = np.arange(n)
+            ts = theta
         k0 = int(np.searchsorted(ts, self.theta0))
-        pt = np.insert(ts, k0, self.theta0)
-        src = np.insert(order, k0, -2)
-        gaps = np.diff(pt)
-        need = np.maximum(np.ceil(gaps / _MAX_STEP).astype(int) - 1, 0)
-        if np.any(need):
+        pt = np.concatenate((ts[:k0], [self.theta0], ts[k0:]))
+        src = np.concatenate((order[:k0], [-2], order[k0:]))
+        gaps = pt[1:] - pt[:-1]
+        # a gap needs anchors when gap / _MAX_STEP > 1, i.e. (the division being monotonic and
+        # exact at 1) when the gap exceeds _MAX_STEP: one reduction in the common case of none
+        if gaps.max() > _MAX_STEP:
+            need = np.maximum(np.ceil(gaps / _MAX_STEP).astype(int) - 1, 0)
             counts = np.append(need + 1, 1)
             first = np.cumsum(counts) - counts
             j = np.arange(int(counts.sum())) - np.repeat(first, counts)
@@ -1422,6 +1426,8 @@ class _Model:
         rotation above 90 deg in one step (a link far faster than the crank, near a dead point),
         a step that does not agree (an assembly gap or a branch change between two samples) and
         a dyad whose determinant changes sign or nears zero (:mod:`.dyads`) raise NoClosedForm.
+        Each block of the path is one gather of its rotations in path order (with the last
+        sample of the block before it) and one test of all its steps (:func:`_turns`).
         Returns (q, q', q''), each (N, nq), transposed views of one (3, nq, N + anchors)
         array.
         """
@@ -1429,10 +1435,11 @@ class _Model:
         n = theta.shape[0]
         pt, src = self._path(theta)
         extra = src < 0
+        n_extra = int(np.count_nonzero(extra))
         # the other path angles (the drawn one, anchors) are solved with the requested ones,
         # unless there are many (a few requested angles far from the drawn one): then block by
         # block, so that memory stays bounded
-        inline = int(np.count_nonzero(extra)) <= 8 * _PATH_BLOCK
+        inline = n_extra <= 8 * _PATH_BLOCK
         every = np.concatenate([theta, pt[extra]]) if inline else theta
         whole = np.empty((3, self.nq, every.shape[0]))
         for sl in _blocks(every.shape[0], _PATH_BLOCK):
@@ -1441,94 +1448,102 @@ class _Model:
             out = whole[:, :, :n]
             return out[0].T, out[1].T, out[2].T
         rotations = whole[:, cf.rotation_rows, :]  # (3, links, ...): phi, phi', phi''
-        if inline:
-            column = np.where(extra, n + np.cumsum(extra) - 1, src)  # of ``whole``, path order
-        prev = None
+        k = rotations.shape[1]
+        if inline:  # the column of ``whole`` of every path angle
+            column = src.copy()
+            column[extra] = np.arange(n, n + n_extra)
+        drawn = int(np.argmin(src))  # the drawn angle's place on the path (its source is -2)
+        prev = None  # the last path angle of the block before: (3, k, 1) values, (k,) turns
         turns_drawn = None
         for sl in _blocks(pt.shape[0], _PATH_BLOCK):
             sb = src[sl]
             if inline:
                 cols = column[sl]
-                # runs of consecutive columns (sorted requested angles around the drawn one)
-                # are read as views; many short runs (anchors) by one gather
-                cuts = np.flatnonzero(np.diff(cols) != 1) + 1
-                if cuts.size <= 8:
-                    turns, prev = self._continue_runs(pt[sl], rotations, cols, cuts, prev)
-                else:
-                    turns, prev = self._continue(pt[sl], np.take(rotations, cols, axis=2), prev)
+                angles = _gather(rotations, cols)
             else:
                 mine = sb >= 0
                 cols = sb[mine]
-                angles = np.empty((3, rotations.shape[1], sb.shape[0]))
-                angles[:, :, mine] = np.take(rotations, cols, axis=2)
+                angles = np.empty((3, k, sb.shape[0]))
+                angles[:, :, mine] = rotations[:, :, cols]
                 if not np.all(mine):
                     angles[:, :, ~mine] = cf.evaluate(pt[sl][~mine])[:, cf.rotation_rows, :]
-                turns, prev = self._continue(pt[sl], angles, prev)
-            if np.any(turns):
+            if prev is None:  # the path's first angle: no turn
+                turns = self._continue(pt[sl], angles, None)
+                if turns is not None:
+                    turns = np.concatenate([np.zeros((k, 1)), turns], axis=1)
+            else:
+                steps = pt[sl.start - 1 : sl.stop]
+                turns = self._continue(steps, np.concatenate([prev[0], angles], axis=2), prev[1])
+            # (a copy: ``angles`` may be a view of the rotations, which the turns then change)
+            prev = (angles[:, :, -1:].copy(), np.zeros(k) if turns is None else turns[:, -1])
+            if turns is not None and turns.any():
                 rotations[0][:, cols] += TWO_PI * (turns if inline else turns[:, mine])
-            drawn = np.flatnonzero(sb == -2)
-            if drawn.size:
-                turns_drawn = turns[:, drawn[0]]
-        if turns_drawn is not None and np.any(turns_drawn):
+            if sl.start <= drawn < sl.stop and turns is not None:
+                turns_drawn = turns[:, drawn - sl.start]
+        if turns_drawn is not None and turns_drawn.any():
             rotations[0] -= TWO_PI * turns_drawn[:, None]
         out = whole[:, :, :n]
         return out[0].T, out[1].T, out[2].T
 
-    def _continue_runs(self, t, rotations, cols, cuts, prev):
-        """:meth:`_continue` over runs of consecutive columns of ``rotations`` (views)."""
-        bounds = [0, *cuts.tolist(), cols.shape[0]]
-        parts = []
-        for i0, i1 in itertools.pairwise(bounds):
-            c0 = int(cols[i0])
-            turns, prev = self._continue(t[i0:i1], rotations[:, :, c0 : c0 + i1 - i0], prev)
-            parts.append(turns)
-        return (parts[0] if len(parts) == 1 else np.concatenate(parts, axis=1)), prev
+    @staticmethod
+    def _continue(t, angles, carry):
+        """Whole turns (k, L) at the path angles t[1:] of wrapped rotations ``angles``
+        (3, k, L + 1: values, first and second derivatives, along the path angles t, L >= 0),
+        given the turns ``carry`` (k,) at t[0] (None: none); None when every turn is zero.
+        Raises NoClosedForm where a step disagrees with its prediction
+        (:meth:`_solve_closed`)."""
+        jumps = _turns(t[1:] - t[:-1], angles[:, :, :-1], angles[:, :, 1:])
+        if jumps is None:
+            if carry is None or not carry.any():
+                return None
+            return np.broadcast_to(carry[:, None], (angles.shape[1], t.shape[0] - 1))
+        turns = np.cumsum(jumps, axis=1)
+        if carry is not None:
+            turns += carry[:, None]
+        return turns
 
-    def _continue(self, t, angles, prev):
-        """Whole turns (k, B) of a block of wrapped rotations ``angles`` (3, k, B: values,
-        first and second derivatives) along the path angles t, and the carry for the next
-        block; raises NoClosedForm where a step disagrees with its prediction
-        (:meth:`_solve_closed`). ``prev``: the previous block's last (angle, (3, k) values,
-        turns)."""
-        if prev is None:
-            prev = (t[0], angles[:, :, 0], np.zeros(angles.shape[1]))
-        first = _turns(np.array([t[0] - prev[0]]), prev[1][:, :, None], angles[:, :, :1])
-        rest = _turns(np.diff(t), angles[:, :, :-1], angles[:, :, 1:])
-        if first is None and rest is None:
-            turns = np.broadcast_to(prev[2][:, None], (angles.shape[1], t.shape[0]))
-        else:
-            jumps = np.zeros((angles.shape[1], t.shape[0]))
-            if first is not None:
-                jumps[:, :1] = first
-            if rest is not None:
-                jumps[:, 1:] = rest
-            turns = prev[2][:, None] + np.cumsum(jumps, axis=1)
-        return turns, (t[-1], angles[:, :, -1].copy(), turns[:, -1].copy())
+
+def _gather(rotations, cols):
+    """rotations[:, :, cols] (3, k, B) for a block of the path: its runs of consecutive
+    columns (sorted requested angles around the drawn one) as one view or one concatenation of
+    views, many short runs (anchors) by one gather (never a copy of all the rotations)."""
+    starts = np.flatnonzero(cols[1:] - cols[:-1] != 1) + 1
+    if starts.size > 8:
+        return rotations[:, :, cols]
+    bounds = [0, *starts.tolist(), cols.shape[0]]
+    runs = [rotations[:, :, cols[i] : cols[i] + j - i] for i, j in itertools.pairwise(bounds)]
+    return runs[0] if len(runs) == 1 else np.concatenate(runs, axis=2)
 
 
 def _turns(h, lo, hi):
     """Whole turns added to each step lo -> hi of wrapped rotations (3, k, L each: values,
-    first and second derivatives; steps h, rad), None when there are none; raises
-    NoClosedForm where a step disagrees with its prediction (:meth:`_Model._solve_closed`)."""
+    first and second derivatives; steps h, rad, at most about :data:`_MAX_STEP` as on the
+    path),
+    None when there are none; raises NoClosedForm where a step disagrees with its prediction
+    (:meth:`_Model._solve_closed`)."""
     from crankdyn.linkage.dyads import NoClosedForm
 
     if h.shape[0] == 0:
         return None
     pred = (0.5 * h) * (hi[1] + lo[1])
     pred += (h * h / 12.0) * (lo[2] - hi[2])
-    if not np.max(np.abs(pred)) <= _MAX_TURN:
+    # |pred| <= _MAX_TURN everywhere (NaN fails), by the two extremes of pred
+    if not (pred.max() <= _MAX_TURN and pred.min() >= -_MAX_TURN):
         raise NoClosedForm("a rotation too fast to follow from one sample to the next")
     miss = hi[0] - lo[0]
     miss -= pred  # the step's deviation from its prediction, before whole turns
-    jumps = np.rint(miss * (-1.0 / TWO_PI))
-    wrapped = np.any(jumps)
-    if wrapped:
-        miss += TWO_PI * jumps
     # the general solver's test, with the crank's own rotation as the step's motion (every
     # coordinate's deviation within a quarter of it)
-    if not np.all(np.abs(miss) <= 0.25 * np.abs(h) + 1e-9):
+    tol = 0.25 * np.abs(h) + 1e-9
+    if (np.abs(miss).max(axis=0) <= tol).all():  # within a quarter step (<= 0.8 deg): far
+        return None  # from half a turn, so no whole turn (rint gives 0) and the test passes
+    jumps = np.rint(miss * (-1.0 / TWO_PI))
+    if not jumps.any():
         raise NoClosedForm("a step along the path disagrees with its prediction")
-    return jumps if wrapped else None
+    miss += TWO_PI * jumps
+    if not (np.abs(miss) <= tol).all():
+        raise NoClosedForm("a step along the path disagrees with its prediction")
+    return jumps
 
 
 def _blocks(n: int, size: int) -> list[slice]:
