@@ -2,8 +2,12 @@
 
 A :class:`Case` is one row group of the table: a problem (e.g. "free chain, N = 1000") solved by
 crankdyn and by one or more peers (:class:`Contender`). Every contender is called once as a
-warm-up (its output is kept for the agreement check; imports, JIT compilation and caches happen
-here), then ``repeats`` more times under :func:`time.perf_counter`; the table reports the median.
+warm-up (imports, JIT compilation and caches happen here); the agreement check runs on these
+outputs, which are then released, and only then is each contender timed, ``repeats`` more times
+under :func:`time.perf_counter`; the table reports the median. Outputs held through the
+timings (pylinkage's, crankdyn's own) left glibc's heap so that every later 2.5 MB call of the
+six-bar faulted some 200 fresh pages in again (1.9 ms a call instead of 1.1 ms), which a
+program of its own does not pay.
 A case with ``interleave`` set times its contenders in turn (A B, B A, A B, ...: every round
 calls each once, the order reversed from one round to the next), so that a change in the
 machine's load during the run reaches all of them alike (the whole-process cases, old version
@@ -170,17 +174,11 @@ def _timed(run: Callable[[], Any], number: int) -> float:
     return elapsed / number
 
 
-def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, float, int]:
-    """Warm-up call (output kept), then up to ``repeats`` timings (each of one call, or of a
+def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[float, int]:
+    """Up to ``repeats`` timings of a contender already warmed up (each of one call, or of a
     batch of quick calls: :func:`_batch`); stops early once the timings have used ``budget``
-    seconds (at least three when a call is quicker than the budget). Returns (output, median
-    seconds per call, timings). ``repeats`` 0 (the tests' smoke runs): the single call's time,
-    warm-up included."""
-    start = time.perf_counter()
-    output = run()
-    first = time.perf_counter() - start
-    if repeats <= 0:
-        return output, first, 1
+    seconds (at least three when a call is quicker than the budget). Returns (median seconds
+    per call, timings)."""
     number, probe = _batch(run)
     times = [] if probe is None else [probe]
     spent = sum(times)
@@ -188,23 +186,15 @@ def _time(run: Callable[[], Any], repeats: int, budget: float) -> tuple[Any, flo
         per_call = _timed(run, number)
         times.append(per_call)
         spent += per_call * number
-    return output, statistics.median(times), len(times)
+    return statistics.median(times), len(times)
 
 
 def _time_interleaved(
     runs: dict[str, Callable[[], Any]], repeats: int, budget: float
-) -> dict[str, tuple[Any, float, int]]:
-    """:func:`_time` for several contenders at once: every warm-up call first, then rounds of
-    one timing each, the order reversed every other round; stops once the timings have used
-    ``budget`` seconds (at least three rounds). {name: (output, median, timings)}."""
-    outputs: dict[str, Any] = {}
-    firsts: dict[str, float] = {}
-    for name, run in runs.items():
-        start = time.perf_counter()
-        outputs[name] = run()
-        firsts[name] = time.perf_counter() - start
-    if repeats <= 0:
-        return {name: (outputs[name], firsts[name], 1) for name in runs}
+) -> dict[str, tuple[float, int]]:
+    """:func:`_time` for several contenders (warmed up) at once: rounds of one timing each, the
+    order reversed every other round; stops once the timings have used ``budget`` seconds (at
+    least three rounds). {name: (median, timings)}."""
     numbers: dict[str, int] = {}
     times: dict[str, list[float]] = {}
     for name, run in runs.items():  # the probes: the first round when they are single calls
@@ -221,7 +211,7 @@ def _time_interleaved(
             spent += per_call * numbers[name]
         if all(len(t) >= repeats for t in times.values()) or (spent > budget and round_ >= 2):
             break
-    return {name: (outputs[name], statistics.median(t), len(t)) for name, t in times.items()}
+    return {name: (statistics.median(t), len(t)) for name, t in times.items()}
 
 
 def run_case(
@@ -232,33 +222,24 @@ def run_case(
     check: bool = True,
     log: Callable[[str], None] | None = None,
 ) -> CaseResult:
-    """Run every contender of a case (warm-up + repeats), then check agreement.
+    """Run every contender of a case once (the warm-up), check agreement on those outputs,
+    release them, then time every contender (``repeats`` timings).
 
     Raises
     ------
     AgreementError
         When a peer deviates beyond tolerance, or crankdyn fails its own check.
     """
-    outputs: dict[str, Any] = {}
-    timings: dict[str, Timing] = {}
     n = case.repeats if repeats is None else repeats
-    if case.interleave:
-        ready = {c.name: c.run for c in case.contenders if c.run is not None}
+    ready = {c.name: c.run for c in case.contenders if c.run is not None}
+    outputs: dict[str, Any] = {}
+    firsts: dict[str, float] = {}
+    for name, run in ready.items():  # the warm-ups: imports, compilation, caches; the outputs
         if log:
-            log(f"{case.title} [{case.size}]: {', '.join(ready)} (interleaved)")
-        timed = _time_interleaved(ready, n, budget)
-    for c in case.contenders:
-        if c.run is None:
-            timings[c.name] = Timing(c.name, None, 0, c.missing, c.note)
-            continue
-        if case.interleave:
-            out, median, runs = timed[c.name]
-        else:
-            if log:
-                log(f"{case.title} [{case.size}]: {c.name}")
-            out, median, runs = _time(c.run, n, budget)
-        outputs[c.name] = out
-        timings[c.name] = Timing(c.name, median, runs, None, c.note)
+            log(f"{case.title} [{case.size}]: {name} (warm-up)")
+        start = time.perf_counter()
+        outputs[name] = run()
+        firsts[name] = time.perf_counter() - start
     deviations: dict[str, Deviation] = {}
     if check and case.check is not None:
         deviations = case.check(outputs)
@@ -271,6 +252,26 @@ def run_case(
     extra = {}
     if case.extra is not None and CRANKDYN in outputs:
         extra = case.extra(outputs[CRANKDYN])
+    del outputs  # released before the timings (module docstring)
+    timed: dict[str, tuple[float, int]] = {}
+    if n <= 0:  # the tests' smoke runs: the warm-up's time
+        timed = {name: (first, 1) for name, first in firsts.items()}
+    elif case.interleave:
+        if log:
+            log(f"{case.title} [{case.size}]: {', '.join(ready)} (interleaved)")
+        timed = _time_interleaved(ready, n, budget)
+    else:
+        for name, run in ready.items():
+            if log:
+                log(f"{case.title} [{case.size}]: {name}")
+            timed[name] = _time(run, n, budget)
+    timings: dict[str, Timing] = {}
+    for c in case.contenders:
+        if c.run is None:
+            timings[c.name] = Timing(c.name, None, 0, c.missing, c.note)
+        else:
+            median, runs = timed[c.name]
+            timings[c.name] = Timing(c.name, median, runs, None, c.note)
     return CaseResult(case, timings, deviations, extra)
 
 

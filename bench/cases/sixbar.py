@@ -283,5 +283,6 @@ def cases(size: str = "full") -> list[Case]:
                 Target(FAST, 1.0, "not slower than the numba path"),
             ),
             repeats=15,
+            interleave=True,  # a ratio of a few milliseconds to numba's: both under the same load
         )
     ]

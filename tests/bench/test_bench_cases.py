@@ -156,14 +156,59 @@ def test_quick_calls_are_timed_in_batches_and_slow_ones_one_by_one(monkeypatch):
         time.sleep(0.006)
         return "s"
 
-    out, median, timings = harness._time(quick, 5, budget=60.0)
-    assert (out, timings) == ("q", 5)
-    assert calls["quick"] > 1 + 1 + 5  # warm-up, probe, and 5 batches of several calls
+    median, timings = harness._time(quick, 5, budget=60.0)
+    assert timings == 5
+    assert calls["quick"] > 1 + 5  # the probe, and 5 batches of several calls
     assert 0.0 < median < 0.005
-    out, median, timings = harness._time(slow, 5, budget=60.0)
-    assert (out, timings, calls["slow"]) == ("s", 5, 1 + 5)  # warm-up, probe = first, 4 more
+    median, timings = harness._time(slow, 5, budget=60.0)
+    assert (timings, calls["slow"]) == (5, 5)  # the probe is the first timing, 4 more
     assert median >= 0.006
     calls.update(quick=0, slow=0)
     both = harness._time_interleaved({"quick": quick, "slow": slow}, 4, budget=60.0)
-    assert {k: (v[0], v[2]) for k, v in both.items()} == {"quick": ("q", 4), "slow": ("s", 4)}
-    assert calls["slow"] == 1 + 4 and calls["quick"] > 2 + 4
+    assert {k: v[1] for k, v in both.items()} == {"quick": 4, "slow": 4}
+    assert calls["slow"] == 4 and calls["quick"] > 1 + 4
+
+
+def test_outputs_are_checked_then_released_before_any_timing():
+    """run_case calls every contender once, checks agreement on those outputs and drops them
+    before the first timing (held, large outputs changed the allocator's state for the timed
+    calls); a disagreement stops the case before anything is timed."""
+    import gc
+    import weakref
+
+    import bench.harness as harness
+
+    class Output:
+        pass
+
+    kept: list[weakref.ref] = []
+    seen: list[bool] = []
+
+    def make():
+        out = Output()
+        if kept:  # a timed call: every warm-up output is gone by now
+            gc.collect()
+            seen.append(all(ref() is None for ref in kept))
+        else:
+            kept.append(weakref.ref(out))
+        return out
+
+    def check(outputs):
+        assert set(outputs) == {CRANKDYN}
+        return {"x": Deviation(0.0, 1.0, "x")}
+
+    case = Case("k", "title", "size", (Contender(CRANKDYN, make),), check=check, repeats=3)
+    result = harness.run_case(case)
+    assert result.timings[CRANKDYN].runs == 3 and seen and all(seen)
+
+    timed = []
+
+    def disagree(outputs):
+        return {"x": Deviation(2.0, 1.0, "x")}
+
+    case = Case(
+        "k", "title", "size", (Contender(CRANKDYN, lambda: timed.append(1)),), check=disagree
+    )
+    with pytest.raises(AgreementError):
+        harness.run_case(case, repeats=3)
+    assert timed == [1]  # the warm-up only
