@@ -405,11 +405,12 @@ def write_outputs(
         write_text(out / "results.csv", table.to_csv(), force=True),
     ]
     if summary:
+        from crankdyn.plots.render import collector_paused
         from crankdyn.report.write import write_report
 
-        paths.append(
-            write_report(build_summary(spec, table, run_info or {}), out / "summary", force=True)
-        )
+        with collector_paused():  # the summary's figures live to the end of its writing
+            report = build_summary(spec, table, run_info or {})
+            paths.append(write_report(report, out / "summary", force=True))
     return paths
 
 
