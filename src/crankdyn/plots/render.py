@@ -140,6 +140,11 @@ def collector_paused() -> Iterator[None]:
     already), as if it had survived the young passes it was spared, so that the next young
     pass does not traverse it all at once; a later full pass frees it as usual.
 
+    Yields
+    ------
+    None
+        Control to the ``with`` block, the collector paused.
+
     Examples
     --------
     >>> with collector_paused():
