@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
+import pytest
 from matplotlib.figure import Figure
 
 from crankdyn.plots.render import render_figures, workers_for
@@ -294,3 +297,38 @@ def test_the_collector_stays_on_for_a_caller_that_froze_objects():
         assert gc.isenabled()
     finally:
         gc.unfreeze()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forks (Linux)")
+def test_a_child_forked_after_preparing_loads_no_writer_of_its_own():
+    """The backends, Pillow's PNG writer and the image plugins Pillow loads at its first save
+    are loaded once before the children fork (issue 16's process speed), not in each child."""
+    import io
+    import os
+
+    from crankdyn.plots.render import _png, _svg, lay_out, prepare_children
+
+    prepare_children()
+    prepare_children()  # once per process
+    fig = _figures(1)[0]
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: draw, say which modules it loaded, exit
+        code = 1
+        try:
+            os.close(read)
+            before = set(sys.modules)
+            lay_out(fig)
+            _png(fig)
+            _svg(fig, io.BytesIO())
+            loaded = sorted(set(sys.modules) - before)
+            os.write(write, "\n".join(loaded).encode())
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write)
+    with os.fdopen(read, "rb") as pipe:
+        loaded = pipe.read().decode().split()
+    _, status = os.waitpid(pid, 0)
+    assert status == 0
+    assert [m for m in loaded if m.startswith(("PIL", "matplotlib.backends"))] == []

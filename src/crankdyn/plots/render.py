@@ -42,6 +42,7 @@ __all__ = [
     "Renderer",
     "collector_paused",
     "lay_out",
+    "prepare_children",
     "render_figures",
     "workers_for",
 ]
@@ -216,19 +217,34 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def _prepare_for_children() -> None:
-    """Load here, once, what every child would otherwise load for itself: the Agg and SVG
-    backends, the PNG writer and the default font (its file read and its glyph tables built by a
-    measured word)."""
+_PREPARED = False
+
+
+def prepare_children() -> None:
+    """Load in this process, once, what every child of a :class:`Renderer` would otherwise load
+    for itself: the Agg and SVG backends, the PNG writer with the image plugins Pillow loads at
+    its first save (``PIL.Image.preinit``: BMP, GIF, JPEG, PPM, about 10 ms a child) and the
+    default font (its file read and its glyph tables built by a measured word).
+
+    A renderer does this before its first child; a caller that waits for other work (a study
+    runner while its workers run the cases) may do it earlier, off the path of the figures.
+    """
+    global _PREPARED
+    if _PREPARED:
+        return
     import matplotlib.backends.backend_agg as agg
     import matplotlib.backends.backend_svg  # noqa: F401
-    import PIL.PngImagePlugin  # noqa: F401
+    import PIL.Image
+    import PIL.PngImagePlugin
 
     from crankdyn.plots.style import Figure
+
+    PIL.Image.preinit()
 
     figure = Figure(figsize=(1.0, 1.0))
     text = figure.text(0.5, 0.5, "Crank angle (deg) 0123456789")
     text.get_window_extent(agg.FigureCanvasAgg(figure).get_renderer())
+    _PREPARED = True
 
 
 class Renderer:
@@ -343,7 +359,7 @@ class Renderer:
             except OSError:  # no temporary folder: draw here instead
                 self._forking = False
                 return
-            _prepare_for_children()
+            prepare_children()
         room = max(1, self.workers - 1) if self._busy else self.workers
         while self._queue and len(self._running) < room:
             # the figure with the most axes first (their count is a fair measure of the drawing

@@ -352,7 +352,8 @@ PNG and SVG writers (imported here, the forked workers that render the plots inh
 
 
 def import_writers(summary: bool = True) -> None:
-    """Import what :func:`write_outputs` will need, ahead of it: the runner calls this while
+    """Import what :func:`write_outputs` will need, ahead of it, and prepare the summary's
+    drawing (:func:`crankdyn.plots.render.prepare_children`): the runner calls this while
     the local pool's or the cluster's workers run the first cases and this process waits
     (the imports take a core that would otherwise idle before the summary is built, instead
     of a second of its own after the cases). A module that fails to import is left for
@@ -370,6 +371,10 @@ def import_writers(summary: bool = True) -> None:
             importlib.import_module(name)
         except ImportError:
             return
+    if summary:  # what the summary's drawing children would otherwise load first
+        from crankdyn.plots.render import prepare_children
+
+        prepare_children()
 
 
 def write_outputs(
