@@ -206,3 +206,18 @@ def test_examples_and_example(cli, tmp_path, monkeypatch):
 def test_geometry_from_stroke_alternatives():
     g = CrankGeometry.from_stroke(0.076, 0.071, rod_ratio=0.26)
     assert g.rod_length == pytest.approx(0.0355 / 0.26)
+
+
+def test_the_console_entry_freezes_the_objects_before_the_interpreter_exits(monkeypatch):
+    """``crankdyn`` (and ``python -m crankdyn``) ends with its objects frozen, so that the
+    interpreter's last collection does not traverse them (issue 16's process speed), and exits
+    with the command's status."""
+    import crankdyn.cli as cli_module
+
+    calls: list[str] = []
+    monkeypatch.setattr(cli_module, "main", lambda: calls.append("main") or 3)
+    monkeypatch.setattr(cli_module.gc, "freeze", lambda: calls.append("freeze"))
+    with pytest.raises(SystemExit) as exited:
+        cli_module.run()
+    assert exited.value.code == 3
+    assert calls == ["main", "freeze"]

@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
+import pytest
 from matplotlib.figure import Figure
 
 from crankdyn.plots.render import render_figures, workers_for
@@ -242,3 +245,90 @@ def test_closing_a_renderer_stops_its_children():
             continue
         raise AssertionError(f"child {pid} left behind")
     assert _temp_folders() <= before
+
+
+def test_the_collector_paused_for_the_figures_resumes_as_it_was_and_frees_them_later():
+    """No collector passes while a report's figures are made (issue 16's process speed); after
+    the block the collector is on again (or still off, when it was), what was made meanwhile is
+    in the oldest generation, not frozen, and a full pass frees its cycles."""
+    import gc
+    import weakref
+
+    from crankdyn.plots.render import collector_paused
+
+    class Node:
+        pass
+
+    assert gc.isenabled()
+    with collector_paused():
+        assert not gc.isenabled()
+        node = Node()
+        node.me = node  # a cycle only the collector frees
+        alive = weakref.ref(node)
+        del node
+        assert gc.get_count()[0] >= 1  # young objects counted, not collected
+    assert gc.isenabled()
+    assert gc.get_freeze_count() == 0
+    assert alive() is not None
+    gc.collect()
+    assert alive() is None
+
+    gc.disable()
+    try:
+        with collector_paused():
+            pass
+        assert not gc.isenabled()  # a caller's choice is kept
+    finally:
+        gc.enable()
+
+
+def test_the_collector_stays_on_for_a_caller_that_froze_objects():
+    """With objects frozen by the caller (a pre-fork server) the pause leaves them frozen."""
+    import gc
+
+    from crankdyn.plots.render import collector_paused
+
+    gc.freeze()
+    try:
+        frozen = gc.get_freeze_count()
+        with collector_paused():
+            pass
+        assert gc.get_freeze_count() == frozen
+        assert gc.isenabled()
+    finally:
+        gc.unfreeze()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="forks (Linux)")
+def test_a_child_forked_after_preparing_loads_no_writer_of_its_own():
+    """The backends, Pillow's PNG writer and the image plugins Pillow loads at its first save
+    are loaded once before the children fork (issue 16's process speed), not in each child."""
+    import io
+    import os
+
+    from crankdyn.plots.render import _png, _svg, lay_out, prepare_children
+
+    prepare_children()
+    prepare_children()  # once per process
+    fig = _figures(1)[0]
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: draw, say which modules it loaded, exit
+        code = 1
+        try:
+            os.close(read)
+            before = set(sys.modules)
+            lay_out(fig)
+            _png(fig)
+            _svg(fig, io.BytesIO())
+            loaded = sorted(set(sys.modules) - before)
+            os.write(write, "\n".join(loaded).encode())
+            code = 0
+        finally:
+            os._exit(code)
+    os.close(write)
+    with os.fdopen(read, "rb") as pipe:
+        loaded = pipe.read().decode().split()
+    _, status = os.waitpid(pid, 0)
+    assert status == 0
+    assert [m for m in loaded if m.startswith(("PIL", "matplotlib.backends"))] == []

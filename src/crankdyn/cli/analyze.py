@@ -25,7 +25,7 @@ from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import load_example, resolve_engine
 from crankdyn.io.output import check_output_dir
-from crankdyn.plots.render import Renderer
+from crankdyn.plots.render import Renderer, collector_paused
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import builders
 from crankdyn.report.write import write_report
@@ -94,7 +94,9 @@ def run_report(
             """Advance the bar past the report section ``name``."""
             progress.update(task, description=f"Analysing: {name}", advance=1)
 
-        with Renderer() as renderer:  # each section's figures drawn while the next is made
+        # each section's figures drawn while the next is made; no collector passes over the
+        # figures kept to the end
+        with collector_paused(), Renderer() as renderer:
             renderer.busy()
 
             def built(section: Section) -> None:

@@ -33,11 +33,19 @@ import shutil
 import signal
 import sys
 import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
-__all__ = ["PNG_DPI", "Renderer", "lay_out", "render_figures", "workers_for"]
+__all__ = [
+    "PNG_DPI",
+    "Renderer",
+    "collector_paused",
+    "lay_out",
+    "prepare_children",
+    "render_figures",
+    "workers_for",
+]
 
 PNG_DPI = 110
 """Resolution of the PNG files (dots per inch)."""
@@ -119,6 +127,45 @@ def lay_out(figure: Any, *, keep_canvas: bool = False) -> None:
     figure.set_layout_engine(None)
 
 
+@contextlib.contextmanager
+def collector_paused() -> Iterator[None]:
+    """Pause Python's cyclic garbage collector while figures are made and drawn (a report, a
+    study's summary), and resume it after.
+
+    The figures live to the end of that work, so the collector's automatic passes free nothing
+    there: each full pass traverses every object the process has imported and made (about a
+    tenth of a second with matplotlib's figures, several times in a report), and after a fork
+    it writes to pages the children share, so that they are copied. The children of a
+    :class:`Renderer` run without it too. On resuming, what was made meanwhile joins the
+    oldest generation (:func:`gc.freeze` then :func:`gc.unfreeze`, unless objects are frozen
+    already), as if it had survived the young passes it was spared, so that the next young
+    pass does not traverse it all at once; a later full pass frees it as usual.
+
+    Yields
+    ------
+    None
+        Control to the ``with`` block, the collector paused.
+
+    Examples
+    --------
+    >>> with collector_paused():
+    ...     gc.isenabled()
+    False
+    >>> gc.isenabled()
+    True
+    """
+    was = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if gc.get_freeze_count() == 0:
+            gc.freeze()
+            gc.unfreeze()
+        if was:
+            gc.enable()
+
+
 def _fresh_streams() -> None:
     """A worker's own standard output and error objects on the same files: a lock that a
     thread of the parent (a progress display) held at the fork is not inherited held."""
@@ -170,19 +217,34 @@ def _cores() -> int:
         return os.cpu_count() or 1
 
 
-def _prepare_for_children() -> None:
-    """Load here, once, what every child would otherwise load for itself: the Agg and SVG
-    backends, the PNG writer and the default font (its file read and its glyph tables built by a
-    measured word)."""
+_PREPARED = False
+
+
+def prepare_children() -> None:
+    """Load in this process, once, what every child of a :class:`Renderer` would otherwise load
+    for itself: the Agg and SVG backends, the PNG writer with the image plugins Pillow loads at
+    its first save (``PIL.Image.preinit``: BMP, GIF, JPEG, PPM, about 10 ms a child) and the
+    default font (its file read and its glyph tables built by a measured word).
+
+    A renderer does this before its first child; a caller that waits for other work (a study
+    runner while its workers run the cases) may do it earlier, off the path of the figures.
+    """
+    global _PREPARED
+    if _PREPARED:
+        return
     import matplotlib.backends.backend_agg as agg
     import matplotlib.backends.backend_svg  # noqa: F401
-    import PIL.PngImagePlugin  # noqa: F401
+    import PIL.Image
+    import PIL.PngImagePlugin
 
     from crankdyn.plots.style import Figure
+
+    PIL.Image.preinit()
 
     figure = Figure(figsize=(1.0, 1.0))
     text = figure.text(0.5, 0.5, "Crank angle (deg) 0123456789")
     text.get_window_extent(agg.FigureCanvasAgg(figure).get_renderer())
+    _PREPARED = True
 
 
 class Renderer:
@@ -297,7 +359,7 @@ class Renderer:
             except OSError:  # no temporary folder: draw here instead
                 self._forking = False
                 return
-            _prepare_for_children()
+            prepare_children()
         room = max(1, self.workers - 1) if self._busy else self.workers
         while self._queue and len(self._running) < room:
             # the figure with the most axes first (their count is a fair measure of the drawing

@@ -352,7 +352,8 @@ PNG and SVG writers (imported here, the forked workers that render the plots inh
 
 
 def import_writers(summary: bool = True) -> None:
-    """Import what :func:`write_outputs` will need, ahead of it: the runner calls this while
+    """Import what :func:`write_outputs` will need, ahead of it, and prepare the summary's
+    drawing (:func:`crankdyn.plots.render.prepare_children`): the runner calls this while
     the local pool's or the cluster's workers run the first cases and this process waits
     (the imports take a core that would otherwise idle before the summary is built, instead
     of a second of its own after the cases). A module that fails to import is left for
@@ -370,6 +371,10 @@ def import_writers(summary: bool = True) -> None:
             importlib.import_module(name)
         except ImportError:
             return
+    if summary:  # what the summary's drawing children would otherwise load first
+        from crankdyn.plots.render import prepare_children
+
+        prepare_children()
 
 
 def write_outputs(
@@ -405,11 +410,12 @@ def write_outputs(
         write_text(out / "results.csv", table.to_csv(), force=True),
     ]
     if summary:
+        from crankdyn.plots.render import collector_paused
         from crankdyn.report.write import write_report
 
-        paths.append(
-            write_report(build_summary(spec, table, run_info or {}), out / "summary", force=True)
-        )
+        with collector_paused():  # the summary's figures live to the end of its writing
+            report = build_summary(spec, table, run_info or {})
+            paths.append(write_report(report, out / "summary", force=True))
     return paths
 
 
