@@ -1166,11 +1166,11 @@ def natural_modes(
     return _modes(model, solver, count, partial, free)
 
 
-_ONE_PASS = 64
+_ONE_PASS = 128
 """Degrees of freedom up to which :func:`natural_modes` solves a chain in one pass
 (:func:`_chain_modes`: a third quicker at 10 masses, where numpy's per-call cost is most of the
-time); beyond, step by step (:func:`_modes`), which was as quick at 64 to 100 masses and 15 %
-quicker at 300, where localised modes send most rows through the general branches."""
+time, 4 % at 100); beyond, step by step (:func:`_modes`), which was as quick from 150 to 300
+masses, where localised modes send most rows through the general branches."""
 
 
 def _modes(
