@@ -10,7 +10,7 @@ import matplotlib.figure
 import numpy as np
 from matplotlib.axis import Axis
 from matplotlib.text import Text
-from matplotlib.ticker import LogFormatter, MultipleLocator, ScalarFormatter
+from matplotlib.ticker import LogFormatter, MultipleLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
 if TYPE_CHECKING:
@@ -40,10 +40,21 @@ def _writes_math(formatter: object) -> bool:
     )
 
 
+def _writes_words(formatter: object) -> bool:
+    """Whether a tick formatter's labels may hold words (a FixedFormatter's names of cylinders,
+    masses, parameters; a FuncFormatter's text): not matplotlib's own number formatter
+    (``ScalarFormatter`` itself, whose labels are digits, signs and a point: never a ``$``,
+    so mathtext never parses them, whatever ``parse_math`` says), nor the null formatter,
+    nor a formatter that writes mathtext."""
+    return type(formatter) not in (ScalarFormatter, NullFormatter) and not _writes_math(formatter)
+
+
 def _texts(artist: Artist) -> Iterator[Text]:
     """The Text artists under ``artist`` that may hold words: titles, axis labels, legends,
     annotations, and tick labels set as text (names of cylinders, masses, parameters); not the
-    tick labels of formatters that write mathtext, nor an axis's offset text (``1e6``)."""
+    tick labels of formatters that write numbers or mathtext (:func:`_writes_words`; asking an
+    axis for its ticks runs its locator and makes its ticks, which a figure of many panels paid
+    at every draw), nor an axis's offset text (``1e6``)."""
     for child in artist.get_children():
         if isinstance(child, Axis):
             yield child.label
@@ -51,7 +62,7 @@ def _texts(artist: Artist) -> Iterator[Text]:
                 (child.get_major_ticks, child.get_major_formatter()),
                 (child.get_minor_ticks, child.get_minor_formatter()),
             ):
-                if not _writes_math(formatter):
+                if _writes_words(formatter):
                     for tick in ticks():
                         yield tick.label1
                         yield tick.label2
