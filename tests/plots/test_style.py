@@ -126,3 +126,38 @@ def test_legends_cover_no_curve_and_stay_in_the_figure(inline6):
                         & (xy[:, 1] < box.y1)
                     )
                     assert not inside.any(), (name, ax.get_ylabel(), line.get_label())
+
+
+def test_only_tick_labels_that_may_hold_words_are_walked():
+    """plain_text asks an axis for its ticks (which runs its locator and makes ticks) only where
+    the formatter may write words: names (FixedFormatter), a function's text; not numbers
+    (ScalarFormatter: digits, sign and point, never a `$`), nothing (NullFormatter) or mathtext
+    (log axes)."""
+    import matplotlib.ticker as ticker
+
+    from crankdyn.plots.style import _writes_words, new_figure, plain_text
+
+    assert not _writes_words(ticker.ScalarFormatter())
+    assert not _writes_words(ticker.NullFormatter())
+    assert not _writes_words(ticker.LogFormatterSciNotation())
+    assert not _writes_words(ticker.ScalarFormatter(useMathText=True))
+    assert _writes_words(ticker.FixedFormatter(["a"]))
+    assert _writes_words(ticker.FuncFormatter(lambda x, pos: "$x$"))
+
+    fig, axes = new_figure(1, 2)
+    left, right = axes[0]
+    left.plot([0.0, 1.0], [0.0, 2.0])
+    right.set_xticks([0, 1], labels=["$a$", "b"])
+    calls = []
+    locator = left.xaxis.get_major_locator()
+    original = type(locator).__call__
+    left.xaxis.set_major_locator(
+        type(
+            "Counting",
+            (type(locator),),
+            {"__call__": lambda self: calls.append(1) or original(self)},
+        )()
+    )
+    plain_text(fig)
+    assert calls == []  # the number axis was not asked for its ticks
+    assert [t.get_parse_math() for t in right.get_xticklabels()] == [False, False]
