@@ -27,6 +27,30 @@ def test_chain_is_detected_and_ordered():
     assert m.cylinder_dofs == {1: 0}
 
 
+def test_chain_mass_normalised_matrix_is_made_once_and_read_only():
+    """ChainArrays.normalised against the dense M^-1/2 K M^-1/2 built from the model's own K
+    (an independent assembly), with sqrt(J), the total inertia and the smallest sqrt(J); the
+    same object at every call, read-only, and left as it was by the modal solve that uses it."""
+    from crankdyn.torsion.modal import natural_modes
+
+    m = TorsionModel.chain_of([0.5, 2.0, 8.0, 1.0], [3e5, 1e6, 2e5], ground_right=4e4)
+    a = m.chain.normalised
+    root = np.sqrt(m.dof_inertia)
+    dense = m.stiffness_matrix() / np.outer(root, root)
+    np.testing.assert_allclose(a.diagonal, np.diag(dense), rtol=1e-15)
+    np.testing.assert_allclose(a.off_diagonal, np.diag(dense, 1), rtol=1e-15)
+    assert a.root_inertia.tolist() == root.tolist()
+    assert a.total_inertia == 11.5 and a.least_root_inertia == math.sqrt(0.5)
+    assert m.chain.normalised is a
+    before = [arr.copy() for arr in (a.diagonal, a.off_diagonal, a.root_inertia)]
+    for arr in (a.diagonal, a.off_diagonal, a.root_inertia):
+        assert not arr.flags.writeable
+    natural_modes(m)
+    natural_modes(m, count=2)
+    for arr, old in zip((a.diagonal, a.off_diagonal, a.root_inertia), before, strict=True):
+        assert arr.tolist() == old.tolist()
+
+
 def test_chain_order_follows_the_shafts_not_the_listing():
     masses = (Mass("a", 1.0), Mass("c", 3.0), Mass("b", 2.0))
     shafts = (Shaft(("a", "b"), 10.0), Shaft(("c", "b"), 20.0))

@@ -422,9 +422,8 @@ def eigen_modes(
     n = J.size
     partial = count is not None and count < n
     if chain is not None:
-        diag, off = chain.stiffness_diagonals()
-        s = np.sqrt(J)
-        d = diag / J
+        a = chain.normalised
+        d, s = a.diagonal, a.root_inertia
         if n == 1:
             lam, u = d.copy(), np.ones((1, 1))
         elif partial:
@@ -432,14 +431,14 @@ def eigen_modes(
 
             lam, u = scipy.linalg.eigh_tridiagonal(
                 d,
-                off / (s[:-1] * s[1:]),
+                a.off_diagonal,
                 select="i",
                 select_range=(0, (count or n) - 1),
                 lapack_driver="stebz",
                 tol=_BISECTION_TOL,
             )
         else:
-            lam, u = _tridiagonal_eigh(d, off / (s[:-1] * s[1:]))
+            lam, u = _tridiagonal_eigh(d, a.off_diagonal)
         u /= s[:, None]
         phi = u
     else:
@@ -492,11 +491,8 @@ def chain_frequencies(model: TorsionModel) -> NDArray[np.float64]:
     J = model.dof_inertia
     chain = model.chain
     if chain is not None and chain.size > 1:
-        diag, off = chain.stiffness_diagonals()
-        s = np.sqrt(J)
-        lam = scipy.linalg.eigvalsh_tridiagonal(
-            diag / J, off / (s[:-1] * s[1:]), lapack_driver="sterf"
-        )
+        a = chain.normalised
+        lam = scipy.linalg.eigvalsh_tridiagonal(a.diagonal, a.off_diagonal, lapack_driver="sterf")
     else:
         lam = scipy.linalg.eigh(model.stiffness_matrix(), np.diag(J), eigvals_only=True)
     lam = np.maximum(lam, 0.0)
@@ -548,12 +544,11 @@ def _normalise(
     other) and, when ``least`` is asked for, each row's smallest absolute value (None when not
     asked for, when amplitudes were zeroed or when a row has no finite largest amplitude).
 
-    Each row x with largest |x| = p is divided once, by p signed as the amplitude that sets its
-    sign: its first, x_0, or, where that is at rest (|x_0| / p at most 1e-9), the first with
-    |x_j| / p above 1e-9. Its absolute values are |x| / p, exactly the absolute values of that
-    quotient, and the amplitude x_j / (sign(x_j) p) = |x_j| / p is positive. This is, to the
-    bit, the rule applied as a division by sign(x_0) p and a negation of the rows whose
-    amplitude j then came out negative: x / (-q) = -(x / q) exactly. A row of zeros, inf or NaN:
+    Each row x with largest |x| = p is divided by sign(x_0) p, and its absolute values are those
+    of the quotient, |x| / p exactly (division is symmetric in sign), found in one flat pass.
+    Where the first amplitude is at rest (|x_0| / p at most 1e-9) the first with |x_j| / p above
+    1e-9 sets the sign: the rows where it came out negative are negated, x / (-q) = -(x / q)
+    exactly, so each row is, to the bit, x / (sign(x_j) p). A row of zeros, inf or NaN:
     :func:`_normalise_rows`, the rule row by row."""
     count = shapes.shape[0]
     size = np.abs(shapes)
@@ -562,22 +557,28 @@ def _normalise(
         shapes, size = _normalise_rows(shapes)
         return shapes, size, None
     few = count <= _FEW
-    np.divide(size, peak[:, None], out=size)  # |x| / p: finite, a finite peak bounds its row
-    head = size[:, 0]
     signed = shapes[:, 0]  # the amplitude that sets each row's sign
+    head = np.abs(signed) / peak  # |x_0| / p
+    np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
+    np.abs(shapes, out=size)  # |x| / p: finite, a finite peak bounds its row
     if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-        # the rows at rest in the first amplitude: the first above 1e-9 sets their sign
+        # the rows at rest in the first amplitude: the first above 1e-9 sets their sign; those
+        # whose amplitude came out negative are negated (x / (-q) = -(x / q) exactly)
         rows = np.flatnonzero(head <= _ZERO)
         if 8 * rows.size > count:  # many (the localised modes of a long chain): every row
             above = np.argmax(size > _ZERO, axis=1)[rows]
         else:  # a few: those rows only
             above = np.argmax(size[rows] > _ZERO, axis=1)
-        signed = signed.copy()
-        signed[rows] = shapes[rows, above]
-    np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
-    if least:
+        flip = rows[shapes[rows, above] < 0.0]
+        if flip.size:
+            shapes[flip] *= -1.0
+    if not few:  # round-off amplitudes looked for first: one pass fewer when there are some
+        tiny = size < 1e-14
+        if not tiny.any():
+            return shapes, size, np.minimum.reduce(size, axis=1) if least else None
+    elif least:
         smallest = np.minimum.reduce(size, axis=1)
-        if (min(smallest.tolist()) if few else np.minimum.reduce(smallest)) >= 1e-14:
+        if min(smallest.tolist()) >= 1e-14:
             return shapes, size, smallest
         tiny = size < 1e-14
     else:
@@ -1211,18 +1212,14 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
     """
     J = model.dof_inertia
     n = J.size
-    k = chain.stiffness
-    diag = chain.ground_stiffness.copy()  # ChainArrays.stiffness_diagonals, in place
-    diag[:-1] += k
-    diag[1:] += k
-    s = np.sqrt(J)
-    e = s[:-1] * s[1:]
-    lam, u = _tridiagonal_eigh(np.divide(diag, J, out=diag), np.divide(-k, e, out=e))
+    a = chain.normalised  # the model's M^-1/2 K M^-1/2, made once
+    s = a.root_inertia
+    lam, u = _tridiagonal_eigh(a.diagonal, a.off_diagonal)
     shapes = u.T  # mode x dof: dstevd's eigenvectors are the columns of a Fortran array
     np.divide(shapes, s, out=shapes)  # phi = M^-1/2 u
     if not lam[1 if free else 0] > 0.0:  # (ascending) round-off below 0: to 0
         np.maximum(lam, 0.0, out=lam)
-    total = float(np.add.reduce(J))
+    total = a.total_inertia
     if free:  # the rigid-body mode exactly (module docstring)
         lam[0] = 0.0
         shapes[0] = 1.0 / math.sqrt(total)
@@ -1244,7 +1241,7 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
             limit = tau * np.sqrt(modal_inertia)
     whole = None
     if least is not None:
-        whole = np.multiply(least, min(s.tolist()) if few else float(s.min())) > limit
+        whole = np.multiply(least, a.least_root_inertia) > limit
         if free:
             whole[0] = True
         if not (all(whole.tolist()) if few else whole.all()):
@@ -1261,9 +1258,9 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
     del size
     by_mass = shapes if model._dofs_in_listing_order else shapes[:, model.mass_dof]
     first = 0 if free else 1  # mode numbers: docs/conventions.md
-    mode = np.arange(first, first + n)
+    mode = _mode_numbers(first, n)
     stiffness = np.multiply(omega2, modal_inertia, out=omega2)
-    for handed in (mode, omega, counts, whole, modal_inertia, stiffness, by_mass, shapes):
+    for handed in (omega, counts, whole, modal_inertia, stiffness, by_mass, shapes):
         handed.setflags(write=False)  # handed over read-only, without a copy
     return ModalResult._assembled(
         mode=mode,
@@ -1284,6 +1281,13 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         shapes_dof=shapes,
         node_source=_Nodes(inputs=(model, shapes, modal_inertia, tau, free)),
     )
+
+
+@lru_cache(maxsize=64)
+def _mode_numbers(first: int, count: int) -> NDArray[np.int_]:
+    """The mode numbers first, first + 1, ... (``count`` of them), read-only and shared: the same
+    numbers for every chain of a size."""
+    return _readonly(np.arange(first, first + count))
 
 
 def _result(
@@ -1349,10 +1353,8 @@ def _chain_matrix(
     docstring): diagonal (rad²/s², N), off-diagonal (rad²/s², N - 1), sqrt(J) (sqrt(kg·m²))."""
     chain = model.chain
     assert chain is not None
-    J = model.dof_inertia
-    diag, off = chain.stiffness_diagonals()
-    s = np.sqrt(J)
-    return diag / J, off / (s[:-1] * s[1:]), s
+    a = chain.normalised
+    return a.diagonal, a.off_diagonal, a.root_inertia
 
 
 def _chain_spectrum(
