@@ -43,7 +43,7 @@ from crankdyn.constants import DEG, RPM
 from crankdyn.crank.geometry import CrankGeometry, check_step
 from crankdyn.plausibility import PlausibilityWarning, kinematics_warnings
 from crankdyn.results import Result, column, freeze, scalar
-from crankdyn.roots import brentq
+from crankdyn.roots import CONVERGE_ERROR, SIGN_ERROR, brentq, brentq_many
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -591,11 +591,14 @@ def local_extrema(
     f: Callable[[np.ndarray], ArrayLike],
     df: Callable[[np.ndarray], ArrayLike] | None = None,
     n: int = 1440,
+    *,
+    elementwise: bool = True,
 ) -> list[Extremum]:
     """Local extrema over one revolution of a smooth 2 pi-periodic f, from the zeros of df.
 
     Sign changes of the derivative df on an n-point grid bracket the extrema; each is
-    refined with Brent's method to machine precision.
+    refined with Brent's method to machine precision (Brent 1973, ch. 4;
+    :func:`crankdyn.roots.brentq`), and classed by the signs of df 1e-6 rad either side.
 
     Parameters
     ----------
@@ -604,11 +607,24 @@ def local_extrema(
         of f (f must then accept complex angles).
     n : int
         Grid points per revolution (the bracket width is 2 pi / n); default 1440.
+    elementwise : bool
+        True (default) when f's and df's value at an angle does not depend on the other angles of
+        the array (numpy's elementwise arithmetic and functions): the brackets are then refined
+        together, one call of df per Brent iteration (:func:`crankdyn.roots.brentq_many`), the
+        checks either side take one call and the values another; the same numbers to the bit
+        as one angle at a time. False for a matrix product over the angles (a BLAS kernel may
+        sum in another order for another number of rows, :func:`slider_crank_series`): one
+        angle at a time.
 
     Returns
     -------
     list of Extremum
         Sorted by angle; angles in rad, values in the unit of f.
+
+    Raises
+    ------
+    RuntimeError
+        When Brent's method does not converge in 100 iterations (not seen for a smooth f).
 
     Examples
     --------
@@ -620,34 +636,53 @@ def local_extrema(
     grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
     d = np.array(df(grid), dtype=float)
     d[-1] = d[0]  # the revolution ends where it starts: one derivative there, not two round-offs
-    out: list[Extremum] = []
-
-    def slope(t: float) -> float:
-        return float(np.asarray(df(np.array([t])))[0])
-
     d0, d1 = d[:-1], d[1:]
     # the intervals that hold a zero: signs, not d0 * d1 (it may underflow)
     bracketed = (d0 == 0.0) | (((d0 < 0.0) != (d1 < 0.0)) & (d1 != 0.0))
-    for i in np.flatnonzero(bracketed).tolist():
-        if d[i] == 0.0:
-            root = grid[i]
-        else:
+    starts = np.flatnonzero(bracketed)
+    if starts.size == 0:
+        return []
+    roots = grid[starts]  # a zero of df on the grid is the root
+    search = d[starts] != 0.0
+    i = starts[search]
+    if elementwise:
+        found = brentq_many(df, grid[i], grid[i + 1], xtol=1e-14)
+        if (found.status == CONVERGE_ERROR).any():
+            raise RuntimeError("Brent's method did not converge in 100 iterations")
+        # same signs: at 2 pi the derivative is round-off of the one at 0, the root is the end
+        # of the revolution
+        roots[search] = np.where(found.status == SIGN_ERROR, grid[i + 1], found.root)
+
+        def at(g: Callable[[np.ndarray], ArrayLike], x: NDArray[np.float64]) -> np.ndarray:
+            return np.asarray(g(x))
+
+    else:
+
+        def at(g: Callable[[np.ndarray], ArrayLike], x: NDArray[np.float64]) -> np.ndarray:
+            return np.array([np.asarray(g(np.array([t])))[0] for t in x.tolist()])
+
+        def slope(t: float) -> float:
+            return float(at(df, np.array([t]))[0])
+
+        for j, k in zip(np.flatnonzero(search).tolist(), i.tolist(), strict=True):
             try:
-                root = brentq(slope, grid[i], grid[i + 1], xtol=1e-14)
-            except ValueError:  # at 2 pi the derivative is round-off of the one at 0: the root
-                root = grid[i + 1]  # is the end of the revolution
-        before = np.asarray(df(np.array([root - 1e-6])))[0]
-        after = np.asarray(df(np.array([root + 1e-6])))[0]
-        if before > 0.0 > after:
+                roots[j] = brentq(slope, grid[k], grid[k + 1], xtol=1e-14)
+            except ValueError:  # as above: the end of the revolution
+                roots[j] = grid[k + 1]
+    sides = at(df, np.concatenate([roots - 1e-6, roots + 1e-6]))  # df either side, one call
+    before, after, values = sides[: roots.size], sides[roots.size :], at(f, roots)
+    out: list[Extremum] = []
+    for root, b, a, value in zip(roots.tolist(), before, after, values, strict=True):
+        if b > 0.0 > a:
             kind = "max"
-        elif before < 0.0 < after:
+        elif b < 0.0 < a:
             kind = "min"
         else:
             continue  # a stationary point that is not an extremum
         angle = float(np.mod(root, 2.0 * math.pi))
         if any(abs(angle - x.angle) < 1e-9 for x in out):
             continue
-        out.append(Extremum(kind, angle, float(np.asarray(f(np.array([root])))[0])))
+        out.append(Extremum(kind, angle, float(value)))
     out.sort(key=lambda x: x.angle)
     return out
 
@@ -927,8 +962,10 @@ def _summary(
         scale = max(abs(x.value) for x in extrema) or 1.0
         return next(x for x in chosen if abs(x.value - best) <= 1e-9 * scale)
 
-    v_ext = local_extrema(quantity(1))
-    a_ext = local_extrema(quantity(2))
+    # the series' piston motion is a matrix product over the angles: one angle at a time
+    piston = method != "series"
+    v_ext = local_extrema(quantity(1), elementwise=piston)
+    a_ext = local_extrema(quantity(2), elementwise=piston)
     vmax, vmin = pick(v_ext, "max"), pick(v_ext, "min")
     amax, amin = pick(a_ext, "max"), pick(a_ext, "min")
     rod_rate = local_extrema(quantity(4))
