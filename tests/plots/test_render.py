@@ -167,7 +167,17 @@ def _temp_folders() -> set[str]:
     return {p.name for p in Path(tempfile.gettempdir()).glob("crankdyn-plots-*")}
 
 
-def test_a_renderer_draws_figures_submitted_while_busy_as_one_process_does():
+@pytest.fixture
+def own_temp(tmp_path, monkeypatch):
+    """The temporary folders of this test only: another test's or process's renderer (a test
+    worker running `analyze` at the same moment) makes its folders in the shared one."""
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    return tmp_path
+
+
+def test_a_renderer_draws_figures_submitted_while_busy_as_one_process_does(own_temp):
     """Figures submitted one by one while this process is busy (a report's sections) come back
     as one process draws them, in the order submitted, each reported done once; the children's
     folder is gone afterwards."""
@@ -210,7 +220,7 @@ def _failing_figure() -> Figure:
     return fig
 
 
-def test_a_figure_that_fails_in_its_child_is_drawn_here_and_its_error_raised_here():
+def test_a_figure_that_fails_in_its_child_is_drawn_here_and_its_error_raised_here(own_temp):
     """A child that fails leaves no file; the figure is then drawn in this process, where the
     error is raised as it would be without children, and no child is left behind."""
     import pytest
@@ -226,7 +236,7 @@ def test_a_figure_that_fails_in_its_child_is_drawn_here_and_its_error_raised_her
     assert _temp_folders() <= before
 
 
-def test_closing_a_renderer_stops_its_children():
+def test_closing_a_renderer_stops_its_children(own_temp):
     """Leaving the block early (an error in the analyses) stops the children still drawing and
     removes their folder."""
     import os

@@ -728,6 +728,15 @@ def _distinct_thresholds(lam: NDArray[np.float64]) -> tuple[NDArray[np.float64],
     gap_r = min(lambda_r+1 - lambda_r, lambda_r - lambda_r-1) from the steps padded with inf at
     both ends; the same operations, to the bit, as the general code."""
     n = lam.size
+    if n <= _FEW:  # a few: in Python on a list, the same IEEE operations (numpy's per-call cost)
+        listed = lam.tolist()
+        steps = [b - a for a, b in itertools.pairwise(listed)]
+        least, total = min(steps), sum(steps)
+        if not (least > 0.0 and total < math.inf):
+            return None
+        scale = EIGENVECTOR_SAFETY * _EPS * max(abs(listed[0]), abs(listed[-1]))
+        gaps = [steps[0], *map(min, itertools.pairwise(steps)), steps[-1]]
+        return np.array([scale / g for g in gaps]), scale / least
     pad = np.empty(n + 1)
     step = np.subtract(lam[1:], lam[:-1], out=pad[1:n])
     least = _least_positive(step)
