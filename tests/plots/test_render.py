@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import sys
 
 import numpy as np
@@ -109,9 +110,120 @@ def test_laid_out_once_the_files_are_those_of_matplotlibs_own_save(tmp_path):
     fig = _report_like_figure()
     (png,) = render_figures([(fig, tmp_path / "f.png", tmp_path / "f.svg")], workers=1)
     assert fig.get_layout_engine() is None
-    assert png == (tmp_path / "ref.png").read_bytes()
+    _same_pixels(png, (tmp_path / "ref.png").read_bytes())
     svg = [_without_ids((tmp_path / n).read_text(encoding="utf-8")) for n in ("f.svg", "ref.svg")]
     assert svg[0] == svg[1]
+
+
+def _same_pixels(png: bytes, reference: bytes) -> None:
+    """Two PNG files hold the same pixels (mode, size, every byte of every pixel) and the same
+    resolution and ``Software`` text."""
+    import io
+
+    from PIL import Image
+
+    a, b = (Image.open(io.BytesIO(data)) for data in (png, reference))
+    assert (a.mode, a.size, a.info) == (b.mode, b.size, b.info)
+    assert a.tobytes() == b.tobytes()
+
+
+def test_the_png_holds_the_pixels_of_matplotlibs_own_png_unfiltered_at_zlib_level_1():
+    """The PNG is written from Agg's raw pixels (png_file: no filter per row, zlib at
+    PNG_COMPRESSION) instead of by Pillow, whose choice of a filter for every row took as long
+    as the compression: the same pixels, resolution and Software text as matplotlib's PNG."""
+    import io
+    import zlib
+
+    from crankdyn.plots.render import PNG_COMPRESSION, PNG_DPI, _png, lay_out
+
+    reference = _report_like_figure()
+    lay_out(reference)
+    buffer = io.BytesIO()
+    reference.savefig(buffer, format="png", dpi=PNG_DPI, pil_kwargs={"compress_level": 1})
+    fig = _report_like_figure()
+    lay_out(fig)
+    canvas = fig.canvas
+    png = _png(fig)
+    assert fig.canvas is canvas  # an Agg canvas made for the draw is not left behind
+    _same_pixels(png, buffer.getvalue())
+    # one IDAT chunk: every row starts with filter type 0, compressed at level 1
+    start = png.index(b"IDAT") + 4
+    size = int.from_bytes(png[start - 8 : start - 4], "big")
+    raw = zlib.decompress(png[start : start + size])
+    width, height = (int(v) for v in fig.get_size_inches() * PNG_DPI + 0.5)
+    assert len(raw) == height * (4 * width + 1)
+    assert set(raw[:: 4 * width + 1]) == {0}
+    assert PNG_COMPRESSION == 1 and png[start + 1] >> 6 == 0  # zlib header: fastest level
+
+
+def test_png_file_refuses_pixels_of_another_size():
+    from crankdyn.plots.render import png_file
+
+    with pytest.raises(ValueError, match="RGBA pixels"):
+        png_file(bytes(4 * 5), 2, 2, dpi=110)
+
+
+def _shared_axes_figure() -> Figure:
+    """Panels of different heights sharing their x axes (one ticker: the formatter is shared),
+    a log axis, words as tick labels, a legend outside: what the report's figures have."""
+    from crankdyn.plots.style import legend_outside
+
+    fig = _figures(1)[0]
+    fig.clear()
+    fig.set_size_inches(6.0, 5.0)
+    axes = fig.subplots(3, 1, sharex=True, height_ratios=[3, 1, 2])
+    x = np.linspace(1.0, 2000.0, 300)
+    axes[0].plot(x, 1e5 * np.sin(x / 300.0), label="large")
+    axes[1].semilogy(x, x**2, label="log")
+    axes[2].bar(["cyl 1", "cyl 2", "cyl 3"], [3.0, 1.0, 2.0])
+    for ax in axes[:2]:
+        legend_outside(ax)
+    return fig
+
+
+def test_ticks_kept_changes_no_byte_and_makes_the_ticks_fewer_times():
+    """Inside ticks_kept each axis makes its ticks once per state (not at every question the
+    layout and the draw ask); the PNG and the SVG are those drawn without it, and the axes'
+    own methods are back afterwards."""
+    import io
+
+    from matplotlib.axis import Axis
+
+    from crankdyn.plots import render
+    from crankdyn.plots.render import _png, _svg, lay_out
+
+    ticks_kept = render.ticks_kept
+    made = []
+    original = Axis._update_ticks
+
+    def counting(self):
+        made.append(self)
+        return original(self)
+
+    files = []
+    Axis._update_ticks = counting
+    try:
+        for kept in (False, True):
+            for make in (_report_like_figure, _shared_axes_figure):
+                fig = make()
+                made.clear()
+                # without it: not even the blocks lay_out, _png and _svg open of their own
+                render.ticks_kept = ticks_kept if kept else lambda fig: contextlib.nullcontext()
+                with render.ticks_kept(fig):
+                    lay_out(fig, keep_canvas=True)
+                    png = _png(fig)
+                    svg = io.BytesIO()
+                    _svg(fig, svg)
+                files.append((png, _without_ids(svg.getvalue().decode("utf-8")), len(made)))
+                axis = fig.axes[0].xaxis
+                assert "_update_ticks" not in vars(axis)
+                assert "_get_ticklabel_bboxes" not in vars(axis)
+    finally:
+        Axis._update_ticks = original
+        render.ticks_kept = ticks_kept
+    for plain, kept in zip(files[:2], files[2:], strict=True):
+        assert kept[:2] == plain[:2]
+        assert kept[2] * 3 < plain[2]
 
 
 def test_laid_out_on_a_kept_canvas_the_files_are_the_same_and_no_word_is_measured_again(

@@ -42,8 +42,10 @@ __all__ = [
     "Renderer",
     "collector_paused",
     "lay_out",
+    "png_file",
     "prepare_children",
     "render_figures",
+    "ticks_kept",
     "workers_for",
 ]
 
@@ -51,17 +53,104 @@ PNG_DPI = 110
 """Resolution of the PNG files (dots per inch)."""
 
 PNG_COMPRESSION = 1
-"""zlib level of the PNG files: the fastest (level 6, Pillow's default, took about twice as long
-for files 5-25 % smaller)."""
+"""zlib level of the PNG files: the fastest (level 6 took about twice as long for files 5-25 %
+smaller)."""
 
 
 def _png(figure: Any) -> bytes:
-    """The PNG file of ``figure`` at :data:`PNG_DPI`."""
+    """The PNG file of ``figure`` at :data:`PNG_DPI`: the pixels Agg draws for matplotlib's own
+    PNG (drawn as raw RGBA by the same ``print_figure``, on the figure's Agg canvas when it has
+    one: see :func:`lay_out`), written by :func:`png_file`."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    previous = figure.canvas
+    canvas = previous if isinstance(previous, FigureCanvasAgg) else FigureCanvasAgg(figure)
     buffer = io.BytesIO()
-    figure.savefig(
-        buffer, format="png", dpi=PNG_DPI, pil_kwargs={"compress_level": PNG_COMPRESSION}
+    try:
+        with ticks_kept(figure):
+            canvas.print_figure(buffer, format="rgba", dpi=PNG_DPI)
+        renderer = canvas.renderer  # the one just drawn on, at the PNG's resolution
+        width, height = int(renderer.width), int(renderer.height)
+    finally:
+        if canvas is not previous:
+            figure.set_canvas(previous)
+    return png_file(buffer.getbuffer(), width, height, dpi=PNG_DPI)
+
+
+def _chunk(kind: bytes, data: bytes) -> bytes:
+    """One PNG chunk: length, type, data, CRC of type and data."""
+    import zlib
+
+    return (
+        len(data).to_bytes(4, "big")
+        + kind
+        + data
+        + (zlib.crc32(data, zlib.crc32(kind)) & 0xFFFFFFFF).to_bytes(4, "big")
     )
-    return buffer.getvalue()
+
+
+def png_file(rgba: bytes | memoryview, width: int, height: int, *, dpi: float) -> bytes:
+    """A PNG file of 8-bit RGBA pixels, every row unfiltered and the whole compressed by zlib
+    at level :data:`PNG_COMPRESSION`, with the chunks matplotlib's own PNG has (its
+    ``Software`` text and the resolution).
+
+    Pillow, which matplotlib's PNG goes through, tries four filters on every row and keeps the
+    one whose bytes sum least: for the report's figures that choice took about as long as the
+    compression itself, and the files come out no smaller than unfiltered ones (large areas
+    of one colour compress as well either way). The pixels are the same.
+
+    Parameters
+    ----------
+    rgba : bytes or memoryview
+        The pixels, row by row from the top, 4 bytes each (red, green, blue, alpha).
+    width, height : int
+        The image's size (pixels).
+    dpi : float
+        The resolution stored in the file (dots per inch).
+
+    Returns
+    -------
+    bytes
+        The PNG file.
+
+    Examples
+    --------
+    >>> import io, PIL.Image
+    >>> png = png_file(bytes([255, 0, 0, 255]) * 6, 3, 2, dpi=110)
+    >>> image = PIL.Image.open(io.BytesIO(png))
+    >>> image.mode, image.size, image.getpixel((2, 1)), round(image.info["dpi"][0])
+    ('RGBA', (3, 2), (255, 0, 0, 255), 110)
+    """
+    import zlib
+
+    import matplotlib
+
+    stride = 4 * width
+    view = memoryview(rgba).cast("B")
+    if len(view) != stride * height:
+        raise ValueError(f"{len(view)} bytes are not {width} x {height} RGBA pixels")
+    compressor = zlib.compressobj(PNG_COMPRESSION)
+    parts = []
+    row_filter = b"\x00"  # filter type 0: the row as it is
+    for top in range(0, height, 256):  # rows in blocks: no full copy of the image
+        block = view[top * stride : min(height, top + 256) * stride]
+        rows = [row_filter + block[k : k + stride] for k in range(0, len(block), stride)]
+        parts.append(compressor.compress(b"".join(rows)))
+    parts.append(compressor.flush())
+    per_metre = int(dpi / 0.0254 + 0.5)
+    software = f"Matplotlib version{matplotlib.__version__}, https://matplotlib.org/"
+    return b"".join(
+        (
+            b"\x89PNG\r\n\x1a\n",
+            _chunk(
+                b"IHDR", width.to_bytes(4, "big") + height.to_bytes(4, "big") + b"\x08\x06\0\0\0"
+            ),
+            _chunk(b"tEXt", b"Software\0" + software.encode("latin-1")),
+            _chunk(b"pHYs", per_metre.to_bytes(4, "big") * 2 + b"\x01"),
+            _chunk(b"IDAT", b"".join(parts)),
+            _chunk(b"IEND", b""),
+        )
+    )
 
 
 def _svg(figure: Any, path: str | Path | io.BytesIO) -> None:
@@ -70,7 +159,7 @@ def _svg(figure: Any, path: str | Path | io.BytesIO) -> None:
     outlines: smaller files, the words searchable and selectable."""
     import matplotlib
 
-    with matplotlib.rc_context({"svg.fonttype": "none"}):
+    with matplotlib.rc_context({"svg.fonttype": "none"}), ticks_kept(figure):
         figure.savefig(path, format="svg")
 
 
@@ -119,12 +208,146 @@ def lay_out(figure: Any, *, keep_canvas: bool = False) -> None:
         figure.set_dpi(PNG_DPI)
         FigureCanvasAgg(figure)  # the engine measures the words with the PNG's renderer
         try:
-            engine.execute(figure)
+            with ticks_kept(figure):
+                engine.execute(figure)
         finally:
             figure.set_dpi(dpi)
             if not keep_canvas:
                 figure.set_canvas(canvas)
     figure.set_layout_engine(None)
+
+
+class _KeptTicks:
+    """One axis's ticks, made and measured once per state of the axis (:func:`ticks_kept`).
+
+    Stands in for the axis's own ``_update_ticks`` (locator, formatter, tick positions and
+    labels: the ticks to draw) and ``_get_ticklabel_bboxes`` (their labels' extents) as
+    instance attributes, and calls matplotlib's methods when the axis's state differs from the
+    one they were last called in: its view interval, its axes' box on the canvas, the
+    figure's resolution, its scale, locators, formatters and tick lists, and the locations its
+    formatters last formatted (axes that share an axis share its formatter: another axis's
+    ticks may have been formatted since).
+    """
+
+    def __init__(self, axis: Any) -> None:
+        self.axis = axis
+        self.update = type(axis)._update_ticks
+        self.boxes = type(axis)._get_ticklabel_bboxes
+        self.state: tuple[Any, ...] | None = None
+        self.formatted: tuple[Any, Any] = (None, None)
+        self.ticks: list[Any] = []
+        self.measured: tuple[Any, list[Any], list[Any]] | None = None
+
+    def _state(self) -> tuple[Any, ...]:
+        axis = self.axis
+        own = axis.__dict__
+        return (
+            tuple(axis.get_view_interval()),
+            axis.axes.bbox.bounds,
+            axis.get_figure(root=True).dpi,
+            axis._scale,
+            axis.major.locator,
+            axis.major.formatter,
+            axis.minor.locator,
+            axis.minor.formatter,
+            own.get("majorTicks"),
+            own.get("minorTicks"),
+        )
+
+    def _formatted(self) -> tuple[Any, Any]:
+        """The locations the formatters last formatted (matplotlib 3.11 keeps them as
+        ``_locs``, earlier versions as ``locs``; a new object at every ``set_locs``)."""
+        out = []
+        for formatter in (self.axis.major.formatter, self.axis.minor.formatter):
+            own = getattr(formatter, "__dict__", {})
+            out.append(own.get("_locs", own.get("locs")))
+        return out[0], out[1]
+
+    def _current(self) -> bool:
+        if self.state is None or self.state != self._state():
+            return False
+        now = self._formatted()
+        return now[0] is self.formatted[0] and now[1] is self.formatted[1]
+
+    def update_ticks(self) -> list[Any]:
+        """The ticks to draw (``Axis._update_ticks``), made again only in a new state."""
+        if not self._current():
+            self.ticks = self.update(self.axis)
+            self.state = self._state()
+            self.formatted = self._formatted()
+            self.measured = None
+        return list(self.ticks)
+
+    def ticklabel_bboxes(self, ticks: list[Any], renderer: Any) -> tuple[list[Any], list[Any]]:
+        """The extents of the labels of ``ticks`` (``Axis._get_ticklabel_bboxes``), measured
+        again only for other ticks, another renderer or a new state."""
+        if ticks != self.ticks or not self._current():
+            return self.boxes(self.axis, ticks, renderer)
+        if self.measured is None or self.measured[0] is not renderer:
+            first, second = self.boxes(self.axis, ticks, renderer)
+            self.measured = (renderer, first, second)
+        return list(self.measured[1]), list(self.measured[2])
+
+
+def _all_axes(figure: Any) -> Iterator[Any]:
+    """Every Axes of ``figure``: its own and its subfigures' (``figure.axes``) and the inset
+    axes inside them."""
+    pending = list(getattr(figure, "axes", ()))
+    while pending:
+        ax = pending.pop()
+        yield ax
+        pending.extend(getattr(ax, "child_axes", ()))
+
+
+@contextlib.contextmanager
+def ticks_kept(figure: Any) -> Iterator[None]:
+    """Make and measure each axis's ticks once per state while ``figure`` is laid out or drawn.
+
+    In one layout or one draw, matplotlib asks an axis for its ticks again and again: for the
+    axis's extent, for each of its spines' extents, for its label's position (and each sibling
+    axis's), for its drawing. Each time it runs the locator and the formatter, moves every tick
+    and sets every label's text, and the labels are measured again. Inside this block each
+    axis does that once per state (:class:`_KeptTicks`: a new view interval, a new position of
+    its axes, another resolution or renderer do it again), and gives the same ticks and
+    extents in between. The files are the same to the byte (tests/plots/test_render.py).
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        The figure about to be laid out or drawn, not changed meanwhile except by matplotlib's
+        layout and drawing.
+
+    Yields
+    ------
+    None
+        Control to the ``with`` block; the axes' own methods are back after it.
+
+    Examples
+    --------
+    >>> from crankdyn.plots.style import new_figure
+    >>> fig, axes = new_figure()
+    >>> with ticks_kept(fig):
+    ...     "_update_ticks" in vars(axes[0, 0].xaxis)
+    True
+    >>> "_update_ticks" in vars(axes[0, 0].xaxis)
+    False
+    """
+    kept = []
+    for ax in _all_axes(figure):
+        for axis in getattr(ax, "_axis_map", {}).values():
+            own = axis.__dict__
+            if "_update_ticks" in own or "_get_ticklabel_bboxes" in own:
+                continue  # kept already (an enclosing block) or changed by someone else
+            memo = _KeptTicks(axis)
+            own["_update_ticks"] = memo.update_ticks
+            own["_get_ticklabel_bboxes"] = memo.ticklabel_bboxes
+            kept.append(axis)
+    try:
+        yield
+    finally:
+        for axis in kept:
+            axis.__dict__.pop("_update_ticks", None)
+            axis.__dict__.pop("_get_ticklabel_bboxes", None)
 
 
 @contextlib.contextmanager
@@ -398,16 +621,17 @@ class Renderer:
         """In a child: draw figure ``index``'s ``part`` into the private folder (each file
         written aside and renamed, so that a file there is complete)."""
         figure = self._figures[index]
-        lay_out(figure, keep_canvas=True)  # this process ends with the figure drawn
         png_path, svg_path = self._files(index)
-        if part in ("png", "both"):
-            aside = png_path.with_suffix(".part")
-            aside.write_bytes(_png(figure))
-            os.replace(aside, png_path)
-        if part in ("svg", "both"):
-            aside = svg_path.with_suffix(".svg-part")
-            _svg(figure, aside)
-            os.replace(aside, svg_path)
+        with ticks_kept(figure):  # the PNG's draw finds the ticks of the layout's last pass
+            lay_out(figure, keep_canvas=True)  # this process ends with the figure drawn
+            if part in ("png", "both"):
+                aside = png_path.with_suffix(".part")
+                aside.write_bytes(_png(figure))
+                os.replace(aside, png_path)
+            if part in ("svg", "both"):
+                aside = svg_path.with_suffix(".svg-part")
+                _svg(figure, aside)
+                os.replace(aside, svg_path)
 
     # -- results ---------------------------------------------------------------------------
     def results(
@@ -445,12 +669,13 @@ class Renderer:
                 png = _read(png_path)
                 svg = _read(svg_path) if wants_svg else None
             if png is None or (wants_svg and svg is None):  # not drawn by a child: here
-                lay_out(figure)
-                png = _png(figure)
-                if wants_svg:
-                    buffer = io.BytesIO()
-                    _svg(figure, buffer)
-                    svg = buffer.getvalue()
+                with ticks_kept(figure):
+                    lay_out(figure)
+                    png = _png(figure)
+                    if wants_svg:
+                        buffer = io.BytesIO()
+                        _svg(figure, buffer)
+                        svg = buffer.getvalue()
                 if progress is not None:
                     progress(i)
             out.append((png, svg))
