@@ -192,6 +192,8 @@ def test_ticks_kept_changes_no_byte_and_makes_the_ticks_fewer_times():
     from crankdyn.plots import render
     from crankdyn.plots.render import _png, _svg, lay_out
 
+    if not render._checked_matplotlib():
+        pytest.skip("ticks_kept is checked with matplotlib 3.8-3.11 and draws plainly otherwise")
     ticks_kept = render.ticks_kept
     made = []
     original = Axis._update_ticks
@@ -224,6 +226,30 @@ def test_ticks_kept_changes_no_byte_and_makes_the_ticks_fewer_times():
     for plain, kept in zip(files[:2], files[2:], strict=True):
         assert kept[:2] == plain[:2]
         assert kept[2] * 3 < plain[2]
+
+
+def test_ticks_kept_stands_in_for_nothing_under_a_matplotlib_it_was_not_checked_with(
+    monkeypatch,
+):
+    """Under another matplotlib than 3.8-3.11 (its private tick methods may differ) the figure
+    is drawn as matplotlib draws it: nothing stands in for the axes' methods."""
+    import matplotlib
+
+    from crankdyn.plots import render
+
+    for version, checked in (
+        ("3.7.5", False),
+        ("3.8.0", True),
+        ("3.11.2", True),
+        ("3.12.0", False),
+    ):
+        render._checked_matplotlib.cache_clear()
+        monkeypatch.setattr(matplotlib, "__version__", version)
+        assert render._checked_matplotlib() is checked
+        fig = _report_like_figure()
+        with render.ticks_kept(fig):
+            assert ("_update_ticks" in vars(fig.axes[0].xaxis)) is checked
+    render._checked_matplotlib.cache_clear()
 
 
 def test_laid_out_on_a_kept_canvas_the_files_are_the_same_and_no_word_is_measured_again(

@@ -364,3 +364,35 @@ def test_shapes_normalised_in_one_division_follow_the_rule_row_by_row():
             assert _same(size, want_size)
             if least is not None:
                 assert _same(least, size.min(axis=1))
+
+
+def test_thresholds_of_distinct_eigenvalues_follow_their_definition_to_the_bit():
+    """_distinct_thresholds (on a list up to 32 eigenvalues, by numpy beyond) against the
+    definition written out mode by mode: tau_r = 10 eps max|lambda| / gap_r, gap_r the distance
+    to the nearer neighbour (LAPACK Users' Guide section 4.7.1), to the bit, for spectra of 2-40
+    values at scales of 1e-300 to 1e+300; repeated, NaN or inf spectra give None."""
+    from crankdyn.torsion.modal import _distinct_thresholds
+
+    eps = np.finfo(float).eps
+    rng = np.random.default_rng(4711)
+    for n in [*range(2, 41), 64]:
+        for scale in (1e-300, 1.0, 1e8, 1e300):
+            lam = np.sort(rng.uniform(0.0, 1.0, n)) * scale
+            if np.any(np.diff(lam) <= 0.0):
+                continue
+            got = _distinct_thresholds(lam)
+            assert got is not None
+            values = lam.tolist()
+            norm = max(abs(values[0]), abs(values[-1]))
+            want = []
+            for r in range(n):
+                gaps = [values[r + 1] - values[r]] if r < n - 1 else []
+                gaps += [values[r] - values[r - 1]] if r > 0 else []
+                want.append(10.0 * eps * norm / min(gaps))
+            assert got[0].tolist() == want
+            assert got[1] == max(want)
+        for bad in (np.nan, np.inf):
+            lam = np.sort(rng.uniform(0.0, 1.0, n))
+            lam[n // 2] = bad
+            assert _distinct_thresholds(lam) is None
+        assert _distinct_thresholds(np.zeros(n)) is None

@@ -24,6 +24,7 @@ results are asked for.
 from __future__ import annotations
 
 import contextlib
+import functools
 import gc
 import io
 import multiprocessing
@@ -217,6 +218,21 @@ def lay_out(figure: Any, *, keep_canvas: bool = False) -> None:
     figure.set_layout_engine(None)
 
 
+@functools.lru_cache(maxsize=1)
+def _checked_matplotlib() -> bool:
+    """Whether the installed matplotlib is one :func:`ticks_kept` was checked with (3.8 to
+    3.11: the private ``Axis._update_ticks`` and ``Axis._get_ticklabel_bboxes`` it stands in
+    for, and the formatters' ``locs`` or ``_locs``); with another, figures are drawn as
+    matplotlib draws them."""
+    import matplotlib
+
+    try:
+        major, minor = (int(part) for part in matplotlib.__version__.split(".")[:2])
+    except ValueError:
+        return False
+    return (3, 8) <= (major, minor) < (3, 12)
+
+
 class _KeptTicks:
     """One axis's ticks, made and measured once per state of the axis (:func:`ticks_kept`).
 
@@ -244,7 +260,7 @@ class _KeptTicks:
         return (
             tuple(axis.get_view_interval()),
             axis.axes.bbox.bounds,
-            axis.get_figure(root=True).dpi,
+            axis.axes.figure.dpi,  # a subfigure's is its figure's
             axis._scale,
             axis.major.locator,
             axis.major.formatter,
@@ -332,6 +348,9 @@ def ticks_kept(figure: Any) -> Iterator[None]:
     >>> "_update_ticks" in vars(axes[0, 0].xaxis)
     False
     """
+    if not _checked_matplotlib():
+        yield
+        return
     kept = []
     for ax in _all_axes(figure):
         for axis in getattr(ax, "_axis_map", {}).values():
