@@ -228,3 +228,27 @@ def test_magnitudes_beyond_any_machine_are_refused():
                 Shaft(("a", "b"), geometry=ShaftGeometry(1.2e4, 0.0, 7.0, 80e9), inertia=1e25),
             ),
         )
+
+
+def test_chain_of_builds_the_masses_and_shafts_its_constructors_build():
+    """chain_of's quick constructors (every field written at once, the numbers checked
+    together) give the objects Mass and Shaft give, field for field."""
+    import dataclasses
+
+    from crankdyn.torsion.model import Mass as M
+    from crankdyn.torsion.model import Shaft as S
+
+    quick = TorsionModel.chain_of([1.0, 2.5, 0.25], [1e5, 3e6])
+    plain = TorsionModel(
+        masses=(M("1", 1.0), M("2", 2.5), M("3", 0.25)),
+        shafts=(S(("1", "2"), 1e5), S(("2", "3"), 3e6)),
+        name="chain",
+    )
+    pairs = [
+        *zip(quick.masses, plain.masses, strict=True),
+        *zip(quick.shafts, plain.shafts, strict=True),
+    ]
+    for mine, theirs in pairs:
+        assert vars(mine) == vars(theirs)
+        assert set(vars(mine)) == {f.name for f in dataclasses.fields(mine)}
+        assert hash(mine) == hash(theirs)

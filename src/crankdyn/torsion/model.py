@@ -289,11 +289,11 @@ class Mass:
         """A mass from a name and an inertia the caller has already validated (a positive
         finite float; no damping, no cylinders), without validating them again."""
         mass = object.__new__(cls)
-        for key, value in (("name", name), ("inertia", inertia), ("damping", 0.0)):
-            object.__setattr__(mass, key, value)
-        object.__setattr__(mass, "cylinders", ())
-        object.__setattr__(mass, "role", None)
-        object.__setattr__(mass, "limits", None)
+        # the fields written at once (a frozen dataclass's __init__ sets each through
+        # object.__setattr__: most of the cost of a 1000-mass chain_of)
+        mass.__dict__.update(
+            name=name, inertia=inertia, damping=0.0, cylinders=(), role=None, limits=None
+        )
         return mass
 
 
@@ -584,24 +584,23 @@ class Shaft:
         """A shaft between two distinct masses (not ground) with a stiffness the caller has
         already validated (a positive finite float), without validating them again."""
         shaft = object.__new__(cls)
-        for key, value in (
-            ("between", between),
-            ("stiffness", stiffness),
-            ("damping", 0.0),
-            ("loss_factor", 0.0),
-            ("geometry", None),
-            ("name", None),
-            ("role", None),
-            ("coupling", None),
-            ("inertia", 0.0),
-            ("elements", None),
-            ("max_frequency", None),
-            ("ratio", 1.0),
-            ("direction", 1),
-            ("gear", None),
-            ("segment_of", None),
-        ):
-            object.__setattr__(shaft, key, value)
+        shaft.__dict__.update(  # every field at once, as Mass._checked
+            between=between,
+            stiffness=stiffness,
+            damping=0.0,
+            loss_factor=0.0,
+            geometry=None,
+            name=None,
+            role=None,
+            coupling=None,
+            inertia=0.0,
+            elements=None,
+            max_frequency=None,
+            ratio=1.0,
+            direction=1,
+            gear=None,
+            segment_of=None,
+        )
         return shaft
 
     @property
