@@ -43,12 +43,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import DEG, RPM
 from crankdyn.crank.geometry import check_step
-from crankdyn.crank.indicated import pressure_analysis
+from crankdyn.crank.indicated import indicated_work
 from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
     crank_terms,
-    piston_kinematics,
+    kinematics_summary,
     series_coefficients,
     slider_crank_exact,
 )
@@ -57,7 +57,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.plausibility import PlausibilityWarning
+from crankdyn.plausibility import PlausibilityWarning, pressure_warnings
 from crankdyn.results import Result, column, freeze, scalar
 
 if TYPE_CHECKING:
@@ -358,6 +358,21 @@ class CrankTrain:
         train: CrankTrain = self._derived["summary"]
         return train
 
+    def indicated_work(self) -> float:
+        """The indicated work per cylinder and cycle of this train's pressure on its engine's
+        geometry (:func:`crankdyn.crank.indicated.indicated_work`), computed once for the
+        analyses sharing this train (the torque and the plausibility warnings).
+
+        Returns
+        -------
+        float
+            W_i (J per cylinder and cycle).
+        """
+        if "work" not in self._derived:
+            self._derived["work"] = indicated_work(self.trace, self.engine.geometry)
+        work: float = self._derived["work"]
+        return work
+
     def warnings(self) -> tuple[PlausibilityWarning, ...]:
         """The plausibility warnings of this engine at this speed and pressure
         (:func:`engine_warnings`), computed once for the analyses sharing this train.
@@ -368,7 +383,9 @@ class CrankTrain:
             The warnings.
         """
         if "warnings" not in self._derived:
-            self._derived["warnings"] = engine_warnings(self.engine, self.speed, self.trace)
+            self._derived["warnings"] = engine_warnings(
+                self.engine, self.speed, self.trace, work=self.indicated_work()
+            )
         found: tuple[PlausibilityWarning, ...] = self._derived["warnings"]
         return found
 
@@ -997,7 +1014,11 @@ cylinder_forces = engine_forces
 
 
 def engine_warnings(
-    engine: Engine, speed: float, trace: PressureTrace | None = None
+    engine: Engine,
+    speed: float,
+    trace: PressureTrace | None = None,
+    *,
+    work: float | None = None,
 ) -> tuple[PlausibilityWarning, ...]:
     """Every plausibility warning of an engine running at a speed.
 
@@ -1014,17 +1035,24 @@ def engine_warnings(
     trace : PressureTrace or None
         The pressure to check, e.g. the scaled trace a forced response uses; default the
         engine's trace or its synthetic default.
+    work : float or None
+        The indicated work of that trace on the engine's geometry (J), when already computed
+        (:meth:`CrankTrain.indicated_work`); default: computed here.
 
     Returns
     -------
     tuple of crankdyn.plausibility.PlausibilityWarning
-        The warnings (none for a typical engine).
+        The warnings (none for a typical engine): those of
+        :func:`crankdyn.crank.kinematics.piston_kinematics` and
+        :func:`crankdyn.crank.indicated.pressure_analysis`, from the same figures (the
+        kinematics summary shared through :func:`crankdyn.crank.kinematics.kinematics_summary`,
+        IMEP = W_i / V_d and the trace's peak) without their tables.
     """
-    kin = piston_kinematics(engine.geometry, speed, fuel=engine.fuel)
-    pressure = pressure_analysis(
-        trace if trace is not None else default_pressure(engine),
-        engine.geometry,
-        fuel=engine.fuel,
-        aspiration=engine.aspiration,
-    )
-    return (*kin.warnings, *pressure.warnings)
+    g = engine.geometry
+    kin = kinematics_summary(g, speed).plausibility(engine.fuel)
+    trace = trace if trace is not None else default_pressure(engine)
+    if work is None:
+        work = indicated_work(trace, g)
+    peak, _ = trace.peak
+    pressure = pressure_warnings(work / g.swept_volume, peak, engine.fuel, engine.aspiration)
+    return (*kin, *pressure)

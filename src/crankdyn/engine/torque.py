@@ -262,7 +262,11 @@ def engine_torque(
     total = per_cylinder.sum(axis=0)
     mean = _mean_torque(engine, train)
     top, low = _torque_extrema(engine, train)
-    work = indicated_work(train.trace, engine.geometry)
+    work = (  # shared with the train's plausibility warnings
+        train.indicated_work()
+        if train.engine.geometry is engine.geometry
+        else indicated_work(train.trace, engine.geometry)
+    )
     peak, at = train.trace.peak
     effective = None if mechanical_efficiency is None else mechanical_efficiency * mean
     notes = []
