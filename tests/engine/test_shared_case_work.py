@@ -180,3 +180,17 @@ def test_trace_interpolation_equals_numpy_periodic_interp_to_the_bit():
     assert np.array_equal(
         two_stroke.at(x), np.interp(x, angle / 2.0, trace.pressure, period=2.0 * math.pi)
     )
+
+
+@pytest.mark.parametrize(
+    "name", ["vaz2108", "inline6-diesel", "inline3-petrol", "v8-crossplane", "v12-60"]
+)
+def test_crank_tangential_equals_the_trains_to_the_bit(name):
+    from crankdyn.engine.forces import crank_tangential, crank_train, cycle_grid
+
+    engine = crankdyn.Engine.example(name)
+    w = 3000 * math.pi / 30
+    grid = cycle_grid(engine, math.radians(0.1))[:-1]
+    train = crank_train(engine, w, grid)
+    got = crank_tangential(engine, w, grid, pressure=train.trace)
+    assert got.tobytes() == train.tangential.tobytes()

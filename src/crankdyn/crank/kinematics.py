@@ -62,6 +62,7 @@ __all__ = [
     "complex_step",
     "crank_terms",
     "dead_centres",
+    "exact_acceleration",
     "extrema_grid",
     "half_binomial",
     "kinematics_summary",
@@ -243,15 +244,44 @@ def slider_crank_exact(
     lam, k = r / l, e / r
     if terms is None:
         terms = crank_terms(phi, lam, k)
-    sin_phi, cos_phi, sin_b, cos_b, sin_pb, cos_pb = terms
+    sin_phi, cos_phi, sin_b, cos_b, sin_pb, _ = terms
     beta = np.arcsin(sin_b)
     y_tdc = math.sqrt((l + r) ** 2 - e * e)
     x = y_tdc - (r * cos_phi + l * cos_b)
     v = r * w * sin_pb / cos_b
-    a = r * w * w * (cos_pb / cos_b + lam * cos_phi**2 / cos_b**3)
+    a = exact_acceleration(terms, r, lam, w)
     w_rod = w * lam * cos_phi / cos_b
     e_rod = w * w * (-lam * sin_phi / cos_b + lam * lam * cos_phi**2 * sin_b / cos_b**3)
     return SliderCrankMotion(x, v, a, beta, w_rod, e_rod)
+
+
+def exact_acceleration(terms: CrankTerms, r: float, lam: float, w: float) -> np.ndarray:
+    """Exact piston acceleration a = R w^2 [cos(phi + beta)/cos(beta) + lambda cos^2(phi)/
+    cos^3(beta)] (seed 000 section 1, seed 002 eq. 13) from the crank terms: the expression
+    :func:`slider_crank_exact` evaluates, for a caller that needs the acceleration alone.
+
+    Parameters
+    ----------
+    terms : CrankTerms
+        :func:`crank_terms` at the crank angles for lambda and k.
+    r : float
+        Crank radius R (m).
+    lam : float
+        lambda = R/L (dimensionless), computed as ``R / L``.
+    w : float
+        Crank speed (rad/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The acceleration (m/s^2), of the shape of the terms.
+    """
+    return (
+        r
+        * w
+        * w
+        * (terms.cos_phi_beta / terms.cos_beta + lam * terms.cos_phi**2 / terms.cos_beta**3)
+    )
 
 
 def piston_jerk(

@@ -48,6 +48,7 @@ from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
     crank_terms,
+    exact_acceleration,
     kinematics_summary,
     series_coefficients,
     slider_crank_exact,
@@ -69,6 +70,7 @@ __all__ = [
     "CylinderForces",
     "ForcesResult",
     "check_step",
+    "crank_tangential",
     "crank_train",
     "cycle_grid",
     "cylinder_forces",
@@ -476,19 +478,8 @@ def crank_train(
     InputError
         If the speed is not positive or the engine has no masses.
     """
-    if not (math.isfinite(speed) and speed > 0.0):
-        raise InputError("the speed must be positive", key="speed", value=speed)
-    masses = engine_masses(engine)
-    trace = default_pressure(engine) if pressure is None else pressure
-    g, cyl = engine.geometry, engine.cylinders
-    theta = np.asarray(theta, dtype=float)
-    psi = np.asarray(cyl.throw_angles)[:, None]
-    firing = np.asarray(cyl.firing_angles)[:, None]
-    phi = theta[None, :] - psi
-    phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
-    p = trace.at(phase)
-    gas = (p - engine.crankcase_pressure) * g.piston_area
-    terms = crank_terms(phi, g.lam, g.k)  # shared by the kinematics and the forces
+    masses, trace, theta, phi, phase, p, gas, terms = _train_inputs(engine, speed, theta, pressure)
+    g = engine.geometry
     motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed, terms=terms)
     m_j = np.array([m.reciprocating for m in masses])[:, None]
     inertia = -m_j * motion.acceleration
@@ -515,6 +506,63 @@ def crank_train(
         engine=engine,
         motion=motion,
     )
+
+
+def _train_inputs(
+    engine: Engine, speed: float, theta: ArrayLike, pressure: PressureTrace | None
+) -> tuple[
+    list[EquivalentMasses],
+    PressureTrace,
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    CrankTerms,
+]:
+    """What :func:`crank_train` and :func:`crank_tangential` start from: the masses, the trace,
+    the angles, every cylinder's crank angle and cycle phase, pressure, gas force and terms."""
+    if not (math.isfinite(speed) and speed > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
+    masses = engine_masses(engine)
+    trace = default_pressure(engine) if pressure is None else pressure
+    g, cyl = engine.geometry, engine.cylinders
+    theta = np.asarray(theta, dtype=float)
+    psi = np.asarray(cyl.throw_angles)[:, None]
+    firing = np.asarray(cyl.firing_angles)[:, None]
+    phi = theta[None, :] - psi
+    phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
+    p = trace.at(phase)
+    gas = (p - engine.crankcase_pressure) * g.piston_area
+    terms = crank_terms(phi, g.lam, g.k)  # shared by the kinematics and the forces
+    return masses, trace, theta, phi, phase, p, gas, terms
+
+
+def crank_tangential(
+    engine: Engine, speed: float, theta: ArrayLike, *, pressure: PressureTrace | None = None
+) -> NDArray[np.float64]:
+    """The tangential force of every cylinder alone: ``crank_train(...).tangential`` to the bit
+    (the same formulas in the same order), without the rest of the train (rod angle, piston
+    displacement and velocity, rod motion, side and radial forces), e.g. for the mean torque
+    on a fine grid.
+
+    Parameters
+    ----------
+    engine, speed, theta, pressure
+        As :func:`crank_train`.
+
+    Returns
+    -------
+    numpy.ndarray
+        T (N), shape (cylinders, angles).
+    """
+    masses, _, _, _, _, _, gas, terms = _train_inputs(engine, speed, theta, pressure)
+    g = engine.geometry
+    r, l, w = float(g.crank_radius), float(g.rod_length), float(speed)
+    acceleration = exact_acceleration(terms, r, r / l, w)  # as slider_crank_exact
+    m_j = np.array([m.reciprocating for m in masses])[:, None]
+    piston = gas + -m_j * acceleration
+    return (piston / terms.cos_beta) * terms.sin_phi_beta  # rod_forces' rod force, then T
 
 
 SUMMARY_STEP = math.radians(1.0)

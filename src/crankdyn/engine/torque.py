@@ -33,6 +33,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import (
     SUMMARY_STEP,
     CrankTrain,
+    crank_tangential,
     crank_train,
     cycle_grid,
     refined_extrema,
@@ -59,8 +60,8 @@ def _mean_torque(engine: Engine, train: CrankTrain) -> float:
     if train.theta.size > 1 and np.allclose(np.diff(train.theta), _MEAN_STEP, atol=1e-12, rtol=0):
         return float(np.mean(train.tangential[:, :-1].sum(axis=0))) * engine.geometry.crank_radius
     fine = cycle_grid(engine, _MEAN_STEP)[:-1]
-    dense = crank_train(engine, train.speed, fine, pressure=train.trace)
-    return float(np.mean(dense.tangential.sum(axis=0))) * engine.geometry.crank_radius
+    dense = crank_tangential(engine, train.speed, fine, pressure=train.trace)
+    return float(np.mean(dense.sum(axis=0))) * engine.geometry.crank_radius
 
 
 def _torque_extrema(engine: Engine, train: CrankTrain) -> tuple[float, float]:
