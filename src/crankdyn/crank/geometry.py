@@ -8,7 +8,8 @@ side the crank pin moves to just after TDC, so that sin(beta) = lambda (sin(phi)
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 from crankdyn.errors import InputError
 
@@ -216,6 +217,9 @@ class CrankGeometry:
     crank_radius: float
     rod_length: float
     offset: float = 0.0
+    _derived: dict[Any, Any] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )  # what analyses of this geometry alone computed once (kinematics summaries)
 
     def __post_init__(self) -> None:
         bore = check_length("bore", self.bore, "the bore")

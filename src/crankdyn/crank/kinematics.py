@@ -62,7 +62,10 @@ __all__ = [
     "complex_step",
     "crank_terms",
     "dead_centres",
+    "exact_acceleration",
+    "extrema_grid",
     "half_binomial",
+    "kinematics_summary",
     "local_extrema",
     "piston_jerk",
     "piston_kinematics",
@@ -241,15 +244,44 @@ def slider_crank_exact(
     lam, k = r / l, e / r
     if terms is None:
         terms = crank_terms(phi, lam, k)
-    sin_phi, cos_phi, sin_b, cos_b, sin_pb, cos_pb = terms
+    sin_phi, cos_phi, sin_b, cos_b, sin_pb, _ = terms
     beta = np.arcsin(sin_b)
     y_tdc = math.sqrt((l + r) ** 2 - e * e)
     x = y_tdc - (r * cos_phi + l * cos_b)
     v = r * w * sin_pb / cos_b
-    a = r * w * w * (cos_pb / cos_b + lam * cos_phi**2 / cos_b**3)
+    a = exact_acceleration(terms, r, lam, w)
     w_rod = w * lam * cos_phi / cos_b
     e_rod = w * w * (-lam * sin_phi / cos_b + lam * lam * cos_phi**2 * sin_b / cos_b**3)
     return SliderCrankMotion(x, v, a, beta, w_rod, e_rod)
+
+
+def exact_acceleration(terms: CrankTerms, r: float, lam: float, w: float) -> np.ndarray:
+    """Exact piston acceleration a = R w^2 [cos(phi + beta)/cos(beta) + lambda cos^2(phi)/
+    cos^3(beta)] (seed 000 section 1, seed 002 eq. 13) from the crank terms: the expression
+    :func:`slider_crank_exact` evaluates, for a caller that needs the acceleration alone.
+
+    Parameters
+    ----------
+    terms : CrankTerms
+        :func:`crank_terms` at the crank angles for lambda and k.
+    r : float
+        Crank radius R (m).
+    lam : float
+        lambda = R/L (dimensionless), computed as ``R / L``.
+    w : float
+        Crank speed (rad/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The acceleration (m/s^2), of the shape of the terms.
+    """
+    return (
+        r
+        * w
+        * w
+        * (terms.cos_phi_beta / terms.cos_beta + lam * terms.cos_phi**2 / terms.cos_beta**3)
+    )
 
 
 def piston_jerk(
@@ -587,12 +619,29 @@ def complex_step(
     return lambda x: np.imag(f(np.asarray(x, dtype=float) + 1j * h)) / h
 
 
+def extrema_grid(n: int = 1440) -> NDArray[np.float64]:
+    """The grid on which :func:`local_extrema` brackets the extrema: 0 to 2 pi, n + 1 points.
+
+    Parameters
+    ----------
+    n : int
+        Intervals per revolution; default 1440.
+
+    Returns
+    -------
+    numpy.ndarray
+        The angles (rad), both ends included.
+    """
+    return np.linspace(0.0, 2.0 * math.pi, n + 1)
+
+
 def local_extrema(
     f: Callable[[np.ndarray], ArrayLike],
     df: Callable[[np.ndarray], ArrayLike] | None = None,
     n: int = 1440,
     *,
     elementwise: bool = True,
+    grid_slopes: ArrayLike | None = None,
 ) -> list[Extremum]:
     """Local extrema over one revolution of a smooth 2 pi-periodic f, from the zeros of df.
 
@@ -615,6 +664,10 @@ def local_extrema(
         as one angle at a time. False for a matrix product over the angles (a BLAS kernel may
         sum in another order for another number of rows, :func:`slider_crank_series`): one
         angle at a time.
+    grid_slopes : array_like or None
+        df on the grid ``linspace(0, 2 pi, n + 1)``, when the caller has it already (e.g. one
+        evaluation of a motion serving several of its quantities, :func:`kinematics_summary`);
+        default: ``df`` evaluated on the grid here.
 
     Returns
     -------
@@ -633,8 +686,10 @@ def local_extrema(
     """
     if df is None:
         df = complex_step(f)
-    grid = np.linspace(0.0, 2.0 * math.pi, n + 1)
-    d = np.array(df(grid), dtype=float)
+    grid = extrema_grid(n)
+    d = np.array(df(grid) if grid_slopes is None else grid_slopes, dtype=float)
+    if d.shape != grid.shape:
+        raise ValueError(f"grid_slopes must hold {n + 1} values, one per grid point")
     d[-1] = d[0]  # the revolution ends where it starts: one derivative there, not two round-offs
     d0, d1 = d[:-1], d[1:]
     # the intervals that hold a zero: signs, not d0 * d1 (it may underflow)
@@ -803,6 +858,27 @@ class KinematicsSummary(Result):
         "min_rod_angular_acceleration_rad_s2", "Min rod angular acceleration", "rad/s²"
     )
 
+    def plausibility(self, fuel: str | None = None) -> tuple[PlausibilityWarning, ...]:
+        """The plausibility warnings of the mean piston speed and the largest piston
+        acceleration (:func:`crankdyn.plausibility.kinematics_warnings`).
+
+        Parameters
+        ----------
+        fuel : str or None
+            ``"petrol"``, ``"diesel"`` or None: the engine type whose typical acceleration is
+            checked against.
+
+        Returns
+        -------
+        tuple of crankdyn.plausibility.PlausibilityWarning
+            The warnings (none for a typical engine).
+        """
+        return kinematics_warnings(
+            self.mean_piston_speed,
+            max(abs(self.max_acceleration), abs(self.min_acceleration)),
+            fuel,
+        )
+
 
 @dataclass(frozen=True)
 class KinematicsResult(Result):
@@ -926,7 +1002,7 @@ def piston_kinematics(
     phi = np.asarray(angles, dtype=float)
     m = motion(phi, r, l, e, w)
     if summary is None:
-        summary = _summary(motion, geometry, w, method)
+        summary = kinematics_summary(geometry, w, method=method, order=order)
     return KinematicsResult(
         crank_angle=freeze(phi),
         displacement=freeze(m.displacement),
@@ -937,12 +1013,44 @@ def piston_kinematics(
         rod_angular_acceleration=freeze(m.rod_angular_acceleration),
         summary=summary,
         geometry=geometry,
-        warnings=kinematics_warnings(
-            summary.mean_piston_speed,
-            max(abs(summary.max_acceleration), abs(summary.min_acceleration)),
-            fuel,
-        ),
+        warnings=summary.plausibility(fuel),
     )
+
+
+def kinematics_summary(
+    geometry: CrankGeometry, speed: float, *, method: str = "exact", order: int = SERIES_ORDER
+) -> KinematicsSummary:
+    """The summary figures of the slider-crank motion at one speed (those of
+    :func:`piston_kinematics`, which does not depend on its grid).
+
+    Computed once per geometry object, speed, method and order and kept with the geometry
+    (an immutable object): the analysis session's kinematics and the plausibility check of the
+    forces (:func:`crankdyn.engine.forces.engine_warnings`) share the one summary.
+
+    Parameters
+    ----------
+    geometry : CrankGeometry
+        The crank geometry (SI).
+    speed : float
+        Crank speed w (rad/s).
+    method : str
+        ``"exact"`` (default), ``"approx"`` or ``"series"`` (:data:`METHODS`).
+    order : int
+        Series order for ``method="series"``; default :data:`SERIES_ORDER`.
+
+    Returns
+    -------
+    KinematicsSummary
+        Extrema from the zeros of the method's exact (complex-step) derivatives.
+    """
+    w = float(speed)
+    key = ("kinematics summary", method, int(order), w.hex())
+    memo = geometry._derived
+    found = memo.get(key)
+    if found is None:
+        found = memo[key] = _summary(_motion_function(method, order), geometry, w, method)
+    assert isinstance(found, KinematicsSummary)
+    return found
 
 
 def _summary(
@@ -962,14 +1070,23 @@ def _summary(
         scale = max(abs(x.value) for x in extrema) or 1.0
         return next(x for x in chosen if abs(x.value - best) <= 1e-9 * scale)
 
+    # every quantity's complex-step derivative on the bracketing grid from one evaluation of
+    # the motion (what complex_step(quantity(i))(grid) computes for each i, to the bit)
+    step = 1e-30  # complex_step's default
+    on_grid = motion(extrema_grid() + 1j * step, r, l, e, w)
+
+    def extrema(index: int, elementwise: bool = True) -> list[Extremum]:
+        slopes = np.imag(on_grid[index]) / step
+        return local_extrema(quantity(index), elementwise=elementwise, grid_slopes=slopes)
+
     # the series' piston motion is a matrix product over the angles: one angle at a time
     piston = method != "series"
-    v_ext = local_extrema(quantity(1), elementwise=piston)
-    a_ext = local_extrema(quantity(2), elementwise=piston)
+    v_ext = extrema(1, piston)
+    a_ext = extrema(2, piston)
     vmax, vmin = pick(v_ext, "max"), pick(v_ext, "min")
     amax, amin = pick(a_ext, "max"), pick(a_ext, "min")
-    rod_rate = local_extrema(quantity(4))
-    rod_acc = local_extrema(quantity(5))
+    rod_rate = extrema(4)
+    rod_acc = extrema(5)
     beta = motion(np.array([math.pi / 2, 3 * math.pi / 2]), r, l, e, w).rod_angle
     return KinematicsSummary(
         method=method,

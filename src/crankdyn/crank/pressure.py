@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
@@ -203,9 +204,23 @@ class PressureTrace:
         numpy.ndarray
             Absolute pressure (Pa), of the shape of ``phi``.
         """
-        return np.interp(
-            np.asarray(phi, dtype=float), self.crank_angle, self.pressure, period=self.cycle_angle
-        )
+        # np.interp(phi, angle, pressure, period=cycle) to the bit: numpy's own steps, the
+        # trace's wrapped points made once per trace instead of at every call
+        xp, fp = self._periodic
+        return np.interp(np.asarray(phi, dtype=np.float64) % abs(self.cycle_angle), xp, fp)
+
+    @cached_property
+    def _periodic(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The trace's points as ``np.interp(..., period=cycle)`` wraps them: angles modulo
+        the cycle, sorted, with the last point repeated a cycle before the first and the first
+        a cycle after the last (the pressures alike)."""
+        period = abs(self.cycle_angle)
+        xp = np.asarray(self.crank_angle, dtype=np.float64) % period
+        order = np.argsort(xp)
+        xp, fp = xp[order], np.asarray(self.pressure, dtype=np.float64)[order]
+        xp = np.concatenate((xp[-1:] - period, xp, xp[0:1] + period))
+        fp = np.concatenate((fp[-1:], fp, fp[0:1]))
+        return freeze(xp), freeze(fp)
 
     @property
     def peak(self) -> tuple[float, float]:

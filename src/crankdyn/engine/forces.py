@@ -43,12 +43,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import DEG, RPM
 from crankdyn.crank.geometry import check_step
-from crankdyn.crank.indicated import pressure_analysis
+from crankdyn.crank.indicated import indicated_work
 from crankdyn.crank.kinematics import (
     CrankTerms,
     SliderCrankMotion,
     crank_terms,
-    piston_kinematics,
+    exact_acceleration,
+    kinematics_summary,
     series_coefficients,
     slider_crank_exact,
 )
@@ -57,7 +58,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.crank.pressure_model import default_pressure
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.plausibility import PlausibilityWarning
+from crankdyn.plausibility import PlausibilityWarning, pressure_warnings
 from crankdyn.results import Result, column, freeze, scalar
 
 if TYPE_CHECKING:
@@ -69,6 +70,7 @@ __all__ = [
     "CylinderForces",
     "ForcesResult",
     "check_step",
+    "crank_tangential",
     "crank_train",
     "cycle_grid",
     "cylinder_forces",
@@ -358,6 +360,21 @@ class CrankTrain:
         train: CrankTrain = self._derived["summary"]
         return train
 
+    def indicated_work(self) -> float:
+        """The indicated work per cylinder and cycle of this train's pressure on its engine's
+        geometry (:func:`crankdyn.crank.indicated.indicated_work`), computed once for the
+        analyses sharing this train (the torque and the plausibility warnings).
+
+        Returns
+        -------
+        float
+            W_i (J per cylinder and cycle).
+        """
+        if "work" not in self._derived:
+            self._derived["work"] = indicated_work(self.trace, self.engine.geometry)
+        work: float = self._derived["work"]
+        return work
+
     def warnings(self) -> tuple[PlausibilityWarning, ...]:
         """The plausibility warnings of this engine at this speed and pressure
         (:func:`engine_warnings`), computed once for the analyses sharing this train.
@@ -368,7 +385,9 @@ class CrankTrain:
             The warnings.
         """
         if "warnings" not in self._derived:
-            self._derived["warnings"] = engine_warnings(self.engine, self.speed, self.trace)
+            self._derived["warnings"] = engine_warnings(
+                self.engine, self.speed, self.trace, work=self.indicated_work()
+            )
         found: tuple[PlausibilityWarning, ...] = self._derived["warnings"]
         return found
 
@@ -459,19 +478,8 @@ def crank_train(
     InputError
         If the speed is not positive or the engine has no masses.
     """
-    if not (math.isfinite(speed) and speed > 0.0):
-        raise InputError("the speed must be positive", key="speed", value=speed)
-    masses = engine_masses(engine)
-    trace = default_pressure(engine) if pressure is None else pressure
-    g, cyl = engine.geometry, engine.cylinders
-    theta = np.asarray(theta, dtype=float)
-    psi = np.asarray(cyl.throw_angles)[:, None]
-    firing = np.asarray(cyl.firing_angles)[:, None]
-    phi = theta[None, :] - psi
-    phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
-    p = trace.at(phase)
-    gas = (p - engine.crankcase_pressure) * g.piston_area
-    terms = crank_terms(phi, g.lam, g.k)  # shared by the kinematics and the forces
+    masses, trace, theta, phi, phase, p, gas, terms = _train_inputs(engine, speed, theta, pressure)
+    g = engine.geometry
     motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed, terms=terms)
     m_j = np.array([m.reciprocating for m in masses])[:, None]
     inertia = -m_j * motion.acceleration
@@ -498,6 +506,63 @@ def crank_train(
         engine=engine,
         motion=motion,
     )
+
+
+def _train_inputs(
+    engine: Engine, speed: float, theta: ArrayLike, pressure: PressureTrace | None
+) -> tuple[
+    list[EquivalentMasses],
+    PressureTrace,
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    NDArray[np.float64],
+    CrankTerms,
+]:
+    """What :func:`crank_train` and :func:`crank_tangential` start from: the masses, the trace,
+    the angles, every cylinder's crank angle and cycle phase, pressure, gas force and terms."""
+    if not (math.isfinite(speed) and speed > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
+    masses = engine_masses(engine)
+    trace = default_pressure(engine) if pressure is None else pressure
+    g, cyl = engine.geometry, engine.cylinders
+    theta = np.asarray(theta, dtype=float)
+    psi = np.asarray(cyl.throw_angles)[:, None]
+    firing = np.asarray(cyl.firing_angles)[:, None]
+    phi = theta[None, :] - psi
+    phase = np.mod(theta[None, :] - firing, engine.cycle_angle)
+    p = trace.at(phase)
+    gas = (p - engine.crankcase_pressure) * g.piston_area
+    terms = crank_terms(phi, g.lam, g.k)  # shared by the kinematics and the forces
+    return masses, trace, theta, phi, phase, p, gas, terms
+
+
+def crank_tangential(
+    engine: Engine, speed: float, theta: ArrayLike, *, pressure: PressureTrace | None = None
+) -> NDArray[np.float64]:
+    """The tangential force of every cylinder alone: ``crank_train(...).tangential`` to the bit
+    (the same formulas in the same order), without the rest of the train (rod angle, piston
+    displacement and velocity, rod motion, side and radial forces), e.g. for the mean torque
+    on a fine grid.
+
+    Parameters
+    ----------
+    engine, speed, theta, pressure
+        As :func:`crank_train`.
+
+    Returns
+    -------
+    numpy.ndarray
+        T (N), shape (cylinders, angles).
+    """
+    masses, _, _, _, _, _, gas, terms = _train_inputs(engine, speed, theta, pressure)
+    g = engine.geometry
+    r, l, w = float(g.crank_radius), float(g.rod_length), float(speed)
+    acceleration = exact_acceleration(terms, r, r / l, w)  # as slider_crank_exact
+    m_j = np.array([m.reciprocating for m in masses])[:, None]
+    piston = gas + -m_j * acceleration
+    return (piston / terms.cos_beta) * terms.sin_phi_beta  # rod_forces' rod force, then T
 
 
 SUMMARY_STEP = math.radians(1.0)
@@ -997,7 +1062,11 @@ cylinder_forces = engine_forces
 
 
 def engine_warnings(
-    engine: Engine, speed: float, trace: PressureTrace | None = None
+    engine: Engine,
+    speed: float,
+    trace: PressureTrace | None = None,
+    *,
+    work: float | None = None,
 ) -> tuple[PlausibilityWarning, ...]:
     """Every plausibility warning of an engine running at a speed.
 
@@ -1014,17 +1083,24 @@ def engine_warnings(
     trace : PressureTrace or None
         The pressure to check, e.g. the scaled trace a forced response uses; default the
         engine's trace or its synthetic default.
+    work : float or None
+        The indicated work of that trace on the engine's geometry (J), when already computed
+        (:meth:`CrankTrain.indicated_work`); default: computed here.
 
     Returns
     -------
     tuple of crankdyn.plausibility.PlausibilityWarning
-        The warnings (none for a typical engine).
+        The warnings (none for a typical engine): those of
+        :func:`crankdyn.crank.kinematics.piston_kinematics` and
+        :func:`crankdyn.crank.indicated.pressure_analysis`, from the same figures (the
+        kinematics summary shared through :func:`crankdyn.crank.kinematics.kinematics_summary`,
+        IMEP = W_i / V_d and the trace's peak) without their tables.
     """
-    kin = piston_kinematics(engine.geometry, speed, fuel=engine.fuel)
-    pressure = pressure_analysis(
-        trace if trace is not None else default_pressure(engine),
-        engine.geometry,
-        fuel=engine.fuel,
-        aspiration=engine.aspiration,
-    )
-    return (*kin.warnings, *pressure.warnings)
+    g = engine.geometry
+    kin = kinematics_summary(g, speed).plausibility(engine.fuel)
+    trace = trace if trace is not None else default_pressure(engine)
+    if work is None:
+        work = indicated_work(trace, g)
+    peak, _ = trace.peak
+    pressure = pressure_warnings(work / g.swept_volume, peak, engine.fuel, engine.aspiration)
+    return (*kin, *pressure)

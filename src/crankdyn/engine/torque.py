@@ -33,6 +33,7 @@ from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.forces import (
     SUMMARY_STEP,
     CrankTrain,
+    crank_tangential,
     crank_train,
     cycle_grid,
     refined_extrema,
@@ -59,8 +60,8 @@ def _mean_torque(engine: Engine, train: CrankTrain) -> float:
     if train.theta.size > 1 and np.allclose(np.diff(train.theta), _MEAN_STEP, atol=1e-12, rtol=0):
         return float(np.mean(train.tangential[:, :-1].sum(axis=0))) * engine.geometry.crank_radius
     fine = cycle_grid(engine, _MEAN_STEP)[:-1]
-    dense = crank_train(engine, train.speed, fine, pressure=train.trace)
-    return float(np.mean(dense.tangential.sum(axis=0))) * engine.geometry.crank_radius
+    dense = crank_tangential(engine, train.speed, fine, pressure=train.trace)
+    return float(np.mean(dense.sum(axis=0))) * engine.geometry.crank_radius
 
 
 def _torque_extrema(engine: Engine, train: CrankTrain) -> tuple[float, float]:
@@ -262,7 +263,11 @@ def engine_torque(
     total = per_cylinder.sum(axis=0)
     mean = _mean_torque(engine, train)
     top, low = _torque_extrema(engine, train)
-    work = indicated_work(train.trace, engine.geometry)
+    work = (  # shared with the train's plausibility warnings
+        train.indicated_work()
+        if train.engine.geometry is engine.geometry
+        else indicated_work(train.trace, engine.geometry)
+    )
     peak, at = train.trace.peak
     effective = None if mechanical_efficiency is None else mechanical_efficiency * mean
     notes = []
