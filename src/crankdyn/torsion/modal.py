@@ -544,12 +544,12 @@ def _normalise(
     other) and, when ``least`` is asked for, each row's smallest absolute value (None when not
     asked for, when amplitudes were zeroed or when a row has no finite largest amplitude).
 
-    Each row x with largest |x| = p is divided by sign(x_0) p, and its absolute values are those
-    of the quotient, |x| / p exactly (division is symmetric in sign), found in one flat pass.
-    Where the first amplitude is at rest (|x_0| / p at most 1e-9) the first with |x_j| / p above
-    1e-9 sets the sign: the rows where it came out negative are negated, x / (-q) = -(x / q)
-    exactly, so each row is, to the bit, x / (sign(x_j) p). A row of zeros, inf or NaN:
-    :func:`_normalise_rows`, the rule row by row."""
+    Each row x with largest |x| = p is divided once, by p signed as the amplitude that sets its
+    sign: its first, x_0, or, where that is at rest (|x_0| / p at most 1e-9), the first with
+    |x_j| / p above 1e-9 (looked for in those rows only). The absolute values returned are
+    those of the quotient, |x| / p exactly (division is symmetric in sign), found in one flat
+    pass rather than by a second division of each row by its own number. A row of zeros, inf
+    or NaN: :func:`_normalise_rows`, the rule row by row."""
     count = shapes.shape[0]
     size = np.abs(shapes)
     peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
@@ -559,19 +559,16 @@ def _normalise(
     few = count <= _FEW
     signed = shapes[:, 0]  # the amplitude that sets each row's sign
     head = np.abs(signed) / peak  # |x_0| / p
+    if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
+        # the rows at rest in the first amplitude: the first above 1e-9 of the largest sets
+        # their sign, found on |x| / p of those rows only
+        rows = np.flatnonzero(head <= _ZERO)
+        part = size[rows]
+        np.divide(part, peak[rows, None], out=part)
+        signed = signed.copy()
+        signed[rows] = shapes[rows, np.argmax(part > _ZERO, axis=1)]
     np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
     np.abs(shapes, out=size)  # |x| / p: finite, a finite peak bounds its row
-    if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-        # the rows at rest in the first amplitude: the first above 1e-9 sets their sign; those
-        # whose amplitude came out negative are negated (x / (-q) = -(x / q) exactly)
-        rows = np.flatnonzero(head <= _ZERO)
-        if 8 * rows.size > count:  # many (the localised modes of a long chain): every row
-            above = np.argmax(size > _ZERO, axis=1)[rows]
-        else:  # a few: those rows only
-            above = np.argmax(size[rows] > _ZERO, axis=1)
-        flip = rows[shapes[rows, above] < 0.0]
-        if flip.size:
-            shapes[flip] *= -1.0
     if not few:  # round-off amplitudes looked for first: one pass fewer when there are some
         tiny = size < 1e-14
         if not tiny.any():
