@@ -546,10 +546,11 @@ def _normalise(
 
     Each row x with largest |x| = p is divided once, by p signed as the amplitude that sets its
     sign: its first, x_0, or, where that is at rest (|x_0| / p at most 1e-9), the first with
-    |x_j| / p above 1e-9 (looked for in those rows only). The absolute values returned are
-    those of the quotient, |x| / p exactly (division is symmetric in sign), found in one flat
-    pass rather than by a second division of each row by its own number. A row of zeros, inf
-    or NaN: :func:`_normalise_rows`, the rule row by row."""
+    |x_j| / p above 1e-9. The absolute values returned are |x| / p: those of the quotient
+    (division is symmetric in sign), found in one flat pass rather than by a second division
+    of each row by its own number, unless many rows are at rest (then |x| / p of every row is
+    looked in for their first amplitude above 1e-9; else in those rows only). A row of zeros,
+    inf or NaN: :func:`_normalise_rows`, the rule row by row."""
     count = shapes.shape[0]
     size = np.abs(shapes)
     peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
@@ -559,16 +560,22 @@ def _normalise(
     few = count <= _FEW
     signed = shapes[:, 0]  # the amplitude that sets each row's sign
     head = np.abs(signed) / peak  # |x_0| / p
-    if not (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-        # the rows at rest in the first amplitude: the first above 1e-9 of the largest sets
-        # their sign, found on |x| / p of those rows only
+    if (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
+        np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
+        np.abs(shapes, out=size)  # |x| / p: finite, a finite peak bounds its row
+    else:  # rows at rest in the first amplitude: the first above 1e-9 of the largest signs them
         rows = np.flatnonzero(head <= _ZERO)
-        part = size[rows]
-        np.divide(part, peak[rows, None], out=part)
         signed = signed.copy()
-        signed[rows] = shapes[rows, np.argmax(part > _ZERO, axis=1)]
-    np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
-    np.abs(shapes, out=size)  # |x| / p: finite, a finite peak bounds its row
+        if 8 * rows.size > count:  # many (the localised modes of a long chain): |x| / p of all
+            np.divide(size, peak[:, None], out=size)
+            signed[rows] = shapes[rows, np.argmax(size > _ZERO, axis=1)[rows]]
+            np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
+        else:  # a few: |x| / p of those rows only
+            part = size[rows]
+            np.divide(part, peak[rows, None], out=part)
+            signed[rows] = shapes[rows, np.argmax(part > _ZERO, axis=1)]
+            np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
+            np.abs(shapes, out=size)
     if not few:  # round-off amplitudes looked for first: one pass fewer when there are some
         tiny = size < 1e-14
         if not tiny.any():
