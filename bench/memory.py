@@ -35,14 +35,14 @@ def _sixbar(n: int):
     return lambda: mech.motion(theta, OMEGA, ALPHA)
 
 
-def _response(bare: bool):
+def _response(bare: bool, which: str | None = None, speeds: int = 20000, orders: int = 48):
     import numpy as np
 
     from bench.bare import thomas
     from bench.cases.forced_response import MODEL, limit_problem
     from crankdyn.torsion.response import steady_state
 
-    model, omega, forcing = limit_problem(MODEL, 20000, 48)
+    model, omega, forcing = limit_problem(which or MODEL, speeds, orders)
     if bare:
         chain = model.chain
         flat = omega.reshape(-1)
@@ -66,6 +66,14 @@ PROBES = {
     "thomas-9x20000x48": (
         "the same by the bare in-place Thomas elimination (bench/bare.py)",
         lambda: _response(True),
+    ),
+    "response-200x5501x24": (
+        "forced response, 200 masses x 5501 speeds x 24 orders (crankdyn steady_state)",
+        lambda: _response(False, "chain-200", 5501, 24),
+    ),
+    "thomas-200x5501x24": (
+        "the same by the bare in-place Thomas elimination (bench/bare.py)",
+        lambda: _response(True, "chain-200", 5501, 24),
     ),
     "sixbar-360k": (
         "six-bar (conveyor-seed004) kinematics, 360,000 crank angles",

@@ -53,6 +53,8 @@ MEMORY_PROBES = (
     ("sixbar-360k", 300.0),
     ("thomas-9x20000x48", None),
     ("response-9x20000x48", ("thomas-9x20000x48", 1.5)),
+    ("thomas-200x5501x24", None),
+    ("response-200x5501x24", ("thomas-200x5501x24", 1.5)),
 )
 """(probe, target): MB, None (a reference, no target) or (reference probe, factor): within
 factor x the reference's peak RSS."""
