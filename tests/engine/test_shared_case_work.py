@@ -194,3 +194,17 @@ def test_crank_tangential_equals_the_trains_to_the_bit(name):
     train = crank_train(engine, w, grid)
     got = crank_tangential(engine, w, grid, pressure=train.trace)
     assert got.tobytes() == train.tangential.tobytes()
+
+
+@pytest.mark.parametrize("speed", [0.0, -10.0, float("nan"), float("inf")])
+def test_a_speed_that_is_not_positive_and_finite_is_named(speed):
+    """The summary (and the kinematics built on it) refuses a speed without motion or without a
+    number, naming the key, instead of failing inside its extrema search."""
+    from crankdyn.crank.geometry import CrankGeometry
+    from crankdyn.crank.kinematics import kinematics_summary, piston_kinematics
+    from crankdyn.errors import InputError
+
+    g = CrankGeometry(bore=0.1, crank_radius=0.05, rod_length=0.16)
+    for call in (kinematics_summary, piston_kinematics):
+        with pytest.raises(InputError, match="speed"):
+            call(g, speed)

@@ -41,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import DEG, RPM
 from crankdyn.crank.geometry import CrankGeometry, check_step
+from crankdyn.errors import InputError
 from crankdyn.plausibility import PlausibilityWarning, kinematics_warnings
 from crankdyn.results import Result, column, freeze, scalar
 from crankdyn.roots import CONVERGE_ERROR, SIGN_ERROR, brentq, brentq_many
@@ -976,7 +977,8 @@ def piston_kinematics(
     Raises
     ------
     InputError
-        If ``step`` does not divide the revolution.
+        If ``step`` does not divide the revolution, or the speed is not positive and finite
+        (key ``speed``).
 
     Examples
     --------
@@ -996,6 +998,8 @@ def piston_kinematics(
     """
     motion = _motion_function(method, order)
     r, l, e, w = geometry.crank_radius, geometry.rod_length, geometry.offset, float(speed)
+    if not (math.isfinite(w) and w > 0.0):  # as kinematics_summary, before the arrays
+        raise InputError("the speed must be positive", key="speed", value=speed)
     if angles is None:
         count = check_step(step, 2.0 * math.pi)
         angles = np.linspace(0.0, 2.0 * math.pi, count + 1)
@@ -1042,8 +1046,15 @@ def kinematics_summary(
     -------
     KinematicsSummary
         Extrema from the zeros of the method's exact (complex-step) derivatives.
+
+    Raises
+    ------
+    InputError
+        If the speed is not positive and finite (key ``speed``).
     """
     w = float(speed)
+    if not (math.isfinite(w) and w > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
     key = ("kinematics summary", method, int(order), w.hex())
     memo = geometry._derived
     found = memo.get(key)
