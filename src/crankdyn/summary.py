@@ -288,78 +288,96 @@ def _csv(v: object) -> str:
 
 @dataclass(frozen=True)
 class Verdict:
-    """One rule check's verdict on one component in one condition.
+    """One rule check's verdict on one component in one condition: the worst value of a
+    quantity against its limit.
 
     Parameters
     ----------
-    check : str
-        What is checked (``"synthesised stress vs tau_C"``).
     component : str
-        The component (``"shaft coupling - pinion"``, ``"coupling C1"``).
+        The component (``"intermediate shaft"``, ``"coupling C1"``).
     condition : str
-        The running condition (``"normal firing"``, ``"misfire of cylinder 3"``).
+        The running condition (``"normal firing"``, ``"misfire cylinder 3"``).
+    quantity : str
+        What is checked (``"synthesised vibratory shear stress (half range)"``).
     worst : float
         The worst value found (in ``unit``); NaN when nothing was evaluated.
     limit : float
-        The limit at that point (in ``unit``); NaN where none applies.
+        The limit there (in ``unit``); NaN where none applies.
     unit : str
-        The unit of worst and limit (SI).
+        The unit of worst and limit (SI: Pa, N·m, W, rad/s², rad, or ``""``).
     passed : bool
         Whether the check passed.
-    rule : str
-        The rule or document, with edition (``"IACS UR M68 Rev.3 (2021)"``).
+    source : str
+        The rule with its edition (``"IACS UR M68 (Aug 2014 text)"``) or the maker's document
+        the limit comes from, and how the limit was found.
     clause : str
-        The clause (``"M68.4.1"``); ``""`` where the source has none.
-    at : float or None
+        The clause (``"M68.4"``); ``""`` where the source has none.
+    speed : float or None
         The speed (rad/s) of the worst value, or None.
     note : str
-        Why (e.g. a barred range not permitted: "widened by the 2 % tachometer tolerance to
-        806.1 rpm, above 0.8 n0 = 800 rpm").
+        Why (a barred range not permitted: widened by the tachometer tolerance beyond 0.8 n_0).
+    margin : float or None
+        1 - worst / limit (dimensionless; negative where the limit is exceeded, -inf where a
+        check fails without a limit); None: computed from worst and limit.
+    kind : str
+        What the row checks, whatever its range (the worst misfiring cylinder is chosen per
+        component and kind); not exported.
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> v = Verdict("intermediate shaft", "normal firing", "shear stress", 30e6, 40e6, "Pa",
+    ...             True, "IACS UR M68", "M68.4", speed=300 / RPM)
+    >>> v.margin, v.to_dict()["speed_rpm"]
+    (0.25, 300.0)
     """
 
-    check: str
     component: str
     condition: str
+    quantity: str
     worst: float
     limit: float
     unit: str
     passed: bool
-    rule: str
+    source: str
     clause: str = ""
-    at: float | None = None
+    speed: float | None = None
     note: str = ""
+    margin: float = None  # type: ignore[assignment]  # computed in __post_init__ when None
+    kind: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        if self.margin is None:
+            margin = math.nan
+            if math.isfinite(self.limit) and self.limit != 0.0 and math.isfinite(self.worst):
+                margin = 1.0 - self.worst / self.limit
+            object.__setattr__(self, "margin", margin)
 
     @property
-    def margin(self) -> float:
-        """1 - worst / limit (dimensionless): positive when within the limit; NaN without a
-        limit."""
-        if not (math.isfinite(self.limit) and self.limit != 0.0 and math.isfinite(self.worst)):
-            return math.nan
-        return 1.0 - self.worst / self.limit
-
-    @property
-    def source(self) -> str:
-        """The rule and clause as one text."""
-        return f"{self.rule}, {self.clause}" if self.clause else self.rule
+    def rule(self) -> str:
+        """The source and clause as one text."""
+        return f"{self.source}, {self.clause}" if self.clause else self.source
 
     def to_dict(self) -> dict[str, Any]:
-        """The verdict as JSON data (SI, units in the keys where they apply)."""
+        """The verdict as JSON data (SI, the speed in rpm)."""
         from crankdyn.constants import RPM
 
-        margin = self.margin
+        def number(x: float) -> float | None:
+            return float(x) if math.isfinite(x) else None
+
         return {
-            "check": self.check,
             "component": self.component,
             "condition": self.condition,
-            "worst": self.worst if math.isfinite(self.worst) else None,
-            "limit": self.limit if math.isfinite(self.limit) else None,
+            "quantity": self.quantity,
+            "worst": number(self.worst),
+            "limit": number(self.limit),
             "unit": self.unit,
-            "margin": margin if math.isfinite(margin) else None,
-            "passed": self.passed,
-            "rule": self.rule,
+            "margin": number(self.margin),
+            "passed": bool(self.passed),
+            "source": self.source,
             "clause": self.clause,
-            "speed_rpm": None if self.at is None else round(self.at * RPM, 9),
-            "note": self.note,
+            "speed_rpm": None if self.speed is None else round(self.speed * RPM, 9),
+            "note": self.note or None,
         }
 
 
@@ -465,8 +483,8 @@ def verdict_cells(verdicts: Sequence[Verdict]) -> tuple[list[str], list[list[str
 
     Examples
     --------
-    >>> v = Verdict("stress vs tau_C", "shaft 1", "normal firing", 30e6, 40e6, "Pa", True,
-    ...             "IACS UR M68", "M68.4", at=80.0)
+    >>> v = Verdict("shaft 1", "normal firing", "stress vs tau_C", 30e6, 40e6, "Pa", True,
+    ...             "IACS UR M68", "M68.4", speed=80.0)
     >>> verdict_cells([v])[1]
     [['shaft 1', 'normal firing', 'stress vs tau_C', '30', '40', 'MPa', '25 %', '763.94', \
 'passed', 'IACS UR M68, M68.4']]
@@ -484,14 +502,14 @@ def verdict_cells(verdicts: Sequence[Verdict]) -> tuple[list[str], list[list[str
             [
                 v.component,
                 v.condition,
-                v.check,
+                v.quantity,
                 worst,
                 limit,
                 unit,
                 "-" if not math.isfinite(margin) else f"{number(margin * 100.0, 3)} %",
-                "-" if v.at is None else number(v.at * RPM),
+                "-" if v.speed is None else number(v.speed * RPM),
                 "passed" if v.passed else "FAILED",
-                v.source,
+                v.rule,
             ]
         )
     return list(VERDICT_HEADER), rows

@@ -10,13 +10,13 @@ numbers from an :class:`Analysis`, so the same quantity is the same number every
 >>> a.modes.frequencies_hz[a.modes.index(1)]  # elastic mode 1  # doctest: +SKIP
 
 The defaults (crank-angle step, speed grid, orders, the flywheel's target, the tachometer
-tolerance) are in :data:`crankdyn.session.defaults.DEFAULTS`; summaries (maxima, minima, means)
+tolerance) are in :data:`crankdyn.defaults.DEFAULTS`; summaries (maxima, minima, means)
 always come from the session's analysis grid, refined at the extrema, never from a coarser
 display grid: a front end that shows fewer rows asks for them with ``step=`` and gets the rows
 with the summary of the full-resolution analysis. The session holds no presentation: results
 declare their summaries (:mod:`crankdyn.summary`) and front ends render them.
 
-Modules: :mod:`~crankdyn.session.defaults` (the registry and the speed grid),
+Modules: :mod:`crankdyn.defaults` (the registry and the speed grid, at the package's top),
 :mod:`~crankdyn.session.core` (subject, speeds, orders, cache), :mod:`~crankdyn.session.engine`
 (the cycle analyses) and :mod:`~crankdyn.session.torsion` (the torsional analyses).
 """
@@ -27,15 +27,8 @@ import importlib
 from dataclasses import dataclass
 from typing import Any
 
-from crankdyn.session.defaults import (
-    DEFAULTS,
-    DELTA,
-    MAX_ORDER,
-    SERIES_ORDER,
-    SPEED_STEP,
-    STEP,
-    speed_grid,
-)
+from crankdyn.crank.kinematics import SERIES_ORDER
+from crankdyn.defaults import DEFAULTS, DELTA, MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.session.engine import EngineAnalyses
 from crankdyn.session.torsion import TorsionAnalyses
 

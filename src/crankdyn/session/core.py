@@ -13,11 +13,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_step
+from crankdyn.defaults import MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.docs import ref
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.results import Result
-from crankdyn.session.defaults import MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["SessionCore"]
@@ -28,7 +28,7 @@ _R = TypeVar("_R", bound=Result)
 
 class SessionCore:
     """What every analysis of a session shares: the subject, its speeds, orders and crank-angle
-    grid, the defaults (:data:`crankdyn.session.defaults.DEFAULTS`) and the cache.
+    grid, the defaults (:data:`crankdyn.defaults.DEFAULTS`) and the cache.
 
     Parameters
     ----------
@@ -42,16 +42,16 @@ class SessionCore:
     speed_range : (float, float) or None
         Or the range (rad/s) of the sweeps; default the torsional model's operating range.
     speed_step : float or None
-        The step (rad/s) of the sweeps; default :data:`~crankdyn.session.defaults.SPEED_STEP`.
+        The step (rad/s) of the sweeps; default :data:`~crankdyn.defaults.SPEED_STEP`.
     orders : array_like or None
         Excitation orders (per revolution) of the torsional analyses; default the cycle's
         fundamental order to ``max_order``, with the orders of the model's sources.
     max_order : float or None
         The highest order of the default orders; default
-        :data:`~crankdyn.session.defaults.MAX_ORDER`.
+        :data:`~crankdyn.defaults.MAX_ORDER`.
     step : float or None
         Crank-angle step (rad) of the cycle analyses; default
-        :data:`~crankdyn.session.defaults.STEP`. It must divide the working cycle (the library
+        :data:`~crankdyn.defaults.STEP`. It must divide the working cycle (the library
         does not round it).
     engine : Engine or None
         With a torsional model as ``subject``: the engine whose cylinders excite it (its
@@ -59,7 +59,7 @@ class SessionCore:
     delta : float or None
         The flywheel's target degree of cyclic irregularity (dimensionless) when the engine
         file gives neither a target nor a flywheel; default
-        :data:`~crankdyn.session.defaults.DELTA`.
+        :data:`~crankdyn.defaults.DELTA`.
     relative : (str, str) or None
         The two masses of the relative angle; default the model's first and last.
 
@@ -119,7 +119,7 @@ class SessionCore:
                     value=[low * RPM, high * RPM],
                 )
         self._speed_range = speed_range
-        self.speed_step = SPEED_STEP if speed_step is None else float(speed_step)
+        self._speed_step = None if speed_step is None else float(speed_step)
         self._orders = None if orders is None else np.asarray(orders, dtype=float)
         self.max_order = MAX_ORDER if max_order is None else float(max_order)
         self.step = STEP if step is None else float(step)
@@ -196,13 +196,16 @@ class SessionCore:
 
     @property
     def speed_range(self) -> tuple[float, float]:
-        """(low, high) of the torsional sweeps (rad/s): the given speeds' ends, else the
-        model's operating range."""
+        """(low, high) of the torsional sweeps (rad/s): the given speeds' ends or range, else
+        the model's [tvc] speed range of normal firing, else its operating range."""
         if self._speeds is not None:
             return float(self._speeds[0]), float(self._speeds[-1])
         if self._speed_range is not None:
             return float(self._speed_range[0]), float(self._speed_range[1])
         model = self._need_model()
+        spec: Any = getattr(model, "tvc", None)  # a TvcSpec: the line's verdict settings
+        if spec is not None and (spec.speed_range is not None or "normal" in spec.ranges):
+            return spec.range_of("normal", model)
         if model.operating is None:
             raise InputError(
                 "no speed range: none was given and the torsional model has no [operating] "
@@ -216,11 +219,20 @@ class SessionCore:
     @property
     def speeds(self) -> np.ndarray:
         """Speeds of the torsional sweeps (rad/s): given, else :attr:`speed_range` every
-        :attr:`speed_step` (:func:`~crankdyn.session.defaults.speed_grid`)."""
+        :attr:`speed_step` (:func:`~crankdyn.defaults.speed_grid`)."""
         if self._speeds is not None:
             return self._speeds
         low, high = self.speed_range
         return self._cached("speeds", lambda: speed_grid(low, high, self.speed_step))
+
+    @property
+    def speed_step(self) -> float:
+        """The step of the torsional sweeps (rad/s): given, else the model's [tvc] step, else
+        :data:`~crankdyn.defaults.SPEED_STEP`."""
+        if self._speed_step is not None:
+            return self._speed_step
+        spec: Any = getattr(self.model, "tvc", None) if self.model is not None else None
+        return float(spec.step) if spec is not None else SPEED_STEP
 
     @property
     def cycle(self) -> str:

@@ -13,9 +13,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.geometry import check_step
+from crankdyn.crank.kinematics import SERIES_ORDER
+from crankdyn.defaults import DELTA
 from crankdyn.results import freeze
 from crankdyn.session.core import SessionCore
-from crankdyn.session.defaults import DELTA, SERIES_ORDER
 
 if TYPE_CHECKING:
     from crankdyn.crank.indicated import PressureResult
@@ -371,7 +372,7 @@ class EngineAnalyses(SessionCore):
         inertia : float or None
             Or the flywheel's moment of inertia (kg m^2); neither: the engine's [flywheel],
             else the session's target (its ``delta``, default
-            :data:`~crankdyn.session.defaults.DELTA`).
+            :data:`~crankdyn.defaults.DELTA`).
         step : float or None
             Crank-angle step of the curves' rows (rad, interpolated on the analysis grid);
             default the session's. Every figure is that of the full-resolution analysis.

@@ -5,7 +5,7 @@ the TVC, the Campbell diagram, dampers, the time domain and measurements held ag
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -17,7 +17,6 @@ from crankdyn.torsion.model import TorsionModel
 if TYPE_CHECKING:
 
     from crankdyn.measure.orders import OrderSpectrum, OrderTracking
-    from crankdyn.results import Result
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.damped import DampedModalResult
     from crankdyn.torsion.dampers import Damper, DamperDesign
@@ -26,7 +25,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
     from crankdyn.torsion.transient import TransientResult
-    from crankdyn.tvc import TvcResult, TvcSpec
+    from crankdyn.tvc import ConditionResult, TvcResult, TvcSpec
 
 __all__ = ["TorsionAnalyses"]
 
@@ -183,7 +182,7 @@ class TorsionAnalyses(SessionCore):
         from crankdyn.torsion.excitation import EngineExcitation, excitation_for
 
         key = ("excitation", tuple(misfire), torque)
-        model = self.model
+        model = self.loaded_model
         if model is not None and not model.cylinder_dofs and model.sources:
             return self._cached(
                 key, lambda: excitation_for(model, self.engine, misfire=misfire, torque=torque)
@@ -260,7 +259,8 @@ class TorsionAnalyses(SessionCore):
         """
         from crankdyn.torsion.response import forced_response
 
-        model = self._need_model()
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         ex = self.excitation(misfire=misfire, torque=torque)
         key = ("response", dampers, tuple(misfire), torque)
         return self._cached(
@@ -293,7 +293,8 @@ class TorsionAnalyses(SessionCore):
         """
         from crankdyn.torsion.response import forced_response
 
-        model = self._need_model()
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         s = np.atleast_1d(np.asarray(speeds, dtype=float))
         q = self.orders if orders is None else np.asarray(orders, dtype=float)
         key = ("response_at", tuple(s), tuple(q), dampers)
@@ -321,24 +322,63 @@ class TorsionAnalyses(SessionCore):
             ``measured`` with the comparison attached: the model's forced response at exactly
             the measured speeds and orders (rad), the resonance peaks and the identified damping.
         """
-        model = self._need_model()
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         excitation = self.excitation()
         key = ("measurement", id(measured), at)
         # the measured result is kept with its comparison, so its id is not reused
         return self._cached(key, lambda: (measured, measured.with_model(model, excitation, at)))[1]
 
-    def tvc(self, *, spec: TvcSpec | None = None, passage: bool = True) -> TvcResult:
+    # ---- the verdicts: the installation's checks (crankdyn.tvc), evaluated in one place -------
+    @property
+    def tvc_spec(self) -> TvcSpec:
+        """The settings that shape a verdict: the model's ``[tvc]`` (the tachometer tolerance,
+        the widening of barred ranges, the speed ranges...), else the defaults."""
+        from crankdyn.tvc import TvcSpec
+
+        return getattr(self._need_model(), "tvc", None) or TvcSpec()
+
+    @property
+    def loaded_model(self) -> TorsionModel | None:
+        """The torsional model as every torsional analysis excites it: with its load law's
+        excitation (the propeller law, or full load for a generating set:
+        :func:`crankdyn.tvc.analysis.tvc_model`), so that ``torsion response`` and ``tvc`` judge
+        the same response; the model itself where it has no rated speed."""
+        model = self.model
+        if model is None:
+            return None
+
+        def compute() -> TorsionModel:
+            from crankdyn.tvc.analysis import tvc_model
+
+            try:
+                return tvc_model(model, self.engine, self.tvc_spec)[0]
+            except InputError:  # no rated speed: no load law to apply
+                return model
+
+        return self._cached("loaded_model", compute)
+
+    def tvc(
+        self,
+        *,
+        spec: TvcSpec | None = None,
+        passage: bool = True,
+        conditions: Sequence[str] | None = None,
+    ) -> TvcResult:
         """The torsional vibration calculation of the installation (:func:`crankdyn.tvc.tvc`):
         every running condition (normal, each misfire, damper out of order) against every
         component's limit, the barred speed ranges and their passage, with the session's
-        orders.
+        orders; each condition's response is the session's own where its speeds are the
+        session's (:meth:`response`), so its verdicts are :meth:`judged`'s.
 
         Parameters
         ----------
         spec
-            The TVC settings; None: the model's ``[tvc]`` (or the defaults).
+            The TVC settings; None: :attr:`tvc_spec`.
         passage
             Whether to run the time-domain passage through the barred ranges.
+        conditions
+            The kinds of condition (:data:`crankdyn.tvc.spec.CONDITION_KINDS`); None: all.
 
         Returns
         -------
@@ -347,17 +387,113 @@ class TorsionAnalyses(SessionCore):
             responses, the modes and the Campbell diagram.
         """
         from crankdyn.tvc import tvc
+        from crankdyn.tvc.spec import CONDITION_KINDS
 
         model = self._need_model()
+        kinds = tuple(CONDITION_KINDS if conditions is None else conditions)
         return self._cached(
-            ("tvc", repr(spec), passage),
-            lambda: tvc(model, self.engine, spec, passage=passage, orders=self.orders),
+            ("tvc", repr(spec), passage, kinds),
+            lambda: tvc(
+                model,
+                self.engine,
+                spec,
+                passage=passage,
+                orders=self.orders,
+                conditions=kinds,
+                response_of=self._condition_response,
+            ),
         )
 
-    @property
-    def rule_check(self) -> Result | None:
-        """The rule check of the forced response (IACS UR M68), or None without [rules]."""
-        return self.response().rule_check
+    def _condition_response(
+        self, model: TorsionModel, cond: Any, speeds: ArrayLike, orders: ArrayLike
+    ) -> ResponseResult:
+        """A TVC condition's response: the session's own (cached) where the speeds and orders
+        are the session's, else computed for the condition."""
+        from crankdyn.torsion.response import forced_response
+
+        same = (
+            model is self.loaded_model
+            and np.array_equal(np.asarray(speeds), self.speeds)
+            and np.array_equal(np.asarray(orders), self.orders)
+        )
+        if same and cond.kind == "normal":
+            return self.response()
+        if same and cond.kind == "misfire" and cond.misfire is not None:
+            return self.response(misfire=(cond.misfire,))
+        if same and cond.kind == "damper-out":
+            return self.response(dampers=())
+        return forced_response(model, cond.excitation, speeds, orders, dampers=cond.dampers)
+
+    def judged(
+        self,
+        *,
+        dampers: tuple[Damper, ...] | None = None,
+        misfire: Sequence[int] = (),
+        torque: float | None = None,
+    ) -> ConditionResult | None:
+        """The forced response (:meth:`response` with the same options) judged by the
+        installation's checks (:func:`crankdyn.tvc.checks.model_checks`, evaluated by
+        :func:`crankdyn.tvc.evaluate.evaluate_condition`, the TVC's one evaluation): verdict
+        rows and barred speed ranges as found and as declared. With default options these are
+        exactly the TVC's normal-firing rows.
+
+        Parameters
+        ----------
+        dampers, misfire, torque
+            As for :meth:`response`.
+
+        Returns
+        -------
+        crankdyn.tvc.ConditionResult or None
+            The condition judged; None when the model has no rated speed or no component with
+            a limit.
+        """
+        from crankdyn.tvc.analysis import rated_speed
+        from crankdyn.tvc.checks import model_checks
+        from crankdyn.tvc.evaluate import evaluate_condition
+        from crankdyn.tvc.result import ConditionResult
+
+        model = self.loaded_model
+        assert model is not None  # response() needs a model
+        r = self.response(dampers=dampers, misfire=misfire, torque=torque)
+        try:
+            rated = rated_speed(model, self.engine)
+        except InputError:
+            return None
+        spec = self.tvc_spec
+        used = model.dampers if dampers is None else dampers
+        checks, _notes = model_checks(model, spec, rated, used)
+        if not checks:
+            return None
+        if torque is not None:
+            name, kind = f"uniform torque {torque:g} N·m per order", "uniform"
+        elif misfire:
+            name = f"misfire cylinder{'s' if len(misfire) > 1 else ''} "
+            name += ", ".join(str(c) for c in misfire)
+            kind = "misfire"
+        elif dampers is not None and tuple(dampers) != tuple(model.dampers):
+            name, kind = ("damper out of order" if not dampers else "other dampers"), "damper-out"
+        else:
+            name, kind = "normal firing", "normal"
+        key = ("judged", dampers, tuple(misfire), torque)
+
+        def compute() -> ConditionResult:
+            verdicts, barred = evaluate_condition(r, name, checks, spec, rated)
+            low, high = self.speed_range
+            return ConditionResult(
+                name=name,
+                kind=kind,
+                low=low,
+                high=high,
+                description="the forced response judged by the installation's checks",
+                verdicts=tuple(verdicts),
+                barred_ranges=tuple(barred),
+                passages=(),
+                response=r,
+                curves={(c.component, c.quantity): c for c in checks},
+            )
+
+        return self._cached(key, compute)
 
     def campbell(self) -> CampbellResult:
         """Critical speeds in the speed range with the major orders marked (undetermined
@@ -371,7 +507,8 @@ class TorsionAnalyses(SessionCore):
         """
         from crankdyn.torsion.campbell import campbell
 
-        model = self._need_model()
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         excited = bool(model.cylinder_dofs) or bool(model.sources)
         ex = self.excitation() if excited else None
         return self._cached(
@@ -485,7 +622,8 @@ class TorsionAnalyses(SessionCore):
         """
         from crankdyn.torsion.transient import transient_response
 
-        model = self._need_model()
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         if run_up is None and speed is None:
             speed = self.speed
         return transient_response(

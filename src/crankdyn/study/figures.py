@@ -25,9 +25,9 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from crankdyn.defaults import DEFAULTS
 from crankdyn.errors import InputError
 from crankdyn.session import ANALYSES, Analysed
-from crankdyn.session.defaults import DEFAULTS
 
 if TYPE_CHECKING:
     from crankdyn.session import Analysis
@@ -215,7 +215,7 @@ class CaseContext:
 
 def _session(ctx: CaseContext) -> Analysis:
     """The variant's analysis session with the study's ``[analysis]`` settings; every default
-    the study does not set is the session's own (:data:`crankdyn.session.defaults.DEFAULTS`)."""
+    the study does not set is the session's own (:data:`crankdyn.defaults.DEFAULTS`)."""
     from crankdyn.session import Analysis
 
     s = ctx.settings

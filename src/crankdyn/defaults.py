@@ -1,7 +1,8 @@
 """The defaults of every analysis, in one registry (:data:`DEFAULTS`).
 
-The analysis session (:class:`crankdyn.session.Analysis`) reads them; the command line, the
-report, the TVC, the study runner and notebooks never restate them. Each :class:`Default` says its
+The analysis session (:class:`crankdyn.session.Analysis`) and the TVC (:mod:`crankdyn.tvc`) read
+them; the command line, the report, the study runner and notebooks never restate them. A pure
+module (numbers and the speed grid), importable from every layer. Each :class:`Default` says its
 value (SI), its unit, what it does and where it comes from.
 
 Examples
@@ -21,7 +22,6 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crankdyn.constants import RPM
-from crankdyn.crank.kinematics import SERIES_ORDER
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -29,7 +29,6 @@ __all__ = [
     "DELTA",
     "MAX_ORDER",
     "MAX_SPEEDS",
-    "SERIES_ORDER",
     "SPEED_STEP",
     "STEP",
     "TACHOMETER_TOLERANCE",
@@ -94,12 +93,6 @@ DEFAULTS: dict[str, Default] = {
             "target degree of cyclic irregularity when the engine file gives no [flywheel] "
             "delta or inertia",
             "seed 000 section 2.4 (1/100 to 1/300 for most engines)",
-        ),
-        Default(
-            "series_order",
-            SERIES_ORDER,
-            "",
-            "order of the lambda series of the kinematics",
         ),
         Default(
             "tachometer_tolerance",
