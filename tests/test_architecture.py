@@ -62,6 +62,8 @@ ANALYSES = {
     "crankdyn.engine.session",
     "crankdyn.torsion.modal",
     "crankdyn.torsion.response",
+    "crankdyn.torsion.solvers",
+    "crankdyn.torsion.sweep",
     "crankdyn.torsion.campbell",
     "crankdyn.torsion.excitation",
     "crankdyn.torsion.rules",

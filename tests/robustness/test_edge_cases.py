@@ -17,7 +17,7 @@ from crankdyn.engine.model import Engine
 from crankdyn.engine.torque import engine_torque
 from crankdyn.torsion.modal import natural_modes
 from crankdyn.torsion.model import Mass, Shaft, TorsionModel
-from crankdyn.torsion.response import steady_state
+from crankdyn.torsion.solvers import steady_state
 
 
 @pytest.mark.parametrize("lam", [0.9, 0.99, 0.999, 0.999999])

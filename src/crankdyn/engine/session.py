@@ -963,7 +963,7 @@ class Analysis:
             Amplitudes (rad), shaft torques (N m) and stresses (Pa) per speed and order, and
             synthesised.
         """
-        from crankdyn.torsion.response import forced_response
+        from crankdyn.torsion.sweep import forced_response
 
         model = self._need_model()
         ex = self.excitation(misfire=misfire, torque=torque)
@@ -996,7 +996,7 @@ class Analysis:
         crankdyn.torsion.response.ResponseResult
             The response.
         """
-        from crankdyn.torsion.response import forced_response
+        from crankdyn.torsion.sweep import forced_response
 
         model = self._need_model()
         s = np.atleast_1d(np.asarray(speeds, dtype=float))

@@ -356,7 +356,7 @@ class BarredRange(Result):
     >>> import math
     >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel(
     ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
     ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
@@ -397,7 +397,7 @@ class RuleCheck(Result):
     >>> import math
     >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel(
     ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
     ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
@@ -507,7 +507,7 @@ def exceedances(
     >>> import math
     >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel(
     ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
     ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
@@ -637,7 +637,7 @@ def check_rules(
     >>> import math
     >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel(
     ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
     ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),

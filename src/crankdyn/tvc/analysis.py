@@ -665,7 +665,7 @@ def _evaluate(
     n0: float,
 ) -> tuple[list[Verdict], list[BarredSpeedRange], ResponseResult]:
     """(verdicts, barred ranges, response) of one condition."""
-    from crankdyn.torsion.response import forced_response
+    from crankdyn.torsion.sweep import forced_response
 
     r = forced_response(
         model,
@@ -934,7 +934,7 @@ def _passages(
     mean: MeanTorque | None,
 ) -> tuple[list[Passage], list[Verdict], list[str]]:
     """Passage rows, verdicts and notes of one condition's barred ranges (module docstring)."""
-    from crankdyn.torsion.response import linear_system
+    from crankdyn.torsion.solvers import linear_system
     from crankdyn.torsion.transient import transient_response
 
     passages: list[Passage] = []
