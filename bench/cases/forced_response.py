@@ -160,7 +160,8 @@ def limit_problem(which: str, speeds: int, orders: int):
     """(model, omega (speeds x orders) rad/s, forcing (dofs,) N m): the V6 model, or a free chain
     of 200 masses with absolute and shaft damping (seeded), 500..6000 rpm, orders 0.5 apart
     from 0.5 (or 0.25 apart from 0.25 for 48 orders)."""
-    from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    from crankdyn.torsion.elements import Mass, Shaft
+    from crankdyn.torsion.model import TorsionModel
 
     if which == MODEL:
         model = TorsionModel.example(MODEL)

@@ -483,7 +483,7 @@ def shaft_kind(s: Any) -> str:
 
     Parameters
     ----------
-    s : crankdyn.torsion.model.Shaft
+    s : crankdyn.torsion.elements.Shaft
         A shaft of the model.
 
     Returns

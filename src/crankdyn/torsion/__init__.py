@@ -24,15 +24,8 @@
 """
 
 from crankdyn.torsion.coupling import Coupling
-from crankdyn.torsion.model import (
-    GROUND,
-    Gear,
-    Mass,
-    MassLimits,
-    Shaft,
-    ShaftGeometry,
-    TorsionModel,
-)
+from crankdyn.torsion.elements import GROUND, Gear, Mass, MassLimits, Shaft, ShaftGeometry
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
     "GROUND",

@@ -36,13 +36,14 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
+from crankdyn.torsion.elements import Mass, Shaft
 from crankdyn.torsion.excitation import (
     Excitation,
     check_orders,
     cylinder_amplitudes,
     relative_amplitude_sums,
 )
-from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.sources import (
     check_model_orders,
     engine_orders_mask,
@@ -245,7 +246,8 @@ def campbell(
     --------
     Two masses (20 rad/s, :func:`crankdyn.torsion.closed_form.two_mass`) and orders 1 and 2:
 
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> result = campbell(model, [1.0, 2.0], (5.0, 30.0))
