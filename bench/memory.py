@@ -40,7 +40,7 @@ def _response(bare: bool, which: str | None = None, speeds: int = 20000, orders:
 
     from bench.bare import thomas
     from bench.cases.forced_response import MODEL, limit_problem
-    from crankdyn.torsion.response import steady_state
+    from crankdyn.torsion.solvers import steady_state
 
     model, omega, forcing = limit_problem(which or MODEL, speeds, orders)
     if bare:

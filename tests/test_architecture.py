@@ -46,7 +46,9 @@ DOMAIN = {
     "crankdyn.crank.masses",
     "crankdyn.crank.pressure",
     "crankdyn.engine.model",
+    "crankdyn.torsion.elements",
     "crankdyn.torsion.model",
+    "crankdyn.torsion.topology",
 }
 """The domain objects and what every layer shares (errors, units, the result mixin)."""
 
@@ -62,6 +64,8 @@ ANALYSES = {
     "crankdyn.session",
     "crankdyn.torsion.modal",
     "crankdyn.torsion.response",
+    "crankdyn.torsion.solvers",
+    "crankdyn.torsion.sweep",
     "crankdyn.torsion.campbell",
     "crankdyn.torsion.excitation",
     "crankdyn.torsion.rules",

@@ -34,3 +34,21 @@ def test_notebook_runs(path, tmp_path, monkeypatch):
     ]
     assert not errors
     assert any(cell.get("outputs") for cell in nb.cells if cell.cell_type == "code")
+    # every cell that makes a figure shows it as an image, with no %matplotlib inline (the
+    # notebooks hold none): a crankdyn figure has _repr_png_
+    figure_cells = [
+        cell
+        for cell in nb.cells
+        if cell.cell_type == "code"
+        and any(line.startswith("fig = ") for line in cell.source.split("\n"))
+    ]
+    assert figure_cells
+    assert all("%matplotlib" not in cell.source for cell in nb.cells if cell.cell_type == "code")
+    for cell in figure_cells:
+        images = [
+            out
+            for out in cell.get("outputs", ())
+            if out.get("output_type") in ("execute_result", "display_data")
+            and "image/png" in out.get("data", {})
+        ]
+        assert images, cell.source

@@ -6,7 +6,7 @@ rubber as a damped shaft), 500..6000 rpm every 1 rpm (5501 speeds), orders 0.5..
 0.5 (24 orders): 132,024 excitation frequencies omega = q Omega, with a unit torque (1 N m, all
 in phase) at every throw.
 
-crankdyn: ``crankdyn.torsion.response.steady_state`` (the complex amplitudes of every mass at
+crankdyn: ``crankdyn.torsion.solvers.steady_state`` (the complex amplitudes of every mass at
 every frequency: the dynamic stiffness D(omega) = K - omega^2 M + i omega C of the chain solved
 for all frequencies at once by a batched tridiagonal elimination). openTorsion 0.3.2: the same
 chain as ``Disk`` and ``Shaft`` elements with the same damping, ``Assembly.ss_response`` fed
@@ -36,7 +36,7 @@ MODEL = "seed003-v6"
 
 def _steady_state():
     try:
-        from crankdyn.torsion.response import steady_state
+        from crankdyn.torsion.solvers import steady_state
     except ImportError:
         return None
     return steady_state
@@ -108,7 +108,7 @@ def cases(size: str = "full") -> list[Case]:
     n_speeds = omega.shape[0]
     label = f"{n_speeds} speeds x {ORDERS.size} orders"
     if steady_state is None:
-        missing = "crankdyn.torsion.response not in this checkout (issue 6)"
+        missing = "crankdyn.torsion.solvers not in this checkout (issue 6)"
         return [Case(KEY, TITLE, label, (Contender(CRANKDYN, None, missing=missing),), repeats=0)]
     try:
         assembly = opentorsion_assembly(model)
@@ -160,7 +160,8 @@ def limit_problem(which: str, speeds: int, orders: int):
     """(model, omega (speeds x orders) rad/s, forcing (dofs,) N m): the V6 model, or a free chain
     of 200 masses with absolute and shaft damping (seeded), 500..6000 rpm, orders 0.5 apart
     from 0.5 (or 0.25 apart from 0.25 for 48 orders)."""
-    from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    from crankdyn.torsion.elements import Mass, Shaft
+    from crankdyn.torsion.model import TorsionModel
 
     if which == MODEL:
         model = TorsionModel.example(MODEL)

@@ -17,8 +17,8 @@ from crankdyn.io.mass_elastic import mass_elastic_csv
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.damped import damped_modes
 from crankdyn.torsion.excitation import excitation_for
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import default_orders, mean_torques
+from crankdyn.torsion.sweep import forced_response
 
 RPM = math.pi / 30
 

@@ -13,7 +13,7 @@ import numpy as np
 from crankdyn.engine.model import Engine
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import excitation_for
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 RPM = math.pi / 30
 

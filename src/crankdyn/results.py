@@ -20,7 +20,6 @@ import dataclasses
 import html
 import io
 import json
-import math
 from collections.abc import Iterator
 from dataclasses import Field, field, fields
 from typing import TYPE_CHECKING, Any, ClassVar, Self
@@ -28,6 +27,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Self
 import numpy as np
 from numpy.typing import ArrayLike, DTypeLike, NDArray
 
+from crankdyn.export import jsonable, scaled, scaled_value, to_jsonable
 from crankdyn.summary import FigureSpec, KeyFigure, Summary, SummaryTable, Verdict
 
 if TYPE_CHECKING:
@@ -35,7 +35,7 @@ if TYPE_CHECKING:
 
 __all__ = ["DEG", "Result", "array", "column", "freeze", "jsonable", "scalar", "scaled_value"]
 
-from crankdyn.constants import DEG, RPM
+from crankdyn.constants import DEG
 
 
 def _meta(kind: str, key: str, label: str, unit: str, scale: float, **extra: Any) -> dict[str, Any]:
@@ -203,74 +203,6 @@ def freeze(values: ArrayLike, dtype: DTypeLike = float) -> NDArray[Any]:
     return arr
 
 
-def _scaled(value: Any, scale: float) -> Any:
-    """value x scale; angles converted to degrees are rounded to 1e-10 deg and speeds converted
-    to rpm to 1e-9 rpm, so that grid values read as the round numbers they are (30.0, not
-    29.999999999999996; 6000.0, not 6000.000000000001)."""
-    if scale == 1.0:
-        return value
-    out = value * scale
-    if scale == DEG:
-        return np.round(out, 10)
-    if scale == RPM:
-        return np.round(out, 9)
-    return out
-
-
-def scaled_value(value: float, scale: float) -> float:
-    """A float in the unit a field is exported in (SI x scale, rounded as :meth:`Result.to_dict`
-    rounds it: degrees to 1e-10, rpm to 1e-9).
-
-    Examples
-    --------
-    >>> from crankdyn.constants import RPM
-    >>> scaled_value(6000 / RPM, RPM)
-    6000.0
-    """
-    return float(_scaled(float(value), scale))
-
-
-def jsonable(value: Any) -> Any:
-    """``value`` as JSON data: numpy types as Python ones, NaN and inf as None (strict JSON),
-    results as their :meth:`Result.to_dict`.
-
-    Examples
-    --------
-    >>> jsonable({"speeds": np.array([1.0, np.nan]), 2: (np.int64(3), np.True_)})
-    {'speeds': [1.0, None], '2': [3, True]}
-    """
-    return _to_jsonable(value, 1.0)
-
-
-def _to_jsonable(value: Any, scale: float) -> Any:
-    if isinstance(value, Result):
-        return value.to_dict()
-    if hasattr(value, "to_dict") and not isinstance(value, type):  # Verdict, warnings, tables
-        return value.to_dict()
-    if isinstance(value, np.ndarray):
-        if value.dtype.kind in "fc":
-            out = _scaled(value, scale)
-            finite = np.isfinite(out)
-            if not finite.all():  # NaN and inf as None (strict JSON), whole arrays at a time
-                out = np.where(finite, out.astype(object), None)
-            return out.tolist()  # nested lists of Python floats, in one pass
-        if value.dtype.kind in "iub":
-            return value.tolist()
-        return [_to_jsonable(v, scale) for v in value.tolist()]
-    if isinstance(value, (list, tuple)):
-        return [_to_jsonable(v, scale) for v in value]
-    if isinstance(value, dict):
-        return {str(k): _to_jsonable(v, scale) for k, v in value.items()}
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        number = float(_scaled(float(value), scale))
-        return number if math.isfinite(number) else None
-    return value
-
-
 class Result:
     """Mixin for result dataclasses; see the module docstring.
 
@@ -305,11 +237,11 @@ class Result:
         for _f, meta, value in self._fields("column", "array", "scalar"):
             if value is None:
                 continue
-            out[meta["key"]] = _to_jsonable(value, meta["scale"])
+            out[meta["key"]] = to_jsonable(value, meta["scale"])
         for spec in self._derived_specs():  # the key figures the class derives, under their keys
             got = spec.value(self)
             if got is not None:
-                out.setdefault(spec.key, _to_jsonable(got[0], 1.0))
+                out.setdefault(spec.key, to_jsonable(got[0], 1.0))
         if self.warnings:
             out["warnings"] = [w.to_dict() for w in self.warnings]
         return out
@@ -345,13 +277,13 @@ class Result:
                 continue
             if isinstance(value, dict):
                 for name, arr in _flatten(meta["key"], value):
-                    out[name] = _scaled(np.asarray(arr, dtype=float), meta["scale"])
+                    out[name] = scaled(np.asarray(arr, dtype=float), meta["scale"])
                 continue
             arr = np.asarray(value)
             if arr.dtype.kind in "OUS":  # a text column (e.g. names) is exported as it is
                 out[meta["key"]] = arr
                 continue
-            arr = _scaled(arr.astype(float), meta["scale"])
+            arr = scaled(arr.astype(float), meta["scale"])
             if arr.ndim == 1:
                 out[meta["key"]] = arr
             else:
@@ -565,7 +497,7 @@ class Result:
 
     # ---- notebook view ------------------------------------------------------------------------
     def _repr_html_(self) -> str:
-        from crankdyn.display import summary_html
+        from crankdyn.summary import summary_html
 
         out = summary_html(self.summary())
         cols = self.column_labels()
@@ -719,6 +651,8 @@ def _scalar_specs(cls: type, path: tuple[str, ...]) -> Iterator[FigureSpec]:
         text = hint if isinstance(hint, str) else getattr(hint, "__name__", "")
         nested = names.get(text.replace(" | None", ""))
         if isinstance(nested, type) and issubclass(nested, Result):
+            if not dataclasses.is_dataclass(nested):  # an abstract result: figures at run time
+                continue
             yield from _scalar_specs(nested, (*path, f.name))
             for spec in nested._derived_specs():  # its derived figures, read through the field
                 yield dataclasses.replace(spec, value=_nested_reader((*path, f.name), spec.value))

@@ -60,6 +60,7 @@ __all__ = [
     "Verdict",
     "derived",
     "reduced",
+    "summary_html",
     "verdict_cells",
 ]
 
@@ -121,7 +122,20 @@ class KeyFigure:
 
     def text(self, significant: int = 5) -> tuple[str, str]:
         """(digits, display unit) in engineering units (:func:`crankdyn.display.
-        format_value`); a list of numbers shares the unit of its largest."""
+        format_value`); a list of numbers shares the unit of its largest.
+
+        Parameters
+        ----------
+        significant : int
+            Significant digits.
+
+        Returns
+        -------
+        digits : str
+            The value (or values, comma-separated).
+        unit : str
+            The display unit.
+        """
         from crankdyn.display import format_value
 
         value = self.value
@@ -140,13 +154,30 @@ class KeyFigure:
         return format_value(value, self.unit, significant=significant)
 
     def display(self, significant: int = 5) -> str:
-        """The value with its display unit and where it was found: ``"55 kN (bearing 2)"``."""
+        """The value with its display unit and where it was found: ``"55 kN (bearing 2)"``.
+
+        Parameters
+        ----------
+        significant : int
+            Significant digits.
+
+        Returns
+        -------
+        str
+            The text.
+        """
         digits, unit = self.text(significant)
         out = f"{digits} {unit}".rstrip() if digits != "-" else digits
         return f"{out} ({self.where})" if self.where else out
 
     def number(self) -> float | None:
-        """The value as a float, or None when it is not a finite number (text, None, NaN)."""
+        """The value as a float.
+
+        Returns
+        -------
+        float or None
+            The value; None when it is not a finite number (text, None, NaN).
+        """
         if not _is_number(self.value):
             return None
         v = float(self.value)
@@ -161,7 +192,17 @@ def _is_number(v: object) -> bool:
 
 @dataclass(frozen=True)
 class SummaryColumn:
-    """A column of a :class:`SummaryTable`: key (unit in it), label and unit of its values."""
+    """A column of a :class:`SummaryTable`.
+
+    Parameters
+    ----------
+    key : str
+        Its key in the CSV and JSON (the unit in it).
+    label : str
+        Its header for people.
+    unit : str
+        The unit of its values (``""`` for numbers and text).
+    """
 
     key: str
     label: str
@@ -233,8 +274,18 @@ class SummaryTable:
         return header, rows
 
     def head(self, count: int | None) -> SummaryTable:
-        """The table with its first ``count`` rows (all for None); the caption says how many
-        more there are."""
+        """The table with its first ``count`` rows; the caption says how many more there are.
+
+        Parameters
+        ----------
+        count : int or None
+            The rows kept; None: all.
+
+        Returns
+        -------
+        SummaryTable
+            The table (itself when nothing is left out).
+        """
         if count is None or count >= len(self.rows):
             return self
         more = f"Showing the first {count} of {len(self.rows)} rows."
@@ -242,7 +293,13 @@ class SummaryTable:
         return replace(self, rows=self.rows[:count], caption=caption)
 
     def text_columns(self) -> set[int]:
-        """The indices of the columns that hold text (left-aligned in tables)."""
+        """The indices of the columns that hold text (left-aligned in tables).
+
+        Returns
+        -------
+        set of int
+            The column indices.
+        """
         out = set()
         for i, _col in enumerate(self.columns):
             values = [row[i] for row in self.rows if row[i] is not None]
@@ -251,8 +308,14 @@ class SummaryTable:
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        """The table as JSON data: a list of rows, each {column key: value}."""
-        from crankdyn.results import jsonable
+        """The table as JSON data.
+
+        Returns
+        -------
+        dict
+            ``title`` and ``rows``: one dict per row, {column key: value}.
+        """
+        from crankdyn.export import jsonable
 
         keys = [c.key for c in self.columns]
         return {
@@ -261,8 +324,14 @@ class SummaryTable:
         }
 
     def csv_text(self) -> str:
-        """The table as CSV text: the column keys as header, the values as numbers (10
-        significant digits) or text (quoted as RFC 4180 requires)."""
+        """The table as CSV text.
+
+        Returns
+        -------
+        str
+            The column keys as header, the values as numbers (10 significant digits) or text
+            (quoted as RFC 4180 requires).
+        """
         import csv
         import io
 
@@ -359,7 +428,13 @@ class Verdict:
         return f"{self.source}, {self.clause}" if self.clause else self.source
 
     def to_dict(self) -> dict[str, Any]:
-        """The verdict as JSON data (SI, the speed in rpm)."""
+        """The verdict as JSON data.
+
+        Returns
+        -------
+        dict
+            Every field (SI, the speed in rpm under ``speed_rpm``; NaN as None).
+        """
         from crankdyn.constants import RPM
 
         def number(x: float) -> float | None:
@@ -411,6 +486,16 @@ class Summary:
     def figure(self, key: str) -> KeyFigure:
         """The key figure with this key (or study name).
 
+        Parameters
+        ----------
+        key : str
+            The figure's key or name.
+
+        Returns
+        -------
+        KeyFigure
+            The figure.
+
         Raises
         ------
         KeyError
@@ -422,8 +507,13 @@ class Summary:
         raise KeyError(key)
 
     def rows(self) -> list[tuple[str, str, str]]:
-        """(label, value with where, display unit) of every figure: a Quantity / Value / Unit
-        table."""
+        """The figures as a Quantity / Value / Unit table.
+
+        Returns
+        -------
+        list of (str, str, str)
+            (label, value with where it was found, display unit) of every figure.
+        """
         out = []
         for f in self.figures:
             digits, unit = f.text()
@@ -438,9 +528,15 @@ class Summary:
         return all(v.passed for v in self.verdicts)
 
     def to_dict(self) -> dict[str, Any]:
-        """The summary as JSON data: ``key_figures`` {key: value}, ``where`` {key: text} of the
-        reduced ones, ``tables``, ``notes``, ``warnings``, ``verdicts``."""
-        from crankdyn.results import jsonable
+        """The summary as JSON data.
+
+        Returns
+        -------
+        dict
+            ``key_figures`` {key: value}, ``where`` {key: text} of the reduced ones,
+            ``tables``, ``notes``, ``warnings``, ``verdicts`` and ``passed``.
+        """
+        from crankdyn.export import jsonable
 
         out: dict[str, Any] = {
             "title": self.title,
@@ -480,6 +576,18 @@ def verdict_cells(verdicts: Sequence[Verdict]) -> tuple[list[str], list[list[str
     """(header, rows) of a verdict table as text: worst and limit in the engineering unit of
     the limit, the margin in %, the speed of the worst value, passed or FAILED, rule and
     clause.
+
+    Parameters
+    ----------
+    verdicts : sequence of Verdict
+        The rows.
+
+    Returns
+    -------
+    header : list of str
+        :data:`VERDICT_HEADER`.
+    rows : list of list of str
+        The cells.
 
     Examples
     --------
@@ -558,7 +666,18 @@ class FigureSpec:
     headline: bool = False
 
     def make(self, result: Any) -> KeyFigure | None:
-        """The key figure of ``result``, or None when it does not apply."""
+        """The key figure of a result.
+
+        Parameters
+        ----------
+        result : crankdyn.results.Result
+            A result of the declaring class.
+
+        Returns
+        -------
+        KeyFigure or None
+            The figure; None when it does not apply.
+        """
         got = self.value(result)
         if got is None:
             return None
@@ -653,7 +772,7 @@ def reduced(
         else:
             names = getattr(result, labels) if isinstance(labels, str) else labels(result)
             where = _where(over, names[i])
-        from crankdyn.results import scaled_value
+        from crankdyn.export import scaled_value
 
         return scaled_value(float(data[i]), meta["scale"]), where
 
@@ -722,3 +841,39 @@ def derived(
     return FigureSpec(
         name, key, label, unit, value, reduction, better, description, "", check, headline
     )
+
+
+def summary_html(summary: Summary) -> str:
+    """The notebook view of a result's summary (:class:`crankdyn.summary.Summary`): its
+    warnings, key figures, verdicts, tables and notes, every text escaped.
+
+    Parameters
+    ----------
+    summary : crankdyn.summary.Summary
+        The summary.
+
+    Returns
+    -------
+    str
+        The HTML.
+    """
+    import html
+
+    from crankdyn.display import html_table
+
+    parts = []
+    if summary.warnings:
+        items = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in summary.warnings)
+        parts.append(f"<ul style='color:#b26a00'>{items}</ul>")
+    rows = [list(r) for r in summary.rows()]
+    parts.append(html_table(["Quantity", "Value", "Unit"], rows, title=summary.title))
+    if summary.verdicts:
+        header, cells = verdict_cells(summary.verdicts)
+        parts.append(html_table(header, cells, title="Verdicts"))
+    for table in summary.tables:
+        header, cells = table.cells(aligned=False)
+        parts.append(html_table(header, cells, title=table.title, caption=table.caption))
+    if summary.notes:
+        items = "".join(f"<li>{html.escape(n)}</li>" for n in summary.notes)
+        parts.append(f"<ul>{items}</ul>")
+    return "".join(parts)

@@ -119,7 +119,7 @@ def test_balance_table_csv_options(cli, tmp_path):
         "--no-torque",
     )
     assert run.status == 0, run
-    assert "power" in run.out and "(N·m/kW)" in run.out and "1 rotating" in run.out
+    assert "power" in run.out and "(N·m/kW)" in run.out and "1 (rotating)" in run.out
     out = tmp_path / "b.csv"
     run = cli(
         "balance", "inline3-petrol", "--format", "csv", "-o", out, "--plot", tmp_path / "b.svg"

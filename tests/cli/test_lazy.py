@@ -25,6 +25,8 @@ HEAVY = (
     "rich",  # the tables of a command whose output is not a terminal are plain text
     "crankdyn.torsion.modal",
     "crankdyn.torsion.response",
+    "crankdyn.torsion.solvers",
+    "crankdyn.torsion.sweep",
     "crankdyn.linkage",
     "crankdyn.report",
     "crankdyn.plots",

@@ -55,7 +55,7 @@ def _table_shows(out: str, result: Result) -> None:
 
 
 COMMANDS = {
-    "kinematics": lambda s: s.kinematics().summary,
+    "kinematics": lambda s: s.kinematics().extrema,
     "pressure": lambda s: s.pressure,
     "forces": lambda s: s.forces(),
     "bearings": lambda s: s.bearings(),
@@ -118,15 +118,16 @@ def test_response_peaks_agree(cli, session):
     data = json.loads(cli("torsion", "response", ENGINE, "--format", "json").out)
     result = session.response()
     np.testing.assert_array_equal(data["speed_rpm"], np.round(result.speed * 30 / math.pi, 9))
-    shaft = session.most_loaded_shaft()
-    value, speed = session.peak("torque", shaft)
+    shaft = result.most_loaded_shaft()
+    peak = result.peak("synthesized_shaft_torque", shaft)
+    value, speed = peak.value, peak.speed
     s = result.shaft_index(shaft)
     assert max(row[s] for row in data["synthesized_shaft_torque_Nm"]) == value
     from crankdyn.display import format_value
 
     table = cli("torsion", "response", ENGINE).out
     text, _unit = format_value(value, "N·m")
-    line = next(ln for ln in table.splitlines() if f"{shaft[0]} - {shaft[1]}" in ln)
+    line = next(ln for ln in table.splitlines() if f"│ {shaft[0]} - {shaft[1]} " in ln)
     assert f" {text} " in line or text in line
     assert f"{speed * 30 / math.pi:.1f}" in line
 

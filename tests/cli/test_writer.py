@@ -100,7 +100,7 @@ def _kinematics_blocks():
     result = Analysis(Engine.example("vaz2108")).kinematics(step=math.radians(10.0))
     return [
         result_table(result, KINEMATICS_TABLE, title="Piston and rod kinematics"),
-        summary_table(result.summary, "Summary (exact extrema)"),
+        summary_table(result.extrema, "Summary (exact extrema)"),
     ]
 
 

@@ -182,7 +182,7 @@ def test_summary_offset_engine():
     g = CrankGeometry(0.08, 0.04, 0.14, 0.004)
     w = 400.0
     res = piston_kinematics(g, w)
-    s = res.summary
+    s = res.extrema
     tdc, bdc, stroke = dead_centres(g.crank_radius, g.rod_length, g.offset)
     assert s.tdc_crank_angle == pytest.approx(tdc) and s.bdc_crank_angle == pytest.approx(bdc)
     assert s.stroke == pytest.approx(stroke)
@@ -202,7 +202,7 @@ def test_central_rod_extrema_closed_forms():
     """Seed 000 section 1.4: rod angular velocity extremes +-lambda w at 0/180 deg, angular
     acceleration extremes -+lambda w^2 / sqrt(1 - lambda^2) at 90/270 deg."""
     lam, w = 0.3, 250.0
-    s = piston_kinematics(CrankGeometry(0.1, 0.05, 0.05 / lam), w).summary
+    s = piston_kinematics(CrankGeometry(0.1, 0.05, 0.05 / lam), w).extrema
     assert s.max_rod_angular_velocity == pytest.approx(lam * w, rel=1e-12)
     assert s.min_rod_angular_velocity == pytest.approx(-lam * w, rel=1e-12)
     assert s.max_rod_angular_acceleration == pytest.approx(lam * w * w / math.sqrt(1 - lam**2))
@@ -241,7 +241,7 @@ def test_summary_of_a_denormal_offset():
     from crankdyn.crank.kinematics import piston_kinematics
 
     g = CrankGeometry(bore=0.08, crank_radius=0.04, rod_length=0.16, offset=0.04 * 1.2e-270)
-    s = piston_kinematics(g, 100.0).summary
+    s = piston_kinematics(g, 100.0).extrema
     centred = piston_kinematics(CrankGeometry(bore=0.08, crank_radius=0.04, rod_length=0.16), 100.0)
     assert s.max_rod_angular_velocity == pytest.approx(centred.extrema.max_rod_angular_velocity)
     assert s.max_acceleration == pytest.approx(centred.extrema.max_acceleration)

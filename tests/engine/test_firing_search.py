@@ -163,7 +163,8 @@ def test_first_mode_shape_from_a_torsional_model():
     """Three equal discs on equal shafts, free-free, cylinders on the outer two: the first
     elastic mode is (1, 0, -1) (closed form), so the cylinders' amplitudes are 1 and -1."""
     from crankdyn.engine.firing_search import first_mode_shape
-    from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    from crankdyn.torsion.elements import Mass, Shaft
+    from crankdyn.torsion.model import TorsionModel
 
     model = TorsionModel(
         masses=(

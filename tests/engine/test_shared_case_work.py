@@ -103,13 +103,13 @@ def test_kinematics_summary_is_computed_once_per_case(monkeypatch):
     engine = replace(engine, geometry=_fresh(engine.geometry))
     a = Analysis(engine, speed=5600 * math.pi / 30, step=math.radians(2.0))
     torque = a.torque  # the crank train's plausibility warnings need the summary first
-    summary = a.kinematics().summary
+    summary = a.kinematics().extrema
     a.forces()
     a.bearings()
     assert len(calls) == 1
     # the same figures as a summary computed on its own, and the same warnings
     alone = piston_kinematics(_fresh(engine.geometry), a.speed, fuel=engine.fuel)
-    assert _same(summary, alone.summary)
+    assert _same(summary, alone.extrema)
     old_pressure = pressure_analysis(
         a._train().trace, engine.geometry, fuel=engine.fuel, aspiration=engine.aspiration
     )

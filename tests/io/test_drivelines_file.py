@@ -18,8 +18,8 @@ from crankdyn.io.engine_file import load_engine
 from crankdyn.io.torsion_file import parse_torsion_model
 from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import EngineSource
+from crankdyn.torsion.sweep import forced_response
 
 ENGINE = """
 name = "test engine"

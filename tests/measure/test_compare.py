@@ -12,7 +12,7 @@ from crankdyn.measure.orders import order_analysis
 from crankdyn.measure.synthetic import PrescribedMotion, synthetic_pulses
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for, order_grid
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 RPM = 30.0 / math.pi
 

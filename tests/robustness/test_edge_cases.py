@@ -15,9 +15,10 @@ from crankdyn.crank.kinematics import piston_kinematics, slider_crank_exact
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine.model import Engine
 from crankdyn.engine.torque import engine_torque
+from crankdyn.torsion.elements import Mass, Shaft
 from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.model import Mass, Shaft, TorsionModel
-from crankdyn.torsion.response import steady_state
+from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.solvers import steady_state
 
 
 @pytest.mark.parametrize("lam", [0.9, 0.99, 0.999, 0.999999])

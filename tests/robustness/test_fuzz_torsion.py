@@ -164,8 +164,8 @@ def test_fuzz_driveline_documents(doc):
     are finite, or the one-line InputError."""
     from crankdyn.torsion.damped import damped_modes
     from crankdyn.torsion.excitation import excitation_for
-    from crankdyn.torsion.response import forced_response
     from crankdyn.torsion.sources import default_orders, mean_torques
+    from crankdyn.torsion.sweep import forced_response
 
     try:
         model = parse_torsion_model(doc, file="line.toml")

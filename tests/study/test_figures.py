@@ -251,7 +251,7 @@ def test_forced_response_figures_of_an_engine():
     `crankdyn torsion response` and the report), the
     relative angle between the first and the last mass (pulley and flywheel) by default."""
     from crankdyn.torsion.excitation import excitation_for
-    from crankdyn.torsion.response import forced_response
+    from crankdyn.torsion.sweep import forced_response
 
     engine = load_example("inline6-diesel")
     got = figures_of(engine, ["max_relative_angle", "max_free_end_amplitude", "max_shaft_torque"])

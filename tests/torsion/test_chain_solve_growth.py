@@ -7,9 +7,9 @@ import dataclasses
 import numpy as np
 import pytest
 
-from crankdyn.torsion import Mass, Shaft, TorsionModel, response
+from crankdyn.torsion import Mass, Shaft, TorsionModel, solvers
 from crankdyn.torsion.dampers import Damper
-from crankdyn.torsion.response import LinearSystem, linear_system
+from crankdyn.torsion.solvers import LinearSystem, linear_system
 
 
 def _abs2(z):
@@ -71,7 +71,7 @@ def test_growth_filter_flags_the_same_systems(monkeypatch, scale, block, ring):
     expected, multiplier = _reference(system, w)
     if scale == 1.0 and not ring:  # the cases the filter must tell apart are present
         assert np.any(expected) and np.any(~expected)
-        assert np.any((multiplier > response._CANDIDATE) & ~expected)
+        assert np.any((multiplier > solvers._CANDIDATE) & ~expected)
     sent: list[np.ndarray] = []
     former = LinearSystem._diagonals_of
 
@@ -79,7 +79,7 @@ def test_growth_filter_flags_the_same_systems(monkeypatch, scale, block, ring):
         sent.append(np.array(w))
         return former(self, w, hysteretic_frequency)
 
-    monkeypatch.setattr(response, "_FREQUENCY_BLOCK", block)
+    monkeypatch.setattr(solvers, "_FREQUENCY_BLOCK", block)
     monkeypatch.setattr(LinearSystem, "_diagonals_of", recording)
     f = np.zeros((w.size, system.size), dtype=complex)
     f[:, 1] = scale
@@ -118,7 +118,7 @@ def test_chain_solve_with_loss_factors_matches_the_dense_solve(
     w = np.linspace(10.0, 2000.0, 41)[:, None] * np.array([1.0, 2.5])
     rng = np.random.default_rng(5)
     f = rng.normal(size=(*w.shape, system.size)) + 1j * rng.normal(size=(*w.shape, system.size))
-    monkeypatch.setattr(response, "_FREQUENCY_BLOCK", block)
+    monkeypatch.setattr(solvers, "_FREQUENCY_BLOCK", block)
     x = system.solve(w, f, hysteretic_frequency)
     d = system.matrix(w, hysteretic_frequency)
     expected = np.linalg.solve(d, f[..., None])[..., 0]

@@ -16,8 +16,8 @@ from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
 from crankdyn.torsion.coupling import loss_factor_from_psi, psi_from_damping_ratio
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for
 from crankdyn.torsion.loaded import model_at_speed
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import LoadLaw, propeller
+from crankdyn.torsion.sweep import forced_response
 
 
 def test_psi_is_two_pi_times_the_loss_factor():

@@ -20,9 +20,10 @@ from crankdyn.engine.model import Engine
 from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.loaded import model_at_speed
 from crankdyn.torsion.resolve import damped_frequencies
-from crankdyn.torsion.response import forced_response, linear_system
 from crankdyn.torsion.rules import exceedances
+from crankdyn.torsion.solvers import linear_system
 from crankdyn.torsion.sources import default_orders
+from crankdyn.torsion.sweep import forced_response
 
 RPM = math.pi / 30.0
 PROPELLER_SHAFT = ("stern tube flange", "propeller shaft 1/14")

@@ -21,7 +21,8 @@ from crankdyn.torsion.excitation import (
     order_grid,
 )
 from crankdyn.torsion.modal import natural_modes, roundoff_thresholds
-from crankdyn.torsion.response import forced_response, half_range
+from crankdyn.torsion.sweep import forced_response
+from crankdyn.torsion.synthesis import half_range
 
 RPM = math.pi / 30.0
 

@@ -20,8 +20,8 @@ from crankdyn.torsion import TorsionModel
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.dampers import design_damper
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for, order_grid
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.rules import exceedances, permissible_continuous
+from crankdyn.torsion.sweep import forced_response
 
 RPM = math.pi / 30.0
 ORDERS = order_grid(0.5, 12.0, 0.5)

@@ -16,7 +16,6 @@ from crankdyn.errors import InputError
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for
-from crankdyn.torsion.response import forced_response, half_range
 from crankdyn.torsion.sources import (
     HarmonicSource,
     LoadLaw,
@@ -29,6 +28,8 @@ from crankdyn.torsion.sources import (
     synthesis_index,
     synthesize,
 )
+from crankdyn.torsion.sweep import forced_response
+from crankdyn.torsion.synthesis import half_range
 
 
 def _line(**source):

@@ -18,7 +18,6 @@ from crankdyn.torsion.dampers import (
 )
 from crankdyn.torsion.excitation import UniformExcitation
 from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.rules import (
     RuleSet,
     ShaftLimit,
@@ -26,6 +25,7 @@ from crankdyn.torsion.rules import (
     permissible_transient,
     size_factor,
 )
+from crankdyn.torsion.sweep import forced_response
 
 J, K = 1.0, 1.0e6  # the main system: one mass on a grounded shaft
 

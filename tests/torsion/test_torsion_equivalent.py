@@ -11,6 +11,7 @@ from crankdyn.engine.model import Cylinders, Engine
 from crankdyn.errors import InputError
 from crankdyn.torsion import Mass, Shaft, TorsionModel
 from crankdyn.torsion.closed_form import single_mass, three_mass, two_mass, uniform_chain
+from crankdyn.torsion.elements import shaft_stiffness
 from crankdyn.torsion.equivalent import (
     CrankThrowGeometry,
     ThrowSpec,
@@ -18,7 +19,6 @@ from crankdyn.torsion.equivalent import (
     equivalent_system,
     throw_inertias,
 )
-from crankdyn.torsion.model import shaft_stiffness
 
 GEOMETRY = CrankGeometry(bore=0.105, crank_radius=0.0685, rod_length=0.207)
 CARTER = CrankThrowGeometry(

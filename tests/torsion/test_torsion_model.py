@@ -7,7 +7,7 @@ import pytest
 
 from crankdyn.errors import InputError
 from crankdyn.torsion import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel
-from crankdyn.torsion.model import shaft_stiffness
+from crankdyn.torsion.elements import shaft_stiffness
 
 
 def chain3(**kw):
@@ -235,8 +235,8 @@ def test_chain_of_builds_the_masses_and_shafts_its_constructors_build():
     together) give the objects Mass and Shaft give, field for field."""
     import dataclasses
 
-    from crankdyn.torsion.model import Mass as M
-    from crankdyn.torsion.model import Shaft as S
+    from crankdyn.torsion.elements import Mass as M
+    from crankdyn.torsion.elements import Shaft as S
 
     quick = TorsionModel.chain_of([1.0, 2.5, 0.25], [1e5, 3e6])
     plain = TorsionModel(

@@ -13,13 +13,10 @@ from crankdyn.errors import InputError
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.excitation import UniformExcitation
-from crankdyn.torsion.response import (
-    forced_response,
-    half_range,
-    linear_system,
-    solve_tridiagonal,
-    steady_state,
-)
+from crankdyn.torsion.solvers import linear_system, steady_state
+from crankdyn.torsion.sweep import forced_response
+from crankdyn.torsion.synthesis import half_range
+from crankdyn.torsion.tridiagonal import solve_tridiagonal
 
 
 def _dense(lower, diag, upper):
@@ -312,7 +309,7 @@ def test_chain_solve_in_blocks_matches_the_dense_solve(monkeypatch, shape):
     """The chain solve in blocks of frequencies (issue 16: in place, the forcing read block by
     block) gives the dense solve's amplitudes, whatever the block size, with a pivoting
     fallback inside a block and a short last block; it is laid out as the caller's batch."""
-    from crankdyn.torsion import response
+    from crankdyn.torsion import solvers
 
     model = TorsionModel.example("seed003-v6")
     system = linear_system(model)
@@ -334,7 +331,7 @@ def test_chain_solve_in_blocks_matches_the_dense_solve(monkeypatch, shape):
         full = np.broadcast_to(forcing, (*omega.shape, n))
         expected = np.linalg.solve(system.matrix(omega), full[..., None])[..., 0]
     for block in (1, 5, 1 << 13):
-        monkeypatch.setattr(response, "_FREQUENCY_BLOCK", block)
+        monkeypatch.setattr(solvers, "_FREQUENCY_BLOCK", block)
         x = system.solve(omega, forcing)
         assert x.shape == expected.shape and x.flags.c_contiguous
         assert np.allclose(x, expected, rtol=1e-10, atol=1e-14 * np.max(np.abs(expected)))

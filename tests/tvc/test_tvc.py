@@ -14,8 +14,8 @@ from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
 from crankdyn.io.torsion_file import parse_torsion_model
 from crankdyn.torsion.excitation import excitation_for
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import default_orders
+from crankdyn.torsion.sweep import forced_response
 from crankdyn.tvc import CrankshaftLimit, TvcSpec, tvc
 from crankdyn.tvc import curves as cv
 
@@ -162,7 +162,7 @@ def test_passage_time_and_transient_peak(geared):
     spec = TvcSpec(tachometer_tolerance=0.0, engine_torque=torque, misfire=False)
     res = tvc(geared, spec=spec)
     (p,) = res.passages
-    from crankdyn.torsion.response import linear_system
+    from crankdyn.torsion.solvers import linear_system
 
     inertia = float(np.sum(linear_system(geared, geared.dampers).inertia))
     # no load law: the whole engine torque accelerates the line, dOmega/dt = T / J
@@ -294,7 +294,7 @@ def test_passage_with_the_engines_torque_speed_curve(geared):
     spec = TvcSpec(tachometer_tolerance=0.0, misfire=False, engine_torque_curve=(speeds, torques))
     res = tvc(geared, spec=spec)
     (p,) = res.passages
-    from crankdyn.torsion.response import linear_system
+    from crankdyn.torsion.solvers import linear_system
 
     inertia = float(np.sum(linear_system(geared, geared.dampers).inertia))
     slope = (torques[1] - torques[0]) / (speeds[1] - speeds[0])

@@ -22,8 +22,8 @@ from crankdyn.engine.model import Engine
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
 from crankdyn.torsion.excitation import UniformExcitation
 from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import HarmonicSource
+from crankdyn.torsion.sweep import forced_response
 
 R = 0.3125  # n_wheel / n_pinion (25:80 teeth)
 K1, KM, K2 = 4e5, 9e5, 6e5  # N m/rad (the mesh stiffness referred to the pinion)

@@ -21,8 +21,8 @@ import pytest
 from crankdyn.constants import RPM
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
 from crankdyn.torsion.excitation import excitation_for
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import LoadLaw, propeller
+from crankdyn.torsion.sweep import forced_response
 
 U = 0.11298  # lb in (s^2, /rad, s/rad) -> N m ...
 

@@ -243,7 +243,7 @@ def test_loss_factor_written_back_reproduces_the_measured_resonance():
 
     excitation = UniformExcitation(40.0, [0.0], "four-stroke")
     truth = model(0.04)
-    from crankdyn.torsion.response import forced_response
+    from crankdyn.torsion.sweep import forced_response
 
     grid = np.arange(1950.0, 2550.0, 2.0) / RPM
     response = forced_response(truth, excitation, grid, [6.0], resolve=False).mass_response[:, 0, 0]

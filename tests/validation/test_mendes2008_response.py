@@ -27,7 +27,7 @@ import pytest
 
 from crankdyn.engine.model import Engine
 from crankdyn.torsion.excitation import excitation_for
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 DATA = Path(__file__).parent / "data"
 RPM = math.pi / 30.0

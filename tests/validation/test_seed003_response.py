@@ -20,7 +20,7 @@ import pytest
 
 from crankdyn.torsion import Mass, Shaft, TorsionModel
 from crankdyn.torsion.excitation import UniformExcitation
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 J, K, C, T = 0.8, 2.0e5, 40.0, 150.0
 

@@ -24,8 +24,8 @@ from crankdyn.io.catalogue import resolve_model_and_engine
 from crankdyn.io.torsion_file import parse_torsion_model
 from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.loaded import model_at_speed
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.sources import default_orders
+from crankdyn.torsion.sweep import forced_response
 from crankdyn.tvc import TvcSpec, tvc
 from crankdyn.tvc import curves as cv
 

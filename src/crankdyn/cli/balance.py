@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
 from dataclasses import replace
 from typing import Any
 
@@ -29,12 +28,10 @@ from crankdyn.cli.writer import (
     TextTable,
     output_options,
     result_table,
-    summary_table,
+    summary_blocks,
 )
-from crankdyn.constants import RPM
-from crankdyn.display import column_text, format_value
-from crankdyn.engine.balance import BALANCE_METHODS, BalanceResult, OrderBalance
-from crankdyn.engine.firing_search import CRITERIA, FiringOrderRanking
+from crankdyn.engine.balance import BALANCE_METHODS
+from crankdyn.engine.firing_search import CRITERIA
 from crankdyn.engine.model import BalanceInputs, Engine
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
@@ -87,93 +84,8 @@ def _sentence(text: str) -> str:
 
 # ---- firing-orders ----------------------------------------------------------------------------
 
-_HEADERS = {
-    "free_force_1": "Free force, 1st order (per m_j R ω²)",
-    "free_force_2": "Free force, 2nd order (per m_j R ω² A₂)",
-    "free_moment_1": "Free moment, 1st order (per m_j R ω² a)",
-    "free_moment_2": "Free moment, 2nd order (per m_j R ω² A₂ a)",
-    "adjacent_consecutive": "Adjacent cylinders firing in a row",
-    "main_bearing_min_interval_deg": "Shortest gap next to a main bearing (deg)",
-    "torsional_vector_sum": "Largest torsional vector sum",
-    "exhaust_min_interval_deg": "Shortest gap in an exhaust group (deg)",
-}
-
-
-def _intervals_text(values: Iterable[float]) -> str:
-    """Firing intervals (deg): ``120 × 6`` when all are equal, else each."""
-    rounded = [round(float(v), 6) for v in values]
-    if len(set(rounded)) == 1:
-        return f"{rounded[0]:g} × {len(rounded)}"
-    return " ".join(f"{v:g}" for v in rounded)
-
-
-def ranking_table(result: FiringOrderRanking, limit: int | None = None) -> TextTable:
-    """The ranked firing orders (the even-interval criterion is in the intervals column).
-
-    Parameters
-    ----------
-    result
-        The ranking.
-    limit
-        The most firing orders shown; None: all.
-
-    Returns
-    -------
-    TextTable
-        One row per firing order: rank (``*`` marks the engine's own), order, intervals (deg)
-        and each criterion.
-    """
-    crit = [c for c in result.criteria if c != "interval_deviation_deg"]
-    shown = result.candidates if limit is None else result.candidates[:limit]
-    dicts = [c.to_dict() for c in shown]
-    header = ["Rank", "Firing order", "Firing intervals (deg)"]
-    columns = [
-        [f"{c.rank}{'*' if result.engine_rank == c.rank else ''}" for c in shown],
-        [c.order_text for c in shown],
-        [_intervals_text(d["firing_intervals_deg"]) for d in dicts],
-    ]
-    for c in crit:
-        values: list[Any] = [d.get(c) for d in dicts]
-        header.append(_HEADERS.get(c, CRITERIA[c].label if c in CRITERIA else c))
-        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
-            texts, _unit = column_text([float(v) for v in values], reference=1.0)
-            if all(isinstance(v, int) for v in values):
-                texts = [str(v) for v in values]
-        else:
-            texts = ["-" if v is None else str(v) for v in values]
-        columns.append(texts)
-    text_columns = {1, 2}
-    if any(c.v_scheme for c in result.candidates):
-        header.append("V scheme")
-        columns.append([c.v_scheme or "" for c in shown])
-        text_columns.add(len(header) - 1)
-    rows = [list(r) for r in zip(*columns, strict=True)] if shown else []
-    return TextTable(f"{result.engine}: firing orders", header, rows, text_columns)
-
-
-def _ranking_notes(result: FiringOrderRanking, shown: int) -> list[str]:
-    """The lines under the ranking: counts, the engine's own order's rank, the units."""
-    lines = [
-        f"{result.count} firing order(s) found, {result.even_count} evenly firing; "
-        f"ranked by {', '.join(result.criteria)}.",
-    ]
-    order = "-".join(str(c) for c in result.engine_order)
-    if result.engine_rank is not None:
-        lines.append(f"* The engine's firing order {order} ranks {result.engine_rank}.")
-    elif result.search == "crankshaft":
-        lines.append(f"The engine's firing order {order} is not among them.")
-    if shown < len(result.candidates):
-        lines.append(
-            f"Showing the best {shown} of {len(result.candidates)}; --top N or --format csv/json "
-            "lists more."
-        )
-    lines.extend(_sentence(n) for n in result.notes[1:])
-    lines.append(
-        "Free forces per m_j R ω² Aₙ and moments per m_j R ω² Aₙ a (a = cylinder pitch) of the "
-        "reciprocating masses."
-    )
-    return lines
-
+SHOWN = 30
+"""Firing orders a table shows by default (``--top N`` shows N, the CSV and JSON all)."""
 
 _OPTION_OF = {
     "priority": "--rank-by",
@@ -287,10 +199,14 @@ def firing_orders_command(
             extra: dict[str, Any] = {"value": exc.value} if exc.has_value else {}
             raise InputError(exc.message, key=_OPTION_OF[exc.key], **extra) from None
         raise
-    limit = top if top is not None else 30
-    shown = min(limit, len(result.candidates))
+    limit = top if top is not None else SHOWN
+    more = (
+        [f"--top N or --format csv/json lists more than the best {limit}."]
+        if limit < len(result.candidates)
+        else []
+    )
     out.write(
-        blocks=[ranking_table(result, limit), *_ranking_notes(result, shown)],
+        blocks=[*summary_blocks(result, f"{result.engine}: firing orders", limit=limit), *more],
         json_data=result.ranked_list(),
         csv_text=result.to_csv(),
     )
@@ -302,92 +218,6 @@ def firing_orders_command(
 
 
 # ---- balance ----------------------------------------------------------------------------------
-
-
-def _row_name(row: OrderBalance) -> str:
-    """The Order cell of a balance row: the order, ``1 rotating`` or ``1 total``."""
-    if row.source == "reciprocating":
-        return str(row.order)
-    return "1 rotating" if row.source == "rotating" else "1 total"
-
-
-def balance_table(result: BalanceResult, unit_force: float, pitch: float | None) -> TextTable:
-    """The free forces and moments by order: forces and moments in engineering units, round-off
-    next to the unit force m_j R ω² (and moment m_j R ω² a) as 0.
-
-    Parameters
-    ----------
-    result
-        The balance.
-    unit_force
-        m_j R ω², the reference of the force columns (N).
-    pitch
-        The cylinder pitch a (m), for the moments' reference m_j R ω² a; None: 1 m.
-
-    Returns
-    -------
-    TextTable
-        One row per order (then ``1 rotating`` and ``1 total``).
-    """
-    rows = result.rows()
-    moment_ref = unit_force * (pitch or 1.0)
-    spec = [
-        ("Free force", "N", lambda r: r.free_force, unit_force),
-        ("Free force, vertical", "N", lambda r: r.free_force_vertical, unit_force),
-        ("Free force, horizontal", "N", lambda r: r.free_force_horizontal, unit_force),
-        ("Free moment", "N·m", lambda r: r.free_moment, moment_ref),
-        ("Free moment, vertical plane", "N·m", lambda r: r.free_moment_vertical, moment_ref),
-        ("Free moment, horizontal plane", "N·m", lambda r: r.free_moment_horizontal, moment_ref),
-        ("Free force per m_j R ω²", "", lambda r: r.force_coefficient, 1.0),
-        ("Free moment per m_j R ω² a", "", lambda r: r.moment_coefficient, 1.0),
-    ]
-    if result.power:
-        spec.append(
-            (
-                "Moment per power",
-                "N·m/kW",
-                lambda r: (
-                    None if r.power_related_unbalance is None else r.power_related_unbalance * 1e3
-                ),
-                moment_ref / result.power * 1e3,
-            )
-        )
-    header = ["Order"]
-    columns = [[_row_name(r) for r in rows]]
-    for label, unit, get, ref in spec:
-        values = [get(r) for r in rows]
-        floats = [math.nan if v is None else float(v) for v in values]
-        texts, shown = column_text(floats, unit, reference=ref)
-        header.append(f"{label} ({shown})" if shown else label)
-        columns.append(texts)
-    title = f"{result.engine}: free forces and moments at {result.speed * RPM:.0f} rpm"
-    return TextTable(title, header, [list(r) for r in zip(*columns, strict=True)], {0})
-
-
-def _balance_notes(result: BalanceResult) -> list[str]:
-    """The lines under the balance table: the masses, what the rows are, the overturning
-    moment, the result's notes."""
-    lines = [
-        f"m_j = {format_value(result.reciprocating_mass)[0]} kg per cylinder; rotating "
-        f"{format_value(result.rotating_mass)[0]} kg per throw; counterweights c = "
-        f"{result.counterweight_ratio:g}, b = {result.reciprocating_balance_ratio:g}; "
-        f"harmonics: {result.method}.",
-        "Orders 1, 2, ...: reciprocating masses; '1 rotating': rotating masses and "
-        "counterweights; '1 total': both. Amplitudes are the largest magnitude over one "
-        "revolution; moments about the middle of the engine; vertical plane = pitching moment "
-        "(from vertical forces), horizontal plane = yawing moment.",
-    ]
-    if result.overturning is not None:
-        o = result.overturning
-        mean, mean_unit = format_value(o.mean, "N·m")
-        amp, amp_unit = format_value(o.amplitude, "N·m")
-        ptp, ptp_unit = format_value(o.peak_to_peak, "N·m")
-        lines.append(
-            f"Overturning moment: steady {mean} {mean_unit}, fluctuation up to {amp} {amp_unit} "
-            f"(peak to peak {ptp} {ptp_unit})."
-        )
-    lines.extend(_sentence(n) for n in result.notes)
-    return lines
 
 
 @click.command("balance")
@@ -488,9 +318,8 @@ def balance_command(
         inputs=replace(inputs, **changes) if changes else None,
         overturning=not no_torque,
     )
-    unit_force = result.reciprocating_mass * eng.geometry.crank_radius * session.speed**2
     out.write(
-        blocks=[balance_table(result, unit_force, result.pitch), *_balance_notes(result)],
+        blocks=summary_blocks(result, f"{result.engine}: balance"),
         json_data=result,
         csv_text=result.to_csv(),
     )
@@ -550,14 +379,9 @@ def flywheel_command(
     session = Analysis(eng, speed=parse_speed(speed))
     h = display_step(step, fmt, eng.cycle_angle)
     result = session.flywheel(delta=target, inertia=given, step=h)
-    summary = [r for r in result.summary_rows() if r[0] not in ("Engine", "Notes")]
-    notes = [_sentence(n) for n in result.notes]
-    if target is None and given is None and session.flywheel_default_delta():
-        notes.append("The target δ is the default 0.01 (give --delta or [flywheel] delta).")
-    blocks: list[TextTable | str] = [
-        summary_table(summary, f"{eng.name}: speed fluctuation and flywheel"),
-        *notes,
-    ]
+    blocks: list[TextTable | str] = summary_blocks(
+        result, f"{eng.name}: speed fluctuation and flywheel"
+    )
     if step is not None:
         blocks.insert(0, result_table(result, title="Torque, excess work and crank speed"))
     out.write(blocks=blocks, json_data=result, csv_text=result.to_csv())

@@ -18,7 +18,7 @@ from crankdyn.cli.common import (
     speed_option,
     step_option,
 )
-from crankdyn.cli.writer import Output, output_options, result_table, summary_table
+from crankdyn.cli.writer import Output, output_options, result_table, summary_blocks
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
@@ -74,7 +74,7 @@ def _write(
         The full-resolution result, whose ``plot()`` is the figure.
     """
     out.write(
-        blocks=[result_table(result, keys, title=title), summary_table(result)],
+        blocks=[result_table(result, keys, title=title), *summary_blocks(result)],
         json_data=result,
         csv_text=result.to_csv(),
     )

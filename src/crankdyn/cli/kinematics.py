@@ -17,7 +17,7 @@ from crankdyn.cli.common import (
     speed_option,
     step_option,
 )
-from crankdyn.cli.writer import Output, output_options, result_table, summary_table
+from crankdyn.cli.writer import Output, output_options, result_table, summary_blocks
 from crankdyn.crank.kinematics import METHODS, coefficient_table
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
@@ -101,7 +101,7 @@ def kinematics_command(
     out.write(
         blocks=[
             result_table(result, KINEMATICS_TABLE, title="Piston and rod kinematics"),
-            summary_table(result.extrema, "Summary (exact extrema)"),
+            *summary_blocks(result.extrema, "Summary (exact extrema)"),
         ],
         json_data=result,
         csv_text=result.to_csv(),

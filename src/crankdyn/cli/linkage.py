@@ -23,7 +23,13 @@ from crankdyn.cli.common import (
     step_option,
 )
 from crankdyn.cli.examples import example_alias, examples_alias
-from crankdyn.cli.writer import Output, TextTable, output_options, result_table, summary_table
+from crankdyn.cli.writer import (
+    Output,
+    TextTable,
+    output_options,
+    result_table,
+    summary_blocks,
+)
 from crankdyn.display import column_text
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_linkage
@@ -262,7 +268,7 @@ def fourbar_command(
         full = fourbar_analysis(fb, grid, w, e)
         result = result.with_summary_of(full)
     out.write(
-        blocks=[result_table(result, title="Four-bar kinematics"), summary_table(result.limits)],
+        blocks=[result_table(result, title="Four-bar kinematics"), *summary_blocks(result.limits)],
         json_data=_json(result, single=angle is not None),
         csv_text=result.to_csv(),
         warnings=[result],
@@ -388,7 +394,7 @@ def forces_command(
         if angle is not None:
             extra = {"matrices": extra["matrices"][0]}
     out.write(
-        blocks=[_forces_table(result), summary_table(result)],
+        blocks=[_forces_table(result), *summary_blocks(result)],
         json_data=_json(result, single=angle is not None, extra=extra),
         csv_text=result.to_csv(),
         warnings=[result],

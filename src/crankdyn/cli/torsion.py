@@ -15,7 +15,13 @@ from crankdyn.cli.common import (
     save_figure,
 )
 from crankdyn.cli.examples import examples_alias
-from crankdyn.cli.writer import Output, TextTable, output_options, result_table, summary_table
+from crankdyn.cli.writer import (
+    Output,
+    TextTable,
+    output_options,
+    result_table,
+    summary_blocks,
+)
 from crankdyn.display import column_text
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
@@ -451,7 +457,7 @@ def holzer_command(
             raise
         raise InputError(exc.message, key="--frequency", value=frequency) from None
     out.write(
-        blocks=[result_table(table, title="Holzer's table"), summary_table(table)],
+        blocks=[result_table(table, title="Holzer's table"), *summary_blocks(table)],
         json_data=table,
         csv_text=table.to_csv(),
     )

@@ -27,15 +27,16 @@ from crankdyn.cli.common import (
     speeds_option,
 )
 from crankdyn.cli.torsion import model_session, torsion_group
-from crankdyn.cli.writer import Output, TextTable, output_options, summary_table
+from crankdyn.cli.writer import Output, TextTable, output_options, summary_blocks, summary_table
 from crankdyn.constants import DEG, RPM
-from crankdyn.display import column_text, format_value
+from crankdyn.display import column_text
 from crankdyn.docs import ref
 from crankdyn.errors import InputError
 
 if TYPE_CHECKING:
     from crankdyn.session import Analysis
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
+    from crankdyn.tvc import ConditionResult
 
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
 _ORDERS_HELP = (
@@ -85,169 +86,40 @@ def _at(speed: float) -> str:
     return f"{speed * RPM:.1f}"
 
 
-# ---- the response's tables -----------------------------------------------------------------------
+# ---- the response's tables: renderings of the results' summaries ------------------------------
 def response_tables(
-    session: Analysis, result: ResponseResult, relative: RelativeAngle | None = None
+    result: ResponseResult,
+    relative: RelativeAngle | None = None,
+    judged: ConditionResult | None = None,
 ) -> list[TextTable | str]:
-    """The peaks of the response (per mass, per shaft, the relative angle) from
-    :meth:`~crankdyn.torsion.response.ResponseResult.peak` on the resolved curve, the rule
-    verdict, the speeds added to resolve the peaks and why, and the notes.
+    """What ``torsion response`` prints: the response's summary (its key figures, the peaks of
+    every mass and shaft on the resolved curve, the speeds added), the relative angle's, and
+    the verdicts of the installation's checks with the barred ranges as found and as declared
+    (:meth:`crankdyn.session.Analysis.judged`: the TVC's own evaluation).
 
     Parameters
     ----------
-    session
-        The analysis session the response comes from (its peaks, the most loaded shaft).
     result
         The forced response.
     relative
         The relative angle between two masses (--relative), or None.
+    judged
+        The response judged by the installation's checks, or None (no component with a limit).
 
     Returns
     -------
     list of TextTable and str
-        The tables (angular amplitudes, shaft torques and stresses, the relative angle, the
-        rule check, the speeds added) and note lines, in the order shown.
+        The tables and note lines, in the order shown.
     """
-    masses_peaks = [session.peak("amplitude", name, result) for name in result.masses]
-    sum_peaks = [result.peak("order_sum_amplitude", name) for name in result.masses]
-    amp, amp_unit = column_text([v for v, _ in masses_peaks], "rad")
-    sums, sum_unit = column_text([p.value for p in sum_peaks], "rad")
-    masses = TextTable(
-        f"{result.model_name}: angular amplitudes",
-        [
-            "Mass",
-            f"Largest synthesised amplitude ({amp_unit})",
-            "At speed (rpm)",
-            f"Largest sum of orders ({sum_unit})",
-            "At speed (rpm)",
-        ],
-        [
-            [name, amp[i], _at(masses_peaks[i][1]), sums[i], _at(sum_peaks[i].speed)]
-            for i, name in enumerate(result.masses)
-        ],
-        text_columns={0},
-    )
-    shaft_names = [f"{a} - {b}" for a, b in result.shafts]
-    torque_peaks = [session.peak("torque", s, result) for s in result.shafts]
-    order_sum = [result.peak("shaft_torque", s) for s in result.shafts]
-    t_sum, t_sum_unit = column_text([p.value for p in order_sum], "N·m")
-    t_syn, t_syn_unit = column_text([v for v, _ in torque_peaks], "N·m")
-    modulus = result.section_modulus
-    stress_peak = [
-        session.peak("stress", s, result)[0]
-        if modulus is not None and np.isfinite(modulus[k])
-        else math.nan
-        for k, s in enumerate(result.shafts)
-    ]
-    st, st_unit = column_text(stress_peak, "Pa")
-    shafts = TextTable(
-        "Vibratory torque and stress",
-        [
-            "Shaft",
-            f"Largest sum of orders ({t_sum_unit})",
-            "At speed (rpm)",
-            f"Largest synthesised torque ({t_syn_unit})",
-            "At speed (rpm)",
-            f"Largest synthesised stress ({st_unit})",
-        ],
-        [
-            [
-                shaft_names[s],
-                t_sum[s],
-                _at(order_sum[s].speed),
-                t_syn[s],
-                _at(torque_peaks[s][1]),
-                st[s],
-            ]
-            for s in range(len(result.shafts))
-        ],
-        text_columns={0},
-        caption=f"excitation: {result.excitation}",
-    )
-    tables: list = [masses, shafts]
+    blocks = summary_blocks(result, f"{result.model_name}: forced response")
     if relative is not None:
-        value, speed = session.peak("relative", relative.between, result)
-        text, unit = format_value(value, "rad")
-        osum = relative.peak("order_sum")
-        osum_text, osum_unit = format_value(osum.value, "rad")
-        tables.append(
-            TextTable(
-                f"Relative angle {relative.between[0]} - {relative.between[1]}",
-                [
-                    f"Largest synthesised ({unit})",
-                    "At speed (rpm)",
-                    f"Largest sum of orders ({osum_unit})",
-                    "At speed (rpm)",
-                ],
-                [[text, _at(speed), osum_text, _at(osum.speed)]],
-            )
-        )
-    check = result.rule_check
-    if check is not None:
-        rows = [
-            [
-                f"{br.shaft[0]} - {br.shaft[1]}",
-                f"{br.start * RPM:.1f} - {br.end * RPM:.1f}",
-                f"{br.max_ratio:.2f}",
-                br.reason,
-            ]
-            for br in check.barred_ranges
-        ]
-        if not rows:
-            rows = [["all checked", "none", "-", "stress below τ_C everywhere"]]
-        tables.append(
-            TextTable(
-                f"{check.rule}: {'passed' if check.passed else 'FAILED'}",
-                ["Shaft", "Barred range (rpm)", "Largest stress / τ_C", "Verdict"],
-                rows,
-                text_columns={0, 1, 3},
-            )
-        )
-    added = added_speeds_table(result)
-    if added is not None:
-        tables.append(added)
-    tables.extend(result.notes or ())
-    return tables
-
-
-def added_speeds_table(result: ResponseResult) -> TextTable | None:
-    """The speeds added to the grid to resolve the peaks and why: every critical speed on its
-    own row, the others counted by kind (each is listed in the JSON, ``added_speeds_rpm`` and
-    ``added_speed_reasons``, and in the CSV, ``on_grid`` 0).
-
-    Parameters
-    ----------
-    result
-        The forced response.
-
-    Returns
-    -------
-    TextTable or None
-        Speed (rpm) and why, or None when no speed was added.
-    """
-    added = result.added_speeds
-    if added is None or not len(added):
-        return None
-    rows = []
-    groups: dict[str, list[float]] = {}
-    for w, why in zip(np.asarray(added), result.added_reasons or (), strict=True):
-        if why.startswith("critical speed"):
-            rows.append([_at(w), why])
-        else:
-            groups.setdefault(why.split(":")[0], []).append(float(w))
-    for kind, speeds in groups.items():
-        rows.append(
-            [
-                f"{len(speeds)} from {_at(min(speeds))} to {_at(max(speeds))}",
-                f"{kind} (each listed in --format json: added_speeds_rpm)",
-            ]
-        )
-    return TextTable(
-        f"Speeds added to resolve the peaks ({len(added)})",
-        ["Speed (rpm)", "Why"],
-        rows,
-        text_columns={0, 1},
-    )
+        a, b = relative.between
+        blocks += summary_blocks(relative, f"Relative angle {a} - {b}")
+    if judged is not None:
+        verdict = "passed" if all(v.passed for v in judged.verdicts) else "FAILED"
+        blocks.append(f"Verdict ({judged.name}): {verdict}")
+        blocks += summary_blocks(judged, figures=False)
+    return blocks
 
 
 # ---- commands -----------------------------------------------------------------------------------
@@ -349,7 +221,10 @@ def response_command(
                 result.mass_index(item)
     except InputError as exc:
         raise InputError(exc.message, key="--item", value=item) from None
-    if stress_path and result.rule_check is None:
+    judged = session.judged(
+        dampers=() if no_dampers else None, misfire=cylinders, torque=_torque_amplitude(torque)
+    )
+    if stress_path and (judged is None or not any(c.m68 for c in judged.curves.values())):
         raise InputError(
             f"the model has no [rules] ({ref('torsion-file')}): nothing to plot",
             key="--plot-stress",
@@ -358,22 +233,23 @@ def response_command(
     if plot_path and target is None and what in ("torque", "stress"):
         try:
             target = (
-                session.most_stressed_shaft(result)
-                if what == "stress"
-                else session.most_loaded_shaft(result)
+                result.most_stressed_shaft() if what == "stress" else result.most_loaded_shaft()
             )
         except InputError as exc:
             raise InputError(exc.message, key="--plot-quantity", value=what) from None
     data = result.to_dict()
     if rel is not None:
         data["relative_angle"] = rel.to_dict()
-    out.write(
-        blocks=response_tables(session, result, rel), json_data=data, csv_text=result.to_csv()
-    )
+    if judged is not None:
+        data["verdicts"] = [v.to_dict() for v in judged.verdicts]
+        data["barred_speed_ranges"] = [b.to_dict() for b in judged.barred_ranges]
+        data["passed"] = all(v.passed for v in judged.verdicts)
+    out.write(blocks=response_tables(result, rel, judged), json_data=data, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(what, target), plot_path, force)
     if stress_path:
-        save_figure(result.plot_stress_limits(), stress_path, force)
+        assert judged is not None
+        save_figure(judged.plot_stress_limits(), stress_path, force)
     return 0
 
 
@@ -525,7 +401,8 @@ def damper_command(
         rows = []
         peaks = []
         for label, r in (("without damper", without), ("with damper", with_d)):
-            value, speed = session.peak("amplitude", hub, r)  # resolved: one of r's speeds
+            found = r.peak("synthesized_amplitude", hub)  # resolved: one of r's speeds
+            value, speed = found.value, found.speed
             k = int(np.argmin(np.abs(r.speed - speed)))
             power = math.nan if r.damper_power is None else float(r.damper_power[k, -1])
             peaks.append((label, value, speed, power))

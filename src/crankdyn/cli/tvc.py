@@ -9,9 +9,7 @@ import click
 
 from crankdyn.cli.common import console, deprecated_alias, merge_alias
 from crankdyn.cli.torsion import model_session
-from crankdyn.cli.writer import Output, TextTable
-from crankdyn.constants import RPM
-from crankdyn.display import number, quantity
+from crankdyn.cli.writer import Output, summary_blocks
 from crankdyn.errors import InputError
 
 _HELP_OUTPUT = "Report folder (default: <name>-tvc); built aside and moved into place."
@@ -67,56 +65,14 @@ def tvc_command(
 
         # the folder written: a numbered sibling when ``target`` appeared meanwhile
         target = write_report(report, target, force=force, finish=finish)
-    rows = [
-        [
-            v.component,
-            v.condition,
-            v.quantity,
-            _value(v.worst, v.unit),
-            _value(v.limit, v.unit),
-            number(100 * v.margin, 3),
-            "pass" if v.passed else "FAIL",
-        ]
-        for v in result.verdicts
-    ]
-    table = TextTable(
-        f"{result.model_name}: verdicts",
-        ["Component", "Condition", "Quantity", "Worst", "Limit", "Margin (%)", "Verdict"],
-        rows,
-        text_columns={0, 1, 2, 6},
-    )
-    blocks: list = [table]
-    if result.barred_ranges:
-        blocks.append(
-            TextTable(
-                "Barred speed ranges",
-                ["Component", "Condition", "From (rpm)", "To (rpm)", "Permitted"],
-                [
-                    [
-                        b.component,
-                        b.condition,
-                        number(b.start * RPM, 6),
-                        number(b.end * RPM, 6),
-                        "yes" if b.permitted else "NO",
-                    ]
-                    for b in result.barred_ranges
-                ],
-                text_columns={0, 1, 4},
-            )
-        )
+    blocks: list = summary_blocks(result, f"{result.model_name}: torsional vibration calculation")
     blocks.append(f"Verdict: {'passed' if result.passed else 'FAILED'}")
-    blocks.extend(f"Note: {n}" for n in result.notes)
     blocks.extend(pdf_note)
     blocks.append(f"Report: {target / 'index.html'}")
     if not no_pdf and not pdf_note:
         blocks.append(f"PDF: {target / 'report.pdf'}")
     Output("table").write(blocks=blocks)
     return 0
-
-
-def _value(value: float, unit: str) -> str:
-    """A limit or margin in its display unit (a bare number when dimensionless)."""
-    return number(value) if unit == "" else quantity(value, unit)
 
 
 def register(group: click.Group) -> None:

@@ -191,7 +191,11 @@ def summary_table(
 
 
 def summary_blocks(
-    source: Result | Summary, title: str = "Summary", *, figures: bool = True
+    source: Result | Summary,
+    title: str = "Summary",
+    *,
+    figures: bool = True,
+    limit: int | None = None,
 ) -> list[TextTable | str]:
     """Everything a result's summary holds, as the terminal shows it: the key figures, the
     verdicts (:func:`crankdyn.summary.verdict_cells`, every column repeated in each part of a
@@ -205,6 +209,8 @@ def summary_blocks(
         The title of the key figures' table.
     figures
         Whether to show the key figures (False: only verdicts, tables and notes).
+    limit
+        The rows each table shows (its caption says how many more there are); None: all.
 
     Returns
     -------
@@ -219,10 +225,19 @@ def summary_blocks(
         header, rows = verdict_cells(summary.verdicts)
         blocks.append(TextTable("Verdicts", header, rows, text_columns={0, 1, 2, 5, 8, 9}))
     for table in summary.tables:
+        table = table.head(limit)
         header, rows = table.cells()
         blocks.append(TextTable(table.title, header, rows, table.text_columns(), table.caption))
-    blocks += [f"Note: {n}" for n in summary.notes]
+    blocks += [f"Note: {_sentence(n)}" for n in summary.notes]
     return blocks
+
+
+def _sentence(text: str) -> str:
+    """A note as a sentence: a capital first letter and a full stop."""
+    text = text.strip()
+    if not text:
+        return text
+    return text[0].upper() + text[1:] + ("" if text.endswith((".", "!", "?")) else ".")
 
 
 def figure_row(

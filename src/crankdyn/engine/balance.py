@@ -364,7 +364,7 @@ class OrderBalance(Result):
         masses with their counterweights, ``1 (total)`` for the first order of both."""
         if self.source == "reciprocating":
             return str(self.order)
-        return f"{self.order} ({self.source})"
+        return f"{self.order} ({'rotating' if self.source == 'rotating' else 'total'})"
 
 
 def _order_balance(
@@ -575,7 +575,7 @@ class BalanceResult(Result):
     """
 
     title = "Engine balance"
-    engine: str = scalar("engine", "Engine", "")
+    engine: str = scalar("engine", "Engine", "", summary=False)
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     method: str = scalar("method", "Harmonics", "")
     reciprocating_mass: float = scalar("reciprocating_mass_kg", "Reciprocating mass m_j", "kg")
@@ -656,7 +656,13 @@ class BalanceResult(Result):
 
     def summary_tables(self) -> list[SummaryTable]:
         """The free forces and moments by order (every row of :meth:`rows`), round-off next to
-        the unit force m_j R ω² (and the moment m_j R ω² a) shown as 0."""
+        the unit force m_j R ω² (and the moment m_j R ω² a) shown as 0.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
         unit_force = self.reciprocating_mass * self.crank_radius * self.speed**2
         moment_ref = unit_force * (self.pitch or 1.0)
         spec = [

@@ -746,7 +746,13 @@ class FiringOrderRanking(Result):
 
     def summary_tables(self) -> list[SummaryTable]:
         """The ranked firing orders: rank (``*`` the engine's own), firing order, intervals and
-        every criterion, each column labelled as :class:`FiringCandidate` declares it."""
+        every criterion, each column labelled as :class:`FiringCandidate` declares it.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
         fields = FiringCandidate.__dataclass_fields__
         by_key = {f.metadata.get("key"): f for f in fields.values()}
         crit = [c for c in self.criteria if c != "interval_deviation_deg" and c in by_key]

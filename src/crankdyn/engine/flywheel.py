@@ -311,7 +311,7 @@ class FlywheelResult(Result):
         "excess_work_curve_J", "Excess work W = ∫(M − M_m)dθ", "J"
     )
     crank_speed: NDArray[np.float64] = column("crank_speed_rpm", "Crank speed", "rpm", RPM)
-    engine: str = scalar("engine", "Engine", "")
+    engine: str = scalar("engine", "Engine", "", summary=False)
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     mean_torque: float = scalar("mean_torque_Nm", "Mean torque M_m", "N·m", summary=False)
     max_torque: float = scalar("max_torque_Nm", "Max torque", "N·m", summary=False)

@@ -28,15 +28,8 @@ from pathlib import Path
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
-from crankdyn.torsion.model import (
-    GEAR_DIRECTIONS,
-    GROUND,
-    Gear,
-    Mass,
-    Shaft,
-    ShaftGeometry,
-    TorsionModel,
-)
+from crankdyn.torsion.elements import GEAR_DIRECTIONS, GROUND, Gear, Mass, Shaft, ShaftGeometry
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["mass_elastic_csv", "read_mass_elastic"]
 

@@ -18,13 +18,7 @@ from crankdyn.io.examples import display_path
 from crankdyn.io.files import load_toml
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.torsion.coupling import Coupling
-from crankdyn.torsion.equivalent import (
-    CrankThrowGeometry,
-    ThrowSpec,
-    equivalent_system,
-    throw_name,
-)
-from crankdyn.torsion.model import (
+from crankdyn.torsion.elements import (
     GEAR_DIRECTIONS,
     GROUND,
     MASS_ROLES,
@@ -34,8 +28,14 @@ from crankdyn.torsion.model import (
     MassLimits,
     Shaft,
     ShaftGeometry,
-    TorsionModel,
 )
+from crankdyn.torsion.equivalent import (
+    CrankThrowGeometry,
+    ThrowSpec,
+    equivalent_system,
+    throw_name,
+)
+from crankdyn.torsion.model import TorsionModel
 
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.crank.geometry import CrankGeometry

@@ -2,7 +2,7 @@
 at the measured mass beside the measured orders, the resonance peaks compared, and the damping
 identified from a measured resonance written back as a model value.
 
-**Prediction.** :func:`crankdyn.torsion.response.forced_response` at the measured speeds (the
+**Prediction.** :func:`crankdyn.torsion.sweep.forced_response` at the measured speeds (the
 steady speed, or every speed bin of a run-up) and on a fine grid over the measured range for
 plots, at the mass that carries the wheel, every order and synthesised (the same half-range
 synthesis as the measurement's). The wheel must turn with the crankshaft (speed ratio 1): its
@@ -40,7 +40,8 @@ from crankdyn.errors import InputError
 from crankdyn.measure.resonance import BAND, ResonanceFit, fit_resonance
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.response import ResponseResult, forced_response
+from crankdyn.torsion.response import ResponseResult
+from crankdyn.torsion.sweep import forced_response
 
 if TYPE_CHECKING:
     from crankdyn.measure.orders import OrderSpectrum, OrderTracking
@@ -325,7 +326,7 @@ def compare_with_model(
     at : str
         The mass that carries the measured wheel.
     dampers : sequence of crankdyn.torsion.dampers.Damper or None
-        As for :func:`~crankdyn.torsion.response.forced_response` (None: the model's own).
+        As for :func:`~crankdyn.torsion.sweep.forced_response` (None: the model's own).
 
     Returns
     -------

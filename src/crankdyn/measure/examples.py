@@ -82,7 +82,7 @@ def _motion(speed: float, acceleration: float, duration: float) -> PrescribedMot
     from crankdyn.engine.model import Engine
     from crankdyn.measure.compare import with_shaft_loss_factor
     from crankdyn.torsion.excitation import excitation_for, order_grid
-    from crankdyn.torsion.response import forced_response
+    from crankdyn.torsion.sweep import forced_response
 
     engine = Engine.example(ENGINE)
     if engine.torsion is None:  # the built-in engine carries its shaft line

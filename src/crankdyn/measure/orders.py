@@ -14,7 +14,7 @@ of a four-stroke engine fall on bins and nothing leaks between them: the window 
 its neighbours, half an order away; R. B. Randall, *Frequency Analysis*, Bruel & Kjaer 1987,
 ch. 4 on windows and synchronous sampling). The phase is that of the cosine at the crank angle
 psi measured from the reference mark's crank angle, the convention of the model's forced
-response (:mod:`crankdyn.torsion.response`: theta(t) = Re(X exp(i q Omega t)), crank angle 0 at
+response (:mod:`crankdyn.torsion.solvers`: theta(t) = Re(X exp(i q Omega t)), crank angle 0 at
 cylinder 1's firing TDC), so measured and predicted phases compare directly.
 
 Steady speed: the complex (synchronous) average of V_q over every whole cycle of the record,
@@ -38,7 +38,7 @@ N/2: the teeth are the samples, and content above N/2 aliases (no filter can pre
 the wheel).
 
 The synthesised amplitude is half the peak-to-peak of sum_q Re(V_q exp(i q psi)) over the
-analysed orders, found exactly as for the model (:func:`crankdyn.torsion.response.half_range`).
+analysed orders, found exactly as for the model (:func:`crankdyn.torsion.synthesis.half_range`).
 """
 
 from __future__ import annotations
@@ -57,7 +57,7 @@ from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.excitation import check_orders, fundamental_order, harmonic_index
-from crankdyn.torsion.response import half_range
+from crankdyn.torsion.synthesis import half_range
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure

@@ -97,6 +97,10 @@ def plain_text(fig: matplotlib.figure.Figure) -> None:
         text.set_parse_math(False)
 
 
+NOTEBOOK_DPI = 96
+"""Resolution of a figure shown in a notebook (dots per inch)."""
+
+
 class Figure(matplotlib.figure.Figure):
     """The figure every crankdyn plot is drawn on (:func:`new_figure`): a matplotlib Figure
     whose words are made literal (:func:`plain_text`) each time it is drawn, whatever text was
@@ -120,6 +124,15 @@ constrained_layout, layout, **kwargs
         """
         plain_text(self)
         return super().draw(renderer)
+
+    def _repr_png_(self) -> bytes:
+        """The figure as PNG bytes, so that a notebook shows it as an image with no
+        ``%matplotlib inline`` (IPython's display looks for ``_repr_png_``)."""
+        import io
+
+        buffer = io.BytesIO()
+        self.savefig(buffer, format="png", dpi=NOTEBOOK_DPI)
+        return buffer.getvalue()
 
     def set(self, **kwargs: Any) -> list[Any]:
         """Set several properties at once, as :meth:`matplotlib.artist.Artist.set` does.

@@ -342,15 +342,16 @@ def plot_campbell(
     return fig
 
 
-def plot_stress_limits(result: ResponseResult, fig: Figure | None = None) -> Figure:
-    """Synthesised shear stress of every checked shaft against tau_C and tau_T (IACS UR M68),
-    barred speed ranges shaded between their bisected ends (red where not permitted), drawn on
-    every speed of the resolved response (the peaks included); stress in MPa, speed in rpm.
+def plot_stress_limits(condition: Any, fig: Figure | None = None) -> Figure:
+    """Synthesised shear stress of every shaft checked by IACS UR M68 against tau_C and tau_T,
+    the declared barred speed ranges shaded (red where not permitted) and the ranges as found
+    hatched, drawn on every speed of the resolved response (the peaks included); stress in MPa,
+    speed in rpm. The curves and limits are the checks' own (:mod:`crankdyn.tvc.checks`).
 
     Parameters
     ----------
-    result : crankdyn.torsion.response.ResponseResult
-        The forced response with its rule check (SI units).
+    condition : crankdyn.tvc.ConditionResult
+        A judged condition (:meth:`crankdyn.session.Analysis.judged`, or a TVC condition).
     fig : matplotlib.figure.Figure or None
         A figure to draw into; None makes a new one.
 
@@ -362,48 +363,61 @@ def plot_stress_limits(result: ResponseResult, fig: Figure | None = None) -> Fig
     Raises
     ------
     ValueError
-        The result has no rule check.
+        The condition has no M68 shaft check or no response.
     """
-    check: Any = result.rule_check  # a torsion.rules.RuleCheck, or None
-    if check is None:
-        raise ValueError("the result has no rule check")
-    count = len(check.shafts)
+    checks = [c for c in condition.curves.values() if c.m68]
+    r = condition.response
+    if not checks or r is None:
+        raise ValueError("the condition has no IACS UR M68 shaft check")
+    count = len(checks)
     fig, axes = new_figure(count, 1, width=9.5, height=3.4 * count + 0.8, fig=fig)
-    n = np.asarray(check.speed) * RPM
-    for j, ax in enumerate(axes[:, 0]):
-        a, b = check.shafts[j]
+    w = np.asarray(r.speed)
+    n = w * RPM
+    for check, ax in zip(checks, axes[:, 0], strict=True):
         ax.plot(
             n,
-            check.stress[:, j] * 1e-6,
+            check.curve(r) * 1e-6,
             color=COLORS[0],
             linewidth=1.8,
             label="synthesised stress (half range)",
         )
-        ax.plot(n, check.tau_c[:, j] * 1e-6, color=COLORS[2], linewidth=1.3, label="τ_C continuous")
-        ax.plot(
-            n,
-            check.tau_t[:, j] * 1e-6,
-            color=COLORS[1],
-            linewidth=1.3,
-            linestyle="--",
-            label="τ_T transient (λ ≤ 0.8)",
-        )
-        for barred in check.barred_ranges:
-            if tuple(barred.shaft) != (a, b):
+        ax.plot(n, check.limit(w) * 1e-6, color=COLORS[2], linewidth=1.3, label="τ_C continuous")
+        if check.transient_limit is not None:
+            ax.plot(
+                n,
+                check.transient_limit(w) * 1e-6,
+                color=COLORS[1],
+                linewidth=1.3,
+                linestyle="--",
+                label="τ_T transient (λ ≤ 0.8)",
+            )
+        for barred in condition.barred_ranges:
+            if barred.component != check.component:
                 continue
             ax.axvspan(
                 barred.start * RPM,
                 barred.end * RPM,
                 color="#f4c7c3" if not barred.permitted else "#fbe5c8",
                 zorder=0,
+                label="declared barred range" + ("" if barred.permitted else " (not permitted)"),
+            )
+            ax.axvspan(
+                barred.exceeds_start * RPM,
+                barred.exceeds_end * RPM,
+                facecolor="none",
+                edgecolor="#7a1f1f",
+                hatch="///",
+                linewidth=0.0,
+                zorder=0,
+                label="found (stress above τ_C)",
             )
         ax.set_xlim(float(n[0]), float(n[-1]))
         ax.set_ylim(bottom=0.0)
         ax.set_ylabel("Shear stress (MPa)")
-        ax.set_title(f"Shaft {a} - {b}", fontsize=10)
-        ax.legend(loc="upper left", fontsize=8)
+        ax.set_title(f"Shaft {check.component}", fontsize=10)
+        ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     axes[-1, 0].set_xlabel("Engine speed (rpm)")
-    fig.suptitle(f"Torsional stress against {check.rule}", fontsize=11)
+    fig.suptitle(f"Torsional stress against IACS UR M68: {condition.name}", fontsize=11)
     return fig
 
 

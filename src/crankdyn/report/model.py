@@ -38,6 +38,8 @@ class KeyFigure:
         A verdict, or None for information.
     note : str
         A remark shown with the value.
+    headline : bool
+        Whether the report's summary shows it (else its section only).
 
     Raises
     ------
@@ -153,6 +155,9 @@ class Table:
         Rows shown in the page (the page says how many more the CSV has); None: all.
     caption : str
         A sentence under the title: what the rows are, how they are ordered.
+    source : crankdyn.summary.SummaryTable or None
+        The result's summary table the rows show (its CSV holds the values with the columns'
+        keys), or None.
     """
 
     name: str
@@ -246,6 +251,10 @@ class Section:
         The full result data for summary.json (SI units).
     warnings : list
         :class:`crankdyn.plausibility.PlausibilityWarning` objects raised by the analysis.
+    verdicts : list
+        :class:`crankdyn.summary.Verdict` rows of the section's results.
+    notes : list of str
+        The results' notes.
     """
 
     key: str  # anchor and ordering name: "kinematics"

@@ -29,6 +29,7 @@ from typing import Any
 
 from crankdyn.crank.kinematics import SERIES_ORDER
 from crankdyn.defaults import DEFAULTS, DELTA, MAX_ORDER, SPEED_STEP, STEP, speed_grid
+from crankdyn.session.core import with_parameters
 from crankdyn.session.engine import EngineAnalyses
 from crankdyn.session.torsion import TorsionAnalyses
 
@@ -46,13 +47,13 @@ __all__ = [
 ]
 
 
+@with_parameters
 class Analysis(EngineAnalyses, TorsionAnalyses):
     """The analyses of an engine, or of a torsional model without an engine, computed once.
 
-    The parameters are those of :class:`crankdyn.session.core.SessionCore`. Attributes are the
-    analyses: properties for those without options (``torque``, ``modes``...), methods with
-    keyword options for the others (``forces(cylinder=2)``, ``flywheel(delta=0.005)``); each is
-    computed once per set of options.
+    Attributes are the analyses: properties for those without options (``torque``,
+    ``modes``...), methods with keyword options for the others (``forces(cylinder=2)``,
+    ``flywheel(delta=0.005)``); each is computed once per set of options.
 
     Examples
     --------
@@ -85,12 +86,29 @@ class Analysed:
     subjects: tuple[str, ...] = ("engine",)
 
     def result_class(self) -> Any:
-        """The result class."""
+        """The result class.
+
+        Returns
+        -------
+        type
+            The class named by :attr:`result`.
+        """
         module, _, name = self.result.rpartition(".")
         return getattr(importlib.import_module(module), name)
 
     def of(self, analysis: Analysis) -> Any:
-        """The result of this analysis in a session (computed once there)."""
+        """The result of this analysis in a session (computed once there).
+
+        Parameters
+        ----------
+        analysis : Analysis
+            The session.
+
+        Returns
+        -------
+        crankdyn.results.Result
+            The analysis's result.
+        """
         value = getattr(analysis, self.name)
         return value() if callable(value) else value
 

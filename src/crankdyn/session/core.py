@@ -20,16 +20,13 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result
 from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["SessionCore"]
+__all__ = ["SESSION_PARAMETERS", "SessionCore", "with_parameters"]
 
 _T = TypeVar("_T")
 _R = TypeVar("_R", bound=Result)
 
 
-class SessionCore:
-    """What every analysis of a session shares: the subject, its speeds, orders and crank-angle
-    grid, the defaults (:data:`crankdyn.defaults.DEFAULTS`) and the cache.
-
+SESSION_PARAMETERS = """
     Parameters
     ----------
     subject : Engine or TorsionModel
@@ -72,6 +69,16 @@ class SessionCore:
     InputError
         If the subject is neither, the speed or the speeds are not positive, or the step does
         not divide the engine's working cycle.
+
+"""
+"""The parameters of every session class (:class:`crankdyn.session.Analysis` and its parts),
+documented once."""
+
+
+class SessionCore:
+    """What every analysis of a session shares: the subject, its speeds, orders and crank-angle
+    grid, the defaults (:data:`crankdyn.defaults.DEFAULTS`) and the cache (its parameters:
+    :data:`SESSION_PARAMETERS`).
 
     """
 
@@ -275,3 +282,24 @@ class SessionCore:
         return self._cached(
             (key, "rows", float(step)), lambda: compute_rows().with_summary_of(full)
         )
+
+
+def with_parameters(klass: type) -> type:
+    """``klass`` with the session's parameters (:data:`SESSION_PARAMETERS`) appended to its
+    docstring, written once for every session class.
+
+    Parameters
+    ----------
+    klass : type
+        A session class.
+
+    Returns
+    -------
+    type
+        The same class.
+    """
+    klass.__doc__ = (klass.__doc__ or "").rstrip() + "\n" + SESSION_PARAMETERS
+    return klass
+
+
+with_parameters(SessionCore)

@@ -16,7 +16,7 @@ from crankdyn.crank.geometry import check_step
 from crankdyn.crank.kinematics import SERIES_ORDER
 from crankdyn.defaults import DELTA
 from crankdyn.results import freeze
-from crankdyn.session.core import SessionCore
+from crankdyn.session.core import SessionCore, with_parameters
 
 if TYPE_CHECKING:
     from crankdyn.crank.indicated import PressureResult
@@ -32,6 +32,7 @@ if TYPE_CHECKING:
 __all__ = ["EngineAnalyses"]
 
 
+@with_parameters
 class EngineAnalyses(SessionCore):
     """The cycle analyses of an engine, each computed once per set of options."""
 
@@ -387,14 +388,21 @@ class EngineAnalyses(SessionCore):
 
         engine = self._need_masses("the flywheel")
         inputs = engine.flywheel or FlywheelInputs()
+        note = None
         if delta is None and inertia is None and inputs.delta is None and inputs.inertia is None:
             delta = DELTA if self.delta is None else self.delta
-        full = self._cached(
-            ("flywheel", delta, inertia),
-            lambda: engine_flywheel(
+            note = (
+                f"the target δ is the default {delta:g}: the engine file gives no [flywheel] "
+                "delta or inertia"
+            )
+
+        def compute() -> FlywheelResult:
+            result = engine_flywheel(
                 engine, self.speed, delta=delta, inertia=inertia, inputs=inputs, torque=self.torque
-            ),
-        )
+            )
+            return replace(result, notes=(*result.notes, note)) if note else result
+
+        full = self._cached(("flywheel", delta, inertia), compute)
         if step is None or abs(step - self.step) <= 1e-12 * self.step:
             return full
         # rows of the curves at the display step, interpolated on the analysis grid (exact at

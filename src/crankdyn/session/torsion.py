@@ -11,11 +11,10 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from crankdyn.errors import InputError
-from crankdyn.session.core import SessionCore
+from crankdyn.session.core import SessionCore, with_parameters
 from crankdyn.torsion.model import TorsionModel
 
 if TYPE_CHECKING:
-
     from crankdyn.measure.orders import OrderSpectrum, OrderTracking
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.damped import DampedModalResult
@@ -30,6 +29,7 @@ if TYPE_CHECKING:
 __all__ = ["TorsionAnalyses"]
 
 
+@with_parameters
 class TorsionAnalyses(SessionCore):
     """The torsional analyses of the model, each computed once per set of options."""
 
@@ -257,7 +257,7 @@ class TorsionAnalyses(SessionCore):
             Amplitudes (rad), shaft torques (N m) and stresses (Pa) per speed and order, and
             synthesised.
         """
-        from crankdyn.torsion.response import forced_response
+        from crankdyn.torsion.sweep import forced_response
 
         self._need_model()
         model = cast(TorsionModel, self.loaded_model)
@@ -291,7 +291,7 @@ class TorsionAnalyses(SessionCore):
         crankdyn.torsion.response.ResponseResult
             The response.
         """
-        from crankdyn.torsion.response import forced_response
+        from crankdyn.torsion.sweep import forced_response
 
         self._need_model()
         model = cast(TorsionModel, self.loaded_model)
@@ -409,7 +409,7 @@ class TorsionAnalyses(SessionCore):
     ) -> ResponseResult:
         """A TVC condition's response: the session's own (cached) where the speeds and orders
         are the session's, else computed for the condition."""
-        from crankdyn.torsion.response import forced_response
+        from crankdyn.torsion.sweep import forced_response
 
         same = (
             model is self.loaded_model

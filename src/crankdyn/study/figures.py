@@ -351,7 +351,20 @@ class Figure:
 
     def display(self, values: Any) -> tuple[float, str]:
         """(factor, unit) that show ``values`` (in :attr:`unit`) in one engineering unit, as
-        every front end shows numbers (:func:`crankdyn.display.engineering_unit`)."""
+        every front end shows numbers (:func:`crankdyn.display.engineering_unit`).
+
+        Parameters
+        ----------
+        values : array_like
+            The figure's values (in :attr:`unit`).
+
+        Returns
+        -------
+        factor : float
+            From :attr:`unit` to the display unit.
+        unit : str
+            The display unit.
+        """
         from crankdyn.display import engineering_unit
 
         arr = np.asarray(values, dtype=float)

@@ -7,7 +7,9 @@
 - :mod:`crankdyn.torsion.transfer`: the transfer-matrix method for chains;
 - :mod:`crankdyn.torsion.closed_form`: closed forms for one, two, three and N equal masses.
 - :mod:`crankdyn.torsion.excitation`: engine excitation, harmonic analysis, major orders;
-- :mod:`crankdyn.torsion.response`: steady-state forced response (batched chain solves);
+- :mod:`crankdyn.torsion.sweep`: steady-state forced response over a speed range, resolved;
+- :mod:`crankdyn.torsion.solvers`: the linear system and its batched (chain) solves;
+- :mod:`crankdyn.torsion.response`: the forced response's result (peaks, relative angles);
 - :mod:`crankdyn.torsion.dampers`: viscous and tuned dampers, Den Hartog's optima;
 - :mod:`crankdyn.torsion.campbell`: critical speeds and the Campbell diagram;
 - :mod:`crankdyn.torsion.rules`: permissible stresses after IACS UR M68;
@@ -22,15 +24,8 @@
 """
 
 from crankdyn.torsion.coupling import Coupling
-from crankdyn.torsion.model import (
-    GROUND,
-    Gear,
-    Mass,
-    MassLimits,
-    Shaft,
-    ShaftGeometry,
-    TorsionModel,
-)
+from crankdyn.torsion.elements import GROUND, Gear, Mass, MassLimits, Shaft, ShaftGeometry
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
     "GROUND",

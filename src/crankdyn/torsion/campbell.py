@@ -36,13 +36,15 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.crank.geometry import check_positive
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, derived
+from crankdyn.torsion.elements import Mass, Shaft
 from crankdyn.torsion.excitation import (
     Excitation,
     check_orders,
     cylinder_amplitudes,
     relative_amplitude_sums,
 )
-from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.sources import (
     check_model_orders,
     engine_orders_mask,
@@ -160,6 +162,13 @@ class CriticalSpeed(Result):
         return self.natural_frequency * HZ
 
 
+def _majors(result: CampbellResult) -> tuple[int, str]:
+    """The number of major-order critical speeds in the range, and where they are."""
+    majors = [c for c in result.critical_speeds if c.major]
+    where = ", ".join(f"order {c.order:g} at {c.speed * RPM:.5g} rpm" for c in majors)
+    return len(majors), where
+
+
 @dataclass(frozen=True)
 class CampbellResult(Result):
     """Critical speeds in the operating range and the data of the Campbell diagram
@@ -176,10 +185,69 @@ class CampbellResult(Result):
     model_name: str = scalar("model", "Model", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
+    FIGURES = (
+        derived(
+            "major_critical_speeds", "major_critical_speeds",
+            "Major-order critical speeds in the range", "",
+            lambda c: None if c.major is None else _majors(c), headline=True, better="min",
+            description="Resonances of major orders inside the operating range (undetermined "
+            "without a firing order)",
+        ),
+    )  # fmt: skip
+
     @property
     def frequencies_hz(self) -> NDArray[np.float64]:
         """The natural frequencies (Hz)."""
         return np.asarray(self.natural_frequency) * HZ
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """Every mode x order crossing in the range: the critical speeds, major or minor
+        (undetermined without a firing order), and what excites the order where sources act
+        besides the engine.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
+        sources = any(c.excited_by not in (None, "engine") for c in self.critical_speeds)
+        columns = [
+            SummaryColumn("speed_rpm", "Critical speed", "rpm"),
+            SummaryColumn("mode", "Mode"),
+            SummaryColumn("nodes", "Nodes"),
+            SummaryColumn("order", "Order"),
+            SummaryColumn("natural_frequency_hz", "Natural frequency", "Hz"),
+            SummaryColumn("major", "Major order"),
+            SummaryColumn("relative_amplitude_sum", "Relative amplitude sum"),
+        ]
+        if sources:
+            columns.append(SummaryColumn("excited_by", "Excited by"))
+        rows = []
+        for c in self.critical_speeds:
+            row: list[Any] = [
+                round(c.speed * RPM, 1),
+                c.mode,
+                c.nodes,
+                f"{c.order:g}",
+                c.natural_frequency * HZ,
+                "undetermined" if c.major is None else ("yes" if c.major else "no"),
+                c.relative_amplitude_sum,
+            ]
+            if sources:
+                row.append(c.excited_by or "-")
+            rows.append(tuple(row))
+        majors = sum(1 for c in self.critical_speeds if c.major)
+        span = f"{self.low * RPM:.0f}-{self.high * RPM:.0f} rpm"
+        return [
+            SummaryTable(
+                "critical_speeds",
+                f"{self.model_name}: critical speeds {span}",
+                tuple(columns),
+                tuple(rows),
+                caption=f"Every mode × order crossing in the range: {len(rows)} critical "
+                f"speed(s), {majors} of major orders.",
+            )
+        ]
 
     def plot(self, fig: Figure | None = None, max_speed: float | None = None) -> Figure:
         """The Campbell diagram: the order lines q n against the speed, the natural frequencies
@@ -245,7 +313,8 @@ def campbell(
     --------
     Two masses (20 rad/s, :func:`crankdyn.torsion.closed_form.two_mass`) and orders 1 and 2:
 
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> result = campbell(model, [1.0, 2.0], (5.0, 30.0))

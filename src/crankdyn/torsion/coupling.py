@@ -1,7 +1,7 @@
 """Elastic couplings from catalogue data (domain).
 
 A highly elastic coupling (rubber or steel-spring element) enters the lumped model as a shaft
-between its primary and secondary inertias (:class:`crankdyn.torsion.model.Shaft` with a
+between its primary and secondary inertias (:class:`crankdyn.torsion.elements.Shaft` with a
 :class:`Coupling`). The makers' catalogues give, for torsional vibration calculations:
 
 - the **dynamic torsional stiffness** C_Tdyn (N m/rad), which for rubber depends on the mean

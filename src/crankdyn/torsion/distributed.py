@@ -35,7 +35,7 @@ from typing import TYPE_CHECKING
 from crankdyn.errors import InputError
 
 if TYPE_CHECKING:
-    from crankdyn.torsion.model import Mass, Shaft, ShaftGeometry
+    from crankdyn.torsion.elements import Mass, Shaft, ShaftGeometry
 
 __all__ = ["DEFAULT_MAX_FREQUENCY", "TOLERANCE", "element_count", "subdivide", "transit_time"]
 
@@ -128,22 +128,22 @@ def subdivide(
 
     Parameters
     ----------
-    masses : iterable of crankdyn.torsion.model.Mass
+    masses : iterable of crankdyn.torsion.elements.Mass
         The model's masses, in order.
-    shafts : iterable of crankdyn.torsion.model.Shaft
+    shafts : iterable of crankdyn.torsion.elements.Shaft
         Its shafts; those with ``inertia`` > 0 between known masses are divided into
         ``elements`` (or :func:`element_count` elements for their ``max_frequency``, default
         :data:`DEFAULT_MAX_FREQUENCY`).
     mass_type : callable
         Makes the new masses, ``mass_type(name, inertia, role="shaft")`` (the model's
-        :class:`~crankdyn.torsion.model.Mass`).
+        :class:`~crankdyn.torsion.elements.Mass`).
 
     Returns
     -------
-    masses : tuple of crankdyn.torsion.model.Mass
+    masses : tuple of crankdyn.torsion.elements.Mass
         The masses, the new ones named ``"<shaft> <i>/<N>"`` (the shaft's name, else
         ``"a - b"``) and listed after the first-listed end, in order from it.
-    shafts : tuple of crankdyn.torsion.model.Shaft
+    shafts : tuple of crankdyn.torsion.elements.Shaft
         The shafts, each divided shaft replaced by its N elements (``segment_of`` its ends).
 
     Raises
@@ -154,7 +154,7 @@ def subdivide(
 
     Examples
     --------
-    >>> from crankdyn.torsion.model import Mass, Shaft
+    >>> from crankdyn.torsion.elements import Mass, Shaft
     >>> masses, shafts = subdivide(
     ...     [Mass("a", 1.0), Mass("b", 2.0)],
     ...     [Shaft(("a", "b"), stiffness=1e5, inertia=0.2, elements=2)],

@@ -16,7 +16,8 @@ import dataclasses
 from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
-from crankdyn.torsion.model import GROUND, Gear, TorsionModel
+from crankdyn.torsion.elements import GROUND, Gear
+from crankdyn.torsion.model import TorsionModel
 
 if TYPE_CHECKING:
     from crankdyn.torsion.sources import EngineSource, HarmonicSource
@@ -129,7 +130,8 @@ def strip_cylinders(model: TorsionModel) -> tuple[TorsionModel, tuple[tuple[int,
 
     Examples
     --------
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> engine = TorsionModel(
     ...     masses=(Mass("throw 1", 1.0, cylinders=(1,)), Mass("throw 2", 1.0, cylinders=(2,))),
     ...     shafts=(Shaft(("throw 1", "throw 2"), 1e6),),

@@ -45,7 +45,8 @@ from numpy.typing import NDArray
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.crank.masses import equivalent_mass_model
 from crankdyn.errors import InputError
-from crankdyn.torsion.model import Gear, Mass, Shaft, ShaftGeometry, TorsionModel
+from crankdyn.torsion.elements import Gear, Mass, Shaft, ShaftGeometry
+from crankdyn.torsion.model import TorsionModel
 
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.crank.geometry import CrankGeometry
@@ -324,11 +325,11 @@ def equivalent_system(
         The running-gear masses of one cylinder (kg).
     throws : ThrowSpec
         Crank inertia, span stiffness (or dimensions) and damping of the throws.
-    other_masses : tuple of crankdyn.torsion.model.Mass
+    other_masses : tuple of crankdyn.torsion.elements.Mass
         The other masses of the line (pulley, damper, flywheel, driven machine...).
-    shafts : tuple of crankdyn.torsion.model.Shaft
+    shafts : tuple of crankdyn.torsion.elements.Shaft
         The shafts joining them to the throws and to each other.
-    gears : tuple of crankdyn.torsion.model.Gear
+    gears : tuple of crankdyn.torsion.elements.Gear
         Gears of the line.
     name : str
         The model's name.

@@ -119,7 +119,8 @@ def holzer_table(model: TorsionModel, omega: float) -> HolzerTable:
     Two masses, 1 and 3 kg m^2, on a shaft of 300 N m/rad: at its natural frequency, 20 rad/s,
     the residual vanishes.
 
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> table = holzer_table(model, 20.0)
@@ -193,7 +194,8 @@ def holzer_residual(model: TorsionModel, omega: ArrayLike) -> NDArray[np.float64
 
     Examples
     --------
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> np.round(holzer_residual(model, [0.0, 10.0, 20.0]), 9)
@@ -311,7 +313,8 @@ def holzer_frequencies(model: TorsionModel) -> tuple[NDArray[np.float64], NDArra
     Against the closed form of two masses (:func:`crankdyn.torsion.closed_form.two_mass`:
     omega^2 = k (J_1 + J_2) / (J_1 J_2) = 400 rad^2/s^2):
 
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> omega, shapes = holzer_frequencies(model)
@@ -390,7 +393,8 @@ def residual_curve(
 
     Examples
     --------
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> curve = residual_curve(model, points=5)

@@ -8,18 +8,18 @@ and load laws (:func:`crankdyn.torsion.sources.mean_torques`), the forced respon
 every speed the stiffness at that speed's mean torque: the dynamic stiffness matrix becomes
 D(omega, n) = D(omega) + (1 + i eta) Delta K(n), Delta K the change of the couplings'
 (reflected) stiffness from the model's, the loss factor eta = psi / (2 pi) applying to the whole
-stiffness. All speeds and orders are still solved at once (batched tridiagonal solves with
-partial pivoting for a chain, :func:`crankdyn.torsion.response.solve_tridiagonal`; batched
-dense solves otherwise). Natural frequencies and the Campbell diagram use the model's own
-stiffness (at each coupling's ``reference_torque``); :func:`model_at_speed` gives the model at
-one speed's load.
+stiffness. This module gives the change (:func:`load_change`); the forced response
+(:mod:`crankdyn.torsion.sweep`) still solves all speeds and orders at once with it
+(:meth:`crankdyn.torsion.solvers.LinearSystem.solve_with_change`: batched tridiagonal solves
+with partial pivoting for a chain, batched dense solves otherwise). Natural frequencies and
+the Campbell diagram use the model's own stiffness (at each coupling's ``reference_torque``);
+:func:`model_at_speed` gives the model at one speed's load.
 """
 
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Iterable, Sequence
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -29,13 +29,12 @@ from crankdyn.errors import InputError
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
-    from crankdyn.torsion.response import LinearSystem
+    from crankdyn.torsion.solvers import LinearSystem
 
 __all__ = [
-    "change_matrix",
     "coupling_stiffness",
+    "load_change",
     "model_at_speed",
-    "solve_at_speeds",
     "stiffness_change",
 ]
 
@@ -225,8 +224,8 @@ def stiffness_change(
     ----------
     model : crankdyn.torsion.model.TorsionModel
         The model.
-    system : crankdyn.torsion.response.LinearSystem
-        Its linear system (:func:`crankdyn.torsion.response.linear_system`).
+    system : crankdyn.torsion.solvers.LinearSystem
+        Its linear system (:func:`crankdyn.torsion.solvers.linear_system`).
     speeds : array_like
         Reference speeds (rad/s), shape (S,).
 
@@ -264,7 +263,7 @@ def stiffness_change(
     ...     sources=(propeller("propeller", 4, fractions=[0.05],
     ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
     ... )
-    >>> from crankdyn.torsion.response import linear_system
+    >>> from crankdyn.torsion.solvers import linear_system
     >>> ends, delta, eta, shafts, k = stiffness_change(model, linear_system(model), [300 / RPM])
     >>> ends.tolist(), delta.tolist(), f"{eta[0]:.6f}"
     ([[0, 1]], [[-100000.0]], '0.159155')
@@ -282,79 +281,43 @@ def stiffness_change(
     return ends, delta, eta, shafts, k_actual
 
 
-def change_matrix(
-    ends: Iterable[Sequence[int]] | NDArray[np.int_], values: ArrayLike, size: int
-) -> NDArray[Any]:
-    """Delta K of the couplings: each a spring between its two ends, assembled like a shaft
-    (k [[1, -1], [-1, 1]]; :meth:`crankdyn.torsion.model.TorsionModel.stiffness_matrix`).
-
-    Parameters
-    ----------
-    ends : array_like of int
-        Degrees of freedom (a, b) at the ends of every coupling, shape (count, 2).
-    values : array_like
-        Stiffness changes (N m/rad; complex for a dynamic stiffness change), shape
-        (..., count).
-    size : int
-        Number of degrees of freedom n.
-
-    Returns
-    -------
-    numpy.ndarray
-        Delta K (N m/rad, the dtype of ``values``), shape (..., n, n).
-
-    Examples
-    --------
-    >>> change_matrix([(0, 1)], [2.0], 3).tolist()
-    [[2.0, -2.0, 0.0], [-2.0, 2.0, 0.0], [0.0, 0.0, 0.0]]
-    """
-    values = np.asarray(values)
-    out = np.zeros((*values.shape[:-1], size, size), dtype=values.dtype)
-    for j, (a, b) in enumerate(ends):  # the couplings (a few)
-        out[..., a, a] += values[..., j]
-        out[..., b, b] += values[..., j]
-        out[..., a, b] -= values[..., j]
-        out[..., b, a] -= values[..., j]
-    return out
-
-
-def solve_at_speeds(
+def load_change(
     model: TorsionModel,
     system: LinearSystem,
     speeds: ArrayLike,
     omega: ArrayLike,
-    forcing: ArrayLike,
     hysteretic_frequency: float | None = None,
-) -> tuple[NDArray[np.complexfloating], NDArray[np.float64]]:
-    """The forced response's complex amplitudes, each speed with its couplings' stiffness:
-    ``system.solve`` when no coupling depends on the load, else the batched solve of
-    (D(omega) + (1 + i eta) Delta K(n)) X = F (module docstring).
+) -> tuple[NDArray[np.int_], NDArray[np.complexfloating], NDArray[np.float64]] | None:
+    """The change of the load-dependent couplings' dynamic stiffness at every speed and order,
+    (1 + i eta) Delta K(n) (module docstring), and every element's actual stiffness at each
+    speed: what the forced response adds to D(omega) at speed n
+    (:meth:`crankdyn.torsion.solvers.LinearSystem.solve_with_change`). The result is None when
+    no coupling depends on the load (:func:`stiffness_change`).
 
     Parameters
     ----------
     model : crankdyn.torsion.model.TorsionModel
         The model.
-    system : crankdyn.torsion.response.LinearSystem
-        Its linear system (:func:`crankdyn.torsion.response.linear_system`).
+    system : crankdyn.torsion.solvers.LinearSystem
+        Its linear system (:func:`crankdyn.torsion.solvers.linear_system`).
     speeds : array_like
         Reference speeds n (rad/s), shape (S,).
     omega : array_like
         Circular frequencies of the orders at every speed (rad/s), shape (S, Q).
-    forcing : array_like
-        Complex harmonic torques on the degrees of freedom (N m, reflected), shape
-        (S, Q, dofs).
     hysteretic_frequency : float or None
         None: loss factors act as hysteretic damping (i eta k); else the circular frequency
         omega_h (rad/s) at which they are turned into viscous damping eta k / omega_h.
 
     Returns
     -------
-    x : numpy.ndarray
-        Reflected complex angle amplitudes (rad), shape (S, Q, dofs).
+    ends : numpy.ndarray
+        The couplings' degrees of freedom in ``system``, shape (count, 2).
+    change : numpy.ndarray
+        Complex change of the couplings' reflected dynamic stiffness (N m/rad), shape
+        (S, Q, count): (1 + i eta) delta, or delta + i omega eta delta / omega_h.
     k : numpy.ndarray
         Actual stiffness of every element (N m/rad) for the element torques
-        k (theta_b - theta_a) / r: shape (elements,), or (S, 1, elements) with load-dependent
-        couplings (signed by the sense of rotation).
+        k (theta_b - theta_a) / r, shape (S, 1, elements) (signed by the sense of rotation).
 
     Raises
     ------
@@ -363,10 +326,9 @@ def solve_at_speeds(
 
     Examples
     --------
-    The batched solve agrees with the ordinary solve of the model at each speed's load:
-
     An engine driving a propeller (propeller law, 20 kN m at 600 rpm) through a rubber
-    coupling whose stiffness rises with the mean torque:
+    coupling whose stiffness rises with the mean torque; the batched solve with the change
+    agrees with the ordinary solve of the model at each speed's load:
 
     >>> from crankdyn.constants import RPM
     >>> from crankdyn.torsion import Coupling, Mass, Shaft, TorsionModel
@@ -380,21 +342,22 @@ def solve_at_speeds(
     ...                        load=LoadLaw(20e3, 600 / RPM, 2.0)),),
     ... )
     >>> import numpy as np
-    >>> from crankdyn.torsion.response import linear_system
+    >>> from crankdyn.torsion.solvers import linear_system
+    >>> system = linear_system(model)
     >>> speeds = np.array([300.0, 600.0]) / RPM
     >>> omega = 4.0 * speeds[:, None]
+    >>> ends, change, k = load_change(model, system, speeds, omega)
+    >>> k[:, 0, 0].tolist()
+    [150000.0, 250000.0]
     >>> forcing = np.ones((2, 1, 2), dtype=complex)
-    >>> x, k = solve_at_speeds(model, linear_system(model), speeds, omega, forcing)
-    >>> x.shape, k[:, 0, 0].tolist()
-    ((2, 1, 2), [150000.0, 250000.0])
+    >>> x = system.solve_with_change(omega, forcing, ends, change)
     >>> one = linear_system(model_at_speed(model, speeds[0])).solve(omega[0], forcing[0])
     >>> bool(np.allclose(x[0], one, rtol=1e-12, atol=0.0))
     True
     """
-    base_k = system.element_stiffness / system.element_ratio
     found = stiffness_change(model, system, speeds)
     if found is None:
-        return system.solve(omega, forcing, hysteretic_frequency), base_k
+        return None
     ends, delta, eta, shafts, k_actual = found
     first = np.array([model.index(model.shafts[i].between[0]) for i in shafts], dtype=int)
     w = np.asarray(omega, dtype=float)
@@ -406,24 +369,8 @@ def solve_at_speeds(
         else 1.0 + 1j * eta[None, None, :] * (w[..., None] / hysteretic_frequency)
     )
     change = delta[:, None, :] * factor  # (S, Q, count)
-    f = np.asarray(forcing, dtype=complex)
-    if system.chain is not None:
-        lower, diag, upper = system.diagonals(w, hysteretic_frequency)
-        lower, diag, upper = lower.copy(), diag.copy(), upper.copy()
-        for j, (a, b) in enumerate(ends):  # the couplings (a few): the chain's links
-            lo = min(a, b)
-            diag[..., a] += change[..., j]
-            diag[..., b] += change[..., j]
-            lower[..., lo] -= change[..., j]
-            upper[..., lo] -= change[..., j]
-        from crankdyn.torsion.tridiagonal import solve_tridiagonal
-
-        x = solve_tridiagonal(lower, diag, upper, f)
-    else:
-        d = system.matrix(w, hysteretic_frequency) + change_matrix(ends, change, system.size)
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            x = np.linalg.solve(d, f[..., None])[..., 0]
     # element torques k_actual (actual twist) = k_actual rho (reflected twist), rho signed
+    base_k = system.element_stiffness / system.element_ratio
     k = np.broadcast_to(base_k, (w.shape[0], 1, base_k.size)).copy()
     k[:, 0, shafts] = k_actual * model.signed_speed_ratios[first][None, :]
-    return cast("NDArray[np.complexfloating]", x), k
+    return ends, change, k

@@ -367,7 +367,13 @@ class ModalResult(Result):
     )
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The natural frequency and node count of every mode."""
+        """The natural frequency and node count of every mode.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
         columns = (
             SummaryColumn("mode", "Mode"),
             SummaryColumn("natural_frequency_hz", "Natural frequency", "Hz"),

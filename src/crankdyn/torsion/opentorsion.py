@@ -27,7 +27,8 @@ from collections import deque
 from typing import Any
 
 from crankdyn.errors import InputError
-from crankdyn.torsion.model import GROUND, Gear, Mass, Shaft, ShaftGeometry, TorsionModel
+from crankdyn.torsion.elements import GROUND, Gear, Mass, Shaft, ShaftGeometry
+from crankdyn.torsion.model import TorsionModel
 
 __all__ = ["from_opentorsion", "to_opentorsion"]
 

@@ -26,12 +26,18 @@ acceptable only below lambda = 0.8 and only while the stress stays below tau_T. 
 lambda = 1.05 the UR sets no limit (not checked). The UR also caps sigma_B used in the formula
 (see its text): give the value the UR allows for your material.
 
-Grid independence. The check runs on the resolved response (the resonance peaks refined to
-0.1 %, :mod:`crankdyn.torsion.resolve`); the local maxima of stress / tau_C that come within 1 %
-of the limit are refined further (to 1e-6), so a tangency is decided by the curve, not by the
-grid; and the ends of every barred range are bisected on the synthesised stress minus tau_C to
-0.01 rpm (all ends at once per round). :func:`exceedances` is the same machinery for any curve
-of a response against any limit curve (couplings, gears, ... against their own limits).
+The check itself (the shafts' synthesised stresses against these limits, the barred ranges
+and their permission) is one of the installation's checks, evaluated in one place for every
+front end: :class:`crankdyn.tvc.checks.M68Shafts`, :func:`crankdyn.tvc.evaluate.
+evaluate_condition`. This module holds the rule's formulas, its inputs (:class:`RuleSet`,
+:class:`ShaftLimit`) and :func:`exceedances`.
+
+Grid independence. :func:`exceedances` runs on the resolved response (the resonance peaks
+refined to 0.1 %, :mod:`crankdyn.torsion.resolve`); the local maxima of curve / limit that come
+within 1 % of the limit are refined further (to 1e-6), so a tangency is decided by the curve,
+not by the grid; and the ends of every range are bisected on the curve minus the limit to
+0.01 rpm (all ends at once per round), for any curve of a response against any limit curve
+(shafts, couplings, gears, ... against their own limits).
 """
 
 from __future__ import annotations
@@ -47,24 +53,19 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.torsion.resolve import bisect_crossings, merge_speeds, refinement_speeds
 
 if TYPE_CHECKING:
-    from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
 
 __all__ = [
     "RULE",
     "SPEED_TOLERANCE",
     "STRENGTH_CAPS",
-    "BarredRange",
     "Exceedance",
-    "RuleCheck",
     "RuleSet",
     "ShaftLimit",
     "capped_strength",
-    "check_rules",
     "exceedances",
     "permissible_continuous",
     "permissible_transient",
@@ -347,97 +348,6 @@ class RuleSet:
 
 
 @dataclass(frozen=True)
-class BarredRange(Result):
-    """A speed range where the synthesised stress of a shaft exceeds tau_C (IACS UR M68.4:
-    permitted below 0.8 n_0 while the stress stays below tau_T; :func:`check_rules`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
-    >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
-    >>> model = TorsionModel(
-    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
-    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
-    ... )
-    >>> rpm = math.pi / 30
-    >>> response = forced_response(
-    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
-    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
-    ... )
-    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
-    >>> barred = check_rules(response, rules, model).barred_ranges[0]
-    >>> round(barred.start / rpm, 1), round(barred.end / rpm, 1), barred.permitted
-    (595.2, 601.5, True)
-    """
-
-    shaft: tuple[str, str] = scalar("shaft", "Shaft", "")
-    start: float = scalar("start_rpm", "From", "rpm", RPM)
-    end: float = scalar("end_rpm", "To", "rpm", RPM)
-    max_stress: float = scalar("max_stress_Pa", "Largest stress", "Pa")
-    max_ratio: float = scalar("max_stress_to_tau_c", "Largest stress / τ_C", "", fmt=".4g")
-    permitted: bool = scalar("permitted", "Permitted as a barred range", "")
-    reason: str = scalar("reason", "Why", "")
-    peak_speed: float | None = scalar(
-        "max_stress_speed_rpm", "Largest stress at", "rpm", RPM, default=None
-    )
-    open_start: bool = scalar(
-        "starts_below_sweep", "Starts below the swept range", "", default=False
-    )
-    open_end: bool = scalar("ends_above_sweep", "Ends above the swept range", "", default=False)
-
-
-@dataclass(frozen=True)
-class RuleCheck(Result):
-    """Synthesised shaft stresses against the IACS UR M68 limits (module docstring).
-
-    Examples
-    --------
-    >>> import math
-    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
-    >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
-    >>> model = TorsionModel(
-    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
-    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
-    ... )
-    >>> rpm = math.pi / 30
-    >>> response = forced_response(
-    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
-    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
-    ... )
-    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
-    >>> check = check_rules(response, rules, model)
-    >>> check.passed, len(check.barred_ranges), check.stress.shape == check.tau_c.shape
-    (True, 1, True)
-    """
-
-    title = "Rule check"
-    rule: str = scalar("rule", "Rule", "")
-    rated_speed: float = scalar("rated_speed_rpm", "Rated speed n_0", "rpm", RPM)
-    shafts: tuple[tuple[str, str], ...] = scalar("shafts", "Checked shafts", "")
-    speed: np.ndarray = array("speed_rpm", "Speed", "rpm", RPM)
-    stress: np.ndarray = array("stress_Pa", "Synthesised stress (speed x shaft)", "Pa")
-    tau_c: np.ndarray = array("tau_c_Pa", "Permissible, continuous τ_C", "Pa")
-    tau_t: np.ndarray = array("tau_t_Pa", "Permissible, transient τ_T", "Pa")
-    exceeds: np.ndarray = array("exceeds_continuous", "Stress above τ_C", "")
-    barred_ranges: tuple[BarredRange, ...] = scalar("barred_speed_ranges", "Barred ranges", "")
-    passed: bool = scalar("passed", "Passed", "")
-    notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
-
-    def max_ratio(self) -> tuple[float, str] | None:
-        """The largest synthesised stress over tau_C, with the shaft and speed where it occurs
-        (None without checked shafts)."""
-        ratio = np.asarray(self.stress) / np.asarray(self.tau_c)
-        if ratio.size == 0 or not np.isfinite(ratio).any():
-            return None
-        i, j = np.unravel_index(int(np.nanargmax(ratio)), ratio.shape)
-        shaft = " - ".join(self.shafts[j])
-        return float(ratio[i, j]), f"{shaft} at {self.speed[i] * RPM:.6g} rpm"
-
-
-@dataclass(frozen=True)
 class Exceedance:
     """A speed range where a response curve exceeds its limit (:func:`exceedances`).
 
@@ -517,7 +427,7 @@ def exceedances(
     >>> import math
     >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel(
     ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
     ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
@@ -602,166 +512,6 @@ def exceedances(
             end_at: dict[str, Any] = {which: float(speed_at)}
             out[index] = dataclasses.replace(out[index], **end_at)
     return tuple(out)
-
-
-def check_rules(
-    result: ResponseResult,
-    rules: RuleSet,
-    model: TorsionModel | None = None,
-    rated_speed: float | None = None,
-) -> RuleCheck:
-    """Check the synthesised shaft stresses of a response against IACS UR M68.4.
-
-    Barred ranges come from :func:`exceedances` on the synthesised stress against tau_C
-    (:func:`permissible_continuous`): their ends bisected to 0.01 rpm, so the verdict and the
-    ranges do not depend on the grid of a resolved response. A range is permitted below
-    0.8 n_0 while the stress stays below tau_T (:func:`permissible_transient`).
-
-    Parameters
-    ----------
-    result : crankdyn.torsion.response.ResponseResult
-        The forced response, with the shafts' section moduli (their diameters).
-    rules : RuleSet
-        The rated speed and the checked shafts.
-    model : crankdyn.torsion.model.TorsionModel or None
-        The model the response is of, for the shafts' outer diameters (C_D); None: no size
-        factor can be computed (tau_C NaN).
-    rated_speed : float or None
-        n_0 (rad/s) when the rule set has none (the engine's operating speed).
-
-    Returns
-    -------
-    RuleCheck
-        Stress, tau_C and tau_T (Pa) per speed and checked shaft, the barred ranges and the
-        verdict.
-
-    Raises
-    ------
-    InputError
-        Naming the key and value: no rated speed (``rated_speed``), a checked shaft without
-        diameters (``[rules] shaft`` and its two masses), a shaft not in the model
-        (:meth:`~crankdyn.torsion.response.ResponseResult.shaft_index`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
-    >>> from crankdyn.torsion.excitation import UniformExcitation
-    >>> from crankdyn.torsion.response import forced_response
-    >>> model = TorsionModel(
-    ...     masses=(Mass("engine", 2.0, damping=5.0, cylinders=(1,)), Mass("propeller", 6.0)),
-    ...     shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
-    ... )
-    >>> rpm = math.pi / 30
-    >>> response = forced_response(
-    ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
-    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
-    ... )
-    >>> rules = RuleSet(1000 * rpm, [ShaftLimit(("engine", "propeller"), 600e6)])
-    >>> check = check_rules(response, rules, model)
-    >>> check.passed, [b.reason for b in check.barred_ranges]
-    (True, ['τ_C exceeded below 0.8 n_0 and τ_T kept: pass through quickly'])
-    """
-    n0 = rules.rated_speed if rules.rated_speed is not None else rated_speed
-    if n0 is None:
-        raise InputError(
-            "the rule check needs the rated speed n_0: give [rules] rated_speed (or the "
-            "engine's [operating] speed)",
-            key="rated_speed",
-        )
-    speeds = np.asarray(result.speed)
-    lam = speeds / n0
-    shaft_rows: list[int] = []
-    labels: list[tuple[str, str]] = []
-    strength_list: list[float] = []
-    factor_list: list[float] = []
-    diameter_list: list[float | None] = []
-    for limit in rules.shafts:
-        s = result.shaft_index(limit.between)
-        modulus = result.section_modulus[s] if result.section_modulus is not None else np.nan
-        if not np.isfinite(modulus):
-            raise InputError(
-                f'shaft "{limit.between[0]} - {limit.between[1]}" has no diameters: the rule '
-                "check needs its outer_diameter (and inner_diameter)",
-                key="[rules] shaft",
-                value=list(limit.between),
-            )
-        geometry = model.shafts[s].geometry if model is not None else None
-        diameter = geometry.outer_diameter if geometry is not None else None
-        shaft_rows.append(s)
-        labels.append(result.shafts[s])
-        strength_list.append(limit.strength_used)
-        factor_list.append(limit.design_factor)
-        diameter_list.append(diameter)
-    index = np.array(shaft_rows)
-    strengths = np.array(strength_list)
-    factors = np.array(factor_list)
-    diameters = np.array(diameter_list, dtype=float)
-
-    def tau_c_at(w: ArrayLike) -> NDArray[np.float64]:
-        ratio = np.asarray(w, dtype=float)[:, None] / n0
-        return permissible_continuous(ratio, strengths, factors, diameters)
-
-    def tau_t_at(w: ArrayLike) -> NDArray[np.float64]:
-        ratio = np.asarray(w, dtype=float)[:, None] / n0
-        return permissible_transient(ratio, tau_c_at(w), factors[None, :])
-
-    def stress_of(r: ResponseResult) -> NDArray[np.float64]:
-        return np.asarray(r.synthesized_shaft_stress)[:, index]
-
-    stress = stress_of(result)
-    tau_c = tau_c_at(speeds)
-    tau_t = tau_t_at(speeds)
-    with np.errstate(invalid="ignore"):
-        exceeds = stress > tau_c
-    barred = []
-    for ex in exceedances(result, stress_of, tau_c_at):
-        j = ex.column
-        rows = ex.rows
-        above = bool(ex.end > 0.8 * n0)
-        with np.errstate(invalid="ignore"):
-            over_t = bool(np.any(~(stress[rows, j] <= tau_t[rows, j]))) if rows.size else False
-        reason = (
-            "reaches above 0.8 n_0, where no barred range is permitted"
-            if above
-            else "exceeds τ_T for transient operation"
-            if over_t
-            else "τ_C exceeded below 0.8 n_0 and τ_T kept: pass through quickly"
-        )
-        barred.append(
-            BarredRange(
-                shaft=labels[j],
-                start=ex.start,
-                end=ex.end,
-                max_stress=ex.peak,
-                max_ratio=ex.peak_ratio,
-                permitted=not (above or over_t),
-                reason=reason,
-                peak_speed=ex.peak_speed,
-                open_start=ex.open_start,
-                open_end=ex.open_end,
-            )
-        )
-    notes = []
-    if np.any(lam > 1.05):
-        notes.append("speeds above 1.05 n_0 are not checked (the rule gives no limit there)")
-    if any(b.open_start or b.open_end for b in barred):
-        notes.append(
-            "a barred range reaches an end of the swept range: sweep further to find its end"
-        )
-    return RuleCheck(
-        rule=RULE,
-        rated_speed=n0,
-        shafts=tuple(labels),
-        speed=freeze(speeds),
-        stress=freeze(stress),
-        tau_c=freeze(tau_c),
-        tau_t=freeze(tau_t),
-        exceeds=freeze(exceeds, dtype=bool),
-        barred_ranges=tuple(barred),
-        passed=all(b.permitted for b in barred),
-        notes=tuple(notes) or None,
-    )
 
 
 def _runs(mask: ArrayLike) -> list[tuple[int, int]]:

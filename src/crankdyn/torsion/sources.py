@@ -69,7 +69,7 @@ from crankdyn.torsion.excitation import (
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
-    from crankdyn.torsion.response import LinearSystem
+    from crankdyn.torsion.solvers import LinearSystem
 
 __all__ = [
     "SOURCE_KINDS",
@@ -1102,8 +1102,8 @@ def assemble_forcing(
     ----------
     model : crankdyn.torsion.model.TorsionModel
         The torsional model.
-    system : crankdyn.torsion.response.LinearSystem
-        :func:`crankdyn.torsion.response.linear_system` of the model.
+    system : crankdyn.torsion.solvers.LinearSystem
+        :func:`crankdyn.torsion.solvers.linear_system` of the model.
     excitation : Excitation
         The engine excitation of the cylinders on the masses (or a uniform or source-only one).
     speeds : array_like

@@ -108,7 +108,8 @@ def chain_transfer_matrix(
 
     Examples
     --------
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> shaft = Shaft(("a", "b"), stiffness=300.0)
     >>> model = TorsionModel((Mass("a", 1.0), Mass("b", 3.0)), (shaft,))
     >>> np.round(chain_transfer_matrix(model, [10.0, 20.0])[:, 1, 0], 9)
@@ -219,7 +220,8 @@ def transfer_frequencies(model: TorsionModel) -> tuple[NDArray[np.float64], NDAr
     Three equal masses on equal shafts, against :func:`crankdyn.torsion.closed_form.three_mass`
     (omega^2 = k/J and 3 k/J):
 
-    >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.elements import Mass, Shaft
+    >>> from crankdyn.torsion.model import TorsionModel
     >>> model = TorsionModel(
     ...     (Mass("a", 1.0), Mass("b", 1.0), Mass("c", 1.0)),
     ...     (Shaft(("a", "b"), stiffness=100.0), Shaft(("b", "c"), stiffness=100.0)),

@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.excitation import interp_complex
-from crankdyn.torsion.response import linear_system
+from crankdyn.torsion.solvers import linear_system
 from crankdyn.torsion.sources import assemble_forcing, check_model_orders
 
 if TYPE_CHECKING:

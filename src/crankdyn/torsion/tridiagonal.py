@@ -1,6 +1,6 @@
 """Batched tridiagonal solves (numeric core): the dynamic-stiffness matrix of a chain model at
-every speed and order at once (:mod:`crankdyn.torsion.response`,
-:mod:`crankdyn.torsion.loaded`)."""
+every speed and order at once (:mod:`crankdyn.torsion.solvers`: the pivoting fallback of the
+chain solve and the solve with the load-dependent couplings' stiffness)."""
 
 from __future__ import annotations
 

@@ -242,6 +242,18 @@ def rated_speed(model: TorsionModel, engine: Engine | None = None) -> float:
     """The rated speed n_0 (rad/s) of an installation: the [rules] rated speed, else the
     [operating] rated speed, else the engine's speed.
 
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation.
+    engine : Engine or None
+        Its engine, or None.
+
+    Returns
+    -------
+    float
+        n_0 (rad/s).
+
     Raises
     ------
     InputError
@@ -267,7 +279,26 @@ def tvc_model(
 ) -> tuple[TorsionModel, str, float]:
     """The installation as the TVC calculates it: the model with its load law's excitation
     (:func:`with_load`), the load law and the rated speed n_0 (rad/s). The analysis session's
-    torsional analyses use the same model, so that every front end judges the same response."""
+    torsional analyses use the same model, so that every front end judges the same response.
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation.
+    engine : Engine or None
+        Its engine, or None.
+    spec : TvcSpec
+        The settings (the load law, where given).
+
+    Returns
+    -------
+    model : TorsionModel
+        The model with its load law's excitation.
+    load : str
+        The load law (:data:`crankdyn.tvc.spec.LOADS`).
+    rated : float
+        n_0 (rad/s).
+    """
     rated = rated_speed(model, engine)
     load = load_of(model, spec)
     return with_load(model, engine, load, rated), load, rated
@@ -278,7 +309,7 @@ def _response(
 ) -> ResponseResult:
     """A condition's resolved forced response (:func:`crankdyn.torsion.response.
     forced_response`)."""
-    from crankdyn.torsion.response import forced_response
+    from crankdyn.torsion.sweep import forced_response
 
     return forced_response(model, cond.excitation, speeds, orders, dampers=cond.dampers)
 

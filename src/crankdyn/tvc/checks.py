@@ -126,9 +126,23 @@ class Check:
 
 @dataclass
 class CheckContext:
-    """What the check kinds read: the model, the settings, the rated speed n_0 (rad/s), the
-    dampers of the condition, the mean-torque function of the load laws (or None) and the
-    notes on what is not checked (appended to)."""
+    """What the check kinds read.
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation (with its load law's excitation).
+    spec : TvcSpec
+        The settings.
+    rated : float
+        The rated speed n_0 (rad/s).
+    dampers : sequence of Damper
+        The dampers of the condition.
+    mean : callable or None
+        The mean-torque function of the load laws (:func:`mean_torque_function`), or None.
+    notes : list of str
+        The notes on what is not checked (appended to).
+    """
 
     model: TorsionModel
     spec: TvcSpec
@@ -143,7 +157,18 @@ class CheckKind:
     model has no such component) and adds a note where a component is not checked."""
 
     def checks(self, ctx: CheckContext) -> list[Check]:
-        """The checks of this kind in the model."""
+        """The checks of this kind in the model.
+
+        Parameters
+        ----------
+        ctx : CheckContext
+            The model and what the checks read.
+
+        Returns
+        -------
+        list of Check
+            The checks (none when the model has no such component).
+        """
         raise NotImplementedError
 
 
@@ -630,6 +655,9 @@ class DamperHeat(CheckKind):
         return out
 
 
+for _kind in (M68Shafts, CrankSpans, Couplings, GearHammering, MachineLimits, DamperHeat):
+    _kind.checks.__doc__ = CheckKind.checks.__doc__  # one description of every kind's method
+
 CHECK_KINDS: tuple[CheckKind, ...] = (
     M68Shafts(),
     CrankSpans(),
@@ -642,7 +670,19 @@ CHECK_KINDS: tuple[CheckKind, ...] = (
 
 
 def mean_torque_function(model: TorsionModel) -> MeanTorque | None:
-    """mean(speeds) -> (S, shafts) mean torques (N m) from the load laws, or None without one."""
+    """The mean torques of the load laws.
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation.
+
+    Returns
+    -------
+    callable or None
+        ``mean(speeds)`` -> (S, shafts) mean torques (N m) at reference speeds (rad/s); None
+        without a load law.
+    """
     from crankdyn.torsion.sources import mean_torques
 
     try:

@@ -32,7 +32,7 @@ factor eta = 0.1, a harmonic torque of 100 N m per order (orders 1 and 2) on the
 >>> import numpy as np
 >>> from crankdyn.torsion.excitation import UniformExcitation
 >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
->>> from crankdyn.torsion.response import forced_response
+>>> from crankdyn.torsion.sweep import forced_response
 >>> model = TorsionModel(
 ...     (Mass("crank", 1.0, cylinders=(1,)), Mass("flywheel", 3.0)),
 ...     (Shaft(("crank", "flywheel"), stiffness=1e5, loss_factor=0.1),),
@@ -124,7 +124,7 @@ def synthesized(result: ResponseResult, coefficients: ArrayLike) -> NDArray[np.f
 
     >>> from crankdyn.torsion.excitation import UniformExcitation
     >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
     ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
     >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), [100.0], [1.0, 2.0],
@@ -201,7 +201,7 @@ def mesh_torque_coefficients(
 
     >>> from crankdyn.torsion.excitation import UniformExcitation
     >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
     ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
     >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), [100.0, 200.0], [1.0, 2.0],
@@ -345,7 +345,7 @@ def resolved_worst(
 
     >>> from crankdyn.torsion.excitation import UniformExcitation
     >>> from crankdyn.torsion.model import Mass, Shaft, TorsionModel
-    >>> from crankdyn.torsion.response import forced_response
+    >>> from crankdyn.torsion.sweep import forced_response
     >>> model = TorsionModel((Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
     ...                      (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),))
     >>> r = forced_response(model, UniformExcitation(100.0, [0.0]), np.linspace(100, 400, 31),

@@ -49,7 +49,17 @@ M68_LAMBDA = 0.8
 
 @dataclass(frozen=True)
 class Found:
-    """A check's exceedance of its continuous limit, with the range declared for it."""
+    """A check's exceedance of its continuous limit, with the range declared for it.
+
+    Parameters
+    ----------
+    check : Check
+        The check.
+    exceedance : crankdyn.torsion.rules.Exceedance
+        Where its curve exceeds its continuous limit (the range as found).
+    start, end : float
+        The range as declared (rad/s): widened by the rule and the tachometer tolerance.
+    """
 
     check: Check
     exceedance: Exceedance
@@ -59,6 +69,16 @@ class Found:
 
 def merge_intervals(intervals: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
     """Overlapping intervals merged, sorted.
+
+    Parameters
+    ----------
+    intervals : iterable of (float, float)
+        The intervals (start <= end).
+
+    Returns
+    -------
+    list of (float, float)
+        The merged intervals, in order.
 
     Examples
     --------

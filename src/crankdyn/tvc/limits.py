@@ -58,6 +58,7 @@ __all__ = [
     "M68",
     "STRENGTH_CAPS",
     "WIDENINGS",
+    "WIDENING_NAMES",
     "CrankshaftLimit",
     "M68Shaft",
     "barred_limits",
@@ -90,6 +91,12 @@ DESIGN_FACTORS = {
 WIDENINGS = ("none", "lr")
 """Barred-range widenings: ``"none"`` (IACS UR M68: the range where the stress exceeds tau_C)
 or ``"lr"`` (Lloyd's Register: at least 16 n_c/(18 - lambda_c) to (18 - lambda_c) n_c/16)."""
+
+WIDENING_NAMES = {
+    "none": "none (IACS UR M68: the range found)",
+    "lr": "Lloyd's Register (Pt 5 Ch 8 2.5)",
+}
+"""The widening of barred ranges as people read it (the report's input table)."""
 
 WIDENING_SOURCES = {
     "none": "IACS UR M68.4 (the range where τ > τ_C; no added margin)",

@@ -39,7 +39,20 @@ RUN_OUT = 0.02
 
 
 def load_torque(model: TorsionModel, speeds: ArrayLike) -> NDArray[np.float64]:
-    """Mean load torque reflected to the reference shaft (N m) at reference speeds (rad/s)."""
+    """The mean load torque of the model's sources' load laws, reflected to the reference shaft.
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation.
+    speeds : array_like
+        Reference-shaft speeds (rad/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The load torque (N m) at each speed.
+    """
     from crankdyn.torsion.sources import HarmonicSource
 
     n = np.asarray(speeds, dtype=float)
@@ -64,8 +77,39 @@ def passages(
     load: str,
     mean: MeanTorque | None,
 ) -> tuple[list[Passage], list[Verdict], list[str]]:
-    """Passage rows, verdicts and notes of one condition's barred ranges (module docstring)."""
-    from crankdyn.torsion.response import linear_system
+    """The passages through one condition's barred ranges (module docstring).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation (with its load law's excitation).
+    cond : object
+        The condition (its name, excitation and dampers).
+    orders : numpy.ndarray
+        The excitation orders.
+    checks : sequence of Check
+        The installation's checks (their transient curves and limits).
+    barred : sequence of BarredSpeedRange
+        The condition's permitted barred ranges.
+    spec : TvcSpec
+        The settings (the engine's torque, the passage's load).
+    n0 : float
+        The rated speed (rad/s).
+    load : str
+        The load law.
+    mean : callable or None
+        The mean-torque function of the load laws.
+
+    Returns
+    -------
+    passages : list of Passage
+        One per merged barred range run through.
+    verdicts : list of crankdyn.summary.Verdict
+        The transient peaks against the transient limits, and ranges that cannot be passed.
+    notes : list of str
+        Why a passage was not calculated.
+    """
+    from crankdyn.torsion.solvers import linear_system
     from crankdyn.torsion.transient import transient_response
 
     passages: list[Passage] = []

@@ -165,11 +165,23 @@ class ConditionResult(Result):
     )  # fmt: skip
 
     def summary_verdicts(self) -> list[Verdict]:
-        """The condition's verdict rows."""
+        """The condition's verdict rows.
+
+        Returns
+        -------
+        list of crankdyn.summary.Verdict
+            The rows.
+        """
         return list(self.verdicts)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The condition's barred speed ranges, as found and as declared, and why."""
+        """The condition's barred speed ranges, as found and as declared, and why.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
         return [barred_table(self.barred_ranges)] if self.barred_ranges else []
 
     def plot(self, fig: Figure | None = None) -> Figure:
@@ -189,6 +201,24 @@ class ConditionResult(Result):
         from crankdyn.plots.tvc import plot_condition
 
         return plot_condition(self, fig=fig)
+
+    def plot_stress_limits(self, fig: Figure | None = None) -> Figure:
+        """The shafts checked by IACS UR M68: stress against tau_C and tau_T with the barred
+        ranges (:func:`crankdyn.plots.torsion_response.plot_stress_limits`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.torsion_response import plot_stress_limits
+
+        return plot_stress_limits(self, fig=fig)
 
 
 @dataclass(frozen=True)
@@ -287,11 +317,23 @@ class TvcResult(Result):
     )  # fmt: skip
 
     def summary_verdicts(self) -> list[Verdict]:
-        """Every verdict row (every component x condition)."""
+        """Every verdict row (every component x condition).
+
+        Returns
+        -------
+        list of crankdyn.summary.Verdict
+            The rows.
+        """
         return list(self.verdicts)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The barred speed ranges (as found and as declared, and why) and the passages."""
+        """The barred speed ranges (as found and as declared, and why) and the passages.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
         out = [barred_table(self.barred_ranges)] if self.barred_ranges else []
         if self.passages:
             out.append(

@@ -582,7 +582,8 @@ def _best_section(spec: StudySpec, table: CaseTable, ok_mask: np.ndarray) -> Sec
         header = ["Case"] + [p.key + (f" ({p.unit})" if p.unit else "") for p in spec.parameters]
         factors = []
         for n in spec.figures:
-            text, factor = _figure_header(FIGURES[n], table.data[FIGURES[n].key][top])
+            column = table.data[FIGURES[n].key]
+            text, factor = _figure_header(FIGURES[n], [column[int(i)] for i in top])
             header.append(text)
             factors.append(factor)
         rows = []

@@ -1,0 +1,887 @@
+"""The linear system of a torsional model with its dampers, and its batched harmonic solves
+(numeric core).
+
+Equations of motion (seed 003, the V6 paper's eq. 1; Ker Wilson vol. 2):
+
+    M theta'' + C theta' + K theta + (hysteretic) = T(t),
+
+with M the inertias, K the shaft stiffnesses, C the absolute dampers (to ground) and the shafts'
+relative viscous damping, and the hysteretic (loss-factor) damping of the shafts, a torque
+eta k times the twist in phase with the twist rate. For one order q at crankshaft speed Omega the
+excitation is harmonic at omega = q Omega, T(t) = Re(F exp(i omega t)), and so is the steady
+response theta(t) = Re(X exp(i omega t)) with the dynamic-stiffness equation (the V6 paper's
+eqs. 2 and 6, {T}_n = [K(n omega)] {theta}_n)
+
+    D(omega) X = F,    D(omega) = K + i H - omega^2 M + i omega C,    H = sum_s eta_s K_s
+
+(hysteretic damping is exact in the frequency domain: eta k = omega c_eq with c_eq = eta k/omega;
+Mendes et al. 2008 use c = 0.035 k/omega). A single damped mass gives seed 003's formulas: with
+2n = c/J, p^2 = k/J, h = T/J, the amplitude B = h / sqrt((p^2 - omega^2)^2 + 4 n^2 omega^2) and
+the lag psi = arctan(2 n omega / (p^2 - omega^2)) (seed 003, "单质量有阻尼强迫扭转振动").
+
+Dampers (:mod:`crankdyn.torsion.dampers`) add a ring degree of freedom joined to its hub by the
+complex stiffness k_d + i (omega c_d + eta_d k_d); a damper at an end of a chain keeps the chain
+(:func:`linear_system`).
+
+Solving it fast. For a chain (the usual crank train) D is symmetric tridiagonal; all speeds x
+orders are solved at once with the chain along the rows of the arrays: elimination without
+interchanges (the Thomas algorithm), and for the rare frequencies with a multiplier above 1e8 (a
+small pivot) elimination with partial pivoting (LAPACK's ``gtsv`` algorithm,
+:func:`~crankdyn.torsion.tridiagonal.solve_tridiagonal`), both vectorised over every frequency
+and right-hand side, the Python loop running over the chain's length only. The frequencies go in
+blocks whose buffers are allocated once; each row of the dynamic stiffness is built when the
+elimination reaches it, the small-pivot test is made exactly only on the systems a cheap filter
+inside the loop picks (the same systems flagged as by the test on all of them) and the solved
+rows go to the result in tiles while in cache (:class:`_ChainBlocks`). Branched models use
+numpy's batched dense solve. No loop over speeds or orders.
+
+A change of the stiffness at each speed (the load-dependent couplings,
+:func:`crankdyn.torsion.loaded.load_change`) is added to D before the same batched solves
+(:meth:`LinearSystem.solve_with_change`). The forced response over a speed range
+(:mod:`crankdyn.torsion.sweep`) calls these solvers; the result is
+:class:`crankdyn.torsion.response.ResponseResult`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import Any, cast
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from crankdyn.errors import InputError
+from crankdyn.torsion.dampers import Damper
+from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.tridiagonal import solve_tridiagonal
+
+__all__ = [
+    "LinearSystem",
+    "change_matrix",
+    "linear_system",
+    "steady_state",
+]
+
+_FREQUENCY_BLOCK = 1 << 13
+"""Frequencies per block of the chain solve: a block's rows (16 bytes x block each) stay in the
+processor's cache through the elimination."""
+
+
+def _abs2(z: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """|z|^2 of a complex array."""
+    out = np.multiply(z.real, z.real)
+    out += z.imag * z.imag
+    return out
+
+
+# ---- the linear system of a model with dampers ------------------------------------------------
+@dataclass(frozen=True, eq=False)
+class LinearSystem:
+    """The reflected equations of motion of a model with its dampers, ready for harmonic solves.
+
+    ``chain`` holds the tridiagonal arrays in chain order (None for a branched system, which
+    uses the dense matrices). Degrees of freedom: the model's, with each damper ring added.
+    Everything is reflected to the reference (crankshaft) speed: inertias and stiffnesses times
+    the squared speed ratio (:mod:`crankdyn.torsion.model`). Built by :func:`linear_system`.
+
+    Parameters
+    ----------
+    inertia : numpy.ndarray
+        (n,) inertia of every degree of freedom (kg m^2).
+    stiffness : numpy.ndarray
+        (n, n) stiffness matrix K (N m/rad).
+    damping : numpy.ndarray
+        (n, n) viscous damping matrix C (N m s/rad).
+    hysteretic : numpy.ndarray
+        (n, n) hysteretic matrix H = sum eta_s K_s (N m/rad).
+    chain : tuple of numpy.ndarray or None
+        (k_between, c_between, h_between, k_g, c_g, h_g) in dof order: the (n-1,) couplings
+        between neighbours and the (n,) row sums (N m/rad, N m s/rad, N m/rad); None for a
+        branched system.
+    mass_dof : numpy.ndarray
+        (N,) dof of every listed mass (the model's masses, then the damper rings), int.
+    mass_ratio : numpy.ndarray
+        (N,) signed speed ratio of every listed mass (dimensionless).
+    mass_names : tuple of str
+        The listed masses' names.
+    element_dofs : numpy.ndarray
+        (E, 2) dofs of every element's ends (shafts, then damper couplings), -1 = ground.
+    element_stiffness : numpy.ndarray
+        (E,) reflected stiffness of every element (N m/rad).
+    element_ratio : numpy.ndarray
+        (E,) speed ratio of every element's masses (dimensionless).
+    element_labels : tuple of (str, str)
+        Every element's ends by name.
+    dampers : tuple of Damper
+        The dampers whose rings were added.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.dampers import Damper
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> system = linear_system(model, [Damper("ring", "m", 0.1, damping=30.0)])
+    >>> system.size, system.mass_names, system.element_labels
+    (2, ('m', 'ring'), (('ground', 'm'), ('m', 'ring')))
+    """
+
+    inertia: np.ndarray  # (n,) kg m^2
+    stiffness: np.ndarray  # (n, n) N m/rad
+    damping: np.ndarray  # (n, n) N m s/rad
+    hysteretic: np.ndarray  # (n, n) N m/rad
+    chain: tuple[np.ndarray, ...] | None  # (k_between, c_between, h_between, k_g, c_g, h_g)
+    mass_dof: np.ndarray  # dof of every listed mass (model masses, then damper rings)
+    mass_ratio: np.ndarray  # speed ratio of every listed mass
+    mass_names: tuple[str, ...]
+    element_dofs: np.ndarray  # (elements, 2): shafts then damper couplings, -1 = ground
+    element_stiffness: np.ndarray  # reflected k of every element
+    element_ratio: np.ndarray  # speed ratio of every element's masses
+    element_labels: tuple[tuple[str, str], ...]
+    dampers: tuple[Damper, ...]
+
+    @property
+    def size(self) -> int:
+        """Number of degrees of freedom n (the model's and the damper rings)."""
+        return int(self.inertia.size)
+
+    def _chain(self) -> tuple[np.ndarray, ...]:
+        """The chain arrays; a branched system has none (ValueError)."""
+        if self.chain is None:
+            raise ValueError("a branched system has no tridiagonal form: use matrix()")
+        return self.chain
+
+    def diagonals(
+        self, omega: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> tuple[
+        NDArray[np.complexfloating], NDArray[np.complexfloating], NDArray[np.complexfloating]
+    ]:
+        """The three diagonals of the dynamic stiffness D(omega) of a chain.
+
+        D(omega) = K + i H - omega^2 M + i omega C (seed 003, the V6 paper's eqs. 2 and 6;
+        module docstring), symmetric tridiagonal for a chain.
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s).
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        lower, diag, upper : numpy.ndarray
+            Complex (N m/rad), of shapes omega.shape + (n-1,), + (n,), + (n-1,).
+
+        Raises
+        ------
+        ValueError
+            For a branched system (``chain`` None).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("a", 1.0), Mass("b", 2.0)),
+        ...     shafts=(Shaft(("ground", "a"), 3e4), Shaft(("a", "b"), 1e4)),
+        ... )
+        >>> lower, diag, upper = linear_system(model).diagonals(100.0)  # k - omega^2 J
+        >>> diag.real.tolist(), upper.real.tolist()
+        ([30000.0, -10000.0], [-10000.0])
+        """
+        kb, cb, hb, kg, cg, hg = self._chain()
+        w = np.asarray(omega, dtype=float)[..., None]
+        hb_, hg_ = _hyst(hb, w, hysteretic_frequency), _hyst(hg, w, hysteretic_frequency)
+        link = kb + 1j * (w * cb + hb_)
+        diag = kg - w**2 * self.inertia + 1j * (w * cg + hg_)
+        diag = diag + np.concatenate([link, np.zeros((*link.shape[:-1], 1))], axis=-1)
+        diag = diag + np.concatenate([np.zeros((*link.shape[:-1], 1)), link], axis=-1)
+        return -link, diag, -link
+
+    def matrix(
+        self, omega: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> NDArray[np.complexfloating]:
+        """The dense dynamic stiffness D(omega) = K + i H - omega^2 M + i omega C.
+
+        Seed 003 (the V6 paper's eqs. 2 and 6; module docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s).
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex D (N m/rad), shape omega.shape + (n, n).
+
+        Examples
+        --------
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+        ... )
+        >>> complex(linear_system(model).matrix(900.0)[0, 0])  # k - omega^2 J + i omega c
+        (190000+18000j)
+        """
+        w = np.asarray(omega, dtype=float)[..., None, None]
+        h = _hyst(self.hysteretic, w, hysteretic_frequency)
+        return self.stiffness - w**2 * np.diag(self.inertia) + 1j * (w * self.damping + h)
+
+    def solve(
+        self, omega: ArrayLike, forcing: ArrayLike, hysteretic_frequency: float | None = None
+    ) -> NDArray[np.complexfloating]:
+        """The steady-state amplitudes X with D(omega) X = F for every frequency.
+
+        A chain by elimination (the Thomas algorithm, pivoting where a pivot is small:
+        :func:`solve_tridiagonal`), a branched system by numpy's batched dense solve (module
+        docstring).
+
+        Parameters
+        ----------
+        omega : float or array_like
+            Circular frequencies (rad/s), shape (...).
+        forcing : array_like
+            Harmonic torque amplitudes F on the degrees of freedom (N m, complex), shape
+            (..., n) or (..., n, r) for r right-hand sides.
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex reflected angles of the degrees of freedom (rad), the shape of
+            ``forcing``; NaN for an undamped branched system exactly at a resonance.
+
+        Examples
+        --------
+        One damped mass: X = T / (k - omega^2 J + i omega c) (seed 003, the single damped
+        mass).
+
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> model = TorsionModel(
+        ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+        ... )
+        >>> x = linear_system(model).solve(900.0, [100.0])
+        >>> round(abs(complex(x[0]) * (190000 + 18000j)), 9)
+        100.0
+        """
+        omega = np.asarray(omega, dtype=float)
+        if self.chain is not None:  # the forcing read block by block, as it is (no copy)
+            return self._solve_chain(omega, np.asarray(forcing), hysteretic_frequency)
+        f = np.asarray(forcing, dtype=complex)
+        a = self.matrix(omega, hysteretic_frequency)
+        vector = f.ndim == omega.ndim + 1
+        b = f[..., None] if vector else f
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            try:
+                x = np.linalg.solve(a, b)
+            except np.linalg.LinAlgError:  # an undamped system exactly at resonance
+                x = np.full(np.broadcast_shapes(a.shape[:-2], b.shape[:-2]) + b.shape[-2:], np.nan)
+        return x[..., 0] if vector else x
+
+    def solve_with_change(
+        self,
+        omega: ArrayLike,
+        forcing: ArrayLike,
+        ends: NDArray[np.int_],
+        change: ArrayLike,
+        hysteretic_frequency: float | None = None,
+    ) -> NDArray[np.complexfloating]:
+        """The amplitudes X with (D(omega) + Delta D) X = F, Delta D a change of the dynamic
+        stiffness of some elements at every frequency (the load-dependent couplings at each
+        speed's mean torque, :func:`crankdyn.torsion.loaded.load_change`).
+
+        Each element is a spring between its two ends, assembled like a shaft
+        (:func:`change_matrix`); a chain keeps its tridiagonal form (the elements are its
+        links) and is solved with partial pivoting
+        (:func:`~crankdyn.torsion.tridiagonal.solve_tridiagonal`), a branched system by numpy's
+        batched dense solve (module docstring).
+
+        Parameters
+        ----------
+        omega : array_like
+            Circular frequencies (rad/s), shape (S, Q).
+        forcing : array_like
+            Harmonic torque amplitudes F on the degrees of freedom (N m, complex), shape
+            (S, Q, n).
+        ends : numpy.ndarray
+            Degrees of freedom (a, b) at the ends of every changed element, shape (count, 2),
+            int.
+        change : array_like
+            Complex change of every element's dynamic stiffness (N m/rad), shape
+            (S, Q, count).
+        hysteretic_frequency : float or None
+            None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous
+            damping eta k / omega_h.
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex reflected angles of the degrees of freedom (rad), shape (S, Q, n).
+
+        Examples
+        --------
+        A change of the only shaft's stiffness is the model with the changed stiffness:
+
+        >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+        >>> def model(k):
+        ...     masses = (Mass("a", 1.0, damping=20.0), Mass("b", 2.0))
+        ...     return TorsionModel(masses=masses, shafts=(Shaft(("a", "b"), k),))
+        >>> w, f = np.array([[300.0]]), np.array([[[100.0, 0.0]]])
+        >>> x = linear_system(model(1e5)).solve_with_change(w, f, np.array([[0, 1]]), [[[5e4]]])
+        >>> bool(np.allclose(x, linear_system(model(1.5e5)).solve(w, f), rtol=1e-12, atol=0))
+        True
+        """
+        w = np.asarray(omega, dtype=float)
+        change = np.asarray(change)
+        f = np.asarray(forcing, dtype=complex)
+        if self.chain is not None:
+            lower, diag, upper = self.diagonals(w, hysteretic_frequency)
+            lower, diag, upper = lower.copy(), diag.copy(), upper.copy()
+            for j, (a, b) in enumerate(ends):  # the elements (a few): the chain's links
+                lo = min(a, b)
+                diag[..., a] += change[..., j]
+                diag[..., b] += change[..., j]
+                lower[..., lo] -= change[..., j]
+                upper[..., lo] -= change[..., j]
+            x = solve_tridiagonal(lower, diag, upper, f)
+        else:
+            d = self.matrix(w, hysteretic_frequency) + change_matrix(ends, change, self.size)
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                x = np.linalg.solve(d, f[..., None])[..., 0]
+        return cast("NDArray[np.complexfloating]", x)
+
+    def _solve_chain(
+        self, omega: NDArray[np.float64], f: np.ndarray, hysteretic_frequency: float | None
+    ) -> NDArray[np.complexfloating]:
+        """The chain's symmetric tridiagonal systems for all frequencies, in blocks of about
+        :data:`_FREQUENCY_BLOCK` frequencies laid out with the chain along the first axis
+        (contiguous rows of one block's frequencies): elimination without interchanges (the
+        Thomas algorithm, :class:`_ChainBlocks`), every row operation into buffers allocated
+        once and reused by every block, then the pivoting solver for the few systems whose
+        pivots came out small relative to their rows (where elimination without interchanges
+        can lose accuracy), their rows recomputed. The forcing is read block by block (never
+        expanded); memory: the result and one block's buffers."""
+        n = self.size
+        scalar_omega = omega.ndim == 0
+        vector = f.ndim == omega.ndim + 1
+        omega = np.atleast_1d(omega)
+        batch = omega.shape
+        fb = f[..., None] if vector else f
+        r = fb.shape[-1]
+        fb = np.broadcast_to(fb, (*batch, n, r))
+        out = np.empty((*batch, n, r), dtype=complex)
+        inner = math.prod(batch[1:])
+        rows = max(1, _FREQUENCY_BLOCK // max(inner, 1))
+        flat_omega = omega.reshape(-1)
+        flat_out = out.reshape(-1, n, r)
+        blocks = _ChainBlocks(self, min(batch[0], rows) * inner, r, hysteretic_frequency)
+        for s0 in range(0, batch[0], rows):
+            s1 = min(batch[0], s0 + rows)
+            a, b = s0 * inner, s1 * inner
+            blocks.solve(flat_omega[a:b], fb[s0:s1].reshape(b - a, n, r), flat_out[a:b])
+        if scalar_omega:
+            out = out[0]
+        return out[..., 0] if vector else out
+
+    def _diagonals_of(
+        self, w: NDArray[np.float64], hysteretic_frequency: float | None
+    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """(off, diag) of D(w) in chain order for frequencies w (1-D): off (n-1, F) the negated
+        off-diagonal, diag (n, F) (the pivoting fallback's systems)."""
+        kb, cb, hb, kg, cg, hg = self._chain()
+        factor = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
+        off = np.empty((kb.size, w.size), dtype=complex)
+        off.real = kb[:, None]
+        off.imag = w * cb[:, None] + hb[:, None] * factor
+        diag = np.empty((self.size, w.size), dtype=complex)
+        diag.real = kg[:, None] - (w * w) * self.inertia[:, None]
+        diag.imag = w * cg[:, None] + hg[:, None] * factor
+        diag[:-1] += off
+        diag[1:] += off
+        return off, diag
+
+
+_GROWTH = 1e8
+"""The largest multiplier |off / pivot| of elimination without interchanges; a system with a
+larger one (a small pivot) is solved again with partial pivoting."""
+
+_CANDIDATE = 1e7
+"""A multiplier with a real or imaginary part above this in magnitude makes its system a
+candidate for the exact growth test (:class:`_ChainBlocks`)."""
+
+_TINY, _HUGE = 1e-140, 1e140
+"""The range of |off| in which the candidate filter's argument holds (:class:`_ChainBlocks`)."""
+
+_TILE = 8
+"""Chain rows copied to the result at a time (a cache-friendly transposition)."""
+
+
+class _ChainBlocks:
+    """The chain solve of :meth:`LinearSystem._solve_chain` for one block of frequencies at a
+    time, its buffers allocated once (module docstring, "Solving it fast").
+
+    Elimination without interchanges (the Thomas algorithm) with the chain along the rows:
+    the negated off-diagonal ``off`` and the diagonal of every row are built inside the forward
+    loop, when the row is reached (the same operations in the same order as
+    :meth:`LinearSystem._diagonals_of`, so the same numbers), the right-hand side copied in at
+    the same time; the back substitution divides by the stored pivots and copies the solved
+    rows to the result :data:`_TILE` rows at a time while they are in cache.
+
+    Small pivots. A system is solved again with partial pivoting (:func:`solve_tridiagonal`)
+    when, for some row, not ``|off|^2 <= 1e16 |pivot|^2`` (a multiplier above
+    :data:`_GROWTH` = 1e8, or not a number). That test is exact but costs a pass over every
+    row; it is made only on *candidates*: the systems with a computed multiplier
+    m = off / pivot whose real or imaginary part exceeds :data:`_CANDIDATE` = 1e7 in magnitude
+    or is not a number (tracked inside the forward loop by a running maximum and minimum of
+    the multipliers, which the loop computes anyway), and for every system on the rows whose
+    |off| may leave [1e-140, 1e140] (no stiffness, or huge values). The flagged systems are
+    exactly those of the test on every system: a system that is not a candidate has, on each
+    remaining row, |m| <= sqrt(2) 1e7; numpy divides complex numbers by Smith's method,
+    whose computed quotient has |m| >= |off| / (sqrt(2) |pivot|) (1 - 16 eps) (the
+    numerator's norm is at least |off|, the denominator at most |pivot_r| + |pivot_i|), so
+    |off| <= 2.01e7 |pivot|, far from the 1e8 bound; with |off| in [1e-140, 1e140], |off|^2
+    and |pivot|^2 >= 2e-295 are normal numbers computed to a few rounding errors, so the test
+    holds. A multiplier that overflows or is not a number makes a candidate.
+    """
+
+    def __init__(
+        self, system: LinearSystem, block: int, r: int, hysteretic_frequency: float | None
+    ) -> None:
+        n = system.size
+        kb, cb, hb, kg, cg, hg = system._chain()
+        self.system = system
+        self.n = n
+        self.hysteretic_frequency = hysteretic_frequency
+        self.values = (
+            kb.tolist(),
+            cb.tolist(),
+            hb.tolist(),
+            kg.tolist(),
+            cg.tolist(),
+            hg.tolist(),
+            system.inertia.tolist(),
+        )
+        self.magnitudes = (np.abs(kb), np.abs(cb), np.abs(hb))  # |off| >= |kb| (class docstring)
+        # the loss factors' terms: hb * factor, added unless they are zero (factor 1.0)
+        self.hysteretic = hysteretic_frequency is not None or bool(np.any(hb) or np.any(hg))
+        self.off = np.empty((max(n - 1, 0), block), dtype=complex)
+        self.diag = np.empty((n, block), dtype=complex)
+        self.x = np.empty((n, r, block), dtype=complex)
+        self.mult = np.empty(block, dtype=complex)
+        self.tmp = np.empty(block, dtype=complex)
+        self.tmp_b = np.empty((r, block), dtype=complex)
+        self.w2 = np.empty(block)
+        self.factor = np.empty(block)
+        self.term = np.empty(block)
+        self.high = np.empty(2 * block)
+        self.low = np.empty(2 * block)
+
+    def solve(self, w: NDArray[np.float64], rhs: np.ndarray, out: np.ndarray) -> None:
+        """Solve one block into ``out``: w (F,) rad/s, rhs (F, n, r) N m, out (F, n, r)."""
+        n = self.n
+        count = w.size
+        kb, cb, hb, kg, cg, hg, inertia = self.values
+        off, d = self.off[:, :count], self.diag[:, :count]
+        x = self.x[:, :, :count]
+        mult, tmp, tmp_b = self.mult[:count], self.tmp[:count], self.tmp_b[:, :count]
+        w2, factor, term = self.w2[:count], self.factor[:count], self.term[:count]
+        high, low = self.high[: 2 * count], self.low[: 2 * count]
+        np.multiply(w, w, out=w2)
+        hysteretic = self.hysteretic
+        if hysteretic:
+            if self.hysteretic_frequency is None:
+                factor.fill(1.0)
+            else:
+                np.divide(w, self.hysteretic_frequency, out=factor)
+        high.fill(0.0)
+        low.fill(0.0)
+        parts = mult.view(float)  # the multipliers' real and imaginary parts
+        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+            for i in range(n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
+                di = d[i]
+                if i < n - 1:  # off = k + i (w c + h factor)
+                    oi = off[i]
+                    oi.real = kb[i]
+                    np.multiply(w, cb[i], out=oi.imag)
+                    if hysteretic:
+                        np.multiply(factor, hb[i], out=term)
+                        np.add(oi.imag, term, out=oi.imag)
+                np.multiply(w2, inertia[i], out=di.real)  # k_g - w^2 J + i (w c_g + h_g)
+                np.subtract(kg[i], di.real, out=di.real)
+                np.multiply(w, cg[i], out=di.imag)
+                if hysteretic:
+                    np.multiply(factor, hg[i], out=term)
+                    np.add(di.imag, term, out=di.imag)
+                if i < n - 1:
+                    np.add(di, off[i], out=di)
+                x[i] = rhs[:, i, :].T
+                if i == 0:
+                    continue
+                prev = off[i - 1]
+                np.add(di, prev, out=di)
+                np.divide(prev, d[i - 1], out=mult)
+                np.maximum(high, parts, out=high)
+                np.minimum(low, parts, out=low)
+                np.multiply(mult, prev, out=tmp)
+                np.subtract(di, tmp, out=di)
+                np.multiply(mult, x[i - 1], out=tmp_b)
+                np.add(x[i], tmp_b, out=x[i])
+            flagged = self._flagged(w, off, d, high, low) if n > 1 else np.empty(0, dtype=int)
+            np.divide(x[n - 1], d[n - 1], out=x[n - 1])
+            top = n
+            for i in range(n - 2, -1, -1):  # back substitution, in place: x becomes X
+                np.multiply(off[i], x[i + 1], out=tmp_b)
+                np.add(x[i], tmp_b, out=x[i])
+                np.divide(x[i], d[i], out=x[i])
+                if i % _TILE == 0:  # rows i..top-1 solved, still in cache
+                    out[:, i:top] = np.moveaxis(x[i:top], 2, 0)
+                    top = i
+            if top > 0:  # n == 1
+                out[:, :top] = np.moveaxis(x[:top], 2, 0)
+        if flagged.size:  # rare: part of the chain at its resonance
+            off_k, diag_k = self.system._diagonals_of(w[flagged], self.hysteretic_frequency)
+            lower = -off_k.T
+            out[flagged] = solve_tridiagonal(lower, diag_k.T, lower, rhs[flagged])
+
+    def _flagged(
+        self,
+        w: NDArray[np.float64],
+        off: NDArray[np.complex128],
+        d: NDArray[np.complex128],
+        high: NDArray[np.float64],
+        low: NDArray[np.float64],
+    ) -> NDArray[np.intp]:
+        """The block's systems (indices) with a multiplier above :data:`_GROWTH` or not a
+        number: the exact test on the candidates and on the rows outside the filter's range
+        (class docstring); ``off`` (n-1, F) and ``d`` (n, F) the eliminated rows, ``high`` and
+        ``low`` (2F,) the running extremes of the multipliers' parts."""
+        count = w.size
+        inside = (high <= _CANDIDATE) & (low >= -_CANDIDATE)  # False also for NaN
+        candidate = np.any(~inside.reshape(count, 2), axis=1)
+        flagged = np.zeros(count, dtype=bool)
+        idx = np.flatnonzero(candidate)
+        if idx.size:
+            flagged[idx] = _growth(off[:, idx], d[:-1, idx])
+        top_w = float(np.max(np.abs(w))) if count else 0.0
+        top_f = 1.0 if self.hysteretic_frequency is None else top_w / abs(self.hysteretic_frequency)
+        k, c, h = self.magnitudes
+        bound = k + top_w * c + top_f * h  # at least every |off| of the block
+        rows = np.flatnonzero(~((k >= _TINY) & (bound <= _HUGE)))
+        for i in rows:  # outside the filter's range: the exact test on the row
+            flagged |= _growth(off[i : i + 1], d[i : i + 1])
+        return np.flatnonzero(flagged)
+
+
+def _growth(off: NDArray[np.complex128], pivot: NDArray[np.complex128]) -> NDArray[np.bool_]:
+    """Per system (column), a multiplier |off / pivot| above :data:`_GROWTH` on some row (a
+    small pivot, elimination may have lost accuracy) or not a number: not
+    |off|^2 <= 1e16 |pivot|^2 (arrays (rows, F))."""
+    return ~np.all(_abs2(off) <= 1e16 * _abs2(pivot), axis=0)
+
+
+def _hyst(h: np.ndarray, w: np.ndarray, hysteretic_frequency: float | None) -> np.ndarray:
+    """eta k (in phase with the rate): exact (constant) in the frequency domain, or as viscous
+    c = eta k / omega_h frozen at a frequency omega_h (to compare with the time domain)."""
+    if hysteretic_frequency is None:
+        return h
+    return h * (w / hysteretic_frequency)
+
+
+def change_matrix(
+    ends: Iterable[Sequence[int]] | NDArray[np.int_], values: ArrayLike, size: int
+) -> NDArray[Any]:
+    """Delta K of some elements (the load-dependent couplings,
+    :func:`crankdyn.torsion.loaded.stiffness_change`): each a spring between its two ends,
+    assembled like a shaft (k [[1, -1], [-1, 1]];
+    :meth:`crankdyn.torsion.model.TorsionModel.stiffness_matrix`).
+
+    Parameters
+    ----------
+    ends : array_like of int
+        Degrees of freedom (a, b) at the ends of every element, shape (count, 2).
+    values : array_like
+        Stiffness changes (N m/rad; complex for a dynamic stiffness change), shape
+        (..., count).
+    size : int
+        Number of degrees of freedom n.
+
+    Returns
+    -------
+    numpy.ndarray
+        Delta K (N m/rad, the dtype of ``values``), shape (..., n, n).
+
+    Examples
+    --------
+    >>> change_matrix([(0, 1)], [2.0], 3).tolist()
+    [[2.0, -2.0, 0.0], [-2.0, 2.0, 0.0], [0.0, 0.0, 0.0]]
+    """
+    values = np.asarray(values)
+    out = np.zeros((*values.shape[:-1], size, size), dtype=values.dtype)
+    for j, (a, b) in enumerate(ends):  # the elements (a few)
+        out[..., a, a] += values[..., j]
+        out[..., b, b] += values[..., j]
+        out[..., a, b] -= values[..., j]
+        out[..., b, a] -= values[..., j]
+    return out
+
+
+def linear_system(
+    model: TorsionModel,
+    dampers: Iterable[Damper] = (),
+    modal_damping: ArrayLike | None = None,
+) -> LinearSystem:
+    """The model's reflected matrices with the dampers' rings added (module docstring).
+
+    Each ring is a degree of freedom joined to its hub by the complex stiffness
+    k_d + i (omega c_d + eta_d k_d) (:mod:`crankdyn.torsion.dampers`); a ring at an end of a
+    chain keeps the chain. Modal damping ratios add C_modal
+    (:func:`crankdyn.torsion.damped.modal_damping_matrix`), which couples every mass: the
+    system is then solved densely.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    dampers : iterable of Damper
+        Dampers whose rings are added (default none).
+    modal_damping : float, array_like or None
+        Damping ratios of the elastic modes (dimensionless; one for all or one per mode), or
+        None.
+
+    Returns
+    -------
+    LinearSystem
+        The reflected system (kg m^2, N m/rad, N m s/rad).
+
+    Raises
+    ------
+    InputError
+        Naming the key and value: a damper's hub not a mass of the model, a ring named like
+        a mass (``name``), modal damping ratios as
+        :func:`crankdyn.torsion.damped.modal_damping_ratios`.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> from crankdyn.torsion.dampers import Damper
+    >>> model = TorsionModel(masses=(Mass("m", 1.0),), shafts=(Shaft(("ground", "m"), 1e6),))
+    >>> system = linear_system(model, [Damper("ring", "m", 0.1, damping=30.0)])
+    >>> system.inertia.tolist(), system.damping.tolist()
+    ([1.0, 0.1], [[30.0, -30.0], [-30.0, 30.0]])
+    """
+    dampers = tuple(dampers)
+    names = _ring_names(model, dampers)
+    n0 = model.dof_count
+    ratio = model.signed_speed_ratios  # actual angles carry the sense of rotation
+    mass_dof = np.array(model.mass_dof)
+    chain = model.chain
+    shaft_dofs = np.array(model.shaft_dofs)
+    k_s, _c_s, _h_s = model._shaft_values()
+    elem_ratio = [
+        float(ratio[model.index(s.between[0] if s.between[0] != "ground" else s.between[1])])
+        for s in model.shafts
+    ]
+    labels: list[tuple[str, str]] = [s.between for s in model.shafts]
+    chained, shift, ring_dof = _ring_dofs(
+        model, dampers, chain is not None and modal_damping is None
+    )
+    dof_of_model = np.arange(n0) + shift
+    n = n0 + len(dampers)
+    order = list(dampers)
+    inertia, stiffness, damping, hysteretic = _model_matrices(model, dof_of_model, n, modal_damping)
+    element_dofs = [
+        [int(dof_of_model[a]) if a >= 0 else -1, int(dof_of_model[b]) if b >= 0 else -1]
+        for a, b in shaft_dofs
+    ]
+    element_k = list(k_s)
+    ring_mass_dof: list[int] = []
+    ring_ratio: list[float] = []
+    for d in order:
+        r = int(ring_dof[id(d)])
+        hub_mass = model.index(d.at)
+        hub = int(dof_of_model[mass_dof[hub_mass]])
+        r2 = float(ratio[hub_mass]) ** 2
+        inertia[r] = d.inertia * r2
+        _couple(stiffness, hub, r, d.stiffness * r2)
+        _couple(damping, hub, r, d.damping * r2)
+        _couple(hysteretic, hub, r, d.loss_factor * d.stiffness * r2)
+        element_dofs.append([hub, r])
+        element_k.append(d.stiffness * r2)
+        elem_ratio.append(float(ratio[hub_mass]))
+        labels.append((d.at, d.name))
+        ring_mass_dof.append(r)
+        ring_ratio.append(float(ratio[hub_mass]))
+    masses_dof = np.concatenate([dof_of_model[mass_dof], np.array(ring_mass_dof, dtype=int)])
+    masses_ratio = np.concatenate([ratio, np.array(ring_ratio)])
+    return LinearSystem(
+        inertia=inertia,
+        stiffness=stiffness,
+        damping=damping,
+        hysteretic=hysteretic,
+        chain=_chain_arrays(stiffness, damping, hysteretic) if chained else None,
+        mass_dof=masses_dof.astype(int),
+        mass_ratio=masses_ratio,
+        mass_names=tuple(names),
+        element_dofs=np.array(element_dofs, dtype=int).reshape(-1, 2),
+        element_stiffness=np.array(element_k, dtype=float),
+        element_ratio=np.array(elem_ratio, dtype=float),
+        element_labels=tuple(labels),
+        dampers=tuple(order),
+    )
+
+
+def _ring_names(model: TorsionModel, dampers: Sequence[Damper]) -> list[str]:
+    """The listed masses' names: the model's, then the dampers' rings (InputError for a hub
+    that is not a mass of the model or a ring named like a mass)."""
+    names = list(model.mass_names)
+    for d in dampers:
+        model.index(d.at)  # the hub must exist (one-line error otherwise)
+        if d.name in names:
+            raise InputError(
+                f'the damper ring is named "{d.name}" like a mass; give it another name',
+                key="name",
+                value=d.name,
+            )
+        names.append(d.name)
+    return names
+
+
+def _ring_dofs(
+    model: TorsionModel, dampers: Sequence[Damper], chained: bool
+) -> tuple[bool, int, dict[int, int]]:
+    """Ring placement: (chained, shift, ring dof by ``id(damper)``). A ring at an end of a
+    chain keeps the chain (one ring per end; a ring at the first end shifts the model's dofs
+    by one); any other ring, or a model that is no chain (``chained`` False), puts the rings
+    after the model's dofs."""
+    n0 = model.dof_count
+    mass_dof = np.array(model.mass_dof)
+    first = last = None
+    for d in dampers:
+        hub = int(mass_dof[model.index(d.at)])
+        if not chained:
+            break
+        if hub == n0 - 1 and last is None:
+            last = d
+        elif hub == 0 and first is None:
+            first = d
+        else:
+            chained = False
+    shift = 1 if chained and first is not None else 0
+    ring_dof: dict[int, int] = {}
+    if chained:
+        if first is not None:
+            ring_dof[id(first)] = 0
+        if last is not None:
+            ring_dof[id(last)] = n0 + shift
+    else:
+        for j, d in enumerate(dampers):
+            ring_dof[id(d)] = n0 + j
+    return chained, shift, ring_dof
+
+
+def _model_matrices(
+    model: TorsionModel, dof_of_model: NDArray[np.int_], n: int, modal_damping: ArrayLike | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """(inertia (n,), K, C, H (n, n)): the model's reflected matrices at its dofs
+    ``dof_of_model`` among n, the modal damping's C_modal added to C."""
+    inertia = np.zeros(n)
+    inertia[dof_of_model] = model.dof_inertia
+    stiffness = np.zeros((n, n))
+    damping = np.zeros((n, n))
+    hysteretic = np.zeros((n, n))
+    idx = np.ix_(dof_of_model, dof_of_model)
+    stiffness[idx] = model.stiffness_matrix()
+    damping[idx] = model.damping_matrix()
+    if modal_damping is not None:
+        from crankdyn.torsion.damped import modal_damping_matrix
+
+        damping[idx] += modal_damping_matrix(model, modal_damping)
+    hysteretic[idx] = model.hysteretic_matrix()
+    return inertia, stiffness, damping, hysteretic
+
+
+def _couple(matrix: NDArray[np.float64], hub: int, ring: int, value: float) -> None:
+    """Add a spring (or dashpot) ``value`` between dofs ``hub`` and ``ring`` to ``matrix``."""
+    matrix[ring, ring] += value
+    matrix[hub, hub] += value
+    matrix[ring, hub] -= value
+    matrix[hub, ring] -= value
+
+
+def _chain_arrays(
+    stiffness: NDArray[np.float64], damping: NDArray[np.float64], hysteretic: NDArray[np.float64]
+) -> tuple[np.ndarray, ...] | None:
+    """(k_between, c_between, h_between, k_g, c_g, h_g) of a chain in dof order (the
+    :class:`LinearSystem` field ``chain``), None when it has other couplings."""
+    sub = np.diagonal(stiffness, 1)
+    chain_arrays = (
+        -sub.copy(),
+        -np.diagonal(damping, 1).copy(),
+        -np.diagonal(hysteretic, 1).copy(),
+        np.sum(stiffness, axis=1),
+        np.sum(damping, axis=1),
+        np.sum(hysteretic, axis=1),
+    )
+    # a chain in dof order must have no other couplings
+    off = stiffness - np.diag(np.diagonal(stiffness))
+    off -= np.diag(np.diagonal(stiffness, 1), 1) + np.diag(np.diagonal(stiffness, -1), -1)
+    if np.any(off != 0.0):  # pragma: no cover - guarded by the placement above
+        return None
+    return chain_arrays
+
+
+def steady_state(
+    model: TorsionModel,
+    omega: ArrayLike,
+    forcing: ArrayLike,
+    *,
+    dampers: Iterable[Damper] = (),
+    hysteretic_frequency: float | None = None,
+) -> NDArray[np.complexfloating]:
+    """Steady-state complex amplitudes under harmonic torques: X = D(omega)^-1 F.
+
+    For every frequency at once (seed 003, the V6 paper's eqs. 2 and 6; module docstring).
+    The counterpart of openTorsion's ``Assembly.ss_response``.
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The lumped model.
+    omega : float or array_like
+        Circular frequencies (rad/s), shape (...).
+    forcing : array_like
+        Harmonic torques on the degrees of freedom (N m, complex), shape (..., dofs) or
+        (..., dofs, r).
+    dampers : iterable of Damper
+        Dampers whose rings are added (default none).
+    hysteretic_frequency : float or None
+        None: loss factors as exact hysteretic damping; omega_h (rad/s): as viscous damping
+        eta k / omega_h.
+
+    Returns
+    -------
+    numpy.ndarray
+        Complex reflected angles of the degrees of freedom (rad), the shape of ``forcing``.
+
+    Examples
+    --------
+    One damped mass at 900 rad/s: X = T / (k - omega^2 J + i omega c) (seed 003,
+    "单质量有阻尼强迫扭转振动").
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     masses=(Mass("m", 1.0, damping=20.0),), shafts=(Shaft(("ground", "m"), 1e6),)
+    ... )
+    >>> x = steady_state(model, [900.0], [[100.0]])
+    >>> round(float(abs(x[0, 0])) / abs(100.0 / (1e6 - 900.0**2 + 900j * 20.0)), 12)
+    1.0
+    """
+    return linear_system(model, dampers).solve(omega, forcing, hysteretic_frequency)
