@@ -22,6 +22,23 @@ from crankdyn.torsion.dampers import design_damper
 from crankdyn.torsion.excitation import UniformExcitation, excitation_for, order_grid
 from crankdyn.torsion.rules import exceedances, permissible_continuous
 from crankdyn.torsion.sweep import forced_response
+from crankdyn.tvc import TvcSpec
+from crankdyn.tvc.analysis import judge
+
+FOUND = TvcSpec(tachometer_tolerance=0.0)
+"""Barred ranges as found: no tachometer tolerance widens them (IACS UR M68 adds no margin)."""
+
+
+def _m68(model, r):
+    """(passed, M68 barred ranges as found) of a response, by the TVC's one evaluation."""
+    verdicts, barred = judge(model, r, FOUND)
+    m68 = [v for v in verdicts if v.source.startswith("IACS UR M68")]
+    return all(v.passed for v in m68), [b for b in barred if b.worst_ratio > 0]
+
+
+def _shaft(barred):
+    """The two masses of an M68 shaft's barred range (its component reads "a - b")."""
+    return tuple(barred.component.split(" - "))
 
 RPM = math.pi / 30.0
 ORDERS = order_grid(0.5, 12.0, 0.5)
@@ -57,12 +74,12 @@ def _fine(center_rpm, half=1.0):
 def brute(line):
     """Brute force: every peak of PEAKS and the barred ranges on 0.01 rpm grids."""
     model, ex = line
-    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False, rules=False)
+    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False)
     peaks = {}
     for quantity, item, order in PEAKS:
         guess = coarse.peak(quantity, item, order)
         fine = forced_response(
-            model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False, rules=False
+            model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False,
         )
         peaks[quantity, item, order] = max(guess.value, fine.peak(quantity, item, order).value)
     ranges = []
@@ -73,7 +90,7 @@ def brute(line):
         for a, b in zip(first, last, strict=True):
             lo, hi = coarse.speed[a - 1] / RPM - 0.5, coarse.speed[b + 1] / RPM + 0.5
             fine = forced_response(
-                model, ex, np.arange(lo, hi, 0.01) * RPM, ORDERS, resolve=False, rules=False
+                model, ex, np.arange(lo, hi, 0.01) * RPM, ORDERS, resolve=False,
             )
             inside = fine.speed[_above_tau_c(model, fine, shaft)] / RPM
             ranges.append((shaft, inside[0], inside[-1]))
@@ -116,7 +133,7 @@ def test_the_coarse_grids_straddle_the_peak(line, brute):
         plain = forced_response(model, ex, _grid(step), ORDERS, resolve=False)
         value = plain.peak("synthesized_shaft_stress", INPUT).value
         assert value < 0.8 * peaks["synthesized_shaft_stress", INPUT, None]
-        assert plain.rule_check.barred_ranges == ()
+        assert _m68(model, plain)[1] == []
 
 
 def test_resolved_peaks_equal_the_brute_force(resolved, brute):
@@ -131,18 +148,20 @@ def test_resolved_peaks_equal_the_brute_force(resolved, brute):
         assert got.value <= value * (1 + 1e-5)
 
 
-def test_resolved_barred_ranges_and_verdict_equal_the_brute_force(resolved, brute):
+def test_resolved_barred_ranges_and_verdict_equal_the_brute_force(line, resolved, brute):
+    model, _ = line
     step, r = resolved
     _, ranges = brute
-    check = r.rule_check
-    assert check.passed is True  # barred ranges below 0.8 n_0 and under tau_T: permitted
-    assert len(check.barred_ranges) == len(ranges)
-    for barred, (shaft, start, end) in zip(check.barred_ranges, ranges, strict=True):
-        assert barred.shaft == shaft
+    passed, found = _m68(model, r)
+    assert passed is True  # barred ranges below 0.8 n_0 and under tau_T: permitted
+    assert len(found) == len(ranges)
+    for barred, (shaft, start, end) in zip(found, ranges, strict=True):
+        assert _shaft(barred) == shaft
         assert barred.permitted
-        assert barred.start / RPM == pytest.approx(start, abs=0.1), step
-        assert barred.end / RPM == pytest.approx(end, abs=0.1), step
-        assert 786.0 < barred.peak_speed / RPM < 788.0
+        assert barred.exceeds_start / RPM == pytest.approx(start, abs=0.1), step
+        assert barred.exceeds_end / RPM == pytest.approx(end, abs=0.1), step
+        assert (barred.start, barred.end) == (barred.exceeds_start, barred.exceeds_end)
+        assert 786.0 < barred.critical_speed / RPM < 788.0
 
 
 def test_grid_rows_and_added_speeds(line):
@@ -179,7 +198,7 @@ def test_any_limit_curve_through_exceedances(line):
         return np.full((np.size(speeds), 1), limit)
 
     found = exceedances(r, curve, limits)
-    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False, rules=False)
+    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False)
     above = curve(coarse)[:, 0] > limit
     first, last = _runs(above)
     assert len(found) == first.size >= 2
@@ -192,7 +211,7 @@ def test_any_limit_curve_through_exceedances(line):
             if is_open:
                 assert got / RPM == pytest.approx(rough)  # the sweep's end
                 continue
-            fine = forced_response(model, ex, _fine(rough, 0.6), ORDERS, resolve=False, rules=False)
+            fine = forced_response(model, ex, _fine(rough, 0.6), ORDERS, resolve=False)
             v = curve(fine)[:, 0] > limit
             cross = fine.speed[1:][v[1:] != v[:-1]] / RPM
             assert cross.size == 1
@@ -231,9 +250,9 @@ def test_relative_angle_resolved_on_demand(line):
     rel = r.relative_angle("cylinder 3", "propeller")
     assert rel.speed.size >= r.speed.size and np.all(np.diff(rel.speed) > 0)
     got = rel.peak("synthesized")
-    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False, rules=False)
+    coarse = forced_response(model, ex, _grid(0.5), ORDERS, resolve=False)
     guess = coarse.relative_angle("cylinder 3", "propeller").peak("synthesized")
-    fine = forced_response(model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False, rules=False)
+    fine = forced_response(model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False)
     truth = max(guess.value, fine.relative_angle("cylinder 3", "propeller").peak().value)
     assert got.value == pytest.approx(truth, rel=1e-3)
     per_order = rel.peak("amplitude", order=3.0)
@@ -248,22 +267,23 @@ def test_verdict_at_a_tangency_does_not_depend_on_the_grid(line):
     stress / tau_C are refined to 1e-6, so every grid gives the same answer, the brute force's
     (0.001 rpm around the peak)."""
     model, ex = line
-    first = forced_response(model, ex, _grid(25.0), ORDERS).rule_check
-    ratio = max(b.max_ratio for b in first.barred_ranges if b.shaft == INPUT)
+    _, first = _m68(model, forced_response(model, ex, _grid(25.0), ORDERS))
+    ratio = max(b.worst_ratio for b in first if _shaft(b) == INPUT)
     touching = UniformExcitation(ex.torque * 1.0002 / ratio, ex.firing_angles, ex.cycle)
     answers = []
     for step in (1.0, 7.0, 25.0, 50.0):
-        check = forced_response(model, touching, _grid(step), ORDERS).rule_check
-        ranges = [b for b in check.barred_ranges if b.shaft == INPUT]
-        answers.append((check.passed, [(b.start / RPM, b.end / RPM, b.max_ratio) for b in ranges]))
-    center = first.barred_ranges[0].peak_speed / RPM
+        passed, found = _m68(model, forced_response(model, touching, _grid(step), ORDERS))
+        ranges = [b for b in found if _shaft(b) == INPUT]
+        answers.append(
+            (passed, [(b.exceeds_start / RPM, b.exceeds_end / RPM, b.worst_ratio) for b in ranges])
+        )
+    center = first[0].critical_speed / RPM
     fine = forced_response(
         model,
         touching,
         np.arange(center - 3.0, center + 3.0, 0.001) * RPM,
         ORDERS,
         resolve=False,
-        rules=False,
     )
     above = _above_tau_c(model, fine, INPUT)
     for passed, ranges in answers:

@@ -286,7 +286,7 @@ def test_peak_api():
         "synthesized_amplitude",
         "shaft_torque",
     }
-    assert forced_response(model, ex, w, [3.0], rules=False).rule_check is None
+    assert not hasattr(forced_response(model, ex, w, [3.0]), "rule_check")  # judges nothing
 
 
 def test_undamped_resonances_are_noted_not_chased():

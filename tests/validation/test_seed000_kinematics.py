@@ -51,7 +51,7 @@ def test_seed000_approx_acceleration_exact_at_dead_centres_5p3_percent_at_90():
 @pytest.mark.parametrize("lam", [0.2, 0.25, 0.28, 1 / 3.5, 0.32])
 def test_seed000_vmax_over_cm_about_1p6_near_phi_plus_beta_90(lam):
     """v_max / c_m is about 1.6 and v_max occurs near phi + beta = 90 deg."""
-    s = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / lam), 1.0).summary
+    s = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / lam), 1.0).extrema
     assert s.velocity_ratio == pytest.approx(1.6, abs=0.05)
     beta = math.asin(lam * math.sin(s.crank_angle_at_max_velocity))
     assert math.degrees(s.crank_angle_at_max_velocity + beta) == pytest.approx(90.0, abs=2.0)
@@ -61,7 +61,7 @@ def test_seed000_vmax_over_cm_about_1p6_near_phi_plus_beta_90(lam):
 def test_seed000_acceleration_extrema_count_and_minimum(lam, count):
     """Approximate formula: two extrema for lambda < 1/4, four for lambda > 1/4, the minimum
     -R w^2 (lambda + 1/(8 lambda)) at cos(phi) = -1/(4 lambda)."""
-    s = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / lam), 1.0, method="approx").summary
+    s = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / lam), 1.0, method="approx").extrema
     assert len(s.acceleration_extrema) == count
     if lam > 0.25:
         assert s.min_acceleration == pytest.approx(-(lam + 1 / (8 * lam)), rel=1e-12)
@@ -78,7 +78,7 @@ def test_exact_formula_four_extrema_threshold():
     lambda* = (sqrt(21) - 3)/6 = 0.2638 (a(pi + psi) = lambda - 1 + psi^2 (1/2 - 2 lambda
     + 3 lambda^3/2) + O(psi^4)), not at the approximate formula's 1/4."""
     threshold = (math.sqrt(21) - 3) / 6
-    below = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / (threshold - 0.002)), 1.0).summary
-    above = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / (threshold + 0.002)), 1.0).summary
+    below = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / (threshold - 0.002)), 1.0).extrema
+    above = piston_kinematics(CrankGeometry(0.1, 1.0, 1.0 / (threshold + 0.002)), 1.0).extrema
     assert len(below.acceleration_extrema) == 2
     assert len(above.acceleration_extrema) == 4

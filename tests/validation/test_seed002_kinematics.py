@@ -87,6 +87,6 @@ def test_seed002_speed_classes():
     # the VAZ engine: 0.071 m x 4900 / 30 = 11.6 m/s, high-speed
     s = piston_kinematics(
         CrankGeometry.from_stroke(0.076, 0.071, rod_ratio=0.26), 4900 * math.pi / 30
-    ).summary
+    ).extrema
     assert s.mean_piston_speed == pytest.approx(0.071 * 4900 / 30, rel=1e-12)
     assert s.speed_class == "high-speed"

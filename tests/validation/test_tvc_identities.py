@@ -56,8 +56,8 @@ def test_misfire_response_equals_the_changed_harmonics_by_quadrature(name, rpm):
     k_cyl = 4
     normal = excitation_for(model, engine)
     misfire = excitation_for(model, engine, misfire=(k_cyl,))
-    r0 = forced_response(model, normal, speeds, orders, dampers=(), resolve=False, rules=False)
-    r1 = forced_response(model, misfire, speeds, orders, dampers=(), resolve=False, rules=False)
+    r0 = forced_response(model, normal, speeds, orders, dampers=(), resolve=False)
+    r1 = forced_response(model, misfire, speeds, orders, dampers=(), resolve=False)
     diff = r1.mass_response - r0.mass_response  # (S, Q, masses)
     # the changed gas torque of cylinder k by direct quadrature over the 720 deg cycle
     g = engine.geometry
@@ -97,7 +97,7 @@ def test_coupling_heat_is_the_damping_work_per_cycle(genset):
     exc = excitation_for(model, engine)
     orders = default_orders(model, exc.cycle)
     speeds = np.array([1000.0, 1230.0, 1500.0]) / RPM
-    r = forced_response(model, exc, speeds, orders, resolve=False, rules=False)
+    r = forced_response(model, exc, speeds, orders, resolve=False)
     s = next(i for i, sh in enumerate(model.shafts) if sh.coupling is not None)
     shaft = model.shafts[s]
     a, b = (model.mass_names.index(e) for e in shaft.between)

@@ -67,7 +67,7 @@ if TYPE_CHECKING:
         "_Condition", list[Verdict], list[BarredSpeedRange], ResponseResult
     ]
 
-__all__ = ["Check", "ResponseOf", "rated_speed", "tvc", "tvc_model"]
+__all__ = ["Check", "ResponseOf", "judge", "rated_speed", "tvc", "tvc_model"]
 
 ResponseOf: TypeAlias = (
     "Callable[[TorsionModel, Any, NDArray[np.float64], NDArray[np.float64]], ResponseResult]"
@@ -302,6 +302,55 @@ def tvc_model(
     rated = rated_speed(model, engine)
     load = load_of(model, spec)
     return with_load(model, engine, load, rated), load, rated
+
+
+def judge(
+    model: TorsionModel,
+    response: ResponseResult,
+    spec: TvcSpec | None = None,
+    *,
+    engine: Engine | None = None,
+    condition: str = "normal firing",
+    dampers: Sequence[Damper] | None = None,
+) -> tuple[list[Verdict], list[BarredSpeedRange]]:
+    """A forced response judged by the installation's checks: the verdict rows and the barred
+    speed ranges (as found and as declared) of one condition, by the TVC's own evaluation
+    (:func:`crankdyn.tvc.checks.model_checks`, :func:`crankdyn.tvc.evaluate.
+    evaluate_condition`).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation (its limits: [rules], couplings, machines...).
+    response : ResponseResult
+        The condition's resolved forced response.
+    spec : TvcSpec or None
+        The settings (tachometer tolerance, widening); None: the model's ``[tvc]`` or the
+        defaults.
+    engine : Engine or None
+        The engine (for its rated speed where the model gives none).
+    condition : str
+        The condition's name, for the rows.
+    dampers : sequence of Damper or None
+        The dampers of the response; None: the model's.
+
+    Returns
+    -------
+    verdicts : list of crankdyn.summary.Verdict
+        The rows.
+    barred : list of BarredSpeedRange
+        The barred ranges.
+
+    Raises
+    ------
+    InputError
+        Without a rated speed (:func:`rated_speed`).
+    """
+    spec = spec or getattr(model, "tvc", None) or TvcSpec()
+    rated = rated_speed(model, engine)
+    used = model.dampers if dampers is None else dampers
+    checks, _notes = model_checks(model, spec, rated, used)
+    return evaluate_condition(response, condition, checks, spec, rated)
 
 
 def _response(

@@ -15,7 +15,9 @@ declared range, margins included: IACS UR M68.4) and only while the stress stays
 for a coupling while the total torque stays below T_Kmax; for the crankshaft while it stays
 below the builder's transient limit (none given: no barred range permitted); never where it
 holds the rated speed. Continuous limits (heat, gear hammering, generator, damper) are checked
-over the speeds of continuous running: the condition's range less its declared barred ranges.
+over the speeds of continuous running: the condition's range less its declared barred ranges
+(their ends, bisected to 0.01 rpm, widened by that accuracy: a range declared as found, with no
+margin, leaves no sample of the crossing itself in continuous running).
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from numpy.typing import NDArray
 import crankdyn.tvc.curves as cv
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
-from crankdyn.torsion.rules import exceedances
+from crankdyn.torsion.rules import SPEED_TOLERANCE, exceedances
 from crankdyn.tvc.limits import M68, WIDENING_SOURCES, barred_limits
 from crankdyn.tvc.result import BarredSpeedRange
 
@@ -324,7 +326,10 @@ def evaluate_condition(
     """
     found = _found(r, checks, spec, n0)
     barred = [_barred_range(r, f, condition, spec, n0) for f in found]
-    excluded = merge_intervals([(b.start, b.end) for b in barred])
+    # the ends are bisected to SPEED_TOLERANCE: continuous running starts that far outside
+    excluded = merge_intervals(
+        [(b.start - SPEED_TOLERANCE, b.end + SPEED_TOLERANCE) for b in barred]
+    )
     verdicts = _continuous_verdicts(r, checks, condition, excluded)
     for f, b in zip(found, barred, strict=True):
         verdicts += _barred_verdicts(r, f, b, condition, n0)
