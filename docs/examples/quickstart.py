@@ -26,7 +26,7 @@ def main(out: Path) -> None:
     # 2. Kinematics at 4900 rpm (speeds in rad/s inside crankdyn)
     speed = 4900 * math.pi / 30
     kin = piston_kinematics(g, speed)
-    s = kin.summary
+    s = kin.extrema  # the figures of the motion (kin.summary() gives every front end's view)
     print(
         f"mean piston speed {s.mean_piston_speed:.2f} m/s ({s.speed_class}), "
         f"v_max {s.max_velocity:.2f} m/s at {math.degrees(s.crank_angle_at_max_velocity):.1f} deg"
@@ -58,9 +58,12 @@ def main(out: Path) -> None:
     print(
         f"mean torque {a.torque.mean_torque:.1f} N m, max gas force "
         f"{a.forces().max_gas_force / 1e3:.2f} kN, first elastic mode "
-        f"{a.modes.frequencies_hz[1]:.1f} Hz, most loaded shaft {' - '.join(a.most_loaded_shaft())}"
+        f"{a.modes.frequencies_hz[1]:.1f} Hz, "
+        f"most loaded shaft {' - '.join(a.response().most_loaded_shaft())}"
     )
     a.forces().plot().savefig(out / "forces.png", dpi=100)
+    for label, value, unit in a.bearings().summary().rows()[-4:]:  # its declared key figures
+        print(f"  {label}: {value} {unit}")
 
 
 if __name__ == "__main__":

@@ -651,6 +651,9 @@ class FigureSpec:
         The key of the plausibility check that judges it, or ``""``.
     headline : bool
         As :class:`KeyFigure`.
+    status : callable or None
+        ``status(value)`` -> ``"pass"``, ``"warn"``, ``"fail"`` or None: a judgement the figure
+        carries of its own (e.g. critical speeds of major orders in the range: warn).
     """
 
     name: str
@@ -664,6 +667,7 @@ class FigureSpec:
     field_name: str = ""
     check: str = ""
     headline: bool = False
+    status: Callable[[Any], str | None] | None = None
 
     def make(self, result: Any) -> KeyFigure | None:
         """The key figure of a result.
@@ -682,6 +686,7 @@ class FigureSpec:
         if got is None:
             return None
         value, where = got
+        status = self.status(value) if self.status is not None else None
         return KeyFigure(
             self.name,
             self.key,
@@ -690,7 +695,7 @@ class FigureSpec:
             value,
             self.reduction,
             where,
-            "pass" if self.check else None,
+            status or ("pass" if self.check else None),
             self.better,
             self.description or self.label,
             self.check,
@@ -809,6 +814,7 @@ def derived(
     description: str = "",
     check: str = "",
     headline: bool = False,
+    status: Callable[[Any], str | None] | None = None,
 ) -> FigureSpec:
     """A key figure computed from the result by a formula (cite it in the result's docstring).
 
@@ -823,6 +829,8 @@ def derived(
         As :class:`KeyFigure`.
     headline : bool
         As :class:`KeyFigure`.
+    status : callable or None
+        ``status(value)`` -> the figure's own judgement (:attr:`FigureSpec.status`), or None.
 
     Returns
     -------
@@ -839,7 +847,7 @@ def derived(
         return got, ""
 
     return FigureSpec(
-        name, key, label, unit, value, reduction, better, description, "", check, headline
+        name, key, label, unit, value, reduction, better, description, "", check, headline, status
     )
 
 

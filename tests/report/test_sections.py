@@ -50,7 +50,7 @@ def test_report_with_the_sections(tmp_path, monkeypatch):
     assert figures["flywheel_inertia_kgm2"] > 0
     for plot in ("firing", "balance", "flywheel"):
         assert (out / "plots" / f"{plot}.png").exists()
-    assert (out / "data" / "balance.csv").read_text().startswith("Order,")
+    assert (out / "data" / "balance.csv").read_text().startswith("order,free_force_N,")
     assert (out / "data" / "flywheel.csv").read_text().startswith("crank_angle_deg,")
 
 

@@ -54,7 +54,7 @@ def hostile(tmp_path_factory):
 
 def test_tvc_folder_and_summary_lists(marine):
     target, out, _err = marine
-    for name in ("index.html", "summary.json", "data/verdicts.csv", "data/barred-speed-ranges.csv"):
+    for name in ("index.html", "summary.json", "data/verdicts.csv", "data/barred_speed_ranges.csv"):
         assert (target / name).is_file(), name
     summary = json.loads((target / "summary.json").read_text(encoding="utf-8"))
     verdicts = summary["verdicts"]
@@ -140,7 +140,7 @@ def test_tvc_report_in_browser(browser, hostile):
     assert len(images) >= 3  # modes, Campbell, the condition
     for complete, width, alt in images:
         assert complete and width > 0, alt
-    rows = browser.find_elements("css selector", "#verdicts table.data tbody tr")
+    rows = browser.find_elements("css selector", "#verdicts #table-verdicts tbody tr")
     summary = json.loads((target / "summary.json").read_text(encoding="utf-8"))
     assert len(rows) == len(summary["verdicts"])
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]

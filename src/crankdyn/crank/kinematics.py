@@ -890,6 +890,7 @@ class KinematicsSummary(Result):
                 s.min_acceleration, s.crank_angle_at_min_acceleration,
             ),
             reduction="largest magnitude of the acceleration's extrema", better="min",
+            check="piston_acceleration",
         ),
     )  # fmt: skip
 

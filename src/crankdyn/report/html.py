@@ -10,12 +10,11 @@ import base64
 import re
 from collections.abc import Iterable
 from html import escape
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 from crankdyn.display import column_text, unit_label
 from crankdyn.report.model import KeyFigure, Report, Section, Table
 from crankdyn.results import Result
-from crankdyn.summary import verdict_cells
 
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
@@ -45,6 +44,7 @@ th { background: var(--bg); font-weight: 600; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap;
          overflow-wrap: normal; }
 td.text { text-align: left; white-space: normal; }
+td.failed { color: #a8322d; font-weight: 600; }
 table.figures { width: 100%; }
 table.figures td:first-child { width: 26%; }
 table.figures td:nth-child(2) { width: 34%; }
@@ -85,6 +85,8 @@ def _cell(value: object) -> str:
     """A body cell: numbers right-aligned and kept on one line, text left-aligned and wrapped."""
     text = str(value)
     kind = "num" if _NUMBER.match(text.strip()) or text.strip() in ("-", "") else "text"
+    if text == "FAILED":  # a verdict cell
+        kind += " failed"
     return f"<td class='{kind}'>{escape(text)}</td>"
 
 
@@ -116,25 +118,6 @@ def _figures_table(
         "<table class='figures'><thead><tr><th>Quantity</th><th>Value</th><th>Status</th>"
         f"<th>Note</th></tr></thead><tbody>{rows}</tbody></table>"
     )
-
-
-def _verdicts_table(verdicts: Iterable[Any]) -> str:
-    """The rule checks' verdicts as every front end shows them (:func:`crankdyn.summary.
-    verdict_cells`)."""
-    header, rows = verdict_cells(list(verdicts))
-    head = "".join(f"<th>{escape(h)}</th>" for h in header)
-    body = "".join(
-        "<tr>"
-        + "".join(
-            f"<td>{_status('pass' if c == 'passed' else 'fail')}</td>"
-            if c in ("passed", "FAILED")
-            else _cell(c)
-            for c in row
-        )
-        + "</tr>"
-        for row in rows
-    )
-    return f"<table class='data'><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
 def _result_rows(result: Result) -> tuple[list[str], list[list[str]]]:
@@ -170,7 +153,10 @@ def _data_table(table: Table) -> str:
             f"<p class='note'>The first {len(shown)} of {len(body)} rows; all {len(body)} in "
             f"<a href='data/{escape(table.name)}.csv'>data/{escape(table.name)}.csv</a>.</p>"
         )
-    return f"<table class='data'><thead><tr>{head}</tr></thead><tbody>{rows}</tbody></table>{more}"
+    return (
+        f"<table class='data' id='table-{escape(table.name)}'><thead><tr>{head}</tr></thead>"
+        f"<tbody>{rows}</tbody></table>{more}"
+    )
 
 
 def _section(section: Section, images: dict[str, bytes]) -> str:
@@ -179,8 +165,6 @@ def _section(section: Section, images: dict[str, bytes]) -> str:
         parts.append(f"<p>{escape(section.intro)}</p>")
     if section.figures or section.warnings:
         parts.append(_figures_table(section.figures, section.warnings))
-    if section.verdicts:
-        parts.append("<h3>Verdicts</h3>" + _verdicts_table(section.verdicts))
     if section.notes:
         items = "".join(f"<li>{escape(n)}</li>" for n in section.notes)
         parts.append(f"<ul class='note'>{items}</ul>")

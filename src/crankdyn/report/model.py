@@ -13,7 +13,7 @@ from typing import Any
 
 from crankdyn.results import Result
 from crankdyn.summary import KeyFigure as SummaryFigure
-from crankdyn.summary import Summary, SummaryTable
+from crankdyn.summary import Summary, SummaryTable, verdict_cells
 
 __all__ = ["Check", "KeyFigure", "Plot", "Report", "Section", "Table"]
 
@@ -282,6 +282,7 @@ class Section:
         checks: Sequence[Check] = (),
         json: dict[str, Any] | None = None,
         limits: dict[str, int] | None = None,
+        verdicts_name: str | None = None,
     ) -> Section:
         """A section that renders the summaries of its results (:mod:`crankdyn.summary`):
         their key figures (each key once), tables, verdicts, notes and warnings, as the
@@ -301,6 +302,9 @@ class Section:
             The summary.json data; default none.
         limits : dict of str to int or None
             The rows the page shows of a summary table (by its key; the CSV has them all).
+        verdicts_name : str or None
+            The name of the verdict table (its ``data/<name>.csv``); default
+            ``<key>-verdicts``.
 
         Returns
         -------
@@ -308,6 +312,7 @@ class Section:
             The section.
         """
         summaries = [r if isinstance(r, Summary) else r.summary() for r in results]
+        verdicts = [v for s in summaries for v in s.verdicts]
         figures: list[KeyFigure] = []
         seen: set[str] = set()
         warnings: list[Any] = []
@@ -321,6 +326,11 @@ class Section:
             warnings += [w for w in s.warnings if w not in warnings]
             notes += [n for n in s.notes if n not in notes]
             all_tables += [Table.of(t, (limits or {}).get(t.key)) for t in s.tables]
+        if verdicts:  # the verdict rows as every front end shows them, first
+            header, rows = verdict_cells(verdicts)
+            all_tables.insert(
+                0, Table(verdicts_name or f"{key}-verdicts", "Verdicts", header=header, rows=rows)
+            )
         return cls(
             key=key,
             title=title,
@@ -331,7 +341,7 @@ class Section:
             checks=list(checks),
             json=json if json is not None else {},
             warnings=warnings,
-            verdicts=[v for s in summaries for v in s.verdicts],
+            verdicts=verdicts,
             notes=notes,
         )
 

@@ -122,6 +122,7 @@ def _verdict_section(result: TvcResult) -> Section:
         "verdicts",
         "Verdict table",
         [result],
+        verdicts_name="verdicts",
         intro=(
             "Every component in every condition: its worst value on the resolved response "
             "(the resonance peaks refined to 0.1 %, the worst value to 1e-6), the limit and "

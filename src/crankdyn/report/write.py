@@ -62,6 +62,12 @@ def write_report(
     """
     from crankdyn.plots.render import render_figures
 
+    taken: set[str] = set()
+    for section in report.sections:  # one CSV per table: a name taken before gets its section's
+        for table in section.tables:
+            if table.name in taken:
+                table.name = f"{section.key}-{table.name}"
+            taken.add(table.name)
     folder = atomic_directory(out, force=force)
     with folder as tmp:
         (tmp / "plots").mkdir()

@@ -162,8 +162,11 @@ class CriticalSpeed(Result):
         return self.natural_frequency * HZ
 
 
-def _majors(result: CampbellResult) -> tuple[int, str]:
-    """The number of major-order critical speeds in the range, and where they are."""
+def _majors(result: CampbellResult) -> tuple[int | None, str]:
+    """The number of major-order critical speeds in the range, and where they are (None:
+    undetermined, the model gives no firing order)."""
+    if result.major is None:
+        return None, "undetermined: the model gives no firing order or firing angles"
     majors = [c for c in result.critical_speeds if c.major]
     where = ", ".join(f"order {c.order:g} at {c.speed * RPM:.5g} rpm" for c in majors)
     return len(majors), where
@@ -189,7 +192,8 @@ class CampbellResult(Result):
         derived(
             "major_critical_speeds", "major_critical_speeds",
             "Major-order critical speeds in the range", "",
-            lambda c: None if c.major is None else _majors(c), headline=True, better="min",
+            _majors, headline=True, better="min",
+            status=lambda count: "warn" if count is None or count > 0 else "pass",
             description="Resonances of major orders inside the operating range (undetermined "
             "without a firing order)",
         ),
