@@ -654,6 +654,9 @@ class FigureSpec:
     status : callable or None
         ``status(value)`` -> ``"pass"``, ``"warn"``, ``"fail"`` or None: a judgement the figure
         carries of its own (e.g. critical speeds of major orders in the range: warn).
+    unavailable : str
+        Why the figure may not apply (``"no shaft of the torsional model has diameters"``): the
+        summary leaves it out; a study that asks for it stops with this reason.
     """
 
     name: str
@@ -668,6 +671,7 @@ class FigureSpec:
     check: str = ""
     headline: bool = False
     status: Callable[[Any], str | None] | None = None
+    unavailable: str = ""
 
     def make(self, result: Any) -> KeyFigure | None:
         """The key figure of a result.
@@ -815,6 +819,7 @@ def derived(
     check: str = "",
     headline: bool = False,
     status: Callable[[Any], str | None] | None = None,
+    unavailable: str = "",
 ) -> FigureSpec:
     """A key figure computed from the result by a formula (cite it in the result's docstring).
 
@@ -831,6 +836,8 @@ def derived(
         As :class:`KeyFigure`.
     status : callable or None
         ``status(value)`` -> the figure's own judgement (:attr:`FigureSpec.status`), or None.
+    unavailable : str
+        Why the figure may not apply (:attr:`FigureSpec.unavailable`).
 
     Returns
     -------
@@ -847,7 +854,19 @@ def derived(
         return got, ""
 
     return FigureSpec(
-        name, key, label, unit, value, reduction, better, description, "", check, headline, status
+        name,
+        key,
+        label,
+        unit,
+        value,
+        reduction,
+        better,
+        description,
+        "",
+        check,
+        headline,
+        status,
+        unavailable,
     )
 
 

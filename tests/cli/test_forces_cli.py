@@ -65,9 +65,9 @@ def test_torque_json_keys(capsys):
     assert len(d["cylinder_torque_Nm"]) == 6 and len(d["cylinder_torque_Nm"][0]) == 361
     assert len(d["journal_torque_Nm"]) == 6
     assert len(d["total_torque_Nm"]) == 361
-    for key in ("mean_torque_Nm", "indicated_power_kW", "imep_Pa", "peak_pressure_Pa"):
+    for key in ("mean_torque_Nm", "indicated_power_W", "imep_Pa", "peak_pressure_Pa"):
         assert isinstance(d[key], float)
-    assert d["indicated_power_kW"] == pytest.approx(
+    assert d["indicated_power_W"] == pytest.approx(
         d["mean_torque_Nm"] * 2200 * math.pi / 30 / 1e3, rel=1e-9
     )
     assert d["peak_pressure_Pa"] == pytest.approx(15.2e6, rel=0.01)

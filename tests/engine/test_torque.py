@@ -121,9 +121,9 @@ def test_effective_torque_and_power():
     n = eng.speed * 30 / math.pi
     assert t.indicated_power / 1e3 == pytest.approx(t.mean_torque * n / 9550, rel=5.3e-4)
     d = t.to_dict()
-    assert d["indicated_power_kW"] == pytest.approx(t.indicated_power / 1e3)
-    assert "effective_power_kW" in d
-    assert "effective_power_kW" not in engine_torque(eng, eng.speed).to_dict()
+    assert d["indicated_power_W"] == pytest.approx(t.indicated_power)
+    assert "effective_power_W" in d
+    assert "effective_power_W" not in engine_torque(eng, eng.speed).to_dict()
 
 
 @pytest.mark.parametrize("eta", [0.0, 1.2, -0.5])

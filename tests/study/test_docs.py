@@ -9,7 +9,7 @@ from pathlib import Path
 
 from crankdyn.io.examples import example_path
 from crankdyn.io.files import load_toml
-from crankdyn.study.figures import FIGURES, SETTINGS
+from crankdyn.study.figures import FIGURES, SETTINGS, figures_markdown
 
 DOC = (Path(__file__).parents[2] / "docs" / "study-file.md").read_text(encoding="utf-8")
 
@@ -21,7 +21,10 @@ def _section(title: str) -> str:
 
 
 def test_the_figure_table_names_every_figure():
+    """The page's table is the one generated from the results' declarations (regenerate it
+    with crankdyn.study.figures.figures_markdown())."""
     table = _section("Figures")
+    assert figures_markdown() in table
     rows = [line for line in table.splitlines() if line.startswith("| `")]
     named = {name for row in rows for name in re.findall(r"`([a-z0-9_]+)`", row.split("|")[1])}
     assert named == {n for n, f in FIGURES.items() if f.module.startswith("crankdyn.")}

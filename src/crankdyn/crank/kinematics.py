@@ -825,8 +825,8 @@ class KinematicsSummary(Result):
     title = "Slider-crank kinematics"
     method: str = scalar("method", "Method", "")
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
-    lam: float = scalar("lambda", "Crank-rod ratio λ = R/L", "", fmt=".5g")
-    k: float = scalar("offset_ratio", "Offset ratio k = e/R", "", fmt=".5g")
+    lam: float = scalar("lambda", "Crank-rod ratio λ = R/L", "", fmt=".5g", name="rod_ratio")
+    k: float = scalar("offset_ratio", "Offset ratio k = e/R", "", fmt=".5g", name="offset_ratio")
     stroke: float = scalar("stroke_m", "Stroke", "m", headline=True)
     tdc_crank_angle: float = scalar("tdc_crank_angle_deg", "TDC crank angle", "deg", DEG)
     bdc_crank_angle: float = scalar("bdc_crank_angle_deg", "BDC crank angle", "deg", DEG)

@@ -254,13 +254,26 @@ class EquivalentMasses(Result):
     """
 
     title = "Equivalent masses"
-    reciprocating: float = scalar("reciprocating_kg", "Reciprocating mass m_j", "kg")
-    rotating: float = scalar("rotating_kg", "Rotating mass m_r (per cylinder)", "kg")
-    rod_small_end: float | None = scalar("rod_small_end_kg", "Rod small-end mass m_CA", "kg")
-    rod_big_end: float | None = scalar("rod_big_end_kg", "Rod big-end mass m_CB", "kg")
-    crank: float | None = scalar("crank_kg", "Crank unbalance m_k (per throw)", "kg")
+    reciprocating: float = scalar(
+        "reciprocating_kg", "Reciprocating mass m_j", "kg", name="reciprocating_mass"
+    )
+    rotating: float = scalar(
+        "rotating_kg", "Rotating mass m_r (per cylinder)", "kg", name="rotating_mass_per_cylinder"
+    )
+    rod_small_end: float | None = scalar(
+        "rod_small_end_kg", "Rod small-end mass m_CA", "kg", name="rod_small_end_mass"
+    )
+    rod_big_end: float | None = scalar(
+        "rod_big_end_kg", "Rod big-end mass m_CB", "kg", name="rod_big_end_mass"
+    )
+    crank: float | None = scalar(
+        "crank_kg", "Crank unbalance m_k (per throw)", "kg", name="crank_unbalance_mass"
+    )
     inertia_error: float | None = scalar(
-        "rod_inertia_error_kg_m2", "Two-mass rod inertia error m_C l_A l_B - I_C", "kg·m²"
+        "rod_inertia_error_kg_m2",
+        "Two-mass rod inertia error m_C l_A l_B - I_C",
+        "kg·m²",
+        name="rod_inertia_error",
     )
     three_mass_small_end: float | None = scalar(
         "three_mass_small_end_kg", "3-mass model: small end m_A", "kg"

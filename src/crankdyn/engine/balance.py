@@ -441,11 +441,20 @@ class OverturningMoment(Result):
     title = "Overturning moment"
     crank_angle: NDArray[np.float64] = column("crank_angle_deg", "Crank angle θ", "deg", DEG)
     moment: NDArray[np.float64] = column("overturning_moment_Nm", "Overturning moment", "N·m")
-    mean: float = scalar("mean_overturning_moment_Nm", "Steady part", "N·m")
+    mean: float = scalar(
+        "mean_overturning_moment_Nm", "Overturning moment, steady part", "N·m",
+        name="overturning_moment_mean",
+    )  # fmt: skip
     amplitude: float = scalar(
-        "overturning_moment_amplitude_Nm", "Largest fluctuation |M - M_mean|", "N·m"
+        "overturning_moment_amplitude_Nm",
+        "Overturning moment, largest fluctuation |M - M_mean|",
+        "N·m",
+        name="overturning_moment_amplitude",
     )
-    peak_to_peak: float = scalar("overturning_moment_peak_to_peak_Nm", "Peak to peak", "N·m")
+    peak_to_peak: float = scalar(
+        "overturning_moment_peak_to_peak_Nm", "Overturning moment, peak to peak", "N·m",
+        name="overturning_moment_peak_to_peak",
+    )  # fmt: skip
     orders: NDArray[np.float64] = scalar("harmonic_orders", "Orders", "", fmt=".3g", summary=False)
     harmonic_amplitudes: NDArray[np.float64] = scalar(
         "harmonic_amplitudes_Nm", "Harmonic amplitudes", "N·m", fmt=".4g", summary=False
@@ -578,9 +587,12 @@ class BalanceResult(Result):
     engine: str = scalar("engine", "Engine", "", summary=False)
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     method: str = scalar("method", "Harmonics", "")
-    reciprocating_mass: float = scalar("reciprocating_mass_kg", "Reciprocating mass m_j", "kg")
+    reciprocating_mass: float = scalar("reciprocating_kg", "Reciprocating mass m_j", "kg")
     rotating_mass: float = scalar(
-        "rotating_mass_per_throw_kg", "Rotating mass per throw (mean)", "kg"
+        "rotating_mass_per_throw_kg",
+        "Rotating mass per throw (mean)",
+        "kg",
+        name="rotating_mass_per_throw",
     )
     counterweight_ratio: float = scalar("counterweight_ratio", "Counterweight ratio c", "")
     reciprocating_balance_ratio: float = scalar(
@@ -588,7 +600,7 @@ class BalanceResult(Result):
     )
     crank_radius: float = scalar("crank_radius_m", "Crank radius R", "m", summary=False)
     pitch: float | None = scalar("pitch_m", "Cylinder pitch a", "m")
-    power: float | None = scalar("power_kW", "Power (for the power-related unbalance)", "kW", 1e-3)
+    power: float | None = scalar("power_W", "Power (for the power-related unbalance)", "W")
     orders: tuple[OrderBalance, ...] = scalar("orders", "Reciprocating masses by order", "")
     rotating: OrderBalance = scalar(
         "rotating", "Rotating masses and counterweights", "", summary=False

@@ -357,11 +357,17 @@ class FlywheelResult(Result):
     )
     min_speed: float = scalar("min_speed_rpm", "Min speed", "rpm", RPM)
     max_speed: float = scalar("max_speed_rpm", "Max speed", "rpm", RPM)
-    density: float | None = scalar("density_kg_m3", "Flywheel density", "kg/m³")
-    outer_diameter: float | None = scalar("outer_diameter_m", "Outer diameter D₁", "m")
+    density: float | None = scalar(
+        "density_kg_m3", "Flywheel density", "kg/m³", name="flywheel_density"
+    )
+    outer_diameter: float | None = scalar(
+        "outer_diameter_m", "Outer diameter D₁", "m", name="flywheel_outer_diameter"
+    )
     disc_width: float | None = scalar("disc_width_m", "Solid disc: width", "m")
     disc_mass: float | None = scalar("disc_mass_kg", "Solid disc: mass", "kg")
-    inner_diameter: float | None = scalar("inner_diameter_m", "Rim: inner diameter D₂", "m")
+    inner_diameter: float | None = scalar(
+        "inner_diameter_m", "Rim: inner diameter D₂", "m", name="flywheel_inner_diameter"
+    )
     rim_width: float | None = scalar("rim_width_m", "Rim: width", "m")
     rim_mass: float | None = scalar("rim_mass_kg", "Rim: mass", "kg")
     rim_speed: float | None = scalar("rim_speed_m_s", "Peripheral speed at D₁", "m/s")

@@ -835,10 +835,16 @@ class ForcesResult(Result):
         "max_rod_tension_N", "Max rod tension", "N", better="min", headline=True
     )
     max_pin_load: float = scalar(
-        "throw_max_crank_pin_load_N", "Max crank-pin load of its throw", "N"
+        "throw_max_crank_pin_load_N",
+        "Max crank-pin load of its throw",
+        "N",
+        name="throw_max_crank_pin_load",
     )
     mean_pin_load: float = scalar(
-        "throw_mean_crank_pin_load_N", "Mean crank-pin load of its throw", "N"
+        "throw_mean_crank_pin_load_N",
+        "Mean crank-pin load of its throw",
+        "N",
+        name="throw_mean_crank_pin_load",
     )
     max_rod_couple_error: float | None = scalar(
         "max_rod_couple_error_Nm", "Two-mass rod couple error max |ΔI ε_L|", "N·m"

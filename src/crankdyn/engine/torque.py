@@ -151,9 +151,9 @@ class TorqueResult(Result):
         "mechanical_efficiency", "Mechanical efficiency", "", fmt=".4g"
     )
     indicated_power: float = scalar(
-        "indicated_power_kW", "Indicated power", "kW", 1e-3, headline=True, better="max"
+        "indicated_power_W", "Indicated power", "W", headline=True, better="max"
     )
-    effective_power: float | None = scalar("effective_power_kW", "Effective power", "kW", 1e-3)
+    effective_power: float | None = scalar("effective_power_W", "Effective power", "W")
     max_torque: float = scalar("max_torque_Nm", "Max total torque", "N·m", headline=True)
     min_torque: float = scalar("min_torque_Nm", "Min total torque", "N·m", headline=True)
     indicated_work: float = scalar(

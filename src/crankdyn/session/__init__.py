@@ -124,6 +124,7 @@ ANALYSES: tuple[Analysed, ...] = (
     Analysed("modes", "crankdyn.torsion.modal.ModalResult", ("engine", "model")),
     Analysed("response", "crankdyn.torsion.response.ResponseResult", ("engine", "model")),
     Analysed("relative_angle", "crankdyn.torsion.response.RelativeAngle", ("engine", "model")),
+    Analysed("judged", "crankdyn.tvc.result.ConditionResult", ("engine", "model")),
 )
 """The analyses whose key figures every front end (the study among them) takes, in report
 order."""

@@ -542,8 +542,17 @@ class TorsionAnalyses(SessionCore):
         pair = (a or default[0], b or default[1])
         result = self.response() if response is None else response
         key = ("relative_angle", pair, id(result))
+
+        def compute() -> tuple[ResponseResult, RelativeAngle]:
+            try:
+                return result, result.relative_angle(*pair)
+            except InputError as exc:
+                if a is None and b is None and self.relative is not None:  # the setting's
+                    raise InputError(exc.message, key="relative", value=list(pair)) from None
+                raise
+
         # the response is kept with its relative angle, so its id is not reused
-        return self._cached(key, lambda: (result, result.relative_angle(*pair)))[1]
+        return self._cached(key, compute)[1]
 
     def damper(self, at: str, mode: int, inertia: float, kind: str = "tuned") -> DamperDesign:
         """The optimum damper (Den Hartog) for one mode

@@ -40,6 +40,7 @@ __all__ = [
     "CaseContext",
     "Figure",
     "Setting",
+    "figures_markdown",
     "register_figure",
     "register_setting",
 ]
@@ -385,8 +386,39 @@ class Figure:
         float or None
             The figure in :attr:`unit`; None when it is not finite.
         """
-        value = float(self.function(ctx))
+        try:
+            value = float(self.function(ctx))
+        except InputError as exc:
+            raise _study_error(exc) from None
         return value if math.isfinite(value) else None
+
+
+_SETTING_KEYS = {
+    "speeds": "speed_range",
+    "speed_range": "speed_range",
+    "speed_step": "speed_step",
+    "relative": "relative",
+    "delta": "delta",
+    "step": "step",
+    "max_order": "max_order",
+}
+"""The session's keywords that are [analysis] keys of a study file (the errors name the key as
+the study file writes it)."""
+
+
+def _study_error(exc: InputError) -> InputError:
+    """An error of the session in the study file's words: a missing speed names
+    ``[analysis] speed``; a setting's key is written ``[analysis] <key>``."""
+    if exc.key == "speed" and exc.message.startswith("no speed"):
+        return InputError(
+            "no speed: give [analysis] speed in the study file or [operating] speed in the "
+            "engine file",
+            file=exc.file,
+        )
+    if exc.key in _SETTING_KEYS and exc.file is None:
+        extra: dict[str, Any] = {"value": exc.value} if exc.has_value else {}
+        return InputError(exc.message, key=f"[analysis] {_SETTING_KEYS[exc.key]}", **extra)
+    return exc
 
 
 FIGURES: dict[str, Figure] = {}
@@ -424,7 +456,10 @@ def _reader(analysed: Analysed, spec: FigureSpec) -> Callable[[CaseContext], flo
     apply."""
 
     def value(ctx: CaseContext) -> float:
-        got = spec.value(analysed.of(ctx.analysis))
+        result = analysed.of(ctx.analysis)
+        got = None if result is None else spec.value(result)
+        if (got is None or got[0] is None) and spec.unavailable:
+            raise InputError(spec.unavailable, key=spec.name)
         return math.nan if got is None or got[0] is None else float(got[0])
 
     return value
@@ -458,3 +493,29 @@ def _register_analyses() -> None:
 
 
 _register_analyses()
+
+
+def figures_markdown() -> str:
+    """The table of every figure of :data:`FIGURES` as docs/study-file.md lists it (one row per
+    figure, grouped by the analysis that declares it), generated from the declarations so the
+    page never falls behind them.
+
+    Returns
+    -------
+    str
+        A Markdown table: figure, column (the results table's key, SI), better, what.
+    """
+    owner = {}
+    for analysed in ANALYSES:
+        for spec in analysed.result_class().figure_specs():
+            owner.setdefault(spec.name, analysed.name)
+    lines = ["| figure | column | analysis | better | what |", "|---|---|---|---|---|"]
+    for name, f in FIGURES.items():
+        if not f.module.startswith("crankdyn."):
+            continue
+        what = f.label if f.description in ("", f.label) else f"{f.label}: {f.description}"
+        what = what.replace("|", "\\|")
+        lines.append(
+            f"| `{name}` | `{f.key}` | {owner.get(name, '')} | {f.better or ''} | {what} |"
+        )
+    return "\n".join(lines) + "\n"

@@ -424,7 +424,7 @@ class ResponseResult(Result):
     )
     resolved: bool = scalar("resolved", "Peaks resolved", "", default=False)
     tolerance: float | None = scalar(
-        "peak_tolerance", "Peaks resolved to (relative)", "", default=None
+        "peak_tolerance", "Peaks resolved to (relative)", "", default=None, summary=False
     )
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
     mass_response: np.ndarray | None = field(default=None, repr=False, compare=False)
@@ -1017,6 +1017,8 @@ class ResponseResult(Result):
             lambda r: _peak_figure(r.largest_peak("synthesized_shaft_stress")),
             reduction="max over the shafts with diameters and the resolved speeds",
             better="min", headline=True,
+            unavailable="no shaft of the torsional model has diameters (outer_diameter): no "
+            "stress",
         ),
         derived(
             "max_free_end_amplitude", "max_free_end_amplitude_rad",
@@ -1028,6 +1030,7 @@ class ResponseResult(Result):
             "max_damper_power", "max_damper_power_W", "Largest damper power", "W",
             lambda r: None if r.damper_power is None else _peak_figure(r.peak("damper_power")),
             reduction="max over the dampers and the resolved speeds", better="min",
+            unavailable="the torsional model has no damper",
         ),
     )  # fmt: skip
 

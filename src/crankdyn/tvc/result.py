@@ -128,6 +128,25 @@ class Passage(Result):
     elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
 
 
+def _largest_m68_ratio(condition: Any) -> tuple[float, str] | None:
+    """The largest synthesised stress / tau_C of the IACS UR M68 shafts over the condition's
+    resolved response (every speed), with the shaft and speed; None without an M68 check."""
+    r = condition.response
+    found = None
+    for check in condition.curves.values():
+        if not check.m68 or r is None:
+            continue
+        speeds = np.asarray(r.speed, dtype=float)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = np.asarray(check.curve(r)) / np.asarray(check.limit(speeds))
+        if not np.isfinite(ratio).any():
+            continue
+        k = int(np.nanargmax(ratio))
+        if found is None or ratio[k] > found[0]:
+            found = (float(ratio[k]), f"{check.component} at {speeds[k] * RPM:.6g} rpm")
+    return found
+
+
 @dataclass(frozen=True)
 class ConditionResult(Result):
     """One running condition: its response, verdicts and barred ranges (speeds in rad/s,
@@ -146,8 +165,8 @@ class ConditionResult(Result):
 
     name: str = scalar("condition", "Condition", "")
     kind: str = scalar("kind", "Kind", "")
-    low: float = scalar("from_rpm", "Speed range from", "rpm", RPM)
-    high: float = scalar("to_rpm", "Speed range to", "rpm", RPM)
+    low: float = scalar("from_rpm", "Speed range from", "rpm", RPM, summary=False)
+    high: float = scalar("to_rpm", "Speed range to", "rpm", RPM, summary=False)
     description: str = scalar("description", "Description", "")
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
@@ -161,6 +180,19 @@ class ConditionResult(Result):
         derived(
             "condition_passed", "condition_passed", "Every check passed", "",
             lambda c: all(v.passed for v in c.verdicts) if c.verdicts else None,
+            status=lambda passed: "pass" if passed else "fail", headline=True,
+        ),
+        derived(
+            "max_stress_ratio", "max_stress_ratio",
+            "Largest shaft stress / permissible τ_C (IACS UR M68)", "",
+            _largest_m68_ratio, reduction="max over the M68 shafts and the resolved speeds",
+            better="min", unavailable="the torsional model has no [rules] (crankdyn docs "
+            "torsion-file): no IACS UR M68 check",
+        ),
+        derived(
+            "condition_worst_margin", "condition_worst_margin",
+            "Smallest margin of the condition's verdict rows", "",
+            lambda c: _worst(c), reduction="min over the verdict rows", better="max",
         ),
     )  # fmt: skip
 
@@ -384,7 +416,7 @@ class TvcResult(Result):
         return min(margins) if margins else float("nan")
 
 
-def _worst(result: TvcResult) -> tuple[float, str] | None:
+def _worst(result: TvcResult | ConditionResult) -> tuple[float, str] | None:
     """The smallest finite margin of the verdict rows, with the row's component and condition."""
     rows = [v for v in result.verdicts if np.isfinite(v.margin)]
     if not rows:

@@ -49,7 +49,7 @@ def test_parquet_columns_types_and_units(grid):
         k.decode(): v.decode() for k, v in schema.field("max_main_bearing_load_N").metadata.items()
     }
     assert meta == {
-        "label": "Max main-bearing load (largest of the bearings)",
+        "label": "Max main-bearing load",
         "unit": "N",
         "role": "figure",
         "key": "max_main_bearing_load",
@@ -97,7 +97,7 @@ def test_the_summary(grid):
     for text in (
         "Study: test grid",
         "Best cases",
-        "Max main-bearing load (largest of the bearings): lowest",
+        "Max main-bearing load: lowest",
         "Sensitivity",
         "Failed cases",
         "rod ratio R/L must be less than 1",
