@@ -63,6 +63,8 @@ ANALYSES = {
     "crankdyn.engine.firing_search",
     "crankdyn.engine.session",
     "crankdyn.torsion.modal",
+    "crankdyn.torsion.mode_blocks",
+    "crankdyn.torsion.nodes",
     "crankdyn.torsion.response",
     "crankdyn.torsion.solvers",
     "crankdyn.torsion.sweep",

@@ -20,7 +20,8 @@ from crankdyn.torsion.excitation import (
     harmonic_analysis,
     order_grid,
 )
-from crankdyn.torsion.modal import natural_modes, roundoff_thresholds
+from crankdyn.torsion.modal import natural_modes
+from crankdyn.torsion.nodes import roundoff_thresholds
 from crankdyn.torsion.sweep import forced_response
 from crankdyn.torsion.synthesis import half_range
 
