@@ -47,6 +47,7 @@ DOMAIN = {
     "crankdyn.crank.pressure",
     "crankdyn.engine.model",
     "crankdyn.torsion.elements",
+    "crankdyn.torsion.excitation_spec",
     "crankdyn.torsion.model",
     "crankdyn.torsion.topology",
 }
@@ -70,6 +71,7 @@ ANALYSES = {
     "crankdyn.torsion.sweep",
     "crankdyn.torsion.campbell",
     "crankdyn.torsion.excitation",
+    "crankdyn.torsion.harmonics",
     "crankdyn.torsion.rules",
     "crankdyn.torsion.transient",
     "crankdyn.torsion.dampers",

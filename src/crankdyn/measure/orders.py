@@ -56,7 +56,7 @@ from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
 from crankdyn.results import Result, array, column, freeze, scalar
-from crankdyn.torsion.excitation import check_orders, fundamental_order, harmonic_index
+from crankdyn.torsion.orders import check_orders, fundamental_order, harmonic_index
 from crankdyn.torsion.synthesis import half_range
 
 if TYPE_CHECKING:

@@ -218,7 +218,7 @@ class CaseContext:
 
 def _session(ctx: CaseContext) -> Analysis:
     from crankdyn.engine.session import Analysis, speed_grid
-    from crankdyn.torsion.excitation import fundamental_order, order_grid
+    from crankdyn.torsion.orders import fundamental_order, order_grid
 
     s = ctx.settings
     subject = ctx.subject
