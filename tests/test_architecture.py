@@ -46,6 +46,7 @@ DOMAIN = {
     "crankdyn.crank.masses",
     "crankdyn.crank.pressure",
     "crankdyn.engine.model",
+    "crankdyn.linkage.elements",
     "crankdyn.torsion.elements",
     "crankdyn.torsion.excitation_spec",
     "crankdyn.torsion.model",
