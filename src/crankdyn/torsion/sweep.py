@@ -8,10 +8,11 @@ the orders and the shafts' torques and nominal stresses
 
 The path of a speed runs one way: the grid is checked here; at each speed the harmonic torques
 of the cylinders and of the model's sources (:func:`crankdyn.torsion.sources.assemble_forcing`)
-and the change of the load-dependent couplings' stiffness (:func:`crankdyn.torsion.loaded.
-load_change`) are found, the solver (:mod:`crankdyn.torsion.solvers`) takes all speeds x orders
-at once, the response goes into the result (:mod:`crankdyn.torsion.response`) and the rule
-check (:func:`crankdyn.torsion.rules.check_rules`) gives the verdict.
+and the change of the load-dependent couplings' stiffness
+(:func:`crankdyn.torsion.loaded.load_change`) are found, the solver
+(:mod:`crankdyn.torsion.solvers`) takes all speeds x orders at once, the response goes into the
+result (:mod:`crankdyn.torsion.response`) and the rule check
+(:func:`crankdyn.torsion.rules.check_rules`) gives the verdict.
 
 Forcing and drivelines. F holds the cylinders' harmonic torques and those of the model's sources
 (propellers, electric machines, tabulated sources and further engines at any mass, at orders of
