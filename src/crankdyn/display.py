@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -523,6 +523,15 @@ def mass_elastic_tables(
         rigid gear meshes (ratio, teeth, sense of rotation), the dampers and the excitation
         sources; numbers in engineering units, the unit in the header.
     """
+    return [table for build in _ELASTIC_TABLES if (table := build(model)) is not None]
+
+
+_Table = tuple[str, str, list[str], list[list[str]], str]
+
+
+def _masses_table(model: TorsionModel) -> _Table:
+    """The masses: inertia, absolute damping, cylinders, role; with gears the speed ratio and
+    the inertia reflected to the reference speed."""
     ratios = np.asarray(model.speed_ratios, dtype=float)
     masses = model.masses
     mass_columns: list[tuple[str, str | None, Sequence[Any]]] = [
@@ -539,6 +548,21 @@ def mass_elastic_tables(
         mass_columns.append(("Speed ratio to the reference", "", list(ratios)))
         reflected = ratios**2 * np.array([m.inertia for m in masses])
         mass_columns.append(("Inertia reflected to the reference", "kg·m²", list(reflected)))
+    segments = sum(1 for s in model.shafts if getattr(s, "segment_of", None) is not None)
+    return _elastic_table(
+        "torsion_masses",
+        "Masses",
+        mass_columns,
+        f"{len(masses)} masses, numbered from the free end"
+        + (
+            " (the masses inside a distributed shaft are its lumped elements)." if segments else "."
+        ),
+    )
+
+
+def _shafts_table(model: TorsionModel) -> _Table:
+    """The shafts, couplings, elastic gear meshes and distributed shafts' elements: stiffness,
+    relative damping, loss factor, diameters, length, shear modulus."""
     shafts = model.shafts
     geometry = [s.geometry for s in shafts]
     kinds = [shaft_kind(s) for s in shafts]
@@ -557,136 +581,145 @@ def mass_elastic_tables(
     if all(k == "shaft" for k in kinds):
         shaft_columns.pop(2)
     segments = sum(1 for s in shafts if getattr(s, "segment_of", None) is not None)
-    tables = [
-        _elastic_table(
-            "torsion_masses",
-            "Masses",
-            mass_columns,
-            f"{len(masses)} masses, numbered from the free end"
-            + (
-                " (the masses inside a distributed shaft are its lumped elements)."
-                if segments
-                else "."
-            ),
+    return _elastic_table(
+        "torsion_shafts",
+        "Shafts and couplings",
+        shaft_columns,
+        f"{len(shafts)} elastic connection(s)"
+        + (
+            "; '-': diameters, length or shear modulus not given (the stiffness was given directly)"
+            if any(g is not None for g in geometry)
+            else "; the stiffnesses were given directly (no shaft dimensions)"
+        )
+        + (
+            f"; {segments} element(s) of distributed-mass shafts (each shaft divided so "
+            "that its own modes are resolved)."
+            if segments
+            else "."
         ),
-        _elastic_table(
-            "torsion_shafts",
-            "Shafts and couplings",
-            shaft_columns,
-            f"{len(shafts)} elastic connection(s)"
-            + (
-                "; '-': diameters, length or shear modulus not given (the stiffness was given "
-                "directly)"
-                if any(g is not None for g in geometry)
-                else "; the stiffnesses were given directly (no shaft dimensions)"
-            )
-            + (
-                f"; {segments} element(s) of distributed-mass shafts (each shaft divided so "
-                "that its own modes are resolved)."
-                if segments
-                else "."
+    )
+
+
+def _couplings_table(model: TorsionModel) -> _Table | None:
+    """The couplings' catalogue data (DIN 740-2), or None without couplings."""
+    couplings = [s for s in model.shafts if s.coupling is not None]
+    if not couplings:
+        return None
+    c = [s.coupling for s in couplings if s.coupling is not None]
+    return _elastic_table(
+        "torsion_couplings",
+        "Elastic couplings",
+        [
+            ("Between", None, [s.label for s in couplings]),
+            ("Designation", None, [x.designation or "-" for x in c]),
+            ("C_Tdyn of the model", "N·m/rad", [x.model_stiffness for x in c]),
+            ("At mean torque", "N·m", [x.model_torque for x in c]),
+            (
+                "Stiffness table",
+                None,
+                [
+                    f"{len(x.table_torque)} points"
+                    if x.load_dependent and x.table_torque is not None
+                    else "-"
+                    for x in c
+                ],
             ),
-        ),
-    ]
-    couplings = [s for s in shafts if s.coupling is not None]
-    if couplings:
-        c = [s.coupling for s in couplings if s.coupling is not None]
-        tables.append(
-            _elastic_table(
-                "torsion_couplings",
-                "Elastic couplings",
+            ("Relative damping ψ", "", [x.psi for x in c]),
+            ("T_KN", "N·m", [x.nominal_torque for x in c]),
+            ("T_Kmax", "N·m", [x.maximum_torque for x in c]),
+            ("T_KW", "N·m", [x.vibratory_torque for x in c]),
+            ("P_KV", "W", [x.power_loss for x in c]),
+        ],
+        "Catalogue data (DIN 740-2): a stiffness table makes the forced response take "
+        "C_Tdyn at each speed's mean torque; the natural frequencies use the model's "
+        "C_Tdyn.",
+    )
+
+
+def _gears_table(model: TorsionModel) -> _Table | None:
+    """The rigid and elastic gear meshes (ratio, teeth, sense of rotation), or None."""
+    meshes = list(model.gears) + [s.gear for s in model.shafts if s.gear is not None]
+    if not meshes:
+        return None
+    return _elastic_table(
+        "torsion_gears",
+        "Gear meshes",
+        [
+            ("Between", None, [f"{g.between[0]} - {g.between[1]}" for g in meshes]),
+            (
+                "Kind",
+                None,
                 [
-                    ("Between", None, [s.label for s in couplings]),
-                    ("Designation", None, [x.designation or "-" for x in c]),
-                    ("C_Tdyn of the model", "N·m/rad", [x.model_stiffness for x in c]),
-                    ("At mean torque", "N·m", [x.model_torque for x in c]),
-                    (
-                        "Stiffness table",
-                        None,
-                        [
-                            f"{len(x.table_torque)} points"
-                            if x.load_dependent and x.table_torque is not None
-                            else "-"
-                            for x in c
-                        ],
-                    ),
-                    ("Relative damping ψ", "", [x.psi for x in c]),
-                    ("T_KN", "N·m", [x.nominal_torque for x in c]),
-                    ("T_Kmax", "N·m", [x.maximum_torque for x in c]),
-                    ("T_KW", "N·m", [x.vibratory_torque for x in c]),
-                    ("P_KV", "W", [x.power_loss for x in c]),
+                    "rigid joint (a line joined to an engine)"
+                    if getattr(g, "joint", False)
+                    else "gear mesh"
+                    for g in meshes
                 ],
-                "Catalogue data (DIN 740-2): a stiffness table makes the forced response take "
-                "C_Tdyn at each speed's mean torque; the natural frequencies use the model's "
-                "C_Tdyn.",
-            )
-        )
-    meshes = list(model.gears) + [s.gear for s in shafts if s.gear is not None]
-    if meshes:
-        tables.append(
-            _elastic_table(
-                "torsion_gears",
-                "Gear meshes",
-                [
-                    ("Between", None, [f"{g.between[0]} - {g.between[1]}" for g in meshes]),
-                    (
-                        "Kind",
-                        None,
-                        [
-                            "rigid joint (a line joined to an engine)"
-                            if getattr(g, "joint", False)
-                            else "gear mesh"
-                            for g in meshes
-                        ],
-                    ),
-                    ("Speed ratio n_b / n_a", "", [g.ratio for g in meshes]),
-                    (
-                        "Teeth z_a : z_b",
-                        None,
-                        [f"{g.teeth[0]} : {g.teeth[1]}" if g.teeth else None for g in meshes],
-                    ),
-                    ("Sense of rotation", None, [g.direction for g in meshes]),
-                    ("Mesh stiffness", "N·m/rad", [g.stiffness for g in meshes]),
-                ],
-                "Rigid meshes reflect the masses beyond them to the reference speed with the "
-                "square of the speed ratio; an elastic mesh is a spring of its mesh stiffness "
-                "(listed with the shafts).",
-            )
-        )
-    if model.dampers:
-        d = model.dampers
-        tables.append(
-            _elastic_table(
-                "torsion_dampers",
-                "Dampers",
-                [
-                    ("Damper", None, [x.name for x in d]),
-                    ("On mass", None, [x.at for x in d]),
-                    ("Ring inertia", "kg·m²", [x.inertia for x in d]),
-                    ("Stiffness", "N·m/rad", [x.stiffness for x in d]),
-                    ("Damping", "N·m·s/rad", [x.damping for x in d]),
-                    ("Loss factor η", "", [x.loss_factor for x in d]),
-                ],
-                "Added by the forced response (not part of the natural frequencies).",
-            )
-        )
+            ),
+            ("Speed ratio n_b / n_a", "", [g.ratio for g in meshes]),
+            (
+                "Teeth z_a : z_b",
+                None,
+                [f"{g.teeth[0]} : {g.teeth[1]}" if g.teeth else None for g in meshes],
+            ),
+            ("Sense of rotation", None, [g.direction for g in meshes]),
+            ("Mesh stiffness", "N·m/rad", [g.stiffness for g in meshes]),
+        ],
+        "Rigid meshes reflect the masses beyond them to the reference speed with the "
+        "square of the speed ratio; an elastic mesh is a spring of its mesh stiffness "
+        "(listed with the shafts).",
+    )
+
+
+def _dampers_table(model: TorsionModel) -> _Table | None:
+    """The dampers the forced response adds, or None."""
+    if not model.dampers:
+        return None
+    d = model.dampers
+    return _elastic_table(
+        "torsion_dampers",
+        "Dampers",
+        [
+            ("Damper", None, [x.name for x in d]),
+            ("On mass", None, [x.at for x in d]),
+            ("Ring inertia", "kg·m²", [x.inertia for x in d]),
+            ("Stiffness", "N·m/rad", [x.stiffness for x in d]),
+            ("Damping", "N·m·s/rad", [x.damping for x in d]),
+            ("Loss factor η", "", [x.loss_factor for x in d]),
+        ],
+        "Added by the forced response (not part of the natural frequencies).",
+    )
+
+
+def _sources_table(model: TorsionModel) -> _Table | None:
+    """The excitation sources besides the cylinders, or None."""
     sources = tuple(getattr(model, "sources", ()) or ())
-    if sources:
-        tables.append(
-            _elastic_table(
-                "torsion_sources",
-                "Excitation sources",
-                [
-                    ("Source", None, [x.name for x in sources]),
-                    ("Kind", None, [getattr(x, "kind", "engine") for x in sources]),
-                    ("On masses", None, [", ".join(x.mass_names()) for x in sources]),
-                    ("Excitation and load", None, [x.describe() for x in sources]),
-                ],
-                "Harmonic torques at orders of their mass's own speed, besides the cylinders' "
-                "(crankdyn docs torsion-file).",
-            )
-        )
-    return tables
+    if not sources:
+        return None
+    return _elastic_table(
+        "torsion_sources",
+        "Excitation sources",
+        [
+            ("Source", None, [x.name for x in sources]),
+            ("Kind", None, [getattr(x, "kind", "engine") for x in sources]),
+            ("On masses", None, [", ".join(x.mass_names()) for x in sources]),
+            ("Excitation and load", None, [x.describe() for x in sources]),
+        ],
+        "Harmonic torques at orders of their mass's own speed, besides the cylinders' "
+        "(crankdyn docs torsion-file).",
+    )
+
+
+_ELASTIC_TABLES: tuple[Callable[[TorsionModel], _Table | None], ...] = (
+    _masses_table,
+    _shafts_table,
+    _couplings_table,
+    _gears_table,
+    _dampers_table,
+    _sources_table,
+)
+"""The tables of :func:`mass_elastic_tables`, in their order: each gives its table, or None when
+the model has nothing of its kind."""
 
 
 def torsion_model_html(model: TorsionModel) -> str:

@@ -24,6 +24,8 @@ HEAVY = (
     "pandas",
     "rich",  # the tables of a command whose output is not a terminal are plain text
     "crankdyn.torsion.modal",
+    "crankdyn.torsion.mode_blocks",
+    "crankdyn.torsion.nodes",
     "crankdyn.torsion.response",
     "crankdyn.torsion.solvers",
     "crankdyn.torsion.sweep",

@@ -10,15 +10,9 @@ import pytest
 
 from crankdyn.errors import InputError
 from crankdyn.linkage.dyads import NoClosedForm
+from crankdyn.linkage.elements import GROUND, Driver, Joint, Link
 from crankdyn.linkage.fourbar import FourBar, fourbar_mechanism
-from crankdyn.linkage.planar import (
-    GROUND,
-    Driver,
-    Joint,
-    Link,
-    Mechanism,
-    slider_crank_mechanism,
-)
+from crankdyn.linkage.planar import Mechanism, slider_crank_mechanism
 
 from .test_planar import inverted_slider_crank
 
@@ -303,14 +297,14 @@ def test_class_iii_group_uses_the_general_solver_and_its_rates_are_derivatives()
 
 def test_blocks_of_angles_give_the_same_result(monkeypatch):
     # memory stays bounded by solving blocks of angles; the blocks must not change a number
-    import crankdyn.linkage.planar as planar
+    import crankdyn.linkage.solver as solver
 
     theta = np.radians(np.concatenate([np.arange(-400.0, 400.0, 0.7), [-3000.0, 4000.0]]))
     mech = Mechanism.example("conveyor-seed004")
     whole = mech._model._solve_closed(theta)
     newton = mech._model.solve(theta[:40], method="newton")
-    monkeypatch.setattr(planar, "_PATH_BLOCK", 64)  # anchors then solved block by block too
-    monkeypatch.setattr(planar, "_BLOCK", 7)
+    monkeypatch.setattr(solver, "_PATH_BLOCK", 64)  # anchors then solved block by block too
+    monkeypatch.setattr(solver, "_BLOCK", 7)
     fresh = Mechanism.example("conveyor-seed004")
     for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):
         np.testing.assert_array_equal(a, b)
@@ -339,7 +333,7 @@ def test_path_without_and_with_anchors_against_its_rule():
     # the path: the requested angles in order, the drawn angle, and equal steps in every gap
     # wider than 3 deg; the test for "no gap needs anchors" and the anchored path agree at the
     # limit (a gap of exactly 3 deg needs none, one just above needs one)
-    from crankdyn.linkage.planar import _MAX_STEP
+    from crankdyn.linkage.solver import _MAX_STEP
 
     mech = Mechanism.example("conveyor-seed004")
     model = mech._model
@@ -385,24 +379,26 @@ TWO_PI_TEST = 2.0 * math.pi
 
 
 def test_turns_shortcut_and_the_full_test_agree():
-    from crankdyn.linkage.planar import _Model, _turns
+    from crankdyn.linkage.solver import KinematicModel, _turns
 
     # a rotation accelerating to many turns (wrapped): whole turns are found step by step and
     # the continued rotation is the true one; the same rotation slower than half a turn in all
     # takes the shortcut (no turn) and leaves the values alone
     x, angles, phi = _wrapped_rotation(1.0, 2001, 3.0)
-    turns = _Model._continue(x, angles, None)
+    turns = KinematicModel._continue(x, angles, None)
     assert turns is not None
     np.testing.assert_allclose(angles[0, 0, 1:] + TWO_PI_TEST * turns[0], phi[1:], atol=1e-9)
     x, angles, phi = _wrapped_rotation(1.0, 2001, 0.2)
     assert np.all(np.abs(phi) < math.pi)
-    assert _Model._continue(x, angles, None) is None
+    assert KinematicModel._continue(x, angles, None) is None
     # a carried turn from a block before is kept, with and without new turns
     carry = np.array([2.0])
-    np.testing.assert_array_equal(_Model._continue(x, angles, carry), np.full((1, 2000), 2.0))
+    np.testing.assert_array_equal(
+        KinematicModel._continue(x, angles, carry), np.full((1, 2000), 2.0)
+    )
     x, angles, phi = _wrapped_rotation(1.0, 2001, 3.0)
     np.testing.assert_array_equal(
-        _Model._continue(x, angles, carry), 2.0 + _Model._continue(x, angles, None)
+        KinematicModel._continue(x, angles, carry), 2.0 + KinematicModel._continue(x, angles, None)
     )
     # a step that disagrees with its prediction (a branch change) fails in both branches: a
     # jump of a quarter turn (no whole turn near), and a whole turn plus a quarter
@@ -427,7 +423,7 @@ def test_turns_shortcut_and_the_full_test_agree():
 def test_whole_turns_carried_across_blocks_give_the_same_result(monkeypatch):
     # a double crank over two turns: the rotations gain whole turns in every block; blocks of
     # 16 angles (turns carried from block to block, anchors solved apart) change no number
-    import crankdyn.linkage.planar as planar
+    import crankdyn.linkage.solver as solver
 
     fb = FourBar(0.1, 0.12, 0.1, 0.04)
     grids = (
@@ -435,7 +431,7 @@ def test_whole_turns_carried_across_blocks_give_the_same_result(monkeypatch):
         np.radians(np.concatenate([np.arange(-400.0, 420.0, 2.5), [-3000.0, 4000.0]])),
     )
     wholes = [fourbar_mechanism(fb, math.radians(30.0))._model._solve_closed(t) for t in grids]
-    monkeypatch.setattr(planar, "_PATH_BLOCK", 16)  # the second: anchors apart from the rest
+    monkeypatch.setattr(solver, "_PATH_BLOCK", 16)  # the second: anchors apart from the rest
     for theta, whole in zip(grids, wholes, strict=True):
         fresh = fourbar_mechanism(fb, math.radians(30.0))
         for a, b in zip(fresh._model._solve_closed(theta), whole, strict=True):

@@ -6,19 +6,11 @@ import numpy as np
 import pytest
 
 from crankdyn.errors import InputError
+from crankdyn.linkage.elements import GROUND, Driver, Force, Joint, Link, Torque
 from crankdyn.linkage.fourbar import FourBar, fourbar_mechanism
 from crankdyn.linkage.friction import efficiency
 from crankdyn.linkage.kinetostatics import build_system, kinetostatics, known_loads
-from crankdyn.linkage.planar import (
-    GROUND,
-    Driver,
-    Force,
-    Joint,
-    Link,
-    Mechanism,
-    Torque,
-    slider_crank_mechanism,
-)
+from crankdyn.linkage.planar import Mechanism, slider_crank_mechanism
 from crankdyn.linkage.virtual_power import lever_moments, virtual_power_driving_torque
 
 from .test_planar import inverted_slider_crank

@@ -8,18 +8,17 @@ import pytest
 
 from crankdyn.crank.kinematics import slider_crank_exact
 from crankdyn.errors import InputError
-from crankdyn.linkage.fourbar import FourBar, fourbar_mechanism
-from crankdyn.linkage.planar import (
+from crankdyn.linkage.elements import (
     GROUND,
     Driver,
     Joint,
     Link,
-    Mechanism,
     degrees_of_freedom,
     is_statically_determinate,
-    linkage_kinematics,
-    slider_crank_mechanism,
 )
+from crankdyn.linkage.fourbar import FourBar, fourbar_mechanism
+from crankdyn.linkage.motion import linkage_kinematics
+from crankdyn.linkage.planar import Mechanism, slider_crank_mechanism
 
 SEED = (0.0734, 0.12536, 0.1034, 0.10352)
 THETA = np.radians(np.arange(0.0, 361.0, 5.0))

@@ -11,7 +11,8 @@ from crankdyn.measure.compare import with_shaft_loss_factor
 from crankdyn.measure.orders import order_analysis
 from crankdyn.measure.synthetic import PrescribedMotion, synthetic_pulses
 from crankdyn.torsion import Gear, Mass, Shaft, TorsionModel
-from crankdyn.torsion.excitation import UniformExcitation, excitation_for, order_grid
+from crankdyn.torsion.excitation import UniformExcitation, excitation_for
+from crankdyn.torsion.orders import order_grid
 from crankdyn.torsion.sweep import forced_response
 
 RPM = 30.0 / math.pi

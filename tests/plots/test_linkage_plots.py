@@ -10,7 +10,8 @@ from matplotlib.figure import Figure
 
 from crankdyn.linkage.fourbar import FourBar, fourbar_analysis
 from crankdyn.linkage.kinetostatics import kinetostatics
-from crankdyn.linkage.planar import Mechanism, linkage_kinematics
+from crankdyn.linkage.motion import linkage_kinematics
+from crankdyn.linkage.planar import Mechanism
 from crankdyn.plots.linkage import (
     FORCE_LABEL,
     JOINT_LABEL,

@@ -3,14 +3,14 @@
 import math
 
 import numpy as np
-
-from crankdyn.session import Analysis
 import pytest
 
 from crankdyn.engine.model import Engine
+from crankdyn.session import Analysis
 from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
 from crankdyn.torsion.campbell import campbell
-from crankdyn.torsion.excitation import UniformExcitation, excitation_for, harmonic_analysis
+from crankdyn.torsion.excitation import UniformExcitation, excitation_for
+from crankdyn.torsion.harmonics import harmonic_analysis
 from crankdyn.torsion.rules import RuleSet, ShaftLimit
 from crankdyn.torsion.sweep import forced_response
 from crankdyn.torsion.transient import transient_response

@@ -13,12 +13,8 @@ import numpy as np
 import pytest
 
 from crankdyn.torsion import TorsionModel
-from crankdyn.torsion.modal import (
-    ModeBlocks,
-    modes_csv_chunks,
-    modes_json_chunks,
-    natural_modes,
-)
+from crankdyn.torsion.modal import natural_modes
+from crankdyn.torsion.mode_blocks import ModeBlocks, modes_csv_chunks, modes_json_chunks
 
 
 def _chain(n: int, seed: int = 17, grounded: bool = False) -> TorsionModel:

@@ -1,12 +1,12 @@
-"""The post-processing of a chain's modes (issue 16: vectorised, node counts without locating
-the nodes, positions located on demand) against a plain reference written here element by
-element from the definitions of the module docstring of crankdyn.torsion.modal: the shapes
-normalised (largest amplitude 1, first amplitude above 1e-9 of it positive, below 1e-14 set to
-0), a component resolved where |phi_i| sqrt(J_i) > tau_r sqrt(J_r) (tau_r = 10 eps ||A|| / gap_r),
-a located node between resolved neighbours of opposite sign at t = theta_a / (theta_a -
-theta_b), one undetermined node across a round-off run between resolved components of opposite
-sign. Both start from the same eigenvectors (``eigen_modes``), so the shapes, counts, flags,
-positions and regions must agree exactly."""
+"""The post-processing of a chain's modes (issue 16: vectorised, node counts without locating the
+nodes, positions located on demand) against a plain reference written here element by element
+from the definitions of the module docstrings of crankdyn.torsion.modal and
+crankdyn.torsion.nodes: the shapes normalised (largest amplitude 1, first amplitude above 1e-9
+of it positive, below 1e-14 set to 0), a component resolved where |phi_i| sqrt(J_i) > tau_r
+sqrt(J_r) (tau_r = 10 eps ||A|| / gap_r), a located node between resolved neighbours of opposite
+sign at t = theta_a / (theta_a - theta_b), one undetermined node across a round-off run between
+resolved components of opposite sign. Both start from the same eigenvectors (``eigen_modes``),
+so the shapes, counts, flags, positions and regions must agree exactly."""
 
 from __future__ import annotations
 
@@ -176,12 +176,12 @@ def test_chain_post_processing_equals_the_reference(n, seed, kind, ground):
 
 @pytest.mark.parametrize("n", [1, 2, 5, 40, 91, 100, 150, 300])
 def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
-    """The counts (each way _chain_counts takes: by rows found by division, by sums per row
+    """The counts (each way chain_node_counts takes: by rows found by division, by sums per row
     (reduceat), by whole-array passes) on random shapes and random resolved patterns, with rows
     that have no resolved component at all (a repeated eigenvalue: tau = inf), first, last or
     every row, and rows with a single resolved component, against the definition:
     the sign changes between a mode's consecutive resolved components."""
-    from crankdyn.torsion.modal import _chain_counts
+    from crankdyn.torsion.nodes import chain_node_counts
 
     rng = np.random.default_rng(n)
     for k in range(12):
@@ -199,7 +199,7 @@ def test_node_counts_of_any_resolved_pattern_equal_the_definition(n):
             resolved[:] = False
             resolved[np.arange(n), rng.integers(0, n, n)] = True
             resolved[-1, -1] = True
-        counts, whole = _chain_counts(shapes, resolved)
+        counts, whole = chain_node_counts(shapes, resolved)
         want = []
         for row, keep in zip(shapes, resolved, strict=True):
             signs = [math.copysign(1.0, v) < 0 for v, ok in zip(row, keep, strict=True) if ok]
@@ -274,7 +274,8 @@ def test_the_one_pass_chain_modes_are_the_step_by_step_ones_to_the_bit():
     numpy calls) against _modes (eigen_modes, _rows, _result: the general helpers, checked
     against the reference above): every array identical to the bit, nodes included, on 163
     chains that take every branch (counted here)."""
-    from crankdyn.torsion.modal import _chain_modes, _distinct_thresholds, _modes
+    from crankdyn.torsion.modal import _chain_modes, _modes
+    from crankdyn.torsion.nodes import distinct_thresholds
 
     seen = {"at rest first": 0, "round-off zeros": 0, "unresolved": 0, "repeated": 0}
     models = _one_pass_models()
@@ -302,7 +303,7 @@ def test_the_one_pass_chain_modes_are_the_step_by_step_ones_to_the_bit():
         seen["at rest first"] += bool((np.abs(shapes[:, 0]) <= 1e-9).any())
         seen["round-off zeros"] += bool((shapes == 0.0).any())
         seen["unresolved"] += not one.nodes_resolved.all()
-        seen["repeated"] += _distinct_thresholds(np.asarray(one.natural_frequency) ** 2) is None
+        seen["repeated"] += distinct_thresholds(np.asarray(one.natural_frequency) ** 2) is None
     assert len(models) == 163
     assert min(seen.values()) >= 1, seen
 
@@ -338,13 +339,13 @@ def test_a_result_assembled_without_init_is_the_one_init_makes():
 
 
 def test_shapes_normalised_in_one_division_follow_the_rule_row_by_row():
-    """_normalise (each row divided once by its largest amplitude signed as its first, rows at
+    """normalise_shapes (each row divided once by its largest amplitude signed as its first, rows at
     rest in the first amplitude negated where needed) against _normalise_rows (the rule row by
     row: the sign of the first amplitude above 1e-9 of the largest) on random rows with
     amplitudes at rest first, round-off amplitudes, zeros of both signs and scales of 1e+-200,
     few and many rows at rest (both branches of each), to the bit; rows of zeros, inf or NaN go
     to the rule itself."""
-    from crankdyn.torsion.modal import _normalise, _normalise_rows
+    from crankdyn.torsion.nodes import _normalise_rows, normalise_shapes
 
     rng = np.random.default_rng(1616)
     for count, n in [(1, 1), (3, 4), (10, 10), (40, 40), (100, 100), (64, 300)]:
@@ -358,7 +359,7 @@ def test_shapes_normalised_in_one_division_follow_the_rule_row_by_row():
                 x[0] = 0.0  # a row of zeros: the rule itself
             if k == 7:
                 x[-1, -1] = np.nan
-            shapes, size, least = _normalise(x.copy())
+            shapes, size, least = normalise_shapes(x.copy())
             want, want_size = _normalise_rows(x.copy())
             assert _same(shapes, want)
             assert _same(size, want_size)
@@ -367,11 +368,11 @@ def test_shapes_normalised_in_one_division_follow_the_rule_row_by_row():
 
 
 def test_thresholds_of_distinct_eigenvalues_follow_their_definition_to_the_bit():
-    """_distinct_thresholds (on a list up to 32 eigenvalues, by numpy beyond) against the
+    """distinct_thresholds (on a list up to 32 eigenvalues, by numpy beyond) against the
     definition written out mode by mode: tau_r = 10 eps max|lambda| / gap_r, gap_r the distance
     to the nearer neighbour (LAPACK Users' Guide section 4.7.1), to the bit, for spectra of 2-40
     values at scales of 1e-300 to 1e+300; repeated, NaN or inf spectra give None."""
-    from crankdyn.torsion.modal import _distinct_thresholds
+    from crankdyn.torsion.nodes import distinct_thresholds
 
     eps = np.finfo(float).eps
     rng = np.random.default_rng(4711)
@@ -380,7 +381,7 @@ def test_thresholds_of_distinct_eigenvalues_follow_their_definition_to_the_bit()
             lam = np.sort(rng.uniform(0.0, 1.0, n)) * scale
             if np.any(np.diff(lam) <= 0.0):
                 continue
-            got = _distinct_thresholds(lam)
+            got = distinct_thresholds(lam)
             assert got is not None
             values = lam.tolist()
             norm = max(abs(values[0]), abs(values[-1]))
@@ -395,5 +396,5 @@ def test_thresholds_of_distinct_eigenvalues_follow_their_definition_to_the_bit()
             lam = np.sort(rng.uniform(0.0, 1.0, n))
             lam[n // 2] = bad
             with np.errstate(invalid="ignore"):  # numpy's reductions over NaN say so
-                assert _distinct_thresholds(lam) is None
-        assert _distinct_thresholds(np.zeros(n)) is None
+                assert distinct_thresholds(lam) is None
+        assert distinct_thresholds(np.zeros(n)) is None

@@ -13,14 +13,11 @@ import pytest
 from crankdyn.cli import main
 from crankdyn.torsion import TorsionModel
 from crankdyn.torsion.campbell import campbell
-from crankdyn.torsion.excitation import (
-    MAJOR_UNDETERMINED,
-    UniformExcitation,
-    excitation_for,
-    harmonic_analysis,
-    order_grid,
-)
-from crankdyn.torsion.modal import natural_modes, roundoff_thresholds
+from crankdyn.torsion.excitation import MAJOR_UNDETERMINED, UniformExcitation, excitation_for
+from crankdyn.torsion.harmonics import harmonic_analysis
+from crankdyn.torsion.modal import natural_modes
+from crankdyn.torsion.nodes import roundoff_thresholds
+from crankdyn.torsion.orders import order_grid
 from crankdyn.torsion.sweep import forced_response
 from crankdyn.torsion.synthesis import half_range
 
@@ -260,7 +257,7 @@ def test_damped_modes_share_the_numbering(capsys):
 def _geared_two_cylinder_line(firing_order=None):
     """Two cylinders and a 4-blade propeller behind a 20:64 gear (blade orders 1.25 and 2.5)."""
     from crankdyn.torsion import Gear, Mass, Shaft
-    from crankdyn.torsion.excitation import ExcitationSpec
+    from crankdyn.torsion.excitation_spec import ExcitationSpec
     from crankdyn.torsion.sources import LoadLaw, propeller
 
     masses = (

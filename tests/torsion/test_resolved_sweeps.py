@@ -19,7 +19,8 @@ import pytest
 from crankdyn.torsion import TorsionModel
 from crankdyn.torsion.campbell import campbell
 from crankdyn.torsion.dampers import design_damper
-from crankdyn.torsion.excitation import UniformExcitation, excitation_for, order_grid
+from crankdyn.torsion.excitation import UniformExcitation, excitation_for
+from crankdyn.torsion.orders import order_grid
 from crankdyn.torsion.rules import exceedances, permissible_continuous
 from crankdyn.torsion.sweep import forced_response
 from crankdyn.tvc import TvcSpec

@@ -4,9 +4,6 @@ import dataclasses
 import math
 
 import numpy as np
-
-from crankdyn.tvc import TvcSpec
-from crankdyn.tvc.analysis import judge
 import pytest
 
 from crankdyn.errors import InputError
@@ -29,6 +26,8 @@ from crankdyn.torsion.rules import (
     size_factor,
 )
 from crankdyn.torsion.sweep import forced_response
+from crankdyn.tvc import TvcSpec
+from crankdyn.tvc.analysis import judge
 
 J, K = 1.0, 1.0e6  # the main system: one mass on a grounded shaft
 

@@ -10,14 +10,10 @@ import pytest
 from crankdyn.engine.forces import crank_train
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.torsion.excitation import (
-    SAMPLES,
-    EngineExcitation,
-    ExcitationSpec,
-    HarmonicTable,
-    LoadCurve,
+from crankdyn.torsion.excitation import SAMPLES, EngineExcitation, excitation_for
+from crankdyn.torsion.excitation_spec import ExcitationSpec, HarmonicTable, LoadCurve
+from crankdyn.torsion.orders import (
     check_orders,
-    excitation_for,
     fourier_coefficients,
     major_orders,
     phase_vector_sums,

@@ -17,8 +17,8 @@ from crankdyn.torsion.excitation import excitation_for
 from crankdyn.torsion.sources import default_orders
 from crankdyn.torsion.sweep import forced_response
 from crankdyn.tvc import CrankshaftLimit, TvcSpec, tvc
-from crankdyn.tvc.analysis import judge
 from crankdyn.tvc import curves as cv
+from crankdyn.tvc.analysis import judge
 
 VERDICT_FIELDS = {
     "component",

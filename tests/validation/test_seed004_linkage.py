@@ -10,9 +10,10 @@ import math
 import numpy as np
 import pytest
 
+from crankdyn.linkage.elements import Force
 from crankdyn.linkage.fourbar import FourBar, grashof_type
 from crankdyn.linkage.kinetostatics import kinetostatics
-from crankdyn.linkage.planar import Force, Mechanism, slider_crank_mechanism
+from crankdyn.linkage.planar import Mechanism, slider_crank_mechanism
 
 # The three measured four-bars, L1..L4 in mm as printed (seed 004, sec. 1.2 "第一组/第二组/第三组")
 SEED004_LINK_SETS = (

@@ -532,7 +532,7 @@ def parse_orders(
         if not values or any(v != round(v) or not 1 <= v <= 64 for v in values):
             raise InputError("orders must be whole numbers from 1 to 64", key=option, value=text)
         return [round(v) for v in values]
-    from crankdyn.torsion.excitation import check_orders, fundamental_order, order_grid
+    from crankdyn.torsion.orders import check_orders, fundamental_order, order_grid
 
     try:
         if ranged:

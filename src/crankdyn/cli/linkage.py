@@ -36,7 +36,7 @@ from crankdyn.io.catalogue import resolve_linkage
 from crankdyn.io.output import check_writable, write_bytes
 from crankdyn.linkage.fourbar import BRANCHES, FourBar, fourbar_analysis
 from crankdyn.linkage.kinetostatics import kinetostatics
-from crankdyn.linkage.planar import linkage_kinematics
+from crankdyn.linkage.motion import linkage_kinematics
 from crankdyn.results import Result
 
 if TYPE_CHECKING:

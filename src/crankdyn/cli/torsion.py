@@ -26,10 +26,9 @@ from crankdyn.display import column_text
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
 from crankdyn.session import Analysis
-from crankdyn.torsion.modal import (
-    SOLVERS,
+from crankdyn.torsion.modal import SOLVERS, ModalResult
+from crankdyn.torsion.mode_blocks import (
     STREAMED_SIZE,
-    ModalResult,
     ModeBlocks,
     modes_csv_chunks,
     modes_json_chunks,

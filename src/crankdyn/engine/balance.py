@@ -866,25 +866,9 @@ def engine_balance(
     >>> round(float(4 * b.reciprocating_mass * engine.geometry.crank_radius * w**2 * c2), 1)
     6022.7
     """
-    if engine.masses is None:
-        raise InputError(
-            "the balance needs the crank-train masses: add a [masses] table", file=engine.source
-        )
-    if method not in BALANCE_METHODS:
-        raise InputError(
-            f"expected one of {', '.join(BALANCE_METHODS)}", key="--method", value=method
-        )
-    w = float(speed)
-    if not (math.isfinite(w) and w > 0.0):
-        raise InputError("the speed must be positive", key="speed", value=speed)
-    if inputs is None:
-        inputs = getattr(engine, "balance", None) or BalanceInputs()
+    w, inputs, orders = _checked_inputs(engine, speed, orders, method, inputs)
+    assert engine.masses is not None  # _checked_inputs
     geo, cyl = engine.geometry, engine.cylinders
-    if orders is None:
-        orders = OFFSET_ORDERS if geo.offset != 0.0 else DEFAULT_ORDERS
-    orders = tuple(int(n) for n in orders)
-    if not orders or any(n < 1 or n > 64 for n in orders):
-        raise InputError("orders must be whole numbers from 1 to 64", key="orders", value=orders)
     m_j = equivalent_masses(engine.masses, geo.rod_length)[0]
     m_rot = rotating_masses(engine.masses, geo.rod_length, cyl.throws)
     r = geo.crank_radius
@@ -903,24 +887,7 @@ def engine_balance(
     if inputs.rod_offset and cyl.layout != "V":
         notes.append("rod_offset applies to V engines only; ignored")
     pitch = cyl.pitch if cyl.pitch is not None else math.nan
-    power = inputs.power
-    torque_curve: tuple[ArrayLike, ArrayLike] | None = None
-    if torque is not None:
-        if hasattr(torque, "total_torque"):
-            torque = cast("TorqueResult", torque)
-            torque_curve = (torque.crank_angle, torque.total_torque)
-            if power is None:
-                effective = getattr(torque, "effective_power", None)
-                power = effective if effective else torque.indicated_power
-                kind = "effective" if effective else "indicated"
-                notes.append(
-                    f"power-related unbalance per kW of {kind} power from the torque analysis "
-                    f"({power / 1e3:.4g} kW)"
-                )
-        else:
-            torque_curve = torque
-        if power is not None and not power > 0.0:
-            power = None
+    torque_curve, power = _torque_and_power(torque, inputs.power, notes)
     coeff_c, coeff_s = piston_harmonics(geo.lam, geo.k, orders, method)
 
     # round-off floor: sums that vanish exactly come out near 1e-16 of their terms
@@ -940,22 +907,7 @@ def engine_balance(
     ]
 
     # rotating masses and counterweights, first order
-    c_t = alpha[0] + crank_end_view(psi, throws, alpha)
-    e_t = np.exp(1j * c_t)
-    m_rec_throw = np.bincount(throws - 1, weights=np.full(throws.size, m_j))
-    m_rot_throw = np.bincount(throws - 1, weights=m_rot)
-    m_cw = (
-        inputs.counterweight_ratio * m_rot_throw + inputs.reciprocating_balance_ratio * m_rec_throw
-    )
-    # the rotating masses at the rods' axial positions (the share of a V throw's own unbalance
-    # with each rod: symmetric about the throw's middle, so as if at the middle), the
-    # counterweights at the throw's middle
-    e_cyl = e_t[throws - 1]
-    y_rot = np.sum(m_rot * e_cyl) - np.sum(m_cw * e_t)
-    yz_rot = None
-    if rod_z is not None and throw_z is not None:
-        yz_rot = np.sum(m_rot * rod_z * e_cyl) - np.sum(m_cw * throw_z * e_t)
-    rot_ph = Phasors(-1j * y_rot, y_rot, None if yz_rot is None else -1j * yz_rot, yz_rot)
+    rot_ph, m_rot_throw = _rotating_phasors(inputs, m_j, m_rot, psi, alpha, throws, rod_z, throw_z)
     rotating = replace(
         _order_balance(1, "rotating", rot_ph, scale, unit_force, pitch, power, floors),
         force_coefficient=None,
@@ -993,3 +945,92 @@ def engine_balance(
         notes=tuple(notes),
         axis_angles=freeze(alpha),
     )
+
+
+def _checked_inputs(
+    engine: Engine,
+    speed: float,
+    orders: Sequence[int] | None,
+    method: str,
+    inputs: BalanceInputs | None,
+) -> tuple[float, BalanceInputs, tuple[int, ...]]:
+    """(speed (rad/s), balance inputs, orders) of :func:`engine_balance`, checked: InputError
+    for an engine without masses, an unknown method, a speed not positive or an order outside
+    1 to 64; the default inputs (``engine.balance``) and orders (module docstring)."""
+    if engine.masses is None:
+        raise InputError(
+            "the balance needs the crank-train masses: add a [masses] table", file=engine.source
+        )
+    if method not in BALANCE_METHODS:
+        raise InputError(
+            f"expected one of {', '.join(BALANCE_METHODS)}", key="--method", value=method
+        )
+    w = float(speed)
+    if not (math.isfinite(w) and w > 0.0):
+        raise InputError("the speed must be positive", key="speed", value=speed)
+    if inputs is None:
+        inputs = getattr(engine, "balance", None) or BalanceInputs()
+    if orders is None:
+        orders = OFFSET_ORDERS if engine.geometry.offset != 0.0 else DEFAULT_ORDERS
+    orders = tuple(int(n) for n in orders)
+    if not orders or any(n < 1 or n > 64 for n in orders):
+        raise InputError("orders must be whole numbers from 1 to 64", key="orders", value=orders)
+    return w, inputs, orders
+
+
+def _torque_and_power(
+    torque: TorqueResult | tuple[ArrayLike, ArrayLike] | None,
+    power: float | None,
+    notes: list[str],
+) -> tuple[tuple[ArrayLike, ArrayLike] | None, float | None]:
+    """(torque curve (rad, N m) or None, power (W) or None) of :func:`engine_balance`: a torque
+    result gives its curve and, when ``power`` is None, its effective (else indicated) power
+    (a note added to ``notes``); a power not positive counts as none."""
+    torque_curve: tuple[ArrayLike, ArrayLike] | None = None
+    if torque is not None:
+        if hasattr(torque, "total_torque"):
+            torque = cast("TorqueResult", torque)
+            torque_curve = (torque.crank_angle, torque.total_torque)
+            if power is None:
+                effective = getattr(torque, "effective_power", None)
+                power = effective if effective else torque.indicated_power
+                kind = "effective" if effective else "indicated"
+                notes.append(
+                    f"power-related unbalance per kW of {kind} power from the torque analysis "
+                    f"({power / 1e3:.4g} kW)"
+                )
+        else:
+            torque_curve = torque
+        if power is not None and not power > 0.0:
+            power = None
+    return torque_curve, power
+
+
+def _rotating_phasors(
+    inputs: BalanceInputs,
+    m_j: float,
+    m_rot: np.ndarray,
+    psi: np.ndarray,
+    alpha: np.ndarray,
+    throws: np.ndarray,
+    rod_z: np.ndarray | None,
+    throw_z: np.ndarray | None,
+) -> tuple[Phasors, np.ndarray]:
+    """(phasors, rotating mass per throw (kg)) of the first-order force and moment of the
+    rotating masses and counterweights (module docstring): the rotating masses at the rods'
+    axial positions (the share of a V throw's own unbalance with each rod: symmetric about the
+    throw's middle, so as if at the middle), the counterweights at the throw's middle."""
+    c_t = alpha[0] + crank_end_view(psi, throws, alpha)
+    e_t = np.exp(1j * c_t)
+    m_rec_throw = np.bincount(throws - 1, weights=np.full(throws.size, m_j))
+    m_rot_throw = np.bincount(throws - 1, weights=m_rot)
+    m_cw = (
+        inputs.counterweight_ratio * m_rot_throw + inputs.reciprocating_balance_ratio * m_rec_throw
+    )
+    e_cyl = e_t[throws - 1]
+    y_rot = np.sum(m_rot * e_cyl) - np.sum(m_cw * e_t)
+    yz_rot = None
+    if rod_z is not None and throw_z is not None:
+        yz_rot = np.sum(m_rot * rod_z * e_cyl) - np.sum(m_cw * throw_z * e_t)
+    phasors = Phasors(-1j * y_rot, y_rot, None if yz_rot is None else -1j * yz_rot, yz_rot)
+    return phasors, m_rot_throw

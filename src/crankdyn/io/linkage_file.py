@@ -10,16 +10,8 @@ from crankdyn.errors import did_you_mean
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table
 from crankdyn.io.units import parse_quantity
-from crankdyn.linkage.planar import (
-    GROUND,
-    JOINT_KINDS,
-    Driver,
-    Force,
-    Joint,
-    Link,
-    Mechanism,
-    Torque,
-)
+from crankdyn.linkage.elements import GROUND, JOINT_KINDS, Driver, Force, Joint, Link, Torque
+from crankdyn.linkage.planar import Mechanism
 
 __all__ = [
     "load_linkage",

@@ -202,8 +202,40 @@ def read_mass_elastic(
     """
     table = read_csv_table(path, display=display, what="mass-elastic table")
     file = table.name
+    rows = _Cells(table.rows, _header_columns(table.header, file))
+    if not table.rows:
+        raise InputError("the mass-elastic table has no rows", file=file)
+    masses: list[Mass] = []
+    shafts: list[Shaft] = []
+    gears: list[Gear] = []
+    count = len(table.rows)
+    for r in range(count):
+        line, _label = rows.cell(r, "name")
+        try:
+            _read_row(rows, r, count, masses, shafts, gears)
+        except InputError as exc:  # the line and the column
+            key = f"line {line} {exc.key or ''}".strip()
+            if exc.has_value:
+                raise InputError(exc.message, file=file, key=key, value=exc.value) from None
+            raise InputError(exc.message, file=file, key=key) from None
+    try:
+        return TorsionModel(
+            masses=tuple(masses),
+            shafts=tuple(shafts),
+            gears=tuple(gears),
+            name=name or Path(file).stem,
+            source=file,
+        )
+    except InputError as exc:
+        raise exc.within(file=file) from None
+
+
+def _header_columns(header: Sequence[str], file: str) -> dict[str, tuple[int, float]]:
+    """Column name -> (index, factor to SI) of a mass-elastic table's header (module
+    docstring): InputError naming the header cell for an unknown column, a unit on a plain
+    column, a missing or unknown unit, or a missing required column."""
     columns: dict[str, tuple[int, float]] = {}
-    for i, header_cell in enumerate(table.header):
+    for i, header_cell in enumerate(header):
         whole = header_cell.strip().lower().replace(" ", "_")
         if whole in _COLUMNS and _COLUMNS[whole][0] in ("text", "ratio"):
             columns[whole] = (i, 1.0)
@@ -237,20 +269,32 @@ def read_mass_elastic(
     for key in _REQUIRED:
         if key not in columns:
             raise InputError(
-                f"expected a column {key!r}", file=file, key="header", value=",".join(table.header)
+                f"expected a column {key!r}", file=file, key="header", value=",".join(header)
             )
-    if not table.rows:
-        raise InputError("the mass-elastic table has no rows", file=file)
+    return columns
 
-    def cell(r: int, key: str) -> tuple[int, str]:
-        if key not in columns:
-            return table.rows[r][0], ""
-        number, cells = table.rows[r]
-        i = columns[key][0]
+
+class _Cells:
+    """The cells of a mass-elastic table's rows by column name: text, or numbers in SI."""
+
+    def __init__(
+        self, rows: Sequence[tuple[int, Sequence[str]]], columns: dict[str, tuple[int, float]]
+    ) -> None:
+        self.rows = rows
+        self.columns = columns
+
+    def cell(self, r: int, key: str) -> tuple[int, str]:
+        """(line number, stripped text) of row ``r``'s cell in column ``key`` ("" if absent)."""
+        if key not in self.columns:
+            return self.rows[r][0], ""
+        number, cells = self.rows[r]
+        i = self.columns[key][0]
         return number, cells[i].strip() if i < len(cells) else ""
 
-    def number(r: int, key: str) -> float | None:
-        _line, text = cell(r, key)
+    def number(self, r: int, key: str) -> float | None:
+        """Row ``r``'s value in column ``key`` in SI, None for an empty cell (InputError for
+        text that is not a finite number)."""
+        _line, text = self.cell(r, key)
         if not text:
             return None
         try:
@@ -259,79 +303,66 @@ def read_mass_elastic(
             raise InputError("not a number", key=key, value=text) from None
         if not math.isfinite(value):
             raise InputError("not a finite number", key=key, value=text)
-        return value * columns[key][1]
+        return value * self.columns[key][1]
 
-    masses, shafts, gears = [], [], []
-    count = len(table.rows)
-    for r in range(count):
-        line, label = cell(r, "name")
-        try:
-            inertia = number(r, "inertia")
-            if inertia is None:
-                raise InputError("missing the inertia", key="inertia")
-            _l, cyl_text = cell(r, "cylinders")
-            try:
-                cylinders = tuple(int(c) for c in cyl_text.split())
-            except ValueError:
-                raise InputError(
-                    "expected cylinder numbers separated by spaces", key="cylinders", value=cyl_text
-                ) from None
-            masses.append(
-                Mass(label, inertia, damping=number(r, "damping") or 0.0, cylinders=cylinders)
-            )
-            g = number(r, "ground_stiffness")
-            if g:
-                shafts.append(Shaft((GROUND, label), g))
-            k = number(r, "stiffness")
-            ratio = number(r, "gear_ratio")
-            _l, direction = cell(r, "gear_direction")
-            last = r == count - 1
-            if last:
-                if k is not None or ratio is not None:
-                    raise InputError(
-                        "the last row has no next mass to connect to", key="stiffness", value=k
-                    )
-                continue
-            if direction and direction not in GEAR_DIRECTIONS:
-                raise InputError(
-                    f"expected one of {', '.join(GEAR_DIRECTIONS)}",
-                    key="gear_direction",
-                    value=direction,
-                )
-            _l2, following = cell(r + 1, "name")
-            if k is None and ratio is None:
-                raise InputError(
-                    "missing; give the stiffness (or gear_ratio) to the next mass", key="stiffness"
-                )
-            if k is None:
-                gears.append(Gear((label, following), ratio, direction=direction or "opposite"))
-                continue
-            outer = number(r, "outer_diameter")
-            inner = number(r, "inner_diameter")
-            geometry = ShaftGeometry(outer, inner or 0.0) if outer is not None else None
-            shafts.append(
-                Shaft(
-                    (label, following),
-                    k,
-                    damping=number(r, "shaft_damping") or 0.0,
-                    loss_factor=number(r, "loss_factor") or 0.0,
-                    geometry=geometry,
-                    ratio=ratio or 1.0,
-                    direction=-1 if (ratio is not None and direction != "same") else 1,
-                )
-            )
-        except InputError as exc:  # the line and the column
-            key = f"line {line} {exc.key or ''}".strip()
-            if exc.has_value:
-                raise InputError(exc.message, file=file, key=key, value=exc.value) from None
-            raise InputError(exc.message, file=file, key=key) from None
+
+def _read_row(
+    rows: _Cells, r: int, count: int, masses: list[Mass], shafts: list[Shaft], gears: list[Gear]
+) -> None:
+    """Row ``r`` of ``count``: its mass (and grounded shaft) and its connection to the next
+    mass, appended to ``masses``, ``shafts`` and ``gears`` (module docstring); InputError
+    naming the column."""
+    _line, label = rows.cell(r, "name")
+    inertia = rows.number(r, "inertia")
+    if inertia is None:
+        raise InputError("missing the inertia", key="inertia")
+    _l, cyl_text = rows.cell(r, "cylinders")
     try:
-        return TorsionModel(
-            masses=tuple(masses),
-            shafts=tuple(shafts),
-            gears=tuple(gears),
-            name=name or Path(file).stem,
-            source=file,
+        cylinders = tuple(int(c) for c in cyl_text.split())
+    except ValueError:
+        raise InputError(
+            "expected cylinder numbers separated by spaces", key="cylinders", value=cyl_text
+        ) from None
+    masses.append(
+        Mass(label, inertia, damping=rows.number(r, "damping") or 0.0, cylinders=cylinders)
+    )
+    g = rows.number(r, "ground_stiffness")
+    if g:
+        shafts.append(Shaft((GROUND, label), g))
+    k = rows.number(r, "stiffness")
+    ratio = rows.number(r, "gear_ratio")
+    _l, direction = rows.cell(r, "gear_direction")
+    if r == count - 1:  # the last row
+        if k is not None or ratio is not None:
+            raise InputError(
+                "the last row has no next mass to connect to", key="stiffness", value=k
+            )
+        return
+    if direction and direction not in GEAR_DIRECTIONS:
+        raise InputError(
+            f"expected one of {', '.join(GEAR_DIRECTIONS)}",
+            key="gear_direction",
+            value=direction,
         )
-    except InputError as exc:
-        raise exc.within(file=file) from None
+    _l2, following = rows.cell(r + 1, "name")
+    if k is None and ratio is None:
+        raise InputError(
+            "missing; give the stiffness (or gear_ratio) to the next mass", key="stiffness"
+        )
+    if k is None:
+        gears.append(Gear((label, following), ratio, direction=direction or "opposite"))
+        return
+    outer = rows.number(r, "outer_diameter")
+    inner = rows.number(r, "inner_diameter")
+    geometry = ShaftGeometry(outer, inner or 0.0) if outer is not None else None
+    shafts.append(
+        Shaft(
+            (label, following),
+            k,
+            damping=rows.number(r, "shaft_damping") or 0.0,
+            loss_factor=rows.number(r, "loss_factor") or 0.0,
+            geometry=geometry,
+            ratio=ratio or 1.0,
+            direction=-1 if (ratio is not None and direction != "same") else 1,
+        )
+    )

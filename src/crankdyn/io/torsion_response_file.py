@@ -13,8 +13,9 @@ from crankdyn.io.examples import display_path
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.torsion.campbell import OperatingRange
 from crankdyn.torsion.dampers import Damper, design_damper
-from crankdyn.torsion.excitation import CYCLES, ExcitationSpec, SpeedTrace
+from crankdyn.torsion.excitation_spec import ExcitationSpec, SpeedTrace
 from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.orders import CYCLES
 from crankdyn.torsion.rules import RuleSet, ShaftLimit
 
 if TYPE_CHECKING:

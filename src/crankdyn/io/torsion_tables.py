@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.io.csv_tables import CsvTable, read_csv_table, split_header_unit, unit_factor
-from crankdyn.torsion.excitation import HarmonicTable, LoadCurve
+from crankdyn.torsion.excitation_spec import HarmonicTable, LoadCurve
 
 __all__ = ["read_harmonic_table", "read_load_curve"]
 

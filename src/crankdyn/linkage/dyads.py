@@ -68,11 +68,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-if TYPE_CHECKING:
-    from crankdyn.linkage.planar import Mechanism, _Model
+from crankdyn.linkage.elements import GROUND
 
-GROUND = "ground"
-"""The name of the frame (ground) link."""
+if TYPE_CHECKING:
+    from crankdyn.linkage.planar import Mechanism
+    from crankdyn.linkage.solver import KinematicModel
 
 __all__ = ["DET_LIMIT", "ClosedForm", "NoClosedForm", "closed_form"]
 
@@ -567,7 +567,7 @@ class ClosedForm:
     ----------
     mech : crankdyn.linkage.planar.Mechanism
         The mechanism.
-    model : crankdyn.linkage.planar._Model
+    model : crankdyn.linkage.solver.KinematicModel
         Its coordinates in the drawn configuration (``mech._model``).
 
     Raises
@@ -587,7 +587,7 @@ class ClosedForm:
     0.193649
     """
 
-    def __init__(self, mech: Mechanism, model: _Model) -> None:
+    def __init__(self, mech: Mechanism, model: KinematicModel) -> None:
         index = model.index
         g0 = model.g0
         joints = {j.name: j for j in mech.joints}
@@ -676,7 +676,7 @@ class ClosedForm:
         numpy.ndarray
             (3, 3n, B): q, q', q'', each the rows x_G, y_G (m; m/rad, m/rad^2), phi (rad;
             dimensionless, 1/rad) of every moving link (the transpose of the (B, 3n) layout of
-            :class:`~crankdyn.linkage.planar.MechanismMotion`). Rotations of dyad links are
+            :class:`~crankdyn.linkage.motion.MechanismMotion`). Rotations of dyad links are
             wrapped to (-pi, pi].
 
         Raises
@@ -697,14 +697,14 @@ class ClosedForm:
         return out
 
 
-def closed_form(mech: Mechanism, model: _Model) -> ClosedForm | None:
+def closed_form(mech: Mechanism, model: KinematicModel) -> ClosedForm | None:
     """The closed-form plan of a mechanism.
 
     Parameters
     ----------
     mech : crankdyn.linkage.planar.Mechanism
         The mechanism.
-    model : crankdyn.linkage.planar._Model
+    model : crankdyn.linkage.solver.KinematicModel
         Its coordinates in the drawn configuration.
 
     Returns

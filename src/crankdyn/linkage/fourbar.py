@@ -68,14 +68,15 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import DEG
 from crankdyn.crank.geometry import check_finite, check_length
 from crankdyn.errors import InputError
-from crankdyn.linkage.planar import GROUND, Driver, Joint, Link, Mechanism
+from crankdyn.linkage.elements import GROUND, Driver, Joint, Link
+from crankdyn.linkage.planar import Mechanism
 from crankdyn.plausibility import PlausibilityWarning, check_transmission_angle
 from crankdyn.results import Result, column, freeze, scalar
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from crankdyn.linkage.planar import Force, Torque
+    from crankdyn.linkage.elements import Force, Torque
 
 __all__ = [
     "BRANCHES",
@@ -1015,9 +1016,9 @@ def fourbar_mechanism(
         Crank angular acceleration (rad/s^2); default 0.
     gravity : (float, float)
         Gravitational acceleration (m/s^2); default (0, 0).
-    forces : sequence of crankdyn.linkage.planar.Force
+    forces : sequence of crankdyn.linkage.elements.Force
         External forces.
-    torques : sequence of crankdyn.linkage.planar.Torque
+    torques : sequence of crankdyn.linkage.elements.Torque
         External couples.
     name : str
         The mechanism's name.

@@ -36,8 +36,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
+from crankdyn.linkage.elements import GROUND, Joint
 from crankdyn.linkage.joints import cross_arm, driving_torque_of, joint_geometry, sign_of_speed
-from crankdyn.linkage.planar import GROUND, Joint, Mechanism, MechanismMotion
+from crankdyn.linkage.motion import MechanismMotion
+from crankdyn.linkage.planar import Mechanism
 
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.linkage.kinetostatics import KinetostaticSystem
@@ -143,7 +145,7 @@ def solve_with_friction(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion (N positions).
     system : crankdyn.linkage.kinetostatics.KinetostaticSystem
         Its matrix equation (with the factors of C).

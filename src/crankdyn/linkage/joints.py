@@ -7,7 +7,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from crankdyn.linkage.planar import GROUND, Joint, MechanismMotion
+from crankdyn.linkage.elements import GROUND, Joint
+from crankdyn.linkage.motion import MechanismMotion
 
 __all__ = ["cross_arm", "driving_torque_of", "joint_geometry", "sign_of_speed"]
 
@@ -55,9 +56,9 @@ def joint_geometry(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion (N positions).
-    joint : crankdyn.linkage.planar.Joint
+    joint : crankdyn.linkage.elements.Joint
         The joint.
 
     Returns
@@ -87,7 +88,7 @@ def driving_torque_of(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion.
     R : numpy.ndarray
         (N, 3n) reactions, the driving torque (N m) or balancing force (N) last.

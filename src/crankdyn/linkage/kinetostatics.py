@@ -36,9 +36,10 @@ import numpy as np
 
 from crankdyn.constants import DEG
 from crankdyn.errors import InputError
+from crankdyn.linkage.elements import GROUND
 from crankdyn.linkage.joints import cross_arm, driving_torque_of, joint_geometry, sign_of_speed
 from crankdyn.linkage.linsolve import LU, lu_factor
-from crankdyn.linkage.planar import GROUND, MechanismMotion
+from crankdyn.linkage.motion import MechanismMotion
 from crankdyn.results import Result, column, freeze, scalar
 
 if TYPE_CHECKING:
@@ -89,7 +90,7 @@ def known_loads(motion: MechanismMotion) -> KnownLoads:
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion (N positions).
 
     Returns
@@ -223,7 +224,7 @@ def build_system(motion: MechanismMotion, loads: KnownLoads | None = None) -> Ki
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion (N positions).
     loads : KnownLoads or None
         The known loads; default :func:`known_loads` of ``motion``.
@@ -359,7 +360,7 @@ class KinetostaticsResult(Result):
     ----------
     system : KinetostaticSystem or None
         The matrix equation (not exported).
-    motion : crankdyn.linkage.planar.MechanismMotion or None
+    motion : crankdyn.linkage.motion.MechanismMotion or None
         The motion it was built on (not exported).
     reactions : numpy.ndarray or None
         (N, 3n) the solved {R} (N, N m), in the order of ``system.unknowns``.
@@ -487,7 +488,7 @@ def kinetostatics(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion (N positions, its crank speed and acceleration).
     friction : bool
         Include the joints' friction; default True.
@@ -511,7 +512,8 @@ def kinetostatics(
     the crank balances it with P R = 5 N m, and the rod, inclined by arcsin(R/L), carries
     P tan(arcsin(R/L)) = 25.8 N across the guide:
 
-    >>> from crankdyn.linkage.planar import Force, slider_crank_mechanism
+    >>> from crankdyn.linkage.elements import Force
+    >>> from crankdyn.linkage.planar import slider_crank_mechanism
     >>> mech = slider_crank_mechanism(0.05, 0.2, forces=[Force("slider", "C", force=(100.0, 0.0))])
     >>> result = kinetostatics(mech.motion([math.pi / 2]))
     >>> round(float(result.driving_torque[0]), 9), round(float(result.method_difference), 9)

@@ -27,7 +27,7 @@ from numpy.typing import NDArray
 
 if TYPE_CHECKING:  # pragma: no cover
     from crankdyn.linkage.kinetostatics import KnownLoads
-    from crankdyn.linkage.planar import MechanismMotion
+    from crankdyn.linkage.motion import MechanismMotion
 
 __all__ = ["lever_moments", "virtual_power_driving_torque"]
 
@@ -61,7 +61,7 @@ def virtual_power_driving_torque(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The mechanism's motion.
     loads : crankdyn.linkage.kinetostatics.KnownLoads
         The known loads (inertia, gravity, applied).

@@ -81,7 +81,8 @@ def example_motion(name: str) -> PrescribedMotion:
 def _motion(speed: float, acceleration: float, duration: float) -> PrescribedMotion:
     from crankdyn.engine.model import Engine
     from crankdyn.measure.compare import with_shaft_loss_factor
-    from crankdyn.torsion.excitation import excitation_for, order_grid
+    from crankdyn.torsion.excitation import excitation_for
+    from crankdyn.torsion.orders import order_grid
     from crankdyn.torsion.sweep import forced_response
 
     engine = Engine.example(ENGINE)

@@ -44,6 +44,7 @@ analysed orders, found exactly as for the model (:func:`crankdyn.torsion.synthes
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
@@ -56,7 +57,7 @@ from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
 from crankdyn.results import Result, array, column, freeze, scalar
-from crankdyn.torsion.excitation import check_orders, fundamental_order, harmonic_index
+from crankdyn.torsion.orders import check_orders, fundamental_order, harmonic_index
 from crankdyn.torsion.synthesis import half_range
 
 if TYPE_CHECKING:
@@ -311,29 +312,18 @@ def order_analysis(
     >>> [round(float(p), 4) for p in np.degrees(spectrum.phase)]
     [0.0, 90.0]
     """
-    if cycle not in _CYCLES:
-        raise InputError("expected four-stroke or two-stroke", key="cycle", value=cycle)
-    if analysis not in ANALYSES:
-        raise InputError(f"expected one of {', '.join(ANALYSES)}", key="analysis", value=analysis)
-    if isinstance(window_cycles, bool) or int(window_cycles) != window_cycles or window_cycles < 1:
-        raise InputError(
-            "expected a whole number of cycles, >= 1", key="window", value=window_cycles
-        )
+    options = {
+        "cycle": cycle,
+        "analysis": analysis,
+        "window_cycles": window_cycles,
+        "window": window,
+        "bin_width": bin_width,
+        "reference_angle": reference_angle,
+    }
+    for check in _OPTION_CHECKS:
+        check.apply(options)
     window_cycles = int(window_cycles)
-    if window not in WINDOWS:
-        raise InputError(f"expected one of {', '.join(WINDOWS)}", key="window", value=window)
-    if window == "hann" and window_cycles < 2:
-        raise InputError(
-            "a Hann window needs at least 2 cycles (over one cycle it would mix each order with "
-            "its neighbours half an order away)",
-            key="window-cycles",
-            value=window_cycles,
-        )
-    width = DEFAULT_BIN if bin_width is None else float(bin_width)
-    if not (math.isfinite(width) and width > 0.0):
-        raise InputError("the speed bin must be positive", key="bin", value=width * RPM)
-    if not math.isfinite(reference_angle):
-        raise InputError("the reference angle must be finite", key="reference_angle")
+    width = _bin_width(options)
     pulses = _to_pulses(signal, resolution)
     q = _check_orders(orders, cycle, pulses.teeth)
     prep = prepare_pulses(pulses)
@@ -348,6 +338,136 @@ def order_analysis(
     notes.extend(more)
     _, _, fraction = tooth_numbering(prep)
     cycle_angle = CYCLE_ANGLE[cycle]
+    errors, estimate, correction = _tooth_correction(tooth_correction, prep, cycle, fraction)
+    domain, estimated = angle_domain(
+        prep,
+        cycle_angle,
+        reference_angle=reference_angle,
+        tooth_errors=errors,
+        estimate_teeth=estimate,
+    )
+    tooth_errors: np.ndarray | None = estimated if estimated is not None else errors
+    if estimated is not None:
+        notes.append(_estimated_teeth_note(estimated, q))
+    per_cycle = _windows(domain, q, cycle_angle, 1)
+    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
+    kind = analysis
+    if kind == "auto":
+        kind = "tracking" if spread > STEADY_LIMIT else "steady"
+    common: dict[str, Any] = {
+        "orders": freeze(q),
+        "teeth": prep.teeth,
+        "cycle": cycle,
+        "reference": reference,
+        "tooth_correction": correction,
+        "tooth_errors": None if tooth_errors is None else freeze(tooth_errors),
+        "source": pulses.source,
+        "domain": domain,
+    }
+    harmonic = harmonic_index(q, cycle)
+    if kind == "steady":
+        if spread > STEADY_LIMIT:
+            notes.append(
+                f"the cycle speeds spread by {spread:.1%} of their mean: a steady-speed average "
+                "blurs orders that change with speed (try --analysis tracking)"
+            )
+        return _steady_spectrum(domain, per_cycle, harmonic, cycle_angle, notes, common)
+    win = (
+        per_cycle
+        if window_cycles == 1 and window == "uniform"
+        else _windows(domain, q, cycle_angle, window_cycles, window)
+    )
+    return _order_tracking(
+        win, q, harmonic, cycle_angle, window_cycles, window, width, notes, common
+    )
+
+
+def _bin_width(options: dict[str, Any]) -> float:
+    """The speed bin of order tracking (rad/s): ``bin_width``, default :data:`DEFAULT_BIN`."""
+    width = options["bin_width"]
+    return DEFAULT_BIN if width is None else float(width)
+
+
+def _whole_cycles(value: Any) -> bool:
+    """Whether a count of cycles is a whole number >= 1 (not a bool)."""
+    return not (isinstance(value, bool) or int(value) != value or value < 1)
+
+
+@dataclass(frozen=True)
+class _OptionCheck:
+    """One check of :func:`order_analysis`'s options: an InputError with ``message``, ``key``
+    and the value shown (``value`` of the options; none when None) where ``fails``."""
+
+    key: str
+    message: str
+    fails: Callable[[dict[str, Any]], bool]
+    value: Callable[[dict[str, Any]], Any] | None = None
+
+    def apply(self, options: dict[str, Any]) -> None:
+        """Raise the InputError when the options fail the check."""
+        if not self.fails(options):
+            return
+        if self.value is None:
+            raise InputError(self.message, key=self.key)
+        raise InputError(self.message, key=self.key, value=self.value(options))
+
+
+_OPTION_CHECKS = (
+    _OptionCheck(
+        "cycle",
+        "expected four-stroke or two-stroke",
+        lambda o: o["cycle"] not in _CYCLES,
+        lambda o: o["cycle"],
+    ),
+    _OptionCheck(
+        "analysis",
+        f"expected one of {', '.join(ANALYSES)}",
+        lambda o: o["analysis"] not in ANALYSES,
+        lambda o: o["analysis"],
+    ),
+    _OptionCheck(
+        "window",
+        "expected a whole number of cycles, >= 1",
+        lambda o: not _whole_cycles(o["window_cycles"]),
+        lambda o: o["window_cycles"],
+    ),
+    _OptionCheck(
+        "window",
+        f"expected one of {', '.join(WINDOWS)}",
+        lambda o: o["window"] not in WINDOWS,
+        lambda o: o["window"],
+    ),
+    _OptionCheck(
+        "window-cycles",
+        "a Hann window needs at least 2 cycles (over one cycle it would mix each order with "
+        "its neighbours half an order away)",
+        lambda o: o["window"] == "hann" and int(o["window_cycles"]) < 2,
+        lambda o: int(o["window_cycles"]),
+    ),
+    _OptionCheck(
+        "bin",
+        "the speed bin must be positive",
+        lambda o: not (math.isfinite(_bin_width(o)) and _bin_width(o) > 0.0),
+        lambda o: _bin_width(o) * RPM,
+    ),
+    _OptionCheck(
+        "reference_angle",
+        "the reference angle must be finite",
+        lambda o: not math.isfinite(o["reference_angle"]),
+    ),
+)
+"""The checks of :func:`order_analysis`'s options, in the order they are made."""
+
+
+def _tooth_correction(
+    tooth_correction: str | PulseTrain | ArrayLike | None,
+    prep: PreparedPulses,
+    cycle: str,
+    fraction: Any,
+) -> tuple[np.ndarray | None, bool, str]:
+    """(tooth errors (rad) or None, whether to estimate them from the record, the correction in
+    words) of :func:`order_analysis`'s ``tooth_correction``; InputError when it does not fit
+    the record."""
     errors = None
     estimate = False
     correction = "none"
@@ -380,89 +500,85 @@ def order_analysis(
         if errors.shape != (prep.teeth,) or not np.all(np.isfinite(errors)):
             raise InputError(f"expected {prep.teeth} finite tooth errors", key="tooth_errors")
         correction = "given tooth errors"
-    domain, estimated = angle_domain(
-        prep,
-        cycle_angle,
-        reference_angle=reference_angle,
-        tooth_errors=errors,
-        estimate_teeth=estimate,
+    return errors, estimate, correction
+
+
+def _estimated_teeth_note(estimated: np.ndarray, q: np.ndarray) -> str:
+    """The note on tooth errors estimated from the record itself: the pattern holds the integer
+    orders' mean too; removed at the tooth angles instead of the crank angles, it leaves a
+    cross-talk of about m |P_m| (relative) in the others."""
+    spectrum = np.abs(np.fft.rfft(estimated)) * (2.0 / estimated.size)
+    m = np.arange(spectrum.size)
+    engine = (m >= 1) & (m <= np.max(q))
+    bound = float(np.sum(m[engine] * spectrum[engine]))
+    return (
+        "tooth-spacing errors taken as this record's mean over revolutions: the integer "
+        "orders lose their mean over the record (they cannot be told from the wheel's "
+        f"errors); the half orders keep a cross-talk of up to {bound:.2%} of their amplitude "
+        "(a calibration record avoids both)"
     )
-    tooth_errors: np.ndarray | None = estimated if estimated is not None else errors
-    if estimated is not None:
-        # the pattern holds the integer orders' mean too; removed at the tooth angles instead of
-        # the crank angles, it leaves a cross-talk of about m |P_m| (relative) in the others
-        spectrum = np.abs(np.fft.rfft(estimated)) * (2.0 / estimated.size)
-        m = np.arange(spectrum.size)
-        engine = (m >= 1) & (m <= np.max(q))
-        bound = float(np.sum(m[engine] * spectrum[engine]))
-        notes.append(
-            "tooth-spacing errors taken as this record's mean over revolutions: the integer "
-            "orders lose their mean over the record (they cannot be told from the wheel's "
-            f"errors); the half orders keep a cross-talk of up to {bound:.2%} of their amplitude "
-            "(a calibration record avoids both)"
-        )
-    per_cycle = _windows(domain, q, cycle_angle, 1)
-    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
-    kind = analysis
-    if kind == "auto":
-        kind = "tracking" if spread > STEADY_LIMIT else "steady"
-    common: dict[str, Any] = {
-        "orders": freeze(q),
-        "teeth": prep.teeth,
-        "cycle": cycle,
-        "reference": reference,
-        "tooth_correction": correction,
-        "tooth_errors": None if tooth_errors is None else freeze(tooth_errors),
-        "source": pulses.source,
-        "domain": domain,
-    }
-    harmonic = harmonic_index(q, cycle)
-    if kind == "steady":
-        mean = np.mean(per_cycle.coefficients, axis=0)
-        scatter = np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0))
-        angle_span = cycle_angle * domain.cycles
-        speed = angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])
-        if spread > STEADY_LIMIT:
-            notes.append(
-                f"the cycle speeds spread by {spread:.1%} of their mean: a steady-speed average "
-                "blurs orders that change with speed (try --analysis tracking)"
-            )
-        top, low = half_range(mean, harmonic)
-        avg = np.mean(
-            domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(domain.cycles, -1),
-            axis=0,
-        )
-        # crank angle within the cycle (the grid starts at the first tooth after a boundary)
-        start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
-        cyc_angle = domain.angle[: domain.samples_per_cycle] - start
-        # instantaneous speed of the averaged cycle: Omega (1 + dv/dpsi), dv/dpsi spectrally
-        spec = np.fft.rfft(avg)
-        k = np.arange(spec.size)
-        dv = np.fft.irfft(1j * k * (2.0 * math.pi / cycle_angle) * spec, n=avg.size)
-        return OrderSpectrum(
-            speed=float(speed),
-            amplitude=freeze(np.abs(mean)),
-            phase=freeze(np.angle(mean)),
-            scatter=freeze(scatter),
-            synthesized=float(0.5 * (top - low)),
-            cycles=int(domain.cycles),
-            speed_min=float(np.min(per_cycle.speed)),
-            speed_max=float(np.max(per_cycle.speed)),
-            window=f"uniform (rectangular) over 1 cycle ({cycle_angle * DEG:g} deg), "
-            f"synchronous: {domain.samples_per_cycle} samples per cycle",
-            averaging=f"complex (synchronous) average of {domain.cycles} cycles",
-            cycle_angle=freeze(cyc_angle),
-            cycle_vibration=freeze(avg),
-            cycle_speed=freeze(speed * (1.0 + dv)),
-            notes=tuple(notes) or None,
-            cycle_coefficients=per_cycle.coefficients,
-            **common,
-        )
-    win = (
-        per_cycle
-        if window_cycles == 1 and window == "uniform"
-        else _windows(domain, q, cycle_angle, window_cycles, window)
+
+
+def _steady_spectrum(
+    domain: AngleDomain,
+    per_cycle: _Windows,
+    harmonic: Any,
+    cycle_angle: float,
+    notes: list[str],
+    common: dict[str, Any],
+) -> OrderSpectrum:
+    """The steady-speed analysis (module docstring): the complex (synchronous) average of the
+    one-cycle windows, its synthesis and the averaged cycle's angle and speed."""
+    mean = np.mean(per_cycle.coefficients, axis=0)
+    scatter = np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0))
+    angle_span = cycle_angle * domain.cycles
+    speed = angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])
+    top, low = half_range(mean, harmonic)
+    avg = np.mean(
+        domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(domain.cycles, -1),
+        axis=0,
     )
+    # crank angle within the cycle (the grid starts at the first tooth after a boundary)
+    start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
+    cyc_angle = domain.angle[: domain.samples_per_cycle] - start
+    # instantaneous speed of the averaged cycle: Omega (1 + dv/dpsi), dv/dpsi spectrally
+    spec = np.fft.rfft(avg)
+    k = np.arange(spec.size)
+    dv = np.fft.irfft(1j * k * (2.0 * math.pi / cycle_angle) * spec, n=avg.size)
+    return OrderSpectrum(
+        speed=float(speed),
+        amplitude=freeze(np.abs(mean)),
+        phase=freeze(np.angle(mean)),
+        scatter=freeze(scatter),
+        synthesized=float(0.5 * (top - low)),
+        cycles=int(domain.cycles),
+        speed_min=float(np.min(per_cycle.speed)),
+        speed_max=float(np.max(per_cycle.speed)),
+        window=f"uniform (rectangular) over 1 cycle ({cycle_angle * DEG:g} deg), "
+        f"synchronous: {domain.samples_per_cycle} samples per cycle",
+        averaging=f"complex (synchronous) average of {domain.cycles} cycles",
+        cycle_angle=freeze(cyc_angle),
+        cycle_vibration=freeze(avg),
+        cycle_speed=freeze(speed * (1.0 + dv)),
+        notes=tuple(notes) or None,
+        cycle_coefficients=per_cycle.coefficients,
+        **common,
+    )
+
+
+def _order_tracking(
+    win: _Windows,
+    q: np.ndarray,
+    harmonic: Any,
+    cycle_angle: float,
+    window_cycles: int,
+    window: str,
+    width: float,
+    notes: list[str],
+    common: dict[str, Any],
+) -> OrderTracking:
+    """Order tracking over the windows ``win`` (module docstring): their complex average in
+    speed bins of ``width`` (rad/s), the synthesis and the resonances."""
     trend = np.polyfit(np.arange(win.speed.size), win.speed, 1)[0] if win.speed.size > 1 else 0
     label = "run-up" if trend >= 0 else "run-down"
     cell = np.floor(win.speed / width).astype(np.int64)

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 
     from crankdyn.linkage.fourbar import FourBarResult
     from crankdyn.linkage.kinetostatics import KinetostaticsResult
-    from crankdyn.linkage.planar import MechanismMotion
+    from crankdyn.linkage.motion import MechanismMotion
 
 __all__ = [
     "animate_mechanism",
@@ -65,7 +65,7 @@ def draw_mechanism(
     labels: bool = True,
     scale: float | None = None,
 ) -> None:
-    """Draw the mechanism of a :class:`~crankdyn.linkage.planar.MechanismMotion` at position
+    """Draw the mechanism of a :class:`~crankdyn.linkage.motion.MechanismMotion` at position
     ``index`` on ``ax``: links, joints, fixed pivots, sliders and guides, centres of gravity, and,
     with a :class:`~crankdyn.linkage.kinetostatics.KinetostaticsResult`, the joint forces on the
     second link of each joint as arrows (scaled to the largest force of the cycle).
@@ -74,7 +74,7 @@ def draw_mechanism(
     ----------
     ax : matplotlib.axes.Axes
         The axes to draw on (in the mechanism's lengths, m).
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The positions of the mechanism over the crank angles (lengths in m, angles in rad).
     index : int
         The position drawn (index into the crank angles).
@@ -86,7 +86,7 @@ def draw_mechanism(
         Arrow length per unit force (m/N); None: the largest force of the cycle drawn 0.35
         times the mechanism's length scale.
     """
-    from crankdyn.linkage.planar import GROUND
+    from crankdyn.linkage.elements import GROUND
 
     mech = motion.mechanism
     size = mech.length_scale
@@ -222,7 +222,7 @@ def plot_mechanism(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The positions of the mechanism over the crank angles (lengths in m, angles in rad).
     index : int
         The position drawn (index into the crank angles).
@@ -325,7 +325,7 @@ def plot_paths(motion: MechanismMotion, fig: Figure | None = None) -> Figure:
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The positions of the mechanism over the crank angles (lengths in m, angles in rad).
     fig : matplotlib.figure.Figure or None
         A figure to draw into; None makes a new one.
@@ -525,7 +525,7 @@ def animate_mechanism(
 
     Parameters
     ----------
-    motion : crankdyn.linkage.planar.MechanismMotion
+    motion : crankdyn.linkage.motion.MechanismMotion
         The positions of the mechanism over the crank angles (lengths in m, angles in rad).
     forces : crankdyn.linkage.kinetostatics.KinetostaticsResult or None
         The joint forces (N) and driving torque (N·m) over the same positions, or None.

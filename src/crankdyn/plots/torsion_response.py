@@ -16,7 +16,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crankdyn.torsion.campbell import CampbellResult
-    from crankdyn.torsion.excitation import HarmonicResult
+    from crankdyn.torsion.harmonics import HarmonicResult
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.torsion.transient import TransientResult
 
@@ -427,7 +427,7 @@ def plot_harmonics(result: HarmonicResult, fig: Figure | None = None) -> Figure:
 
     Parameters
     ----------
-    result : crankdyn.torsion.excitation.HarmonicResult
+    result : crankdyn.torsion.harmonics.HarmonicResult
         The harmonic components of one cylinder's tangential effort (SI units).
     fig : matplotlib.figure.Figure or None
         A figure to draw into; None makes a new one.

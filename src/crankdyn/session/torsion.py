@@ -19,7 +19,8 @@ if TYPE_CHECKING:
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.damped import DampedModalResult
     from crankdyn.torsion.dampers import Damper, DamperDesign
-    from crankdyn.torsion.excitation import Excitation, HarmonicResult
+    from crankdyn.torsion.excitation import Excitation
+    from crankdyn.torsion.harmonics import HarmonicResult
     from crankdyn.torsion.holzer import HolzerTable, ResidualCurve
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
@@ -60,7 +61,7 @@ class TorsionAnalyses(SessionCore):
     def engine_orders(self) -> np.ndarray:
         """The orders of the engine's cylinder torque alone (harmonics of the cycle): given,
         else the fundamental order to :attr:`max_order`."""
-        from crankdyn.torsion.excitation import check_orders, fundamental_order, order_grid
+        from crankdyn.torsion.orders import check_orders, fundamental_order, order_grid
 
         if self._orders is not None:
             return check_orders(self._orders, self.cycle)
@@ -220,7 +221,7 @@ class TorsionAnalyses(SessionCore):
             Per order the gas, inertia and total amplitude (N m), the phase-vector sums (major
             orders) and, with a torsional model, the relative amplitude sums.
         """
-        from crankdyn.torsion.excitation import harmonic_analysis
+        from crankdyn.torsion.harmonics import harmonic_analysis
 
         ex = self.excitation(misfire=misfire)
         q = self.engine_orders if orders is None else orders

@@ -505,7 +505,7 @@ def figures_markdown() -> str:
     str
         A Markdown table: figure, column (the results table's key, SI), better, what.
     """
-    owner = {}
+    owner: dict[str, str] = {}
     for analysed in ANALYSES:
         for spec in analysed.result_class().figure_specs():
             owner.setdefault(spec.name, analysed.name)

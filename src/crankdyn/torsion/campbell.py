@@ -6,7 +6,7 @@ frequency f_r of the shaft line: q n_c / 60 = f_r, so n_c = 60 f_r / q (rpm) (se
 frequency q n / 60 of every order against the speed n with the natural frequencies as horizontal
 lines; its crossings are the critical speeds. Each crossing is marked *major* when the order is
 a major order of the engine (all cylinders' phase vectors of that order line up,
-:func:`crankdyn.torsion.excitation.major_orders`) and carries the relative amplitude sum of the
+:func:`crankdyn.torsion.orders.major_orders`) and carries the relative amplitude sum of the
 order over that mode's shape (how strongly the order excites the mode). Without firing angles
 (a model with neither firing angles nor a firing order) both are undetermined (None, noted).
 Orders that are not harmonics of the engine's cycle (a propeller's blade orders, an electric
@@ -38,13 +38,10 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, derived
 from crankdyn.torsion.elements import Mass, Shaft
-from crankdyn.torsion.excitation import (
-    Excitation,
-    check_orders,
-    cylinder_amplitudes,
-    relative_amplitude_sums,
-)
+from crankdyn.torsion.excitation import Excitation
+from crankdyn.torsion.harmonics import cylinder_amplitudes
 from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.orders import check_orders, relative_amplitude_sums
 from crankdyn.torsion.sources import (
     check_model_orders,
     engine_orders_mask,

@@ -28,46 +28,20 @@ positive), the nodes (where the amplitude passes through zero: at a fraction t =
 shaft), and the modal inertia J_r = sum J_i phi_i^2 and stiffness omega_r^2 J_r of that
 normalisation.
 
-Nodes only where the shape resolves them. A computed eigenvector u_r (unit length, u = M^1/2 phi)
-differs from the exact one by an angle of at most about eps ||A||_2 / gap_r, gap_r the distance
-of omega_r^2 to the nearest other eigenvalue and ||A||_2 the largest eigenvalue (the error bound
-of the symmetric eigenproblem: E. Anderson et al., *LAPACK Users' Guide*, 3rd ed., SIAM 1999,
-section 4.7.1; J. H. Wilkinson, *The Algebraic Eigenvalue Problem*, 1965, ch. 2). A component
-below tau_r = 10 eps ||A||_2 / gap_r may therefore have any sign: in localised high modes of a
-long chain whole stretches of the shape are such round-off. Only sign changes between resolved
-components are nodes: between neighbours a node located on their shaft; across a round-off
-region between components of opposite sign one node whose position is undetermined (reported
-with the region). Round-off regions are reported per mode (``roundoff_regions``) and a mode with
-one has ``nodes_resolved`` False: its node count is then a lower bound. For a chain the
-oscillation theorem (F. R. Gantmacher and M. G. Krein, *Oscillation Matrices and Kernels and
-Small Vibrations of Mechanical Systems*, 1950, ch. 2: the k-th eigenvector of a Jacobi matrix
-has exactly k - 1 sign changes) gives mode r exactly r nodes in a free chain (the rigid-body
-mode 0 none) and r - 1 in a grounded chain (the node at the ground not counted); the counted
-nodes never exceed it and equal it wherever the shape is resolved (tested on chains of 10 to
-1000 masses).
-
-Large chains in blocks. Every mode of an N-mass model has N x N amplitudes (800 MB of float64 at
-N = 10,000). :class:`ModeBlocks` computes a chain's modes a block at a time: all eigenvalues
-first (``dsterf``; those whose absolute accuracy eps ||T|| is not small against them again by
-bisection, ``dstebz``), then each block's eigenvectors by inverse iteration (``dstein``:
-Anderson et al. 1999, section 2.4.4; the same error bound eps ||A|| / gap_r), normalised, their
-nodes found with the whole spectrum's thresholds, and handed to :func:`modes_json_chunks` or
-:func:`modes_csv_chunks`, which write what :meth:`ModalResult.to_dict` and
-:meth:`~crankdyn.results.Result.to_csv` would, a block at a time.
+The shapes are normalised, their round-off thresholds and nodes found by
+:mod:`crankdyn.torsion.nodes` (nodes only where the shape resolves them); a large chain's modes
+are computed and written a block at a time by :mod:`crankdyn.torsion.mode_blocks`.
 """
 
 from __future__ import annotations
 
-import contextlib
-import itertools
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import numpy.typing as npt
 from numpy.typing import NDArray
 
 from crankdyn.docs import ref
@@ -75,6 +49,17 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, derived
 from crankdyn.torsion.model import ChainArrays, TorsionModel
+from crankdyn.torsion.nodes import (
+    FEW,
+    ModeRows,
+    NodeArrays,
+    Nodes,
+    chain_node_counts,
+    distinct_thresholds,
+    mode_rows,
+    normalise_shapes,
+    roundoff_thresholds,
+)
 
 if TYPE_CHECKING:
     from collections.abc import Iterable
@@ -82,25 +67,17 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = [
-    "BLOCK_MODES",
     "SOLVERS",
-    "STREAMED_SIZE",
     "ModalResult",
-    "ModeBlocks",
     "Node",
     "chain_frequencies",
     "eigen_modes",
-    "modes_csv_chunks",
-    "modes_json_chunks",
     "natural_modes",
-    "roundoff_thresholds",
 ]
 
 SOLVERS = ("eigen", "holzer", "transfer", "closed-form")
 HZ = 1.0 / (2.0 * math.pi)
-_ZERO = 1e-9  # the first amplitude above this (of the largest) sets a shape's sign
-_EPS = float(np.finfo(float).eps)
-_BISECTION_TOL = 2.0 * np.finfo(float).tiny
+BISECTION_TOL = 2.0 * np.finfo(float).tiny
 """Absolute tolerance of ``dstebz``: twice the underflow threshold, LAPACK's setting for the
 most accurate eigenvalues (0 would mean eps x ||T||: 1e-9 relative on the lowest modes of a
 1000-mass chain; this agrees with ``dstevd`` to 5e-11)."""
@@ -109,8 +86,8 @@ most accurate eigenvalues (0 would mean eps x ||T||: 1e-9 relative on the lowest
 @dataclass(frozen=True)
 class Node(Result):
     """A node of a mode: on a shaft (at a fraction of its length from its first mass), or, when
-    the shape is round-off there (module docstring), somewhere in a round-off region of masses
-    (``determined`` False; ``mass`` set when the region is a single mass).
+    the shape is round-off there (:mod:`crankdyn.torsion.nodes`), somewhere in a round-off
+    region of masses (``determined`` False; ``mass`` set when the region is a single mass).
 
     The fraction is t = theta_a / (theta_a - theta_b) of the amplitudes at the shaft's ends, the
     twist being uniform along a uniform shaft (seed 003, 多质量扭振系统: the node of a two-mass
@@ -200,7 +177,7 @@ class ModalResult(Result):
     shapes_dof : numpy.ndarray or None
         The normalised mode shapes by degree of freedom (mode x dof, dimensionless; not
         exported), for locating nodes and the mass-normalised :attr:`eigenvectors`.
-    node_source : _Nodes or None
+    node_source : Nodes or None
         The nodes and round-off regions of every mode in compact form (indices; not exported),
         found when first asked for (:attr:`node_arrays`).
 
@@ -220,8 +197,8 @@ class ModalResult(Result):
     """Natural frequency omega_r (rad/s; exported in Hz, :attr:`frequencies_hz`)."""
     node_count: np.ndarray = column("node_counts", "Nodes", "")
     nodes_resolved: np.ndarray = column("nodes_resolved", "Nodes resolved", "")
-    """Whether the whole shape is above round-off (module docstring); else the node count is a
-    lower bound and the round-off regions are listed."""
+    """Whether the whole shape is above round-off (:mod:`crankdyn.torsion.nodes`); else the node
+    count is a lower bound and the round-off regions are listed."""
     modal_inertia: np.ndarray = column("modal_inertias_kg_m2", "Modal inertia", "kg·m²")
     modal_stiffness: np.ndarray = column(
         "modal_stiffnesses_Nm_per_rad", "Modal stiffness", "N·m/rad"
@@ -242,11 +219,11 @@ class ModalResult(Result):
     shapes_dof: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Normalised mode shapes by degree of freedom (mode x dof), for locating nodes."""
 
-    node_source: _Nodes | None = field(default=None, repr=False, compare=False)
+    node_source: Nodes | None = field(default=None, repr=False, compare=False)
     """The nodes and round-off regions of all modes, found when first asked for."""
 
     @property
-    def node_arrays(self) -> _NodeArrays | None:
+    def node_arrays(self) -> NodeArrays | None:
         """The nodes and round-off regions of all modes in compact form (indices into the
         modes, the model's shafts and its degrees of freedom), located when first asked for:
         the node counts and :attr:`nodes_resolved` are computed with the modes, the positions
@@ -322,7 +299,7 @@ class ModalResult(Result):
     @cached_property
     def roundoff_regions(self) -> tuple[tuple[tuple[str, str], ...], ...]:
         """Per mode the (first, last) masses of every stretch of the shape that is round-off
-        (module docstring), where nodes cannot be located."""
+        (:mod:`crankdyn.torsion.nodes`), where nodes cannot be located."""
         out: list[list[tuple[str, str]]] = [[] for _ in range(self.mode.size)]
         arrays = self.node_arrays
         if arrays is None or self.model is None:
@@ -486,7 +463,7 @@ def eigen_modes(
                 select="i",
                 select_range=(0, (count or n) - 1),
                 lapack_driver="stebz",
-                tol=_BISECTION_TOL,
+                tol=BISECTION_TOL,
             )
         else:
             lam, u = _tridiagonal_eigh(d, a.off_diagonal)
@@ -584,599 +561,10 @@ def _solve(
     raise InputError(f"expected one of {', '.join(SOLVERS)}", key="solver", value=solver)
 
 
-def _normalise(
-    shapes: np.ndarray, least: bool = True
-) -> tuple[np.ndarray, np.ndarray, NDArray[np.float64] | None]:
-    """Scale every row to a largest absolute amplitude of 1, the first amplitude above 1e-9 of
-    the largest positive; amplitudes below 1e-14 of the largest become 0 (a positive 0: no
-    negative zeros). The array given is overwritten.
-
-    Returns the normalised rows (the array given or a new one), their absolute values (the
-    other) and, when ``least`` is asked for, each row's smallest absolute value (None when not
-    asked for, when amplitudes were zeroed or when a row has no finite largest amplitude).
-
-    Each row x with largest |x| = p is divided once, by p signed as the amplitude that sets its
-    sign: its first, x_0, or, where that is at rest (|x_0| / p at most 1e-9), the first with
-    |x_j| / p above 1e-9. The absolute values returned are |x| / p: those of the quotient
-    (division is symmetric in sign), found in one flat pass rather than by a second division
-    of each row by its own number, unless many rows are at rest (then |x| / p of every row is
-    looked in for their first amplitude above 1e-9; else in those rows only). A row of zeros,
-    inf or NaN: :func:`_normalise_rows`, the rule row by row."""
-    count = shapes.shape[0]
-    size = np.abs(shapes)
-    peak = np.maximum.reduce(size, axis=1)  # NaN in a row with NaN
-    if _least_positive(peak) is None:  # a row of zeros, inf or NaN
-        shapes, size = _normalise_rows(shapes)
-        return shapes, size, None
-    few = count <= _FEW
-    signed = shapes[:, 0]  # the amplitude that sets each row's sign
-    head = np.abs(signed) / peak  # |x_0| / p
-    if (min(head.tolist()) if few else np.minimum.reduce(head)) > _ZERO:
-        np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
-        np.abs(shapes, out=size)  # |x| / p: finite, a finite peak bounds its row
-    else:  # rows at rest in the first amplitude: the first above 1e-9 of the largest signs them
-        rows = np.flatnonzero(head <= _ZERO)
-        signed = signed.copy()
-        if 8 * rows.size > count:  # many (the localised modes of a long chain): |x| / p of all
-            np.divide(size, peak[:, None], out=size)
-            signed[rows] = shapes[rows, np.argmax(size > _ZERO, axis=1)[rows]]
-            np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
-        else:  # a few: |x| / p of those rows only
-            part = size[rows]
-            np.divide(part, peak[rows, None], out=part)
-            signed[rows] = shapes[rows, np.argmax(part > _ZERO, axis=1)]
-            np.divide(shapes, np.copysign(peak, signed)[:, None], out=shapes)
-            np.abs(shapes, out=size)
-    if not few:  # round-off amplitudes looked for first: one pass fewer when there are some
-        tiny = size < 1e-14
-        if not tiny.any():
-            return shapes, size, np.minimum.reduce(size, axis=1) if least else None
-    elif least:
-        smallest = np.minimum.reduce(size, axis=1)
-        if min(smallest.tolist()) >= 1e-14:
-            return shapes, size, smallest
-        tiny = size < 1e-14
-    else:
-        tiny = size < 1e-14
-        if not tiny.any():
-            return shapes, size, None
-    np.copyto(shapes, 0.0, where=tiny)  # round-off amplitudes: a positive 0
-    np.copyto(size, 0.0, where=tiny)
-    return shapes, size, None
-
-
-def _normalise_rows(shapes: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`_normalise` of rows that may be zeros, inf or NaN, in place: a row of zeros stays
-    zeros, a row with NaN NaN.
-
-    Returns the array and its absolute values (a new array the caller may overwrite). The
-    absolute values come first, |x|, then the row's largest, and are divided by it in place:
-    |x| / peak is exactly |x / (peak sign)|, the absolute value of the result. The amplitude
-    that fixes a row's sign (the first above 1e-9 of the largest) is looked for beyond the first
-    column only in the rows where that one is at rest."""
-    count = shapes.shape[0]
-    size = np.abs(shapes)
-    peak = size.max(axis=1)  # max |x|
-    if not peak.min() > 0.0:  # a row of zeros (or NaN)
-        peak[~(peak > 0.0)] = 1.0
-    np.divide(size, peak[:, None], out=size)  # |x| / peak
-    head = size[:, 0] > _ZERO
-    later = count - np.count_nonzero(head)
-    if not later:
-        sign = np.sign(shapes[:, 0])
-    else:  # the first amplitude above _ZERO in the rows at rest in the first column
-        if 8 * later > count:  # many (the localised modes of a long chain): in every row
-            first = np.argmax(size > _ZERO, axis=1)
-        else:  # a few: in those rows only
-            rows = np.flatnonzero(~head)
-            first = np.zeros(count, dtype=np.intp)
-            first[rows] = np.argmax(size[rows] > _ZERO, axis=1)
-        sign = np.sign(shapes[np.arange(count), first])
-    if not sign.all():
-        sign[sign == 0.0] = 1.0
-    np.divide(shapes, (peak * sign)[:, None], out=shapes)  # exactly sign * (shapes / peak)
-    tiny = size < 1e-14
-    if tiny.any():  # round-off to 0 (a positive 0: no negative zeros)
-        if np.isfinite(sign).all():
-            np.copyto(shapes, 0.0, where=tiny)
-        else:  # a row of NaN (its sign is NaN) stays NaN: x * 0 + 0, not a written 0
-            np.multiply(shapes, ~tiny, out=shapes)
-            np.add(shapes, 0.0, out=shapes)
-        np.copyto(size, 0.0, where=tiny)
-    return shapes, size
-
-
 def _readonly(arr: np.ndarray) -> np.ndarray:
     """Mark an array this module created (and hands over) read-only, without a copy."""
     arr.setflags(write=False)
     return arr
-
-
-EIGENVECTOR_SAFETY = 10.0
-"""Factor on eps ||A|| / gap in the round-off threshold of a mode's components (module
-docstring)."""
-
-
-def roundoff_thresholds(eigenvalues: npt.ArrayLike) -> NDArray[np.float64]:
-    """tau_r = 10 eps ||A||_2 / gap_r for every mode: the size of a component of the unit
-    eigenvector u_r = M^1/2 phi_r / |M^1/2 phi_r| below which its sign is not determined (the
-    error bound of the symmetric eigenproblem, E. Anderson et al., *LAPACK Users' Guide*, 3rd
-    ed., SIAM 1999, section 4.7.1; module docstring).
-
-    Parameters
-    ----------
-    eigenvalues : array_like
-        omega_r^2 (rad²/s²), in any order.
-
-    Returns
-    -------
-    numpy.ndarray
-        One threshold per eigenvalue (dimensionless; inf for a repeated eigenvalue, 0 for a
-        single mode).
-
-    Examples
-    --------
-    >>> [f"{t:.3g}" for t in roundoff_thresholds([0.0, 1.0, 4.0])]
-    ['8.88e-15', '8.88e-15', '2.96e-15']
-    """
-    lam = np.asarray(eigenvalues, dtype=float)
-    n = lam.size
-    if n < 2:
-        return np.zeros(n)
-    distinct = _distinct_thresholds(lam)
-    if distinct is not None:
-        return distinct[0]
-    step = lam[1:] - lam[:-1]
-    if (step >= 0.0).all():  # ascending, as the solvers give them: no sort (and no NaN)
-        order, sorted_lam = None, lam
-        norm = max(abs(float(lam[0])), abs(float(lam[-1])))  # the largest |lambda|
-    else:
-        order = np.argsort(lam, kind="stable")
-        sorted_lam = lam[order]
-        step = sorted_lam[1:] - sorted_lam[:-1]
-        norm = float(np.max(np.abs(sorted_lam)))
-    gap = np.empty(n)
-    gap[:-1] = step
-    gap[-1] = np.inf
-    np.minimum(gap[1:], step, out=gap[1:])
-    scale = EIGENVECTOR_SAFETY * _EPS * norm
-    if gap.min() > 0.0:  # distinct eigenvalues (the rule)
-        tau_sorted = scale / gap
-    else:  # inf where there is no gap
-        tau_sorted = np.full(n, np.inf)
-        np.divide(scale, gap, out=tau_sorted, where=gap > 0.0)
-    if order is None:
-        return tau_sorted
-    tau = np.empty(n)
-    tau[order] = tau_sorted
-    return tau
-
-
-def _least_positive(values: NDArray[np.float64]) -> float | None:
-    """The smallest of a 1-D array's values when every one is positive and finite (their sum
-    finite: NaN or inf make it not), else None. A few values by Python's ``min`` and ``sum`` on
-    a list: a numpy reduction costs 1 µs whatever the size.
-
-    Examples
-    --------
-    >>> [_least_positive(np.array(v)) for v in ([2.0, 0.5], [1.0, np.nan], [1.0, np.inf])]
-    [0.5, None, None]
-    """
-    if values.size > _FEW:
-        least, total = float(np.minimum.reduce(values)), float(np.add.reduce(values))
-    else:
-        listed = values.tolist()
-        least, total = min(listed), sum(listed)
-    return least if least > 0.0 and total < math.inf else None
-
-
-_FEW = 32
-"""Values up to which :func:`_least_positive` and :func:`_chain_modes` reduce a 1-D array in Python
-(a list of 32 floats: as quick as one numpy reduction)."""
-
-
-def _distinct_thresholds(lam: NDArray[np.float64]) -> tuple[NDArray[np.float64], float] | None:
-    """:func:`roundoff_thresholds` of eigenvalues that ascend strictly (the rule: the solvers
-    give them ascending), with the largest threshold; None otherwise (unordered, repeated or
-    NaN: the general code). Two or more eigenvalues.
-
-    gap_r = min(lambda_r+1 - lambda_r, lambda_r - lambda_r-1) from the steps padded with inf at
-    both ends; the same operations, to the bit, as the general code."""
-    n = lam.size
-    if n <= _FEW:  # a few: in Python on a list, the same IEEE operations (numpy's per-call cost)
-        listed = lam.tolist()
-        steps = [b - a for a, b in itertools.pairwise(listed)]
-        least, total = min(steps), sum(steps)
-        if not (least > 0.0 and total < math.inf):
-            return None
-        scale = EIGENVECTOR_SAFETY * _EPS * max(abs(listed[0]), abs(listed[-1]))
-        gaps = [steps[0], *map(min, itertools.pairwise(steps)), steps[-1]]
-        return np.array([scale / g for g in gaps]), scale / least
-    pad = np.empty(n + 1)
-    step = np.subtract(lam[1:], lam[:-1], out=pad[1:n])
-    least = _least_positive(step)
-    if least is None:
-        return None
-    pad[0] = pad[n] = np.inf
-    scale = EIGENVECTOR_SAFETY * _EPS * max(abs(float(lam[0])), abs(float(lam[-1])))
-    tau = np.minimum(pad[:-1], pad[1:])
-    return np.divide(scale, tau, out=tau), scale / least
-
-
-@dataclass(frozen=True)
-class _NodeArrays:
-    """Nodes of all modes in compact form (indices into the modes, the model's shafts and its
-    degrees of freedom)."""
-
-    shaft_mode: np.ndarray  # mode index of every located node
-    shaft: np.ndarray  # its shaft (model.shafts)
-    fraction: np.ndarray  # its position along that shaft from the shaft's first mass
-    open_mode: np.ndarray  # mode index of every node in a round-off region (undetermined)
-    open_first: np.ndarray  # first and last dof of that region
-    open_last: np.ndarray
-    region_mode: np.ndarray  # every round-off region: mode, first and last dof
-    region_first: np.ndarray
-    region_last: np.ndarray
-
-    def counts(self, modes: int) -> np.ndarray:
-        return np.bincount(self.shaft_mode, minlength=modes) + np.bincount(
-            self.open_mode, minlength=modes
-        )
-
-    def resolved(self, modes: int) -> np.ndarray:
-        return np.bincount(self.region_mode, minlength=modes) == 0
-
-
-def _edge_shafts(
-    model: TorsionModel,
-) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_]]:
-    """(a, b, shaft) for every pair of degrees of freedom joined by a shaft (the first shaft of
-    parallel ones), a < b."""
-    ends = model.shaft_dofs
-    inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
-    lo = np.minimum(ends[inner, 0], ends[inner, 1])
-    hi = np.maximum(ends[inner, 0], ends[inner, 1])
-    _, first = np.unique(lo * (model.dof_count + 1) + hi, return_index=True)
-    first = np.sort(first)
-    return lo[first], hi[first], inner[first]
-
-
-def _fractions(
-    model: TorsionModel,
-    shapes_dof: NDArray[np.float64],
-    mode: NDArray[np.int_],
-    shaft: NDArray[np.int_],
-) -> NDArray[np.float64]:
-    """Node position along each shaft from its first mass, t = theta_a / (theta_a - theta_b)."""
-    ends = model.shaft_dofs[shaft]
-    ta = shapes_dof[mode, ends[:, 0]]
-    tb = shapes_dof[mode, ends[:, 1]]
-    return ta / (ta - tb)
-
-
-def _nonzero(mask: NDArray[np.bool_]) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
-    """(rows, columns) of the True entries of a 2-D mask in row-major order, as
-    ``np.nonzero`` gives them, from the flat indices (``np.nonzero`` tracks a 2-D index per
-    entry: ten times slower on an n x n mask)."""
-    columns = mask.shape[1]
-    flat = np.flatnonzero(mask)
-    if not columns:
-        return flat, flat.copy()
-    return np.divmod(flat, columns)
-
-
-def _chain_nodes(
-    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
-) -> _NodeArrays:
-    """Nodes of a chain (dofs in chain order), all modes at once: a sign change between
-    neighbouring resolved components is a node on their shaft; one across a run of round-off
-    components a node somewhere in that run."""
-    n = resolved.shape[1]
-    negative = np.signbit(shapes_dof)
-    # a node between neighbours that are both resolved (the common case): a sign change
-    both = resolved[:, 1:] & resolved[:, :-1]
-    both &= negative[:, 1:] != negative[:, :-1]
-    located_mode, located_first = _nonzero(both)
-    shaft_of = np.full(max(n - 1, 0), -1, dtype=int)
-    ends = model.shaft_dofs
-    inner = np.flatnonzero((ends[:, 0] >= 0) & (ends[:, 1] >= 0))
-    if inner.size == n - 1:  # no parallel shafts: one per edge, no search for the first
-        shaft_of[np.minimum(ends[inner, 0], ends[inner, 1])] = inner
-    else:
-        a, _, edge_shaft = _edge_shafts(model)
-        shaft_of[a] = edge_shaft  # a chain: edge (i, i + 1) is keyed by i
-    located_shaft = shaft_of[located_first]
-    fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
-    region_mode, region_first, region_last, open_mode, open_first, open_last = _roundoff_runs(
-        resolved, negative
-    )
-    return _NodeArrays(
-        shaft_mode=located_mode,
-        shaft=located_shaft,
-        fraction=fraction,
-        open_mode=open_mode,
-        open_first=open_first,
-        open_last=open_last,
-        region_mode=region_mode,
-        region_first=region_first,
-        region_last=region_last,
-    )
-
-
-def _roundoff_runs(
-    resolved: NDArray[np.bool_], negative: NDArray[np.bool_]
-) -> tuple[NDArray[np.intp], ...]:
-    """The round-off runs of a chain's modes (rows): (mode, first dof, last dof) of every run of
-    unresolved components, then (mode, first, last) of the runs whose resolved neighbours on
-    both sides differ in sign (a node somewhere in the run)."""
-    count, n = resolved.shape
-    loose = ~resolved
-    starts = loose & np.concatenate([np.ones((count, 1), bool), resolved[:, :-1]], axis=1)
-    run_ends = loose & np.concatenate([resolved[:, 1:], np.ones((count, 1), bool)], axis=1)
-    region_mode, region_first = _nonzero(starts)
-    region_last = _nonzero(run_ends)[1]
-    inside = (region_first > 0) & (region_last < n - 1)
-    o_mode, o_first, o_last = region_mode[inside], region_first[inside], region_last[inside]
-    flips = negative[o_mode, o_first - 1] != negative[o_mode, o_last + 1]
-    return region_mode, region_first, region_last, o_mode[flips], o_first[flips], o_last[flips]
-
-
-def _graph_nodes(
-    model: TorsionModel, shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
-) -> _NodeArrays:
-    """Nodes of a branched model: sign changes across shafts between resolved components
-    (all modes at once), and for every connected round-off region whose resolved neighbours
-    have both signs one node somewhere in it (a loop over the modes that have such regions:
-    branched models are small)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
-
-    n = resolved.shape[1]
-    negative = np.signbit(shapes_dof)
-    a, b, edge_shaft = _edge_shafts(model)
-    crossing = resolved[:, a] & resolved[:, b] & (negative[:, a] != negative[:, b])
-    located_mode, e = _nonzero(crossing)
-    located_shaft = edge_shaft[e]
-    fraction = _fractions(model, shapes_dof, located_mode, located_shaft)
-    open_mode, open_first, open_last = [], [], []
-    region_mode, region_first, region_last = [], [], []
-    for r in np.flatnonzero(~np.all(resolved, axis=1)):
-        loose = ~resolved[r]
-        keep = loose[a] & loose[b]
-        graph = coo_matrix((np.ones(int(keep.sum())), (a[keep], b[keep])), shape=(n, n))
-        _, label = connected_components(graph, directed=False)
-        for comp in np.unique(label[loose]):
-            members = np.flatnonzero(loose & (label == comp))
-            inside = np.isin(a, members) | np.isin(b, members)
-            border = np.setdiff1d(np.concatenate([a[inside], b[inside]]), members)
-            border = border[resolved[r, border]]
-            region_mode.append(r)
-            region_first.append(members[0])
-            region_last.append(members[-1])
-            signs = negative[r, border]
-            if signs.size and signs.any() and not signs.all():
-                open_mode.append(r)
-                open_first.append(members[0])
-                open_last.append(members[-1])
-
-    def ints(values):
-        return np.asarray(values, dtype=int)
-
-    return _NodeArrays(
-        shaft_mode=located_mode,
-        shaft=located_shaft,
-        fraction=fraction,
-        open_mode=ints(open_mode),
-        open_first=ints(open_first),
-        open_last=ints(open_last),
-        region_mode=ints(region_mode),
-        region_first=ints(region_first),
-        region_last=ints(region_last),
-    )
-
-
-def _resolved(
-    model: TorsionModel,
-    size: NDArray[np.float64],
-    modal_inertia: NDArray[np.float64],
-    tau: NDArray[np.float64],
-    rigid: bool,
-) -> NDArray[np.bool_]:
-    """Which components of the modes are resolved (above round-off, module docstring): ``size``
-    the absolute normalised amplitudes (mode x dof; overwritten), ``tau`` the modes' round-off
-    thresholds (:func:`roundoff_thresholds` of the whole spectrum), ``rigid``: the first row is
-    the rigid-body mode."""
-    # |u_i| = |phi_i| sqrt(J_i) / sqrt(J_r) > tau_r: the component is resolved
-    np.multiply(size, np.sqrt(model.dof_inertia), out=size)
-    with np.errstate(invalid="ignore", over="ignore"):
-        resolved = size > (tau * np.sqrt(modal_inertia))[:, None]
-    if rigid and resolved.shape[0]:
-        resolved[0] = True  # the rigid-body mode: exactly ones
-    return resolved
-
-
-def _find_nodes(
-    model: TorsionModel,
-    shapes_dof: NDArray[np.float64],
-    modal_inertia: NDArray[np.float64],
-    tau: NDArray[np.float64],
-    rigid: bool,
-) -> _NodeArrays:
-    """Nodes and round-off regions of the modes in the rows of ``shapes_dof`` (module
-    docstring); ``tau``, ``rigid``: :func:`_resolved`."""
-    resolved = _resolved(model, np.abs(shapes_dof), modal_inertia, tau, rigid)
-    if model.is_chain:
-        return _chain_nodes(model, shapes_dof, resolved)
-    return _graph_nodes(model, shapes_dof, resolved)
-
-
-class _Nodes:
-    """The node arrays of some modes: given, or located from their inputs when first asked for
-    (:func:`_find_nodes`; the inputs are dropped then)."""
-
-    __slots__ = ("_arrays", "_inputs")
-
-    def __init__(
-        self,
-        arrays: _NodeArrays | None = None,
-        inputs: tuple[
-            TorsionModel, NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], bool
-        ]
-        | None = None,
-    ) -> None:
-        self._arrays = arrays
-        self._inputs = inputs
-
-    @property
-    def arrays(self) -> _NodeArrays:
-        """The node arrays (:class:`_NodeArrays`)."""
-        if self._arrays is None:
-            assert self._inputs is not None
-            self._arrays = _find_nodes(*self._inputs)
-            self._inputs = None
-        return self._arrays
-
-
-def _chain_counts(
-    shapes_dof: NDArray[np.float64], resolved: NDArray[np.bool_]
-) -> tuple[NDArray[np.intp], NDArray[np.bool_]]:
-    """(node count, whether resolved) of every mode of a chain without locating the nodes: the
-    sign changes between resolved neighbours, plus, in the modes with round-off runs, the runs
-    between resolved components of opposite sign (:func:`_chain_nodes` counts the same)."""
-    count, n = resolved.shape
-    if count * n <= _FLAT_COUNTS:
-        # small: the sign changes between consecutive resolved components of a mode (a node
-        # between neighbours or across a run), from their flat indices in a few calls
-        if count * n < _ROW_SUMS:  # each component's row by a division
-            at = np.flatnonzero(resolved)
-            sign = np.signbit(shapes_dof.ravel()[at])
-            row = at // n
-            change = sign[1:] != sign[:-1]
-            change &= row[1:] == row[:-1]
-            whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
-            return np.bincount(row[1:][change], minlength=count), whole
-        # the changes between consecutive resolved components summed row by row: the change
-        # after a row's last resolved component (into the next row) is not counted
-        per_row = np.add.reduce(resolved, axis=1, dtype=np.intp)
-        whole = per_row == n
-        sign = np.signbit(shapes_dof).ravel()[resolved.ravel()]  # row-major, as flatnonzero
-        m = sign.size
-        change = np.empty(m + 1, dtype=bool)  # padded: a row's first index is at most m
-        np.not_equal(sign[1:], sign[:-1], out=change[: m - 1])
-        change[m - 1 :] = False
-        end = np.cumsum(per_row)
-        change[end - 1] = False  # after each row's last (-1, a row ending before any: the pad)
-        counts = np.add.reduceat(change, end - per_row, dtype=np.intp)
-        if not per_row.all():  # reduceat gives a row of none resolved the next row's first
-            counts[per_row == 0] = 0
-        return counts, whole
-    whole = cast("NDArray[np.bool_]", resolved.all(axis=1))
-    negative = np.signbit(shapes_dof)
-    both = negative[:, 1:] != negative[:, :-1]
-    both &= resolved[:, 1:]
-    both &= resolved[:, :-1]
-    counts = both.sum(axis=1, dtype=np.intp)
-    del both
-    if not whole.all():
-        counts += _open_counts(resolved, negative)
-    return counts, whole
-
-
-_ROW_SUMS = 1 << 13
-"""Modes x degrees of freedom from which :func:`_chain_counts` sums a mode's sign changes
-between its first and last resolved components (one ``reduceat``) rather than finding each
-component's mode by a division (fewer calls below)."""
-
-_FLAT_COUNTS = 1 << 16
-"""Modes x degrees of freedom up to which :func:`_chain_counts` counts from the flat indices of
-the resolved components (fewer calls); beyond, by whole-array passes (less memory traffic)."""
-
-
-def _open_counts(resolved: NDArray[np.bool_], negative: NDArray[np.bool_]) -> NDArray[np.intp]:
-    """Per mode (row) of a chain the round-off runs between resolved components of opposite
-    sign (the nodes somewhere in a run, :func:`_roundoff_runs`), from the flat indices of the
-    runs' ends: a row padded with a resolved component at either end changes from resolved to
-    round-off and back once per run."""
-    count, n = resolved.shape
-    pad = np.ones((count, n + 2), dtype=bool)
-    pad[:, 1:-1] = resolved
-    width = n + 1
-    edges = np.flatnonzero(pad[:, 1:] != pad[:, :-1])  # per row: each run's start, its end + 1
-    first = edges[0::2]
-    row = first // width
-    at = row * width
-    first -= at  # the run's first column
-    last = edges[1::2] - at - 1  # its last column
-    inside = (first > 0) & (last < n - 1)
-    row, first, last = row[inside], first[inside], last[inside]
-    at = row * n - 1
-    flat = negative.ravel()
-    flips = flat[at + first] != flat[at + last + 2]
-    return np.bincount(row[flips], minlength=count)
-
-
-@dataclass(frozen=True)
-class _Rows:
-    """The per-mode results of some modes (rows): shapes by mass and by dof, modal inertias,
-    node counts, whether resolved, the nodes (mode indices counted from the first row)."""
-
-    shapes: NDArray[np.float64]  # mode x mass (listing order), largest amplitude 1
-    shapes_dof: NDArray[np.float64]  # mode x dof
-    modal_inertia: NDArray[np.float64]  # kg·m²
-    counts: NDArray[np.intp]  # nodes per mode
-    resolved: NDArray[np.bool_]  # whether the mode's shape is above round-off throughout
-    found: _Nodes
-
-    @property
-    def nodes(self) -> _NodeArrays:
-        """The node arrays (located when first asked for)."""
-        return self.found.arrays
-
-    @classmethod
-    def of(
-        cls,
-        shapes: NDArray[np.float64],
-        shapes_dof: NDArray[np.float64],
-        modal_inertia: NDArray[np.float64],
-        nodes: _NodeArrays,
-    ) -> _Rows:
-        """The rows with their nodes located already."""
-        m = modal_inertia.size
-        return cls(
-            shapes, shapes_dof, modal_inertia, nodes.counts(m), nodes.resolved(m), _Nodes(nodes)
-        )
-
-
-def _rows(
-    model: TorsionModel,
-    phi_t: NDArray[np.float64],
-    tau: NDArray[np.float64],
-    rigid: bool,
-    *,
-    lazy: bool = False,
-) -> _Rows:
-    """Normalise the shapes ``phi_t`` (mode x dof, changed in place), their modal inertias
-    J_r = sum J_i phi_i^2 and nodes (``tau``, ``rigid``: :func:`_resolved`). ``lazy``: a
-    chain's nodes are only counted (:func:`_chain_counts`) and located when first asked for."""
-    shapes_dof, size, _ = _normalise(phi_t, least=False)  # mode x dof; size = |shapes_dof|
-    # mode x mass (listing order)
-    shapes = shapes_dof if model._dofs_in_listing_order else shapes_dof[:, model.mass_dof]
-    square = size * size  # phi_i^2
-    modal_inertia = square @ model.dof_inertia  # sum of J_i phi_i^2
-    del square
-    if lazy and model.is_chain:
-        resolved = _resolved(model, size, modal_inertia, tau, rigid)
-        del size
-        counts, whole = _chain_counts(shapes_dof, resolved)
-        found = _Nodes(inputs=(model, shapes_dof, modal_inertia, tau, rigid))
-        return _Rows(shapes, shapes_dof, modal_inertia, counts, whole, found)
-    resolved = _resolved(model, size, modal_inertia, tau, rigid)
-    del size
-    if model.is_chain:
-        nodes = _chain_nodes(model, shapes_dof, resolved)
-    else:
-        nodes = _graph_nodes(model, shapes_dof, resolved)
-    return _Rows.of(shapes, shapes_dof, modal_inertia, nodes)
 
 
 def natural_modes(
@@ -1241,8 +629,8 @@ masses, where localised modes send most rows through the general branches."""
 def _modes(
     model: TorsionModel, solver: str, count: int | None, partial: bool, free: bool
 ) -> ModalResult:
-    """:func:`natural_modes` by any solver, step by step (:func:`_solve`, :func:`_rows`,
-    :func:`_result`): the lowest modes, other solvers, branched models, a single mass."""
+    """:func:`natural_modes` by any solver, step by step (:func:`_solve`, :func:`mode_rows`,
+    :func:`modal_result`): the lowest modes, other solvers, branched models, a single mass."""
     total = model.dof_inertia.size
     omega, phi = _solve(model, solver, count if partial else None, free)
     omega = np.asarray(omega, dtype=float)
@@ -1256,9 +644,9 @@ def _modes(
     all_omega = chain_frequencies(model) if partial else None
     spectrum = omega if all_omega is None else all_omega
     tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
-    rows = _rows(model, phi.T, tau, free, lazy=True)
+    rows = mode_rows(model, phi.T, tau, free, lazy=True)
     del phi
-    return _result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
+    return modal_result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
 
 
 def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalResult:
@@ -1267,12 +655,12 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
     the bit (tests/torsion/test_modal_reference.py), in fewer numpy calls.
 
     Each step takes the common case directly and hands any other to the general helper: the
-    thresholds of strictly ascending eigenvalues (:func:`_distinct_thresholds`, else
-    :func:`roundoff_thresholds`); the shapes by :func:`_normalise`; every component resolved
+    thresholds of strictly ascending eigenvalues (:func:`distinct_thresholds`, else
+    :func:`roundoff_thresholds`); the shapes by :func:`normalise_shapes`; every component resolved
     when each mode's smallest amplitude times the smallest sqrt(J_i) is above its threshold (a
     sufficient test, rounding being monotone), the nodes then counted as the sign changes
-    between neighbours (else each component tested and :func:`_chain_counts`). Up to
-    :data:`_FEW` values a 1-D reduction is Python's ``min`` on a list.
+    between neighbours (else each component tested and :func:`chain_node_counts`). Up to
+    :data:`FEW` values a 1-D reduction is Python's ``min`` on a list.
     """
     J = model.dof_inertia
     n = J.size
@@ -1289,15 +677,15 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         shapes[0] = 1.0 / math.sqrt(total)
     omega = np.sqrt(lam, out=lam)
     omega2 = omega * omega
-    distinct = _distinct_thresholds(omega2)
+    distinct = distinct_thresholds(omega2)
     if distinct is None:
         tau, largest = roundoff_thresholds(omega2), math.inf
     else:
         tau, largest = distinct
-    shapes, size, least = _normalise(shapes)  # largest amplitude 1, the first positive
-    few = n <= _FEW
+    shapes, size, least = normalise_shapes(shapes)  # largest amplitude 1, the first positive
+    few = n <= FEW
     modal_inertia = np.multiply(size, size) @ J  # sum of J_i phi_i^2
-    # resolved components: |phi_i| sqrt(J_i) > tau_r sqrt(J_r) (module docstring, _resolved)
+    # resolved components: |phi_i| sqrt(J_i) > tau_r sqrt(J_r) (crankdyn.torsion.nodes)
     if largest * math.sqrt(2.0 * total) < 1e300:  # tau sqrt(J_r) cannot overflow
         limit = tau * np.sqrt(modal_inertia)
     else:
@@ -1318,7 +706,7 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         resolved = size > limit[:, None]
         if free:
             resolved[0] = True
-        counts, whole = _chain_counts(shapes, resolved)
+        counts, whole = chain_node_counts(shapes, resolved)
     del size
     by_mass = shapes if model._dofs_in_listing_order else shapes[:, model.mass_dof]
     first = 0 if free else 1  # mode numbers: docs/conventions.md
@@ -1343,7 +731,7 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         all_natural_frequency=None,
         model=model,
         shapes_dof=shapes,
-        node_source=_Nodes(inputs=(model, shapes, modal_inertia, tau, free)),
+        node_source=Nodes(inputs=(model, shapes, modal_inertia, tau, free)),
     )
 
 
@@ -1354,11 +742,11 @@ def _mode_numbers(first: int, count: int) -> NDArray[np.int_]:
     return _readonly(np.arange(first, first + count))
 
 
-def _result(
+def modal_result(
     model: TorsionModel,
     solver: str,
     omega: NDArray[np.float64],
-    rows: _Rows,
+    rows: ModeRows,
     start: int,
     total: int | None,
     all_omega: NDArray[np.float64] | None = None,
@@ -1390,447 +778,3 @@ def _result(
         shapes_dof=_readonly(rows.shapes_dof),
         node_source=rows.found,
     )
-
-
-# ---- every mode of a large chain, block by block ------------------------------------------------
-
-BLOCK_MODES = 32
-"""Modes per block of :class:`ModeBlocks`: the eigenvectors of one block (N x 32 floats, 2.6 MB
-at N = 10,000) are computed by inverse iteration, written and dropped. ``dstein``
-reorthogonalises the vectors of close eigenvalues within a block (Gram-Schmidt, quadratic in
-the block size): blocks of 8 to 64 modes took the same time at N = 10,000."""
-
-STREAMED_SIZE = 1_000_000
-"""Modes x masses above which ``torsion modes --format json/csv`` writes a chain's modes block by
-block (:class:`ModeBlocks`) instead of from one :class:`ModalResult` (N x N shapes: 8 MB here,
-800 MB at N = 10,000)."""
-
-_REFINED = 1e-10
-"""Eigenvalues whose absolute accuracy eps ||T|| (``dsterf``) is above this relative to them are
-recomputed by bisection to full relative accuracy (``dstebz``, :data:`_BISECTION_TOL`)."""
-
-
-def _chain_matrix(
-    model: TorsionModel,
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """(d, e, sqrt(J)) of a chain's symmetric tridiagonal matrix M^-1/2 K M^-1/2 (module
-    docstring): diagonal (rad²/s², N), off-diagonal (rad²/s², N - 1), sqrt(J) (sqrt(kg·m²))."""
-    chain = model.chain
-    assert chain is not None
-    a = chain.normalised
-    return a.diagonal, a.off_diagonal, a.root_inertia
-
-
-def _chain_spectrum(
-    d: NDArray[np.float64], e: NDArray[np.float64]
-) -> tuple[NDArray[np.float64], NDArray[np.int32], NDArray[np.int32]]:
-    """Every eigenvalue of the tridiagonal (d, e), ascending, with its split-off block (1-based)
-    and the blocks' last rows (1-based), as ``dstebz`` gives them to ``dstein``.
-
-    The matrix splits where e_j² <= |d_j d_j+1| ulp² + safe minimum (``dstebz``'s test); each
-    block's eigenvalues by ``dsterf`` (absolute accuracy eps ||T||), those of relative accuracy
-    worse than :data:`_REFINED` again by bisection (``dstebz`` by index, full relative
-    accuracy, as the lowest modes of :func:`eigen_modes`)."""
-    import scipy.linalg.lapack as lapack  # imported here: keeps the start-up light
-
-    n = d.size
-    finfo = np.finfo(float)
-    cut = np.flatnonzero(np.abs(d[1:] * d[:-1]) * finfo.eps**2 + finfo.tiny > e * e) + 1
-    bounds = [0, *cut.tolist(), n]
-    values, blocks = [], []
-    for b, (lo, hi) in enumerate(itertools.pairwise(bounds), start=1):
-        if hi - lo == 1:
-            w = d[lo : lo + 1].copy()
-        else:
-            w, info = lapack.dsterf(d[lo:hi], e[lo : hi - 1])
-            if info != 0:
-                raise np.linalg.LinAlgError(f"the tridiagonal eigensolver failed (dsterf {info})")
-        values.append(w)
-        blocks.append(np.full(w.size, b, dtype=np.int32))
-    lam = np.concatenate(values)
-    order = np.argsort(lam, kind="stable")
-    lam, iblock = lam[order], np.concatenate(blocks)[order]
-    isplit = np.zeros(n, dtype=np.int32)
-    isplit[: len(bounds) - 1] = bounds[1:]
-    norm = float(np.max(np.abs(lam)))
-    refine = int(np.searchsorted(np.abs(lam), finfo.eps * norm / _REFINED)) if n > 1 else 0
-    if refine:
-        m, w, ib, _, info = lapack.dstebz(d, e, 2, 0.0, 0.0, 1, refine, _BISECTION_TOL, b"E")
-        if info != 0 or m != refine:
-            raise np.linalg.LinAlgError(f"the bisection failed (dstebz info {info})")
-        lam[:refine], iblock[:refine] = w[:refine], ib[:refine]
-    return lam, iblock, isplit
-
-
-@dataclass(frozen=True)
-class _Block:
-    """The modes ``start`` .. ``start + omega.size - 1`` (indices into the listed modes)."""
-
-    start: int
-    omega: NDArray[np.float64]  # rad/s
-    rows: _Rows
-
-
-class ModeBlocks:
-    """Every mode of a chain (or the lowest ``count``), computed and exported block by block.
-
-    The eigenvalues come first, all of them (:func:`_chain_spectrum`: ``dsterf``, the lowest
-    refined by bisection); then the eigenvectors of :data:`BLOCK_MODES` modes at a time by
-    inverse iteration (LAPACK ``dstein``, E. Anderson et al., *LAPACK Users' Guide*, 3rd ed.,
-    SIAM 1999, section 2.4.4), each block normalised, its nodes found (the round-off thresholds
-    of the whole spectrum, module docstring) and handed out, never the N x N matrix. Memory:
-    N x :data:`BLOCK_MODES` floats and the per-mode columns. The numbers are those of
-    :func:`natural_modes` (eigenvectors to round-off: the same bound eps ||A|| / gap_r).
-
-    Parameters
-    ----------
-    model
-        A chain model (:attr:`TorsionModel.is_chain`).
-    count
-        The lowest ``count`` modes only (default: every mode).
-    block
-        Modes per block.
-
-    Raises
-    ------
-    InputError
-        If ``count`` is below 1 (key ``count``).
-    ValueError
-        If the model is not a chain.
-    """
-
-    def __init__(
-        self, model: TorsionModel, count: int | None = None, *, block: int = BLOCK_MODES
-    ) -> None:
-        if model.chain is None:
-            raise ValueError("ModeBlocks needs a chain model")
-        if count is not None and count < 1:
-            raise InputError("expected at least one mode", key="count", value=count)
-        self.model = model
-        self.total = model.dof_inertia.size
-        self.count = self.total if count is None else min(count, self.total)
-        self.block = max(1, int(block))
-        self.free = model.is_free
-        self._d, self._e, self._s = _chain_matrix(model)
-        if self.total == 1:
-            lam = self._d.copy()
-            self._iblock = np.ones(1, dtype=np.int32)
-            self._isplit = np.ones(1, dtype=np.int32)
-        else:
-            lam, self._iblock, self._isplit = _chain_spectrum(self._d, self._e)
-        self._lam = lam
-        lam = np.maximum(lam, 0.0)
-        if self.free:
-            lam[0] = 0.0
-        self.all_omega: NDArray[np.float64] = np.sqrt(lam)
-        self.tau = roundoff_thresholds(lam)
-        self.omega: NDArray[np.float64] = self.all_omega[: self.count]
-
-    def _vectors(self, lo: int, hi: int) -> NDArray[np.float64]:
-        """Orthonormal eigenvectors u (dof x mode) of modes ``lo`` .. ``hi - 1`` (``dstein``;
-        the eigenvalues grouped by split-off block as it requires)."""
-        import scipy.linalg.lapack as lapack  # imported here: keeps the start-up light
-
-        n = self.total
-        if n == 1:
-            return np.ones((1, hi - lo))
-        group = np.argsort(self._iblock[lo:hi], kind="stable")
-        iblock = np.zeros(n, dtype=np.int32)
-        iblock[: hi - lo] = self._iblock[lo:hi][group]
-        z, info = lapack.dstein(self._d, self._e, self._lam[lo:hi][group], iblock, self._isplit)
-        if info != 0:
-            raise np.linalg.LinAlgError(f"inverse iteration failed (dstein info {info})")
-        u = np.empty_like(z)
-        u[:, group] = z
-        return u
-
-    def blocks(self) -> Iterator[_Block]:
-        """The blocks of modes, ascending, each computed when reached.
-
-        Returns
-        -------
-        iterator of _Block
-            Per block: the index of its first mode, omega (rad/s) and the normalised shapes,
-            modal inertias (kg·m²) and nodes of its modes.
-        """
-        for lo in range(0, self.count, self.block):
-            hi = min(lo + self.block, self.count)
-            u = self._vectors(lo, hi)
-            u /= self._s[:, None]  # phi = M^-1/2 u
-            rigid = self.free and lo == 0
-            if rigid:
-                u[:, 0] = 1.0
-            rows = _rows(self.model, u.T, self.tau[lo:hi], rigid)
-            yield _Block(lo, self.omega[lo:hi], rows)
-
-    def result(self, solver: str = "eigen") -> ModalResult:
-        """All the listed modes as one :class:`ModalResult` (small models; for tests).
-
-        Parameters
-        ----------
-        solver : str
-            The solver named in the result.
-
-        Returns
-        -------
-        ModalResult
-            The modes, as :func:`natural_modes` gives them (to round-off).
-
-        Examples
-        --------
-        >>> from crankdyn.torsion import TorsionModel
-        >>> r = ModeBlocks(TorsionModel.chain_of([1.0, 1.0, 1.0], [1e4, 1e4]), block=2).result()
-        >>> [round(float(w), 4) for w in r.natural_frequency]  # sqrt(k / J), sqrt(3 k / J)
-        [0.0, 100.0, 173.2051]
-        """
-        parts = list(self.blocks())
-        rows = _Rows.of(
-            np.concatenate([p.rows.shapes for p in parts]),
-            np.concatenate([p.rows.shapes_dof for p in parts]),
-            np.concatenate([p.rows.modal_inertia for p in parts]),
-            _concat_nodes([(p.start, p.rows.nodes) for p in parts]),
-        )
-        total = self.total if self.count < self.total else None
-        all_omega = self.all_omega if total is not None else None
-        return _result(self.model, solver, self.omega.copy(), rows, 0, total, all_omega)
-
-
-def _concat_nodes(parts: list[tuple[int, _NodeArrays]]) -> _NodeArrays:
-    """The node arrays of consecutive blocks as one (mode indices shifted by each start)."""
-
-    def cat(name: str, shift: bool) -> NDArray[np.int_] | NDArray[np.float64]:
-        return np.concatenate([getattr(a, name) + (s if shift else 0) for s, a in parts])
-
-    return _NodeArrays(
-        shaft_mode=cat("shaft_mode", True),
-        shaft=cat("shaft", False),
-        fraction=cat("fraction", False),
-        open_mode=cat("open_mode", True),
-        open_first=cat("open_first", False),
-        open_last=cat("open_last", False),
-        region_mode=cat("region_mode", True),
-        region_first=cat("region_first", False),
-        region_last=cat("region_last", False),
-    )
-
-
-def _slices(result: ModalResult, block: int) -> Iterator[_Block]:
-    """The modes of an in-memory result in blocks (the same numbers; nodes re-indexed)."""
-    arrays = result.node_arrays
-    assert arrays is not None and result.shapes_dof is not None
-    for lo in range(0, result.mode.size, block):
-        hi = min(lo + block, result.mode.size)
-
-        sm, sh, fr = _part(lo, hi, arrays.shaft_mode, arrays.shaft, arrays.fraction)
-        om, of, ol = _part(lo, hi, arrays.open_mode, arrays.open_first, arrays.open_last)
-        rm, rf, rl = _part(lo, hi, arrays.region_mode, arrays.region_first, arrays.region_last)
-        rows = _Rows.of(
-            result.mode_shapes[lo:hi],
-            result.shapes_dof[lo:hi],
-            result.modal_inertia[lo:hi],
-            _NodeArrays(sm, sh, fr, om, of, ol, rm, rf, rl),
-        )
-        yield _Block(lo, result.natural_frequency[lo:hi], rows)
-
-
-def _part(lo: int, hi: int, mode: NDArray[np.int_], *others: NDArray[Any]) -> list[NDArray[Any]]:
-    """The entries of modes ``lo`` .. ``hi - 1`` of node arrays, the modes counted from ``lo``."""
-    keep = (mode >= lo) & (mode < hi)
-    return [mode[keep] - lo, *(o[keep] for o in others)]
-
-
-def _source(
-    source: ModeBlocks | ModalResult, block: int
-) -> tuple[TorsionModel, str, int | None, Iterator[_Block]]:
-    """(model, solver, modes of the model when only the lowest are listed, the blocks)."""
-    if isinstance(source, ModeBlocks):
-        total = source.total if source.count < source.total else None
-        return source.model, "eigen", total, source.blocks()
-    assert source.model is not None
-    return source.model, source.solver, source.modes_of_the_model, _slices(source, block)
-
-
-_MARK = "\x00{}\x00"
-
-
-def _number(value: float) -> str:
-    """A float as JSON writes it (``repr``; NaN and inf as null, as :meth:`Result.to_dict`)."""
-    return repr(value) if math.isfinite(value) else "null"
-
-
-def modes_json_chunks(
-    source: ModeBlocks | ModalResult, *, block: int = BLOCK_MODES, spool_dir: str | None = None
-) -> Iterator[str]:
-    """The compact JSON text of the modes, piece by piece, as ``json.dumps(result.to_dict(),
-    separators=(",", ":"))`` writes it (the same keys, layout and digits), a block of modes at a
-    time: never the N x N shapes in memory.
-
-    The per-mode columns come before the shapes in the JSON and the nodes after them, all known
-    only once every block is done: the shapes, nodes and round-off regions are spooled to
-    anonymous temporary files (in ``spool_dir``, default the system's) and copied out at the
-    end.
-
-    Parameters
-    ----------
-    source
-        The modes: a :class:`ModeBlocks` (computed block by block) or a :class:`ModalResult`.
-    block
-        Modes per block when ``source`` is a ModalResult.
-    spool_dir
-        Folder of the spool files (the output's folder: the same file system).
-
-    Yields
-    ------
-    str
-        Consecutive pieces of the JSON text, the last ending in a newline.
-    """
-    import json
-    import tempfile
-
-    model, solver, total, blocks = _source(source, block)
-    names = [json.dumps(n) for n in model.dof_names]
-    shaft_text = [json.dumps(list(s.between), separators=(",", ":")) for s in model.shafts]
-    counts: list[NDArray[np.int_]] = []
-    resolved: list[NDArray[np.bool_]] = []
-    inertia: list[NDArray[np.float64]] = []
-    omega: list[NDArray[np.float64]] = []
-    with contextlib.ExitStack() as stack:
-        spools = [
-            stack.enter_context(
-                tempfile.TemporaryFile("w+", encoding="utf-8", dir=spool_dir, newline="")
-            )
-            for _ in range(3)
-        ]
-        shapes_spool, nodes_spool, regions_spool = spools
-        for b in blocks:
-            rows, m = b.rows, b.omega.size
-            comma = "," if b.start else ""
-            text = json.dumps(rows.shapes.tolist(), separators=(",", ":"), allow_nan=False)
-            shapes_spool.write(comma + text[1:-1])
-            arrays = rows.nodes
-            located = [
-                f'{{"shaft":{shaft_text[s]},"fraction_from_first":{_number(t)},"determined":true}}'
-                for s, t in zip(arrays.shaft.tolist(), arrays.fraction.tolist(), strict=True)
-            ]
-            loose = [
-                (f'{{"mass":{names[a]},' if a == z else "{")
-                + f'"roundoff_region":[{names[a]},{names[z]}],"determined":false}}'
-                for a, z in zip(arrays.open_first.tolist(), arrays.open_last.tolist(), strict=True)
-            ]
-            regions = [
-                f"[{names[a]},{names[z]}]"
-                for a, z in zip(
-                    arrays.region_first.tolist(), arrays.region_last.tolist(), strict=True
-                )
-            ]
-            edges = np.arange(m + 1)
-            ls = np.searchsorted(arrays.shaft_mode, edges).tolist()
-            us = np.searchsorted(arrays.open_mode, edges).tolist()
-            rs = np.searchsorted(arrays.region_mode, edges).tolist()
-            nodes_spool.write(
-                comma
-                + ",".join(
-                    "[" + ",".join(located[ls[r] : ls[r + 1]] + loose[us[r] : us[r + 1]]) + "]"
-                    for r in range(m)
-                )
-            )
-            regions_spool.write(
-                comma + ",".join("[" + ",".join(regions[rs[r] : rs[r + 1]]) + "]" for r in range(m))
-            )
-            counts.append(arrays.counts(m))
-            resolved.append(arrays.resolved(m))
-            inertia.append(rows.modal_inertia)
-            omega.append(b.omega)
-            del rows, arrays, located, loose, regions, text
-        head = _header(model, solver, total, omega, counts, resolved, inertia)
-        data = head.to_dict()
-        for key in ("mode_shapes", "nodes", "roundoff_regions"):
-            data[key] = _MARK.format(key)
-        text = json.dumps(data, separators=(",", ":"), allow_nan=False) + "\n"
-        for key, spool in zip(("mode_shapes", "nodes", "roundoff_regions"), spools, strict=True):
-            before, text = text.split(json.dumps(_MARK.format(key)), 1)
-            yield before + "["
-            spool.seek(0)
-            while piece := spool.read(1 << 16):
-                yield piece
-            yield "]"
-        yield text
-
-
-def _header(
-    model: TorsionModel,
-    solver: str,
-    total: int | None,
-    omega: list[NDArray[np.float64]],
-    counts: list[NDArray[np.int_]],
-    resolved: list[NDArray[np.bool_]],
-    inertia: list[NDArray[np.float64]],
-) -> ModalResult:
-    """A ModalResult of the per-mode columns without shapes or nodes (the exported keys in
-    their order, for the streamed writers)."""
-    w = np.concatenate(omega)
-    j = np.concatenate(inertia)
-    first = 0 if model.is_free else 1
-    return ModalResult(
-        mode=freeze(np.arange(first, first + w.size), dtype=int),
-        natural_frequency=freeze(w),
-        node_count=freeze(np.concatenate(counts), dtype=int),
-        nodes_resolved=freeze(np.concatenate(resolved), dtype=bool),
-        modal_inertia=freeze(j),
-        modal_stiffness=freeze(w**2 * j),
-        mode_shapes=np.zeros((w.size, 0)),
-        masses=model.mass_names,
-        solver=solver,
-        structure="chain" if model.is_chain else "branched",
-        free=model.is_free,
-        model_name=model.name,
-        modes_of_the_model=total,
-    )
-
-
-def modes_csv_chunks(
-    source: ModeBlocks | ModalResult, *, block: int = BLOCK_MODES
-) -> Iterator[str]:
-    """The CSV text of the modes (:meth:`ModalResult.to_csv`: one row per mode, the per-mode
-    columns, then ``amplitude_1`` ... ``amplitude_N``), a block of rows at a time.
-
-    Parameters
-    ----------
-    source
-        The modes: a :class:`ModeBlocks` (computed block by block) or a :class:`ModalResult`.
-    block
-        Modes per block when ``source`` is a ModalResult.
-
-    Yields
-    ------
-    str
-        The header line, then one row (mode) at a time.
-    """
-    model, _solver, _total, blocks = _source(source, block)
-    first = 0 if model.is_free else 1
-    keys = list(
-        Result.columns(
-            _header(
-                model, "", None, [np.zeros(1)], [np.zeros(1, int)], [np.ones(1, bool)], [np.ones(1)]
-            )
-        )
-    )
-    keys += [f"amplitude_{i + 1}" for i in range(len(model.mass_names))]
-    yield ",".join(keys) + "\n"
-    line = ",".join(["%.10g"] * len(keys)) + "\n"
-    for b in blocks:
-        rows, m = b.rows, b.omega.size
-        table = np.column_stack(
-            [
-                np.arange(first + b.start, first + b.start + m, dtype=float),
-                b.omega * HZ,
-                rows.counts.astype(float),
-                rows.resolved.astype(float),
-                rows.modal_inertia,
-                b.omega**2 * rows.modal_inertia,
-                rows.shapes,
-            ]
-        )
-        del rows
-        for r in table:  # a row at a time: never the block as Python floats
-            yield line % tuple(r.tolist())

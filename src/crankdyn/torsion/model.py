@@ -51,7 +51,7 @@ if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
     from crankdyn.torsion.campbell import OperatingRange
     from crankdyn.torsion.dampers import Damper
-    from crankdyn.torsion.excitation import ExcitationSpec
+    from crankdyn.torsion.excitation_spec import ExcitationSpec
     from crankdyn.torsion.rules import RuleSet
     from crankdyn.torsion.sources import EngineSource, HarmonicSource
     from crankdyn.tvc.spec import TvcSpec
@@ -237,9 +237,9 @@ class TorsionModel:
         Name for reports.
     source : str or None
         The file the model came from, for messages.
-    excitation : crankdyn.torsion.excitation.ExcitationSpec or None
+    excitation : crankdyn.torsion.excitation_spec.ExcitationSpec or None
         How the model is excited in a forced response
-        (:class:`crankdyn.torsion.excitation.ExcitationSpec`), or None.
+        (:class:`crankdyn.torsion.excitation_spec.ExcitationSpec`), or None.
     dampers : tuple of crankdyn.torsion.dampers.Damper
         Vibration dampers (:class:`crankdyn.torsion.dampers.Damper`) added by the forced
         response; not part of the matrices above (model a tuned damper as a mass and a shaft to

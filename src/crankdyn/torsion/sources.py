@@ -58,14 +58,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, freeze, scalar
-from crankdyn.torsion.excitation import (
-    Complex,
-    Excitation,
-    SourceExcitation,
-    fundamental_order,
-    known_major_orders,
-    order_grid,
-)
+from crankdyn.torsion.excitation import Excitation, SourceExcitation, known_major_orders
+from crankdyn.torsion.orders import Complex, fundamental_order, order_grid
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
@@ -640,7 +634,7 @@ def _fits(values: NDArray[np.float64], base: float) -> NDArray[np.bool_]:
 def engine_orders_mask(orders: ArrayLike, cycle: str) -> NDArray[np.bool_]:
     """Whether each order is a harmonic of the engine's working cycle (a multiple of 0.5 for a
     four-stroke, of 1 for a two-stroke engine;
-    :func:`~crankdyn.torsion.excitation.fundamental_order`).
+    :func:`~crankdyn.torsion.orders.fundamental_order`).
 
     Parameters
     ----------
@@ -886,7 +880,7 @@ def order_sources(
 
 
 def line_major(excitation: Excitation, orders: ArrayLike) -> NDArray[np.bool_] | None:
-    """Major-order marking (:func:`~crankdyn.torsion.excitation.major_orders`) restricted to the
+    """Major-order marking (:func:`~crankdyn.torsion.orders.major_orders`) restricted to the
     engine's own orders: an order that is not a harmonic of the cycle is not an engine order,
     so never major (a propeller's blade orders, a machine's harmonics).
 

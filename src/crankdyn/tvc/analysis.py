@@ -101,7 +101,7 @@ def load_of(model: TorsionModel, spec: TvcSpec) -> str:
 def with_load(model: TorsionModel, engine: Engine | None, load: str, rated: float) -> TorsionModel:
     """The model with the excitation's load matching the load law: constant speed drops a load
     curve (full load at every speed); the propeller law adds (n/n_0)^2 where none is given."""
-    from crankdyn.torsion.excitation import ExcitationSpec, LoadCurve
+    from crankdyn.torsion.excitation_spec import ExcitationSpec, LoadCurve
 
     exc: Any = model.excitation  # an ExcitationSpec or None (TorsionModel holds it as an object)
     if engine is None:  # a uniform torque or the sources alone: no gas pressure to load
