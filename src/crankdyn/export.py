@@ -17,7 +17,21 @@ __all__ = ["jsonable", "scaled", "scaled_value", "to_jsonable"]
 def scaled(value: Any, scale: float) -> Any:
     """value x scale; angles converted to degrees are rounded to 1e-10 deg and speeds converted
     to rpm to 1e-9 rpm, so that grid values read as the round numbers they are (30.0, not
-    29.999999999999996; 6000.0, not 6000.000000000001)."""
+    29.999999999999996; 6000.0, not 6000.000000000001).
+
+    Parameters
+    ----------
+    value : float or numpy.ndarray
+        SI value(s).
+    scale : float
+        The factor to the exported unit (1, :data:`~crankdyn.constants.DEG`,
+        :data:`~crankdyn.constants.RPM`, ...).
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The exported value(s).
+    """
     if scale == 1.0:
         return value
     out = value * scale
@@ -76,6 +90,21 @@ def jsonable(value: Any) -> Any:
 
 
 def to_jsonable(value: Any, scale: float) -> Any:
+    """:func:`jsonable` of a value exported with a field's scale (numbers and arrays scaled
+    by :func:`scaled`).
+
+    Parameters
+    ----------
+    value : object
+        The value.
+    scale : float
+        The field's factor to its exported unit.
+
+    Returns
+    -------
+    object
+        JSON data.
+    """
     if hasattr(value, "to_dict") and not isinstance(value, type):  # results, verdicts, warnings
         return value.to_dict()
     if isinstance(value, np.ndarray):

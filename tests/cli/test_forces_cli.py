@@ -68,7 +68,7 @@ def test_torque_json_keys(capsys):
     for key in ("mean_torque_Nm", "indicated_power_W", "imep_Pa", "peak_pressure_Pa"):
         assert isinstance(d[key], float)
     assert d["indicated_power_W"] == pytest.approx(
-        d["mean_torque_Nm"] * 2200 * math.pi / 30 / 1e3, rel=1e-9
+        d["mean_torque_Nm"] * 2200 * math.pi / 30, rel=1e-9
     )
     assert d["peak_pressure_Pa"] == pytest.approx(15.2e6, rel=0.01)
 

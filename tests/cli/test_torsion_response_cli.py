@@ -124,9 +124,10 @@ def test_response_with_rules_relative_angle_and_plots(tmp_path, capsys):
     assert status == 0, err
     data = json.loads(out)
     # the verdicts of the installation's checks, the TVC's own evaluation (one verdict per check)
-    m68 = [v for v in data["verdicts"] if v["source"].startswith("IACS UR M68")]
-    assert m68 and data["passed"] is False  # the resonance at 898 rpm lies above 0.8 n_0
-    barred = data["barred_speed_ranges"]
+    judged = data["judged"]
+    m68 = [v for v in judged["verdicts"] if v["source"].startswith("IACS UR M68")]
+    assert m68 and judged["condition_passed"] is False  # the resonance at 898 rpm > 0.8 n_0
+    barred = judged["barred_speed_ranges"]
     assert barred[1]["permitted"] is True
     assert barred[1]["start_rpm"] < barred[1]["exceeds_from_rpm"] < barred[1]["exceeds_to_rpm"]
     assert not barred[-1]["permitted"] and "above 0.8 n_0" in barred[-1]["reason"]

@@ -1,137 +1,137 @@
-"""The four front ends give the same numbers: for every built-in engine at its own speed, the
-command line (JSON), the report (summary.json's key figures), the study runner (the figures of a
-case) and a notebook (the analysis session) agree exactly, since all take them from one
-:class:`crankdyn.Analysis`: the cycle's figures, the natural frequency of elastic mode 1 (the
-numbering of crankdyn docs conventions) and, for the engines with a forced response (the
-drivelines marine-propulsion and genset-1500 among them), its resolved peaks."""
+"""One quantity, one declaration (issue 31): every key figure of every analysis of every
+built-in engine, as its result declares it (:meth:`crankdyn.results.Result.summary`), is the
+same label, unit and value in the command line's table and JSON, the report (summary.json, the
+key-figure CSV and the section's figures), the study's figure registry and a notebook's view,
+since every front end renders the one summary of one :class:`crankdyn.Analysis`."""
 
 from __future__ import annotations
 
+import csv
+import html
+import io
 import json
 import math
 
 import pytest
 
 import crankdyn
+from crankdyn.errors import InputError
 from crankdyn.io.examples import example_names
 from crankdyn.report.build import build_report
+from crankdyn.session import ANALYSES
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
 
-# (command, JSON key, report key, study figure, notebook) for each quantity
-QUANTITIES = [
-    (
-        ("torque",),
-        "mean_torque_Nm",
-        "mean_torque_Nm",
-        "mean_torque",
-        lambda a: a.torque.mean_torque,
-    ),
-    (
-        ("forces",),
-        "max_side_force_N",
-        "max_side_force_N",
-        "max_side_force",
-        lambda a: a.forces().max_side_force,
-    ),
-    (
-        ("forces",),
-        "max_rod_compression_N",
-        "max_rod_compression_N",
-        "max_rod_compression",
-        lambda a: a.forces().max_rod_compression,
-    ),
-    (
-        ("bearings",),
-        "max_main_bearing_load_N",
-        "max_main_bearing_load_N",
-        "max_main_bearing_load",
-        lambda a: float(max(a.bearings().max_bearing_load)),
-    ),
-    (
-        ("kinematics",),
-        "summary.max_acceleration_m_s2",
-        "max_piston_acceleration_m_s2",
-        "max_piston_acceleration",
-        lambda a: a.kinematics().extrema.max_acceleration,
-    ),
-    (
-        ("pressure",),
-        "imep_Pa",
-        "imep_Pa",
-        "imep",
-        lambda a: a.pressure.imep,
-    ),
-    (
-        ("flywheel",),
-        "flywheel_inertia_kgm2",
-        "flywheel_inertia_kgm2",
-        None,  # the study's flywheel figure takes its target from [analysis] delta
-        lambda a: a.flywheel().flywheel_inertia,
-    ),
-]
+COMMANDS = {  # the command that shows each analysis (the engine's name follows)
+    "kinematics": ("kinematics",),
+    "pressure": ("pressure",),
+    "forces": ("forces",),
+    "bearings": ("bearings",),
+    "torque": ("torque",),
+    "balance": ("balance",),
+    "flywheel": ("flywheel",),
+    "modes": ("torsion", "modes"),
+    "response": ("torsion", "response"),
+    "relative_angle": ("torsion", "response"),
+    "judged": ("torsion", "response"),
+}
+JSON_PART = {"relative_angle": "relative_angle", "judged": "judged"}  # where the JSON holds it
 
 
-def _cli_value(cli, command, engine, key, runs):
-    if command not in runs:  # one run per command
-        run = cli(*command, engine, "--format", "json")
-        assert run.status == 0, run
-        runs[command] = json.loads(run.out)
-    data = runs[command]
-    for part in key.split("."):
-        data = data[part]
-    return max(data) if isinstance(data, list) else data
+def _find(data, key):
+    """The value under ``key`` in a JSON document (depth first: a nested result's figures sit
+    in its own object, as the kinematics' summary)."""
+    if isinstance(data, dict):
+        if key in data:
+            return data[key]
+        for value in data.values():
+            found = _find(value, key)
+            if found is not _MISSING:
+                return found
+    return _MISSING
+
+
+_MISSING = object()
+
+
+def _same(got, want):
+    if isinstance(want, float):
+        return isinstance(got, (int, float)) and (got == want or (math.isnan(want) and got is None))
+    return got == want
+
+
+def _results(session):
+    """(analysis, result) of every analysis that applies to the session's subject."""
+    out = []
+    for analysed in ANALYSES:
+        try:
+            result = analysed.of(session)
+        except InputError:  # e.g. no [torsion] model, no speed range
+            continue
+        if result is not None:
+            out.append((analysed.name, result))
+    return out
 
 
 @pytest.mark.parametrize("name", example_names("engine"))
-def test_cli_report_study_and_notebook_agree(cli, name):
+def test_every_key_figure_is_the_same_in_every_front_end(cli, name):
     engine = crankdyn.Engine.example(name)
     notebook = crankdyn.Analysis(engine)
-    report = build_report(engine).summary()["key_figures"]
+    report = build_report(engine)
+    report_figures = {f.key: f for f in report.key_figures()}
+    summary_json = report.summary()["key_figures"]
+    key_csv = {r["key"]: r for r in csv.DictReader(io.StringIO(report.key_figures_csv()))}
     case = CaseContext(engine, AnalysisSettings())
     runs: dict = {}
-    for command, key, report_key, figure, value_of in QUANTITIES:
-        expected = value_of(notebook)
-        assert _cli_value(cli, command, name, key, runs) == expected, (name, key)
-        assert report[report_key] == expected, (name, report_key)
-        if figure is not None:
-            got = FIGURES[figure].evaluate(case)
-            assert got == pytest.approx(abs(expected), rel=1e-15), (name, figure)
-    model = engine.torsion
-    if model is not None:
-        modes = json.loads(cli("torsion", "modes", name, "--format", "json").out)
-        f1 = float(notebook.modes.frequencies_hz[notebook.modes.index(1)])  # elastic mode 1
-        assert modes["natural_frequencies_hz"][modes["mode"].index(1)] == f1
-        assert report["natural_frequency_1_hz"] == f1
-        assert FIGURES["natural_frequency_1"].evaluate(case) == pytest.approx(f1, rel=1e-15)
-    if model is not None and model.operating is not None and model.cylinder_dofs:
-        _response_agrees(cli, name, notebook, report, case)
+    for analysis, result in _results(notebook):
+        command = COMMANDS[analysis]
+        extra = ()
+        if analysis in ("response", "relative_angle", "judged"):
+            first, last = notebook.model.mass_names[0], notebook.model.mass_names[-1]
+            extra = ("--relative", f"{first},{last}")
+        if command not in runs:  # one run of each command, table and JSON
+            table = cli(*command, name, *extra)
+            data = cli(*command, name, *extra, "--format", "json")
+            assert table.status in (0, 1) and data.status in (0, 1), (table, data)
+            runs[command] = (table.out, json.loads(data.out))
+        table, data = runs[command]
+        data = data[JSON_PART[analysis]] if analysis in JSON_PART else data
+        page = result._repr_html_()
+        lines = table.splitlines()
+        for f in result.summary().figures:
+            where = (name, analysis, f.key)
+            # JSON: the value under its key
+            assert _same(_find(data, f.key), f.value), where
+            # the table: the label and the value, in one row
+            digits, unit = f.text()
+            if len(digits) <= 40:
+                row = [ln for ln in lines if f.label in ln and digits in ln]
+                assert row, where
+                assert not unit or unit in row[0], where
+            # the report: summary.json, its CSV and the section's figure
+            assert _same(summary_json[f.key], f.value), where
+            shown = report_figures[f.key]
+            assert (shown.label, shown.unit) == (f.label, f.unit), where
+            assert key_csv[f.key]["label"] == f.label and key_csv[f.key]["unit"] == f.unit
+            # the study: the same figure under its name
+            figure = FIGURES.get(f.name)
+            if figure is not None and figure.key == f.key:
+                assert (figure.label, figure.unit) == (f.label, f.unit), where
+                if isinstance(f.value, (int, float)) and not isinstance(f.value, bool):
+                    got = figure.evaluate(case)
+                    assert got == pytest.approx(f.value, rel=1e-15, nan_ok=True), where
+            # a notebook: the result's own view
+            assert html.escape(f.label) in page and html.escape(digits) in page, where
 
 
-def _response_agrees(cli, name, notebook, report, case):
-    """The resolved peaks of the forced response: the most loaded shaft's synthesised torque and
-    the relative angle between the model's ends."""
-    first, last = notebook.model.mass_names[0], notebook.model.mass_names[-1]
-    run = cli(
-        "torsion", "response", name, "--relative", f"{first},{last}", "--format", "json"
-    )  # fmt: skip
-    assert run.status == 0, run
-    data = json.loads(run.out)
-    shaft = notebook.most_loaded_shaft()
-    torque, speed = notebook.peak("torque", shaft)
-    (peak,) = [
-        p
-        for p in data["peaks"]
-        if p["quantity"] == "synthesized_shaft_torque" and p["item"] == " - ".join(shaft)
+def test_the_response_and_the_tvc_agree(cli):
+    """One verdict per check: ``torsion response`` and ``tvc``'s normal-firing condition judge
+    the same response with the same checks: the same rows and the same barred ranges, as found
+    and as declared."""
+    session = crankdyn.Analysis(crankdyn.Engine.example("marine-propulsion"))
+    judged = session.judged()
+    tvc = session.tvc(passage=False, conditions=("normal",))
+    (normal,) = tvc.conditions
+    assert [v.to_dict() for v in normal.verdicts] == [v.to_dict() for v in judged.verdicts]
+    assert [b.to_dict() for b in normal.barred_ranges] == [
+        b.to_dict() for b in judged.barred_ranges
     ]
-    assert peak["value_Nm"] == torque
-    # JSON speeds read as round numbers (12 significant digits)
-    assert peak["speed_rpm"] == pytest.approx(speed * 30.0 / math.pi, rel=1e-11)
-    assert max(data["synthesized_shaft_torque_Nm"], key=max) == max(
-        notebook.response().synthesized_shaft_torque.tolist(), key=max
-    )
-    assert report["max_vibratory_shaft_torque_Nm"] == torque
-    assert FIGURES["max_shaft_torque"].evaluate(case) == pytest.approx(torque, rel=1e-15)
-    angle, _ = notebook.peak("relative", (first, last))
-    assert max(data["relative_angle"]["synthesized_amplitude_rad"]) == angle
-    assert report["max_relative_angle_rad"] == angle
-    assert FIGURES["max_relative_angle"].evaluate(case) == pytest.approx(angle, rel=1e-15)

@@ -29,7 +29,7 @@ def test_lambda_close_to_one(lam):
     res = piston_kinematics(g, 100.0)
     for arr in (res.displacement, res.velocity, res.acceleration, res.rod_angular_acceleration):
         assert np.all(np.isfinite(arr))
-    s = res.summary
+    s = res.extrema
     assert s.max_acceleration == pytest.approx(0.05 * 100.0**2 * (1 + lam), rel=1e-9)
     assert s.max_rod_angle == pytest.approx(math.asin(lam), rel=1e-12)
     phi = np.linspace(0.1, 1.2, 50)  # away from 90 deg, where the rates grow like 1/cos(beta)
@@ -47,7 +47,7 @@ def test_offset_close_to_its_limit(fraction):
     g = CrankGeometry(0.1, r, l, fraction * (l - r))
     res = piston_kinematics(g, 50.0)
     assert np.all(np.isfinite(res.acceleration))
-    s = res.summary
+    s = res.extrema
     assert s.stroke > 2 * r
     assert res.displacement.min() >= -1e-12 and res.displacement.max() <= s.stroke * (1 + 1e-12)
 

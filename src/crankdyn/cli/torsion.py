@@ -21,6 +21,7 @@ from crankdyn.cli.writer import (
     output_options,
     result_table,
     summary_blocks,
+    summary_table,
 )
 from crankdyn.display import column_text
 from crankdyn.errors import InputError
@@ -333,7 +334,12 @@ def modes_command(
     if result is None:  # a large chain: block by block, never N x N (ModeBlocks)
         write_streamed(out, ModeBlocks(torsion_model, tabled))
     elif out.for_people:
-        out.write(blocks=modes_tables(result, shown))
+        out.write(
+            blocks=[
+                summary_table(result, f"{result.model_name}: modes"),
+                *modes_tables(result, shown),
+            ]
+        )
     else:
         out.write(json_data=result, csv_text=result.to_csv() if out.fmt == "csv" else None)
     if plot_path and shapes is not None:

@@ -116,9 +116,7 @@ def response_tables(
         a, b = relative.between
         blocks += summary_blocks(relative, f"Relative angle {a} - {b}")
     if judged is not None:
-        verdict = "passed" if all(v.passed for v in judged.verdicts) else "FAILED"
-        blocks.append(f"Verdict ({judged.name}): {verdict}")
-        blocks += summary_blocks(judged, figures=False)
+        blocks += summary_blocks(judged, f"The installation's checks: {judged.name}")
     return blocks
 
 
@@ -240,10 +238,8 @@ def response_command(
     data = result.to_dict()
     if rel is not None:
         data["relative_angle"] = rel.to_dict()
-    if judged is not None:
-        data["verdicts"] = [v.to_dict() for v in judged.verdicts]
-        data["barred_speed_ranges"] = [b.to_dict() for b in judged.barred_ranges]
-        data["passed"] = all(v.passed for v in judged.verdicts)
+    if judged is not None:  # its key figures, verdict rows and barred ranges
+        data["judged"] = judged.to_dict()
     out.write(blocks=response_tables(result, rel, judged), json_data=data, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(what, target), plot_path, force)

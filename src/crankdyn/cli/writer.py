@@ -185,8 +185,11 @@ def summary_table(
     if isinstance(source, Result):
         source = source.summary()
     rows = source.rows() if isinstance(source, Summary) else list(source)
+    text = {0, 2}
+    if any(len(r[1]) > 32 for r in rows):  # a long text (a source's name): left-aligned, wraps
+        text.add(1)
     return TextTable(
-        title, ["Quantity", "Value", "Unit"], [list(r) for r in rows], text_columns={0, 2}
+        title, ["Quantity", "Value", "Unit"], [list(r) for r in rows], text_columns=text
     )
 
 

@@ -586,7 +586,7 @@ class BalanceResult(Result):
     title = "Engine balance"
     engine: str = scalar("engine", "Engine", "", summary=False)
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
-    method: str = scalar("method", "Harmonics", "")
+    method: str = scalar("harmonics_method", "Harmonics", "", name="harmonics_method")
     reciprocating_mass: float = scalar("reciprocating_kg", "Reciprocating mass m_j", "kg")
     rotating_mass: float = scalar(
         "rotating_mass_per_throw_kg",

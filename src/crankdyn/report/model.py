@@ -40,6 +40,10 @@ class KeyFigure:
         A remark shown with the value.
     headline : bool
         Whether the report's summary shows it (else its section only).
+    unit : str
+        The unit of ``value`` (the one the key names; ``""`` for numbers and text).
+    where : str
+        Where a reduction found it (``"throw 3"``), or ``""``.
 
     Raises
     ------
@@ -59,6 +63,8 @@ class KeyFigure:
     status: str | None = None  # "pass", "warn", "fail" or None (information)
     note: str = ""
     headline: bool = True  # shown in the report's summary (else with its section only)
+    unit: str = ""  # the unit of value (the key's)
+    where: str = ""  # where a reduction found it ("throw 3", "at 2165 rpm")
 
     def __post_init__(self) -> None:
         if self.status is not None and self.status not in STATUSES:
@@ -88,6 +94,8 @@ class KeyFigure:
             status=figure.status,
             note=figure.reduction,
             headline=figure.headline,
+            unit=figure.unit,
+            where=figure.where,
         )
 
 
@@ -391,6 +399,36 @@ class Report:
             The key figures.
         """
         return [f for s in self.sections for f in s.figures]
+
+    def key_figures_csv(self) -> str:
+        """Every key figure as CSV (``data/key_figures.csv``): key, label, value (in the unit
+        the key names), unit, where it was found, how (the reduction), status; each key once.
+
+        Returns
+        -------
+        str
+            The CSV text (numbers with 10 significant digits; text quoted as RFC 4180 requires).
+        """
+        import csv
+        import io
+
+        from crankdyn.export import jsonable
+
+        buffer = io.StringIO()
+        writer = csv.writer(buffer, lineterminator="\n")
+        writer.writerow(["key", "label", "value", "unit", "where", "how", "status"])
+        seen: set[str] = set()
+        for f in self.key_figures():
+            if f.key in seen:
+                continue
+            seen.add(f.key)
+            value = jsonable(f.value)
+            if isinstance(value, float):
+                value = f"{value:.10g}"
+            elif isinstance(value, list):
+                value = " ".join(f"{v:.10g}" if isinstance(v, float) else str(v) for v in value)
+            writer.writerow([f.key, f.label, value, f.unit, f.where, f.note, f.status or ""])
+        return buffer.getvalue()
 
     def checks(self) -> list[Check]:
         """The cross-checks of every section, in section order.

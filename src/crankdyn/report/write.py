@@ -85,6 +85,7 @@ def write_report(
         for section in report.sections:
             for table in section.tables:
                 (tmp / "data" / f"{table.name}.csv").write_text(table.csv_text(), encoding="utf-8")
+        (tmp / "data" / "key_figures.csv").write_text(report.key_figures_csv(), encoding="utf-8")
         summary = report.summary()
         summary["sections"] = {s.key: s.json for s in report.sections if s.json}
         (tmp / "summary.json").write_text(

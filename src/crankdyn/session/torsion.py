@@ -454,8 +454,8 @@ class TorsionAnalyses(SessionCore):
         from crankdyn.tvc.evaluate import evaluate_condition
         from crankdyn.tvc.result import ConditionResult
 
-        model = self.loaded_model
-        assert model is not None  # response() needs a model
+        self._need_model()
+        model = cast(TorsionModel, self.loaded_model)
         r = self.response(dampers=dampers, misfire=misfire, torque=torque)
         try:
             rated = rated_speed(model, self.engine)

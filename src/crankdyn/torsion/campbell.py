@@ -182,7 +182,7 @@ class CampbellResult(Result):
     major: np.ndarray | None = array("major_orders", "Major order", "")
     low: float = scalar("speed_min_rpm", "Operating range from", "rpm", RPM)
     high: float = scalar("speed_max_rpm", "Operating range to", "rpm", RPM)
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
     FIGURES = (

@@ -221,7 +221,7 @@ class DampedModalResult(Result):
     masses: tuple[str, ...] = scalar("masses", "Masses", "")
     hysteretic: str = scalar("hysteretic", "Loss factors as viscous", "")
     free: bool = scalar("free", "Free (rigid-body mode)", "")
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
     mode_shapes: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Complex mode shapes (mode x mass, reflected, largest amplitude 1)."""
 

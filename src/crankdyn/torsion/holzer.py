@@ -78,7 +78,7 @@ class HolzerTable(Result):
     residual_torque: float = scalar(
         "residual_torque_Nm_per_rad", "Residual torque (zero at a natural frequency)", "N·m/rad"
     )
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
 
 
@@ -343,7 +343,7 @@ class ResidualCurve(Result):
     natural_frequencies: np.ndarray = scalar(
         "natural_frequencies_hz", "Natural frequencies (residual zeros)", "Hz", HZ
     )
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
 
     def plot(self, fig: Figure | None = None) -> Figure:
         """The residual torque against the frequency, with its zeros marked.

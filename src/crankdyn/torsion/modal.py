@@ -208,7 +208,7 @@ class ModalResult(Result):
     solver: str = scalar("solver", "Solver", "")
     structure: str = scalar("structure", "Structure", "")
     free: bool = scalar("free", "Free (rigid-body mode)", "")
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
     modes_of_the_model: int | None = scalar(
         "modes_of_the_model", "Modes of the model (the lowest are listed)", "", default=None
     )
@@ -354,13 +354,33 @@ class ModalResult(Result):
         columns = (
             SummaryColumn("mode", "Mode"),
             SummaryColumn("natural_frequency_hz", "Natural frequency", "Hz"),
-            SummaryColumn("node_count", "Nodes"),
+            SummaryColumn("natural_frequency_cpm", "Natural frequency (cycles/min)"),
+            SummaryColumn("nodes", "Nodes"),
+            SummaryColumn("node_positions", "Node positions"),
         )
         rows = tuple(
-            (int(m), float(f), int(k))
-            for m, f, k in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
+            (
+                int(m),
+                float(f),
+                float(f) * 60.0,
+                str(int(n)) if ok else f"at least {int(n)}",
+                "; ".join(
+                    [node.describe() for node in nodes]
+                    + [f"round-off in {a}…{b}: nodes undetermined" for a, b in regions]
+                )
+                or "-",
+            )
+            for m, f, n, ok, nodes, regions in zip(
+                self.mode,
+                self.frequencies_hz,
+                self.node_count,
+                self.nodes_resolved,
+                self.nodes,
+                self.roundoff_regions,
+                strict=True,
+            )
         )
-        return [SummaryTable("modes", "Natural frequencies", columns, rows)]
+        return [SummaryTable("natural_frequencies", "Natural frequencies and nodes", columns, rows)]
 
     @property
     def frequencies_hz(self) -> NDArray[np.float64]:

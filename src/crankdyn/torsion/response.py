@@ -412,8 +412,8 @@ class ResponseResult(Result):
         "damper_power_W", "Damper power (speed x damper)", "W", default=None
     )
     dampers: tuple[str, ...] | None = scalar("dampers", "Dampers", "", default=None, summary=False)
-    model_name: str = scalar("model", "Model", "", default="")
-    excitation: str = scalar("excitation", "Excitation", "", default="")
+    model_name: str = scalar("model", "Model", "", default="", summary=False)
+    excitation: str = scalar("excitation", "Excitation", "", default="", summary=False)
     cycle: str = scalar("cycle", "Cycle", "", default="four-stroke")
     on_grid: np.ndarray | None = array("on_grid", "On the user's speed grid", "", default=None)
     added_speeds: np.ndarray | None = array(

@@ -93,7 +93,7 @@ class TransientResult(Result):
         "hysteretic_frequency_hz", "Loss factors as viscous at", "Hz", 1.0 / (2.0 * math.pi)
     )
     method: str = scalar("method", "Integrator", "")
-    model_name: str = scalar("model", "Model", "")
+    model_name: str = scalar("model", "Model", "", summary=False)
 
     def last_cycle(self, cycle_angle: float) -> np.ndarray:
         """Mask of the samples in the last working cycle.

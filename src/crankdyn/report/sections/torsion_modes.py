@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from crankdyn.display import number, quantity
-from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
+from crankdyn.report.model import Check, Plot, Section, Table
 from crankdyn.report.sections import Context, NotApplicable
 
 
@@ -35,19 +34,6 @@ def build(ctx: Context) -> Section:
     modes = ctx.analysis.modes
     hz = modes.frequencies_hz
     elastic = [i for i, m in enumerate(modes.mode) if m >= 1]
-    figures = []
-    for mode in (1, 2):  # elastic modes from 1 (crankdyn docs conventions)
-        if mode > int(modes.mode[-1]):
-            break
-        i = modes.index(mode)
-        figures.append(
-            KeyFigure(
-                f"natural_frequency_{mode}_hz",
-                f"Natural frequency, mode {mode}",
-                float(hz[i]),
-                f"{quantity(float(hz[i]), 'Hz')} ({number(hz[i] * 60)} cpm)",
-            )
-        )
     checks = []
     if model.is_chain:
         for solver, label in (("holzer", "Holzer"), ("transfer", "transfer-matrix")):
@@ -61,32 +47,10 @@ def build(ctx: Context) -> Section:
                     worst < 1e-9,
                 )
             )
-    top = float(np.max(np.abs(hz), initial=0.0))
-    rows = [
-        [
-            str(int(m)),
-            number(f, 5, reference=top),
-            number(f * 60.0, 5, reference=top * 60.0),
-            str(int(n)) if ok else f"at least {int(n)}",
-            "; ".join(
-                [node.describe() for node in nodes]
-                + [f"round-off in {a}…{b}: nodes undetermined" for a, b in regions]
-            )
-            or "-",
-        ]
-        for m, f, n, ok, nodes, regions in zip(
-            modes.mode,
-            hz,
-            modes.node_count,
-            modes.nodes_resolved,
-            modes.nodes,
-            modes.roundoff_regions,
-            strict=True,
-        )
-    ]
-    return Section(
-        key="torsion-modes",
-        title="Torsional natural frequencies",
+    return Section.of(
+        "torsion-modes",
+        "Torsional natural frequencies",
+        [modes],
         intro=(
             f"{model.name or 'Torsional model'}: {model.mass_count} masses, "
             f"{'chain' if model.is_chain else 'branched'}, "
@@ -94,7 +58,6 @@ def build(ctx: Context) -> Section:
             "and checked by Holzer's method and transfer matrices (seed 003). Elastic modes are "
             "numbered from 1" + (", the rigid-body mode is mode 0." if model.is_free else ".")
         ),
-        figures=figures,
         plots=[
             Plot(
                 "mode_shapes",
@@ -104,18 +67,6 @@ def build(ctx: Context) -> Section:
             )
         ],
         tables=[
-            Table(
-                "natural_frequencies",
-                "Natural frequencies and nodes",
-                header=[
-                    "Mode",
-                    "Natural frequency (Hz)",
-                    "Natural frequency (cycles/min)",
-                    "Nodes",
-                    "Node positions",
-                ],
-                rows=rows,
-            ),
             Table("modal_data", "Modal data", result=modes, show=False),
         ],
         checks=checks,
