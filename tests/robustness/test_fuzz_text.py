@@ -196,16 +196,47 @@ def test_standard_output_full():
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
-def test_standard_output_closed():
-    """JSON into a pipe whose reader is gone before anything is written (``| head`` that
-    quit): the write fails with EPIPE at once, deterministically."""
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("forces", "vaz2108", "--format", "json"),
+        ("examples",),
+        ("kinematics", "vaz2108"),
+        ("kinematics", "vaz2108", "--format", "csv"),
+        ("docs", "cli"),
+        ("torsion", "modes", "inline6-diesel"),
+    ],
+)
+def test_standard_output_closed(args):
+    """Output into a pipe whose reader is gone before anything is written (``| head`` that
+    quit): the write fails with EPIPE at once, deterministically; a closed pipe is not an
+    error (issue 33): the command ends quietly with status 0, as other command-line tools
+    do."""
     read, write = os.pipe()
     os.close(read)
     try:
-        status, err = crankdyn("forces", "vaz2108", "--format", "json", stdout=write)
+        status, err = crankdyn(*args, stdout=write)
     finally:
         os.close(write)
-    assert (status, err) == (2, "crankdyn: error: cannot write to standard output: Broken pipe\n")
+    assert (status, err) == (0, "")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
+def test_reader_that_quits_after_two_lines():
+    """``crankdyn examples | head -2``: head reads two lines and quits; crankdyn ends quietly
+    with status 0 whenever its next write meets the closed pipe (issue 33)."""
+    producer = subprocess.Popen(
+        [sys.executable, "-m", "crankdyn", "examples"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    assert producer.stdout is not None and producer.stderr is not None
+    producer.stdout.readline()
+    producer.stdout.readline()
+    producer.stdout.close()  # head quits
+    err = producer.stderr.read()
+    assert producer.wait(timeout=300) == 0
+    assert err == b""
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX descriptors")

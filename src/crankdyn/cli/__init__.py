@@ -367,8 +367,9 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success, 2 after an input error or an output that failed (one line on standard
-        error), 128 + the signal's number after an interrupt or termination.
+        0 on success (also when the reader of standard output quit early: a closed pipe ends
+        the command quietly), 2 after an input error or an output that failed (one line on
+        standard error), 128 + the signal's number after an interrupt or termination.
 
     Examples
     --------
@@ -429,19 +430,24 @@ def _run(args: list[str]) -> int:
         return 128 + signum
     except click.ClickException as exc:
         _error(exc.format_message())
-        return exc.exit_code
+        return max(exc.exit_code, 2)  # an error is status 2, whatever click's default
     except (OSError, _OutputFailed) as caught:
         # an error of the operating system while writing: standard output closed (a pipe whose
         # reader quit) or full, or a file the output modules did not name
-        # (crankdyn.io.output names the files it writes; an error without a file name comes
-        # from writing to standard output)
+        # (crankdyn.io.output names the files and folders it writes, also on an error of a
+        # write inside a folder being built; an error without a file name comes from writing
+        # to standard output)
         error = caught.error if isinstance(caught, _OutputFailed) else caught
         reason = error.strerror or " ".join(str(error).split()) or type(error).__name__
         if error.filename:
             _error(f"{error.filename}: {reason}")
-        else:
-            _quiet_stdout()
-            _error(f"cannot write to standard output: {reason}")
+            return 2
+        _quiet_stdout()
+        if error.errno == errno.EPIPE:
+            # the reader of the pipe quit (``crankdyn examples | head -2``): it has what it
+            # wanted; like other command-line tools, end quietly with status 0
+            return 0
+        _error(f"cannot write to standard output: {reason}")
         return 2
     return result if isinstance(result, int) else 0
 

@@ -71,6 +71,7 @@ __all__ = [
     "save_figure",
     "speed_option",
     "speeds_option",
+    "PIPE_WIDTH",
     "stdout_width",
     "step_option",
     "teeth_option",
@@ -95,16 +96,29 @@ def _plain_console_class() -> type[Console]:
     return _PlainConsole
 
 
+PIPE_WIDTH = 120
+"""Width of the tables written to a pipe or a file (not a terminal)."""
+
+
 def stdout_width() -> int:
-    """The width of a console on standard output: the terminal's, at least 120 columns (what
-    :func:`console` gives standard output by default).
+    """The width of a console on standard output (what :func:`console` gives standard output
+    by default): a terminal's own width (``COLUMNS`` where set), so that a table never runs
+    past its right edge; :data:`PIPE_WIDTH` (or ``COLUMNS``, if wider) for a pipe or a file.
 
     Returns
     -------
     int
         The width in columns.
     """
-    return max(shutil.get_terminal_size((120, 24)).columns, 120)
+    columns = shutil.get_terminal_size((PIPE_WIDTH, 24)).columns
+    stream = getattr(sys.stdout, "rich_proxied_file", sys.stdout)
+    try:
+        terminal = bool(stream is not None and stream.isatty())
+    except (AttributeError, ValueError, OSError):  # no such method, or closed
+        terminal = False
+    if terminal:
+        return max(columns, 20)
+    return max(columns, PIPE_WIDTH)
 
 
 def console(
@@ -125,8 +139,8 @@ def console(
     stderr
         Print to standard error when no ``file`` is given.
     width
-        The width in columns; default the terminal's, at least 120 on standard output (no
-        limit given on standard error).
+        The width in columns; default :func:`stdout_width` on standard output (no limit
+        given on standard error).
 
     Returns
     -------
