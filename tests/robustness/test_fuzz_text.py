@@ -10,6 +10,7 @@ import io
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 from importlib import resources
@@ -193,6 +194,44 @@ def test_standard_output_full():
         2,
         "crankdyn: error: cannot write to standard output: No space left on device\n",
     )
+
+
+def _small_files():
+    """In the child: files may not grow past 20 kB (RLIMIT_FSIZE, SIGXFSZ ignored), so a
+    write that crosses it fails with EFBIG and no file name, as a full disk's does."""
+    import resource
+
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (20_000, 20_000))
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
+@pytest.mark.parametrize(
+    ("args", "target"),
+    [
+        (("analyze", "vaz2108"), "rep"),
+        (("tvc", "verdict-geared-line"), "tvc"),
+        (("forces", "vaz2108", "--format", "json"), "f.json"),
+    ],
+)
+def test_a_failed_write_names_its_target(tmp_path, args, target):
+    """A write that fails for want of room (``analyze -o``, ``tvc -o`` said "cannot write to
+    standard output: No space left on device", issue 33) names the folder or file being
+    written, and leaves nothing behind."""
+    process = subprocess.run(
+        [sys.executable, "-m", "crankdyn", *args, "-o", target],
+        cwd=tmp_path,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        timeout=300,
+        preexec_fn=_small_files,
+    )
+    assert process.returncode == 2
+    assert process.stderr.strip().splitlines()[-1] == (
+        f"crankdyn: error: {target}: cannot write: File too large"
+    )
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
