@@ -280,7 +280,7 @@ def test_every_output_folder_holds_the_marker(tmp_path):
     assert "written by crankdyn" in (target / output.MARKER).read_text(encoding="utf-8")
     (target / output.MARKER).unlink()
     (target / output.MARKER).mkdir()
-    with pytest.raises(InputError, match="no .crankdyn-output"):
+    with pytest.raises(InputError, match=r"no \.crankdyn-output"):
         check_output_dir(target, force=True)
 
 

@@ -221,8 +221,7 @@ def test_a_failed_write_names_its_target(tmp_path, args, target):
     process = subprocess.run(
         [sys.executable, "-m", "crankdyn", *args, "-o", target],
         cwd=tmp_path,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
+        capture_output=True,
         text=True,
         timeout=300,
         preexec_fn=_small_files,

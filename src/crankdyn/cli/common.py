@@ -54,6 +54,7 @@ class Decorator(Protocol):
 
 __all__ = [
     "FIGURE_FORMATS",
+    "PIPE_WIDTH",
     "at_option",
     "before_work",
     "check_plot_path",
@@ -71,7 +72,6 @@ __all__ = [
     "save_figure",
     "speed_option",
     "speeds_option",
-    "PIPE_WIDTH",
     "stdout_width",
     "step_option",
     "teeth_option",
