@@ -159,3 +159,49 @@ def test_fuzz_numpy_headers(tmp_path_factory, shape, dtype, data, archive, versi
         path = folder / "s.npy"
         path.write_bytes(content)
     bounded(path)
+
+
+# ---- --teeth against the record ---------------------------------------------------------------
+
+
+def _records(folder):
+    """A sampled speed signal (CSV) and a pulse record (60 teeth), both about 13 revolutions."""
+    import math
+
+    t = np.arange(0.0, 0.4, 1e-4)
+    speed = folder / "speed.csv"
+    speed.write_text(
+        "time [s],speed [rpm]\n" + "".join(f"{a:.6f},2000\n" for a in t), encoding="utf-8"
+    )
+    pulses = folder / "pulses.csv"
+    pitch = 2 * math.pi / 60 / (2000 * math.pi / 30)
+    pulses.write_text(
+        "time [s]\n" + "".join(f"{k * pitch:.9f}\n" for k in range(800)), encoding="utf-8"
+    )
+    return {"speed": str(speed), "pulses": str(pulses)}
+
+
+@settings(max_examples=fuzz_examples(12))
+@given(
+    teeth=st.one_of(st.integers(-3, 512), st.integers(10**6, 10**15)),
+    kind=st.sampled_from(["speed", "pulses"]),
+)
+@example(teeth=100_000_000, kind="speed")
+@example(teeth=100_000_000, kind="pulses")
+def test_fuzz_teeth(tmp_path_factory, teeth, kind):
+    """Any --teeth on either kind of record: the analysis, or one line naming the file or
+    --teeth, never an allocation beyond the stated bound (4,194,304 pulses)."""
+    from crankdyn.cli.measure import load_measurement
+
+    path = _records(tmp_path_factory.mktemp("teeth"))[kind]
+    tracemalloc.start()
+    try:
+        try:
+            load_measurement(path, teeth, cycle="four-stroke", orders=[1.0])
+        except InputError as exc:
+            assert "\n" not in str(exc)
+            assert str(exc).startswith((f"{path}:", "--teeth")), str(exc)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < LIMIT, f"{peak / 2**20:.0f} MiB"

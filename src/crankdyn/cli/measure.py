@@ -111,21 +111,26 @@ def load_measurement(
         raise InputError(
             f"at least {MIN_TEETH} pulses per revolution are needed", key="--teeth", value=teeth
         )
-    data = resolve_signal(signal, teeth)
-    correction: str | PulseTrain | None = None
-    if tooth_correction not in (None, "none"):
-        if tooth_correction == "self":
-            correction = "self"
-        else:
-            calibration = resolve_signal(tooth_correction, teeth or getattr(data, "teeth", None))
-            if not isinstance(calibration, PulseTrain):
-                raise InputError(
-                    "the calibration record must hold pulse times of the same wheel",
-                    key="--tooth-correction",
-                    value=tooth_correction,
-                )
-            correction = calibration
+    source = signal
     try:
+        data = resolve_signal(signal, teeth)
+        source = data.source
+        correction: str | PulseTrain | None = None
+        if tooth_correction not in (None, "none"):
+            if tooth_correction == "self":
+                correction = "self"
+            else:
+                source = tooth_correction
+                wheel = teeth or getattr(data, "teeth", None)
+                calibration = resolve_signal(tooth_correction, wheel)
+                if not isinstance(calibration, PulseTrain):
+                    raise InputError(
+                        "the calibration record must hold pulse times of the same wheel",
+                        key="--tooth-correction",
+                        value=tooth_correction,
+                    )
+                correction = calibration
+                source = data.source
         return order_analysis(
             data,
             cycle=cycle,
@@ -139,17 +144,30 @@ def load_measurement(
             resolution=teeth if not isinstance(data, PulseTrain) else None,
         )
     except InputError as exc:
-        option = {
-            "orders": "--orders",
-            "window-cycles": "--window-cycles",
-            "window": "--window-cycles",
-            "tooth_correction": "--tooth-correction",
-        }.get(exc.key or "")
-        if option is None:
-            raise
-        raise InputError(
-            exc.message, file=exc.file, key=option, value=exc.value if exc.has_value else None
-        ) from None
+        raise _named(exc, source) from None
+
+
+_OPTIONS = {
+    "orders": "--orders",
+    "window-cycles": "--window-cycles",
+    "window": "--window-cycles",
+    "tooth_correction": "--tooth-correction",
+    "teeth": "--teeth",
+}
+"""The options behind the keys of the analysis's errors."""
+
+
+def _named(exc: InputError, source: str) -> InputError:
+    """An error of the order analysis as the command line says it: its key as the option that
+    set it (``teeth`` is ``--teeth``), and an error about the record (its pulses, its length)
+    naming the signal file it came from."""
+    option = _OPTIONS.get(exc.key or "")
+    about_the_record = option is None and not (exc.key or "").startswith("-")
+    key = option or exc.key
+    file = exc.file or (source if (about_the_record or key == "--window-cycles") else None)
+    if exc.has_value:
+        return InputError(exc.message, file=file, key=key, value=exc.value)
+    return InputError(exc.message, file=file, key=key)
 
 
 def _table(
