@@ -8,6 +8,7 @@ from __future__ import annotations
 import io
 import tracemalloc
 import zipfile
+from importlib import resources
 
 import numpy as np
 import pytest
@@ -205,3 +206,58 @@ def test_fuzz_teeth(tmp_path_factory, teeth, kind):
     finally:
         tracemalloc.stop()
     assert peak < LIMIT, f"{peak / 2**20:.0f} MiB"
+
+
+# ---- [tvc] speed_step, capped like --speeds ------------------------------------------------
+
+EXAMPLE_LINE = resources.files("crankdyn") / "examples" / "torsion" / "verdict-geared-line.toml"
+LINE = EXAMPLE_LINE.read_text(encoding="utf-8")
+
+
+def test_speed_step_capped_like_speeds(tmp_path, capsys):
+    """``[tvc] speed_step = "0.0001 rpm"`` made a 6-million-speed grid and a 6.44 GiB traceback:
+    refused at the key, before the work, with the bound of --speeds (100,000 speeds) and the
+    least step the range takes; a range too wide for the default step names the range."""
+    from crankdyn.cli import main
+
+    path = tmp_path / "line.toml"
+    path.write_text(LINE + '\n[tvc]\nspeed_step = "0.0001 rpm"\n', encoding="utf-8")
+    for args in (["tvc", str(path)], ["torsion", "response", str(path)]):
+        assert main(args) == 2
+        assert capsys.readouterr().err == (
+            f'crankdyn: error: {path}: [tvc] speed_step = "0.0001 rpm": makes 6,000,001 speeds '
+            "over 400 to 1000 rpm ([operating] speed_range); at most 100,000, as --speeds (a "
+            "step of at least 0.006 rpm)\n"
+        )
+    path.write_text(LINE + '\n[tvc]\nspeed_range = ["1 rpm", "1e7 rpm"]\n', encoding="utf-8")
+    assert main(["tvc", str(path)]) == 2
+    assert capsys.readouterr().err == (
+        f'crankdyn: error: {path}: [tvc] speed_range = ["1 rpm", "1e7 rpm"]: 1 to 1e+07 rpm at '
+        "the default step of 10 rpm makes 1,000,000 speeds; at most 100,000: give a coarser "
+        "speed_step\n"
+    )
+
+
+@settings(max_examples=fuzz_examples(40))
+@given(
+    step=st.floats(1e-9, 1e6, allow_nan=False),
+    low=st.floats(1.0, 1e5),
+    span=st.floats(0.001, 1e7),
+)
+def test_fuzz_speed_step(tmp_path_factory, step, low, span):
+    """Any step over any range: read (its grid at most 100,000 speeds) or one line."""
+    from crankdyn.torsion.model import TorsionModel
+
+    path = tmp_path_factory.mktemp("step") / "line.toml"
+    path.write_text(
+        LINE + f'\n[tvc]\nspeed_step = "{step!r} rpm"\n'
+        f'speed_range = ["{low!r} rpm", "{low + span!r} rpm"]\n',
+        encoding="utf-8",
+    )
+    try:
+        model = TorsionModel.from_file(path)
+    except InputError as exc:
+        assert "\n" not in str(exc)
+        return
+    low_w, high_w = model.tvc.speed_range
+    assert (high_w - low_w) / model.tvc.step + 1 <= 100_000 * (1 + 1e-9)

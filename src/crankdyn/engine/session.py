@@ -80,6 +80,10 @@ STEP = math.radians(1.0)
 SPEED_STEP = 10.0 / RPM
 """Speed step of the torsional sweeps over the operating range (rad/s): 10 rpm."""
 
+MAX_SPEEDS = 100_000
+"""The most speeds of a speed grid (``--speeds``, ``[tvc] speed_step``): checked before the
+grid is made."""
+
 MAX_ORDER = 12.0
 """Highest excitation order of the torsional analyses."""
 
@@ -125,8 +129,8 @@ def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> NDArray[np.
             value=[low * RPM, high * RPM, step * RPM],
         )
     count = math.floor((high - low) / step * (1 + 1e-12)) + 1
-    if count > 100_000:
-        raise InputError("too many speeds (more than 100000)", key="speeds")
+    if count > MAX_SPEEDS:
+        raise InputError(f"too many speeds (more than {MAX_SPEEDS})", key="speeds")
     rpm = low * RPM + step * RPM * np.arange(count)
     rounded = np.round(rpm, 9)
     return rounded / RPM
