@@ -22,12 +22,11 @@ from __future__ import annotations
 
 import csv
 import io
-import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.csv_tables import cell_value, read_csv_table, split_header_unit, unit_factor
 from crankdyn.torsion.model import (
     GEAR_DIRECTIONS,
     GROUND,
@@ -82,8 +81,19 @@ def mass_elastic_csv(model: TorsionModel) -> str:
     InputError
         For a branched model, a mass with two grounded shafts, or connections that do not join
         neighbouring masses in listing order (``key="model"``, ``"shaft"`` or ``"between"``,
-        with the value).
+        with the value), naming the model's file (``model.source``).
     """
+    try:
+        links, ground = _connections(model)
+    except InputError as exc:  # named after the model's file, as it was read
+        raise exc.within(file=model.source) from None
+    return _table(model, links, ground)
+
+
+def _connections(
+    model: TorsionModel,
+) -> tuple[dict[int, Shaft | Gear], dict[int, float]]:
+    """The connection from each row to the next and each row's grounded stiffness (N m/rad)."""
     if not model.is_chain:
         raise InputError(
             f'the mass-elastic table holds a chain and the model branches at "{model.junction}"',
@@ -112,6 +122,11 @@ def mass_elastic_csv(model: TorsionModel) -> str:
             key="model",
             value=model.name,
         )
+    return links, ground
+
+
+def _table(model: TorsionModel, links: dict[int, Shaft | Gear], ground: dict[int, float]) -> str:
+    """The CSV text of a chain's rows (:func:`mass_elastic_csv`)."""
     buffer = io.StringIO()
     writer = csv.writer(buffer, lineterminator="\n")
     buffer.write(
@@ -257,16 +272,15 @@ def read_mass_elastic(
         return number, cells[i].strip() if i < len(cells) else ""
 
     def number(r: int, key: str) -> float | None:
+        # finite and within the SI range, as every quantity of a TOML file (the line is added
+        # below, with the file)
         _line, text = cell(r, key)
         if not text:
             return None
-        try:
-            value = float(text)
-        except ValueError:
-            raise InputError("not a number", key=key, value=text) from None
-        if not math.isfinite(value):
-            raise InputError("not a finite number", key=key, value=text)
-        return value * columns[key][1]
+        i, factor = columns[key]
+        return cell_value(
+            text, factor, file=None, key=key, column=table.header[i], kind=_COLUMNS[key][0]
+        )
 
     masses, shafts, gears = [], [], []
     count = len(table.rows)
