@@ -23,6 +23,7 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from collections.abc import Iterator, Mapping, MutableMapping
 from gettext import gettext as _
 from types import FrameType
@@ -377,7 +378,11 @@ def main(argv: list[str] | None = None) -> int:
     2
     """
     args = list(sys.argv[1:] if argv is None else argv)
-    with _terminate_like_interrupt() as received:
+    with _terminate_like_interrupt() as received, warnings.catch_warnings():
+        # a RuntimeWarning of crankdyn's numerics (an overflow, an invalid value) is a bug, as
+        # in the test suite (pyproject's filterwarnings): raised with its traceback, never
+        # printed beside a result; bad input is refused before it reaches the numerics
+        warnings.filterwarnings("error", category=RuntimeWarning, module=r"crankdyn\.")
         status = _run(args)
         if status == 130 and received:  # a command that handled the interrupt itself
             status = 128 + received[-1]

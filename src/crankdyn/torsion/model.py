@@ -104,6 +104,15 @@ _RATIO_TOL = 1e-9
 OMEGA2_LIMIT = 1e100
 """Largest omega^2 bound (Gershgorin, rad^2/s^2) a model may have: keeps every product of the
 solvers (J omega^2 theta, determinants' ratios) far from overflow."""
+GEAR_RATIO_LIMIT = 1e3
+"""Largest speed ratio of one gear mesh, either way (n_b/n_a within 1/1000 to 1000): the
+largest single-stage ratios built are about 100:1 (worm gears) to 300:1 (strain-wave gears),
+so beyond 1000 the ratio or the tooth numbers are a mistake; reflected through such a mesh,
+inertias and stiffnesses scale by the ratio squared and excitation orders by the ratio, beyond
+what the solvers resolve (1e12 teeth made orders of 4e-12 and overflowing products)."""
+SPEED_RATIO_LIMIT = GEAR_RATIO_LIMIT**2
+"""Largest speed ratio of a mass to the reference mass through all the meshes between them,
+either way (1e-6 to 1e6: two stages of the largest mesh)."""
 MAGNITUDE_LIMIT = 1e20
 """Largest reflected inertia (kg m^2) or stiffness (N m/rad) a model may have, far beyond any
 machine (a large marine shaft line: 1e7 kg m^2, 1e10 N m/rad): beyond it the values are a unit
@@ -427,9 +436,11 @@ class Shaft:
     crankdyn.errors.InputError
         For ends that are not two different mass names (key ``between``), a missing or doubled
         stiffness (``stiffness``: a value, a geometry with length and shear modulus, or a
-        coupling), a negative damping or loss factor, an unknown role, a direction other than
-        +1 or -1, an element count outside 1 to 10000, or distributed inertia on a mesh, a
-        coupling or a grounded shaft (``inertia``); each message carries the value given.
+        coupling), a negative damping or loss factor, a speed ratio that is not positive or lies
+        beyond :data:`GEAR_RATIO_LIMIT` either way (``ratio``), an unknown role, a direction
+        other than +1 or -1, an element count outside 1 to 10000, or distributed inertia on a
+        mesh, a coupling or a grounded shaft (``inertia``); each message carries the value
+        given.
 
     Examples
     --------
@@ -536,6 +547,7 @@ class Shaft:
         )
         object.__setattr__(self, "inertia", _nonnegative("inertia", self.inertia, "the inertia"))
         ratio = check_positive("ratio", self.ratio, "the speed ratio")
+        _check_gear_ratio(ratio, "ratio", None)
         object.__setattr__(self, "ratio", ratio)
         if self.direction not in (1, -1):
             raise InputError("expected +1 or -1", key="direction", value=self.direction)
@@ -629,6 +641,20 @@ class Shaft:
         return f"{self.between[0]} - {self.between[1]}"
 
 
+def _check_gear_ratio(ratio: float, key: str, teeth: tuple[int, int] | None) -> None:
+    """Refuse a mesh's speed ratio (dimensionless) beyond :data:`GEAR_RATIO_LIMIT` either way,
+    naming ``key`` (``teeth`` when the ratio came from tooth numbers) and the value given."""
+    if 1.0 / GEAR_RATIO_LIMIT <= ratio <= GEAR_RATIO_LIMIT:
+        return
+    raise InputError(
+        f"a speed ratio of {ratio:.3g} lies beyond the 1:{GEAR_RATIO_LIMIT:g} to "
+        f"{GEAR_RATIO_LIMIT:g}:1 of one gear mesh (the largest built are about 300:1); check the "
+        f"{'tooth numbers' if teeth is not None else 'ratio'}, or give a gear train as its stages",
+        key=key,
+        value=list(teeth) if teeth is not None else ratio,
+    )
+
+
 def _teeth(value: object) -> tuple[int, int]:
     """Tooth numbers (z_a, z_b) as two whole numbers >= 1, else an InputError (key ``teeth``)."""
     pair = tuple(value) if isinstance(value, (list, tuple)) else ()
@@ -681,7 +707,8 @@ class Gear:
     crankdyn.errors.InputError
         For ends that are not two different mass names or include ``"ground"`` (key
         ``between``), a missing, zero, negative or non-finite ratio or one that disagrees with
-        the tooth numbers (``ratio``), bad tooth numbers (``teeth``), an unknown direction
+        the tooth numbers (``ratio``), bad tooth numbers (``teeth``), a ratio beyond
+        :data:`GEAR_RATIO_LIMIT` either way (``ratio`` or ``teeth``), an unknown direction
         (``direction``), a non-positive mesh stiffness (``stiffness``), damping on a rigid mesh,
         or a joint that is not ratio 1 and ``"same"`` (``joint``); each with the value given.
 
@@ -770,6 +797,7 @@ class Gear:
                 key="ratio",
                 value=self.ratio,
             )
+        _check_gear_ratio(ratio, "teeth" if self.teeth is not None else "ratio", self.teeth)
         object.__setattr__(self, "ratio", ratio)
         if self.direction not in GEAR_DIRECTIONS:
             raise InputError(
@@ -1048,8 +1076,9 @@ class TorsionModel:
         an unknown mass (``between``, ``at``, with the nearest name), a cylinder on two masses
         (``cylinders``), gear ratios or senses that disagree around a loop, a shaft between two
         masses a gear already ties together (``between``), a disconnected model, a degree of
-        freedom without inertia (``inertia``), or magnitudes beyond :data:`MAGNITUDE_LIMIT` or
-        :data:`OMEGA2_LIMIT` (a unit mistake).
+        freedom without inertia (``inertia``), a mass turning beyond :data:`SPEED_RATIO_LIMIT`
+        times the reference speed either way (``gear``), or magnitudes beyond
+        :data:`MAGNITUDE_LIMIT` or :data:`OMEGA2_LIMIT` (a unit mistake).
     TypeError
         When ``masses`` holds something other than :class:`Mass` objects.
 
@@ -1157,8 +1186,25 @@ class TorsionModel:
                         value=name,
                     )
         _ = self._structure  # validate the topology now
+        self._check_speed_ratios()
         self._check_inertia()
         self._check_scale()
+
+    def _check_speed_ratios(self) -> None:
+        """Refuse a mass turning more than :data:`SPEED_RATIO_LIMIT` times faster or slower
+        than the reference through the gears (each mesh within its own bound, several in
+        series can still multiply beyond what the solvers resolve)."""
+        ratio = self._structure.speed_ratio
+        bad = np.flatnonzero(~((ratio >= 1.0 / SPEED_RATIO_LIMIT) & (ratio <= SPEED_RATIO_LIMIT)))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(
+                f'"{self.masses[i].name}" turns at {ratio[i]:.3g} times the speed of '
+                f'"{self.masses[self.reference_mass].name}" through the gears, beyond the 1e-6 to '
+                "1e6 crankdyn resolves; check the gear ratios",
+                key="gear",
+                value=float(ratio[i]),
+            )
 
     def _check_inertia(self) -> None:
         """Every degree of freedom needs inertia: a wheel without inertia only in a rigid mesh

@@ -1,0 +1,82 @@
+"""Every error names its target (issue 33, "Silent nonsense and unnamed errors"): extreme gear
+ratios refused at the gear with the file and key (no numpy warning first), a cylinder number
+beyond the engine's named at the mass, openTorsion models validated as they are converted."""
+
+from __future__ import annotations
+
+import re
+import warnings
+from importlib import resources
+
+import pytest
+from hypothesis import example, given, settings
+from hypothesis import strategies as st
+
+from crankdyn.errors import InputError
+from crankdyn.torsion.model import GEAR_RATIO_LIMIT, Gear, Mass, Shaft, TorsionModel
+from tests.conftest import fuzz_examples
+
+EXAMPLES = resources.files("crankdyn") / "examples"
+MARINE = (EXAMPLES / "torsion" / "marine-shaft-line.toml").read_text(encoding="utf-8")
+
+
+def with_teeth(folder, teeth: str):
+    path = folder / "line.toml"
+    path.write_text(re.sub(r"(?m)^teeth = \[25, 80\]", f"teeth = {teeth}", MARINE), "utf-8")
+    return path
+
+
+@pytest.mark.parametrize("command", [["torsion", "modes"], ["torsion", "response"], ["tvc"]])
+def test_extreme_gear_ratio_refused_at_the_gear(cli, tmp_path, command):
+    """``teeth = [1, 1000000000000]`` before a propeller: four numpy RuntimeWarnings, then
+    "orders = 0.0: orders must be positive" naming neither file nor key (issue 33)."""
+    path = with_teeth(tmp_path, "[1, 1000000000000]")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no warning of any kind on the way
+        run = cli(*command, str(path))
+    assert run.status == 2
+    assert run.err == (
+        f"crankdyn: error: {path}: [[gear]] #1 teeth = [1, 1000000000000]: a speed ratio of "
+        "1e-12 lies beyond the 1:1000 to 1000:1 of one gear mesh (the largest built are about "
+        "300:1); check the tooth numbers, or give a gear train as its stages\n"
+    )
+
+
+def test_gear_ratio_bounds():
+    """Within 1/1000..1000 a mesh is accepted (the edges included); a ratio beyond is refused
+    under ``ratio``, on gears and on elastic meshes given as shafts; meshes in series are held
+    to 1e-6..1e6 of the reference speed (``gear``)."""
+    assert Gear(("a", "b"), GEAR_RATIO_LIMIT).ratio == 1000.0
+    assert Gear(("a", "b"), teeth=(1, 1000)).ratio == 1e-3
+    with pytest.raises(InputError, match=r"^ratio = 1000\.1: a speed ratio of 1e\+03 lies"):
+        Gear(("a", "b"), 1000.1)
+    with pytest.raises(InputError, match=r"^ratio = 0\.0001: a speed ratio of 0\.0001"):
+        Shaft(("a", "b"), 1e5, ratio=1e-4, direction=-1)
+    masses = tuple(Mass(n, 1.0, cylinders=(1,) if n == "a" else ()) for n in "abcd")
+    gears = (Gear(("a", "b"), 1000.0), Gear(("b", "c"), 1000.0), Gear(("c", "d"), 2.0))
+    with pytest.raises(InputError) as info:
+        TorsionModel(masses=masses, shafts=(), gears=gears)
+    assert str(info.value) == (
+        'gear = 2000000.0: "d" turns at 2e+06 times the speed of "a" through the gears, '
+        "beyond the 1e-6 to 1e6 crankdyn resolves; check the gear ratios"
+    )
+
+
+@settings(max_examples=fuzz_examples(30))
+@given(a=st.integers(1, 10**13), b=st.integers(1, 10**13))
+@example(a=1, b=10**12)
+@example(a=10**12, b=1)
+def test_fuzz_tooth_numbers(tmp_path_factory, a, b):
+    """Any tooth numbers: the model's modes, or one line at the gear; no warning."""
+    path = with_teeth(tmp_path_factory.mktemp("gear"), f"[{a}, {b}]")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        try:
+            model = TorsionModel.from_file(path)
+        except InputError as exc:
+            assert str(exc).startswith(f"{path}: [[gear]] #1 teeth = [{a}, {b}]: "), str(exc)
+            assert 1e-3 <= a / b <= 1e3 or "lies beyond" in str(exc)
+            return
+        from crankdyn.torsion.modal import natural_modes
+
+        assert natural_modes(model).natural_frequency.size == model.dof_count
