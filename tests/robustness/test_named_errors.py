@@ -80,3 +80,28 @@ def test_fuzz_tooth_numbers(tmp_path_factory, a, b):
         from crankdyn.torsion.modal import natural_modes
 
         assert natural_modes(model).natural_frequency.size == model.dof_count
+
+
+def test_a_cylinder_beyond_the_firing_order_is_named_at_its_mass(cli, tmp_path):
+    """``cylinders = [7]`` on a mass of a 6-cylinder model blamed the firing order (issue 33);
+    on an engine's [torsion] mass it names the engine's count, as it did."""
+    line = (EXAMPLES / "torsion" / "verdict-geared-line.toml").read_text(encoding="utf-8")
+    path = tmp_path / "m7.toml"
+    path.write_text(line.replace("cylinders = [6]", "cylinders = [7]"), encoding="utf-8")
+    run = cli("torsion", "modes", str(path))
+    assert run.status == 2
+    assert run.err == (
+        f"crankdyn: error: {path}: [[mass]] #7 cylinders = [7]: the [excitation] firing_order "
+        "names 6 cylinders (1..6)\n"
+    )
+    engine = (EXAMPLES / "inline6-diesel.toml").read_text(encoding="utf-8")
+    path = tmp_path / "e7.toml"
+    path.write_text(engine.replace("cylinders = [6]", "cylinders = [7]"), encoding="utf-8")
+    (tmp_path / "mendes2008_pressure.csv").write_bytes(
+        (EXAMPLES / "mendes2008_pressure.csv").read_bytes()
+    )
+    run = cli("torsion", "modes", str(path))
+    assert run.err == (
+        f"crankdyn: error: {path}: [[torsion.mass]] #8 cylinders = [7]: the engine has 6 "
+        "cylinders (1..6)\n"
+    )
