@@ -105,3 +105,69 @@ def test_a_cylinder_beyond_the_firing_order_is_named_at_its_mass(cli, tmp_path):
         f"crankdyn: error: {path}: [[torsion.mass]] #8 cylinders = [7]: the engine has 6 "
         "cylinders (1..6)\n"
     )
+
+
+# ---- openTorsion conversion ---------------------------------------------------------------------
+
+
+def assembly(node=1, radius=2.0, inertia=0.7, parent_radius=1.0):
+    """An openTorsion-like assembly (the attributes from_opentorsion reads): two disks on a
+    shaft, and a pair of rigid gears at nodes 1 and 2."""
+    from types import SimpleNamespace as Element
+
+    pinion = Element(node=1, I=0.1, R=parent_radius, parent=None)
+    wheel = Element(node=2, I=0.3, R=radius, parent=pinion)
+    return Element(
+        shaft_elements=[Element(nl=0, nr=node, k=1e4, c=0.0, mass=0.0, odl=None)],
+        disk_elements=[Element(node=0, I=0.4, c=0.0, k=0.0), Element(node=2, I=inertia, c=0, k=0)],
+        gear_elements=[pinion, wheel],
+    )
+
+
+@pytest.mark.parametrize(
+    ("kw", "message"),
+    [
+        ({"radius": 0}, "gear_elements[1].R = 0: a gear's radius must be positive"),
+        ({"parent_radius": 0.0}, "gear_elements[1].parent.R = 0.0: a gear's radius must be"),
+        ({"node": 1.5}, "shaft_elements[0].nr = 1.5: expected a node number, a whole number"),
+        ({"node": -1}, "shaft_elements[0].nr = -1: expected a node number, a whole number >= 0"),
+        ({"node": "1"}, 'shaft_elements[0].nr = "1": expected a node number'),
+        ({"node": True}, "shaft_elements[0].nr = true: expected a node number"),
+        ({"inertia": float("nan")}, "disk_elements[1].I = nan: the value is not finite"),
+        ({"inertia": -0.7}, "disk_elements[1].I = -0.7: must not be negative"),
+        ({"radius": 1e5}, "gear_elements[1]: ratio = 1e-05: a speed ratio of 1e-05 lies beyond"),
+    ],
+)
+def test_opentorsion_conversion_validates_what_it_reads(kw, message):
+    """A Gear with R = 0 raised ZeroDivisionError; node 1.5 was silently node 1 (issue 33)."""
+    with pytest.raises(InputError) as info:
+        TorsionModel.from_opentorsion(assembly(**kw))
+    assert str(info.value).startswith(message), str(info.value)
+
+
+def test_opentorsion_numpy_numbers_are_accepted():
+    import numpy as np
+
+    model = TorsionModel.from_opentorsion(assembly(node=np.int64(1), radius=np.float64(2.0)))
+    assert model.mass_names == ("node 0", "node 1", "node 2")
+    with pytest.raises(InputError, match=r"^shaft_elements\[0\]\.nr = 1\.5:"):
+        TorsionModel.from_opentorsion(assembly(node=np.float64(1.5)))
+
+
+values = st.one_of(
+    st.integers(-3, 5),
+    st.floats(allow_nan=True, allow_infinity=True),
+    st.sampled_from([None, "x", True, 0, 0.0, 1.5, -1]),
+)
+
+
+@settings(max_examples=fuzz_examples(60))
+@given(node=values, radius=values, inertia=values, parent_radius=values)
+def test_fuzz_opentorsion_elements(node, radius, inertia, parent_radius):
+    """Any element values: a model, or one line naming the element."""
+    try:
+        TorsionModel.from_opentorsion(
+            assembly(node=node, radius=radius, inertia=inertia, parent_radius=parent_radius)
+        )
+    except InputError as exc:
+        assert "\n" not in str(exc)
