@@ -15,8 +15,6 @@ Everything else follows: :meth:`Result.to_dict`, :meth:`Result.to_json`, :meth:`
 
 from __future__ import annotations
 
-import csv
-import html
 import io
 import json
 import math
@@ -33,6 +31,7 @@ if TYPE_CHECKING:
 __all__ = ["DEG", "Result", "array", "column", "freeze", "scalar"]
 
 from crankdyn.constants import DEG, RPM
+from crankdyn.display import csv_text, html_text
 
 
 def _meta(kind: str, key: str, label: str, unit: str, scale: float, **extra: Any) -> dict[str, Any]:
@@ -314,16 +313,16 @@ class Result:
         """
         cols = self.columns()
         buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(list(cols))
+        buffer.write(csv_text([list(cols)]))
         if cols and all(np.asarray(v).dtype.kind == "f" for v in cols.values()):
             # numbers only: a row at a time through one format, as _csv_cell writes each
             line = ",".join(["%.10g"] * len(cols)) + "\n"
             for row in np.column_stack(list(cols.values())).tolist():
                 buffer.write(line % tuple(row))
-        elif cols:
-            for row in zip(*cols.values(), strict=True):
-                writer.writerow([_csv_cell(v) for v in row])
+        elif cols:  # text in the cells (names): quoted as RFC 4180 requires, no control char
+            buffer.write(
+                csv_text([_csv_cell(v) for v in row] for row in zip(*cols.values(), strict=True))
+            )
         return buffer.getvalue()
 
     def summary_rows(self) -> list[tuple[str, str, str]]:
@@ -388,13 +387,13 @@ class Result:
 
         title = getattr(self, "title", type(self).__name__)
         rows = [list(r) for r in self.key_rows() + self.summary_rows()]
-        warnings = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in self.warnings)
+        warnings = "".join(f"<li>warning: {html_text(w.message)}</li>" for w in self.warnings)
         out = f"<ul style='color:#b26a00'>{warnings}</ul>" if warnings else ""
         out += html_table(["Quantity", "Value", "Unit"], rows, title=title)
         cols = self.column_labels()
         if cols:
             n = len(next(iter(self.columns().values())))
-            names = ", ".join(html.escape(k) for k in cols)
+            names = ", ".join(html_text(k) for k in cols)
             out += f"<p>{n} rows: {names} (.to_csv(), .to_dict(), .plot())</p>"
         return out
 

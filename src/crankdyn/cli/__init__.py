@@ -285,8 +285,11 @@ def cli() -> None:
 
 
 def _error(message: str) -> None:
-    """``crankdyn: error: MESSAGE`` on one line of standard error (white space runs joined)."""
-    text = " ".join(str(message).split())
+    """``crankdyn: error: MESSAGE`` on one line of standard error (white space runs joined,
+    other control characters shown escaped: a click message may quote the user's text)."""
+    from crankdyn.display import printable
+
+    text = printable(" ".join(str(message).split()))
     with contextlib.suppress(OSError, ValueError):  # stderr itself may be gone
         click.echo(f"crankdyn: error: {text}", err=True)
 

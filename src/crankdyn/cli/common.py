@@ -172,9 +172,12 @@ def warn(message: str) -> None:
     Parameters
     ----------
     message
-        The warning; runs of white space (line breaks included) become one space.
+        The warning; runs of white space (line breaks included) become one space, other
+        control characters are shown escaped.
     """
-    click.echo(f"crankdyn: warning: {' '.join(str(message).split())}", err=True)
+    from crankdyn.display import printable
+
+    click.echo(f"crankdyn: warning: {printable(' '.join(str(message).split()))}", err=True)
 
 
 @overload

@@ -324,10 +324,15 @@ def read_csv_table(
         text = read_text(path, limit=MAX_CSV_BYTES, what=what)
     except InputError as exc:
         raise InputError(exc.message, file=name) from None
+    # a comment is a line that starts with # as written (a quoted "#1" is a cell)
+    lines = [
+        (number, line)
+        for number, line in enumerate(text.splitlines(), start=1)
+        if line.strip() and not line.lstrip().startswith("#")
+    ]
+    parsed = ((number, next(csv.reader([line]), [])) for number, line in lines)  # a row a line
     rows = [
-        (number, [c.strip() for c in row])
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")
+        (number, [c.strip() for c in row]) for number, row in parsed if any(map(str.strip, row))
     ]
     if not rows:
         raise InputError(empty or f"the {what} is empty", file=name)

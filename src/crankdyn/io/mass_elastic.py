@@ -20,11 +20,11 @@ the model file).
 
 from __future__ import annotations
 
-import csv
 import io
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from crankdyn.display import csv_text, printable
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.csv_tables import cell_value, read_csv_table, split_header_unit, unit_factor
 from crankdyn.torsion.model import (
@@ -128,13 +128,12 @@ def _connections(
 def _table(model: TorsionModel, links: dict[int, Shaft | Gear], ground: dict[int, float]) -> str:
     """The CSV text of a chain's rows (:func:`mass_elastic_csv`)."""
     buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
     buffer.write(
-        f"# mass-elastic table of {model.name} (crankdyn); one row per mass, from the "
+        f"# mass-elastic table of {printable(model.name)} (crankdyn); one row per mass, from the "
         "free end, with the connection to the next mass\n"
     )
     header = [name if unit is None else f"{name} [{unit}]" for name, (_k, unit) in _COLUMNS.items()]
-    writer.writerow(header)
+    rows = [header]
     for i, m in enumerate(model.masses):
         link = links.get(i)
         row = {
@@ -160,7 +159,8 @@ def _table(model: TorsionModel, links: dict[int, Shaft | Gear], ground: dict[int
             if link.is_mesh:
                 row["gear_ratio"] = _g(link.ratio)
                 row["gear_direction"] = "opposite" if link.direction < 0 else "same"
-        writer.writerow([row.get(name, "") for name in _COLUMNS])
+        rows.append([row.get(name, "") for name in _COLUMNS])
+    buffer.write(csv_text(rows))  # RFC 4180 quoting: a name with a comma, a quote, a leading #
     return buffer.getvalue()
 
 

@@ -240,8 +240,10 @@ def os_error_message(exc: OSError) -> str:
 
 
 def _notice(text: str) -> None:
+    from crankdyn.display import printable
+
     with contextlib.suppress(OSError, ValueError):
-        print(f"crankdyn: {' '.join(text.split())}", file=sys.stderr, flush=True)
+        print(f"crankdyn: {printable(' '.join(text.split()))}", file=sys.stderr, flush=True)
 
 
 def _within(path: str | None, folder: Path) -> bool:

@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crankdyn.crank.geometry import check_finite, check_positive
+from crankdyn.display import printable
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.torsion.coupling import Coupling
 
@@ -235,7 +236,8 @@ class Mass:
     Raises
     ------
     crankdyn.errors.InputError
-        For an empty or reserved name (key ``name``), an unknown role (``role``, with the
+        For an empty or reserved name, or one with control characters or white space at its
+        ends (key ``name``), an unknown role (``role``, with the
         nearest valid one), a negative or non-finite inertia or damping (``inertia``,
         ``damping``) or cylinder numbers that are not distinct whole numbers from 1
         (``cylinders``); each message carries the value given.
@@ -260,6 +262,15 @@ class Mass:
 
     def __post_init__(self) -> None:
         name = _name(self.name)
+        if name != name.strip() or printable(name) != name:
+            # a name is one line, as typed: tables (the mass-elastic CSV) and files carry it
+            # exactly, and no terminal receives its control characters
+            raise InputError(
+                "a mass name has no control characters (line breaks, tabs, escapes) and no "
+                "white space at its ends",
+                key="name",
+                value=name,
+            )
         if name == GROUND:
             raise InputError(
                 f'"{GROUND}" is reserved for the fixed end of a grounded shaft', key="name"

@@ -19,7 +19,6 @@ fingerprint, base file) as schema metadata under the key ``crankdyn``.
 
 from __future__ import annotations
 
-import csv
 import datetime as _dt
 import io
 import json
@@ -33,6 +32,7 @@ import numpy as np
 
 from crankdyn import __version__
 from crankdyn.constants import RPM
+from crankdyn.display import csv_text
 from crankdyn.extras import require
 from crankdyn.io.output import write_bytes, write_text
 from crankdyn.study.cases import Case
@@ -294,13 +294,9 @@ class CaseTable:
             A header of column names, numbers written exactly (shortest round-trip form),
             empty cells for NaN.
         """
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow([c.name for c in self.columns])
         cols = [self.data[c.name] for c in self.columns]
-        for row in zip(*cols, strict=True):
-            writer.writerow([_cell(v) for v in row])
-        return buffer.getvalue()
+        header = [c.name for c in self.columns]  # parameter names: user text
+        return csv_text([header, *([_cell(v) for v in row] for row in zip(*cols, strict=True))])
 
 
 def _cell(value: Any) -> str:
