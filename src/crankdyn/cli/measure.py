@@ -4,7 +4,7 @@ analysis, the model held against the measurement). docs/measurement.md."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any, cast
 
 import click
@@ -354,90 +354,107 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
     return tables
 
 
+_MEASURE_OPTIONS: tuple[Callable[[Any], Any], ...] = (
+    teeth_option(),
+    click.option(
+        "--cycle",
+        type=click.Choice(_CYCLES),
+        default=None,
+        help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else "
+        "four-stroke.",
+    ),
+    click.option(
+        "--model",
+        default=None,
+        metavar="MODEL_OR_ENGINE",
+        help="Hold the measurement against this model's forced response (needs --at).",
+    ),
+    at_option(),
+    orders_option(
+        "Orders to analyse, FIRST:LAST[:STEP] or 1.5,3,4.5 (default every order up to 12, "
+        "below N/2)."
+    ),
+    click.option(
+        "--analysis",
+        type=click.Choice(ANALYSES),
+        default="auto",
+        show_default=True,
+        help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).",
+    ),
+    click.option(
+        "--window",
+        type=click.Choice(WINDOWS),
+        default="hann",
+        show_default=True,
+        help="Window of order tracking (steady records: uniform, one cycle).",
+    ),
+    click.option(
+        "--window-cycles",
+        type=int,
+        default=4,
+        show_default=True,
+        metavar="N",
+        help="Cycles per window of order tracking (windows step by one cycle).",
+    ),
+    click.option(
+        "--bin",
+        "bin_width",
+        default=None,
+        metavar="RPM",
+        help="Speed bin of order tracking (rpm); default 10.",
+    ),
+    click.option(
+        "--reference-angle",
+        default=None,
+        metavar="DEG",
+        help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; default 0.",
+    ),
+    click.option(
+        "--tooth-correction",
+        default=None,
+        metavar="FILE",
+        help="Tooth-spacing errors: none (default), self (this record's mean over "
+        "revolutions) or FILE, a calibration record of the same wheel.",
+    ),
+    plot_option("Write order amplitudes (against speed for a run-up), with the model's."),
+    click.option(
+        "--plot-map",
+        "map_path",
+        default=None,
+        metavar="FILE",
+        help="Write the colour map of order amplitudes over a run-up.",
+    ),
+    click.option(
+        "--plot-fit",
+        "fit_path",
+        default=None,
+        metavar="FILE",
+        help="Write the resonance fits of a run-up.",
+    ),
+    click.option(
+        "--plot-trace",
+        "trace_path",
+        default=None,
+        metavar="FILE",
+        help="Write the instantaneous speed and angular vibration.",
+    ),
+)
+"""The options of ``crankdyn measure`` (in the order of its help), applied by
+:func:`_measure_options`."""
+
+
+def _measure_options(f: Any) -> Any:
+    """``f`` with the options of :data:`_MEASURE_OPTIONS` (the first listed first in the help) and
+    ``--format``, ``-o`` and ``--force`` (:func:`crankdyn.cli.writer.output_options`)."""
+    f = output_options(f)
+    for option in reversed(_MEASURE_OPTIONS):
+        f = option(f)
+    return f
+
+
 @click.command("measure")
 @click.argument("signal", metavar="SIGNAL")
-@teeth_option()
-@click.option(
-    "--cycle",
-    type=click.Choice(_CYCLES),
-    default=None,
-    help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else four-stroke.",
-)
-@click.option(
-    "--model",
-    default=None,
-    metavar="MODEL_OR_ENGINE",
-    help="Hold the measurement against this model's forced response (needs --at).",
-)
-@at_option()
-@orders_option(
-    "Orders to analyse, FIRST:LAST[:STEP] or 1.5,3,4.5 (default every order up to 12, below N/2)."
-)
-@click.option(
-    "--analysis",
-    type=click.Choice(ANALYSES),
-    default="auto",
-    show_default=True,
-    help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).",
-)
-@click.option(
-    "--window",
-    type=click.Choice(WINDOWS),
-    default="hann",
-    show_default=True,
-    help="Window of order tracking (steady records: uniform, one cycle).",
-)
-@click.option(
-    "--window-cycles",
-    type=int,
-    default=4,
-    show_default=True,
-    metavar="N",
-    help="Cycles per window of order tracking (windows step by one cycle).",
-)
-@click.option(
-    "--bin",
-    "bin_width",
-    default=None,
-    metavar="RPM",
-    help="Speed bin of order tracking (rpm); default 10.",
-)
-@click.option(
-    "--reference-angle",
-    default=None,
-    metavar="DEG",
-    help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; default 0.",
-)
-@click.option(
-    "--tooth-correction",
-    default=None,
-    metavar="FILE",
-    help="Tooth-spacing errors: none (default), self (this record's mean over "
-    "revolutions) or FILE, a calibration record of the same wheel.",
-)
-@plot_option("Write order amplitudes (against speed for a run-up), with the model's.")
-@click.option(
-    "--plot-map",
-    "map_path",
-    default=None,
-    metavar="FILE",
-    help="Write the colour map of order amplitudes over a run-up.",
-)
-@click.option(
-    "--plot-fit",
-    "fit_path",
-    default=None,
-    metavar="FILE",
-    help="Write the resonance fits of a run-up.",
-)
-@click.option(
-    "--plot-trace",
-    "trace_path",
-    default=None,
-    metavar="FILE",
-    help="Write the instantaneous speed and angular vibration.",
-)
-@output_options
+@_measure_options
 def measure_command(
     signal: str,
     teeth: int | None,
