@@ -153,7 +153,9 @@ def _check_grids(t: Table, spec: TvcSpec, operating: OperatingRange | None) -> N
     elif operating is not None:
         ranges.append(("[operating] speed_range", (operating.low, operating.high)))
     for key, (low, high) in ranges:
-        count = math.floor((high - low) / spec.step) + 1
+        # as the grid is made: the steps from the start, and the end when they stop short of it
+        count = math.floor((high - low) / spec.step * (1 + 1e-12)) + 1
+        count += low + spec.step * (count - 1) < high
         if count <= MAX_SPEEDS:
             continue
         span = f"{low * RPM:g} to {high * RPM:g} rpm"

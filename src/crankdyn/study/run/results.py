@@ -34,7 +34,7 @@ from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.display import csv_text
 from crankdyn.extras import require
-from crankdyn.io.output import write_bytes, write_text
+from crankdyn.io.output import MARKER, write_bytes, write_text
 from crankdyn.study.cases import Case
 from crankdyn.study.figures import FIGURES, SETTINGS, Figure
 from crankdyn.study.spec import Parameter, StudySpec
@@ -411,8 +411,17 @@ def write_outputs(
 
         with collector_paused():  # the summary's figures live to the end of its writing
             report = build_summary(spec, table, run_info or {})
+            _adopt_summary(out / "summary")
             paths.append(write_report(report, out / "summary", force=True))
     return paths
+
+
+def _adopt_summary(folder: Path) -> None:
+    """A summary folder written before crankdyn marked its output folders (an older version)
+    is this study's own (``summary`` is one of the study folder's derived files): marked, so
+    that it is replaced as every summary is (``--force`` replaces only marked folders)."""
+    if folder.is_dir() and not folder.is_symlink() and not (folder / MARKER).exists():
+        write_text(folder / MARKER, "", force=True)
 
 
 def _display(value: float, figure: Figure) -> str:
