@@ -338,7 +338,8 @@ def warnings_of(*sources: Any) -> list[PlausibilityWarning]:
 def printable_blocks(blocks: Iterable[TextTable | str | None]) -> list[TextTable | str | None]:
     """Tables and notes with every control character of their text (titles, headers, cells,
     captions: user names among them) shown as its escape (:func:`crankdyn.display.printable`):
-    no escape sequence of a name reaches the terminal, and every cell is one line.
+    no escape sequence of a name reaches the terminal, and every cell and title is one line
+    (a note keeps its own line breaks).
 
     Parameters
     ----------
@@ -363,8 +364,8 @@ def printable_blocks(blocks: Iterable[TextTable | str | None]) -> list[TextTable
                     set(block.text_columns),
                     printable(block.caption),
                 )
-        elif block:
-            block = printable(str(block))
+        elif block:  # a note: its own line breaks kept, other control characters escaped
+            block = "\n".join(printable(line) for line in str(block).split("\n"))
         out.append(block)
     return out
 
