@@ -132,10 +132,11 @@ def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> NDArray[np.
     """Speeds low, low + step, ... up to high: the one speed grid of every sweep (the command
     line, the report, the TVC and the study).
 
-    The end is included when the step divides the range, to a relative 1e-12. Each speed is
-    the nearest multiple of the step in rpm when the ends and the step are round numbers in
-    rpm, so that grids read 6000, not 6000.000000000001. Verdicts never depend on it: the
-    analyses add the critical speeds and refine every resonance.
+    The end is always included (after the last whole step when the step does not divide the
+    range, to a relative 1e-12): a sweep covers its whole range. Each speed is the nearest
+    multiple of the step in rpm when the ends and the step are round numbers in rpm, so that
+    grids read 6000, not 6000.000000000001. Verdicts never depend on it: the analyses add the
+    critical speeds and refine every resonance.
 
     Parameters
     ----------
@@ -159,6 +160,8 @@ def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> NDArray[np.
     --------
     >>> (speed_grid(1000 / RPM, 1030 / RPM) * RPM).round(9).tolist()
     [1000.0, 1010.0, 1020.0, 1030.0]
+    >>> (speed_grid(1000 / RPM, 1025 / RPM) * RPM).round(9).tolist()
+    [1000.0, 1010.0, 1020.0, 1025.0]
     """
     if not (step > 0.0 and high >= low > 0.0):
         raise InputError(
@@ -167,12 +170,15 @@ def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> NDArray[np.
             value=[low * RPM, high * RPM, step * RPM],
         )
     count = math.floor((high - low) / step * (1 + 1e-12)) + 1
-    if count > MAX_SPEEDS:
+    short = low + step * (count - 1) < high * (1.0 - 1e-12)  # the end after the last step
+    if count + short > MAX_SPEEDS:
         raise InputError(
-            f"too many speeds ({count}, more than {MAX_SPEEDS}): give a larger step",
+            f"too many speeds ({count + short}, more than {MAX_SPEEDS}): give a larger step",
             key="speeds",
             value=[low * RPM, high * RPM, step * RPM],
         )
     rpm = low * RPM + step * RPM * np.arange(count)
+    if short:
+        rpm = np.append(rpm, high * RPM)
     rounded = np.round(rpm, 9)
     return rounded / RPM

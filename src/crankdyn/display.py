@@ -19,6 +19,11 @@ full precision.
 - HTML views for notebooks: :func:`html_table`, :func:`engine_html`, :func:`torsion_model_html`
   (the mass-elastic system as the report shows it, :func:`mass_elastic_tables`),
   :func:`mechanism_html`.
+- User text in every output: :func:`printable` (control characters shown as their escapes,
+  ``\x1b``, ``\n``: the terminal, figures), :func:`html_text` (the same, HTML-escaped: the
+  reports, the notebook views) and :func:`csv_text` (CSV fields quoted as RFC 4180 requires,
+  control characters escaped: every CSV file crankdyn writes). No control character of a name
+  reaches a terminal, an HTML page, a PDF or a CSV file.
 
 Everything here is pure (no I/O, no boundary imports), importable from every layer.
 """
@@ -27,6 +32,7 @@ from __future__ import annotations
 
 import html
 import math
+import unicodedata
 from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -42,18 +48,114 @@ __all__ = [
     "SIGNIFICANT",
     "clean",
     "column_text",
+    "csv_text",
     "engine_html",
     "engineering_unit",
     "format_value",
     "html_table",
+    "html_text",
     "mass_elastic_tables",
     "mechanism_html",
     "number",
+    "printable",
     "quantity",
     "shaft_kind",
     "torsion_model_html",
     "unit_label",
 ]
+
+
+def _escape(ch: str) -> str:
+    r"""A control character as its Python escape (``\x1b``, ``\n``), else the character."""
+    if unicodedata.category(ch) == "Cc" or ch in "\u2028\u2029":
+        return repr(ch)[1:-1]
+    return ch
+
+
+def printable(text: str) -> str:
+    r"""User text with every control character (C0, DEL, C1; line and paragraph separators)
+    shown as its escape: ESC as ``\x1b``, a line break as ``\n``. A terminal title, a table
+    cell, a figure's label is then one line of what was typed, and no escape sequence
+    reaches the terminal (colours, cursor moves, a rewritten title).
+
+    Parameters
+    ----------
+    text
+        The text (a name, a note, a file name).
+
+    Returns
+    -------
+    str
+        The text, its control characters escaped; unchanged when it has none.
+
+    Examples
+    --------
+    >>> printable("pump \x1b[31mred\x07"), printable("a\r\nb"), printable("Müller 1")
+    ('pump \\x1b[31mred\\x07', 'a\\r\\nb', 'Müller 1')
+    """
+    text = str(text)
+    if text.isprintable():
+        return text
+    return "".join(_escape(ch) for ch in text)
+
+
+def html_text(text: object) -> str:
+    r"""User text for HTML: control characters escaped (:func:`printable`), then ``&``, ``<``,
+    ``>`` and quotes as entities (:func:`html.escape`).
+
+    Parameters
+    ----------
+    text
+        The text (any object, as its ``str``).
+
+    Returns
+    -------
+    str
+        Text safe in HTML content and quoted attribute values, without control characters.
+
+    Examples
+    --------
+    >>> html_text("<b>\x1b[1m</b> & co")
+    '&lt;b&gt;\\x1b[1m&lt;/b&gt; &amp; co'
+    """
+    return html.escape(printable(str(text)))
+
+
+def _csv_field(value: object) -> str:
+    r"""One CSV field (RFC 4180, sec. 2): quoted, its quotes doubled, when it holds a comma, a
+    quote or (none are left) a line break; also when it starts with ``#`` or white space or
+    ends with white space, which crankdyn's readers take for a comment or strip."""
+    field = "" if value is None else printable(str(value))
+    if any(ch in field for ch in ',"\r\n') or field[:1] == "#" or field != field.strip():
+        return '"' + field.replace('"', '""') + '"'
+    return field
+
+
+def csv_text(rows: Iterable[Iterable[object]]) -> str:
+    r"""Rows as CSV text, every field as RFC 4180 (sec. 2) requires: a field holding a comma or
+    a quote is quoted and its quotes doubled; control characters (a name's CR or LF, which
+    would split its row) are escaped first (:func:`printable`), so every row is one line.
+    Lines end in ``\n``; None is an empty field; numbers are written as ``str`` writes them.
+
+    Parameters
+    ----------
+    rows
+        The rows (the header first, if any), each an iterable of fields.
+
+    Returns
+    -------
+    str
+        The CSV text, each row ended by a newline.
+
+    Examples
+    --------
+    >>> print(csv_text([["name", "inertia"], ["disc, 1", 2.5], ['say "hi"\r', None]]), end="")
+    name,inertia
+    "disc, 1",2.5
+    "say ""hi""\r",
+    """
+    return "".join(",".join(_csv_field(v) for v in row) + "\n" for row in rows)
+
 
 SIGNIFICANT = 5
 """Significant digits of a figure (of the largest value of a column with aligned decimals)."""
@@ -446,12 +548,12 @@ def html_table(
         text = str(text)
         numeric = text.replace(".", "", 1).replace("-", "", 1).replace("e", "").isdigit()
         align = "right" if numeric else "left"
-        return f"<{tag} style='text-align:{align}'>{html.escape(text)}</{tag}>"
+        return f"<{tag} style='text-align:{align}'>{html_text(text)}</{tag}>"
 
     head = "".join(cell("th", h) for h in header)
     body = "".join("<tr>" + "".join(cell("td", c) for c in row) + "</tr>" for row in rows)
-    title_html = f"<strong>{html.escape(title)}</strong>" if title else ""
-    cap = f"<p>{html.escape(caption)}</p>" if caption else ""
+    title_html = f"<strong>{html_text(title)}</strong>" if title else ""
+    cap = f"<p>{html_text(caption)}</p>" if caption else ""
     return f"<div>{title_html}<table><tr>{head}</tr>{body}</table>{cap}</div>"
 
 
@@ -740,7 +842,7 @@ def torsion_model_html(model: TorsionModel) -> str:
         + ("chain" if model.is_chain else "branched")
         + (", free" if model.is_free else ", grounded")
     )
-    out = f"<div><strong>{html.escape(title)}</strong></div>"
+    out = f"<div><strong>{html_text(title)}</strong></div>"
     for _name, table_title, header, rows, caption in mass_elastic_tables(model):
         out += html_table(header, rows, title=table_title, caption=caption)
     return out

@@ -110,6 +110,18 @@ def closest(word: object, candidates: Iterable[object], cutoff: float = 0.6) -> 
 _NO_VALUE = object()
 
 
+def _no_controls(text: str) -> str:
+    """Control characters (a name's ESC, BEL) shown escaped; other text as it is."""
+    if text.isprintable():
+        return text
+    import unicodedata
+
+    return "".join(
+        repr(ch)[1:-1] if unicodedata.category(ch) == "Cc" or ch in "\u2028\u2029" else ch
+        for ch in text
+    )
+
+
 def _one_line(text: str) -> str:
     """Control characters shown escaped, so that a message is always one line."""
     if text.isprintable():
@@ -146,7 +158,7 @@ class InputError(ValueError):
         key: str | None = None,
         value: object = _NO_VALUE,
     ) -> None:
-        self.message = " ".join(str(message).split())
+        self.message = _no_controls(" ".join(str(message).split()))
         self.file = None if file is None else _one_line(str(file))
         self.key = None if key is None else _one_line(str(key))
         self.value = value

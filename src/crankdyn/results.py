@@ -15,9 +15,7 @@ Everything else follows: :meth:`Result.to_dict`, :meth:`Result.to_json`, :meth:`
 
 from __future__ import annotations
 
-import csv
 import dataclasses
-import html
 import io
 import json
 from collections.abc import Iterator
@@ -36,6 +34,7 @@ if TYPE_CHECKING:
 __all__ = ["DEG", "Result", "array", "column", "freeze", "jsonable", "scalar", "scaled_value"]
 
 from crankdyn.constants import DEG
+from crankdyn.display import csv_text, html_text
 
 
 def _meta(kind: str, key: str, label: str, unit: str, scale: float, **extra: Any) -> dict[str, Any]:
@@ -326,16 +325,16 @@ class Result:
         """
         cols = self.columns()
         buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(list(cols))
+        buffer.write(csv_text([list(cols)]))
         if cols and all(np.asarray(v).dtype.kind == "f" for v in cols.values()):
             # numbers only: a row at a time through one format, as _csv_cell writes each
             line = ",".join(["%.10g"] * len(cols)) + "\n"
             for row in np.column_stack(list(cols.values())).tolist():
                 buffer.write(line % tuple(row))
-        elif cols:
-            for row in zip(*cols.values(), strict=True):
-                writer.writerow([_csv_cell(v) for v in row])
+        elif cols:  # text in the cells (names): quoted as RFC 4180 requires, no control char
+            buffer.write(
+                csv_text([_csv_cell(v) for v in row] for row in zip(*cols.values(), strict=True))
+            )
         return buffer.getvalue()
 
     # ---- summary: key figures, tables, notes, warnings, verdicts (crankdyn.summary) -----------
@@ -503,7 +502,7 @@ class Result:
         cols = self.column_labels()
         if cols:
             n = len(next(iter(self.columns().values())))
-            names = ", ".join(html.escape(k) for k in cols)
+            names = ", ".join(html_text(k) for k in cols)
             out += f"<p>{n} rows: {names} (.to_csv(), .to_dict(), .plot())</p>"
         return out
 

@@ -332,15 +332,10 @@ class SummaryTable:
             The column keys as header, the values as numbers (10 significant digits) or text
             (quoted as RFC 4180 requires).
         """
-        import csv
-        import io
+        from crankdyn.display import csv_text
 
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow([c.key for c in self.columns])
-        for row in self.rows:
-            writer.writerow(["" if v is None else _csv(v) for v in row])
-        return buffer.getvalue()
+        rows = [["" if v is None else _csv(v) for v in row] for row in self.rows]
+        return csv_text([[c.key for c in self.columns], *rows])
 
 
 def _text(v: object) -> str:
@@ -884,13 +879,11 @@ def summary_html(summary: Summary) -> str:
     str
         The HTML.
     """
-    import html
-
-    from crankdyn.display import html_table
+    from crankdyn.display import html_table, html_text
 
     parts = []
     if summary.warnings:
-        items = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in summary.warnings)
+        items = "".join(f"<li>warning: {html_text(w.message)}</li>" for w in summary.warnings)
         parts.append(f"<ul style='color:#b26a00'>{items}</ul>")
     rows = [list(r) for r in summary.rows()]
     parts.append(html_table(["Quantity", "Value", "Unit"], rows, title=summary.title))
@@ -901,6 +894,6 @@ def summary_html(summary: Summary) -> str:
         header, cells = table.cells(aligned=False)
         parts.append(html_table(header, cells, title=table.title, caption=table.caption))
     if summary.notes:
-        items = "".join(f"<li>{html.escape(n)}</li>" for n in summary.notes)
+        items = "".join(f"<li>{html_text(n)}</li>" for n in summary.notes)
         parts.append(f"<ul>{items}</ul>")
     return "".join(parts)

@@ -224,3 +224,96 @@ def test_analyze_measurement_options_checked_first(cli, tmp_path):
     )
     assert 'did you mean "flywheel"' in line
     assert not (tmp_path / "r").exists()
+
+
+# ---- issue 33: --teeth against the record, errors naming the file, the documented keys --------
+
+
+def _speed_csv(path, seconds=2.0):
+    """A sampled speed signal: 2000 rpm with 1 % of order 3, sampled at 10 kHz."""
+    t = np.arange(0.0, seconds, 1e-4)
+    omega = 2000 / RPM * (1 + 0.01 * np.sin(3 * 2000 / RPM * t))
+    rows = "\n".join(f"{a:.6f},{w * RPM:.6f}" for a, w in zip(t, omega, strict=True))
+    path.write_text("time [s],speed [rpm]\n" + rows + "\n", encoding="utf-8")
+    return str(path)
+
+
+def test_teeth_checked_against_the_record_for_every_signal_kind(cli, steady_csv, tmp_path):
+    """``--teeth 100000000`` on a sampled speed signal allocated 4.97 GiB (a traceback): now one
+    line naming the file, --teeth, the pulses it would make, the bound (4,194,304) and the
+    largest --teeth the record takes; a pulse file with a wheel larger than the record, one
+    line too (it named neither the file nor --teeth)."""
+    speed = _speed_csv(tmp_path / "speed.csv")
+    # the revolutions of the record, the closed-form integral of its speed over 0..1.9999 s
+    w0, end = 2000 / RPM, 1.9999
+    revolutions = (w0 * end + 0.01 * (1 - math.cos(3 * w0 * end)) / 3) / (2 * math.pi)
+    largest = math.floor((4_194_304 - 1) / revolutions)
+    line = one_line_error(cli, "measure", speed, "--teeth", "100000000")
+    assert line.startswith(
+        f"crankdyn: error: {speed}: --teeth = 100000000: the record's {revolutions:.4g} "
+        f"revolutions at 100,000,000 angle samples each make {revolutions * 1e8:,.0f} pulses; "
+        f"crankdyn resamples a speed signal to at most 4,194,304 (this record takes at most "
+        f"{largest:,} per revolution)"
+    )
+    assert cli("measure", speed, "--teeth", "64", "--orders", "3").status == 0
+    line = one_line_error(cli, "measure", steady_csv, "--teeth", "100000000")
+    assert line.startswith(f"crankdyn: error: {steady_csv}: --teeth = 100000000: the record ")
+    assert "less than one revolution of a wheel with 100,000,000 pulses" in line
+    np.save(tmp_path / "speed.npy", np.column_stack([np.arange(0, 2, 1e-4), np.full(20000, 200.0)]))
+    line = one_line_error(cli, "measure", str(tmp_path / "speed.npy"), "--teeth", "10000000")
+    revolutions = 200 * 1.9999 / (2 * math.pi)
+    assert f"--teeth = 10000000: the record's {revolutions:.4g} revolutions" in line
+
+
+def test_a_short_record_names_its_file(cli, steady_csv, tmp_path):
+    """``measure`` on a record shorter than it needs named no file (issue 33)."""
+    with open(steady_csv, encoding="utf-8") as handle:
+        lines = handle.read().splitlines()
+    short = tmp_path / "short.csv"
+    short.write_text("\n".join(lines[:400]) + "\n", encoding="utf-8")
+    line = one_line_error(cli, "measure", str(short), "--teeth", "60")
+    assert line.startswith(f"crankdyn: error: {short}: time: the record holds 3.3 working cycles")
+    line = one_line_error(
+        cli, "measure", steady_csv, "--teeth", "60", "--analysis", "tracking", "--window-cycles",
+        "90",
+    )  # fmt: skip
+    assert line.startswith(f"crankdyn: error: {steady_csv}: --window-cycles: the record holds ")
+
+
+def test_json_keys_the_docs_list_are_always_present(cli, steady_csv, runup_csv):
+    """``measure --format json`` omitted ``notes`` when there were none (issue 33): every key
+    docs/measurement.md lists for a steady record is there, ``notes`` an empty list or not."""
+    listed = [
+        "speed_rpm",
+        "orders",
+        "amplitude_rad",
+        "phase_deg",
+        "scatter_rad",
+        "synthesized_amplitude_rad",
+        "cycles",
+        "speed_min_rpm",
+        "speed_max_rpm",
+        "window",
+        "averaging",
+        "reference",
+        "tooth_correction",
+        "cycle_angle_deg",
+        "cycle_vibration_rad",
+        "cycle_speed_rpm",
+        "notes",
+    ]
+    run = cli("measure", steady_csv, "--teeth", "60", "--format", "json")
+    data = json.loads(run.out)
+    assert set(listed) <= set(data), set(listed) - set(data)
+    assert data["notes"] == []
+    tracking = [
+        "kind",
+        "speed_rpm",
+        "windows",
+        "amplitude_rad",
+        "phase_deg",
+        "synthesized_amplitude_rad",
+    ]
+    tracking += ["window_speed_rpm", "window_cycles", "bin_width_rpm", "resonances", "notes"]
+    data = json.loads(cli("measure", runup_csv, "--teeth", "60", "--format", "json").out)
+    assert set(tracking) <= set(data), set(tracking) - set(data)

@@ -76,7 +76,7 @@ def test_links_between_pages_become_commands():
 
 def test_html_not_built_says_how_to_build_it(capsys, monkeypatch, tmp_path):
     monkeypatch.setattr(docs, "html_dirs", lambda: (tmp_path / "none",))
-    assert main(["docs", "--html"]) == 1
+    assert main(["docs", "--html"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1
     assert "make docs" in err

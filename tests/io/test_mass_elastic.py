@@ -82,6 +82,27 @@ def test_a_table_is_a_model_argument(tmp_path):
             "a,1,,0,\nb,2,,,\n",
             "a gear ratio cannot be zero",
         ),
+        # issue 33: the SI range check of the TOML reader, with the line, column and value
+        (
+            "name,inertia [kg*m^2],stiffness [N*m/rad]\na,1,1e5\nb,1e-15,\n",
+            "bad.csv: line 3 inertia = \"1e-15\": 1e-15 kg*m^2 in column 'inertia [kg*m^2]' lies "
+            "outside the range crankdyn computes with (1e-12 to 1e12 in SI units, or 0); check "
+            "the unit",
+        ),
+        (
+            "name,inertia [kg*m^2],stiffness [N*m/rad]\na,1e300,1e5\nb,1,\n",
+            "bad.csv: line 2 inertia = \"1e300\": 1e+300 kg*m^2 in column 'inertia [kg*m^2]' "
+            "lies outside the range crankdyn computes with (1e-12 to 1e12 in SI units, or 0)",
+        ),
+        (
+            "name,inertia [kg*m^2],stiffness [kN*m/rad],loss_factor\na,1,1e10,1e-13\nb,1,,\n",
+            "bad.csv: line 2 stiffness = \"1e10\": 1e+13 N*m/rad in column 'stiffness [kN*m/rad]' "
+            "lies outside",
+        ),
+        (
+            "name,inertia [kg*m^2],stiffness [N*m/rad],loss_factor\na,1,1e5,1e-13\nb,1,,\n",
+            "bad.csv: line 2 loss_factor = \"1e-13\": 1e-13 in column 'loss_factor' lies outside",
+        ),
     ],
 )
 def test_errors_are_one_line(tmp_path, text, expected):
@@ -100,3 +121,23 @@ def test_branched_models_have_no_table():
     )
     with pytest.raises(InputError, match='branches at "b"'):
         mass_elastic_csv(model)
+
+
+def test_a_branched_model_file_is_named(cli, tmp_path):
+    """``torsion table`` on a branched model named the model, not its file (issue 33)."""
+    path = tmp_path / "branched.toml"
+    path.write_text(
+        'name = "Y"\n'
+        + "".join(f'[[mass]]\nname = "{n}"\ninertia = "1 kg*m^2"\n' for n in "abcd")
+        + "".join(
+            f'[[shaft]]\nbetween = ["{a}", "{b}"]\nstiffness = "1 N*m/rad"\n'
+            for a, b in ("ab", "bc", "bd")
+        ),
+        encoding="utf-8",
+    )
+    run = cli("torsion", "table", str(path))
+    assert run.status == 2
+    assert run.err == (
+        f'crankdyn: error: {path}: model = "Y": the mass-elastic table holds a chain and the '
+        'model branches at "b"\n'
+    )

@@ -37,7 +37,11 @@ def moves(request, monkeypatch):
 
 
 def listing(folder):
-    return sorted(p.relative_to(folder).as_posix() for p in folder.rglob("*"))
+    """The files and folders under ``folder``, crankdyn's marker (:data:`output.MARKER`, in
+    every folder crankdyn writes) left out."""
+    return sorted(
+        p.relative_to(folder).as_posix() for p in folder.rglob("*") if p.name != output.MARKER
+    )
 
 
 def test_write_text_refuses_to_overwrite(tmp_path):
@@ -73,10 +77,10 @@ def test_atomic_directory_replaces_only_when_complete(tmp_path, moves):
     with pytest.raises(RuntimeError), atomic_directory(target, force=True) as tmp:
         (tmp / "v2.txt").write_text("2")
         raise RuntimeError("boom")
-    assert sorted(p.name for p in target.iterdir()) == ["v1.txt"]
+    assert sorted(p.name for p in target.iterdir()) == [output.MARKER, "v1.txt"]
     with atomic_directory(target, force=True) as tmp:
         (tmp / "v2.txt").write_text("2")
-    assert sorted(p.name for p in target.iterdir()) == ["v2.txt"]
+    assert sorted(p.name for p in target.iterdir()) == [output.MARKER, "v2.txt"]
     assert [p.name for p in tmp_path.iterdir()] == ["report"]
 
 
@@ -132,10 +136,10 @@ def test_a_file_that_appeared_meanwhile_is_kept(tmp_path, monkeypatch, capsys, m
 
 def test_force_replaces_at_the_very_end(tmp_path, moves):
     """With --force the target is replaced only when the new folder is complete; whatever
-    appeared meanwhile is what --force agreed to replace."""
+    crankdyn output appeared meanwhile is what --force agreed to replace."""
     target = tmp_path / "rep"
-    target.mkdir()
-    (target / "old.txt").write_text("old")
+    with atomic_directory(target) as tmp:
+        (tmp / "old.txt").write_text("old")
     with atomic_directory(target, force=True) as tmp:
         (tmp / "new.txt").write_text("new")
         assert listing(target) == ["old.txt"]  # untouched while the work runs
@@ -212,15 +216,99 @@ def test_a_dangling_symlink_is_refused_before_the_work(tmp_path):
 
 
 @posix
-def test_a_symlink_to_a_folder_writes_where_it_points(tmp_path):
+def test_force_never_replaces_a_linked_folder(tmp_path):
+    """``-o LINK --force``, LINK a symbolic link to a folder: refused before the work, in one
+    line naming the link (issue 33: the linked folder was replaced and its files deleted),
+    even when the folder it points to is crankdyn's; without --force it exists."""
     real = tmp_path / "real"
-    real.mkdir()
-    (real / "old").write_text("old")
+    with atomic_directory(real) as tmp:
+        (tmp / "old").write_text("old")
     link = tmp_path / "rep"
     link.symlink_to(real)
-    with atomic_directory(link, force=True) as tmp:
+    with pytest.raises(InputError) as info:
+        atomic_directory(link, force=True)
+    assert str(info.value) == (
+        f"{link}: is a symbolic link to the folder {real}; --force does not replace a linked "
+        "folder (it would delete the files where the link points): remove the link or choose "
+        "another name"
+    )
+    with pytest.raises(InputError, match="already exists; not overwritten without --force"):
+        check_output_dir(link, force=False)
+    assert link.is_symlink() and listing(real) == ["old"]
+
+
+def test_force_never_replaces_a_folder_crankdyn_did_not_write(tmp_path, capsys):
+    """``-o DIR --force`` where DIR holds the user's files and no marker: refused before the
+    work in one line naming the folder and what it holds (issue 33); its files stay."""
+    target = tmp_path / "notes"
+    target.mkdir()
+    for name in ("b.txt", "a.txt", "c", "d.csv"):
+        (target / name).write_text(name)
+    with pytest.raises(InputError) as info:
+        atomic_directory(target, force=True)
+    assert str(info.value) == (
+        f"{target}: holds 4 entries (a.txt, b.txt, c, ...) and no .crankdyn-output, the marker "
+        "of a folder crankdyn wrote; --force replaces only crankdyn's own output folders: "
+        "remove it yourself or choose another name"
+    )
+    assert listing(target) == ["a.txt", "b.txt", "c", "d.csv"]
+    # the same through the command line: analyze and tvc, before any work
+    from crankdyn.cli import main
+
+    for args in (["analyze", "vaz2108"], ["tvc", "verdict-geared-line"]):
+        assert main([*args, "-o", str(target), "--force"]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "and no .crankdyn-output" in err
+    assert listing(target) == ["a.txt", "b.txt", "c", "d.csv"]
+
+
+def test_force_replaces_an_empty_folder(tmp_path):
+    """An empty folder holds nothing to lose: --force replaces it (no marker needed)."""
+    target = tmp_path / "rep"
+    target.mkdir()
+    with atomic_directory(target, force=True) as tmp:
         (tmp / "new").write_text("new")
-    assert link.is_symlink() and listing(real) == ["new"]
+    assert listing(target) == ["new"] and (target / output.MARKER).is_file()
+
+
+def test_every_output_folder_holds_the_marker(tmp_path):
+    """The marker is a regular file written with every folder; a folder holding it is
+    replaced by --force, and a marker that is not a regular file does not count."""
+    target = tmp_path / "rep"
+    with atomic_directory(target) as tmp:
+        (tmp / "a").write_text("a")
+    assert "written by crankdyn" in (target / output.MARKER).read_text(encoding="utf-8")
+    (target / output.MARKER).unlink()
+    (target / output.MARKER).mkdir()
+    with pytest.raises(InputError, match=r"no \.crankdyn-output"):
+        check_output_dir(target, force=True)
+
+
+def test_a_folder_that_stopped_being_crankdyns_is_kept(tmp_path, capsys, moves):
+    """--force agreed to replace crankdyn's folder; if, while the work ran, its marker went
+    and the user's files came, it is kept and the output goes to a numbered sibling: the
+    check is repeated on the very folder that would be removed."""
+    target = tmp_path / "rep"
+    with atomic_directory(target) as tmp:
+        (tmp / "old").write_text("old")
+    folder = atomic_directory(target, force=True)
+    with folder as tmp:
+        (tmp / "new").write_text("new")
+        (target / output.MARKER).unlink()
+        (target / "mine.txt").write_text("mine")
+    assert listing(target) == ["mine.txt", "old"]
+    assert folder.path == tmp_path / "rep.2" and listing(folder.path) == ["new"]
+    assert f"{target} is no longer a folder crankdyn wrote" in capsys.readouterr().err
+
+
+def test_a_write_into_the_folder_that_names_no_file_names_the_folder(tmp_path):
+    """A full disk under ``Path.write_bytes`` raises an OSError without a file name: it is an
+    error of the folder being written (issue 33: it was reported as standard output's)."""
+    target = tmp_path / "rep"
+    with pytest.raises(InputError) as info, atomic_directory(target):
+        raise OSError(errno.ENOSPC, "No space left on device")
+    assert str(info.value) == f"{target}: cannot write: No space left on device"
+    assert list(tmp_path.iterdir()) == []
 
 
 def test_targets_of_the_wrong_kind(tmp_path):

@@ -27,8 +27,29 @@ def _check(fig):
     fig.canvas.draw()  # lays out without error
 
 
+class _NoPyplot:
+    """A meta-path finder that refuses to import matplotlib.pyplot."""
+
+    def find_spec(self, name, path=None, target=None):
+        if name == "matplotlib.pyplot":
+            raise ImportError("a plot imported matplotlib.pyplot")
+        return None
+
+
+@pytest.fixture
+def no_pyplot(monkeypatch):
+    """matplotlib.pyplot cannot be imported while the test runs, whatever else this process
+    imported before (openTorsion, for one, imports pyplot): the plots' own imports are held
+    to the rule, not the process's history (issue 33)."""
+    import matplotlib
+
+    monkeypatch.delitem(sys.modules, "matplotlib.pyplot", raising=False)
+    monkeypatch.delattr(matplotlib, "pyplot", raising=False)
+    monkeypatch.setattr(sys, "meta_path", [_NoPyplot(), *sys.meta_path])
+
+
 @pytest.mark.parametrize("name", ["inline6-diesel", "v8-crossplane", "single-cylinder"])
-def test_plots(name):
+def test_plots(name, no_pyplot):
     eng = Engine.example(name)
     step = math.radians(4)
     forces = cylinder_forces(eng, eng.speed, step=step)

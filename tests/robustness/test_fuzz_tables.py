@@ -1,13 +1,15 @@
 """Every CSV table reader checks magnitudes and cell counts (issue 17, point 2): pressure traces,
-load curves and harmonic tables share crankdyn.io.csv_tables, whose columns lie within the SI
-range every other quantity has (1e-12 to 1e12, or 0) and whose rows hold no more cells than the
-header names (a decimal comma, ``30,1``, would otherwise be read as 30 with a stray cell)."""
+load curves, harmonic tables and (issue 33) mass-elastic tables share crankdyn.io.csv_tables,
+whose columns lie within the SI range every other quantity has (1e-12 to 1e12, or 0) and whose
+rows hold no more cells than the header names (a decimal comma, ``30,1``, would otherwise be
+read as 30 with a stray cell)."""
 
 from __future__ import annotations
 
 import math
 import re
 from importlib import resources
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -15,6 +17,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from crankdyn.errors import InputError
+from crankdyn.io.mass_elastic import read_mass_elastic
 from crankdyn.io.torsion_tables import read_harmonic_table, read_load_curve
 from crankdyn.io.traces import read_pressure_trace
 from tests.conftest import fuzz_examples
@@ -27,10 +30,31 @@ HARMONICS = (
     "0.5,0.2,0.05,10\n1,0.2,0.08,20\n1.5,0.2,0.04,30\n"
     "0.5,1.0,0.15,12\n1,1.0,0.21,22\n1.5,1.0,0.12,31\n"
 )
+MASS_ELASTIC = (
+    "name,inertia [kg*m^2],damping [N*m*s/rad],cylinders,stiffness [N*m/rad],loss_factor,"
+    "gear_ratio\n"
+    "disc 1,62.5,2,1,217146.8842,0.02,\ndisc 2,125,,2,217146.8842,,2\ndisc 3,187.5,,,,,\n"
+)
+
+
+def read_mass_elastic_arrays(path):
+    """The mass-elastic table's numbers as arrays (SI), for the range check of :func:`check`."""
+    model = read_mass_elastic(path)
+    return SimpleNamespace(
+        inertia=np.array([m.inertia for m in model.masses]),
+        damping=np.array([m.damping for m in model.masses]),
+        stiffness=np.array([s.stiffness for s in model.shafts]),
+        loss_factor=np.array([s.loss_factor for s in model.shafts]),
+        ratio=np.array([s.ratio for s in model.shafts]),
+    )
+
+
 READERS = {
     "trace": (TRACE, lambda p: read_pressure_trace(p, firing_tdc=math.radians(360.0))),
     "load curve": (LOAD_CURVE, read_load_curve),
     "harmonics": (HARMONICS, read_harmonic_table),
+    # issue 33: the mass-elastic table skipped the SI range check (1e-15 kg m^2 accepted)
+    "mass-elastic": (MASS_ELASTIC, read_mass_elastic_arrays),
 }
 
 
@@ -88,7 +112,7 @@ def check(reader: str, path, text: str) -> None:
 
 @pytest.mark.parametrize("reader", sorted(READERS))
 @settings(max_examples=fuzz_examples(40))
-@given(row=st.integers(0, 200), column=st.integers(0, 3), edit=edits)
+@given(row=st.integers(0, 200), column=st.integers(0, 6), edit=edits)
 @example(row=4, column=1, edit=("scale", 300))
 @example(row=4, column=1, edit=("scale", -300))
 @example(row=4, column=1, edit=("comma", 5))

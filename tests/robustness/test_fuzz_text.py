@@ -10,6 +10,7 @@ import io
 import json
 import os
 import re
+import signal
 import subprocess
 import sys
 from importlib import resources
@@ -195,17 +196,85 @@ def test_standard_output_full():
     )
 
 
+def _small_files():
+    """In the child: files may not grow past 20 kB (RLIMIT_FSIZE, SIGXFSZ ignored), so a
+    write that crosses it fails with EFBIG and no file name, as a full disk's does."""
+    import resource
+
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (20_000, 20_000))
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
+@pytest.mark.parametrize(
+    ("args", "target"),
+    [
+        (("analyze", "vaz2108"), "rep"),
+        (("tvc", "verdict-geared-line"), "tvc"),
+        (("forces", "vaz2108", "--format", "json"), "f.json"),
+    ],
+)
+def test_a_failed_write_names_its_target(tmp_path, args, target):
+    """A write that fails for want of room (``analyze -o``, ``tvc -o`` said "cannot write to
+    standard output: No space left on device", issue 33) names the folder or file being
+    written, and leaves nothing behind."""
+    process = subprocess.run(
+        [sys.executable, "-m", "crankdyn", *args, "-o", target],
+        cwd=tmp_path,
+        capture_output=True,
+        text=True,
+        timeout=300,
+        preexec_fn=_small_files,
+    )
+    assert process.returncode == 2
+    assert process.stderr.strip().splitlines()[-1] == (
+        f"crankdyn: error: {target}: cannot write: File too large"
+    )
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
-def test_standard_output_closed():
-    """JSON into a pipe whose reader is gone before anything is written (``| head`` that
-    quit): the write fails with EPIPE at once, deterministically."""
+@pytest.mark.parametrize(
+    "args",
+    [
+        ("forces", "vaz2108", "--format", "json"),
+        ("examples",),
+        ("kinematics", "vaz2108"),
+        ("kinematics", "vaz2108", "--format", "csv"),
+        ("docs", "cli"),
+        ("torsion", "modes", "inline6-diesel"),
+    ],
+)
+def test_standard_output_closed(args):
+    """Output into a pipe whose reader is gone before anything is written (``| head`` that
+    quit): the write fails with EPIPE at once, deterministically; a closed pipe is not an
+    error (issue 33): the command ends quietly with status 0, as other command-line tools
+    do."""
     read, write = os.pipe()
     os.close(read)
     try:
-        status, err = crankdyn("forces", "vaz2108", "--format", "json", stdout=write)
+        status, err = crankdyn(*args, stdout=write)
     finally:
         os.close(write)
-    assert (status, err) == (2, "crankdyn: error: cannot write to standard output: Broken pipe\n")
+    assert (status, err) == (0, "")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX pipes")
+def test_reader_that_quits_after_two_lines():
+    """``crankdyn examples | head -2``: head reads two lines and quits; crankdyn ends quietly
+    with status 0 whenever its next write meets the closed pipe (issue 33)."""
+    producer = subprocess.Popen(
+        [sys.executable, "-m", "crankdyn", "examples"],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+    )
+    assert producer.stdout is not None and producer.stderr is not None
+    producer.stdout.readline()
+    producer.stdout.readline()
+    producer.stdout.close()  # head quits
+    err = producer.stderr.read()
+    assert producer.wait(timeout=300) == 0
+    assert err == b""
 
 
 @pytest.mark.skipif(sys.platform == "win32", reason="POSIX descriptors")

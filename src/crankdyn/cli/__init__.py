@@ -23,6 +23,7 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from collections.abc import Iterator, Mapping, MutableMapping
 from gettext import gettext as _
 from types import FrameType
@@ -284,8 +285,11 @@ def cli() -> None:
 
 
 def _error(message: str) -> None:
-    """``crankdyn: error: MESSAGE`` on one line of standard error (white space runs joined)."""
-    text = " ".join(str(message).split())
+    """``crankdyn: error: MESSAGE`` on one line of standard error (white space runs joined,
+    other control characters shown escaped: a click message may quote the user's text)."""
+    from crankdyn.display import printable
+
+    text = printable(" ".join(str(message).split()))
     with contextlib.suppress(OSError, ValueError):  # stderr itself may be gone
         click.echo(f"crankdyn: error: {text}", err=True)
 
@@ -367,8 +371,9 @@ def main(argv: list[str] | None = None) -> int:
     Returns
     -------
     int
-        0 on success, 2 after an input error or an output that failed (one line on standard
-        error), 128 + the signal's number after an interrupt or termination.
+        0 on success (also when the reader of standard output quit early: a closed pipe ends
+        the command quietly), 2 after an input error or an output that failed (one line on
+        standard error), 128 + the signal's number after an interrupt or termination.
 
     Examples
     --------
@@ -376,7 +381,11 @@ def main(argv: list[str] | None = None) -> int:
     2
     """
     args = list(sys.argv[1:] if argv is None else argv)
-    with _terminate_like_interrupt() as received:
+    with _terminate_like_interrupt() as received, warnings.catch_warnings():
+        # a RuntimeWarning of crankdyn's numerics (an overflow, an invalid value) is a bug, as
+        # in the test suite (pyproject's filterwarnings): raised with its traceback, never
+        # printed beside a result; bad input is refused before it reaches the numerics
+        warnings.filterwarnings("error", category=RuntimeWarning, module=r"crankdyn\.")
         status = _run(args)
         if status == 130 and received:  # a command that handled the interrupt itself
             status = 128 + received[-1]
@@ -429,19 +438,24 @@ def _run(args: list[str]) -> int:
         return 128 + signum
     except click.ClickException as exc:
         _error(exc.format_message())
-        return exc.exit_code
+        return max(exc.exit_code, 2)  # an error is status 2, whatever click's default
     except (OSError, _OutputFailed) as caught:
         # an error of the operating system while writing: standard output closed (a pipe whose
         # reader quit) or full, or a file the output modules did not name
-        # (crankdyn.io.output names the files it writes; an error without a file name comes
-        # from writing to standard output)
+        # (crankdyn.io.output names the files and folders it writes, also on an error of a
+        # write inside a folder being built; an error without a file name comes from writing
+        # to standard output)
         error = caught.error if isinstance(caught, _OutputFailed) else caught
         reason = error.strerror or " ".join(str(error).split()) or type(error).__name__
         if error.filename:
             _error(f"{error.filename}: {reason}")
-        else:
-            _quiet_stdout()
-            _error(f"cannot write to standard output: {reason}")
+            return 2
+        _quiet_stdout()
+        if error.errno == errno.EPIPE:
+            # the reader of the pipe quit (``crankdyn examples | head -2``): it has what it
+            # wanted; like other command-line tools, end quietly with status 0
+            return 0
+        _error(f"cannot write to standard output: {reason}")
         return 2
     return result if isinstance(result, int) else 0
 

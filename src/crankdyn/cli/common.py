@@ -54,6 +54,7 @@ class Decorator(Protocol):
 
 __all__ = [
     "FIGURE_FORMATS",
+    "PIPE_WIDTH",
     "at_option",
     "before_work",
     "check_plot_path",
@@ -95,16 +96,29 @@ def _plain_console_class() -> type[Console]:
     return _PlainConsole
 
 
+PIPE_WIDTH = 120
+"""Width of the tables written to a pipe or a file (not a terminal)."""
+
+
 def stdout_width() -> int:
-    """The width of a console on standard output: the terminal's, at least 120 columns (what
-    :func:`console` gives standard output by default).
+    """The width of a console on standard output (what :func:`console` gives standard output
+    by default): a terminal's own width (``COLUMNS`` where set), so that a table never runs
+    past its right edge; :data:`PIPE_WIDTH` (or ``COLUMNS``, if wider) for a pipe or a file.
 
     Returns
     -------
     int
         The width in columns.
     """
-    return max(shutil.get_terminal_size((120, 24)).columns, 120)
+    columns = shutil.get_terminal_size((PIPE_WIDTH, 24)).columns
+    stream = getattr(sys.stdout, "rich_proxied_file", sys.stdout)
+    try:
+        terminal = bool(stream is not None and stream.isatty())
+    except (AttributeError, ValueError, OSError):  # no such method, or closed
+        terminal = False
+    if terminal:
+        return max(columns, 20)
+    return max(columns, PIPE_WIDTH)
 
 
 def console(
@@ -125,8 +139,8 @@ def console(
     stderr
         Print to standard error when no ``file`` is given.
     width
-        The width in columns; default the terminal's, at least 120 on standard output (no
-        limit given on standard error).
+        The width in columns; default :func:`stdout_width` on standard output (no limit
+        given on standard error).
 
     Returns
     -------
@@ -158,9 +172,12 @@ def warn(message: str) -> None:
     Parameters
     ----------
     message
-        The warning; runs of white space (line breaks included) become one space.
+        The warning; runs of white space (line breaks included) become one space, other
+        control characters are shown escaped.
     """
-    click.echo(f"crankdyn: warning: {' '.join(str(message).split())}", err=True)
+    from crankdyn.display import printable
+
+    click.echo(f"crankdyn: warning: {printable(' '.join(str(message).split()))}", err=True)
 
 
 @overload

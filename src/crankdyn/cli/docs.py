@@ -13,6 +13,7 @@ from rich.table import Table as RichTable
 
 from crankdyn import docs
 from crankdyn.cli.common import console
+from crankdyn.errors import InputError
 
 _LINK = re.compile(r"\[([^\]\n]+)\]\(([A-Za-z0-9_.-]+)\.md(#[^)\s]*)?\)")
 _WIDTH = 100
@@ -77,14 +78,15 @@ def _show(name: str, raw: bool) -> None:
 
 def _open_html(name: str | None) -> None:
     """Open the built HTML site (the page of topic ``name``) in a browser; a one-line error
-    when it is not built here."""
+    when it is not built here (an InputError: exit status 2)."""
     page = docs.html_page(name)
     if page is None:
-        raise click.ClickException(
+        raise InputError(
             "the HTML documentation is not built here: in a crankdyn repository, `make docs` "
             "builds it into docs/_build/html (`crankdyn docs "
             + (name if name else "TOPIC")
-            + "` shows the same pages in the terminal)"
+            + "` shows the same pages in the terminal)",
+            key="--html",
         )
     uri = page.as_uri()
     click.echo(f"opening {uri}", err=True)

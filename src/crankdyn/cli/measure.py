@@ -4,7 +4,7 @@ analysis, the model held against the measurement). docs/measurement.md."""
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import TYPE_CHECKING, Any, cast
 
 import click
@@ -111,21 +111,26 @@ def load_measurement(
         raise InputError(
             f"at least {MIN_TEETH} pulses per revolution are needed", key="--teeth", value=teeth
         )
-    data = resolve_signal(signal, teeth)
-    correction: str | PulseTrain | None = None
-    if tooth_correction not in (None, "none"):
-        if tooth_correction == "self":
-            correction = "self"
-        else:
-            calibration = resolve_signal(tooth_correction, teeth or getattr(data, "teeth", None))
-            if not isinstance(calibration, PulseTrain):
-                raise InputError(
-                    "the calibration record must hold pulse times of the same wheel",
-                    key="--tooth-correction",
-                    value=tooth_correction,
-                )
-            correction = calibration
+    source = signal
     try:
+        data = resolve_signal(signal, teeth)
+        source = data.source
+        correction: str | PulseTrain | None = None
+        if tooth_correction not in (None, "none"):
+            if tooth_correction == "self":
+                correction = "self"
+            else:
+                source = tooth_correction
+                wheel = teeth or getattr(data, "teeth", None)
+                calibration = resolve_signal(tooth_correction, wheel)
+                if not isinstance(calibration, PulseTrain):
+                    raise InputError(
+                        "the calibration record must hold pulse times of the same wheel",
+                        key="--tooth-correction",
+                        value=tooth_correction,
+                    )
+                correction = calibration
+                source = data.source
         return order_analysis(
             data,
             cycle=cycle,
@@ -139,17 +144,30 @@ def load_measurement(
             resolution=teeth if not isinstance(data, PulseTrain) else None,
         )
     except InputError as exc:
-        option = {
-            "orders": "--orders",
-            "window-cycles": "--window-cycles",
-            "window": "--window-cycles",
-            "tooth_correction": "--tooth-correction",
-        }.get(exc.key or "")
-        if option is None:
-            raise
-        raise InputError(
-            exc.message, file=exc.file, key=option, value=exc.value if exc.has_value else None
-        ) from None
+        raise _named(exc, source) from None
+
+
+_OPTIONS = {
+    "orders": "--orders",
+    "window-cycles": "--window-cycles",
+    "window": "--window-cycles",
+    "tooth_correction": "--tooth-correction",
+    "teeth": "--teeth",
+}
+"""The options behind the keys of the analysis's errors."""
+
+
+def _named(exc: InputError, source: str) -> InputError:
+    """An error of the order analysis as the command line says it: its key as the option that
+    set it (``teeth`` is ``--teeth``), and an error about the record (its pulses, its length)
+    naming the signal file it came from."""
+    option = _OPTIONS.get(exc.key or "")
+    about_the_record = option is None and not (exc.key or "").startswith("-")
+    key = option or exc.key
+    file = exc.file or (source if (about_the_record or key == "--window-cycles") else None)
+    if exc.has_value:
+        return InputError(exc.message, file=file, key=key, value=exc.value)
+    return InputError(exc.message, file=file, key=key)
 
 
 def _table(
@@ -336,90 +354,107 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
     return tables
 
 
+_MEASURE_OPTIONS: tuple[Callable[[Any], Any], ...] = (
+    teeth_option(),
+    click.option(
+        "--cycle",
+        type=click.Choice(_CYCLES),
+        default=None,
+        help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else "
+        "four-stroke.",
+    ),
+    click.option(
+        "--model",
+        default=None,
+        metavar="MODEL_OR_ENGINE",
+        help="Hold the measurement against this model's forced response (needs --at).",
+    ),
+    at_option(),
+    orders_option(
+        "Orders to analyse, FIRST:LAST[:STEP] or 1.5,3,4.5 (default every order up to 12, "
+        "below N/2)."
+    ),
+    click.option(
+        "--analysis",
+        type=click.Choice(ANALYSES),
+        default="auto",
+        show_default=True,
+        help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).",
+    ),
+    click.option(
+        "--window",
+        type=click.Choice(WINDOWS),
+        default="hann",
+        show_default=True,
+        help="Window of order tracking (steady records: uniform, one cycle).",
+    ),
+    click.option(
+        "--window-cycles",
+        type=int,
+        default=4,
+        show_default=True,
+        metavar="N",
+        help="Cycles per window of order tracking (windows step by one cycle).",
+    ),
+    click.option(
+        "--bin",
+        "bin_width",
+        default=None,
+        metavar="RPM",
+        help="Speed bin of order tracking (rpm); default 10.",
+    ),
+    click.option(
+        "--reference-angle",
+        default=None,
+        metavar="DEG",
+        help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; default 0.",
+    ),
+    click.option(
+        "--tooth-correction",
+        default=None,
+        metavar="FILE",
+        help="Tooth-spacing errors: none (default), self (this record's mean over "
+        "revolutions) or FILE, a calibration record of the same wheel.",
+    ),
+    plot_option("Write order amplitudes (against speed for a run-up), with the model's."),
+    click.option(
+        "--plot-map",
+        "map_path",
+        default=None,
+        metavar="FILE",
+        help="Write the colour map of order amplitudes over a run-up.",
+    ),
+    click.option(
+        "--plot-fit",
+        "fit_path",
+        default=None,
+        metavar="FILE",
+        help="Write the resonance fits of a run-up.",
+    ),
+    click.option(
+        "--plot-trace",
+        "trace_path",
+        default=None,
+        metavar="FILE",
+        help="Write the instantaneous speed and angular vibration.",
+    ),
+)
+"""The options of ``crankdyn measure`` (in the order of its help), applied by
+:func:`_measure_options`."""
+
+
+def _measure_options(f: Any) -> Any:
+    """``f`` with the options of :data:`_MEASURE_OPTIONS` (the first listed first in the help) and
+    ``--format``, ``-o`` and ``--force`` (:func:`crankdyn.cli.writer.output_options`)."""
+    f = output_options(f)
+    for option in reversed(_MEASURE_OPTIONS):
+        f = option(f)
+    return f
+
+
 @click.command("measure")
 @click.argument("signal", metavar="SIGNAL")
-@teeth_option()
-@click.option(
-    "--cycle",
-    type=click.Choice(_CYCLES),
-    default=None,
-    help="Working cycle (orders 0.5, 1, ... or 1, 2, ...); default the model's, else four-stroke.",
-)
-@click.option(
-    "--model",
-    default=None,
-    metavar="MODEL_OR_ENGINE",
-    help="Hold the measurement against this model's forced response (needs --at).",
-)
-@at_option()
-@orders_option(
-    "Orders to analyse, FIRST:LAST[:STEP] or 1.5,3,4.5 (default every order up to 12, below N/2)."
-)
-@click.option(
-    "--analysis",
-    type=click.Choice(ANALYSES),
-    default="auto",
-    show_default=True,
-    help="steady, tracking (run-up/run-down) or auto (by the spread of the speeds).",
-)
-@click.option(
-    "--window",
-    type=click.Choice(WINDOWS),
-    default="hann",
-    show_default=True,
-    help="Window of order tracking (steady records: uniform, one cycle).",
-)
-@click.option(
-    "--window-cycles",
-    type=int,
-    default=4,
-    show_default=True,
-    metavar="N",
-    help="Cycles per window of order tracking (windows step by one cycle).",
-)
-@click.option(
-    "--bin",
-    "bin_width",
-    default=None,
-    metavar="RPM",
-    help="Speed bin of order tracking (rpm); default 10.",
-)
-@click.option(
-    "--reference-angle",
-    default=None,
-    metavar="DEG",
-    help="Crank angle at the reference mark (deg), e.g. of cylinder 1's firing TDC; default 0.",
-)
-@click.option(
-    "--tooth-correction",
-    default=None,
-    metavar="FILE",
-    help="Tooth-spacing errors: none (default), self (this record's mean over "
-    "revolutions) or FILE, a calibration record of the same wheel.",
-)
-@plot_option("Write order amplitudes (against speed for a run-up), with the model's.")
-@click.option(
-    "--plot-map",
-    "map_path",
-    default=None,
-    metavar="FILE",
-    help="Write the colour map of order amplitudes over a run-up.",
-)
-@click.option(
-    "--plot-fit",
-    "fit_path",
-    default=None,
-    metavar="FILE",
-    help="Write the resonance fits of a run-up.",
-)
-@click.option(
-    "--plot-trace",
-    "trace_path",
-    default=None,
-    metavar="FILE",
-    help="Write the instantaneous speed and angular vibration.",
-)
-@output_options
+@_measure_options
 def measure_command(
     signal: str,
     teeth: int | None,

@@ -29,7 +29,7 @@ import click
 import numpy as np
 
 from crankdyn.cli.common import before_work, console, stdout_width, warn
-from crankdyn.display import column_text, format_value
+from crankdyn.display import column_text, csv_text, format_value, printable
 from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_text
 from crankdyn.plausibility import PlausibilityWarning
@@ -52,6 +52,7 @@ __all__ = [
     "output_options",
     "plain_console",
     "plain_text",
+    "printable_blocks",
     "result_table",
     "summary_blocks",
     "summary_table",
@@ -102,15 +103,10 @@ class TextTable:
         Returns
         -------
         str
-            One line per row, the header first, each ended by a newline.
+            One line per row, the header first, each ended by a newline (fields quoted as
+            RFC 4180 requires, control characters escaped: :func:`crankdyn.display.csv_text`).
         """
-        import csv
-
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(self.header)
-        writer.writerows(self.rows)
-        return buffer.getvalue()
+        return csv_text([self.header, *self.rows])
 
 
 def _header(label: str, unit: str) -> str:
@@ -361,6 +357,41 @@ def warnings_of(*sources: Any) -> list[PlausibilityWarning]:
 
 
 # ---- rendering --------------------------------------------------------------------------------
+def printable_blocks(blocks: Iterable[TextTable | str | None]) -> list[TextTable | str | None]:
+    """Tables and notes with every control character of their text (titles, headers, cells,
+    captions: user names among them) shown as its escape (:func:`crankdyn.display.printable`):
+    no escape sequence of a name reaches the terminal, and every cell and title is one line
+    (a note keeps its own line breaks).
+
+    Parameters
+    ----------
+    blocks
+        Tables and note lines, as for :func:`render`.
+
+    Returns
+    -------
+    list
+        The same blocks, their text printable (a table without control characters is kept as
+        it is).
+    """
+    out: list[TextTable | str | None] = []
+    for block in blocks:
+        if isinstance(block, TextTable):
+            texts = [block.title, block.caption, *block.header, *(c for r in block.rows for c in r)]
+            if not all(str(t).isprintable() for t in texts):
+                block = TextTable(
+                    printable(block.title),
+                    [printable(h) for h in block.header],
+                    [[printable(c) for c in row] for row in block.rows],
+                    set(block.text_columns),
+                    printable(block.caption),
+                )
+        elif block:  # a note: its own line breaks kept, other control characters escaped
+            block = "\n".join(printable(line) for line in str(block).split("\n"))
+        out.append(block)
+    return out
+
+
 def _widths(table: TextTable) -> list[int]:
     """The width of each column: its longest number (never cut) or, for text, its longest word
     up to 24 characters; headers wrap at spaces to it (at least 10 wide)."""
@@ -728,6 +759,7 @@ class Output:
         found = warnings_of(json_data if isinstance(json_data, Result) else None, warnings)
         for w in found:  # after the checks: an error stays the one line
             warn(w.message)
+        blocks = printable_blocks(blocks)  # no control character reaches the terminal
         if self.fmt == "json":
             data = jsonable(json_data)
             if found and isinstance(data, dict):

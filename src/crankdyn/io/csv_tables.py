@@ -22,7 +22,7 @@ from crankdyn.errors import InputError
 from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_text
 from crankdyn.io.units import KINDS, check_si_range, parse_quantity
 
-__all__ = ["CsvTable", "read_csv_table", "split_header_unit", "unit_factor"]
+__all__ = ["CsvTable", "cell_value", "read_csv_table", "split_header_unit", "unit_factor"]
 
 _BRACKETED = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*$")
 _DEGREES = ("deg", "degree", "degrees")
@@ -114,6 +114,83 @@ def unit_factor(
         ) from None
 
 
+def cell_value(
+    cell: str,
+    factor: float = 1.0,
+    *,
+    file: str | None,
+    key: str,
+    column: str,
+    kind: str | None = None,
+) -> float:
+    """A cell's number in SI units: a finite number whose SI value (the number times
+    ``factor``) lies within the range every quantity must lie in
+    (:data:`crankdyn.io.units.SI_RANGE`, 1e-12 to 1e12, or 0: beyond it the unit is wrong), as
+    every quantity of a TOML file; the one check of every CSV table's numbers.
+
+    Parameters
+    ----------
+    cell
+        The cell as written.
+    factor
+        The SI value of the column's unit (:func:`unit_factor`); 1 for plain numbers.
+    file
+        The file as named in messages (None: the caller adds it).
+    key
+        Where the cell is (``"line 5"``, ``"line 5 inertia"``).
+    column
+        The column's name as written, for the message.
+    kind
+        The kind of quantity (a key of :data:`crankdyn.io.units.KINDS`), for the SI unit in the
+        message; None for a plain number.
+
+    Returns
+    -------
+    float
+        The value in the SI unit of ``kind``.
+
+    Raises
+    ------
+    InputError
+        For a cell that is not a finite number or lies outside the range, naming the file,
+        ``key`` and the cell.
+
+    Examples
+    --------
+    >>> cell_value("2.5", 1e6, file="t.csv", key="line 3", column="p_MPa", kind="pressure")
+    2500000.0
+    >>> cell_value("1e-15", file="m.csv", key="line 3 inertia", column="inertia [kg*m^2]",
+    ...            kind="inertia")
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: m.csv: line 3 inertia = "1e-15": 1e-15 kg*m^2 in column \
+'inertia [kg*m^2]' lies outside the range crankdyn computes with (1e-12 to 1e12 in SI units, or \
+0); check the unit
+    """
+    text = cell.strip()
+    try:
+        value = float(text)
+    except ValueError:
+        raise InputError(
+            f"not a number in column {column!r}", file=file, key=key, value=text
+        ) from None
+    if not math.isfinite(value):
+        raise InputError(
+            f"not a finite number in column {column!r}", file=file, key=key, value=text
+        )
+    si = value * factor
+    if not (math.isfinite(si) and check_si_range(si)):
+        unit = KINDS[kind].si_unit if kind in KINDS else ""
+        raise InputError(
+            f"{si:.3g}{' ' + unit if unit else ''} in column {column!r} lies outside the range "
+            "crankdyn computes with (1e-12 to 1e12 in SI units, or 0); check the unit",
+            file=file,
+            key=key,
+            value=text,
+        )
+    return si
+
+
 def _is_number(text: str) -> bool:
     try:
         float(text)
@@ -186,34 +263,9 @@ class CsvTable:
                     key=f"line {number}",
                     value=",".join(row),
                 )
-            cell = row[index].strip()
-            try:
-                value = float(cell)
-            except ValueError:
-                raise InputError(
-                    f"not a number in column {label!r}",
-                    file=self.name,
-                    key=f"line {number}",
-                    value=cell,
-                ) from None
-            if not math.isfinite(value):
-                raise InputError(
-                    f"not a finite number in column {label!r}",
-                    file=self.name,
-                    key=f"line {number}",
-                    value=cell,
-                )
-            si = value * factor
-            if not (math.isfinite(si) and check_si_range(si)):
-                unit = KINDS[kind].si_unit if kind in KINDS else ""
-                raise InputError(
-                    f"{si:.3g} {unit} in column {label!r} lies outside the range crankdyn "
-                    "computes with (1e-12 to 1e12 in SI units, or 0); check the unit",
-                    file=self.name,
-                    key=f"line {number}",
-                    value=cell,
-                )
-            out[k] = si
+            out[k] = cell_value(
+                row[index], factor, file=self.name, key=f"line {number}", column=label, kind=kind
+            )
         return out
 
     def cell(self, row: int, index: int) -> tuple[int, str]:
@@ -272,10 +324,15 @@ def read_csv_table(
         text = read_text(path, limit=MAX_CSV_BYTES, what=what)
     except InputError as exc:
         raise InputError(exc.message, file=name) from None
+    # a comment is a line that starts with # as written (a quoted "#1" is a cell)
+    lines = [
+        (number, line)
+        for number, line in enumerate(text.splitlines(), start=1)
+        if line.strip() and not line.lstrip().startswith("#")
+    ]
+    parsed = ((number, next(csv.reader([line]), [])) for number, line in lines)  # a row a line
     rows = [
-        (number, [c.strip() for c in row])
-        for number, row in enumerate(csv.reader(text.splitlines()), start=1)
-        if row and any(c.strip() for c in row) and not row[0].lstrip().startswith("#")
+        (number, [c.strip() for c in row]) for number, row in parsed if any(map(str.strip, row))
     ]
     if not rows:
         raise InputError(empty or f"the {what} is empty", file=name)

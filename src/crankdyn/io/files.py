@@ -1,16 +1,30 @@
-"""Reading user files: bounded, UTF-8, with one-line errors naming the file."""
+"""Reading user files: bounded, UTF-8, with one-line errors naming the file.
+
+Every size is bounded before it is allocated: text files by their bytes (:data:`MAX_TOML_BYTES`,
+:data:`MAX_CSV_BYTES`), TOML by its nesting (:data:`MAX_TOML_DEPTH`), NumPy files by their
+bytes and by what their headers claim (:func:`read_numpy`: the shape, the type and the
+uncompressed size of every array checked against :data:`MAX_ARRAY_VALUES` and
+:data:`MAX_ARRAY_BYTES` before an array is made).
+"""
 
 from __future__ import annotations
 
+import math
 import os
 import stat
 import tomllib
 from collections.abc import Iterable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
 
+if TYPE_CHECKING:
+    import numpy as np
+
 __all__ = [
+    "MAX_ARRAY_BYTES",
+    "MAX_ARRAY_VALUES",
     "MAX_CSV_BYTES",
     "MAX_TOML_BYTES",
     "MAX_TOML_DEPTH",
@@ -19,11 +33,20 @@ __all__ = [
     "load_toml",
     "parse_toml",
     "read_bytes",
+    "read_numpy",
     "read_text",
 ]
 
 MAX_TOML_BYTES = 1 << 20  # 1 MiB: engine, model, linkage and study files
 MAX_CSV_BYTES = 32 << 20  # 32 MiB: pressure traces and other tables
+MAX_ARRAY_BYTES = 32 << 20
+"""Largest uncompressed size of the arrays of one NumPy file (32 MiB, as a CSV table's bytes),
+checked from the headers before any array is made (the limit of the file's own bytes alone
+would let a compressed ``.npz`` of 1 MB unpack to gigabytes)."""
+MAX_ARRAY_VALUES = MAX_ARRAY_BYTES // 8
+"""Most values in the arrays of one NumPy file: 4,194,304 (32 MiB of float64; about the
+numbers a 32 MiB CSV table holds)."""
+_NPY_HEADER = 1 << 16  # room for a .npy file's magic and header (numpy caps it at 10,000 bytes)
 
 
 def display_name(path: str | Path) -> str:
@@ -272,3 +295,139 @@ def _depth(value: object) -> int:
             return deepest
         stack.extend((child, depth) for child in children)
     return deepest
+
+
+# ---- NumPy files ---------------------------------------------------------------------------------
+
+
+def _npy_array(data: bytes, name: str, key: str) -> np.ndarray:
+    """The array of a ``.npy`` file's bytes, its header checked before anything is allocated:
+    a version numpy writes, numbers (no objects, no pickles), at most
+    :data:`MAX_ARRAY_VALUES` values and :data:`MAX_ARRAY_BYTES` bytes, and the data the header
+    claims present in full. The array is a read-only view of ``data`` (no copy)."""
+    import io
+
+    import numpy as np
+    from numpy.lib import format as npy
+
+    handle = io.BytesIO(data)
+    try:
+        version = npy.read_magic(handle)
+        if version == (1, 0):
+            shape, fortran, dtype = npy.read_array_header_1_0(handle)
+        elif version == (2, 0):
+            shape, fortran, dtype = npy.read_array_header_2_0(handle)
+        else:
+            raise ValueError(f"format version {version[0]}.{version[1]} is not read")
+    except (ValueError, TypeError, SyntaxError, EOFError, OverflowError) as exc:
+        detail = " ".join(str(exc).split())[:80]
+        raise InputError(f"not a readable NumPy .npy file ({detail})", file=name, key=key) from None
+    if dtype.hasobject or dtype.kind not in "fiu":
+        raise InputError("expected numbers", file=name, key=key, value=str(dtype))
+    count = math.prod(int(n) for n in shape)  # Python integers: no overflow
+    size = count * dtype.itemsize
+    widest = max((int(n) for n in shape), default=0)  # (0, 10**18): empty, yet unshapeable
+    if count > MAX_ARRAY_VALUES or size > MAX_ARRAY_BYTES or widest > MAX_ARRAY_VALUES:
+        raise InputError(
+            f"the header claims shape {tuple(shape)}: {count:,} values ({size:,} bytes); "
+            f"crankdyn reads at most {MAX_ARRAY_VALUES:,} values ({MAX_ARRAY_BYTES >> 20} MiB) "
+            "from a NumPy file",
+            file=name,
+            key=key,
+        )
+    start = handle.tell()
+    if len(data) - start < size:
+        raise InputError(
+            f"the header claims shape {tuple(shape)} ({size:,} bytes of data) and the file "
+            f"holds {len(data) - start:,} (truncated?)",
+            file=name,
+            key=key,
+        )
+    flat = np.frombuffer(data, dtype=dtype, count=count, offset=start)
+    return flat.reshape(shape, order="F" if fortran else "C")
+
+
+def read_numpy(
+    path: str | Path, *, names: Iterable[str] | None = None, what: str = "signal file"
+) -> np.ndarray | dict[str, np.ndarray]:
+    """Read a NumPy ``.npy`` file (one array) or ``.npz`` archive (named arrays), every size
+    bounded before it is allocated: the file's bytes (:data:`MAX_CSV_BYTES`), an archive's
+    members (only ``names``), their declared uncompressed sizes, and every array's header
+    (shape and type: numbers only, at most :data:`MAX_ARRAY_VALUES` values and
+    :data:`MAX_ARRAY_BYTES` bytes in all). Pickled objects are never loaded.
+
+    Parameters
+    ----------
+    path
+        The ``.npy`` or ``.npz`` file (by its suffix).
+    names
+        The array names an archive may hold (each as ``NAME.npy`` in the zip); None: any.
+        Ignored for ``.npy``.
+    what
+        What the file is, in words, for the messages.
+
+    Returns
+    -------
+    numpy.ndarray or dict of str to numpy.ndarray
+        The array of a ``.npy`` file, or ``{name: array}`` of an archive (read-only arrays of
+        numbers, as the file holds them).
+
+    Raises
+    ------
+    InputError
+        On an unreadable, oversized or malformed file, an archive member not in ``names``, an
+        array that is not numbers, or a header that claims more than the bounds (naming the
+        file, the array and the claimed shape) or more data than the file holds.
+    """
+    import io
+    import zipfile
+    import zlib
+
+    name = display_name(path)
+    if Path(path).suffix.lower() != ".npz":
+        data = read_bytes(path, limit=MAX_ARRAY_BYTES + _NPY_HEADER, what=what)
+        return _npy_array(data, name, "array")
+    data = read_bytes(path, limit=MAX_CSV_BYTES, what=what)
+    allowed = None if names is None else list(names)
+    arrays: dict[str, np.ndarray] = {}
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as archive:
+            members = archive.infolist()
+            for info in members:
+                key = info.filename.removesuffix(".npy")
+                if allowed is not None and key not in allowed:
+                    raise InputError(
+                        f"unknown array {key!r} (the archive may hold {', '.join(allowed)})",
+                        file=name,
+                    )
+            declared = sum(info.file_size for info in members)
+            if declared > MAX_ARRAY_BYTES + len(members) * _NPY_HEADER:
+                raise InputError(
+                    f"the archive unpacks to {declared:,} bytes; crankdyn reads at most "
+                    f"{MAX_ARRAY_BYTES >> 20} MiB of arrays from a NumPy file",
+                    file=name,
+                )
+            total = 0
+            for info in members:
+                key = info.filename.removesuffix(".npy")
+                with archive.open(info) as member:  # stops at the declared size
+                    raw = member.read(MAX_ARRAY_BYTES + _NPY_HEADER + 1)
+                array = _npy_array(raw, name, key)
+                total += array.size
+                if total > MAX_ARRAY_VALUES:
+                    raise InputError(
+                        f"the arrays hold more than {MAX_ARRAY_VALUES:,} values, the most "
+                        "crankdyn reads from a NumPy file",
+                        file=name,
+                        key=key,
+                    )
+                arrays[key] = array
+    except InputError:
+        raise
+    except (zipfile.BadZipFile, zlib.error, OSError, EOFError, ValueError) as exc:
+        detail = " ".join(str(exc).split())[:80]
+        raise InputError(f"not a readable NumPy .npz file ({detail})", file=name) from None
+    except (NotImplementedError, RuntimeError) as exc:  # a compression method, an encryption
+        detail = " ".join(str(exc).split())[:80]
+        raise InputError(f"not a readable NumPy .npz file ({detail})", file=name) from None
+    return arrays

@@ -20,14 +20,13 @@ the model file).
 
 from __future__ import annotations
 
-import csv
 import io
-import math
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+from crankdyn.display import csv_text, printable
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.csv_tables import cell_value, read_csv_table, split_header_unit, unit_factor
 from crankdyn.torsion.elements import GEAR_DIRECTIONS, GROUND, Gear, Mass, Shaft, ShaftGeometry
 from crankdyn.torsion.model import TorsionModel
 
@@ -75,8 +74,19 @@ def mass_elastic_csv(model: TorsionModel) -> str:
     InputError
         For a branched model, a mass with two grounded shafts, or connections that do not join
         neighbouring masses in listing order (``key="model"``, ``"shaft"`` or ``"between"``,
-        with the value).
+        with the value), naming the model's file (``model.source``).
     """
+    try:
+        links, ground = _connections(model)
+    except InputError as exc:  # named after the model's file, as it was read
+        raise exc.within(file=model.source) from None
+    return _table(model, links, ground)
+
+
+def _connections(
+    model: TorsionModel,
+) -> tuple[dict[int, Shaft | Gear], dict[int, float]]:
+    """The connection from each row to the next and each row's grounded stiffness (N m/rad)."""
     if not model.is_chain:
         raise InputError(
             f'the mass-elastic table holds a chain and the model branches at "{model.junction}"',
@@ -105,14 +115,18 @@ def mass_elastic_csv(model: TorsionModel) -> str:
             key="model",
             value=model.name,
         )
+    return links, ground
+
+
+def _table(model: TorsionModel, links: dict[int, Shaft | Gear], ground: dict[int, float]) -> str:
+    """The CSV text of a chain's rows (:func:`mass_elastic_csv`)."""
     buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
     buffer.write(
-        f"# mass-elastic table of {model.name} (crankdyn); one row per mass, from the "
+        f"# mass-elastic table of {printable(model.name)} (crankdyn); one row per mass, from the "
         "free end, with the connection to the next mass\n"
     )
     header = [name if unit is None else f"{name} [{unit}]" for name, (_k, unit) in _COLUMNS.items()]
-    writer.writerow(header)
+    rows = [header]
     for i, m in enumerate(model.masses):
         link = links.get(i)
         row = {
@@ -138,7 +152,8 @@ def mass_elastic_csv(model: TorsionModel) -> str:
             if link.is_mesh:
                 row["gear_ratio"] = _g(link.ratio)
                 row["gear_direction"] = "opposite" if link.direction < 0 else "same"
-        writer.writerow([row.get(name, "") for name in _COLUMNS])
+        rows.append([row.get(name, "") for name in _COLUMNS])
+    buffer.write(csv_text(rows))  # RFC 4180 quoting: a name with a comma, a quote, a leading #
     return buffer.getvalue()
 
 
@@ -202,7 +217,7 @@ def read_mass_elastic(
     """
     table = read_csv_table(path, display=display, what="mass-elastic table")
     file = table.name
-    rows = _Cells(table.rows, _header_columns(table.header, file))
+    rows = _Cells(table.rows, _header_columns(table.header, file), table.header)
     if not table.rows:
         raise InputError("the mass-elastic table has no rows", file=file)
     masses: list[Mass] = []
@@ -278,10 +293,14 @@ class _Cells:
     """The cells of a mass-elastic table's rows by column name: text, or numbers in SI."""
 
     def __init__(
-        self, rows: Sequence[tuple[int, Sequence[str]]], columns: dict[str, tuple[int, float]]
+        self,
+        rows: Sequence[tuple[int, Sequence[str]]],
+        columns: dict[str, tuple[int, float]],
+        header: Sequence[str] = (),
     ) -> None:
         self.rows = rows
         self.columns = columns
+        self.header = header
 
     def cell(self, r: int, key: str) -> tuple[int, str]:
         """(line number, stripped text) of row ``r``'s cell in column ``key`` ("" if absent)."""
@@ -292,18 +311,16 @@ class _Cells:
         return number, cells[i].strip() if i < len(cells) else ""
 
     def number(self, r: int, key: str) -> float | None:
-        """Row ``r``'s value in column ``key`` in SI, None for an empty cell (InputError for
-        text that is not a finite number)."""
+        """Row ``r``'s value in column ``key`` in SI, None for an empty cell: finite and within
+        the SI range, as every quantity of a TOML file (InputError naming the column and the
+        value; the line is added by the caller, with the file)."""
         _line, text = self.cell(r, key)
         if not text:
             return None
-        try:
-            value = float(text)
-        except ValueError:
-            raise InputError("not a number", key=key, value=text) from None
-        if not math.isfinite(value):
-            raise InputError("not a finite number", key=key, value=text)
-        return value * self.columns[key][1]
+        i, factor = self.columns[key]
+        return cell_value(
+            text, factor, file=None, key=key, column=self.header[i], kind=_COLUMNS[key][0]
+        )
 
 
 def _read_row(

@@ -18,12 +18,17 @@ Every output goes through this module:
   user's folder), it is left as it is and the finished output is kept under the next free
   sibling name (``rep.2``, ``forces.2.json``), said on stderr. With ``force`` the old target is
   replaced only at the very end (an atomic exchange where Linux offers it).
+- ``force`` never deletes what crankdyn did not write: every folder :func:`atomic_directory`
+  makes holds crankdyn's marker file (:data:`MARKER`), and an existing folder is replaced only
+  when it holds that marker (or nothing) and is not a symbolic link; anything else is refused in
+  one line naming the folder and what it holds, before the work and again at the replacement.
 - The moves and the removal of a temporary output run with SIGINT and SIGTERM held
   (:func:`deferred_signals`): an interrupt there is delivered once the step is done, so an
   output is either complete in place or absent, and no temporary file or folder is left.
 - An operating-system error while writing (no space, permission, read-only file system, a
   folder removed meanwhile) becomes a one-line :class:`~crankdyn.errors.InputError` naming the
-  target.
+  target: the file, or the folder being built (a write into it that names no file, such as a
+  full disk under ``Path.write_bytes``, is a write of that folder).
 """
 
 from __future__ import annotations
@@ -45,6 +50,7 @@ from typing import IO, Literal
 from crankdyn.errors import InputError
 
 __all__ = [
+    "MARKER",
     "AtomicFile",
     "atomic_directory",
     "atomic_file",
@@ -58,6 +64,16 @@ __all__ = [
 ]
 
 _MAX_SIBLINGS = 1000
+
+MARKER = ".crankdyn-output"
+"""The marker file in every output folder crankdyn writes (:func:`atomic_directory`): ``--force``
+replaces an existing folder only when it holds this file (or nothing at all)."""
+_MARKER_TEXT = (
+    "This folder was written by crankdyn {version}. crankdyn replaces an existing output folder\n"
+    "(--force) only when it holds this file; remove the file to keep crankdyn from replacing it.\n"
+)
+_LISTED = 3  # entries named in the message about a folder crankdyn did not write
+_COUNTED = 1000  # entries counted at most
 
 
 # ---- signals -------------------------------------------------------------------------------------
@@ -224,8 +240,10 @@ def os_error_message(exc: OSError) -> str:
 
 
 def _notice(text: str) -> None:
+    from crankdyn.display import printable
+
     with contextlib.suppress(OSError, ValueError):
-        print(f"crankdyn: {' '.join(text.split())}", file=sys.stderr, flush=True)
+        print(f"crankdyn: {printable(' '.join(text.split()))}", file=sys.stderr, flush=True)
 
 
 def _within(path: str | None, folder: Path) -> bool:
@@ -244,19 +262,75 @@ def _parent_of(p: Path) -> Path:
     return p.parent if str(p.parent) else Path(".")
 
 
-def _check_target(path: str | Path, *, force: bool, option: str, folder: bool) -> Path:
+def _ours(folder: Path) -> bool:
+    """Whether ``folder`` is a folder crankdyn wrote (it holds :data:`MARKER`) or an empty one:
+    a real folder, not a symbolic link; the only folders ``force`` may replace."""
+    try:
+        if not stat.S_ISDIR(os.lstat(folder).st_mode):
+            return False
+        marker = os.lstat(folder / MARKER)
+    except FileNotFoundError:
+        try:
+            with os.scandir(folder) as entries:
+                return next(entries, None) is None
+        except OSError:
+            return False
+    except OSError:
+        return False
+    return stat.S_ISREG(marker.st_mode)
+
+
+def _contents(folder: Path) -> str:
+    """What a folder holds, in words, for a message: ``3 entries (a.txt, b, c.csv)``."""
+    import itertools
+
+    try:
+        with os.scandir(folder) as entries:
+            names = sorted(e.name for e in itertools.islice(entries, _COUNTED + 1))
+    except OSError as exc:
+        return f"entries crankdyn cannot list ({os_error_message(exc)})"
+    count = f"more than {_COUNTED}" if len(names) > _COUNTED else str(len(names))
+    shown = ", ".join(names[:_LISTED]) + (", ..." if len(names) > _LISTED else "")
+    return f"{count} {'entry' if len(names) == 1 else 'entries'} ({shown})"
+
+
+def _check_replaceable(p: Path, shown: str, option: str) -> None:
+    """Refuse to replace (with ``option``) a folder crankdyn did not write: a symbolic link to
+    a folder, or a folder without :data:`MARKER` that is not empty."""
+    if p.is_symlink():
+        raise InputError(
+            f"is a symbolic link to the folder {os.readlink(p)}; {option} does not replace a "
+            "linked folder (it would delete the files where the link points): remove the link "
+            "or choose another name",
+            file=shown,
+        )
+    if not _ours(p):
+        raise InputError(
+            f"holds {_contents(p)} and no {MARKER}, the marker of a folder crankdyn wrote; "
+            f"{option} replaces only crankdyn's own output folders: remove it yourself or "
+            "choose another name",
+            file=shown,
+        )
+
+
+def _check_target(
+    path: str | Path, *, force: bool, option: str, folder: bool, reuse: bool = False
+) -> Path:
     shown = str(path)
     p = Path(path)
     if not shown or shown in (".", "..") or p.name in ("", ".", ".."):
         raise InputError("is not a name crankdyn can write to", file=shown or '""')
     try:
-        if p.is_symlink():
+        linked = p.is_symlink()
+        if linked:
             if not p.exists():
                 raise InputError(
                     f"is a symbolic link to {os.readlink(p)}, which does not exist; remove the "
                     "link or choose another name",
                     file=shown,
                 )
+            if folder and force and not reuse and p.is_dir():
+                _check_replaceable(p, shown, option)  # refused: a linked folder
             p = Path(os.path.realpath(p))  # write where the link points
         if p.exists():
             mode = p.stat().st_mode
@@ -268,6 +342,8 @@ def _check_target(path: str | Path, *, force: bool, option: str, folder: bool) -
                 raise InputError("is not a regular file (a device or a FIFO?)", file=shown)
             if not force:
                 raise InputError(f"already exists; not overwritten without {option}", file=shown)
+            if folder and not reuse:
+                _check_replaceable(p, shown, option)
         parent = _parent_of(p)
         if not parent.is_dir():
             if parent.exists():
@@ -311,19 +387,26 @@ def check_writable(path: str | Path, *, force: bool, option: str = "--force") ->
     return _check_target(path, force=force, option=option, folder=False)
 
 
-def check_output_dir(path: str | Path, *, force: bool, option: str = "--force") -> Path:
+def check_output_dir(
+    path: str | Path, *, force: bool, option: str = "--force", reuse: bool = False
+) -> Path:
     """Check a folder output (a report) before the work: return the folder to write, or raise a
     one-line :class:`InputError` (an existing folder without ``force``, a file, a dangling
-    symbolic link, a missing or unwritable parent folder).
+    symbolic link, a missing or unwritable parent folder; with ``force``, a folder crankdyn did
+    not write: a symbolic link to a folder, or a folder that holds anything but lacks
+    :data:`MARKER`).
 
     Parameters
     ----------
     path
         The output folder.
     force
-        Whether an existing folder may be replaced.
+        Whether an existing folder may be replaced (only one crankdyn wrote).
     option
         The command-line option that grants ``force``, named in the message.
+    reuse
+        An existing folder is written into, not replaced (a study's folder, whose own files
+        the caller manages): with ``force`` it is accepted whatever it holds.
 
     Returns
     -------
@@ -335,7 +418,7 @@ def check_output_dir(path: str | Path, *, force: bool, option: str = "--force") 
     InputError
         On a refused target, naming it (``file``) and the reason.
     """
-    return _check_target(path, force=force, option=option, folder=True)
+    return _check_target(path, force=force, option=option, folder=True, reuse=reuse)
 
 
 # ---- files ---------------------------------------------------------------------------------------
@@ -358,22 +441,15 @@ def _sibling(p: Path, n: int, folder: bool) -> Path:
 
 def _place(tmp: Path, p: Path, shown: str, *, force: bool, folder: bool) -> Path:
     """Move a finished temporary output into place (module docstring); return where it went."""
+    why = "appeared while the output was being written"
     if force and os.path.lexists(p):
-        if folder:
-            if _exchange(tmp, p):
-                _remove(tmp)  # now the old output
-                return p
-            old = _temporary(p, ".old")
-            os.rename(p, old)
-            try:
-                os.rename(tmp, p)
-            except BaseException:
-                os.rename(old, p)
-                raise
-            _remove(old)
-        else:
+        if not folder:
             os.replace(tmp, p)
-        return p
+            return p
+        if _replace_folder(tmp, p):
+            return p
+        # p is not (or no longer) a folder crankdyn wrote: kept, the output goes to a sibling
+        why = "is no longer a folder crankdyn wrote (its marker is gone)"
     try:
         rename_noreplace(tmp, p)
         return p
@@ -385,16 +461,39 @@ def _place(tmp: Path, p: Path, shown: str, *, force: bool, folder: bool) -> Path
             rename_noreplace(tmp, candidate)
         except FileExistsError:
             continue
-        _notice(
-            f"{shown} appeared while the output was being written and was left as it is; "
-            f"the new output is in {candidate}"
-        )
+        _notice(f"{shown} {why} and was left as it is; the new output is in {candidate}")
         return candidate
     raise InputError(
         f"appeared while the output was being written, and so did {_MAX_SIBLINGS - 2} "
         "numbered siblings; nothing was replaced",
         file=shown,
     )
+
+
+def _replace_folder(tmp: Path, p: Path) -> bool:
+    """Replace the folder ``p`` by ``tmp`` if ``p`` is crankdyn's (:func:`_ours`), checked on
+    the very folder that is removed (after the exchange, which is undone if it is not);
+    False, with both left in place, when it is not."""
+    if _exchange(tmp, p):
+        if _ours(tmp):  # now the old output
+            _remove(tmp)
+            return True
+        _exchange(tmp, p)  # not crankdyn's: swapped back
+        return False
+    if not _ours(p):
+        return False
+    old = _temporary(p, ".old")
+    os.rename(p, old)
+    if not _ours(old):  # changed between the check and the move
+        os.rename(old, p)
+        return False
+    try:
+        os.rename(tmp, p)
+    except BaseException:
+        os.rename(old, p)
+        raise
+    _remove(old)
+    return True
 
 
 def _place_held(tmp: Path, p: Path, shown: str, *, force: bool, folder: bool) -> Path:
@@ -614,6 +713,11 @@ class AtomicDirectory:
             # the name is known before the folder exists, so an interrupt at any point (even
             # inside the mkdir) is cleaned up; the user's umask applies
             self.tmp.mkdir()
+            from crankdyn import __version__
+
+            (self.tmp / MARKER).write_text(
+                _MARKER_TEXT.format(version=__version__), encoding="utf-8"
+            )
         except BaseException as exc:
             self._discard()
             if isinstance(exc, OSError):
@@ -639,8 +743,13 @@ class AtomicDirectory:
                 raise
             return False
         self._discard()
+        # a write into the folder that names no file (Path.write_bytes on a full disk: the
+        # error of the handle) or that names a file in it is an error of this output; the
+        # block writes into the folder, not to standard output
         if isinstance(exc, OSError) and (
-            _within(exc.filename, self.tmp) or _within(exc.filename2, self.tmp)
+            exc.filename is None
+            or _within(exc.filename, self.tmp)
+            or _within(exc.filename2, self.tmp)
         ):
             raise self._error(exc) from None
         return False
@@ -657,11 +766,15 @@ def atomic_directory(path: str | Path, *, force: bool = False) -> AtomicDirector
     """Build a folder of outputs in a temporary sibling and move it into place on success.
 
     ``with atomic_directory(path, force=...) as tmp:`` yields the temporary folder to write
-    into. The target is checked when this is called (:func:`check_output_dir`). On any error or
+    into (it already holds crankdyn's marker, :data:`MARKER`); the block writes into it, not to
+    standard output (an OS error that names no file is taken for a write of the folder). The
+    target is checked when this is called (:func:`check_output_dir`). On any error or
     interrupt the temporary folder is removed and ``path`` is left as it was. An existing
-    ``path`` needs ``force`` and is only replaced once the new folder is complete; a ``path``
+    ``path`` needs ``force``, must be a folder crankdyn wrote (holding the marker, or empty;
+    not a symbolic link) and is only replaced once the new folder is complete; a ``path``
     that appeared meanwhile is never replaced without ``force`` (the output goes to a numbered
-    sibling, said on stderr). The returned object's ``path`` is where the folder went.
+    sibling, said on stderr), nor with it unless it is crankdyn's. The returned object's
+    ``path`` is where the folder went.
 
     Parameters
     ----------

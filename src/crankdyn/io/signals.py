@@ -14,9 +14,7 @@ sample times (s) and speeds (rad/s); ``.npz`` with arrays ``time`` (s), optional
 
 from __future__ import annotations
 
-import io
 import math
-import zipfile
 from pathlib import Path
 from typing import Any
 
@@ -25,7 +23,7 @@ from numpy.typing import NDArray
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
-from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_bytes
+from crankdyn.io.files import display_name, read_numpy
 from crankdyn.io.units import SI_RANGE, check_si_range
 from crankdyn.measure.signals import PulseTrain, SpeedSignal
 
@@ -218,17 +216,6 @@ def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
     )
 
 
-def _load(path: str | Path, what: str) -> Any:
-    """A NumPy file read whole (bounded, a regular file only: :func:`read_bytes`) and parsed."""
-    name = display_name(path)
-    data = read_bytes(path, limit=MAX_CSV_BYTES, what="signal file")
-    try:
-        return np.load(io.BytesIO(data), allow_pickle=False)
-    except (ValueError, OSError, EOFError, zipfile.BadZipFile) as exc:
-        detail = " ".join(str(exc).split())[:80]
-        raise InputError(f"not a readable {what} ({detail})", file=name) from None
-
-
 def _float_array(name: str, key: str, value: Any) -> NDArray[np.float64]:
     """An array of numbers in SI units: each finite and within the range every quantity must
     lie in (1e-12 to 1e12, or 0; :func:`crankdyn.io.units.check_si_range`)."""
@@ -254,7 +241,7 @@ def _float_array(name: str, key: str, value: Any) -> NDArray[np.float64]:
 
 def _read_npy(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
     name = display_name(path)
-    data = _float_array(name, "array", _load(path, "NumPy .npy file"))
+    data = _float_array(name, "array", read_numpy(path))
     if data.ndim == 1:
         return _pulses(name, data, teeth)
     if data.ndim == 2 and data.shape[1] == 2:
@@ -269,18 +256,11 @@ def _read_npy(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
 
 def _read_npz(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
     name = display_name(path)
-    with _load(path, "NumPy .npz file") as archive:
-        keys = set(archive.files)
-        unknown = keys - set(COLUMNS)
-        if unknown:
-            raise InputError(
-                f"unknown array {sorted(unknown)[0]!r} (a signal archive holds "
-                f"{', '.join(COLUMNS)})",
-                file=name,
-            )
-        if "time" not in keys:
-            raise InputError("the archive needs an array named time (s)", file=name)
-        arrays = {k: _float_array(name, k, archive[k]) for k in keys}
+    archive = read_numpy(path, names=COLUMNS)  # every size checked before it is read
+    assert isinstance(archive, dict)  # an .npz archive (type checker)
+    if "time" not in archive:
+        raise InputError("the archive needs an array named time (s)", file=name)
+    arrays = {k: _float_array(name, k, value) for k, value in archive.items()}
     reference = arrays.get("reference")
     if "speed" in arrays:
         return SpeedSignal(arrays["time"], arrays["speed"], reference=reference, source=name)

@@ -212,6 +212,8 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
     known = [*seen, *throw_names]
     if engine is not None:
         _check_cylinders(mass_tables, masses, engine[1], bool(throw_names))
+    else:
+        _check_firing_count(t, mass_tables, masses)
 
     shafts = []
     for st in t.tables("shaft"):
@@ -380,6 +382,29 @@ def _check_cylinders(
                     "they belong on the same mass",
                     list(masses[i].cylinders),
                 )
+
+
+def _check_firing_count(t: Table, tables: Sequence[Table], masses: Sequence[Mass]) -> None:
+    """A model without an engine: a cylinder on a mass beyond those its ``[excitation]``
+    firing order (or firing angles) names is refused at the mass (the firing order would
+    otherwise be blamed for the mass's number)."""
+    excitation = t.data.get("excitation")
+    if not isinstance(excitation, dict):
+        return
+    for key in ("firing_order", "firing_angles"):
+        given = excitation.get(key)
+        if isinstance(given, list) and given:
+            break
+    else:
+        return
+    count = len(given)
+    for mt, m in zip(tables, masses, strict=True):
+        if any(c > count for c in m.cylinders):
+            raise mt.error(
+                "cylinders",
+                f"the [excitation] {key} names {count} cylinders (1..{count})",
+                list(m.cylinders),
+            )
 
 
 def _mass(t: Table) -> Mass:

@@ -77,7 +77,7 @@ def read_response_sections(
     rules = _rules(t.table("rules"), model, operating)
     from crankdyn.io.tvc_file import read_tvc
 
-    tvc = read_tvc(t.table("tvc"))
+    tvc = read_tvc(t.table("tvc"), operating)
     with t.context():
         model = dataclasses.replace(
             model,

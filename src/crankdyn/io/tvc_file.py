@@ -3,14 +3,20 @@ of the torsional vibration calculation (docs/tvc.md)."""
 
 from __future__ import annotations
 
+import math
+from typing import TYPE_CHECKING
+
 from crankdyn.io.schema import Table
 from crankdyn.tvc.limits import WIDENINGS, CrankshaftLimit
 from crankdyn.tvc.spec import CONDITION_KINDS, LOADS, TvcSpec
 
+if TYPE_CHECKING:
+    from crankdyn.torsion.campbell import OperatingRange
+
 __all__ = ["read_tvc"]
 
 
-def read_tvc(t: Table | None) -> TvcSpec | None:
+def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpec | None:
     """A :class:`~crankdyn.tvc.TvcSpec` from ``[tvc]`` (None when the table is absent).
 
     Keys (docs/tvc.md; quantities are strings with units, e.g. ``"750 rpm"``, converted to SI):
@@ -22,11 +28,18 @@ def read_tvc(t: Table | None) -> TvcSpec | None:
     ``permissible_torque`` (Pa or N m), ``diameter`` (m), ``stress_concentration`` (-, at least
     1), ``transient_stress`` (Pa), ``transient_torque`` (N m), ``source``.
 
+    Every condition's speed grid (its range at ``speed_step``) holds at most
+    :data:`crankdyn.defaults.MAX_SPEEDS` speeds (100,000, as ``--speeds``), checked here
+    before any grid is made.
+
     Parameters
     ----------
     t
         The ``[tvc]`` table of the file (its file name and key path are used in messages), or
         None when the file has none.
+    operating
+        The file's ``[operating]`` range (speeds rad/s), the last resort of the TVC's speed
+        range; None when it has none.
 
     Returns
     -------
@@ -38,9 +51,10 @@ def read_tvc(t: Table | None) -> TvcSpec | None:
     ------
     InputError
         On an unknown key, a value of the wrong unit, kind or sign, a choice not in the list,
-        both ``engine_torque`` and ``engine_torque_curve``, a malformed curve, or crankshaft
-        limits with neither or both of the permissible stress and torque; the error names the
-        file, the key and the value.
+        both ``engine_torque`` and ``engine_torque_curve``, a malformed curve, crankshaft
+        limits with neither or both of the permissible stress and torque, or a speed grid of
+        more than 100,000 speeds (naming ``speed_step``, or the range when the step is the
+        default); the error names the file, the key and the value.
     """
     if t is None:
         return None
@@ -122,4 +136,42 @@ def read_tvc(t: Table | None) -> TvcSpec | None:
             values["crankshaft"] = CrankshaftLimit(**crank)
     t.finish()
     with t.context():
-        return TvcSpec(**values)
+        spec = TvcSpec(**values)
+    _check_grids(t, spec, operating)
+    return spec
+
+
+def _check_grids(t: Table, spec: TvcSpec, operating: OperatingRange | None) -> None:
+    """Refuse a condition whose speed grid would hold more than ``MAX_SPEEDS`` speeds (as
+    ``--speeds`` does), naming ``speed_step`` (or the range, at the default step)."""
+    from crankdyn.constants import RPM
+    from crankdyn.defaults import MAX_SPEEDS
+
+    ranges = [(f"speed_ranges.{k}", r) for k, r in spec.ranges.items()]
+    if spec.speed_range is not None:
+        ranges.append(("speed_range", spec.speed_range))
+    elif operating is not None:
+        ranges.append(("[operating] speed_range", (operating.low, operating.high)))
+    for key, (low, high) in ranges:
+        # as the grid is made: the steps from the start, and the end when they stop short of it
+        count = math.floor((high - low) / spec.step * (1 + 1e-12)) + 1
+        count += low + spec.step * (count - 1) < high
+        if count <= MAX_SPEEDS:
+            continue
+        span = f"{low * RPM:g} to {high * RPM:g} rpm"
+        if "speed_step" in t.data:
+            raise t.error(
+                "speed_step",
+                f"makes {count:,} speeds over {span} ({key}); at most {MAX_SPEEDS:,}, as "
+                f"--speeds (a step of at least {(high - low) / (MAX_SPEEDS - 1) * RPM:.3g} rpm)",
+                t.data["speed_step"],
+            )
+        message = (
+            f"{span} at the default step of {spec.step * RPM:g} rpm makes {count:,} speeds; "
+            f"at most {MAX_SPEEDS:,}: give a coarser speed_step"
+        )
+        if key == "speed_range":
+            raise t.error(key, message, t.data[key])
+        if key.startswith("speed_ranges."):
+            raise t.error(key, message, t.data["speed_ranges"][key.partition(".")[2]])
+        raise t.error("speed_step", f"missing; the {key} {message}")

@@ -329,7 +329,7 @@ def angle_domain(
     n = prep.teeth
     per_cycle = cycle_angle * n / (2.0 * math.pi)
     length = round(per_cycle)
-    if abs(per_cycle - length) > 1e-9:  # pragma: no cover - N teeth per revolution is whole
+    if abs(per_cycle - length) > 1e-9 * length:  # pragma: no cover - N per revolution is whole
         raise InputError("the cycle is not a whole number of tooth pitches")
     t = np.asarray(prep.times, dtype=float)
     pitch = 2.0 * math.pi / n

@@ -189,9 +189,20 @@ def _calibration_errors(calibration: PulseTrain, cycle: str, fraction: float) ->
 
 
 def _to_pulses(signal: PulseTrain | SpeedSignal, resolution: int | None) -> PulseTrain:
+    """The pulses to analyse, the wheel's size checked against the record for every kind of
+    signal: a speed signal's resampling is bounded (:meth:`SpeedSignal.to_pulses`), a pulse
+    record must hold one revolution of its wheel at least."""
     if isinstance(signal, SpeedSignal):
         return signal.to_pulses(resolution)
     if isinstance(signal, PulseTrain):
+        if signal.teeth > signal.times.size:
+            raise InputError(
+                f"the record holds {signal.times.size:,} pulses, less than one revolution of a "
+                f"wheel with {signal.teeth:,} pulses per revolution",
+                file=signal.source,
+                key="teeth",
+                value=signal.teeth,
+            )
         return signal
     raise TypeError(f"expected a PulseTrain or a SpeedSignal, got {type(signal).__name__}")
 
@@ -560,7 +571,7 @@ def _steady_spectrum(
         cycle_angle=freeze(cyc_angle),
         cycle_vibration=freeze(avg),
         cycle_speed=freeze(speed * (1.0 + dv)),
-        notes=tuple(notes) or None,
+        notes=tuple(notes),
         cycle_coefficients=per_cycle.coefficients,
         **common,
     )
@@ -611,7 +622,7 @@ def _order_tracking(
         + (", amplitudes divided by the coherent gain 0.5" if window == "hann" else ""),
         averaging=f"complex average of the windows in {width * RPM:g} rpm speed bins "
         f"({win.speed.size} windows in {cells.size} bins); peaks and fits use every window",
-        notes=tuple(notes) or None,
+        notes=tuple(notes),
         window_coefficients=win.coefficients,
         **common,
     )
@@ -718,7 +729,7 @@ class OrderSpectrum(Result):
     cycle_speed: np.ndarray | None = array(
         "cycle_speed_rpm", "Instantaneous speed of the averaged cycle", "rpm", RPM, default=None
     )
-    notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())  # always in the JSON
     comparison: Result | None = scalar("model", "Model", "", default=None)
     cycle_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
@@ -854,7 +865,7 @@ class OrderTracking(Result):
         "tooth_errors_deg", "Tooth-spacing errors", "deg", DEG, default=None
     )
     resonances: tuple[ResonanceFit, ...] = scalar("resonances", "Resonances", "", default=())
-    notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())  # always in the JSON
     comparison: Result | None = scalar("model", "Model", "", default=None)
     window_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)

@@ -46,6 +46,11 @@ MAX_DROPPED_FRACTION = 0.01
 """Largest share of dropped pulses interpolated; more is an error (the record is unreliable)."""
 MIN_TEETH = 4
 """The fewest pulses per revolution accepted."""
+MAX_PULSES = 1 << 22
+"""The most pulses a speed signal is resampled to (:meth:`SpeedSignal.to_pulses`): 4,194,304,
+as many values as a signal file may hold (:data:`crankdyn.io.files.MAX_ARRAY_VALUES`); the
+angle samples per revolution are checked against the record's revolutions before anything is
+allocated."""
 
 
 def _times(name: str, values: ArrayLike, what: str) -> np.ndarray:
@@ -284,8 +289,22 @@ class SpeedSignal:
         PulseTrain
             The times (s) at which the shaft reaches 2 pi k / N, k = 0, 1, ..., with this
             signal's reference and source.
+
+        Raises
+        ------
+        InputError
+            If N is below :data:`MIN_TEETH`, or the record's revolutions at N angles each make
+            more than :data:`MAX_PULSES` pulses (``key="teeth"``, checked before anything is
+            allocated; the message gives the largest N this record takes).
         """
         n = self.default_teeth() if teeth is None else int(teeth)
+        if n < MIN_TEETH:
+            raise InputError(
+                f"at least {MIN_TEETH} angle samples per revolution are needed",
+                file=self.source,
+                key="teeth",
+                value=n,
+            )
         from scipy.interpolate import CubicSpline  # imported here: keeps the start-up light
 
         spline = CubicSpline(self.times, self.speed)
@@ -293,6 +312,17 @@ class SpeedSignal:
         theta = angle(self.times)
         if np.any(np.diff(theta) <= 0.0):  # pragma: no cover - a positive speed integrates up
             raise InputError("the integrated angle does not increase", file=self.source)
+        revolutions = float(theta[-1]) / (2.0 * math.pi)
+        if revolutions * n >= MAX_PULSES:
+            raise InputError(
+                f"the record's {revolutions:.4g} revolutions at {n:,} angle samples each make "
+                f"{revolutions * n:,.0f} pulses; crankdyn resamples a speed signal to at most "
+                f"{MAX_PULSES:,} (this record takes at most "
+                f"{max(math.floor((MAX_PULSES - 1) / revolutions), 0):,} per revolution)",
+                file=self.source,
+                key="teeth",
+                value=n,
+            )
         count = math.floor(theta[-1] * n / (2.0 * math.pi) + 1e-9) + 1
         target = 2.0 * math.pi * np.arange(count) / n
         t = np.interp(target, theta, self.times)

@@ -13,6 +13,8 @@ from matplotlib.text import Text
 from matplotlib.ticker import LogFormatter, MultipleLocator, NullFormatter, ScalarFormatter
 from numpy.typing import ArrayLike
 
+from crankdyn.display import printable
+
 if TYPE_CHECKING:
     from matplotlib.artist import Artist
     from matplotlib.axes import Axes
@@ -78,7 +80,9 @@ def plain_text(fig: matplotlib.figure.Figure) -> None:
     Mathtext goes off (``parse_math``) on every title, label, legend entry, annotation and text
     tick label, so that a name holding ``$`` or a backslash (an engine called
     ``$\\undefinedcmd$``) is drawn literally instead of failing in matplotlib's math parser.
-    crankdyn's own labels use no mathtext (units as ``N·m``, ``rad/s²``).
+    crankdyn's own labels use no mathtext (units as ``N·m``, ``rad/s²``). Control characters
+    other than line breaks (a name's ESC or BEL) are drawn as their escapes
+    (:func:`crankdyn.display.printable`): an SVG holds none (XML forbids them).
 
     Parameters
     ----------
@@ -95,6 +99,11 @@ def plain_text(fig: matplotlib.figure.Figure) -> None:
     """
     for text in _texts(fig):
         text.set_parse_math(False)
+        words = text.get_text()
+        if not words.isprintable():  # a name's control characters: escaped (line breaks kept)
+            shown = "\n".join(printable(line) for line in words.split("\n"))
+            if shown != words:
+                text.set_text(shown)
 
 
 NOTEBOOK_DPI = 96

@@ -1,6 +1,7 @@
 """Render a report as one self-contained HTML page (inline CSS, images embedded).
 
-All user text (engine and mass names, file names, notes) goes through :func:`html.escape`; the
+All user text (engine and mass names, file names, notes) goes through
+:func:`crankdyn.display.html_text` (control characters escaped, then :func:`html.escape`); the
 page has no scripts and loads nothing from the network.
 """
 
@@ -9,10 +10,10 @@ from __future__ import annotations
 import base64
 import re
 from collections.abc import Iterable
-from html import escape
 from typing import TYPE_CHECKING
 
 from crankdyn.display import column_text, unit_label
+from crankdyn.display import html_text as escape  # control characters too
 from crankdyn.report.model import KeyFigure, Report, Section, Table
 from crankdyn.results import Result
 

@@ -225,14 +225,9 @@ class Table:
             return self.result.to_csv()
         if self.source is not None:
             return self.source.csv_text()
-        import csv
-        import io
+        from crankdyn.display import csv_text  # fields quoted as RFC 4180 requires
 
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(self.header)
-        writer.writerows(self.rows)
-        return buffer.getvalue()
+        return csv_text([self.header, *self.rows])
 
 
 @dataclass

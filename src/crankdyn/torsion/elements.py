@@ -26,6 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from crankdyn.crank.geometry import check_finite, check_positive
+from crankdyn.display import printable
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.torsion.coupling import Coupling
 
@@ -64,6 +65,16 @@ MASS_ROLES = (
 )
 """What a mass is, for reports and the rule checks (e.g. the alternator's limits)."""
 
+GEAR_RATIO_LIMIT = 1e3
+"""Largest speed ratio of one gear mesh, either way (n_b/n_a within 1/1000 to 1000): the
+largest single-stage ratios built are about 100:1 (worm gears) to 300:1 (strain-wave gears),
+so beyond 1000 the ratio or the tooth numbers are a mistake; reflected through such a mesh,
+inertias and stiffnesses scale by the ratio squared and excitation orders by the ratio, beyond
+what the solvers resolve (1e12 teeth made orders of 4e-12 and overflowing products)."""
+SPEED_RATIO_LIMIT = GEAR_RATIO_LIMIT**2
+"""Largest speed ratio of a mass to the reference mass through all the meshes between them,
+either way (1e-6 to 1e6: two stages of the largest mesh)."""
+
 SHAFT_ROLES = ("crankshaft", "propulsion shaft", "shaft")
 """What a plain shaft is, for the rule checks: a crank span, a propulsion shaft (intermediate,
 thrust or propeller shaft: IACS UR M68) or another shaft. Couplings and gear meshes are told by
@@ -80,6 +91,20 @@ def _nonnegative(name: str, value: float, what: str) -> float:
     if number < 0.0:
         raise InputError(f"{what} must not be negative", key=name, value=value)
     return number
+
+
+def _check_gear_ratio(ratio: float, key: str, teeth: tuple[int, int] | None) -> None:
+    """Refuse a mesh's speed ratio (dimensionless) beyond :data:`GEAR_RATIO_LIMIT` either way,
+    naming ``key`` (``teeth`` when the ratio came from tooth numbers) and the value given."""
+    if 1.0 / GEAR_RATIO_LIMIT <= ratio <= GEAR_RATIO_LIMIT:
+        return
+    raise InputError(
+        f"a speed ratio of {ratio:.3g} lies beyond the 1:{GEAR_RATIO_LIMIT:g} to "
+        f"{GEAR_RATIO_LIMIT:g}:1 of one gear mesh (the largest built are about 300:1); check the "
+        f"{'tooth numbers' if teeth is not None else 'ratio'}, or give a gear train as its stages",
+        key=key,
+        value=list(teeth) if teeth is not None else ratio,
+    )
 
 
 def _name(value: object, key: str = "name") -> str:
@@ -215,6 +240,15 @@ class Mass:
 
     def __post_init__(self) -> None:
         name = _name(self.name)
+        if name != name.strip() or printable(name) != name:
+            # a name is one line, as typed: tables (the mass-elastic CSV) and files carry it
+            # exactly, and no terminal receives its control characters
+            raise InputError(
+                "a mass name has no control characters (line breaks, tabs, escapes) and no "
+                "white space at its ends",
+                key="name",
+                value=name,
+            )
         if name == GROUND:
             raise InputError(
                 f'"{GROUND}" is reserved for the fixed end of a grounded shaft', key="name"
@@ -500,6 +534,7 @@ class Shaft:
         )
         object.__setattr__(self, "inertia", _nonnegative("inertia", self.inertia, "the inertia"))
         ratio = check_positive("ratio", self.ratio, "the speed ratio")
+        _check_gear_ratio(ratio, "ratio", None)
         object.__setattr__(self, "ratio", ratio)
         if self.direction not in (1, -1):
             raise InputError("expected +1 or -1", key="direction", value=self.direction)
@@ -734,6 +769,7 @@ class Gear:
                 key="ratio",
                 value=self.ratio,
             )
+        _check_gear_ratio(ratio, "teeth" if self.teeth is not None else "ratio", self.teeth)
         object.__setattr__(self, "ratio", ratio)
         if self.direction not in GEAR_DIRECTIONS:
             raise InputError(

@@ -44,7 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.torsion.elements import GROUND, Gear, Mass, Shaft
+from crankdyn.torsion.elements import GROUND, SPEED_RATIO_LIMIT, Gear, Mass, Shaft
 from crankdyn.torsion.topology import Structure, model_structure, reference_mass
 
 if TYPE_CHECKING:
@@ -376,8 +376,25 @@ class TorsionModel:
                         value=name,
                     )
         _ = self._structure  # validate the topology now
+        self._check_speed_ratios()
         self._check_inertia()
         self._check_scale()
+
+    def _check_speed_ratios(self) -> None:
+        """Refuse a mass turning more than :data:`~crankdyn.torsion.elements.SPEED_RATIO_LIMIT`
+        times faster or slower than the reference through the gears (each mesh within its own
+        bound, several in series can still multiply beyond what the solvers resolve)."""
+        ratio = self._structure.speed_ratio
+        bad = np.flatnonzero(~((ratio >= 1.0 / SPEED_RATIO_LIMIT) & (ratio <= SPEED_RATIO_LIMIT)))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(
+                f'"{self.masses[i].name}" turns at {ratio[i]:.3g} times the speed of '
+                f'"{self.masses[self.reference_mass].name}" through the gears, beyond the 1e-6 to '
+                "1e6 crankdyn resolves; check the gear ratios",
+                key="gear",
+                value=float(ratio[i]),
+            )
 
     def _check_inertia(self) -> None:
         """Every degree of freedom needs inertia: a wheel without inertia only in a rigid mesh

@@ -22,8 +22,12 @@ semantics followed (openTorsion 0.3, ``opentorsion/elements``):
 
 from __future__ import annotations
 
+import contextlib
 import importlib
+import math
+import numbers
 from collections import deque
+from collections.abc import Iterator
 from typing import Any
 
 from crankdyn.errors import InputError
@@ -66,8 +70,9 @@ def from_opentorsion(assembly: Any, *, name: str = "openTorsion assembly") -> To
     Raises
     ------
     crankdyn.errors.InputError
-        For an assembly without elements (key ``assembly``), or an element the model refuses
-        (its key and value).
+        For an assembly without elements (key ``assembly``); a node number that is not a whole
+        number >= 0, a value that is not a finite number >= 0, a gear radius of zero, or an
+        element the model refuses; naming the element (``disk_elements[2].node``) and value.
 
     Examples
     --------
@@ -88,64 +93,69 @@ def from_opentorsion(assembly: Any, *, name: str = "openTorsion assembly") -> To
     >>> model.stiffness_matrix().tolist(), model.damping_matrix().tolist()
     ([[10000.0, -10000.0], [-10000.0, 12000.0]], [[0.0, 0.0], [0.0, 0.1]])
     """
-    shafts_in = list(getattr(assembly, "shaft_elements", None) or [])
-    disks = list(getattr(assembly, "disk_elements", None) or [])
-    gears = list(getattr(assembly, "gear_elements", None) or [])
-    elastic = list(getattr(assembly, "elastic_gear_elements", None) or [])
+    shafts_in = _elements(assembly, "shaft_elements")
+    disks = _elements(assembly, "disk_elements")
+    gears = _elements(assembly, "gear_elements")
+    elastic = _elements(assembly, "elastic_gear_elements")
     nodes: set[int] = set()
-    for s in shafts_in:
-        nodes.update((int(s.nl), int(s.nr)))
-    nodes.update(int(d.node) for d in disks)
-    nodes.update(int(g.node) for g in gears + elastic)
+    for key, s in shafts_in:
+        nodes.update((_node_number(s.nl, f"{key}.nl"), _node_number(s.nr, f"{key}.nr")))
+    nodes.update(_node_number(d.node, f"{key}.node") for key, d in disks)
+    nodes.update(_node_number(g.node, f"{key}.node") for key, g in gears + elastic)
     if not nodes:
         raise InputError("the assembly has no elements", key="assembly")
     inertia = dict.fromkeys(nodes, 0.0)
     damping = dict.fromkeys(nodes, 0.0)
     ground: dict[int, float] = {}
-    for d in disks:
-        inertia[int(d.node)] += float(d.I)
-        damping[int(d.node)] += float(getattr(d, "c", 0.0) or 0.0)
-        k = float(getattr(d, "k", 0.0) or 0.0)
+    for key, d in disks:
+        node = _node_number(d.node, f"{key}.node")
+        inertia[node] += _real(d.I, f"{key}.I")
+        damping[node] += _real(getattr(d, "c", 0.0), f"{key}.c")
+        k = _real(getattr(d, "k", 0.0), f"{key}.k")
         if k:
-            ground[int(d.node)] = ground.get(int(d.node), 0.0) + k
+            ground[node] = ground.get(node, 0.0) + k
     gear_nodes: set[int] = set()
-    for g in gears + elastic:
-        inertia[int(g.node)] += float(g.I)
-        gear_nodes.add(int(g.node))
+    for key, g in gears + elastic:
+        node = _node_number(g.node, f"{key}.node")
+        inertia[node] += _real(g.I, f"{key}.I")
+        gear_nodes.add(node)
     shafts = []
-    for s in shafts_in:
-        a, b = int(s.nl), int(s.nr)
-        own = 6.0 * float(getattr(s, "mass", 0.0) or 0.0)  # M = (J_s / 6) [[2, 1], [1, 2]]
+    for key, s in shafts_in:
+        a, b = _node_number(s.nl, f"{key}.nl"), _node_number(s.nr, f"{key}.nr")
+        own = 6.0 * _real(getattr(s, "mass", 0.0), f"{key}.mass")  # M = (J_s/6) [[2,1],[1,2]]
         inertia[a] += 0.5 * own
         inertia[b] += 0.5 * own
         odl = getattr(s, "odl", None)
         geometry = None
         if odl:
-            geometry = ShaftGeometry(float(odl), float(getattr(s, "idl", 0.0) or 0.0))
-        shafts.append(
-            Shaft(
-                (_node(a), _node(b)),
-                float(s.k),
-                damping=float(getattr(s, "c", 0.0) or 0.0),
-                geometry=geometry,
+            geometry = ShaftGeometry(
+                _real(odl, f"{key}.odl"), _real(getattr(s, "idl", 0.0), f"{key}.idl")
             )
-        )
+        with _element(key):
+            shafts.append(
+                Shaft(
+                    (_node(a), _node(b)),
+                    _real(s.k, f"{key}.k"),
+                    damping=_real(getattr(s, "c", 0.0), f"{key}.c"),
+                    geometry=geometry,
+                )
+            )
     for node, k in ground.items():
         shafts.append(Shaft((GROUND, _node(node)), k))
     meshes = []
-    for g in gears:
-        if g.parent is not None:
-            ratio = float(g.parent.R) / float(g.R)
-            meshes.append(Gear((_node(int(g.parent.node)), _node(int(g.node))), ratio))
-    for g in elastic:
-        if g.parent is not None:
-            ratio = float(g.parent.R) / float(g.R)
+    for key, g in gears + elastic:
+        if g.parent is None:
+            continue
+        parent = _node_number(g.parent.node, f"{key}.parent.node")
+        ratio = _radius(g.parent.R, f"{key}.parent.R") / _radius(g.R, f"{key}.R")
+        stiffness = _real(g.k, f"{key}.k") if key.startswith("elastic") else None
+        with _element(key):
             meshes.append(
                 Gear(
-                    (_node(int(g.parent.node)), _node(int(g.node))),
+                    (_node(parent), _node(_node_number(g.node, f"{key}.node"))),
                     ratio,
-                    stiffness=float(g.k),
-                    damping=float(g.c or 0.0),
+                    stiffness=stiffness,
+                    damping=0.0 if stiffness is None else _real(g.c, f"{key}.c"),
                 )
             )
     masses = tuple(
@@ -158,6 +168,78 @@ def from_opentorsion(assembly: Any, *, name: str = "openTorsion assembly") -> To
         for i in sorted(nodes)
     )
     return TorsionModel(masses=masses, shafts=tuple(shafts), gears=tuple(meshes), name=name)
+
+
+def _elements(assembly: Any, name: str) -> list[tuple[str, Any]]:
+    """The elements of one list of the assembly, each with its key for messages
+    (``disk_elements[2]``)."""
+    items = getattr(assembly, name, None) or []
+    try:
+        return [(f"{name}[{i}]", item) for i, item in enumerate(items)]
+    except TypeError:
+        raise InputError("expected a list of elements", key=name) from None
+
+
+def _shown(value: object) -> object:
+    """A value for a message: numpy scalars as Python numbers."""
+    item = getattr(value, "item", None)
+    return item() if callable(item) and getattr(value, "ndim", None) == 0 else value
+
+
+def _is_number(value: object) -> bool:
+    """Whether ``value`` is a real number (Python's or numpy's), not a bool or a text."""
+    return isinstance(value, numbers.Real) and not isinstance(value, bool)
+
+
+def _node_number(value: object, key: str) -> int:
+    """An openTorsion node number: a whole number >= 0 (1.5 was truncated to node 1, -1 taken
+    for the last node), else an InputError naming the element's key and the value."""
+    number = float(value) if _is_number(value) else math.nan  # type: ignore[arg-type]
+    if not (number.is_integer() and number >= 0):
+        raise InputError(
+            "expected a node number, a whole number >= 0", key=key, value=_shown(value)
+        )
+    return int(number)
+
+
+def _real(value: object, key: str) -> float:
+    """A finite number (SI, as openTorsion's; None counts as 0), else an InputError; the sign
+    is checked by the element that takes it (a negative inertia, stiffness or damping)."""
+    if value is None:
+        return 0.0
+    if not _is_number(value):
+        raise InputError("expected a number", key=key, value=_shown(value))
+    number = float(value)  # type: ignore[arg-type]
+    if not math.isfinite(number):
+        raise InputError("the value is not finite", key=key, value=_shown(value))
+    if number < 0.0:
+        raise InputError("must not be negative", key=key, value=_shown(value))
+    return number
+
+
+def _radius(value: object, key: str) -> float:
+    """A gear's pitch radius R (m, or any unit common to the meshing gears): positive (a zero
+    radius divided the speed ratio by zero)."""
+    radius = _real(value, key)
+    if radius == 0.0:
+        raise InputError(
+            "a gear's radius must be positive (the speed ratio is R_parent / R)",
+            key=key,
+            value=_shown(value),
+        )
+    return radius
+
+
+@contextlib.contextmanager
+def _element(key: str) -> Iterator[None]:
+    """Errors of the crankdyn element made from openTorsion element ``key`` name it."""
+    try:
+        yield
+    except InputError as exc:
+        where = f"{key}: {exc.key}" if exc.key else key
+        if exc.has_value:
+            raise InputError(exc.message, key=where, value=exc.value) from None
+        raise InputError(exc.message, key=where) from None
 
 
 def to_opentorsion(model: TorsionModel, *, hysteretic_frequency: float | None = None) -> Any:

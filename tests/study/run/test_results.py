@@ -13,7 +13,7 @@ import pytest
 from crankdyn.io.study_file import load_study
 from crankdyn.study.cases import expand
 from crankdyn.study.run.journal import read_journal
-from crankdyn.study.run.results import CaseTable, read_table
+from crankdyn.study.run.results import CaseTable, read_table, write_outputs
 from crankdyn.study.run.runner import run_study
 from tests.study.helpers import write_study
 
@@ -127,3 +127,22 @@ def test_monte_carlo_tables_have_the_sample_and_distributions(tmp_path):
     assert data["sample"] == [0, 1, 2, 3, 4, 5] * 2
     assert data["geometry.bore_mm"][:6] == data["geometry.bore_mm"][6:]
     assert (tmp_path / "out" / "summary" / "plots" / "distributions.png").is_file()
+
+
+def test_a_summary_without_the_marker_is_replaced(grid, tmp_path):
+    """A study folder written before output folders carried crankdyn's marker (issue 33): its
+    summary is the study's own (a derived file) and is replaced when the results are written
+    again, the marker added."""
+    import shutil
+
+    from crankdyn.io.output import MARKER
+
+    spec, out = grid
+    copy = tmp_path / "out"
+    shutil.copytree(out, copy)
+    (copy / "summary" / MARKER).unlink()
+    (copy / "summary" / "index.html").write_text("old", encoding="utf-8")
+    records, _ = read_journal(copy / "journal.jsonl")
+    write_outputs(spec, CaseTable.build(spec, expand(spec), records), copy)
+    assert "Study: test grid" in (copy / "summary" / "index.html").read_text(encoding="utf-8")
+    assert (copy / "summary" / MARKER).is_file()

@@ -220,7 +220,7 @@ class StudyFolder:
         shown = str(p)
         # a file, a dangling link, a missing or unwritable parent: refused before the work (an
         # existing folder is fine: a study resumes in it)
-        check_output_dir(p, force=True)
+        check_output_dir(p, force=True, reuse=True)
         try:
             if not p.exists():
                 p.mkdir()

@@ -19,7 +19,6 @@ fingerprint, base file) as schema metadata under the key ``crankdyn``.
 
 from __future__ import annotations
 
-import csv
 import datetime as _dt
 import io
 import json
@@ -33,8 +32,9 @@ import numpy as np
 
 from crankdyn import __version__
 from crankdyn.constants import RPM
+from crankdyn.display import csv_text
 from crankdyn.extras import require
-from crankdyn.io.output import write_bytes, write_text
+from crankdyn.io.output import MARKER, write_bytes, write_text
 from crankdyn.study.cases import Case
 from crankdyn.study.figures import FIGURES, SETTINGS, Figure
 from crankdyn.study.spec import Parameter, StudySpec
@@ -294,13 +294,9 @@ class CaseTable:
             A header of column names, numbers written exactly (shortest round-trip form),
             empty cells for NaN.
         """
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow([c.name for c in self.columns])
         cols = [self.data[c.name] for c in self.columns]
-        for row in zip(*cols, strict=True):
-            writer.writerow([_cell(v) for v in row])
-        return buffer.getvalue()
+        header = [c.name for c in self.columns]  # parameter names: user text
+        return csv_text([header, *([_cell(v) for v in row] for row in zip(*cols, strict=True))])
 
 
 def _cell(value: Any) -> str:
@@ -415,8 +411,17 @@ def write_outputs(
 
         with collector_paused():  # the summary's figures live to the end of its writing
             report = build_summary(spec, table, run_info or {})
+            _adopt_summary(out / "summary")
             paths.append(write_report(report, out / "summary", force=True))
     return paths
+
+
+def _adopt_summary(folder: Path) -> None:
+    """A summary folder written before crankdyn marked its output folders (an older version)
+    is this study's own (``summary`` is one of the study folder's derived files): marked, so
+    that it is replaced as every summary is (``--force`` replaces only marked folders)."""
+    if folder.is_dir() and not folder.is_symlink() and not (folder / MARKER).exists():
+        write_text(folder / MARKER, "", force=True)
 
 
 def _display(value: float, figure: Figure) -> str:
