@@ -13,7 +13,8 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from crankdyn.errors import InputError
-from crankdyn.torsion.model import GEAR_RATIO_LIMIT, Gear, Mass, Shaft, TorsionModel
+from crankdyn.torsion.elements import GEAR_RATIO_LIMIT, Gear, Mass, Shaft
+from crankdyn.torsion.model import TorsionModel
 from tests.conftest import fuzz_examples
 
 EXAMPLES = resources.files("crankdyn") / "examples"

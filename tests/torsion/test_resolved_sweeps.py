@@ -41,6 +41,7 @@ def _shaft(barred):
     """The two masses of an M68 shaft's barred range (its component reads "a - b")."""
     return tuple(barred.component.split(" - "))
 
+
 RPM = math.pi / 30.0
 ORDERS = order_grid(0.5, 12.0, 0.5)
 LOW, HIGH = 400.0, 1000.0
@@ -80,7 +81,11 @@ def brute(line):
     for quantity, item, order in PEAKS:
         guess = coarse.peak(quantity, item, order)
         fine = forced_response(
-            model, ex, _fine(guess.speed / RPM), ORDERS, resolve=False,
+            model,
+            ex,
+            _fine(guess.speed / RPM),
+            ORDERS,
+            resolve=False,
         )
         peaks[quantity, item, order] = max(guess.value, fine.peak(quantity, item, order).value)
     ranges = []
@@ -91,7 +96,11 @@ def brute(line):
         for a, b in zip(first, last, strict=True):
             lo, hi = coarse.speed[a - 1] / RPM - 0.5, coarse.speed[b + 1] / RPM + 0.5
             fine = forced_response(
-                model, ex, np.arange(lo, hi, 0.01) * RPM, ORDERS, resolve=False,
+                model,
+                ex,
+                np.arange(lo, hi, 0.01) * RPM,
+                ORDERS,
+                resolve=False,
             )
             inside = fine.speed[_above_tau_c(model, fine, shaft)] / RPM
             ranges.append((shaft, inside[0], inside[-1]))

@@ -404,14 +404,10 @@ class Report:
         str
             The CSV text (numbers with 10 significant digits; text quoted as RFC 4180 requires).
         """
-        import csv
-        import io
-
+        from crankdyn.display import csv_text
         from crankdyn.export import jsonable
 
-        buffer = io.StringIO()
-        writer = csv.writer(buffer, lineterminator="\n")
-        writer.writerow(["key", "label", "value", "unit", "where", "how", "status"])
+        rows: list[list[object]] = [["key", "label", "value", "unit", "where", "how", "status"]]
         seen: set[str] = set()
         for f in self.key_figures():
             if f.key in seen:
@@ -422,8 +418,8 @@ class Report:
                 value = f"{value:.10g}"
             elif isinstance(value, list):
                 value = " ".join(f"{v:.10g}" if isinstance(v, float) else str(v) for v in value)
-            writer.writerow([f.key, f.label, value, f.unit, f.where, f.note, f.status or ""])
-        return buffer.getvalue()
+            rows.append([f.key, f.label, value, f.unit, f.where, f.note, f.status or ""])
+        return csv_text(rows)
 
     def checks(self) -> list[Check]:
         """The cross-checks of every section, in section order.
