@@ -95,10 +95,11 @@ at each mode's own frequency (a dense LU per mode and step)."""
 _REAL = 1e-9  # |Im lambda| below this x |lambda|: a real eigenvalue
 _CLOSE = 1e-8  # eigenvalues this close (relative) with parallel vectors are one eigenpair
 _PARALLEL = 1e-6  # unit vectors with |x^H y| >= 1 - this are parallel
-_REPAIRS = 3  # rounds of repair (module docstring, "Per mode")
+_REPAIRS = 6  # rounds of repair (module docstring, "Per mode")
 _ITERATIONS = 60  # omega_h iterations of the dense fallback at most
 _NEIGHBOURS = 4  # modes either side of a mixed mode that its assignment may exchange with
 _CLUSTER = 256  # modes assigned together at most
+_SMALL = 32  # chains of at most this many degrees of freedom: candidates from the dense problem
 _CANDIDATES = 8  # eigenvalues near the start in the first round of repair, doubled each round
 
 
@@ -496,7 +497,10 @@ def _result(
         log_dec = np.where(
             values[:, 1] > 0.0, 2.0 * math.pi * values[:, 2] * values[:, 0] / values[:, 1], math.nan
         )
-    peak = np.argmax(np.abs(shapes), axis=1)
+    step = max(1, (1 << 16) // max(n, 1))  # a block of rows at a time: no n x n temporary
+    peak = np.zeros(n, dtype=np.intp)
+    for lo in range(0, n, step):
+        peak[lo : lo + step] = np.argmax(np.abs(shapes[lo : lo + step]), axis=1)
     scale = shapes[np.arange(n), peak]
     shapes /= np.where(scale != 0.0, scale, 1.0)[:, None]
     shapes.setflags(write=False)
@@ -535,7 +539,8 @@ def _per_mode(
         bad, bad_partner = modes.check(shared=modes.iterate and attempt == _REPAIRS)
         if not (bad.size or bad_partner.size) or attempt == _REPAIRS:
             break
-        modes.repair(bad, bad_partner, count=min(_CANDIDATES << attempt, 2 * pencil.size - 2))
+        count = min(_CANDIDATES << min(attempt, 3), 2 * pencil.size - 2)  # 8 to 64
+        modes.repair(bad, bad_partner, count=count)
     failed = np.union1d(bad, bad_partner)
     if modes.iterate:
         modes.nearest_in_mac(failed)
@@ -543,6 +548,21 @@ def _per_mode(
     if not modes.iterate:
         _relabel(modes.first, phi, pencil.m, values, eig, shapes, failed)
     return values, eig, failed + modes.first
+
+
+def _own_mac(
+    x: NDArray[np.complex128], phi: NDArray[np.float64], m: NDArray[np.float64]
+) -> NDArray:
+    """MAC of every row of ``x`` with the same column of ``phi`` (mass-normalised), a block of
+    rows at a time (no n x n temporary)."""
+    out = np.empty(x.shape[0])
+    step = max(1, (1 << 16) // max(x.shape[1], 1))
+    for lo in range(0, x.shape[0], step):
+        xs, ps = x[lo : lo + step], phi[:, lo : lo + step].T
+        out[lo : lo + step] = np.abs(np.einsum("ri,ri,i->r", xs, ps, m)) ** 2 / np.einsum(
+            "ri,i->r", (xs * xs.conj()).real, m
+        )
+    return out
 
 
 def _relabel(
@@ -562,9 +582,7 @@ def _relabel(
     n = phi.shape[0]
     x = shapes[first:]
     p = phi[:, first:]
-    own = (
-        np.abs(np.einsum("ri,ir,i->r", x, p, m)) ** 2 / np.einsum("ri,ri,i->r", x.conj(), x, m).real
-    )
+    own = _own_mac(x, p, m)
     low = np.setdiff1d(np.flatnonzero(~(own > 0.5)), failed)
     if not low.size:
         return  # every MAC above 1/2: the labels are the optimal assignment (docstring)
@@ -677,10 +695,14 @@ class _Modes:
         self.phi, self.x = phi[:, first:], shapes[first:]
         self.x[...] = self.phi.T
         self.iterate = fixed is None and pencil.hysteretic
+        self.fixed_w = fixed or 1.0  # omega_h when not iterated (1: no effect without H)
         count = self.x.shape[0]
         w = omega0[first:].copy() if self.iterate else np.full(count, fixed or 1.0)
         lam = 1j * omega0[first:]
-        self.start, _, w = rayleigh(pencil.forms(self.x), lam, w, self.iterate)
+        step = max(1, (1 << 16) // max(phi.shape[0], 1))  # forms a block at a time
+        blocks = [pencil.forms(self.x[lo : lo + step]) for lo in range(0, count, step)]
+        forms = tuple(np.concatenate([b[i] for b in blocks] or [np.zeros(0)]) for i in range(4))
+        self.start, _, w = rayleigh(forms, lam, w, self.iterate)  # type: ignore[arg-type]
         found = refine(pencil, self.start, self.x, w, iterate=self.iterate)
         self.lam, self.w, self.ok = found.lam, found.w, found.converged
         flip = self.lam.imag < 0.0  # one of each conjugate pair: the upper half-plane
@@ -689,28 +711,79 @@ class _Modes:
         self.partner = np.full(count, np.nan, dtype=complex)
         self.partner_x: dict[int, NDArray[np.complex128]] = {}
         self.partner_ok = np.zeros(count, dtype=bool)
+        self.fixed_lam = np.zeros(self.first, dtype=complex)  # a free model's lambda = 0
+        self.fixed_x = [np.full(phi.shape[0], 1.0 + 0j)] if self.first else []
         real = np.flatnonzero(self._real(self.lam))
-        self._partners(real, found.other[real])
-        self.fixed_lam, self.fixed_x = self._rigid(rigid.size)
+        if self.iterate:  # each mode its own omega_h: each its own partner
+            self._partners(real, found.other[real])
+        else:
+            self._assign_partners(real, found.other[real], phi[:, 0])
 
     @staticmethod
     def _real(lam: NDArray) -> NDArray[np.bool_]:
         return np.abs(lam.imag) <= _REAL * np.abs(lam)
 
-    def _rigid(self, n: int) -> tuple[NDArray[np.complex128], list[NDArray[np.complex128]]]:
-        """A free model's rigid-body eigenpairs, which no elastic mode may take: lambda = 0
-        (all masses alike) and, with absolute damping, its real partner."""
-        if not self.first:
-            return np.zeros(0, dtype=complex), []
-        ones = np.full((1, n), 1.0 / math.sqrt(n), dtype=complex)
-        lam, vectors = [0.0 + 0j], [ones[0].copy()]
-        a2, a1, _, _ = self.pencil.forms(ones)
-        if abs(a1[0]) > 0.0:
-            w = np.array([self.w[0] if self.w.size else 1.0])
-            found = refine(self.pencil, -a1 / a2, ones, w, iterate=False)
-            lam.append(complex(found.lam[0]))
-            vectors.append(found.x[0])
-        return np.array(lam, dtype=complex), vectors
+    def _assign_partners(
+        self, rows: NDArray[np.intp], other: NDArray[np.complex128], rigid_shape: NDArray
+    ) -> None:
+        """The second real eigenvalue of every overdamped mode ``rows`` (and a free model's
+        rigid-body partner, with absolute damping), one eigenproblem: the real eigenvalues near
+        the other roots ``other`` of their Rayleigh functionals, less those the modes have,
+        given by the MAC's optimal assignment, each refined (module docstring, "Overdamped")."""
+        a2, a1, _, _ = self.pencil.forms(np.ones((1, rigid_shape.size)))
+        rigid = bool(self.first) and abs(a1[0]) > 0.0  # C 1 != 0: the rigid-body pair splits
+        estimates = np.r_[other.real, -(a1 / a2).real if rigid else np.zeros(0)]
+        need = estimates.size
+        if not need:
+            return
+        shapes = np.column_stack([self.phi[:, rows], rigid_shape[:, None]][: 2 if rigid else 1])
+        n = self.pencil.size
+        count = min(max(16, 2 * need), 2 * n - 2)
+        for _ in range(4):
+            lam, x = self._real_pool(estimates, count)
+            if lam.size >= need or count == 2 * n - 2:
+                break
+            count = min(2 * count, 2 * n - 2)
+        if lam.size < need:
+            return  # the partners stay unfound: checked, repaired, or the fallback's
+        m = self.pencil.m
+        mac = np.abs(x @ (m[:, None] * shapes)) ** 2  # (candidate, mode)
+        mac /= np.einsum("bi,i,bi->b", x.conj(), m, x).real[:, None]
+        picked, assigned = linear_sum_assignment(-mac.T)
+        w = np.full(need, self.fixed_w)
+        found = refine(self.pencil, lam[assigned], x[assigned].copy(), w, iterate=False)
+        for j, r in zip(picked.tolist(), range(need), strict=True):
+            if j < rows.size:
+                row = int(rows[j])
+                self.partner[row], self.partner_x[row] = found.lam[r], found.x[r]
+                self.partner_ok[row] = bool(found.converged[r])
+            else:
+                self.fixed_lam = np.r_[self.fixed_lam, found.lam[r]]
+                self.fixed_x.append(found.x[r])
+
+    def _real_pool(self, estimates: NDArray, count: int) -> tuple[NDArray, NDArray]:
+        """Real eigenpairs near ``estimates`` (1/s) that are no mode's own eigenvalue nor 0:
+        ``count`` nearest each of at most 32 shifts across them (every pair of a dense model)."""
+        shifts = np.unique(np.quantile(estimates, np.linspace(0.0, 1.0, min(estimates.size, 32))))
+        if isinstance(self.pencil, DensePencil):
+            shifts, count = shifts[:1], 2 * self.pencil.size
+        near = [
+            _candidates(self.pencil, complex(v) * (1 + 1e-9j), self.fixed_w, count) for v in shifts
+        ]
+        lam = np.concatenate([a for a, _ in near])
+        x = np.concatenate([b for _, b in near])
+        floor = self._floor()
+        keep = self._real(lam) & (np.abs(lam) > floor)
+        keep &= np.array(
+            [np.min(np.abs(self.lam - v), initial=np.inf) > _CLOSE * abs(v) for v in lam],
+            dtype=bool,
+        )
+        lam, x = lam[keep], x[keep]
+        order = np.argsort(lam.real, kind="stable")  # one of each eigenvalue found twice
+        lam, x = lam[order], x[order]
+        distinct = np.ones(lam.size, dtype=bool)
+        distinct[1:] = np.abs(np.diff(lam)) > _CLOSE * np.abs(lam[1:])
+        return lam[distinct].real + 0j, x[distinct]
 
     def _partners(self, rows: NDArray[np.intp], other: NDArray[np.complex128]) -> None:
         """The second real eigenvalue of the overdamped modes ``rows``, from ``other`` (the
@@ -784,8 +857,11 @@ class _Modes:
         MAC with the undamped mode, each refined until one converges to a pair no other mode
         has (module docstring, "Per mode")."""
         for r, partner in [(int(r), False) for r in bad] + [(int(r), True) for r in bad_partner]:
-            # near the start; a partner near the other root and near its mode's eigenvalue
-            shifts = [self.partner[r], self.lam[r] * (1.0 + 1e-3)] if partner else [self.start[r]]
+            # near the start and the pair it reached; a partner near the other root and near
+            # its mode's eigenvalue
+            shifts = [self.partner[r], self.lam[r] * (1.0 + 1e-3)]
+            if not partner:
+                shifts = [self.start[r], self.lam[r] * (1.0 + 1e-6j)]
             near = [
                 _candidates(self.pencil, complex(v), float(self.w[r]), count)
                 for v in shifts
@@ -793,7 +869,9 @@ class _Modes:
             ]
             lam, x = np.concatenate([a for a, _ in near]), np.concatenate([b for _, b in near])
             keep = self._real(lam) if partner else lam.imag >= -_REAL * np.abs(lam)
-            keep &= [not self._taken(v, y, r, partner) for v, y in zip(lam, x, strict=True)]
+            keep &= np.array(
+                [not self._taken(v, y, r, partner) for v, y in zip(lam, x, strict=True)], dtype=bool
+            )
             lam, x = lam[keep], x[keep]
             p, m = self.phi[:, r], self.pencil.m
             mac = np.abs(x @ (m * p)) ** 2 / np.real(np.einsum("bi,i,bi->b", x.conj(), m, x))
@@ -828,8 +906,7 @@ class _Modes:
         |Im lambda|, until omega_h no longer changes (to 1e-12; the definition of the module
         docstring: where the MAC is above 1/2 the iteration's pair is that one)."""
         p, m = self.phi, self.pencil.m
-        own = np.abs(np.einsum("ri,ir,i->r", self.x, p, m)) ** 2
-        own /= np.einsum("ri,ri,i->r", self.x.conj(), self.x, m).real
+        own = _own_mac(self.x, p, m)
         count = min(4 * _CANDIDATES, 2 * self.pencil.size - 2)
         for r in np.setdiff1d(np.flatnonzero(~(own > 0.5) & ~self._real(self.lam)), failed):
             lam, x, w = complex(self.lam[r]), self.x[r], float(self.w[r])
@@ -914,11 +991,15 @@ def _candidates(
     """The ``count`` eigenpairs nearest ``sigma`` (1/s) at omega_h = w (rad/s): shift-invert
     Arnoldi on a chain (:func:`crankdyn.torsion.quadratic.eigenpairs_near`), the dense
     state-space eigenproblem otherwise. Vectors as rows, unit 2-norm."""
+    if isinstance(pencil, ChainPencil) and (pencil.size <= _SMALL or count > 2 * pencil.size - 2):
+        pencil = pencil.dense()
     if isinstance(pencil, ChainPencil):
+        from scipy.sparse.linalg import ArpackNoConvergence
+
         for shift in (sigma, sigma * (1.0 + 1e-6j)):
             try:
                 return eigenpairs_near(pencil, shift, w, count)
-            except np.linalg.LinAlgError:  # the shift is an eigenvalue
+            except (np.linalg.LinAlgError, ArpackNoConvergence):  # an eigenvalue; no luck
                 continue
         return np.zeros(0, dtype=complex), np.zeros((0, pencil.size), dtype=complex)
     n = pencil.size

@@ -172,6 +172,14 @@ class ChainPencil:
             np.stack([zero, self.c[1], self.h[1], self.k[1]], axis=1),
         )
 
+    def dense(self) -> DensePencil:
+        """The same pencil with dense matrices (for small chains)."""
+
+        def full(tri: tuple[NDArray, NDArray]) -> NDArray[np.float64]:
+            return np.diag(tri[0]) + np.diag(tri[1], 1) + np.diag(tri[1], -1)
+
+        return DensePencil(self.m, full(self.k), full(self.c), full(self.h))
+
     @cached_property
     def norms(self) -> tuple[float, float, float, float]:
         """Infinity norms of M, C, H, K (kg m^2, N m s/rad, N m/rad, N m/rad)."""
