@@ -34,10 +34,52 @@ the modal assurance criterion MAC = |phi_r^T M v|^2 / (phi_r^T M phi_r v^H M v),
 assignment (every eigenvalue to one mode), and numbered as they are (elastic modes from 1, a
 free model's rigid-body mode 0; docs/conventions.md), so damped mode r is undamped mode r.
 Hysteretic damping (``hysteretic="iterate"``, the default) is taken at each mode's own damped
-frequency: omega_h = omega_d,r, iterated from the undamped omega_r until it no longer changes
-(to 1e-12; a single mass on a hysteretic shaft then gives omega_d^2 = omega_n^2
-(1 + sqrt(1 - eta^2)) / 2 exactly, tested); or at one given frequency for every mode
+frequency: omega_h = omega_d,r of the eigenvalue nearest mode r in the MAC at omega_h, iterated
+from the undamped omega_r until it no longer changes (to 1e-12; a single mass on a hysteretic
+shaft then gives omega_d^2 = omega_n^2 (1 + sqrt(1 - eta^2)) / 2 exactly, and so does every mode
+of a chain whose shafts share one loss factor, tested); or at one given frequency for every mode
 (``hysteretic=omega_h``).
+
+**Per mode** (a chain without modal damping; any model with the loss factors iterated): mode r
+is followed from (omega_r, phi_r) by the Rayleigh functional iteration of
+:mod:`crankdyn.torsion.quadratic` (O(n) a step on a chain's tridiagonal pencil, a dense LU on
+another model's), with omega_h solved with it when iterated. Checked: converged (backward error),
+and no two modes on one eigenpair (eigenvalues within 1e-8, parallel vectors): the one with the
+smaller MAC is found again among the eigenpairs nearest its start and the pair it reached
+(shift-invert Arnoldi on a chain, :func:`crankdyn.torsion.quadratic.eigenpairs_near`; the dense
+eigenproblem otherwise), those no other mode has in descending MAC, each refined until one is
+distinct (up to 6 rounds of 8 to 64 eigenpairs). The labels are then the MAC's optimal
+assignment: where every mode's MAC with its own undamped mode exceeds 1/2 they are it (the MACs
+of one eigenvector with all the undamped modes sum to 1, so every other entry of its column is
+below 1/2), and around each mode where it does not the modes within 4 of it are assigned by the
+MAC (``linear_sum_assignment``); with the loss factors iterated such a mode takes the MAC-nearest
+of the 16 eigenpairs nearest its own at its omega_h, omega_h iterated as defined. With loss
+factors near 1 on every shaft two modes can share a fixed point of that definition (the dense
+iteration before did too); they are kept.
+
+**Overdamped modes** have two real eigenvalues: the one reached from the mode, and a partner:
+the real eigenvalues near the other roots of the modes' Rayleigh functionals that no mode has
+reached are given to the overdamped modes by the MAC's optimal assignment, a free model's
+rigid-body shape taking part where absolute damping splits its double zero (lambda = 0 and
+about -1^T C 1 / 1^T M 1). (The dense solution before paired the real eigenvalues in order of
+magnitude, which in a free chain with absolute damping could pair an elastic mode with the
+rigid-body mode's eigenvalue: wrong, e.g. against Rayleigh damping's closed form, tested.) With
+the loss factors iterated each overdamped mode's partner is the other root refined at its own
+omega_h.
+
+**Fallback.** Modes still not found come from the dense solution (one state-space eigenproblem
+and the assignment; with the loss factors iterated, the dense iteration mode by mode), up to
+:data:`DENSE_MAX_DOF` degrees of freedom (LinAlgError above; not met in the tests). Other
+models (branched, geared, looped) and modal damping (C_modal couples every mass) use the dense
+state-space eigenproblem of size 2n, O(n^3), or, with loss factors iterated, the per-mode
+iteration with a dense LU per step, O(n^4).
+
+**Bounds** (:func:`size_bound`; docs/theory-torsion.md, "Damped modes", with the measured times
+and memory): a chain :data:`CHAIN_MAX_DOF` degrees of freedom (O(n^2) time; memory the n x n
+complex mode shapes and the n x n undamped ones, 24 n^2 bytes), another model
+:data:`DENSE_MAX_DOF` (:data:`DENSE_ITERATED_MAX_DOF` with loss factors iterated), the JSON
+:data:`JSON_MAX_DOF`; above, InputError (key ``degrees of freedom``, the count) before anything
+is allocated.
 
 Complex mode shapes: the eigenvector's angle part over the masses (reflected amplitudes, in the
 listing order), scaled so that the largest amplitude is 1 (real, positive).
@@ -77,15 +119,23 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "CHAIN_MAX_DOF",
+    "DENSE_ITERATED_MAX_DOF",
+    "DENSE_MAX_DOF",
+    "JSON_MAX_DOF",
     "DampedModalResult",
     "damped_modes",
     "modal_damping_matrix",
     "modal_damping_ratios",
+    "size_bound",
 ]
 
 HZ = 1.0 / (2.0 * math.pi)
-CHAIN_MAX_DOF = 10_000
+CHAIN_MAX_DOF = 5_000
 """The most degrees of freedom of a chain's damped modes (module docstring, "Bounds")."""
+JSON_MAX_DOF = 2_000
+"""The most degrees of freedom of damped modes written as JSON (``torsion modes --damped
+--format json``): the n x n complex mode shapes as text (157 MB at 2,000)."""
 DENSE_MAX_DOF = 1_000
 """The most degrees of freedom of another model's damped modes, or a chain's with modal
 damping (one dense state-space eigenproblem of twice the size)."""
@@ -354,7 +404,7 @@ def _check_size(model: TorsionModel, modal_damping: bool, iterated: bool) -> Non
         )
     raise InputError(
         f"the damped modes of {kind} take at most {bound:,} degrees of freedom "
-        "(docs/theory-torsion.md, damped modes)",
+        "(crankdyn docs torsion-file, damped modes)",
         key="degrees of freedom",
         value=n,
     )
@@ -902,12 +952,12 @@ class _Modes:
     def nearest_in_mac(self, failed: NDArray[np.intp]) -> None:
         """With loss factors at each mode's frequency, a mode whose MAC with its undamped mode
         is at most 1/2 takes the eigenpair nearest that mode in the MAC among the
-        4 :data:`_CANDIDATES` nearest its eigenvalue at its omega_h, omega_h = that pair's
+        2 :data:`_CANDIDATES` nearest its eigenvalue at its omega_h, omega_h = that pair's
         |Im lambda|, until omega_h no longer changes (to 1e-12; the definition of the module
         docstring: where the MAC is above 1/2 the iteration's pair is that one)."""
         p, m = self.phi, self.pencil.m
         own = _own_mac(self.x, p, m)
-        count = min(4 * _CANDIDATES, 2 * self.pencil.size - 2)
+        count = min(2 * _CANDIDATES, 2 * self.pencil.size - 2)
         for r in np.setdiff1d(np.flatnonzero(~(own > 0.5) & ~self._real(self.lam)), failed):
             lam, x, w = complex(self.lam[r]), self.x[r], float(self.w[r])
             for _ in range(_ITERATIONS):

@@ -115,8 +115,17 @@ def _norm_inf(diag: NDArray, off: NDArray) -> float:
 
 @dataclass(frozen=True)
 class ChainPencil:
-    """M, C, H, K of a chain: M diagonal, the others symmetric tridiagonal (diagonal, off
-    diagonal), reflected to the reference speed (SI: kg m^2, N m s/rad, N m/rad, N m/rad).
+    """M, C, H, K of a chain: M diagonal, the others symmetric tridiagonal.
+
+    Every method works on a block of B rows, one mode each: vectors x (B, n), eigenvalues
+    lambda and omega_h (B,). Q(lambda) = lambda^2 M + lambda (C + H / omega_h) + K.
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        (n,) inertias (kg m^2), reflected to the reference speed.
+    k, c, h : tuple of numpy.ndarray
+        (diagonal (n,), off-diagonal (n - 1,)) of K (N m/rad), C (N m s/rad) and H (N m/rad).
 
     Examples
     --------
@@ -133,7 +142,18 @@ class ChainPencil:
 
     @classmethod
     def of(cls, chain: ChainArrays) -> ChainPencil:
-        """The pencil of a chain's arrays (:class:`crankdyn.torsion.model.ChainArrays`)."""
+        """The pencil of a chain.
+
+        Parameters
+        ----------
+        chain : crankdyn.torsion.model.ChainArrays
+            The chain's arrays (SI, reflected).
+
+        Returns
+        -------
+        ChainPencil
+            Its M, C, H, K.
+        """
 
         def tri(between: NDArray, ground: NDArray) -> tuple[NDArray, NDArray]:
             diag = np.array(ground, dtype=float)
@@ -173,7 +193,13 @@ class ChainPencil:
         )
 
     def dense(self) -> DensePencil:
-        """The same pencil with dense matrices (for small chains)."""
+        """The same pencil with dense matrices (for small chains).
+
+        Returns
+        -------
+        DensePencil
+            M, C, H, K as n x n matrices (M as its diagonal).
+        """
 
         def full(tri: tuple[NDArray, NDArray]) -> NDArray[np.float64]:
             return np.diag(tri[0]) + np.diag(tri[1], 1) + np.diag(tri[1], -1)
@@ -191,7 +217,18 @@ class ChainPencil:
         )
 
     def forms(self, x: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-        """x^T M x, x^T C x, x^T H x, x^T K x of every row of x (B, n)."""
+        """The quadratic forms x^T A x (no conjugate) of every row.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            (B, n) vectors (rad per sqrt(kg m^2), or any scaling).
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (B,) x^T M x, x^T C x, x^T H x, x^T K x (in the units of M, C, H, K times x^2).
+        """
         diag, off = self._diagonals
         out = (x * x) @ diag
         if off.size:
@@ -206,28 +243,95 @@ class ChainPencil:
         return self.c[0] + inv * self.h[0], self.c[1] + inv * self.h[1]
 
     def operator(self, lam: NDArray, w: NDArray) -> Any:
-        """Q(lambda) of every row (lambda and omega_h per row): its diagonals (B, n), (B, n-1)."""
+        """Q(lambda) of every row.
+
+        Parameters
+        ----------
+        lam : numpy.ndarray
+            (B,) eigenvalues (1/s, complex), one per row.
+        w : numpy.ndarray
+            (B,) omega_h (rad/s) of the hysteretic damping, one per row.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            Its diagonals (B, n) and off-diagonals (B, n - 1) (N m/rad).
+        """
         cd, co = self._damping(w)
         lam_ = lam[:, None]
         return (lam_ * self.m + cd) * lam_ + self.k[0], lam_ * co + self.k[1]
 
     @staticmethod
     def take(op: Any, keep: NDArray[np.bool_]) -> Any:
-        """The operators of the rows ``keep``."""
+        """The operators of some rows.
+
+        Parameters
+        ----------
+        op : tuple of numpy.ndarray
+            Operators from :meth:`operator`.
+        keep : numpy.ndarray
+            (B,) the rows kept.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            Their operators.
+        """
         return op[0][keep], op[1][keep]
 
     @staticmethod
     def residual(op: Any, x: NDArray) -> NDArray[np.complex128]:
-        """Q(lambda) x for every row."""
+        """Q(lambda) x for every row.
+
+        Parameters
+        ----------
+        op : tuple of numpy.ndarray
+            Operators from :meth:`operator`.
+        x : numpy.ndarray
+            (B, n) vectors.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) Q(lambda) x (N m per unit of x).
+        """
         return _tri_apply(op[0], op[1], x)
 
     def derivative(self, lam: NDArray, w: NDArray, x: NDArray) -> NDArray[np.complex128]:
-        """Q'(lambda) x = (2 lambda M + C_eff) x for every row."""
+        """Q'(lambda) x = (2 lambda M + C_eff) x for every row.
+
+        Parameters
+        ----------
+        lam : numpy.ndarray
+            (B,) eigenvalues (1/s, complex), one per row.
+        w : numpy.ndarray
+            (B,) omega_h (rad/s) of the hysteretic damping, one per row.
+        x : numpy.ndarray
+            (B, n) vectors.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) Q'(lambda) x (N m s per unit of x).
+        """
         cd, co = self._damping(w)
         return _tri_apply(2.0 * lam[:, None] * self.m + cd, co, x)
 
     def solve(self, op: Any, rhs: NDArray) -> NDArray[np.complex128]:
-        """Q(lambda)^-1 rhs for every row, by LAPACK ``zgtsv`` (one mode at a time)."""
+        """Q(lambda)^-1 rhs for every row, by LAPACK ``zgtsv`` (one mode at a time).
+
+        Parameters
+        ----------
+        op : tuple of numpy.ndarray
+            Operators from :meth:`operator`.
+        rhs : numpy.ndarray
+            (B, n) right-hand sides.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) the solutions (rhs where Q(lambda) is exactly singular: lambda is exact).
+        """
         from scipy.linalg.lapack import zgtsv  # imported here: keeps the start-up light
 
         diag, off = op
@@ -242,8 +346,16 @@ class ChainPencil:
 
 @dataclass(frozen=True)
 class DensePencil:
-    """M (diagonal) and dense symmetric C, H, K (SI, as :class:`ChainPencil`): branched and
-    geared models, and modal damping (which couples every mass)."""
+    """M (diagonal) and dense symmetric C, H, K: branched and geared models, and modal damping
+    (which couples every mass); the methods of :class:`ChainPencil`, on n x n matrices.
+
+    Parameters
+    ----------
+    m : numpy.ndarray
+        (n,) inertias (kg m^2), reflected to the reference speed.
+    k, c, h : numpy.ndarray
+        (n, n) K (N m/rad), C (N m s/rad) and H (N m/rad).
+    """
 
     m: NDArray[np.float64]
     k: NDArray[np.float64]
@@ -271,34 +383,112 @@ class DensePencil:
         return m, c, h, k
 
     def forms(self, x: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-        """x^T M x, x^T C x, x^T H x, x^T K x of every row of x (B, n)."""
+        """The quadratic forms x^T A x (no conjugate) of every row.
+
+        Parameters
+        ----------
+        x : numpy.ndarray
+            (B, n) vectors.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            (B,) x^T M x, x^T C x, x^T H x, x^T K x.
+        """
         c, h, k = (np.einsum("bi,bi->b", x @ a, x) for a in (self.c, self.h, self.k))
         return np.einsum("bi,i,bi->b", x, self.m, x), c, h, k
 
     def operator(self, lam: NDArray, w: NDArray) -> Any:
-        """Q(lambda) of every row (B, n, n)."""
+        """Q(lambda) of every row.
+
+        Parameters
+        ----------
+        lam : numpy.ndarray
+            (B,) eigenvalues (1/s, complex), one per row.
+        w : numpy.ndarray
+            (B,) omega_h (rad/s) of the hysteretic damping, one per row.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n, n) Q(lambda) (N m/rad).
+        """
         lam_ = lam[:, None, None]
         c = self.c + self.h / w[:, None, None]
         return (lam_ * lam_) * np.diag(self.m) + lam_ * c + self.k
 
     @staticmethod
     def take(op: Any, keep: NDArray[np.bool_]) -> Any:
-        """The operators of the rows ``keep``."""
+        """The operators of some rows.
+
+        Parameters
+        ----------
+        op : numpy.ndarray
+            Operators from :meth:`operator`.
+        keep : numpy.ndarray
+            (B,) the rows kept.
+
+        Returns
+        -------
+        numpy.ndarray
+            Their operators.
+        """
         return op[keep]
 
     @staticmethod
     def residual(op: Any, x: NDArray) -> NDArray[np.complex128]:
-        """Q(lambda) x for every row."""
+        """Q(lambda) x for every row.
+
+        Parameters
+        ----------
+        op : numpy.ndarray
+            Operators from :meth:`operator`.
+        x : numpy.ndarray
+            (B, n) vectors.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) Q(lambda) x.
+        """
         return np.einsum("bij,bj->bi", op, x)
 
     def derivative(self, lam: NDArray, w: NDArray, x: NDArray) -> NDArray[np.complex128]:
-        """Q'(lambda) x = (2 lambda M + C_eff) x for every row."""
+        """Q'(lambda) x = (2 lambda M + C_eff) x for every row.
+
+        Parameters
+        ----------
+        lam : numpy.ndarray
+            (B,) eigenvalues (1/s, complex), one per row.
+        w : numpy.ndarray
+            (B,) omega_h (rad/s) of the hysteretic damping, one per row.
+        x : numpy.ndarray
+            (B, n) vectors.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) Q'(lambda) x.
+        """
         c = self.c + self.h / w[:, None, None]
         return 2.0 * lam[:, None] * self.m * x + np.einsum("bij,bj->bi", c, x)
 
     @staticmethod
     def solve(op: Any, rhs: NDArray) -> NDArray[np.complex128]:
-        """Q(lambda)^-1 rhs for every row (dense LU, LAPACK ``zgesv``)."""
+        """Q(lambda)^-1 rhs for every row (dense LU, LAPACK ``zgesv``).
+
+        Parameters
+        ----------
+        op : numpy.ndarray
+            Operators from :meth:`operator`.
+        rhs : numpy.ndarray
+            (B, n) right-hand sides.
+
+        Returns
+        -------
+        numpy.ndarray
+            (B, n) the solutions (rhs where Q(lambda) is exactly singular).
+        """
         out = np.empty_like(rhs)
         for j in range(rhs.shape[0]):
             try:
@@ -409,9 +599,23 @@ def backward_errors(
 
 @dataclass(frozen=True)
 class Refined:
-    """Eigenpairs from :func:`refine`: eigenvalues (1/s), vectors (rows), omega_h (rad/s),
-    backward errors, the other root of each Rayleigh functional (1/s) and whether each
-    converged."""
+    """Eigenpairs from :func:`refine`, one per row.
+
+    Parameters
+    ----------
+    lam : numpy.ndarray
+        (B,) eigenvalues (1/s, complex).
+    x : numpy.ndarray
+        (B, n) eigenvectors, unit 2-norm.
+    w : numpy.ndarray
+        (B,) omega_h (rad/s).
+    eta : numpy.ndarray
+        (B,) normwise backward errors (dimensionless).
+    other : numpy.ndarray
+        (B,) the other root of each Rayleigh functional (1/s).
+    converged : numpy.ndarray
+        (B,) whether each converged (module docstring).
+    """
 
     lam: NDArray[np.complex128]
     x: NDArray[np.complex128]
@@ -558,7 +762,24 @@ def eigenpairs_near(
 
 def condition_numbers(pencil: Pencil, lam: NDArray, w: NDArray, x: NDArray) -> NDArray[np.float64]:
     """The condition number kappa(lambda) of every row's eigenvalue (module docstring; Tisseur
-    2000), dimensionless: |delta lambda| / |lambda| <= kappa eta to first order."""
+    2000): |delta lambda| / |lambda| <= kappa eta to first order.
+
+    Parameters
+    ----------
+    pencil : ChainPencil or DensePencil
+        M, C, H, K (SI).
+    lam : numpy.ndarray
+        (B,) eigenvalues (1/s).
+    w : numpy.ndarray
+        (B,) omega_h (rad/s).
+    x : numpy.ndarray
+        (B, n) their eigenvectors.
+
+    Returns
+    -------
+    numpy.ndarray
+        (B,) kappa (dimensionless).
+    """
     nm, nc, nh, nk = pencil.norms
     a = np.abs(lam)
     scale = (a * nm + (nc + nh / w)) * a + nk
