@@ -63,9 +63,11 @@ reached are given to the overdamped modes by the MAC's optimal assignment, a fre
 rigid-body shape taking part where absolute damping splits its double zero (lambda = 0 and
 about -1^T C 1 / 1^T M 1). (The dense solution before paired the real eigenvalues in order of
 magnitude, which in a free chain with absolute damping could pair an elastic mode with the
-rigid-body mode's eigenvalue: wrong, e.g. against Rayleigh damping's closed form, tested.) With
-the loss factors iterated each overdamped mode's partner is the other root refined at its own
-omega_h.
+rigid-body mode's eigenvalue: wrong, e.g. against Rayleigh damping's closed form, tested; the
+dense solution, of branched models and the fallback, now also gives every mode its eigenvalue
+by the MAC's assignment over the oscillating and the real eigenvalues, and a mode given a real
+one its second by the assignment among the real ones left.) With the loss factors iterated each
+overdamped mode's partner is the other root refined at its own omega_h.
 
 **Fallback.** Modes still not found come from the dense solution (one state-space eigenproblem
 and the assignment; with the loss factors iterated, the dense iteration mode by mode), up to
@@ -1070,25 +1072,29 @@ def _assign(
     shapes: NDArray[np.complex128],
 ) -> None:
     """Give every undamped mode its eigenvalue(s) of one state-space solution (module
-    docstring: optimal assignment on the MAC)."""
+    docstring): the MAC's optimal assignment over the oscillating eigenvalues (upper
+    half-plane) and the real ones; a mode given a real eigenvalue (overdamped, or the
+    rigid-body mode) takes a second real one by the MAC's assignment among those left."""
     oscillating = np.flatnonzero(lam.imag > _REAL * np.abs(lam))
     real = np.flatnonzero(np.abs(lam.imag) <= _REAL * np.abs(lam))
-    # candidates: every oscillating eigenvalue (upper half-plane) once, real ones in pairs
-    real = real[np.argsort(np.abs(lam[real]))]
-    pairs = [(real[i], real[i + 1]) for i in range(0, real.size - 1, 2)]
-    candidates = [(int(j), None) for j in oscillating] + [(int(a), int(b)) for a, b in pairs]
-    if real.size % 2:  # an odd real eigenvalue: the double 0 of a free undamped model split
-        candidates.append((int(real[-1]), None))
-    cols = np.array([a for a, _ in candidates], dtype=int)
-    mac = _mac(phi, vectors[:, cols], m)  # (modes, candidates)
-    rows, picked = linear_sum_assignment(-mac)
-    for r, j in zip(rows, picked, strict=True):
-        a, b = candidates[j]
+    cols = np.r_[oscillating, real]
+    rows, picked = linear_sum_assignment(-_mac(phi, vectors[:, cols], m))  # (modes, candidates)
+    chosen = cols[picked]
+    need = rows[np.isin(chosen, real)]
+    pool = np.setdiff1d(real, chosen)
+    partner: dict[int, int] = {}
+    if need.size and pool.size:
+        r2, p2 = linear_sum_assignment(-_mac(phi[:, need], vectors[:, pool], m))
+        partner = {int(need[i]): int(pool[j]) for i, j in zip(r2, p2, strict=True)}
+    for r, a in zip(rows.tolist(), chosen.tolist(), strict=True):
         if rigid[r]:
             values[r] = (0.0, 0.0, math.nan)
             eig[r] = 0.0
             shapes[r] = phi[:, r]
             continue
+        b = partner.get(r)
+        if b is not None and abs(lam[b]) < abs(lam[a]):  # the smaller |lambda| first
+            a, b = b, a
         values[r] = _mode_values(lam[a], None if b is None else lam[b])
         eig[r] = lam[a]
         shapes[r] = vectors[:, a]
