@@ -350,3 +350,19 @@ def test_the_general_paths_bounds(monkeypatch):
     with pytest.raises(InputError, match="a model with modal damping take at most 5"):
         damped_modes(_chain(6), modal_damping=0.02)
     damped_modes(_chain(6, eta=0.05))  # a chain: the structured path's bound
+
+
+@pytest.mark.parametrize("name", ["marine-shaft-line", "verdict-geared-line", "genset-line"])
+def test_example_lines_per_mode_equal_the_dense_solution(monkeypatch, name):
+    """The built-in shaft lines (gears reflected, couplings with loss factors, absolute dampers)
+    with the loss factors at one frequency: the dense solution their size gets by default and
+    the per-mode iteration (forced), two independent computations, agree."""
+    model = TorsionModel.example(name)
+    dense = damped_modes(model, hysteretic=2 * math.pi * 20.0)
+    monkeypatch.setattr(damped, "_SMALL", 0)
+    per_mode = damped_modes(model, hysteretic=2 * math.pi * 20.0)
+    for field in ("natural_frequency", "damped_frequency", "damping_ratio"):
+        assert getattr(per_mode, field) == pytest.approx(
+            getattr(dense, field), rel=1e-9, abs=1e-12, nan_ok=True
+        )
+    assert np.allclose(np.abs(per_mode.mode_shapes), np.abs(dense.mode_shapes), atol=1e-8)
