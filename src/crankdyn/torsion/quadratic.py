@@ -6,9 +6,9 @@ theta = x exp(lambda t) is the quadratic eigenvalue problem (QEP)
     Q(lambda) x = (lambda^2 M + lambda C_eff + K) x = 0,   C_eff = C + H / omega_h,
 
 of 2n eigenvalues (F. Tisseur and K. Meerbergen, "The quadratic eigenvalue problem", *SIAM
-Review* 43 (2001) 235-286, §1 and §3). M, C, H and K are real and symmetric, so Q(lambda) is
-complex symmetric, Q^T = Q, and an eigenvector x is also the left eigenvector (y = conj(x):
-y^H Q = x^T Q = 0; ibid. §3.5).
+Review* 43 (2001) 235-286, §1). M, C, H and K are real and symmetric, so Q(lambda) is complex
+symmetric, Q^T = Q, and an eigenvector x gives the left eigenvector y = conj(x): y^H Q(lambda) =
+x^T Q(lambda) = (Q(lambda) x)^T = 0.
 
 **Per mode, from the undamped mode.** Mode r is found from the undamped pair (omega_r, phi_r)
 (:func:`crankdyn.torsion.modal.eigen_modes`) by the Rayleigh functional iteration (A. Ruhe,
@@ -32,8 +32,9 @@ dense LU (O(n^3) a step).
 
 **Hysteretic damping at the mode's own frequency** (``omega_h`` None): each step solves the
 scalar equation x^T Q(lambda; omega_h) x = 0 together with omega_h = |Im lambda| (a scalar
-fixed point, iterated to round-off), so the iteration converges to the eigenpair of
-Q(lambda; |Im lambda|): the definition of :mod:`crankdyn.torsion.damped`.
+fixed point, iterated to round-off, omega_h moving at most a factor 2 a step), so the iteration
+converges to an eigenpair of Q(lambda; |Im lambda|): the definition of
+:mod:`crankdyn.torsion.damped`.
 
 **Converged** when the normwise backward error (F. Tisseur, "Backward error and condition of
 polynomial eigenvalue problems", *Linear Algebra Appl.* 309 (2000) 339-361)
@@ -46,15 +47,16 @@ matrices differ from M, C_eff, K by eta times their norms; the eigenvalue's erro
 about kappa(lambda) eta |lambda|, kappa(lambda) = (|lambda|^2 ||M|| + |lambda| ||C_eff|| + ||K||)
 ||x||^2 / (|lambda| |x^T Q'(lambda) x|) its condition number (Tisseur 2000).
 
-**Overdamped modes** (a real eigenvalue): the partner is found the same way from the other root
-of x^T Q(lambda) x = 0 with the converged x (:func:`refine` on the pair).
+**Overdamped modes** (a real eigenvalue): the second real eigenvalue is sought near the other
+root of x^T Q(lambda) x = 0 with the converged x (:mod:`crankdyn.torsion.damped`).
 
 **Near a shift** (:func:`eigenpairs_near`): the eigenvalues nearest sigma by shift-invert
 Arnoldi (ARPACK through :func:`scipy.sparse.linalg.eigs`; R. B. Lehoucq, D. C. Sorensen and C.
 Yang, *ARPACK Users' Guide*, SIAM 1998) on the first companion linearisation [[0, I], [-K,
 -C_eff]] z = lambda diag(I, M) z, z = (x, lambda x) (Tisseur and Meerbergen 2001, §3.4 and
-§6), each operator application one tridiagonal solve with Q(sigma): the fallback of
-:mod:`crankdyn.torsion.damped` for a mode whose iteration reached another mode's eigenpair.
+§6), each operator application one tridiagonal solve with Q(sigma): where
+:mod:`crankdyn.torsion.damped` seeks a mode again whose iteration reached another mode's
+eigenpair, and the overdamped modes' second eigenvalues.
 """
 
 from __future__ import annotations
