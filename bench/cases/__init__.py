@@ -7,6 +7,7 @@ import importlib.util
 
 MODULES = (
     "chain_modes",
+    "damped_modes",
     "forced_response",
     "fourbar",
     "sixbar",

@@ -300,6 +300,7 @@ def modes_command(
         raise InputError("does not apply to the damped modes", key=key, value=value)
     session = model_session(model)
     if damped:
+        _check_damped_json(out, session.model)
         try:
             damped_result = session.damped_modes(modal_damping=ratios)
         except InputError as exc:
@@ -377,6 +378,21 @@ def write_streamed(out: Output, modes: ModeBlocks) -> None:
         for chunk in chunks:
             handle.write(chunk.encode("utf-8"))
     click.echo(f"wrote {target.path}", err=True)
+
+
+def _check_damped_json(out: Output, model: TorsionModel | None) -> None:
+    """Refuse the JSON of a model's damped modes above
+    :data:`crankdyn.torsion.damped.JSON_MAX_DOF` degrees of freedom, before the work."""
+    from crankdyn.torsion.damped import JSON_MAX_DOF
+
+    if out.fmt == "json" and model is not None and model.dof_count > JSON_MAX_DOF:
+        raise InputError(
+            f"the damped modes' JSON holds every complex mode shape: at most {JSON_MAX_DOF:,} "
+            f"degrees of freedom, this model has {model.dof_count:,} (--format csv or table "
+            "take more; crankdyn docs torsion-file)",
+            key="--format",
+            value="json",
+        )
 
 
 def _ratios(text: str | None) -> float | list[float] | None:
