@@ -39,9 +39,9 @@ Ostermann, "Exponential integrators", Acta Numerica 19, 2010, 209-286, sec. 2.1)
    conjugate pair only one coordinate is carried (the forcing is real: its partner is its
    conjugate, and the state is twice the real part).
 
-The recurrence of every coordinate over a block of samples is a first-order recursive filter,
-run by :func:`scipy.signal.lfilter` (a compiled loop): no Python call per step, one per modal
-coordinate per block.
+The recurrence w_k = a w_(k-1) + c_k of every coordinate over a block of samples is evaluated
+for all coordinates at once by a blocked scan (:func:`linear_recurrence`): no Python call per
+step.
 """
 
 from __future__ import annotations
@@ -52,7 +52,14 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["ModalState", "ModalSystem", "free_bodies", "modal_system", "phi_functions"]
+__all__ = [
+    "ModalState",
+    "ModalSystem",
+    "free_bodies",
+    "linear_recurrence",
+    "modal_system",
+    "phi_functions",
+]
 
 _SERIES = 1e-2
 """Below this |z| the phi functions are evaluated by their Taylor series (relative error below
@@ -98,6 +105,70 @@ def phi_functions(z: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.comp
         p1 = np.where(small, s1, p1)
         p2 = np.where(small, s2, p2)
     return p1, p2
+
+
+SCAN_BLOCK = 16
+"""Samples per block of :func:`linear_recurrence`."""
+
+
+def linear_recurrence(
+    a: ArrayLike, c: ArrayLike, start: ArrayLike
+) -> NDArray[np.complex128]:
+    """w_k = a w_(k-1) + c_k for k = 1..L, w_0 = ``start``, for many coordinates at once.
+
+    A blocked scan: within blocks of B = :data:`SCAN_BLOCK` samples the sums
+    sum_(i <= j) a^(j-i) c_i are one batched product with the blocks' Toeplitz matrices of
+    powers of a; the blocks' starts obey the same recurrence with a^B over the blocks' ends,
+    solved the same way (log_B L levels); then w = a^(j+1) w_start + the block's sum. Only
+    powers a^j with j >= 0 occur, so |a| <= 1 (a stable or undamped coordinate) stays bounded.
+
+    Parameters
+    ----------
+    a : array_like
+        (m,) the coordinates' factors (complex).
+    c : array_like
+        (L, m) the increments (complex).
+    start : array_like
+        (m,) w_0.
+
+    Returns
+    -------
+    numpy.ndarray
+        (L, m) w_1 .. w_L.
+
+    Examples
+    --------
+    >>> w = linear_recurrence([0.5], np.ones((40, 1)), [0.0])
+    >>> round(float(w[-1, 0].real), 12), round(2 * (1 - 0.5**40), 12)
+    (2.0, 2.0)
+    """
+    a = np.asarray(a, dtype=complex)
+    c = np.asarray(c, dtype=complex)
+    w0 = np.asarray(start, dtype=complex)
+    count, m = c.shape
+    b = SCAN_BLOCK
+    if count <= b:
+        out = np.empty((count, m), dtype=complex)
+        w = w0
+        for k in range(count):  # at most B steps, at the deepest level only
+            w = a * w + c[k]
+            out[k] = w
+        return out
+    nb = -(-count // b)
+    padded = np.zeros((nb * b, m), dtype=complex)
+    padded[:count] = c
+    blocks = padded.reshape(nb, b, m)
+    j = np.arange(b)
+    powers = a[None, :] ** np.arange(b + 1)[:, None]  # (B + 1, m): a^0 .. a^B
+    lag = j[:, None] - j[None, :]
+    toeplitz = np.where((lag >= 0)[:, :, None], powers[np.clip(lag, 0, b)], 0.0)  # (B, B, m)
+    local = np.einsum("jim,nim->njm", toeplitz, blocks)
+    starts = np.empty((nb, m), dtype=complex)
+    starts[0] = w0
+    if nb > 1:
+        starts[1:] = linear_recurrence(powers[b], local[:-1, -1, :], w0)
+    out = powers[1:][None, :, :] * starts[:, None, :] + local
+    return out.reshape(nb * b, m)[:count]
 
 
 def free_bodies(
@@ -205,6 +276,8 @@ class ModalSystem:
         (p, m) rows of V for q; ``velocity`` (p, m) for q'.
     velocity : numpy.ndarray
         (p, m), as ``position``.
+    modal_damping : numpy.ndarray
+        (p, p) D = Phi^T C Phi (1/s).
     """
 
     inertia: NDArray[np.float64]
@@ -216,6 +289,7 @@ class ModalSystem:
     input_gain: NDArray[np.complex128]
     position: NDArray[np.complex128]
     velocity: NDArray[np.complex128]
+    modal_damping: NDArray[np.float64]
     _inverse: NDArray[np.complex128]
 
     @property
@@ -263,6 +337,57 @@ class ModalSystem:
         v = qd @ self.modes.T + state.rd @ self.bodies.T
         return x, v
 
+    def static(self, forcing: ArrayLike) -> NDArray[np.float64]:
+        """The static twist under generalised torques f (N m), (n,): K x = P^T f, the part of
+        f that accelerates the free bodies taken by their inertia (a quasi-static start).
+
+        Parameters
+        ----------
+        forcing : array_like
+            (n,) generalised torques (N m).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n,) angles (rad), M-orthogonal to the free bodies.
+        """
+        f = np.asarray(forcing, dtype=float)
+        omega2 = self.natural_frequency**2
+        q = np.zeros(omega2.size)
+        stiff = omega2 > 0.0
+        q[stiff] = (self.modes.T @ f)[stiff] / omega2[stiff]
+        return self.modes @ q
+
+    def harmonic(
+        self, forcing: ArrayLike, omega: ArrayLike
+    ) -> NDArray[np.complex128]:
+        """Steady-state amplitudes X of M x'' + C x' + K x = Re(F e^{i omega t}), for every
+        frequency: (K - omega^2 M + i omega C) X = F solved in the modal coordinates (the same
+        damping as the integration's).
+
+        Parameters
+        ----------
+        forcing : array_like
+            (Q, n) complex amplitudes F (N m).
+        omega : array_like
+            (Q,) frequencies (rad/s), > 0.
+
+        Returns
+        -------
+        numpy.ndarray
+            (Q, n) complex amplitudes (rad).
+        """
+        f = np.asarray(forcing, dtype=complex)
+        w = np.asarray(omega, dtype=float)
+        omega2 = self.natural_frequency**2
+        p = omega2.size
+        out = np.zeros(f.shape, dtype=complex)
+        for i in range(w.size):
+            dyn = np.diag(omega2 - w[i] ** 2) + 1j * w[i] * self.modal_damping
+            q = np.linalg.solve(dyn, self.modes.T @ f[i]) if p else np.zeros(0)
+            out[i] = self.modes @ q - self.bodies @ (self.bodies.T @ f[i]) / w[i] ** 2
+        return out
+
     def modal_forcing(
         self, forcing: ArrayLike
     ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
@@ -307,16 +432,8 @@ class ModalSystem:
         ModalState
             At samples 1..L: w (L, m), r and rd (L, b).
         """
-        from scipy.signal import lfilter, lfiltic  # imported here: keeps the start-up light
-
-        count = u.shape[0] - 1
         a, b0, b1 = self.coefficients(step)
-        w = np.empty((count, self.eigenvalues.size), dtype=complex)
-        for j in range(self.eigenvalues.size):
-            num = np.array([b1[j], b0[j]])
-            den = np.array([1.0, -a[j]])
-            zi = lfiltic(num, den, [start.w[j]], [u[0, j]])
-            w[:, j] = lfilter(num, den, u[1:, j], zi=zi)[0]
+        w = linear_recurrence(a, b0 * u[:-1] + b1 * u[1:], start.w)
         # free bodies: exact double integration of a piecewise-linear acceleration
         gk, gk1 = g[:-1], g[1:]
         rd = start.rd + np.cumsum(0.5 * step * (gk + gk1), axis=0)
@@ -506,5 +623,6 @@ def modal_system(
         input_gain=inv[sel][:, p_count:],
         position=vr[:p_count][:, sel],
         velocity=vr[p_count:][:, sel],
+        modal_damping=d,
         _inverse=inv[sel],
     )
