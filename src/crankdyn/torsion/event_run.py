@@ -342,21 +342,28 @@ def _refine(line: Line, rec: _Recorder) -> None:
                 w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
             )
             x, _v = w.mode.system.to_physical(st)
-            t = w.t0 + (s + taus) * w.step
+            t = w.t0 + s * w.step + taus
             ts.append(t)
             vals.append(sign * _element_torques(line, w.mode, t, x)[:, e])
         t_all, v_all = np.concatenate(ts), np.concatenate(vals)
         k = int(np.argmax(v_all))
         best, at = float(v_all[k]), float(t_all[k])
-        if 0 < k < v_all.size - 1:  # a parabola through the three best points
-            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]
+        if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
+            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]  # evaluated on the solution
             den = y0 - 2.0 * y1 + y2
             if den < 0.0:
-                p = 0.5 * (y0 - y2) / den
-                best = float(y1 - 0.25 * (y0 - y2) * p)
-                at = float(t_all[k] + p * (t_all[k + 1] - t_all[k]))
+                vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
+                s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
+                st = w.mode.system.within(
+                    w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step,
+                    [vertex - w.t0 - s * w.step],
+                )
+                x, _v = w.mode.system.to_physical(st)
+                value = float(sign * _element_torques(line, w.mode, np.array([vertex]), x)[0, e])
+                if value > best:
+                    best, at = value, vertex
         target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
-        if sign * best > sign * target[e]:
+        if best > sign * target[e]:  # best is in sign x torque
             target[e] = sign * best
             times[e] = at
 
