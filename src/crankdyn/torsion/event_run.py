@@ -662,7 +662,8 @@ def event_response(
     else:
         profile = constant_profile(line, w0, loads=mean_torques)
     torque_events: list[tuple[int, Any]] = []
-    body_speed: Callable[[NDArray[np.int_]], float] = lambda _dofs: w0  # noqa: E731
+    w_start = float(profile.speed(np.array([0.0]))[0])
+    body_speed: Callable[[NDArray[np.int_]], float] = lambda _dofs: w_start  # noqa: E731
     if isinstance(event, ClutchEngagement):
         mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping)
         a, b = (int(v) for v in line.element_dofs[clutch_e])

@@ -161,8 +161,9 @@ def linear_recurrence(
     j = np.arange(b)
     powers = a[None, :] ** np.arange(b + 1)[:, None]  # (B + 1, m): a^0 .. a^B
     lag = j[:, None] - j[None, :]
-    toeplitz = np.where((lag >= 0)[:, :, None], powers[np.clip(lag, 0, b)], 0.0)  # (B, B, m)
-    local = np.einsum("jim,nim->njm", toeplitz, blocks)
+    toeplitz = np.where((lag >= 0)[None, :, :], powers[np.clip(lag, 0, b)].transpose(2, 0, 1), 0.0)
+    # (m, B, B) @ (m, B, nb): one batched product
+    local = np.matmul(toeplitz, blocks.transpose(2, 1, 0)).transpose(2, 1, 0)
     starts = np.empty((nb, m), dtype=complex)
     starts[0] = w0
     if nb > 1:
