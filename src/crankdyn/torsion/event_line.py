@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
     from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["Line", "Profile", "constant_profile", "line_of", "speed_profile"]
+__all__ = ["GearMesh", "Line", "Profile", "constant_profile", "line_of", "speed_profile"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +77,10 @@ class Line:
         (listed mass, its load law) of every loaded mass.
     hysteretic_frequency : float
         omega_h (rad/s).
+    gears : tuple of GearMesh
+        The rigid gear meshes (their torque from the wheel's balance, :class:`GearMesh`).
+    system : crankdyn.torsion.response.LinearSystem
+        The linear system the line was built from.
     """
 
     inertia: NDArray[np.float64]
@@ -96,6 +100,7 @@ class Line:
     drive: NDArray[np.float64]
     loads: tuple[tuple[int, LoadLaw], ...]
     hysteretic_frequency: float
+    gears: tuple[GearMesh, ...]
     system: object = field(repr=False)
 
     @property
@@ -342,8 +347,62 @@ def line_of(
         drive=_drive_weights(model, np.asarray(system.mass_dof), system.size),
         loads=loads,
         hysteretic_frequency=wh,
+        gears=_gear_meshes(
+            model, tuple(system.element_labels), np.asarray(system.mass_dof), system.mass_ratio
+        ),
         system=system,
     )
+
+
+@dataclass(frozen=True)
+class GearMesh:
+    """A rigid gear mesh, its torque read from its wheel's balance: the torque the pinion
+    passes to the wheel (own sense of the wheel) is J_w alpha_w plus what the wheel's elements
+    carry away, T = J_w alpha_w + sum s_e T_e (s_e = +1 where the wheel is the element's first
+    mass, -1 where its second); external torques at the wheel itself are left out.
+
+    Parameters
+    ----------
+    name : str
+        The gear's name for people.
+    between : (str, str)
+        Pinion and wheel.
+    dof : int
+        The meshing wheels' degree of freedom.
+    inertia : float
+        J_w, the wheel's own inertia (kg m^2).
+    ratio : float
+        |r_w| of the wheel.
+    elements : tuple of (int, float)
+        (element, s_e) of every element at the wheel.
+    """
+
+    name: str
+    between: tuple[str, str]
+    dof: int
+    inertia: float
+    ratio: float
+    elements: tuple[tuple[int, float], ...]
+
+
+def _gear_meshes(model: TorsionModel, line_labels: Sequence[tuple[str, str]], mass_dof: NDArray[np.int_], ratio: NDArray[np.float64]) -> tuple[GearMesh, ...]:
+    """The rigid gear meshes of a model (joints of bolted masses left out)."""
+    out = []
+    for g in model.gears:
+        if g.joint or g.stiffness is not None:
+            continue
+        wheel = g.between[1]
+        i = model.index(wheel)
+        elements = tuple(
+            (e, 1.0 if a == wheel else -1.0)
+            for e, (a, b) in enumerate(line_labels)
+            if wheel in (a, b)
+        )
+        name = g.name or f"{g.between[0]} - {wheel}"
+        out.append(
+            GearMesh(name, (g.between[0], wheel), int(mass_dof[i]), float(model.masses[i].inertia), float(abs(ratio[i])), elements)
+        )
+    return tuple(out)
 
 
 # ---- the mean-speed history --------------------------------------------------------------------

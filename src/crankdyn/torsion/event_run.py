@@ -97,8 +97,16 @@ class _Mode:
     switch: Callable[[float, NDArray[np.float64], NDArray[np.float64]], _Mode] | None = None
 
 
-def _element_torques(line: Line, mode: _Mode, t: NDArray[np.float64], x: NDArray[np.float64]):
-    """(L, E) torques the elements transmit (own sense, N m) at samples t (L,), angles x."""
+def _element_torques(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    f: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """(L, E + G) torques the elements and the rigid gear meshes transmit (own sense, N m) at
+    samples t (L,), angles x, rates v and generalised torques f (L, n)."""
     ends = line.element_dofs
     xa = np.where(ends[:, 0] >= 0, x[:, np.maximum(ends[:, 0], 0)], 0.0)
     xb = np.where(ends[:, 1] >= 0, x[:, np.maximum(ends[:, 1], 0)], 0.0)
@@ -108,7 +116,15 @@ def _element_torques(line: Line, mode: _Mode, t: NDArray[np.float64], x: NDArray
     if mode.friction is not None:
         e, sign, capacity = mode.friction
         out[:, e] = sign * capacity(t)
-    return out
+    if not line.gears:
+        return out
+    meshes = np.empty((t.size, len(line.gears)))
+    for i, g in enumerate(line.gears):
+        d = g.dof
+        system = mode.system
+        accel = (f[:, d] - x @ system.stiffness[d] - v @ system.damping[d]) / line.inertia[d]
+        meshes[:, i] = g.inertia * g.ratio * accel + sum(s * out[:, e] for e, s in g.elements)
+    return np.concatenate([out, meshes], axis=1)
 
 
 @dataclass(eq=False)
@@ -261,6 +277,7 @@ class _Window:
     states: list[ModalState]  # at the window's samples
     u: NDArray[np.complex128]  # (samples, m)
     g: NDArray[np.float64]  # (samples, b)
+    force: Forcing  # the generalised torques (L, n) at times (L,)
 
 
 @dataclass(eq=False)
@@ -341,10 +358,10 @@ def _refine(line: Line, rec: _Recorder) -> None:
             st = w.mode.system.within(
                 w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
             )
-            x, _v = w.mode.system.to_physical(st)
+            x, v = w.mode.system.to_physical(st)
             t = w.t0 + s * w.step + taus
             ts.append(t)
-            vals.append(sign * _element_torques(line, w.mode, t, x)[:, e])
+            vals.append(sign * _element_torques(line, w.mode, t, x, v, w.force(t))[:, e])
         t_all, v_all = np.concatenate(ts), np.concatenate(vals)
         k = int(np.argmax(v_all))
         best, at = float(v_all[k]), float(t_all[k])
@@ -358,8 +375,9 @@ def _refine(line: Line, rec: _Recorder) -> None:
                     w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step,
                     [vertex - w.t0 - s * w.step],
                 )
-                x, _v = w.mode.system.to_physical(st)
-                value = float(sign * _element_torques(line, w.mode, np.array([vertex]), x)[0, e])
+                x, v = w.mode.system.to_physical(st)
+                tv = np.array([vertex])
+                value = float(sign * _element_torques(line, w.mode, tv, x, v, w.force(tv))[0, e])
                 if value > best:
                     best, at = value, vertex
         target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
@@ -383,6 +401,18 @@ class _Run:
     switches: list[str] = field(default_factory=list)
 
 
+def _mode_forcing(run: _Run, mode: _Mode) -> Forcing:
+    """The generalised torques (L, n) of the run in a mode (its own terms added)."""
+    if mode.extra is None:
+        return run.forcing
+    extra = mode.extra
+
+    def force(t: NDArray[np.float64]) -> NDArray[np.float64]:
+        return run.forcing(t) + extra(t)
+
+    return force
+
+
 def _state_at(start: ModalState, w: ModalState, j: int) -> ModalState:
     """The modal state of a block's sample j (0 the block's start)."""
     if j == 0:
@@ -391,7 +421,14 @@ def _state_at(start: ModalState, w: ModalState, j: int) -> ModalState:
 
 
 def _windows(
-    mode: _Mode, start: ModalState, w: ModalState, times: NDArray[Any], u: Any, g: Any, h: float
+    mode: _Mode,
+    force: Forcing,
+    start: ModalState,
+    w: ModalState,
+    times: NDArray[Any],
+    u: Any,
+    g: Any,
+    h: float,
 ) -> Callable[[int], _Window | None]:
     """window(k) for the block's sample k + 1 (k indexes the block's samples 1..L)."""
 
@@ -399,7 +436,9 @@ def _windows(
         s = k + 1
         last = min(s + 1, times.size - 1)
         states = [_state_at(start, w, j) for j in range(s - 1, last + 1)]
-        return _Window(mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1])
+        return _Window(
+            mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1], force
+        )
 
     return window
 
@@ -444,9 +483,8 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
             tf[0] = np.nextafter(times[0], np.inf)
         if last:
             tf[-1] = np.nextafter(stop, -np.inf)
-        f = run.forcing(tf)
-        if mode.extra is not None:
-            f = f + mode.extra(tf)
+        force = _mode_forcing(run, mode)
+        f = force(tf)
         u, g = system.modal_forcing(f)
         w = system.run(state, u, g, h)
         x, v = system.to_physical(w)
@@ -455,26 +493,21 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
         if mode.watch is not None:
             found = np.flatnonzero(np.asarray(mode.watch(tk, x, v)) >= 0.0)
             hit = int(found[0]) + 1 if found.size else None
+        windows = _windows(mode, force, state, w, times, u, g, h)
         if hit is None:
-            torque = _element_torques(line, mode, tk, x)
-            run.recorder.add(
-                tk, x, v, torque, _windows(mode, state, w, times, u, g, h), keep_last=last and final
-            )
+            torque = _element_torques(line, mode, tk, x, v, f[1:])
+            run.recorder.add(tk, x, v, torque, windows, keep_last=last and final)
             state, t, done = w.last(), float(times[-1]), done + n
             continue
         prev = _state_at(state, w, hit - 1)
         if hit > 1:
             k = hit - 1
-            run.recorder.add(
-                tk[:k], x[:k], v[:k], _element_torques(line, mode, tk[:k], x[:k]),
-                _windows(mode, state, w, times, u, g, h),
-            )
+            torque = _element_torques(line, mode, tk[:k], x[:k], v[:k], f[1 : k + 1])
+            run.recorder.add(tk[:k], x[:k], v[:k], torque, windows)
         ts, xs, vs = _crossing(run, mode, prev, times, u, g, hit, h)
         tsa = np.array([ts])
-        run.recorder.add(
-            tsa, xs[None], vs[None], _element_torques(line, mode, tsa, xs[None]),
-            lambda _k: None, keep_last=True,
-        )
+        torque = _element_torques(line, mode, tsa, xs[None], vs[None], force(tsa))
+        run.recorder.add(tsa, xs[None], vs[None], torque, lambda _k: None, keep_last=True)
         assert mode.switch is not None
         new = mode.switch(ts, xs, vs)
         run.switches.append(f"{mode.key} -> {new.key} at {ts:.6g} s")
@@ -486,10 +519,9 @@ def _march(run: _Run, mode: _Mode, x0: NDArray[np.float64], v0: NDArray[np.float
     """Integrate the whole run, segment by segment (module docstring)."""
     t = 0.0
     state = mode.system.to_modal(x0, v0)
-    run.recorder.add(
-        np.array([0.0]), x0[None], v0[None],
-        _element_torques(run.line, mode, np.array([0.0]), x0[None]), lambda _k: None,
-    )
+    t0 = np.array([np.nextafter(0.0, np.inf)])
+    torque = _element_torques(run.line, mode, t0, x0[None], v0[None], _mode_forcing(run, mode)(t0))
+    run.recorder.add(np.array([0.0]), x0[None], v0[None], torque, lambda _k: None)
     while t < run.end * (1.0 - 1e-12):
         later = run.cuts[run.cuts > t + 1e-9 * run.step]
         stop = float(later[0]) if later.size else run.end
@@ -777,7 +809,8 @@ def _result(
 
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
-    limits = np.full(line.element_stiffness.size, np.nan)
+    n_el = line.element_stiffness.size
+    limits = np.full(n_el + len(line.gears), np.nan)
     for e, shaft in enumerate(model.shafts):
         if shaft.coupling is not None and shaft.coupling.maximum_torque is not None:
             limits[e] = shaft.coupling.maximum_torque
@@ -785,6 +818,11 @@ def _result(
         f"loss factors as viscous damping at {line.hysteretic_frequency / (2 * math.pi):.4g} Hz",
         "element torques are elastic: k x twist / |r| (a slipping clutch: its friction torque)",
     ]
+    if line.gears:
+        notes.append(
+            "a rigid gear's mesh torque: the wheel's inertia torque and its shafts' torques "
+            "(external torques at the wheel left out)"
+        )
     if isinstance(event, SpeedChange) and event.fuel_cut is not None:
         notes.append("after the fuel cut the cylinders' harmonic torques are left out")
     kind = event.kind if isinstance(event, SpeedChange) else _KINDS[type(event).__name__]
@@ -803,8 +841,8 @@ def _result(
         severity=event.severity,
         source=event.source,
         masses=line.mass_names,
-        elements=line.element_labels,
-        element_names=line.element_names,
+        elements=line.element_labels + tuple(g.between for g in line.gears),
+        element_names=line.element_names + tuple(f"gear mesh {g.name}" for g in line.gears),
         duration=float(duration),
         step=float(step),
         step_rule=rule,
@@ -814,7 +852,9 @@ def _result(
         switches=tuple(run.switches),
         notes=tuple(notes),
         model_name=model.name,
-        element_kinds=line.element_kinds,
-        section_modulus=freeze(line.section_modulus),
+        element_kinds=line.element_kinds + ("gear",) * len(line.gears),
+        section_modulus=freeze(
+            np.concatenate([line.section_modulus, np.full(len(line.gears), np.nan)])
+        ),
         limit_torque=freeze(limits),
     )

@@ -279,6 +279,11 @@ class ModalSystem:
         (p, m), as ``position``.
     modal_damping : numpy.ndarray
         (p, p) D = Phi^T C Phi (1/s).
+    stiffness : numpy.ndarray
+        (n, n) K (N m/rad).
+    damping : numpy.ndarray
+        (n, n) the C integrated (absolute damping projected off the free bodies by default)
+        (N m s/rad).
     """
 
     inertia: NDArray[np.float64]
@@ -291,6 +296,8 @@ class ModalSystem:
     position: NDArray[np.complex128]
     velocity: NDArray[np.complex128]
     modal_damping: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
     _inverse: NDArray[np.complex128]
 
     @property
@@ -625,5 +632,7 @@ def modal_system(
         position=vr[:p_count][:, sel],
         velocity=vr[p_count:][:, sel],
         modal_damping=d,
+        stiffness=k,
+        damping=c,
         _inverse=inv[sel],
     )
