@@ -10,7 +10,7 @@ import math
 
 import pytest
 
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 from crankdyn.engine.torque import engine_torque
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import load_example

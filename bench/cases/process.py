@@ -42,7 +42,7 @@ OPENTORSION = "openTorsion script (parse, solve, write JSON)"
 ANALYSIS = (
     "import numpy, click\n"
     "from crankdyn.io.catalogue import resolve_engine\n"
-    "from crankdyn.engine.session import Analysis\n"
+    "from crankdyn.session import Analysis\n"
     "result = Analysis(resolve_engine('vaz2108')).kinematics()\n"
     "print(len(result.columns()))\n"
 )

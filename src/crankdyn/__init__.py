@@ -44,7 +44,7 @@ __all__ = [
 ]
 
 _LAZY = {
-    "Analysis": "crankdyn.engine.session",
+    "Analysis": "crankdyn.session",
     "Cylinders": "crankdyn.engine.model",
     "Engine": "crankdyn.engine.model",
     "FourBar": "crankdyn.linkage.fourbar",

@@ -455,6 +455,40 @@ def html_table(
     return f"<div>{title_html}<table><tr>{head}</tr>{body}</table>{cap}</div>"
 
 
+def summary_html(summary: Any) -> str:
+    """The notebook view of a result's summary (:class:`crankdyn.summary.Summary`): its
+    warnings, key figures, verdicts, tables and notes, every text escaped.
+
+    Parameters
+    ----------
+    summary : crankdyn.summary.Summary
+        The summary.
+
+    Returns
+    -------
+    str
+        The HTML.
+    """
+    parts = []
+    if summary.warnings:
+        items = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in summary.warnings)
+        parts.append(f"<ul style='color:#b26a00'>{items}</ul>")
+    rows = [list(r) for r in summary.rows()]
+    parts.append(html_table(["Quantity", "Value", "Unit"], rows, title=summary.title))
+    if summary.verdicts:
+        from crankdyn.summary import verdict_cells
+
+        header, cells = verdict_cells(summary.verdicts)
+        parts.append(html_table(header, cells, title="Verdicts"))
+    for table in summary.tables:
+        header, cells = table.cells(aligned=False)
+        parts.append(html_table(header, cells, title=table.title, caption=table.caption))
+    if summary.notes:
+        items = "".join(f"<li>{html.escape(n)}</li>" for n in summary.notes)
+        parts.append(f"<ul>{items}</ul>")
+    return "".join(parts)
+
+
 def _elastic_table(
     name: str, title: str, columns: Iterable[tuple[str, str | None, Sequence[Any]]], caption: str
 ) -> tuple[str, str, list[str], list[list[str]], str]:

@@ -16,6 +16,7 @@ Everything else follows: :meth:`Result.to_dict`, :meth:`Result.to_json`, :meth:`
 from __future__ import annotations
 
 import csv
+import dataclasses
 import html
 import io
 import json
@@ -27,10 +28,12 @@ from typing import TYPE_CHECKING, Any, ClassVar, Self
 import numpy as np
 from numpy.typing import ArrayLike, DTypeLike, NDArray
 
+from crankdyn.summary import FigureSpec, KeyFigure, Summary, SummaryTable, Verdict
+
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
 
-__all__ = ["DEG", "Result", "array", "column", "freeze", "scalar"]
+__all__ = ["DEG", "Result", "array", "column", "freeze", "jsonable", "scalar", "scaled_value"]
 
 from crankdyn.constants import DEG, RPM
 
@@ -98,8 +101,26 @@ def array(key: str, label: str, unit: str, scale: float = 1.0, **kw: Any) -> Any
     return field(metadata=_meta("array", key, label, unit, scale), **kw)
 
 
-def scalar(key: str, label: str, unit: str, scale: float = 1.0, fmt: str = ".6g", **kw: Any) -> Any:
+def scalar(
+    key: str,
+    label: str,
+    unit: str,
+    scale: float = 1.0,
+    fmt: str = ".6g",
+    *,
+    name: str | None = None,
+    better: str | None = None,
+    summary: bool = True,
+    description: str = "",
+    checked: str | None = None,
+    headline: bool = False,
+    **kw: Any,
+) -> Any:
     """A field holding a single figure (number, string, bool or a nested Result / list of them).
+
+    Every scalar field is a key figure of the result's :meth:`Result.summary` (shown by the
+    command line, the report, the study and notebooks) unless ``summary`` is False; a nested
+    result's figures join its parent's.
 
     Parameters
     ----------
@@ -117,6 +138,20 @@ def scalar(key: str, label: str, unit: str, scale: float = 1.0, fmt: str = ".6g"
         :data:`crankdyn.constants.RPM` for speeds in rpm.
     fmt : str
         Format specification of the value in tables; default ``.6g``.
+    name : str or None
+        The figure's name in parameter studies; default the field's name.
+    better : {"min", "max"} or None
+        Which way is better, for a study's ranking.
+    summary : bool
+        Whether the field is a key figure of the summary (False: exported only, e.g. inputs
+        echoed for the JSON).
+    description : str
+        A sentence for the study's figure list; default the label.
+    checked : str or None
+        The key of the plausibility check of the figure (:mod:`crankdyn.plausibility`): its
+        status is ``"warn"`` when the result carries that warning, else ``"pass"``.
+    headline : bool
+        Whether the figure is one of the few a whole report's summary shows.
     **kw
         Passed to :func:`dataclasses.field` (``default``, ``repr``...).
 
@@ -125,7 +160,21 @@ def scalar(key: str, label: str, unit: str, scale: float = 1.0, fmt: str = ".6g"
     dataclasses.Field
         The field specifier (typed as the field's value, like :func:`dataclasses.field`).
     """
-    return field(metadata=_meta("scalar", key, label, unit, scale, fmt=fmt), **kw)
+    meta = _meta(
+        "scalar",
+        key,
+        label,
+        unit,
+        scale,
+        fmt=fmt,
+        name=name,
+        better=better,
+        summary=summary,
+        description=description,
+        checked=checked,
+        headline=headline,
+    )
+    return field(metadata=meta, **kw)
 
 
 def freeze(values: ArrayLike, dtype: DTypeLike = float) -> NDArray[Any]:
@@ -168,8 +217,35 @@ def _scaled(value: Any, scale: float) -> Any:
     return out
 
 
+def scaled_value(value: float, scale: float) -> float:
+    """A float in the unit a field is exported in (SI x scale, rounded as :meth:`Result.to_dict`
+    rounds it: degrees to 1e-10, rpm to 1e-9).
+
+    Examples
+    --------
+    >>> from crankdyn.constants import RPM
+    >>> scaled_value(6000 / RPM, RPM)
+    6000.0
+    """
+    return float(_scaled(float(value), scale))
+
+
+def jsonable(value: Any) -> Any:
+    """``value`` as JSON data: numpy types as Python ones, NaN and inf as None (strict JSON),
+    results as their :meth:`Result.to_dict`.
+
+    Examples
+    --------
+    >>> jsonable({"speeds": np.array([1.0, np.nan]), 2: (np.int64(3), np.True_)})
+    {'speeds': [1.0, None], '2': [3, True]}
+    """
+    return _to_jsonable(value, 1.0)
+
+
 def _to_jsonable(value: Any, scale: float) -> Any:
     if isinstance(value, Result):
+        return value.to_dict()
+    if hasattr(value, "to_dict") and not isinstance(value, type):  # Verdict, warnings, tables
         return value.to_dict()
     if isinstance(value, np.ndarray):
         if value.dtype.kind in "fc":
@@ -230,6 +306,10 @@ class Result:
             if value is None:
                 continue
             out[meta["key"]] = _to_jsonable(value, meta["scale"])
+        for spec in self._derived_specs():  # the key figures the class derives, under their keys
+            got = spec.value(self)
+            if got is not None:
+                out.setdefault(spec.key, _to_jsonable(got[0], 1.0))
         if self.warnings:
             out["warnings"] = [w.to_dict() for w in self.warnings]
         return out
@@ -326,26 +406,138 @@ class Result:
                 writer.writerow([_csv_cell(v) for v in row])
         return buffer.getvalue()
 
+    # ---- summary: key figures, tables, notes, warnings, verdicts (crankdyn.summary) -----------
+    FIGURES: ClassVar[tuple[FigureSpec, ...]] = ()
+    """Key figures the class derives from its fields (:func:`crankdyn.summary.reduced`,
+    :func:`crankdyn.summary.derived`), after its scalar fields."""
+
+    @classmethod
+    def figure_specs(cls) -> tuple[FigureSpec, ...]:
+        """How every key figure of the class is made, known before any result exists (a
+        study lists them): the numeric scalar fields (nested results' included), then
+        :attr:`FIGURES` (completed from their fields' metadata).
+
+        Returns
+        -------
+        tuple of crankdyn.summary.FigureSpec
+            The declarations, in order.
+        """
+        cached = cls.__dict__.get("_figure_specs")
+        if cached is not None:
+            return cached
+        specs = list(_scalar_specs(cls, ()))
+        for spec in cls.FIGURES:
+            if spec.field_name:
+                meta = cls.__dataclass_fields__[spec.field_name].metadata
+                spec = dataclasses.replace(
+                    spec,
+                    key=spec.key or meta["key"],
+                    label=spec.label or meta["label"],
+                    unit=meta["unit"],
+                )
+            specs.append(spec)
+        out = tuple(specs)
+        setattr(cls, "_figure_specs", out)  # noqa: B010 (class cache)
+        return out
+
+    def key_figures(self) -> list[KeyFigure]:
+        """The key figures of this result: its scalar fields (numbers, text, flags; a nested
+        result's figures in its place; lists of results and ``notes`` left to the tables and
+        notes), then those of :attr:`FIGURES` that apply.
+
+        Returns
+        -------
+        list of crankdyn.summary.KeyFigure
+            In declaration order.
+        """
+        out: list[KeyFigure] = []
+        for f, meta, value in self._fields("scalar"):
+            if value is None or f.name == "notes" or not meta.get("summary", True):
+                continue
+            if isinstance(value, Result):
+                out.extend(value.key_figures())
+                continue
+            if isinstance(value, (list, tuple)) and value and not _plain(value[0]):
+                continue  # lists of sub-results: tables, not figures
+            out.append(
+                KeyFigure(
+                    meta.get("name") or f.name,
+                    meta["key"],
+                    meta["label"],
+                    meta["unit"],
+                    _figure_value(value, meta["scale"]),
+                    status="pass" if meta.get("checked") else None,
+                    better=meta.get("better"),
+                    description=meta.get("description") or meta["label"],
+                    check=meta.get("checked") or "",
+                    headline=bool(meta.get("headline")),
+                )
+            )
+        for spec in self._derived_specs():
+            figure = spec.make(self)
+            if figure is not None:
+                out.append(figure)
+        if self.warnings:
+            out = [_with_status(f, self.warnings) for f in out]
+        return out
+
+    @classmethod
+    def _derived_specs(cls) -> tuple[FigureSpec, ...]:
+        """The completed declarations of :attr:`FIGURES`."""
+        specs = cls.figure_specs()
+        return specs[len(specs) - len(cls.FIGURES) :]
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The tables of the summary (none by default; a result with per-item figures, e.g.
+        the balance by order, declares them here).
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
+        return []
+
+    def summary_verdicts(self) -> list[Verdict]:
+        """The rule checks' verdicts of this result (none by default).
+
+        Returns
+        -------
+        list of crankdyn.summary.Verdict
+            The verdicts.
+        """
+        return []
+
+    def summary(self) -> Summary:
+        """What this result says about itself, for every front end (:mod:`crankdyn.summary`).
+
+        Returns
+        -------
+        crankdyn.summary.Summary
+            Key figures, tables, notes, warnings and verdicts.
+        """
+        notes = getattr(self, "notes", None) or ()
+        if isinstance(notes, str):
+            notes = (notes,)
+        return Summary(
+            title=str(getattr(self, "title", "") or type(self).__name__),
+            figures=tuple(self.key_figures()),
+            tables=tuple(self.summary_tables()),
+            notes=tuple(str(n) for n in notes),
+            warnings=tuple(self.warnings),
+            verdicts=tuple(self.summary_verdicts()),
+        )
+
     def summary_rows(self) -> list[tuple[str, str, str]]:
-        """The scalar figures as table rows, nested results flattened.
+        """The key figures as table rows (:meth:`crankdyn.summary.Summary.rows`).
 
         Returns
         -------
         list of (str, str, str)
-            (label, formatted value, display unit) of every scalar figure; numbers in
+            (label, formatted value, display unit) of every key figure; numbers in
             engineering units with sensible digits (:mod:`crankdyn.display`).
         """
-        rows: list[tuple[str, str, str]] = []
-        for _f, meta, value in self._fields("scalar"):
-            if value is None:
-                continue
-            if isinstance(value, Result):
-                rows.extend(value.summary_rows())
-                continue
-            if isinstance(value, (list, tuple)) and value and isinstance(value[0], Result):
-                continue  # lists of sub-results are exported, not summarised
-            rows.append((meta["label"], *_format(value, meta)))
-        return rows
+        return self.summary().rows()
 
     def with_summary_of(self, full: Result) -> Self:
         """This result's rows with every scalar figure of another result of the same analysis.
@@ -371,26 +563,11 @@ class Result:
             changes["warnings"] = full.warnings
         return replace(self, **changes)
 
-    def key_rows(self) -> list[tuple[str, str, str]]:
-        """The key numbers of a result whose figures are arrays (e.g. the peaks of a sweep).
-
-        Returns
-        -------
-        list of (str, str, str)
-            (label, value, unit) rows, shown with :meth:`summary_rows` in notebooks; none by
-            default.
-        """
-        return []
-
     # ---- notebook view ------------------------------------------------------------------------
     def _repr_html_(self) -> str:
-        from crankdyn.display import html_table
+        from crankdyn.display import summary_html
 
-        title = getattr(self, "title", type(self).__name__)
-        rows = [list(r) for r in self.key_rows() + self.summary_rows()]
-        warnings = "".join(f"<li>warning: {html.escape(w.message)}</li>" for w in self.warnings)
-        out = f"<ul style='color:#b26a00'>{warnings}</ul>" if warnings else ""
-        out += html_table(["Quantity", "Value", "Unit"], rows, title=title)
+        out = summary_html(self.summary())
         cols = self.column_labels()
         if cols:
             n = len(next(iter(self.columns().values())))
@@ -489,3 +666,99 @@ def _format(value: Any, meta: Any) -> tuple[str, str]:
             return ", ".join(text for text, _ in texts), texts[0][1]
         return ", ".join(_format(v, meta)[0] for v in items), unit
     return format_value(value, unit)
+
+
+def _with_status(figure: KeyFigure, warnings: Any) -> KeyFigure:
+    """The figure with status ``"warn"`` when one of the warnings is its plausibility check's."""
+    if figure.check and any(w.key == figure.check for w in warnings):
+        return dataclasses.replace(figure, status="warn")
+    return figure
+
+
+def _plain(value: Any) -> bool:
+    """Whether a list item is a plain figure value (number, text, flag), not a sub-result."""
+    return isinstance(value, (str, bool, int, float, np.generic))
+
+
+def _figure_value(value: Any, scale: float) -> Any:
+    """A scalar field's value in its exported unit, as a key figure holds it."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return scaled_value(float(value), scale)
+    if isinstance(value, np.ndarray):
+        if value.dtype.kind in "fc":
+            return [scaled_value(v, scale) for v in value.ravel().tolist()]
+        return value.ravel().tolist()
+    if isinstance(value, (list, tuple)):
+        return [_figure_value(v, scale) for v in value]
+    return value
+
+
+_NUMERIC = {"float", "int", "float | None", "int | None", "None | float"}
+
+
+def _scalar_specs(cls: type, path: tuple[str, ...]) -> Iterator[FigureSpec]:
+    """Static declarations of the numeric scalar fields of a result class (and of the result
+    classes its scalar fields hold, resolved from their annotations), for the study's registry
+    of figures."""
+    import sys
+
+    module = sys.modules.get(cls.__module__)
+    names = vars(module) if module is not None else {}
+    hints: dict[str, Any] = {}
+    for klass in reversed(cls.__mro__):
+        hints.update(getattr(klass, "__annotations__", {}))
+    for f in fields(cls):
+        meta = f.metadata
+        if meta.get("kind") != "scalar" or not meta.get("summary", True) or f.name == "notes":
+            continue
+        hint = hints.get(f.name)
+        text = hint if isinstance(hint, str) else getattr(hint, "__name__", "")
+        nested = names.get(text.replace(" | None", ""))
+        if isinstance(nested, type) and issubclass(nested, Result):
+            yield from _scalar_specs(nested, (*path, f.name))
+            for spec in nested._derived_specs():  # its derived figures, read through the field
+                yield dataclasses.replace(spec, value=_nested_reader((*path, f.name), spec.value))
+            continue
+        if text not in _NUMERIC:
+            continue
+        yield FigureSpec(
+            meta.get("name") or f.name,
+            meta["key"],
+            meta["label"],
+            meta["unit"],
+            _field_reader((*path, f.name), meta["scale"]),
+            better=meta.get("better"),
+            description=meta.get("description") or meta["label"],
+            check=meta.get("checked") or "",
+            headline=bool(meta.get("headline")),
+        )
+
+
+def _nested_reader(path: tuple[str, ...], value: Any) -> Any:
+    """``value(result)`` of a derived figure of a nested result, read through ``path``."""
+
+    def read(result: Any) -> tuple[Any, str] | None:
+        for name in path:
+            result = getattr(result, name, None)
+            if result is None:
+                return None
+        return value(result)
+
+    return read
+
+
+def _field_reader(path: tuple[str, ...], scale: float) -> Any:
+    """``value(result)`` of a (nested) scalar field: (value in its exported unit, "")."""
+
+    def value(result: Any) -> tuple[Any, str] | None:
+        for name in path:
+            result = getattr(result, name, None)
+            if result is None:
+                return None
+        return _figure_value(result, scale), ""
+
+    return value

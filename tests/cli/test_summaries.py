@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 from crankdyn.results import Result
 
 ENGINE = "inline6-diesel"

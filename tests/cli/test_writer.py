@@ -24,7 +24,7 @@ from crankdyn.cli.writer import (
 )
 from crankdyn.display import column_text, format_value
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis, speed_grid
+from crankdyn.session import Analysis, speed_grid
 
 
 def _render(blocks, width: int) -> str:

@@ -52,7 +52,7 @@ QUANTITIES = [
         "summary.max_acceleration_m_s2",
         "max_piston_acceleration_m_s2",
         "max_piston_acceleration",
-        lambda a: a.kinematics().summary.max_acceleration,
+        lambda a: a.kinematics().extrema.max_acceleration,
     ),
     (
         ("pressure",),

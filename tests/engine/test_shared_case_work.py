@@ -27,7 +27,7 @@ from crankdyn.crank.kinematics import (
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.engine import forces as engine_forces_module
 from crankdyn.engine.forces import engine_warnings
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 
 
 def _same(a, b) -> bool:

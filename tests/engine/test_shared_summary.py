@@ -96,7 +96,7 @@ def test_session_forces_on_the_shared_train_equal_a_call_of_their_own(name):
     """Analysis.forces() reuses the session's crank train (its summary grid and warnings):
     every number equals engine_forces evaluated alone."""
     from crankdyn.engine.forces import engine_forces
-    from crankdyn.engine.session import Analysis
+    from crankdyn.session import Analysis
 
     engine = crankdyn.Engine.example(name)
     analysis = Analysis(engine, speed=2500.0 * math.pi / 30.0)

@@ -7,7 +7,7 @@ from __future__ import annotations
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 from crankdyn.report.sections import Context, builders
 
 

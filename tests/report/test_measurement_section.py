@@ -5,7 +5,7 @@ import math
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 from crankdyn.measure.examples import example_signal
 from crankdyn.measure.orders import order_analysis
 from crankdyn.report.sections import Context, NotApplicable

@@ -57,8 +57,8 @@ def test_speeds_near_zero(speed):
     engine = Engine.example("vaz2108")
     kin = piston_kinematics(engine.geometry, speed)
     assert np.all(np.isfinite(kin.acceleration))
-    assert kin.summary.max_velocity == pytest.approx(
-        kin.summary.velocity_ratio * kin.summary.mean_piston_speed
+    assert kin.extrema.max_velocity == pytest.approx(
+        kin.extrema.velocity_ratio * kin.extrema.mean_piston_speed
     )
     t = engine_torque(engine, speed, step=math.radians(2))
     assert np.all(np.isfinite(t.total_torque))

@@ -36,9 +36,9 @@ from crankdyn.display import column_text, format_value
 from crankdyn.engine.balance import BALANCE_METHODS, BalanceResult, OrderBalance
 from crankdyn.engine.firing_search import CRITERIA, FiringOrderRanking
 from crankdyn.engine.model import BalanceInputs, Engine
-from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
+from crankdyn.session import Analysis
 
 __all__ = ["register"]
 

@@ -404,7 +404,7 @@ def speed_sweep(text: str | None, option: str = "--speeds") -> NDArray[np.float6
     -------
     numpy.ndarray or None
         The speeds (rad/s), ascending, every STEP (default the session's 10 rpm,
-        :func:`crankdyn.engine.session.speed_grid`); one speed when LOW equals HIGH; None when
+        :func:`crankdyn.session.speed_grid`); one speed when LOW equals HIGH; None when
         ``text`` is None.
 
     Raises
@@ -421,7 +421,7 @@ def speed_sweep(text: str | None, option: str = "--speeds") -> NDArray[np.float6
     parsed = parse_speeds(text, option)
     if parsed is None:
         return None
-    from crankdyn.engine.session import SPEED_STEP, speed_grid
+    from crankdyn.session import SPEED_STEP, speed_grid
 
     low, high, step = parsed
     if high == low:

@@ -20,9 +20,9 @@ from crankdyn.cli.common import (
 )
 from crankdyn.cli.writer import Output, output_options, result_table, summary_table
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
+from crankdyn.session import Analysis
 
 FORCE_TABLE = (  # the columns `crankdyn forces` shows
     "crank_angle_deg",

@@ -19,9 +19,9 @@ from crankdyn.cli.common import (
 )
 from crankdyn.cli.writer import Output, output_options, result_table, summary_table
 from crankdyn.crank.kinematics import METHODS, coefficient_table
-from crankdyn.engine.session import SERIES_ORDER, Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
+from crankdyn.session import SERIES_ORDER, Analysis
 
 
 def check_order(method: str, order: int) -> None:
@@ -101,7 +101,7 @@ def kinematics_command(
     out.write(
         blocks=[
             result_table(result, KINEMATICS_TABLE, title="Piston and rod kinematics"),
-            summary_table(result.summary, "Summary (exact extrema)"),
+            summary_table(result.extrema, "Summary (exact extrema)"),
         ],
         json_data=result,
         csv_text=result.to_csv(),

@@ -17,9 +17,9 @@ from crankdyn.cli.common import (
 from crankdyn.cli.examples import examples_alias
 from crankdyn.cli.writer import Output, TextTable, output_options, result_table, summary_table
 from crankdyn.display import column_text
-from crankdyn.engine.session import Analysis
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_model_and_engine
+from crankdyn.session import Analysis
 from crankdyn.torsion.modal import (
     SOLVERS,
     STREAMED_SIZE,

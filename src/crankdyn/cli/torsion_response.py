@@ -1,6 +1,6 @@
 """``crankdyn torsion response|campbell|damper|excitation|transient``: forced torsional
 vibration (commands of the ``torsion`` group). Every number comes from the analysis session
-(:class:`crankdyn.engine.session.Analysis`): the sweep, the orders, the peaks, the shaft a plot
+(:class:`crankdyn.session.Analysis`): the sweep, the orders, the peaks, the shaft a plot
 shows and the damper comparison are the session's, as in the report and the study figures."""
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ from crankdyn.docs import ref
 from crankdyn.errors import InputError
 
 if TYPE_CHECKING:
-    from crankdyn.engine.session import Analysis
+    from crankdyn.session import Analysis
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
 
 _QUANTITIES = ("amplitude", "relative", "torque", "stress")
@@ -571,8 +571,8 @@ def excitation_command(
     """Harmonic analysis of the cylinder torque of ENGINE at one speed: per order the gas,
     inertia and total amplitude, the phase-vector sum over the cylinders (major orders), and,
     with a [torsion] section, the relative amplitude sums over its modes."""
-    from crankdyn.engine.session import Analysis
     from crankdyn.io.catalogue import resolve_engine
+    from crankdyn.session import Analysis
 
     out = Output(fmt, output_path, force)
     out.check()

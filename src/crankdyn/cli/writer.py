@@ -18,7 +18,6 @@ from __future__ import annotations
 import builtins
 import io
 import json
-import math
 import os
 import sys
 from collections.abc import Callable, Iterable, Sequence
@@ -34,7 +33,8 @@ from crankdyn.display import column_text, format_value
 from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_text
 from crankdyn.plausibility import PlausibilityWarning
-from crankdyn.results import Result
+from crankdyn.results import Result, jsonable
+from crankdyn.summary import Summary, verdict_cells
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -53,6 +53,7 @@ __all__ = [
     "plain_console",
     "plain_text",
     "result_table",
+    "summary_blocks",
     "summary_table",
     "warnings_of",
 ]
@@ -158,14 +159,16 @@ def result_table(
     return TextTable(title or getattr(result, "title", "") or "", header, rows, text)
 
 
-def summary_table(source: Result | Iterable[Sequence[str]], title: str = "Summary") -> TextTable:
-    """A result's scalar figures (or (label, value, unit) rows) as Quantity / Value / Unit.
+def summary_table(
+    source: Result | Summary | Iterable[Sequence[str]], title: str = "Summary"
+) -> TextTable:
+    """A result's key figures (or (label, value, unit) rows) as Quantity / Value / Unit.
 
     Parameters
     ----------
     source
-        A result (its :meth:`~crankdyn.results.Result.summary_rows`) or rows of three texts,
-        e.g. from :func:`figure_row`.
+        A result or its summary (the key figures: :meth:`crankdyn.summary.Summary.rows`) or
+        rows of three texts, e.g. from :func:`figure_row`.
     title
         The table's title.
 
@@ -179,10 +182,47 @@ def summary_table(source: Result | Iterable[Sequence[str]], title: str = "Summar
     >>> summary_table([figure_row("Peak torque", 1.2345e3, "N·m")]).rows
     [['Peak torque', '1.2345', 'kN·m']]
     """
-    rows = source.summary_rows() if isinstance(source, Result) else list(source)
+    if isinstance(source, Result):
+        source = source.summary()
+    rows = source.rows() if isinstance(source, Summary) else list(source)
     return TextTable(
         title, ["Quantity", "Value", "Unit"], [list(r) for r in rows], text_columns={0, 2}
     )
+
+
+def summary_blocks(
+    source: Result | Summary, title: str = "Summary", *, figures: bool = True
+) -> list[TextTable | str]:
+    """Everything a result's summary holds, as the terminal shows it: the key figures, the
+    verdicts (:func:`crankdyn.summary.verdict_cells`, every column repeated in each part of a
+    wide table's split: component, condition and quantity), the summary's tables and its notes.
+
+    Parameters
+    ----------
+    source
+        A result or its summary.
+    title
+        The title of the key figures' table.
+    figures
+        Whether to show the key figures (False: only verdicts, tables and notes).
+
+    Returns
+    -------
+    list of TextTable or str
+        Blocks for :meth:`Output.write`.
+    """
+    summary = source.summary() if isinstance(source, Result) else source
+    blocks: list[TextTable | str] = []
+    if figures and summary.figures:
+        blocks.append(summary_table(summary, title))
+    if summary.verdicts:
+        header, rows = verdict_cells(summary.verdicts)
+        blocks.append(TextTable("Verdicts", header, rows, text_columns={0, 1, 2, 5, 8, 9}))
+    for table in summary.tables:
+        header, rows = table.cells()
+        blocks.append(TextTable(table.title, header, rows, table.text_columns(), table.caption))
+    blocks += [f"Note: {n}" for n in summary.notes]
+    return blocks
 
 
 def figure_row(
@@ -213,42 +253,6 @@ def figure_row(
     """
     text, shown = format_value(value, unit, reference=reference)
     return [label, text, shown]
-
-
-def jsonable(value: Any) -> Any:
-    """``value`` with numpy types as Python ones and NaN/inf as None (strict JSON); a Result's
-    :meth:`~crankdyn.results.Result.to_dict` is that already (its arrays through ``tolist``).
-
-    Parameters
-    ----------
-    value
-        A result, or dicts, lists, tuples, arrays and numbers nested in any way.
-
-    Returns
-    -------
-    object
-        The same data as dicts (string keys), lists, bools, ints, floats, None and text.
-
-    Examples
-    --------
-    >>> jsonable({"speeds": np.array([1.0, np.nan]), 2: (np.int64(3), np.True_)})
-    {'speeds': [1.0, None], '2': [3, True]}
-    """
-    if isinstance(value, Result):
-        return value.to_dict()
-    if isinstance(value, dict):
-        return {str(k): jsonable(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [jsonable(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return jsonable(value.tolist())
-    if isinstance(value, (bool, np.bool_)):
-        return bool(value)
-    if isinstance(value, (int, np.integer)):
-        return int(value)
-    if isinstance(value, (float, np.floating)):
-        return float(value) if math.isfinite(value) else None
-    return value
 
 
 JSON_INDENTED = 1 << 20

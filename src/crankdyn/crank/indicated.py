@@ -95,11 +95,19 @@ class PressureResult(Result):
     crank_angle: NDArray[np.float64] = column("crank_angle_deg", "Crank angle", "deg", DEG)
     pressure: NDArray[np.float64] = column("pressure_Pa", "Pressure", "Pa")
     volume: NDArray[np.float64] = column("volume_m3", "Cylinder volume", "m³")
-    indicated_work: float = scalar("indicated_work_J", "Indicated work per cylinder", "J")
-    imep: float = scalar("imep_Pa", "IMEP", "Pa")
-    peak_pressure: float = scalar("peak_pressure_Pa", "Peak pressure", "Pa")
+    indicated_work: float = scalar(
+        "indicated_work_J", "Indicated work per cylinder", "J", headline=True
+    )
+    imep: float = scalar(
+        "imep_Pa", "IMEP", "Pa", checked="imep", headline=True, better="max",
+        description="Indicated mean effective pressure",
+    )  # fmt: skip
+    peak_pressure: float = scalar(
+        "peak_pressure_Pa", "Peak pressure", "Pa", checked="peak_pressure", headline=True,
+        better="min",
+    )  # fmt: skip
     peak_angle: float = scalar(
-        "peak_pressure_angle_deg", "Crank angle of peak pressure (after firing TDC)", "deg", DEG
+        "peak_pressure_angle_deg", "Peak pressure after firing TDC", "deg", DEG
     )
     swept_volume: float = scalar("swept_volume_m3", "Swept volume per cylinder", "m³")
     compression_ratio: float | None = scalar("compression_ratio", "Compression ratio", "")

@@ -45,6 +45,7 @@ from crankdyn.errors import InputError
 from crankdyn.plausibility import PlausibilityWarning, kinematics_warnings
 from crankdyn.results import Result, column, freeze, scalar
 from crankdyn.roots import CONVERGE_ERROR, SIGN_ERROR, brentq, brentq_many
+from crankdyn.summary import derived
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -810,6 +811,13 @@ class AccelerationExtremum(Result):
     acceleration: float = scalar("acceleration_m_s2", "Acceleration", "m/s²")
 
 
+def _larger_magnitude(a: float, at_a: float, b: float, at_b: float) -> tuple[float, str]:
+    """The larger of |a| and |b| with the crank angle (rad) where it occurs, as a key figure's
+    value and where."""
+    value, at = (abs(a), at_a) if abs(a) >= abs(b) else (abs(b), at_b)
+    return value, f"at {math.degrees(at):.1f}°"
+
+
 @dataclass(frozen=True)
 class KinematicsSummary(Result):
     """Summary figures of the slider-crank motion at one speed (seed 000 section 1, seed 002)."""
@@ -819,12 +827,15 @@ class KinematicsSummary(Result):
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     lam: float = scalar("lambda", "Crank-rod ratio λ = R/L", "", fmt=".5g")
     k: float = scalar("offset_ratio", "Offset ratio k = e/R", "", fmt=".5g")
-    stroke: float = scalar("stroke_m", "Stroke", "m")
+    stroke: float = scalar("stroke_m", "Stroke", "m", headline=True)
     tdc_crank_angle: float = scalar("tdc_crank_angle_deg", "TDC crank angle", "deg", DEG)
     bdc_crank_angle: float = scalar("bdc_crank_angle_deg", "BDC crank angle", "deg", DEG)
-    mean_piston_speed: float = scalar("mean_piston_speed_m_s", "Mean piston speed c_m", "m/s")
+    mean_piston_speed: float = scalar(
+        "mean_piston_speed_m_s", "Mean piston speed c_m", "m/s", checked="mean_piston_speed",
+        headline=True, better="min",
+    )  # fmt: skip
     speed_class: str = scalar("speed_class", "Speed class (seed 002 Table 1)", "")
-    max_velocity: float = scalar("max_velocity_m_s", "Max piston speed", "m/s")
+    max_velocity: float = scalar("max_velocity_m_s", "Max piston speed", "m/s", headline=True)
     crank_angle_at_max_velocity: float = scalar(
         "crank_angle_at_max_velocity_deg", "Crank angle at max speed", "deg", DEG
     )
@@ -833,7 +844,10 @@ class KinematicsSummary(Result):
     crank_angle_at_min_velocity: float = scalar(
         "crank_angle_at_min_velocity_deg", "Crank angle at min speed", "deg", DEG
     )
-    max_acceleration: float = scalar("max_acceleration_m_s2", "Max acceleration", "m/s²")
+    max_acceleration: float = scalar(
+        "max_acceleration_m_s2", "Max acceleration", "m/s²", checked="piston_acceleration",
+        headline=True,
+    )  # fmt: skip
     crank_angle_at_max_acceleration: float = scalar(
         "crank_angle_at_max_acceleration_deg", "Crank angle at max acceleration", "deg", DEG
     )
@@ -844,7 +858,7 @@ class KinematicsSummary(Result):
     acceleration_extrema: tuple[AccelerationExtremum, ...] = scalar(
         "acceleration_extrema", "Acceleration extrema", ""
     )
-    max_rod_angle: float = scalar("max_rod_angle_deg", "Max rod angle", "deg", DEG)
+    max_rod_angle: float = scalar("max_rod_angle_deg", "Max rod angle", "deg", DEG, headline=True)
     min_rod_angle: float = scalar("min_rod_angle_deg", "Min rod angle", "deg", DEG)
     max_rod_angular_velocity: float = scalar(
         "max_rod_angular_velocity_rad_s", "Max rod angular velocity", "rad/s"
@@ -858,6 +872,26 @@ class KinematicsSummary(Result):
     min_rod_angular_acceleration: float = scalar(
         "min_rod_angular_acceleration_rad_s2", "Min rod angular acceleration", "rad/s²"
     )
+
+    FIGURES = (
+        derived(
+            "max_piston_speed", "max_piston_speed_m_s", "Max piston speed |v|", "m/s",
+            lambda s: _larger_magnitude(
+                s.max_velocity, s.crank_angle_at_max_velocity,
+                s.min_velocity, s.crank_angle_at_min_velocity,
+            ),
+            reduction="largest magnitude of the speed's extrema", better="min",
+        ),
+        derived(
+            "max_piston_acceleration", "max_piston_acceleration_m_s2",
+            "Max piston acceleration |a|", "m/s²",
+            lambda s: _larger_magnitude(
+                s.max_acceleration, s.crank_angle_at_max_acceleration,
+                s.min_acceleration, s.crank_angle_at_min_acceleration,
+            ),
+            reduction="largest magnitude of the acceleration's extrema", better="min",
+        ),
+    )  # fmt: skip
 
     def plausibility(self, fuel: str | None = None) -> tuple[PlausibilityWarning, ...]:
         """The plausibility warnings of the mean piston speed and the largest piston
@@ -908,7 +942,7 @@ class KinematicsResult(Result):
     rod_angular_acceleration: NDArray[np.float64] = column(
         "rod_angular_acceleration_rad_s2", "Rod angular acceleration", "rad/s²"
     )
-    summary: KinematicsSummary = scalar("summary", "Summary", "")
+    extrema: KinematicsSummary = scalar("summary", "Summary", "")
     geometry: CrankGeometry | None = field(default=None, repr=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
@@ -987,7 +1021,7 @@ def piston_kinematics(
     >>> import crankdyn
     >>> engine = crankdyn.Engine.example("vaz2108")
     >>> k = piston_kinematics(engine.geometry, 4900 * math.pi / 30)
-    >>> s = k.summary
+    >>> s = k.extrema
     >>> round(s.mean_piston_speed, 2), s.speed_class
     (11.6, 'high-speed')
     >>> round(s.max_velocity, 2), round(math.degrees(s.crank_angle_at_max_velocity), 2)
@@ -1015,7 +1049,7 @@ def piston_kinematics(
         rod_angle=freeze(m.rod_angle),
         rod_angular_velocity=freeze(m.rod_angular_velocity),
         rod_angular_acceleration=freeze(m.rod_angular_acceleration),
-        summary=summary,
+        extrema=summary,
         geometry=geometry,
         warnings=summary.plausibility(fuel),
     )

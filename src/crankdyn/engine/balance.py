@@ -49,7 +49,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, NamedTuple, TypeAlias, cast
 
@@ -63,6 +63,7 @@ from crankdyn.engine.firing import crank_end_view
 from crankdyn.engine.model import BalanceInputs
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, derived
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -357,6 +358,14 @@ class OrderBalance(Result):
     phasors: Phasors | None = field(default=None, repr=False, compare=False)
     speed: float = field(default=1.0, repr=False, compare=False)
 
+    @property
+    def name(self) -> str:
+        """The row's name in every balance table: the order, ``1 (rotating)`` for the rotating
+        masses with their counterweights, ``1 (total)`` for the first order of both."""
+        if self.source == "reciprocating":
+            return str(self.order)
+        return f"{self.order} ({self.source})"
+
 
 def _order_balance(
     order: int,
@@ -437,9 +446,9 @@ class OverturningMoment(Result):
         "overturning_moment_amplitude_Nm", "Largest fluctuation |M - M_mean|", "N·m"
     )
     peak_to_peak: float = scalar("overturning_moment_peak_to_peak_Nm", "Peak to peak", "N·m")
-    orders: NDArray[np.float64] = scalar("harmonic_orders", "Orders", "", fmt=".3g")
+    orders: NDArray[np.float64] = scalar("harmonic_orders", "Orders", "", fmt=".3g", summary=False)
     harmonic_amplitudes: NDArray[np.float64] = scalar(
-        "harmonic_amplitudes_Nm", "Harmonic amplitudes", "N·m", fmt=".4g"
+        "harmonic_amplitudes_Nm", "Harmonic amplitudes", "N·m", fmt=".4g", summary=False
     )
 
 
@@ -526,6 +535,34 @@ def _one_cycle(
     return theta, v
 
 
+BALANCE_ORDERS = (1, 2, 4, 6)
+"""The reciprocating orders whose free force and moment are key figures of their own (for
+parameter studies)."""
+
+
+def _largest(
+    result: BalanceResult, name: str, rows: Sequence[OrderBalance] | None = None, scale: float = 1.0
+) -> tuple[float, str] | None:
+    """The largest value of an OrderBalance field over the balance table's rows (or ``rows``),
+    with the row's name; None when no row has one."""
+    found = [(getattr(r, name), r) for r in (result.rows() if rows is None else rows)]
+    found = [(v, r) for v, r in found if v is not None]
+    if not found:
+        return None
+    value, row = max(found, key=lambda p: p[0])
+    return value * scale, (f"order {row.name}" if value else "balanced")
+
+
+def _of_order(n: int, name: str) -> Callable[[BalanceResult], float | None]:
+    """``f(result)``: an OrderBalance field of reciprocating order ``n`` (None without it)."""
+
+    def value(result: BalanceResult) -> float | None:
+        row = next((o for o in result.orders if o.order == n), None)
+        return None if row is None else getattr(row, name)
+
+    return value
+
+
 @dataclass(frozen=True)
 class BalanceResult(Result):
     """Free forces and moments of an engine at one speed (:func:`engine_balance`; module
@@ -549,16 +586,126 @@ class BalanceResult(Result):
     reciprocating_balance_ratio: float = scalar(
         "reciprocating_balance_ratio", "Reciprocating share balanced b", ""
     )
+    crank_radius: float = scalar("crank_radius_m", "Crank radius R", "m", summary=False)
     pitch: float | None = scalar("pitch_m", "Cylinder pitch a", "m")
     power: float | None = scalar("power_kW", "Power (for the power-related unbalance)", "kW", 1e-3)
     orders: tuple[OrderBalance, ...] = scalar("orders", "Reciprocating masses by order", "")
-    rotating: OrderBalance = scalar("rotating", "Rotating masses and counterweights", "")
+    rotating: OrderBalance = scalar(
+        "rotating", "Rotating masses and counterweights", "", summary=False
+    )
     first_order_total: OrderBalance = scalar(
-        "first_order_total", "First order, reciprocating and rotating", ""
+        "first_order_total", "First order, reciprocating and rotating", "", summary=False
     )
     overturning: OverturningMoment | None = scalar("overturning", "Overturning moment", "")
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     axis_angles: NDArray[np.float64] | None = field(default=None, repr=False, compare=False)
+
+    FIGURES = (
+        derived(
+            "max_free_force", "max_free_force_N", "Largest free force", "N",
+            lambda r: _largest(r, "free_force"), reduction="max over the table's rows",
+            better="min", headline=True,
+        ),
+        derived(
+            "max_free_moment", "max_free_moment_Nm", "Largest free moment", "N·m",
+            lambda r: _largest(r, "free_moment"), reduction="max over the table's rows",
+            better="min", headline=True,
+        ),
+        derived(
+            "power_related_unbalance", "power_related_unbalance_Nm_kW",
+            "Power-related unbalance (reciprocating orders)", "N·m/kW",
+            lambda r: _largest(r, "power_related_unbalance", rows=r.orders, scale=1e3),
+            reduction="max over the orders",
+        ),
+        *(
+            figure
+            for n in BALANCE_ORDERS
+            for figure in (
+                derived(
+                    f"free_force_{n}", f"free_force_{n}_N",
+                    f"Free force, order {n} (reciprocating masses)", "N",
+                    _of_order(n, "free_force"), better="min",
+                    description=f"Largest free force of the reciprocating masses of order {n} "
+                    "over a revolution",
+                ),
+                derived(
+                    f"free_moment_{n}", f"free_moment_{n}_Nm",
+                    f"Free moment, order {n} (reciprocating masses)", "N·m",
+                    _of_order(n, "free_moment"), better="min",
+                    description=f"Largest free moment of the reciprocating masses of order {n} "
+                    "about the middle of the engine (needs [cylinders] pitch)",
+                ),
+            )
+        ),
+        derived(
+            "rotating_free_force", "rotating_free_force_N",
+            "Free force of the rotating masses and counterweights", "N",
+            lambda r: r.rotating.free_force, better="min",
+        ),
+        derived(
+            "rotating_free_moment", "rotating_free_moment_Nm",
+            "Free moment of the rotating masses and counterweights", "N·m",
+            lambda r: r.rotating.free_moment, better="min",
+        ),
+        derived(
+            "first_order_free_moment", "first_order_free_moment_Nm",
+            "First-order free moment, reciprocating and rotating", "N·m",
+            lambda r: r.first_order_total.free_moment, better="min",
+        ),
+    )  # fmt: skip
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The free forces and moments by order (every row of :meth:`rows`), round-off next to
+        the unit force m_j R ω² (and the moment m_j R ω² a) shown as 0."""
+        unit_force = self.reciprocating_mass * self.crank_radius * self.speed**2
+        moment_ref = unit_force * (self.pitch or 1.0)
+        spec = [
+            ("free_force_N", "Free force", "N", "free_force", unit_force, 1.0),
+            ("free_force_vertical_N", "Free force, vertical", "N", "free_force_vertical",
+             unit_force, 1.0),
+            ("free_force_horizontal_N", "Free force, horizontal", "N", "free_force_horizontal",
+             unit_force, 1.0),
+            ("free_moment_Nm", "Free moment", "N·m", "free_moment", moment_ref, 1.0),
+            ("free_moment_vertical_plane_Nm", "Free moment, vertical plane", "N·m",
+             "free_moment_vertical", moment_ref, 1.0),
+            ("free_moment_horizontal_plane_Nm", "Free moment, horizontal plane", "N·m",
+             "free_moment_horizontal", moment_ref, 1.0),
+            ("free_force_coefficient", "Free force per m_j R ω²", "", "force_coefficient",
+             1.0, 1.0),
+            ("free_moment_coefficient", "Free moment per m_j R ω² a", "", "moment_coefficient",
+             1.0, 1.0),
+        ]  # fmt: skip
+        if self.power:
+            spec.append(
+                (
+                    "power_related_unbalance_Nm_kW", "Moment per power", "N·m/kW",
+                    "power_related_unbalance", moment_ref / self.power * 1e3, 1e3,
+                )
+            )  # fmt: skip
+        columns = [SummaryColumn("order", "Order")]
+        columns += [SummaryColumn(k, label, u) for k, label, u, *_ in spec]
+        rows = tuple(
+            (
+                r.name,
+                *(
+                    None if getattr(r, name) is None else getattr(r, name) * scale
+                    for _k, _l, _u, name, _ref, scale in spec
+                ),
+            )
+            for r in self.rows()
+        )
+        return [
+            SummaryTable(
+                "balance",
+                f"Free forces and moments at {self.speed * RPM:.0f} rpm",
+                tuple(columns),
+                rows,
+                caption="Largest magnitude over a revolution, by order; moments about the middle "
+                "of the engine; 1 (rotating): the rotating masses with the counterweights; "
+                "1 (total): the first order of both (seed 000 §2.2).",
+                reference=(None, *(ref for *_r, ref, _s in spec)),
+            )
+        ]
 
     def rows(self) -> list[OrderBalance]:
         """Every line of the balance table.
@@ -818,6 +965,7 @@ def engine_balance(
         rotating_mass=float(np.mean(m_rot_throw)),
         counterweight_ratio=inputs.counterweight_ratio,
         reciprocating_balance_ratio=inputs.reciprocating_balance_ratio,
+        crank_radius=r,
         pitch=cyl.pitch,
         power=power,
         orders=tuple(results),

@@ -39,6 +39,7 @@ from crankdyn.engine.forces import (
 from crankdyn.engine.model import Engine
 from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result, column, freeze, scalar
+from crankdyn.summary import reduced
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -117,21 +118,42 @@ class BearingsResult(Result):
         "main_bearing_load_vertical_N", "Main bearing vert.", "N"
     )
     max_pin_load: NDArray[np.float64] = scalar(
-        "max_crank_pin_load_N", "Max crank-pin load per throw", "N"
+        "max_crank_pin_load_per_throw_N", "Max crank-pin load per throw", "N"
     )
     mean_pin_load: NDArray[np.float64] = scalar(
-        "mean_crank_pin_load_N", "Mean crank-pin load per throw", "N"
+        "mean_crank_pin_load_per_throw_N", "Mean crank-pin load per throw", "N"
     )
     max_bearing_load: NDArray[np.float64] = scalar(
-        "max_main_bearing_load_N", "Max main-bearing load per bearing", "N"
+        "max_main_bearing_load_per_bearing_N", "Max main-bearing load per bearing", "N"
     )
     mean_bearing_load: NDArray[np.float64] = scalar(
-        "mean_main_bearing_load_N", "Mean main-bearing load per bearing", "N"
+        "mean_main_bearing_load_per_bearing_N", "Mean main-bearing load per bearing", "N"
     )
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     pressure_source: str = scalar("pressure_source", "Pressure from", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
+
+    FIGURES = (
+        reduced(
+            "max_pin_load", "max", over="throw", name="max_crank_pin_load",
+            key="max_crank_pin_load_N", label="Max crank-pin load", better="min", headline=True,
+        ),
+        reduced(
+            "mean_pin_load", "max", over="throw", name="max_mean_crank_pin_load",
+            key="max_mean_crank_pin_load_N", label="Largest mean crank-pin load", better="min",
+        ),
+        reduced(
+            "max_bearing_load", "max", over="bearing", name="max_main_bearing_load",
+            key="max_main_bearing_load_N", label="Max main-bearing load", better="min",
+            headline=True,
+        ),
+        reduced(
+            "mean_bearing_load", "max", over="bearing", name="max_mean_main_bearing_load",
+            key="max_mean_main_bearing_load_N", label="Largest mean main-bearing load",
+            better="min",
+        ),
+    )  # fmt: skip
 
     def plot(self, fig: Figure | None = None) -> Figure:
         """Polar diagrams of the crank-pin loads (crank frame) and main-bearing loads (engine

@@ -72,6 +72,7 @@ from crankdyn.engine.firing import (
 )
 from crankdyn.errors import InputError
 from crankdyn.results import Result, freeze, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable
 from crankdyn.torsion.modal import natural_modes
 
 if TYPE_CHECKING:
@@ -657,7 +658,7 @@ class FiringCandidate(Result):
     firing_intervals: NDArray[np.float64] = scalar(
         "firing_intervals_deg", "Firing intervals", "deg", DEG, ".6g"
     )
-    even_firing: bool = scalar("even_firing", "Even firing", "")
+    even_firing: bool = scalar("even_firing", "Even firing", "", headline=True)
     throw_angles: NDArray[np.float64] = scalar(
         "throw_angles_deg", "Throw angles", "deg", DEG, ".6g"
     )
@@ -668,7 +669,7 @@ class FiringCandidate(Result):
         "interval_deviation_deg", "Largest departure from the even interval", "deg", DEG
     )
     adjacent_consecutive: int = scalar(
-        "adjacent_consecutive", "Adjacent cylinders firing one after the other", ""
+        "adjacent_consecutive", "Adjacent cylinders firing in a row", "", headline=True
     )
     adjacent_pairs: tuple[str, ...] = scalar("adjacent_pairs", "Adjacent pairs", "")
     main_bearing_min_interval: float | None = scalar(
@@ -677,10 +678,10 @@ class FiringCandidate(Result):
         "deg",
         DEG,
     )
-    free_force_1: float = scalar("free_force_1", "1st-order free force / (m_j R ω²)", "")
-    free_force_2: float = scalar("free_force_2", "2nd-order free force / (m_j R ω² A₂)", "")
-    free_moment_1: float = scalar("free_moment_1", "1st-order free moment / (m_j R ω² a)", "")
-    free_moment_2: float = scalar("free_moment_2", "2nd-order free moment / (m_j R ω² A₂ a)", "")
+    free_force_1: float = scalar("free_force_1", "Free force, 1st order (per m_j R ω²)", "")
+    free_force_2: float = scalar("free_force_2", "Free force, 2nd order (per m_j R ω² A₂)", "")
+    free_moment_1: float = scalar("free_moment_1", "Free moment, 1st order (per m_j R ω² a)", "")
+    free_moment_2: float = scalar("free_moment_2", "Free moment, 2nd order (per m_j R ω² A₂ a)", "")
     v_scheme: str | None = scalar("v_scheme", "V firing scheme", "")
     torsional_vector_sum: float | None = scalar(
         "torsional_vector_sum", "Largest torsional vector sum", ""
@@ -697,6 +698,14 @@ class FiringCandidate(Result):
     def order_text(self) -> str:
         """The firing order as people write it, ``"1-5-3-6-2-4"``."""
         return "-".join(str(c) for c in self.firing_order)
+
+    @property
+    def intervals_text(self) -> str:
+        """The firing intervals (deg) as people write them: ``120 × 6`` when all are equal."""
+        rounded = [round(math.degrees(float(v)), 6) for v in self.firing_intervals]
+        if len(set(rounded)) == 1:
+            return f"{rounded[0]:g} × {len(rounded)}"
+        return " ".join(f"{v:g}" for v in rounded)
 
     def plot(self, fig: Figure | None = None) -> Figure:
         """Crank end view and firing diagram.
@@ -729,9 +738,55 @@ class FiringOrderRanking(Result):
     even_count: int = scalar("even_count", "Of which fire evenly", "")
     criteria: tuple[str, ...] = scalar("criteria", "Ranked by (in priority order)", "")
     engine_order: tuple[int, ...] = scalar("engine_firing_order", "Engine's firing order", "")
-    engine_rank: int | None = scalar("engine_rank", "Rank of the engine's firing order", "")
+    engine_rank: int | None = scalar(
+        "engine_rank", "Rank of the engine's firing order", "", headline=True
+    )
     candidates: tuple[FiringCandidate, ...] = scalar("candidates", "Candidates", "")
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The ranked firing orders: rank (``*`` the engine's own), firing order, intervals and
+        every criterion, each column labelled as :class:`FiringCandidate` declares it."""
+        fields = FiringCandidate.__dataclass_fields__
+        by_key = {f.metadata.get("key"): f for f in fields.values()}
+        crit = [c for c in self.criteria if c != "interval_deviation_deg" and c in by_key]
+        columns = [
+            SummaryColumn("rank", "Rank"),
+            SummaryColumn("firing_order", "Firing order"),
+            SummaryColumn("firing_intervals_deg", "Firing intervals (deg)"),
+        ]
+        for c in crit:
+            meta = by_key[c].metadata
+            columns.append(SummaryColumn(c, meta["label"], meta["unit"]))
+        v_scheme = any(c.v_scheme for c in self.candidates)
+        if v_scheme:
+            columns.append(SummaryColumn("v_scheme", "V scheme"))
+        rows = []
+        for cand in self.candidates:
+            mark = "*" if self.engine_rank == cand.rank else ""
+            row: list[Any] = [f"{cand.rank}{mark}", cand.order_text, cand.intervals_text]
+            for c in crit:
+                name = by_key[c].name
+                value = getattr(cand, name)
+                row.append(value * by_key[c].metadata["scale"] if value is not None else None)
+            if v_scheme:
+                row.append(cand.v_scheme or "")
+            rows.append(tuple(row))
+        relative = [None, None, None, *(1.0 if by_key[c].metadata["unit"] == "" else None
+                                        for c in crit)]  # fmt: skip
+        if v_scheme:
+            relative.append(None)
+        return [
+            SummaryTable(
+                "firing_orders",
+                f"{self.engine}: firing orders",
+                tuple(columns),
+                tuple(rows),
+                caption=f"{self.count} firing order(s), {self.even_count} evenly firing, best "
+                f"first; * the engine's own.",
+                reference=tuple(relative),
+            )
+        ]
 
     def ranked_list(self) -> list[dict[str, Any]]:
         """The ranked candidates as JSON-ready dicts (what ``--format json`` writes).

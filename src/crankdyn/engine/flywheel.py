@@ -312,17 +312,22 @@ class FlywheelResult(Result):
     )
     crank_speed: NDArray[np.float64] = column("crank_speed_rpm", "Crank speed", "rpm", RPM)
     engine: str = scalar("engine", "Engine", "")
-    speed: float = scalar("speed_rpm", "Mean speed", "rpm", RPM)
-    mean_torque: float = scalar("mean_torque_Nm", "Mean torque M_m", "N·m")
-    max_torque: float = scalar("max_torque_Nm", "Max torque", "N·m")
-    min_torque: float = scalar("min_torque_Nm", "Min torque", "N·m")
+    speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
+    mean_torque: float = scalar("mean_torque_Nm", "Mean torque M_m", "N·m", summary=False)
+    max_torque: float = scalar("max_torque_Nm", "Max torque", "N·m", summary=False)
+    min_torque: float = scalar("min_torque_Nm", "Min torque", "N·m", summary=False)
     torque_nonuniformity: float | None = scalar(
-        "torque_nonuniformity", "Torque non-uniformity μ = (M_max − M_min)/M_m", "", fmt=".4g"
-    )
-    excess_work: float = scalar("excess_work_J", "Largest excess work ΔE", "J")
+        "torque_nonuniformity", "Torque non-uniformity μ = (M_max − M_min)/M_m", "", fmt=".4g",
+        better="min",
+    )  # fmt: skip
+    excess_work: float = scalar(
+        "excess_work_J", "Largest excess work ΔE", "J", better="min", headline=True,
+        description="Energy swing of the torque curve",
+    )  # fmt: skip
     excess_work_coefficient: float | None = scalar(
-        "excess_work_coefficient", "Excess-work coefficient ξ = ΔE/(M_m Θ)", "", fmt=".4g"
-    )
+        "excess_work_coefficient", "Excess-work coefficient ξ = ΔE/(M_m Θ)", "", fmt=".4g",
+        better="min",
+    )  # fmt: skip
     angle_of_min_speed: float = scalar("angle_of_min_speed_deg", "Slowest at θ", "deg", DEG)
     angle_of_max_speed: float = scalar("angle_of_max_speed_deg", "Fastest at θ", "deg", DEG)
     rotating_inertia: float = scalar("rotating_inertia_kgm2", "Rotating masses Σ m_r R²", "kg·m²")
@@ -334,12 +339,19 @@ class FlywheelResult(Result):
     required_inertia: float | None = scalar(
         "required_inertia_kgm2", "Required total inertia I₀ = ΔE/(δ ω²)", "kg·m²"
     )
-    flywheel_inertia: float = scalar("flywheel_inertia_kgm2", "Flywheel inertia I_F", "kg·m²")
+    flywheel_inertia: float = scalar(
+        "flywheel_inertia_kgm2", "Flywheel inertia I_F", "kg·m²", better="min", headline=True,
+        description="Flywheel needed for the target degree of cyclic irregularity (or the "
+        "engine's own)",
+    )  # fmt: skip
     total_inertia: float = scalar("total_inertia_kgm2", "Total inertia", "kg·m²")
     gd2: float = scalar("gd2_Nm2", "Flywheel moment GD² = 4 g I_F", "N·m²")
     speed_fluctuation: float = scalar(
-        "speed_fluctuation", "δ = (ω_max − ω_min)/ω_m achieved", "", fmt=".5g"
-    )
+        "speed_fluctuation", "δ = (ω_max − ω_min)/ω_m achieved", "", fmt=".5g",
+        name="cyclic_irregularity", better="min", headline=True,
+        description="Degree of cyclic irregularity with the engine's flywheel or the one sized "
+        "for the target",
+    )  # fmt: skip
     speed_fluctuation_linear: float = scalar(
         "speed_fluctuation_linear", "δ = ΔE/(I ω_m²)", "", fmt=".5g"
     )

@@ -824,12 +824,22 @@ class ForcesResult(Result):
     pin_rotating_force: float = scalar(
         "pin_rotating_force_N", "Big-end centrifugal force on the pin m_CB R ω²", "N"
     )
-    max_gas_force: float = scalar("max_gas_force_N", "Max gas force", "N")
-    max_side_force: float = scalar("max_side_force_N", "Max side force", "N")
-    max_rod_compression: float = scalar("max_rod_compression_N", "Max rod compression", "N")
-    max_rod_tension: float = scalar("max_rod_tension_N", "Max rod tension", "N")
-    max_pin_load: float = scalar("max_crank_pin_load_N", "Max crank-pin load", "N")
-    mean_pin_load: float = scalar("mean_crank_pin_load_N", "Mean crank-pin load", "N")
+    max_gas_force: float = scalar("max_gas_force_N", "Max gas force", "N", headline=True)
+    max_side_force: float = scalar(
+        "max_side_force_N", "Max piston side force", "N", better="min", headline=True
+    )
+    max_rod_compression: float = scalar(
+        "max_rod_compression_N", "Max rod compression", "N", better="min", headline=True
+    )
+    max_rod_tension: float = scalar(
+        "max_rod_tension_N", "Max rod tension", "N", better="min", headline=True
+    )
+    max_pin_load: float = scalar(
+        "throw_max_crank_pin_load_N", "Max crank-pin load of its throw", "N"
+    )
+    mean_pin_load: float = scalar(
+        "throw_mean_crank_pin_load_N", "Mean crank-pin load of its throw", "N"
+    )
     max_rod_couple_error: float | None = scalar(
         "max_rod_couple_error_Nm", "Two-mass rod couple error max |ΔI ε_L|", "N·m"
     )

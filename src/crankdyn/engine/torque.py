@@ -141,20 +141,32 @@ class TorqueResult(Result):
     )
     journal_torque: NDArray[np.float64] = column("journal_torque_Nm", "Journal behind throw", "N·m")
     pin_torque: NDArray[np.float64] = column("crank_pin_torque_Nm", "Pin torque, throw", "N·m")
-    mean_torque: float = scalar("mean_torque_Nm", "Mean indicated torque", "N·m")
+    mean_torque: float = scalar(
+        "mean_torque_Nm", "Mean indicated torque", "N·m", headline=True, better="max"
+    )
     mean_effective_torque: float | None = scalar(
         "mean_effective_torque_Nm", "Mean effective torque", "N·m"
     )
     mechanical_efficiency: float | None = scalar(
         "mechanical_efficiency", "Mechanical efficiency", "", fmt=".4g"
     )
-    indicated_power: float = scalar("indicated_power_kW", "Indicated power", "kW", 1e-3)
+    indicated_power: float = scalar(
+        "indicated_power_kW", "Indicated power", "kW", 1e-3, headline=True, better="max"
+    )
     effective_power: float | None = scalar("effective_power_kW", "Effective power", "kW", 1e-3)
-    max_torque: float = scalar("max_torque_Nm", "Max total torque", "N·m")
-    min_torque: float = scalar("min_torque_Nm", "Min total torque", "N·m")
-    indicated_work: float = scalar("indicated_work_J", "Indicated work per cylinder", "J")
-    imep: float = scalar("imep_Pa", "IMEP", "Pa")
-    peak_pressure: float = scalar("peak_pressure_Pa", "Peak pressure", "Pa")
+    max_torque: float = scalar("max_torque_Nm", "Max total torque", "N·m", headline=True)
+    min_torque: float = scalar("min_torque_Nm", "Min total torque", "N·m", headline=True)
+    indicated_work: float = scalar(
+        "indicated_work_J", "Indicated work per cylinder", "J", headline=True
+    )
+    imep: float = scalar(
+        "imep_Pa", "IMEP", "Pa", checked="imep", headline=True, better="max",
+        description="Indicated mean effective pressure",
+    )  # fmt: skip
+    peak_pressure: float = scalar(
+        "peak_pressure_Pa", "Peak pressure", "Pa", checked="peak_pressure", headline=True,
+        better="min",
+    )  # fmt: skip
     peak_angle: float = scalar(
         "peak_pressure_angle_deg", "Peak pressure after firing TDC", "deg", DEG
     )

@@ -40,7 +40,7 @@ def plot_kinematics(result: KinematicsResult, fig: Figure | None = None) -> Figu
     """
     fig, axes = new_figure(3, 2, width=10.0, height=8.4, fig=fig, sharex=True)
     phi = np.degrees(result.crank_angle)
-    s = result.summary
+    s = result.extrema
     panels = [
         (axes[0, 0], result.displacement * 1e3, "Piston displacement x (mm)"),
         (axes[1, 0], result.velocity, "Piston velocity v (m/s)"),

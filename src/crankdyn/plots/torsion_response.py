@@ -63,10 +63,9 @@ def _quantity(result: Any, what: str, item: Any) -> tuple[Any, Any, Any, Any, st
             1e3,
         )
     if what in ("torque", "stress"):
-        if item is None:
-            s = int(np.argmax(np.max(result.shaft_torque, axis=0)))
-        else:
-            s = result.shaft_index(item)
+        if item is None:  # the result's own choice: the most loaded (most stressed) shaft
+            item = result.most_loaded_shaft() if what == "torque" else result.most_stressed_shaft()
+        s = result.shaft_index(item)
         a, b = result.shafts[s]
         if what == "torque":
             return (
@@ -116,7 +115,8 @@ def plot_response(
     item : str or (str, str) or None
         The mass (``"amplitude"``, default the first), the pair of masses (``"relative"``,
         default the first and last) or the shaft as its pair of masses (``"torque"``,
-        ``"stress"``, default the one with the largest torque).
+        ``"stress"``, default the most loaded, resp. most stressed, shaft:
+        :meth:`~crankdyn.torsion.response.ResponseResult.most_loaded_shaft`).
     fig : matplotlib.figure.Figure or None
         A figure to draw into; None makes a new one.
     orders : iterable of float or None
@@ -196,7 +196,8 @@ def plot_damper_comparison(
     item : str or (str, str) or None
         The mass (``"amplitude"``, default the first), the pair of masses (``"relative"``,
         default the first and last) or the shaft as its pair of masses (``"torque"``,
-        ``"stress"``, default the one with the largest torque).
+        ``"stress"``, default the most loaded, resp. most stressed, shaft:
+        :meth:`~crankdyn.torsion.response.ResponseResult.most_loaded_shaft`).
     fig : matplotlib.figure.Figure or None
         A figure to draw into; None makes a new one.
 

@@ -12,9 +12,9 @@ from numpy.typing import ArrayLike
 from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
 from crankdyn.report.model import Report, Section
 from crankdyn.report.sections import Context, NotApplicable, NotRequested, builders
+from crankdyn.session import Analysis
 
 if TYPE_CHECKING:
     from crankdyn.report.sections.measurement import MeasurementInput
@@ -100,7 +100,7 @@ def build_report(
     Parameters
     ----------
     engine : crankdyn.engine.model.Engine
-        The engine; every number comes from one :class:`crankdyn.engine.session.Analysis` of it.
+        The engine; every number comes from one :class:`crankdyn.session.Analysis` of it.
     speed : float or None
         Operating speed (rad/s); default the engine's [operating] speed.
     speeds : array_like or None

@@ -10,11 +10,12 @@ import base64
 import re
 from collections.abc import Iterable
 from html import escape
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from crankdyn.display import column_text, unit_label
 from crankdyn.report.model import KeyFigure, Report, Section, Table
 from crankdyn.results import Result
+from crankdyn.summary import verdict_cells
 
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
@@ -117,6 +118,25 @@ def _figures_table(
     )
 
 
+def _verdicts_table(verdicts: Iterable[Any]) -> str:
+    """The rule checks' verdicts as every front end shows them (:func:`crankdyn.summary.
+    verdict_cells`)."""
+    header, rows = verdict_cells(list(verdicts))
+    head = "".join(f"<th>{escape(h)}</th>" for h in header)
+    body = "".join(
+        "<tr>"
+        + "".join(
+            f"<td>{_status('pass' if c == 'passed' else 'fail')}</td>"
+            if c in ("passed", "FAILED")
+            else _cell(c)
+            for c in row
+        )
+        + "</tr>"
+        for row in rows
+    )
+    return f"<table class='data'><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
 def _result_rows(result: Result) -> tuple[list[str], list[list[str]]]:
     """Header (words with engineering units) and formatted rows of a result's columns."""
     cols = result.columns()
@@ -159,6 +179,11 @@ def _section(section: Section, images: dict[str, bytes]) -> str:
         parts.append(f"<p>{escape(section.intro)}</p>")
     if section.figures or section.warnings:
         parts.append(_figures_table(section.figures, section.warnings))
+    if section.verdicts:
+        parts.append("<h3>Verdicts</h3>" + _verdicts_table(section.verdicts))
+    if section.notes:
+        items = "".join(f"<li>{escape(n)}</li>" for n in section.notes)
+        parts.append(f"<ul class='note'>{items}</ul>")
     for plot in section.plots:
         data = base64.b64encode(images[plot.name]).decode("ascii")
         parts.append(
@@ -224,7 +249,7 @@ def render_html(report: Report, images: dict[str, bytes]) -> str:
     notes = "".join(f"<li>{escape(n)}</li>" for n in report.notes)
     summary = [
         "<section id='summary'><h2>Summary</h2>",
-        _figures_table(report.key_figures(), report.warnings()),
+        _figures_table([f for f in report.key_figures() if f.headline], report.warnings()),
     ]
     if checks:
         summary.append(f"<h3>Cross-checks run</h3><ul class='checks'>{check_items}</ul>")

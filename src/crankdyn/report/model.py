@@ -7,10 +7,13 @@ the units people read (``15.2 MPa``).
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 from crankdyn.results import Result
+from crankdyn.summary import KeyFigure as SummaryFigure
+from crankdyn.summary import Summary, SummaryTable
 
 __all__ = ["Check", "KeyFigure", "Plot", "Report", "Section", "Table"]
 
@@ -53,10 +56,37 @@ class KeyFigure:
     display: str  # formatted for people: "15.2 MPa"
     status: str | None = None  # "pass", "warn", "fail" or None (information)
     note: str = ""
+    headline: bool = True  # shown in the report's summary (else with its section only)
 
     def __post_init__(self) -> None:
         if self.status is not None and self.status not in STATUSES:
             raise ValueError(f"status must be one of {STATUSES}")
+
+    @classmethod
+    def of(cls, figure: SummaryFigure) -> KeyFigure:
+        """The report's view of a result's key figure (:class:`crankdyn.summary.KeyFigure`):
+        its key, label, value and status as declared, the value shown with its unit and where
+        it was found.
+
+        Parameters
+        ----------
+        figure : crankdyn.summary.KeyFigure
+            The figure.
+
+        Returns
+        -------
+        KeyFigure
+            The same figure for the report.
+        """
+        return cls(
+            figure.key,
+            figure.label,
+            figure.value,
+            figure.display(),
+            status=figure.status,
+            note=figure.reduction,
+            headline=figure.headline,
+        )
 
 
 @dataclass
@@ -133,6 +163,35 @@ class Table:
     show: bool = True  # render in the page (CSV is always written)
     limit: int | None = None  # rows shown in the page (the page says how many more the CSV has)
     caption: str = ""  # a sentence under the title: what the rows are, how they are ordered
+    source: SummaryTable | None = None  # a result's summary table (its CSV has the SI values)
+
+    @classmethod
+    def of(cls, table: SummaryTable, limit: int | None = None) -> Table:
+        """The report's view of a result's summary table: its CSV with the columns' keys, its
+        page rows with the columns' labels and display units.
+
+        Parameters
+        ----------
+        table : crankdyn.summary.SummaryTable
+            The table.
+        limit : int or None
+            The rows the page shows (the CSV has them all); None: all.
+
+        Returns
+        -------
+        Table
+            The same table for the report.
+        """
+        header, rows = table.cells(aligned=False)
+        return cls(
+            table.key,
+            table.title,
+            header=header,
+            rows=rows,
+            caption=table.caption,
+            source=table,
+            limit=limit,
+        )
 
     def csv_text(self) -> str:
         """The table as CSV text.
@@ -151,6 +210,8 @@ class Table:
         """
         if self.result is not None:
             return self.result.to_csv()
+        if self.source is not None:
+            return self.source.csv_text()
         import csv
         import io
 
@@ -196,6 +257,74 @@ class Section:
     checks: list[Check] = field(default_factory=list)
     json: dict[str, Any] = field(default_factory=dict)  # full result data for summary.json
     warnings: list[Any] = field(default_factory=list)  # crankdyn.plausibility.Warning objects
+    verdicts: list[Any] = field(default_factory=list)  # crankdyn.summary.Verdict rows
+    notes: list[str] = field(default_factory=list)  # the results' notes
+
+    @classmethod
+    def of(
+        cls,
+        key: str,
+        title: str,
+        results: Sequence[Result | Summary],
+        *,
+        intro: str = "",
+        plots: Sequence[Plot] = (),
+        tables: Sequence[Table] = (),
+        checks: Sequence[Check] = (),
+        json: dict[str, Any] | None = None,
+        limits: dict[str, int] | None = None,
+    ) -> Section:
+        """A section that renders the summaries of its results (:mod:`crankdyn.summary`):
+        their key figures (each key once), tables, verdicts, notes and warnings, as the
+        results declare them; the section adds only its words, plots and data tables.
+
+        Parameters
+        ----------
+        key, title : str
+            As the fields.
+        results : sequence of Result or Summary
+            The results shown, in order.
+        intro : str
+            The paragraph under the heading.
+        plots, tables, checks
+            The section's plots, data tables (CSV) and cross-checks.
+        json : dict or None
+            The summary.json data; default none.
+        limits : dict of str to int or None
+            The rows the page shows of a summary table (by its key; the CSV has them all).
+
+        Returns
+        -------
+        Section
+            The section.
+        """
+        summaries = [r if isinstance(r, Summary) else r.summary() for r in results]
+        figures: list[KeyFigure] = []
+        seen: set[str] = set()
+        warnings: list[Any] = []
+        notes: list[str] = []
+        all_tables = list(tables)
+        for s in summaries:
+            for f in s.figures:
+                if f.key not in seen:
+                    seen.add(f.key)
+                    figures.append(KeyFigure.of(f))
+            warnings += [w for w in s.warnings if w not in warnings]
+            notes += [n for n in s.notes if n not in notes]
+            all_tables += [Table.of(t, (limits or {}).get(t.key)) for t in s.tables]
+        return cls(
+            key=key,
+            title=title,
+            intro=intro,
+            figures=figures,
+            plots=list(plots),
+            tables=all_tables,
+            checks=list(checks),
+            json=json if json is not None else {},
+            warnings=warnings,
+            verdicts=[v for s in summaries for v in s.verdicts],
+            notes=notes,
+        )
 
 
 @dataclass

@@ -8,7 +8,7 @@ results (docs/study-file.md).
 The numeric part: :mod:`~crankdyn.study.spec` (the study), :mod:`~crankdyn.study.cases` (grid
 and Monte Carlo expansion), :mod:`~crankdyn.study.docpath` (key paths into the base document),
 :mod:`~crankdyn.study.figures` (the registry of figures kept per case, each taken from the
-analysis session :class:`crankdyn.engine.session.Analysis`), :mod:`~crankdyn.study.sensitivity`
+analysis session :class:`crankdyn.session.Analysis`), :mod:`~crankdyn.study.sensitivity`
 (main effects, rank correlation). The boundary part, :mod:`crankdyn.study.run`: the local pool
 and Dask (:mod:`~crankdyn.study.run.runner`), the output folder and its journal
 (:mod:`~crankdyn.study.run.journal`), the tables and HTML summary

@@ -61,7 +61,7 @@ from __future__ import annotations
 import contextlib
 import itertools
 import math
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import cached_property, lru_cache
 from typing import TYPE_CHECKING, Any, cast
@@ -73,6 +73,7 @@ from numpy.typing import NDArray
 from crankdyn.docs import ref
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, derived
 from crankdyn.torsion.model import ChainArrays, TorsionModel
 
 if TYPE_CHECKING:
@@ -154,6 +155,36 @@ class Node(Result):
         return f"{a} - {b} at {self.fraction:.3f}"
 
 
+NATURAL_FREQUENCY_MODES = (1, 2, 3)
+"""The elastic modes whose natural frequencies are key figures of their own."""
+
+
+def natural_frequency(modes: ModalResult, n: int) -> float | None:
+    """The natural frequency (Hz) of elastic mode ``n``; elastic modes are numbered from 1, a
+    free model's rigid-body mode is 0 (:meth:`ModalResult.index`); None when the model has fewer
+    modes.
+
+    Parameters
+    ----------
+    modes : ModalResult
+        The model's modes.
+    n : int
+        1 for the first elastic mode.
+
+    Returns
+    -------
+    float or None
+        The frequency (Hz).
+    """
+    if not modes.mode.size or not 1 <= n <= int(modes.mode[-1]):
+        return None
+    return float(modes.frequencies_hz[modes.index(n)])
+
+
+def _frequency_of(n: int) -> Callable[[ModalResult], float | None]:
+    return lambda modes: natural_frequency(modes, n)
+
+
 @dataclass(frozen=True)
 class ModalResult(Result):
     """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model
@@ -196,7 +227,7 @@ class ModalResult(Result):
         "modal_stiffnesses_Nm_per_rad", "Modal stiffness", "N·m/rad"
     )
     mode_shapes: np.ndarray = array("mode_shapes", "Mode shapes (largest amplitude 1)", "")
-    masses: tuple[str, ...] = scalar("masses", "Masses", "")
+    masses: tuple[str, ...] = scalar("masses", "Masses", "", summary=False)
     solver: str = scalar("solver", "Solver", "")
     structure: str = scalar("structure", "Structure", "")
     free: bool = scalar("free", "Free (rigid-body mode)", "")
@@ -321,18 +352,32 @@ class ModalResult(Result):
         out["roundoff_regions"] = [[list(r) for r in mode] for mode in self.roundoff_regions]
         return out
 
-    def key_rows(self) -> list[tuple[str, str, str]]:
-        """The natural frequency and node count of every mode (the notebook view).
+    FIGURES = tuple(
+        derived(
+            f"natural_frequency_{n}",
+            f"natural_frequency_{n}_hz",
+            f"Natural frequency of elastic mode {n}",
+            "Hz",
+            _frequency_of(n),
+            headline=n == 1,
+            description=f"Torsional natural frequency of the {n}. elastic mode (an engine: its "
+            "[torsion] model)",
+        )
+        for n in NATURAL_FREQUENCY_MODES
+    )
 
-        Returns
-        -------
-        list of (str, str, str)
-            ("Mode r", "f Hz", "n node(s)") per mode.
-        """
-        return [
-            (f"Mode {int(m)}", f"{f:.6g} Hz", f"{int(n)} node(s)")
-            for m, f, n in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
-        ]
+    def summary_tables(self) -> list[SummaryTable]:
+        """The natural frequency and node count of every mode."""
+        columns = (
+            SummaryColumn("mode", "Mode"),
+            SummaryColumn("natural_frequency_hz", "Natural frequency", "Hz"),
+            SummaryColumn("node_count", "Nodes"),
+        )
+        rows = tuple(
+            (int(m), float(f), int(k))
+            for m, f, k in zip(self.mode, self.frequencies_hz, self.node_count, strict=True)
+        )
+        return [SummaryTable("modes", "Natural frequencies", columns, rows)]
 
     @property
     def frequencies_hz(self) -> NDArray[np.float64]:

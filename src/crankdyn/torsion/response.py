@@ -78,6 +78,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import Result, array, freeze, scalar
+from crankdyn.summary import derived
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.loaded import change_matrix, solve_at_speeds, stiffness_change
 from crankdyn.torsion.model import TorsionModel
@@ -968,6 +969,15 @@ class RelativeAngle(Result):
     orders: np.ndarray | None = array("orders", "Orders", "", default=None)
     on_grid: np.ndarray | None = array("on_grid", "On the user's speed grid", "", default=None)
 
+    FIGURES = (
+        derived(
+            "max_relative_angle", "max_relative_angle_rad",
+            "Largest relative angle (synthesised)", "rad",
+            lambda r: _peak_figure(r.peak("synthesized")),
+            reduction="max over the resolved speeds", better="min", headline=True,
+        ),
+    )  # fmt: skip
+
     def peak(self, quantity: str = "synthesized", order: float | None = None) -> Peak:
         """The largest relative angle and its speed.
 
@@ -1043,6 +1053,14 @@ class RelativeAngle(Result):
         )
 
 
+def _peak_figure(peak: Peak | None) -> tuple[float, str] | None:
+    """A peak as a key figure's value and where: ``"cylinder 6 - flywheel at 2165 rpm"``."""
+    if peak is None:
+        return None
+    where = f"at {peak.speed * RPM:.6g} rpm"
+    return peak.value, f"{peak.item} {where}" if peak.item else where
+
+
 def _order_index(orders: ArrayLike, order: float) -> int:
     q = np.asarray(orders, dtype=float)
     hit = np.flatnonzero(np.abs(q - float(order)) <= 1e-9 * max(1.0, abs(float(order))))
@@ -1106,8 +1124,8 @@ class ResponseResult(Result):
     orders: np.ndarray = array("orders", "Orders", "")
     major: np.ndarray | None = array("major_orders", "Major order", "")
     """None when the excitation has no firing angles (major orders undetermined)."""
-    masses: tuple[str, ...] = scalar("masses", "Masses", "")
-    shafts: tuple[tuple[str, str], ...] = scalar("shafts", "Shafts", "")
+    masses: tuple[str, ...] = scalar("masses", "Masses", "", summary=False)
+    shafts: tuple[tuple[str, str], ...] = scalar("shafts", "Shafts", "", summary=False)
     amplitude: np.ndarray = array("amplitude_rad", "Amplitude (speed x order x mass)", "rad")
     synthesized_amplitude: np.ndarray = array(
         "synthesized_amplitude_rad", "Synthesised half-range amplitude (speed x mass)", "rad"
@@ -1134,7 +1152,7 @@ class ResponseResult(Result):
     damper_power: np.ndarray | None = array(
         "damper_power_W", "Damper power (speed x damper)", "W", default=None
     )
-    dampers: tuple[str, ...] | None = scalar("dampers", "Dampers", "", default=None)
+    dampers: tuple[str, ...] | None = scalar("dampers", "Dampers", "", default=None, summary=False)
     model_name: str = scalar("model", "Model", "", default="")
     excitation: str = scalar("excitation", "Excitation", "", default="")
     cycle: str = scalar("cycle", "Cycle", "", default="four-stroke")
@@ -1143,7 +1161,7 @@ class ResponseResult(Result):
         "added_speeds_rpm", "Speeds added to resolve the peaks", "rpm", RPM, default=None
     )
     added_reasons: tuple[str, ...] | None = scalar(
-        "added_speed_reasons", "Why each speed was added", "", default=None
+        "added_speed_reasons", "Why each speed was added", "", default=None, summary=False
     )
     resolved: bool = scalar("resolved", "Peaks resolved", "", default=False)
     tolerance: float | None = scalar(
@@ -1560,45 +1578,103 @@ class ResponseResult(Result):
 
         return plot_stress_limits(self, fig=fig)
 
-    def key_rows(self) -> list[tuple[str, str, str]]:
-        """The largest synthesised amplitude and shaft torque, where and at which speed (from
-        :meth:`peak`, on the resolved curve), and the rule verdict (the notebook view).
+    # ---- the key figures (crankdyn.summary): peaks on the resolved curve --------------------
+    @property
+    def model_shafts(self) -> tuple[tuple[str, str], ...]:
+        """The model's own shafts (the dampers' couplings, which follow them, left out)."""
+        return self.shafts[: len(self.shafts) - len(self.dampers or ())]
+
+    def largest_peak(self, quantity: str, items: Sequence[Any] | None = None) -> Peak | None:
+        """The largest resolved peak of a synthesised quantity over items (default: the model's
+        own shafts for a shaft quantity, every mass for an amplitude); None where no item has
+        a finite value (no diameters for a stress, an undamped line at a resonance).
+
+        Parameters
+        ----------
+        quantity : str
+            A quantity of :meth:`peak` (``"synthesized_shaft_torque"``...).
+        items : sequence or None
+            The masses or shafts.
 
         Returns
         -------
-        list of (str, str, str)
-            (label, value with its unit, item and speed in rpm) rows.
-
-        Examples
-        --------
-        >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
-        >>> from crankdyn.torsion.excitation import UniformExcitation
-        >>> model = TorsionModel(
-        ...     masses=(Mass("m", 1.0, damping=20.0, cylinders=(1,)),),
-        ...     shafts=(Shaft(("ground", "m"), 1e6, geometry=ShaftGeometry(0.05)),),
-        ... )
-        >>> excitation = UniformExcitation(100.0, [0.0], "two-stroke")
-        >>> response = forced_response(model, excitation, np.arange(500.0, 1500.0, 130.0), [1.0])
-        >>> response.key_rows()[0][0]
-        'Largest amplitude'
+        Peak or None
+            The largest peak, naming its item and speed.
         """
-        from crankdyn.display import format_value
-
-        rows: list[tuple[str, str, str]] = []
-        for label, quantity, unit in (
-            ("Largest amplitude", "synthesized_amplitude", "rad"),
-            ("Largest shaft torque", "synthesized_shaft_torque", "N·m"),
-        ):
+        if items is None:
+            items = self.model_shafts if "shaft" in quantity else self.masses
+        found = []
+        for item in items:
             try:
-                found = self.peak(quantity)
-            except InputError:  # no finite value (undamped, exactly at resonance)
+                found.append(self.peak(quantity, item))
+            except InputError:  # no finite value of this item
                 continue
-            value, shown = format_value(found.value, unit)
-            rows.append((label, f"{value} {shown}", f"{found.item} at {found.speed * RPM:.1f} rpm"))
-        if self.rule_check is not None:
-            verdict = "passed" if self.rule_check.passed else "FAILED"
-            rows.append((f"Rule check ({self.rule_check.rule})", verdict, ""))
-        return rows
+        return max(found, key=lambda p: p.value) if found else None
+
+    def most_loaded_shaft(self) -> tuple[str, str]:
+        """The model's shaft with the largest synthesised vibratory torque over the resolved
+        sweep: the shaft a torque plot shows by default.
+
+        Raises
+        ------
+        InputError
+            If no shaft has a finite torque.
+        """
+        peak = self.largest_peak("synthesized_shaft_torque")
+        if peak is None or peak.item is None:
+            raise InputError("no shaft has a finite vibratory torque", key="torque")
+        return cast("tuple[str, str]", tuple(self.shafts[self.shaft_index(peak.item)]))
+
+    def most_stressed_shaft(self) -> tuple[str, str]:
+        """The model's shaft (with diameters) with the largest synthesised shear stress over the
+        resolved sweep: the shaft a stress plot shows by default.
+
+        Raises
+        ------
+        InputError
+            If no shaft has diameters.
+        """
+        peak = self.largest_peak("synthesized_shaft_stress")
+        if peak is None or peak.item is None:
+            raise InputError(
+                "no shaft of the torsional model has diameters (outer_diameter): no stress",
+                key="stress",
+            )
+        return cast("tuple[str, str]", tuple(self.shafts[self.shaft_index(peak.item)]))
+
+    FIGURES = (
+        derived(
+            "max_shaft_torque", "max_shaft_torque_Nm",
+            "Largest vibratory shaft torque (synthesised)", "N·m",
+            lambda r: _peak_figure(r.largest_peak("synthesized_shaft_torque")),
+            reduction="max over the shafts and the resolved speeds", better="min",
+            headline=True,
+        ),
+        derived(
+            "max_shaft_stress", "max_shaft_stress_Pa",
+            "Largest shaft shear stress (synthesised)", "Pa",
+            lambda r: _peak_figure(r.largest_peak("synthesized_shaft_stress")),
+            reduction="max over the shafts with diameters and the resolved speeds",
+            better="min", headline=True,
+        ),
+        derived(
+            "max_free_end_amplitude", "max_free_end_amplitude_rad",
+            "Largest amplitude of the first mass (synthesised)", "rad",
+            lambda r: _peak_figure(r.largest_peak("synthesized_amplitude", r.masses[:1])),
+            reduction="max over the resolved speeds", better="min",
+        ),
+        derived(
+            "max_damper_power", "max_damper_power_W", "Largest damper power", "W",
+            lambda r: None if r.damper_power is None else _peak_figure(r.peak("damper_power")),
+            reduction="max over the dampers and the resolved speeds", better="min",
+        ),
+        derived(
+            "max_stress_ratio", "max_stress_ratio",
+            "Largest shaft stress / permissible τ_C (IACS UR M68)", "",
+            lambda r: None if r.rule_check is None else r.rule_check.max_ratio(),
+            reduction="max over the checked shafts and speeds", better="min",
+        ),
+    )  # fmt: skip
 
     # ---- CSV: one row per speed -----------------------------------------------------------------
     def columns(self) -> dict[str, np.ndarray]:

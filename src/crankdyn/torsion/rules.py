@@ -426,6 +426,16 @@ class RuleCheck(Result):
     passed: bool = scalar("passed", "Passed", "")
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
 
+    def max_ratio(self) -> tuple[float, str] | None:
+        """The largest synthesised stress over tau_C, with the shaft and speed where it occurs
+        (None without checked shafts)."""
+        ratio = np.asarray(self.stress) / np.asarray(self.tau_c)
+        if ratio.size == 0 or not np.isfinite(ratio).any():
+            return None
+        i, j = np.unravel_index(int(np.nanargmax(ratio)), ratio.shape)
+        shaft = " - ".join(self.shafts[j])
+        return float(ratio[i, j]), f"{shaft} at {self.speed[i] * RPM:.6g} rpm"
+
 
 @dataclass(frozen=True)
 class Exceedance:

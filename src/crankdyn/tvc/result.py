@@ -10,6 +10,7 @@ import numpy as np
 
 from crankdyn.constants import RPM
 from crankdyn.results import Result, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -20,52 +21,10 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.torsion.transient import TransientResult
-    from crankdyn.tvc.analysis import Check
+    from crankdyn.tvc.checks import Check
     from crankdyn.tvc.spec import TvcSpec
 
 __all__ = ["BarredSpeedRange", "ConditionResult", "Passage", "TvcResult", "Verdict"]
-
-
-@dataclass(frozen=True)
-class Verdict(Result):
-    """One row of the verdict table: a component's worst value of a quantity in a condition
-    against its limit.
-
-    ``worst`` and ``limit`` are in ``unit`` (SI: Pa, N m, W, rad/s^2, rad, or dimensionless);
-    ``margin`` = 1 - worst / limit (negative where the limit is exceeded, -inf where no limit
-    applies); ``speed`` (rad/s) where the worst value occurs; ``source`` the rule (IACS UR M68.4,
-    a society's rule) or the maker's document (DIN 740-2 coupling catalogue, engine builder)
-    the limit comes from.
-
-    Parameters
-    ----------
-    kind : str
-        What the row checks, whatever its range (the worst misfiring cylinder is chosen per
-        component and kind; not exported).
-
-    Examples
-    --------
-    >>> from crankdyn.constants import RPM
-    >>> v = Verdict(component="intermediate shaft", condition="normal firing",
-    ...             quantity="synthesised vibratory shear stress (half range)", worst=30e6,
-    ...             limit=40e6, unit="Pa", margin=0.25, passed=True, source="IACS UR M68.4",
-    ...             speed=300 / RPM)
-    >>> v.to_dict()["speed_rpm"], v.to_dict()["margin"]
-    (300.0, 0.25)
-    """
-
-    component: str = scalar("component", "Component", "")
-    condition: str = scalar("condition", "Condition", "")
-    quantity: str = scalar("quantity", "Quantity", "")
-    worst: float = scalar("worst", "Worst value", "")
-    limit: float = scalar("limit", "Limit", "")
-    unit: str = scalar("unit", "Unit", "")
-    margin: float = scalar("margin", "Margin", "", fmt=".3g")
-    passed: bool = scalar("passed", "Passed", "")
-    source: str = scalar("source", "Source of the limit", "")
-    speed: float | None = scalar("speed_rpm", "At speed", "rpm", RPM, default=None)
-    note: str | None = scalar("note", "Note", "", default=None)
-    kind: str = field(default="", repr=False, compare=False)
 
 
 @dataclass(frozen=True)
@@ -100,6 +59,41 @@ class BarredSpeedRange(Result):
     worst_ratio: float = scalar("worst_to_limit", "Largest value / continuous limit", "")
     reason: str = scalar("reason", "Why", "")
     margins: str = scalar("margins", "Margins (rule text)", "")
+
+
+BARRED_COLUMNS = (
+    SummaryColumn("component", "Component"),
+    SummaryColumn("condition", "Condition"),
+    SummaryColumn("exceeds_from_rpm", "Found from", "rpm"),
+    SummaryColumn("exceeds_to_rpm", "Found to", "rpm"),
+    SummaryColumn("start_rpm", "Declared from", "rpm"),
+    SummaryColumn("end_rpm", "Declared to", "rpm"),
+    SummaryColumn("permitted", "Permitted"),
+    SummaryColumn("reason", "Why"),
+)
+"""The columns of a barred-range table, in every front end: each range as found (where the
+limit is exceeded) and as declared (widened), permitted or not and why."""
+
+
+def barred_table(
+    ranges: tuple[BarredSpeedRange, ...], title: str = "Barred speed ranges"
+) -> SummaryTable:
+    """The barred ranges as a summary table (:data:`BARRED_COLUMNS`), speeds in rpm to 0.1 rpm
+    (their ends are bisected to 0.01 rpm; one value per end, from the range itself)."""
+    rows = tuple(
+        (
+            b.component,
+            b.condition,
+            round(b.exceeds_start * RPM, 1),
+            round(b.exceeds_end * RPM, 1),
+            round(b.start * RPM, 1),
+            round(b.end * RPM, 1),
+            "yes" if b.permitted else "no",
+            b.reason,
+        )
+        for b in ranges
+    )
+    return SummaryTable("barred_speed_ranges", title, BARRED_COLUMNS, rows)
 
 
 @dataclass(frozen=True)
@@ -155,13 +149,28 @@ class ConditionResult(Result):
     low: float = scalar("from_rpm", "Speed range from", "rpm", RPM)
     high: float = scalar("to_rpm", "Speed range to", "rpm", RPM)
     description: str = scalar("description", "Description", "")
-    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "")
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
-        "barred_speed_ranges", "Barred speed ranges", ""
+        "barred_speed_ranges", "Barred speed ranges", "", summary=False
     )
-    passages: tuple[Passage, ...] = scalar("passages", "Passages", "")
+    passages: tuple[Passage, ...] = scalar("passages", "Passages", "", summary=False)
     response: ResponseResult | None = field(default=None, repr=False, compare=False)
     curves: dict[tuple[str, str], Check] = field(default_factory=dict, repr=False, compare=False)
+
+    FIGURES = (
+        derived(
+            "condition_passed", "condition_passed", "Every check passed", "",
+            lambda c: all(v.passed for v in c.verdicts) if c.verdicts else None,
+        ),
+    )  # fmt: skip
+
+    def summary_verdicts(self) -> list[Verdict]:
+        """The condition's verdict rows."""
+        return list(self.verdicts)
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The condition's barred speed ranges, as found and as declared, and why."""
+        return [barred_table(self.barred_ranges)] if self.barred_ranges else []
 
     def plot(self, fig: Figure | None = None) -> Figure:
         """Every checked quantity as a fraction of its limit against speed, the barred ranges
@@ -229,13 +238,15 @@ class TvcResult(Result):
     model_name: str = scalar("model", "Installation", "")
     rated_speed: float = scalar("rated_speed_rpm", "Rated speed n_0", "rpm", RPM)
     load: str = scalar("load", "Load", "")
-    passed: bool = scalar("passed", "Passed", "")
-    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "")
+    passed: bool = scalar("passed", "Passed", "", headline=True)
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
-        "barred_speed_ranges", "Barred speed ranges", ""
+        "barred_speed_ranges", "Barred speed ranges", "", summary=False
     )
-    passages: tuple[Passage, ...] = scalar("passages", "Passages through barred ranges", "")
-    conditions: tuple[ConditionResult, ...] = scalar("conditions", "Conditions", "")
+    passages: tuple[Passage, ...] = scalar(
+        "passages", "Passages through barred ranges", "", summary=False
+    )
+    conditions: tuple[ConditionResult, ...] = scalar("conditions", "Conditions", "", summary=False)
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     tachometer_tolerance: float = scalar("tachometer_tolerance", "Tachometer tolerance", "")
     widening: str = scalar("barred_range_widening", "Barred-range widening", "")
@@ -263,6 +274,51 @@ class TvcResult(Result):
         ]
         return out
 
+    FIGURES = (
+        derived(
+            "worst_margin", "worst_margin", "Smallest margin of the verdict rows", "",
+            lambda r: _worst(r), reduction="min over the verdict rows", better="max",
+            headline=True,
+        ),
+        derived(
+            "failed_rows", "failed_rows", "Verdict rows failed", "",
+            lambda r: len(r.failed()), better="min",
+        ),
+    )  # fmt: skip
+
+    def summary_verdicts(self) -> list[Verdict]:
+        """Every verdict row (every component x condition)."""
+        return list(self.verdicts)
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The barred speed ranges (as found and as declared, and why) and the passages."""
+        out = [barred_table(self.barred_ranges)] if self.barred_ranges else []
+        if self.passages:
+            out.append(
+                SummaryTable(
+                    "passages",
+                    "Passages through the barred ranges",
+                    (
+                        SummaryColumn("condition", "Condition"),
+                        SummaryColumn("start_rpm", "From", "rpm"),
+                        SummaryColumn("end_rpm", "To", "rpm"),
+                        SummaryColumn("time_in_range_s", "Time in the range", "s"),
+                        SummaryColumn("note", "How"),
+                    ),
+                    tuple(
+                        (
+                            p.condition,
+                            round(p.start * RPM, 1),
+                            round(p.end * RPM, 1),
+                            p.time_in_range,
+                            p.note,
+                        )
+                        for p in self.passages
+                    ),
+                )
+            )
+        return out
+
     def failed(self) -> tuple[Verdict, ...]:
         """The verdict rows that did not pass.
 
@@ -284,3 +340,12 @@ class TvcResult(Result):
         """
         margins = [v.margin for v in self.verdicts if np.isfinite(v.margin)]
         return min(margins) if margins else float("nan")
+
+
+def _worst(result: TvcResult) -> tuple[float, str] | None:
+    """The smallest finite margin of the verdict rows, with the row's component and condition."""
+    rows = [v for v in result.verdicts if np.isfinite(v.margin)]
+    if not rows:
+        return None
+    v = min(rows, key=lambda v: v.margin)
+    return float(v.margin), f"{v.component}, {v.condition}"

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_positive
+from crankdyn.defaults import SPEED_STEP, TACHOMETER_TOLERANCE
 from crankdyn.errors import InputError
 from crankdyn.tvc.limits import WIDENINGS, CrankshaftLimit
 
@@ -31,9 +32,10 @@ CONDITION_KINDS = ("normal", "misfire", "damper-out")
 """Kinds of running condition: ``"normal"`` firing, ``"misfire"`` (each cylinder not firing in
 turn) and ``"damper-out"`` (the damper out of order); the keys of :attr:`TvcSpec.ranges`."""
 
-DEFAULT_STEP = 10.0 / RPM
-"""Speed step of the user grid of every condition's sweep (rad/s, 10 rpm); the peaks, barred
-ranges and verdicts come from the resolved curves, whatever the step."""
+DEFAULT_STEP = SPEED_STEP
+"""Speed step of the user grid of every condition's sweep (rad/s, 10 rpm: the analyses' default,
+:data:`crankdyn.defaults.SPEED_STEP`); the peaks, barred ranges and verdicts come from the
+resolved curves, whatever the step."""
 
 
 @dataclass(frozen=True)
@@ -59,7 +61,8 @@ class TvcSpec:
         Whether "damper out of order" is a condition (default True where there is a damper).
     tachometer_tolerance : float
         Relative accuracy of the speed indication (dimensionless, 0 <= tolerance < 0.2),
-        widening every barred range on both sides (default 0.02).
+        widening every barred range on both sides (default
+        :data:`crankdyn.defaults.TACHOMETER_TOLERANCE`, 0.02).
     widening : str
         :data:`crankdyn.tvc.limits.WIDENINGS` (default ``"none"``: IACS UR M68 alone).
     crankshaft : CrankshaftLimit or None
@@ -105,7 +108,7 @@ class TvcSpec:
     load: str | None = None
     misfire: bool = True
     damper_out: bool = True
-    tachometer_tolerance: float = 0.02
+    tachometer_tolerance: float = TACHOMETER_TOLERANCE
     widening: str = "none"
     crankshaft: CrankshaftLimit | None = None
     engine_torque: float | None = None
@@ -123,7 +126,7 @@ class TvcSpec:
             load: str | None = None,
             misfire: bool = True,
             damper_out: bool = True,
-            tachometer_tolerance: float = 0.02,
+            tachometer_tolerance: float = TACHOMETER_TOLERANCE,
             widening: str = "none",
             crankshaft: CrankshaftLimit | None = None,
             engine_torque: float | None = None,

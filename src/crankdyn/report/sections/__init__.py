@@ -1,5 +1,5 @@
 """Section builders: one module per analysis, each with ``build(ctx) -> Section`` taking its numbers
-from the analysis session ``ctx.analysis`` (:class:`crankdyn.engine.session.Analysis`).
+from the analysis session ``ctx.analysis`` (:class:`crankdyn.session.Analysis`).
 
 A builder raises :class:`NotApplicable` (with the reason) when its analysis does not apply to the
 engine (no pressure, no torsional model...); the reason is listed in the report. The order of
@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from crankdyn.engine.model import Engine
-from crankdyn.engine.session import Analysis
+from crankdyn.session import Analysis
 
 if TYPE_CHECKING:
     from crankdyn.report.model import Section
@@ -52,7 +52,7 @@ class Context:
 
     Parameters
     ----------
-    analysis : crankdyn.engine.session.Analysis
+    analysis : crankdyn.session.Analysis
         The analysis session of the engine at its operating point (SI units).
     measurement : crankdyn.report.sections.measurement.MeasurementInput or None
         A measured torsiograph signal to hold against the model, or None.

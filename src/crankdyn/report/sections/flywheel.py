@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
-from crankdyn.display import number, quantity
-from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.display import number
+from crankdyn.report.model import Plot, Section, Table
 from crankdyn.report.sections import Context, NotApplicable
 
 
 def build(ctx: Context) -> Section:
-    """The flywheel section: the speed fluctuation, the energy swing and the flywheel (seed 000
-    section 2.4).
+    """The flywheel section: the speed fluctuation, the energy swing and the flywheel (the key
+    figures of :class:`crankdyn.engine.flywheel.FlywheelResult`; seed 000 section 2.4).
 
     Parameters
     ----------
@@ -19,67 +19,28 @@ def build(ctx: Context) -> Section:
     Returns
     -------
     crankdyn.report.model.Section
-        The section: key figures, tables, plots and checks (numbers shown in the units their
-        labels name).
+        The section: the result's key figures, its plot and its data table.
 
     Raises
     ------
     NotApplicable
         The engine file has no ``[masses]``.
     """
-    engine = ctx.engine
-    if engine.masses is None:
+    if ctx.engine.masses is None:
         raise NotApplicable("flywheel: the engine file has no [masses]")
     r = ctx.analysis.flywheel()
     default = ctx.analysis.flywheel_default_delta()
-    figures = [
-        KeyFigure(
-            "torque_nonuniformity",
-            "Torque non-uniformity μ",
-            r.torque_nonuniformity,
-            "-" if r.torque_nonuniformity is None else number(r.torque_nonuniformity),
-        ),
-        KeyFigure(
-            "excess_work_J", "Largest excess work ΔE", r.excess_work, quantity(r.excess_work, "J")
-        ),
-        KeyFigure(
-            "flywheel_inertia_kgm2",
-            "Flywheel inertia",
-            r.flywheel_inertia,
-            f"{number(r.flywheel_inertia)} kg·m² (GD² {quantity(r.gd2, 'N·m²')})",
-        ),
-        KeyFigure(
-            "speed_fluctuation",
-            "Degree of cyclic irregularity δ",
-            r.speed_fluctuation,
-            number(r.speed_fluctuation),
-        ),
-    ]
-    if r.disc_width is not None:
-        figures.append(
-            KeyFigure(
-                "disc_width_m",
-                "Flywheel disc width",
-                r.disc_width,
-                f"{quantity(r.disc_width, 'm')} at ⌀{quantity(r.outer_diameter, 'm')} "
-                f"({number(r.rim_speed)} m/s at the rim)",
-            )
-        )
     target = (
-        f"target δ = {number(r.target_delta)}" + (" (default)" if default else "")
+        f"target δ = {number(r.target_delta)}" + (" (the default)" if default else "")
         if r.target_delta is not None
-        else f"the given flywheel ({number(r.flywheel_inertia)} kg·m²)"
+        else "the given flywheel"
     )
-    intro = (
-        f"Rigid crankshaft, steady load torque equal to the mean torque; {target} (seed 000 §2.4)."
-    )
-    for note in r.notes:
-        intro += f" Note: {note}."
-    return Section(
-        key="flywheel",
-        title="Speed fluctuation and flywheel",
-        intro=intro,
-        figures=figures,
+    return Section.of(
+        "flywheel",
+        "Speed fluctuation and flywheel",
+        [r],
+        intro=f"Rigid crankshaft, steady load torque equal to the mean torque; {target} "
+        "(seed 000 §2.4).",
         plots=[
             Plot(
                 "flywheel",

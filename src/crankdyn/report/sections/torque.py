@@ -3,8 +3,7 @@ mean torque x cycle = Z x indicated work."""
 
 from __future__ import annotations
 
-from crankdyn.display import quantity
-from crankdyn.report.model import Check, KeyFigure, Plot, Section, Table
+from crankdyn.report.model import Check, Plot, Section, Table
 from crankdyn.report.sections import Context, NotApplicable
 
 
@@ -35,35 +34,15 @@ def build(ctx: Context) -> Section:
     work = ctx.analysis.pressure.indicated_work
     expected = engine.cylinders.count * work / engine.cycle_angle
     error = abs(t.mean_torque - expected) / abs(expected) if expected else 0.0
-    figures = [
-        KeyFigure(
-            "mean_torque_Nm",
-            "Mean indicated torque",
-            t.mean_torque,
-            quantity(t.mean_torque, "N·m"),
-        ),
-        KeyFigure(
-            "indicated_power_W",
-            "Indicated power",
-            t.indicated_power,
-            quantity(t.indicated_power, "W"),
-        ),
-        KeyFigure(
-            "max_torque_Nm", "Max engine torque", t.max_torque, quantity(t.max_torque, "N·m")
-        ),
-        KeyFigure(
-            "min_torque_Nm", "Min engine torque", t.min_torque, quantity(t.min_torque, "N·m")
-        ),
-    ]
-    return Section(
-        key="torque",
-        title="Torque",
+    return Section.of(
+        "torque",
+        "Torque",
+        [t],
         intro=(
             f"Cylinder torques combined by throw angles and firing order "
             f"({'-'.join(str(c) for c in engine.cylinders.firing_order)}); main-journal torques "
             "accumulated from the free end (seed 000 §2.2-2.3)."
         ),
-        figures=figures,
         plots=[
             Plot(
                 "torque",

@@ -42,7 +42,7 @@ from crankdyn.study.spec import Parameter, StudySpec
 if TYPE_CHECKING:
     import pyarrow as pa
 
-    from crankdyn.report.model import Report
+    from crankdyn.report.model import Report, Section
 
 __all__ = [
     "SUMMARY_MODULES",
@@ -420,10 +420,10 @@ def write_outputs(
 
 
 def _display(value: float, figure: Figure) -> str:
-    if not math.isfinite(value):
-        return "-"
-    shown = value * figure.scale
-    return f"{shown:.5g} {figure.unit}".strip()
+    """A figure's value for people, in the engineering unit of its magnitude."""
+    from crankdyn.display import quantity
+
+    return quantity(value, figure.unit) if math.isfinite(value) else "-"
 
 
 def _parameter_text(table: CaseTable, row: int) -> str:
@@ -440,31 +440,48 @@ def _parameter_text(table: CaseTable, row: int) -> str:
 def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]) -> Report:
     """The HTML summary as a crankdyn report (crankdyn.report): the cases, the best cases per
     figure, the sensitivity of every figure to every parameter, and for Monte Carlo studies the
-    distributions of the figures."""
-    from crankdyn.plots.study import Series, plot_distributions, plot_sensitivity
-    from crankdyn.report.model import KeyFigure, Plot, Report, Section
+    distributions of the figures. Every figure is shown with the label and in the unit its
+    result declares (:mod:`crankdyn.study.figures`)."""
+    from crankdyn.report.model import Report
+
+    ok_mask = table.column("status") == "ok" if table.finished else np.zeros(0, dtype=bool)
+    sections = [_cases_section(spec, table)]
+    best = _best_section(spec, table, ok_mask)
+    if best is not None:
+        sections.append(best)
+    if table.ok >= 2:
+        sections += _sensitivity_sections(spec, table, ok_mask)
+    return Report(
+        title=f"Study: {spec.name}",
+        inputs=_inputs(spec, run_info),
+        sections=sections,
+        source=spec.source,
+        version=__version__,
+        created=_dt.datetime.now().strftime("%Y-%m-%d %H:%M"),
+    )
+
+
+def _cases_section(spec: StudySpec, table: CaseTable) -> Section:
+    """The cases: how many, how many with results, failed or pending, and the errors."""
+    from crankdyn.report.model import KeyFigure, Section
     from crankdyn.report.model import Table as ReportTable
-    from crankdyn.study.sensitivity import main_effect, negligible_spread, spearman
 
     total = spec.case_count
-    ok_mask = table.column("status") == "ok" if table.finished else np.zeros(0, dtype=bool)
+    grid = (
+        f"a grid of {math.prod(len(p.values or ()) for p in spec.grid_parameters)} points"
+        if spec.grid_parameters
+        else "no grid"
+    )
+    samples = (
+        f" x {spec.samples} Monte Carlo samples ({spec.sampling}, seed {spec.seed})"
+        if spec.random_parameters
+        else ""
+    )
     cases = Section(
         key="cases",
         title="Cases",
-        intro=(
-            f"{total} cases: "
-            + (
-                f"a grid of {math.prod(len(p.values or ()) for p in spec.grid_parameters)} points"
-                if spec.grid_parameters
-                else "no grid"
-            )
-            + (
-                f" x {spec.samples} Monte Carlo samples ({spec.sampling}, seed {spec.seed})"
-                if spec.random_parameters
-                else ""
-            )
-            + ". The full table is results.parquet / results.csv in the study folder."
-        ),
+        intro=f"{total} cases: {grid}{samples}. The full table is results.parquet / results.csv "
+        "in the study folder.",
     )
     pending = total - table.finished
     cases.figures += [
@@ -515,7 +532,21 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]) -
                 ],
             )
         )
-    sections = [cases]
+    return cases
+
+
+def _figure_header(figure: Figure, values: Any) -> tuple[str, float]:
+    """A figure's column header with the engineering unit of its values, and the factor to
+    that unit."""
+    factor, unit = figure.display(values)
+    return (f"{figure.name} ({unit})" if unit else figure.name), factor
+
+
+def _best_section(spec: StudySpec, table: CaseTable, ok_mask: np.ndarray) -> Section | None:
+    """The best cases of every figure with a sense of better; None when there are none."""
+    from crankdyn.report.model import KeyFigure, Section
+    from crankdyn.report.model import Table as ReportTable
+    from crankdyn.study.sensitivity import negligible_spread
 
     best = Section(key="best", title="Best cases")
     best.intro = (
@@ -549,17 +580,20 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]) -
             )
         )
         header = ["Case"] + [p.key + (f" ({p.unit})" if p.unit else "") for p in spec.parameters]
-        header += [n + (f" ({FIGURES[n].unit})" if FIGURES[n].unit else "") for n in spec.figures]
+        factors = []
+        for n in spec.figures:
+            text, factor = _figure_header(FIGURES[n], table.data[FIGURES[n].key][top])
+            header.append(text)
+            factors.append(factor)
         rows = []
         for i in top:
             row = [str(table.data["case"][i])]
             for col, p in zip(param_cols, spec.parameters, strict=True):
                 v = table.data[col][i]
                 row.append(f"{v:.6g}" if p.is_numeric else str(v))
-            for n in spec.figures:
-                f = FIGURES[n]
-                v = table.data[f.key][i]
-                row.append(f"{v * f.scale:.5g}" if math.isfinite(v) else "-")
+            for n, factor in zip(spec.figures, factors, strict=True):
+                v = table.data[FIGURES[n].key][i]
+                row.append(f"{v * factor:.5g}" if math.isfinite(v) else "-")
             rows.append(row)
         best.tables.append(
             ReportTable(
@@ -573,98 +607,101 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]) -
         best.intro += (
             " The same in every case (to 1 part in a million): " + ", ".join(constant) + "."
         )
-    if best.figures or constant:
-        sections.append(best)
+    return best if best.figures or constant else None
 
-    if table.ok >= 2:
-        sens = Section(
-            key="sensitivity",
-            title="Sensitivity",
-            intro=(
-                "Each figure against each parameter over the cases with results, with the "
-                "main effect (mean of the figure per parameter value, or per bin of a Monte "
-                "Carlo parameter) and Spearman's rank correlation ρ; the table gives the range "
-                "of the main effect (largest minus smallest mean) and ρ."
-            ),
-        )
-        params = [
-            Series(
-                p.key,
-                p.unit or "",
-                table.column(p.column)[ok_mask],
-                p.is_numeric,
-            )
-            for p in spec.parameters
-        ]
-        rows = []
-        for p, series in zip(spec.parameters, params, strict=True):
-            row = [p.key + (f" ({p.unit})" if p.unit else "")]
-            for n in spec.figures:
-                f = FIGURES[n]
-                y = table.column(f.key)[ok_mask] * f.scale
-                if negligible_spread(y):
-                    row.append("none (the figure is the same in every case)")
-                    continue
-                effect = main_effect(series.values, y, numeric=p.is_numeric).effect
-                text = f"{effect:.4g} {f.unit}".strip() if math.isfinite(effect) else "-"
-                if p.is_numeric:
-                    rho = spearman(series.values, y)
-                    text += f" (ρ = {rho:+.2f})" if math.isfinite(rho) else ""
-                row.append(text)
-            rows.append(row)
-        sens.tables.append(
-            ReportTable(
-                name="sensitivity",
-                title="Main-effect range (and Spearman's ρ) of each figure per parameter",
-                header=["Parameter", *spec.figures],
-                rows=rows,
-            )
-        )
-        shown = [
-            Series(
-                FIGURES[n].label,
-                FIGURES[n].unit,
-                table.column(FIGURES[n].key)[ok_mask] * FIGURES[n].scale,
-            )
-            for n in spec.figures
-        ]
-        shown = [f for f in shown if np.isfinite(f.values).any()]
-        rows_per_plot = max(1, PANELS_PER_PLOT // len(params))
-        for k in range(0, len(shown), rows_per_plot):
-            part = shown[k : k + rows_per_plot]
-            suffix = "" if len(shown) <= rows_per_plot else f"_{k // rows_per_plot + 1}"
-            sens.plots.append(
-                Plot(
-                    name=f"sensitivity{suffix}",
-                    title="Sensitivity of " + ", ".join(f.label for f in part),
-                    figure=plot_sensitivity(part, params),
-                    caption="Points: cases with results; line: mean of the figure per "
-                    "parameter value (or per bin of a Monte Carlo parameter); ρ: Spearman's rank "
-                    "correlation.",
-                )
-            )
-        sections.append(sens)
-        if spec.random_parameters:
-            dist = Section(key="distributions", title="Distributions")
-            dist.plots.append(
-                Plot(
-                    name="distributions",
-                    title="Distribution of the figures",
-                    figure=plot_distributions(
-                        [
-                            Series(
-                                FIGURES[n].label,
-                                FIGURES[n].unit,
-                                table.column(FIGURES[n].key)[ok_mask] * FIGURES[n].scale,
-                            )
-                            for n in spec.figures
-                        ]
-                    ),
-                    caption="Histograms over the Monte Carlo cases with results.",
-                )
-            )
-            sections.append(dist)
 
+def _shown_series(spec: StudySpec, table: CaseTable, ok_mask: np.ndarray) -> list[Any]:
+    """Each figure's values over the cases with results, in the engineering unit of their
+    magnitude (for the plots)."""
+    from crankdyn.plots.study import Series
+
+    out = []
+    for n in spec.figures:
+        f = FIGURES[n]
+        values = table.column(f.key)[ok_mask]
+        factor, unit = f.display(values)
+        out.append(Series(f.label, unit, values * factor))
+    return out
+
+
+def _sensitivity_sections(spec: StudySpec, table: CaseTable, ok_mask: np.ndarray) -> list[Section]:
+    """The sensitivity of every figure to every parameter (a table and plots) and, for Monte
+    Carlo studies, the figures' distributions."""
+    from crankdyn.plots.study import Series, plot_distributions, plot_sensitivity
+    from crankdyn.report.model import Plot, Section
+    from crankdyn.report.model import Table as ReportTable
+    from crankdyn.study.sensitivity import main_effect, negligible_spread, spearman
+
+    sens = Section(
+        key="sensitivity",
+        title="Sensitivity",
+        intro=(
+            "Each figure against each parameter over the cases with results, with the "
+            "main effect (mean of the figure per parameter value, or per bin of a Monte "
+            "Carlo parameter) and Spearman's rank correlation ρ; the table gives the range "
+            "of the main effect (largest minus smallest mean) and ρ."
+        ),
+    )
+    params = [
+        Series(p.key, p.unit or "", table.column(p.column)[ok_mask], p.is_numeric)
+        for p in spec.parameters
+    ]
+    series = _shown_series(spec, table, ok_mask)
+    rows = []
+    for p, param in zip(spec.parameters, params, strict=True):
+        row = [p.key + (f" ({p.unit})" if p.unit else "")]
+        for shown in series:
+            y = shown.values
+            if negligible_spread(y):
+                row.append("none (the figure is the same in every case)")
+                continue
+            effect = main_effect(param.values, y, numeric=p.is_numeric).effect
+            text = f"{effect:.4g} {shown.unit}".strip() if math.isfinite(effect) else "-"
+            if p.is_numeric:
+                rho = spearman(param.values, y)
+                text += f" (ρ = {rho:+.2f})" if math.isfinite(rho) else ""
+            row.append(text)
+        rows.append(row)
+    sens.tables.append(
+        ReportTable(
+            name="sensitivity",
+            title="Main-effect range (and Spearman's ρ) of each figure per parameter",
+            header=["Parameter", *spec.figures],
+            rows=rows,
+        )
+    )
+    shown = [f for f in series if np.isfinite(f.values).any()]
+    rows_per_plot = max(1, PANELS_PER_PLOT // len(params))
+    for k in range(0, len(shown), rows_per_plot):
+        part = shown[k : k + rows_per_plot]
+        suffix = "" if len(shown) <= rows_per_plot else f"_{k // rows_per_plot + 1}"
+        sens.plots.append(
+            Plot(
+                name=f"sensitivity{suffix}",
+                title="Sensitivity of " + ", ".join(f.label for f in part),
+                figure=plot_sensitivity(part, params),
+                caption="Points: cases with results; line: mean of the figure per "
+                "parameter value (or per bin of a Monte Carlo parameter); ρ: Spearman's rank "
+                "correlation.",
+            )
+        )
+    out = [sens]
+    if spec.random_parameters:
+        dist = Section(key="distributions", title="Distributions")
+        dist.plots.append(
+            Plot(
+                name="distributions",
+                title="Distribution of the figures",
+                figure=plot_distributions(series),
+                caption="Histograms over the Monte Carlo cases with results.",
+            )
+        )
+        out.append(dist)
+    return out
+
+
+def _inputs(spec: StudySpec, run_info: dict[str, Any]) -> list[tuple[str, str]]:
+    """The summary's echo of the study's input."""
     inputs = [
         ("Study", spec.name),
         ("Study file", spec.source or "-"),
@@ -679,14 +716,7 @@ def build_summary(spec: StudySpec, table: CaseTable, run_info: dict[str, Any]) -
     inputs.append(("Figures", ", ".join(spec.figures)))
     if "elapsed_s" in run_info:
         inputs.append(("Run time of the last run", f"{run_info['elapsed_s']:.3g} s"))
-    return Report(
-        title=f"Study: {spec.name}",
-        inputs=inputs,
-        sections=sections,
-        source=spec.source,
-        version=__version__,
-        created=_dt.datetime.now().strftime("%Y-%m-%d %H:%M"),
-    )
+    return inputs
 
 
 def _describe(p: Parameter) -> str:

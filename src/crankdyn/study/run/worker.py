@@ -36,7 +36,7 @@ __all__ = [
 ]
 
 ANALYSIS_MODULES = (
-    "crankdyn.engine.session",
+    "crankdyn.session",
     "crankdyn.engine.forces",
     "crankdyn.engine.torque",
     "crankdyn.engine.bearings",

@@ -1,0 +1,311 @@
+"""Judging one running condition's forced response by the installation's checks: the barred
+speed ranges (as found and as declared) and the verdict rows (analysis).
+
+This is the one place a check is evaluated: ``crankdyn torsion response`` judges its response
+here, ``crankdyn tvc`` every condition's, so two commands never answer the same question
+differently.
+
+Barred speed ranges. Where a component's synthesised response exceeds its continuous limit the
+range *as found* is bisected to 0.01 rpm on the resolved curve
+(:func:`crankdyn.torsion.rules.exceedances`); the range *as declared* is that range widened to
+the society's least range around the critical speed where the chosen rule says so
+(:func:`crankdyn.tvc.limits.barred_limits`) and by the tachometer tolerance on both sides. A
+range is *permitted* when the rule allows one there: for an M68 shaft only below 0.8 n_0 (the
+declared range, margins included: IACS UR M68.4) and only while the stress stays below tau_T;
+for a coupling while the total torque stays below T_Kmax; for the crankshaft while it stays
+below the builder's transient limit (none given: no barred range permitted); never where it
+holds the rated speed. Continuous limits (heat, gear hammering, generator, damper) are checked
+over the speeds of continuous running: the condition's range less its declared barred ranges.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+import crankdyn.tvc.curves as cv
+from crankdyn.constants import RPM
+from crankdyn.summary import Verdict
+from crankdyn.torsion.rules import exceedances
+from crankdyn.tvc.limits import M68, WIDENING_SOURCES, barred_limits
+from crankdyn.tvc.result import BarredSpeedRange
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.response import ResponseResult
+    from crankdyn.torsion.rules import Exceedance
+    from crankdyn.tvc.checks import Check
+    from crankdyn.tvc.spec import TvcSpec
+
+__all__ = ["M68_LAMBDA", "Found", "evaluate_condition", "merge_intervals"]
+
+M68_LAMBDA = 0.8
+"""The speed ratio n/n_0 above which IACS UR M68.4 permits no barred speed range."""
+
+
+@dataclass(frozen=True)
+class Found:
+    """A check's exceedance of its continuous limit, with the range declared for it."""
+
+    check: Check
+    exceedance: Exceedance
+    start: float
+    end: float
+
+
+def merge_intervals(intervals: Iterable[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Overlapping intervals merged, sorted.
+
+    Examples
+    --------
+    >>> merge_intervals([(3.0, 4.0), (1.0, 2.0), (1.5, 2.5)])
+    [(1.0, 2.5), (3.0, 4.0)]
+    """
+    out: list[list[float]] = []
+    for a, b in sorted(intervals):
+        if out and a <= out[-1][1]:
+            out[-1][1] = max(out[-1][1], b)
+        else:
+            out.append([a, b])
+    return [(a, b) for a, b in out]
+
+
+def _column(
+    func: Callable[[Any], NDArray[np.float64]],
+) -> Callable[[Any], NDArray[np.float64]]:
+    """``func`` with its result as one column (speeds x 1), the layout
+    :func:`~crankdyn.torsion.rules.exceedances` reads."""
+    return lambda x: func(x)[:, None]
+
+
+def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float) -> list[Found]:
+    """Every exceedance of a check that bars speeds, with its declared range: widened by the
+    rule and by the tachometer tolerance on both sides."""
+    tol = spec.tachometer_tolerance
+    out = []
+    for check in checks:
+        if not check.barred:
+            continue
+        for ex in exceedances(r, _column(check.curve), _column(check.limit)):
+            lo, hi = barred_limits(ex.peak_speed, n0, spec.widening)
+            start = min(ex.start, lo) * (1.0 - tol)
+            end = max(ex.end, hi) * (1.0 + tol)
+            out.append(Found(check, ex, start, end))
+    return out
+
+
+def _declared_how(found: Found, spec: TvcSpec) -> str:
+    """How the found range became the declared one: ``found 789.4-790.3 rpm, widened by the
+    2 % tachometer tolerance to 773.6-806.1 rpm``."""
+    ex = found.exceedance
+    words = [f"found {ex.start * RPM:.1f}-{ex.end * RPM:.1f} rpm"]
+    widened = []
+    if spec.widening != "none":
+        widened.append(f"by the {spec.widening.upper()} margins")
+    if spec.tachometer_tolerance:
+        widened.append(f"by the {spec.tachometer_tolerance * 100:g} % tachometer tolerance")
+    if widened:
+        words.append(
+            f"widened {' and '.join(widened)} to {found.start * RPM:.1f}-{found.end * RPM:.1f} rpm"
+        )
+    return ", ".join(words)
+
+
+def _barred_range(
+    r: ResponseResult, found: Found, condition: str, spec: TvcSpec, n0: float
+) -> BarredSpeedRange:
+    """The barred range of one exceedance: permitted or not, and why in words."""
+    check, ex = found.check, found.exceedance
+    start, end = found.start, found.end
+    how = _declared_how(found, spec)
+    reasons = []
+    permitted = True
+    if check.m68 and end > M68_LAMBDA * n0:
+        permitted = False
+        reasons.append(
+            f"{how}, above {M68_LAMBDA:g} n_0 = {M68_LAMBDA * n0 * RPM:.1f} rpm, where IACS UR "
+            "M68.4 permits no barred range"
+        )
+    if start <= n0 <= end:
+        permitted = False
+        reasons.append(f"{how}, which holds the rated speed n_0 = {n0 * RPM:.1f} rpm")
+    if check.transient_limit is None:
+        permitted = False
+        reasons.append("no transient limit is given for this component")
+    else:
+        w = cv.resolved_worst(r, check.curve, check.transient_limit, low=ex.start, high=ex.end)
+        if w is None or w[0] > w[1]:
+            permitted = False
+            reasons.append("the steady-state response exceeds the transient limit")
+    if ex.open_start or ex.open_end:
+        reasons.append("reaches an end of the swept range: sweep further")
+    if permitted:
+        reasons.append(
+            f"{how}; limit exceeded only where a barred range is permitted: pass quickly"
+        )
+    tol = spec.tachometer_tolerance
+    return BarredSpeedRange(
+        component=check.component,
+        condition=condition,
+        start=start,
+        end=end,
+        permitted=permitted,
+        exceeds_start=ex.start,
+        exceeds_end=ex.end,
+        critical_speed=ex.peak_speed,
+        worst_ratio=ex.peak_ratio,
+        reason="; ".join(reasons),
+        margins=WIDENING_SOURCES[spec.widening]
+        + (f"; tachometer tolerance ±{tol * 100:g} %" if tol else ""),
+    )
+
+
+def _continuous_verdicts(
+    r: ResponseResult,
+    checks: Sequence[Check],
+    condition: str,
+    excluded: Sequence[tuple[float, float]],
+) -> list[Verdict]:
+    """Every check's worst value over the speeds of continuous running against its limit."""
+    out = []
+    for check in checks:
+        worst = cv.resolved_worst(r, check.curve, check.limit, excluded)
+        if worst is None:
+            continue
+        value, limit, speed = worst
+        out.append(
+            Verdict(
+                component=check.component,
+                condition=condition,
+                quantity=check.quantity + (" (continuous running)" if excluded else ""),
+                worst=value,
+                limit=limit,
+                unit=check.unit,
+                passed=bool(value <= limit),
+                source=check.source,
+                clause=check.clause,
+                speed=speed,
+                margin=1.0 - value / limit,
+                kind=check.quantity,
+            )
+        )
+    return out
+
+
+def _barred_verdicts(
+    r: ResponseResult, found: Found, b: BarredSpeedRange, condition: str, n0: float
+) -> list[Verdict]:
+    """The verdict rows of one barred range: its end against 0.8 n_0 (M68), the rated speed
+    outside it, and the steady state in it against the transient limit."""
+    check, ex = found.check, found.exceedance
+    label = f"barred range {b.start * RPM:.1f}-{b.end * RPM:.1f} rpm"
+    out = []
+    if check.m68:  # M68.4: no barred range above 0.8 n_0 (the declared range, margins included)
+        out.append(
+            Verdict(
+                component=check.component,
+                condition=condition,
+                quantity=f"end of the declared {label} (λ = n/n_0)",
+                worst=b.end / n0,
+                limit=M68_LAMBDA,
+                unit="",
+                passed=bool(b.end <= M68_LAMBDA * n0),
+                source=f"{M68}: barred speed ranges only below λ = {M68_LAMBDA:g}; margins: "
+                f"{b.margins}",
+                speed=b.end,
+                note=b.reason,
+                margin=1.0 - b.end / n0 / M68_LAMBDA,
+                kind="barred range end",
+            )
+        )
+    if b.start <= n0 <= b.end:
+        out.append(
+            Verdict(
+                component=check.component,
+                condition=condition,
+                quantity=f"start of the declared {label} vs the rated speed (n/n_0)",
+                worst=1.0,
+                limit=b.start / n0,
+                unit="",
+                passed=False,
+                source="the rated speed cannot lie in a barred range",
+                speed=n0,
+                margin=1.0 - n0 / b.start,
+                kind="barred range at n_0",
+            )
+        )
+    if check.transient_limit is None:
+        out.append(
+            Verdict(
+                component=check.component,
+                condition=condition,
+                quantity=f"{label}: no transient limit given",
+                worst=ex.peak,
+                limit=float(check.limit(np.array([ex.peak_speed]))[0]),
+                unit=check.unit,
+                passed=False,
+                source=check.source,
+                speed=ex.peak_speed,
+                note="a barred range needs the component's transient limit",
+                margin=1.0 - ex.peak_ratio,
+                kind="barred range without a transient limit",
+            )
+        )
+        return out
+    w = cv.resolved_worst(r, check.curve, check.transient_limit, low=ex.start, high=ex.end)
+    value, limit, speed = w if w is not None else (ex.peak, math.nan, ex.peak_speed)
+    out.append(
+        Verdict(
+            component=check.component,
+            condition=condition,
+            quantity=f"steady state in the {label} vs the transient limit",
+            worst=value,
+            limit=limit,
+            unit=check.unit,
+            passed=bool(np.isfinite(limit) and value <= limit),
+            source=check.transient_source,
+            speed=speed,
+            margin=1.0 - value / limit if np.isfinite(limit) else -math.inf,
+            kind="barred range steady state",
+        )
+    )
+    return out
+
+
+def evaluate_condition(
+    r: ResponseResult, condition: str, checks: Sequence[Check], spec: TvcSpec, n0: float
+) -> tuple[list[Verdict], list[BarredSpeedRange]]:
+    """The verdict rows and barred speed ranges of one condition's resolved response (module
+    docstring).
+
+    Parameters
+    ----------
+    r : ResponseResult
+        The condition's forced response (resolved: every peak refined).
+    condition : str
+        The condition's name, for the rows.
+    checks : sequence of Check
+        The installation's checks (:func:`crankdyn.tvc.checks.model_checks`).
+    spec : TvcSpec
+        The settings: the tachometer tolerance and the widening of barred ranges.
+    n0 : float
+        The rated speed (rad/s).
+
+    Returns
+    -------
+    verdicts : list of crankdyn.summary.Verdict
+        Every check's continuous verdict, then each barred range's rows.
+    barred : list of BarredSpeedRange
+        The barred ranges, as found and as declared, permitted or not and why.
+    """
+    found = _found(r, checks, spec, n0)
+    barred = [_barred_range(r, f, condition, spec, n0) for f in found]
+    excluded = merge_intervals([(b.start, b.end) for b in barred])
+    verdicts = _continuous_verdicts(r, checks, condition, excluded)
+    for f, b in zip(found, barred, strict=True):
+        verdicts += _barred_verdicts(r, f, b, condition, n0)
+    return verdicts, barred
