@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -125,6 +125,31 @@ def _element_torques(
         accel = (f[:, d] - x @ system.stiffness[d] - v @ system.damping[d]) / line.inertia[d]
         meshes[:, i] = g.inertia * g.ratio * accel + sum(s * out[:, e] for e, s in g.elements)
     return np.concatenate([out, meshes], axis=1)
+
+
+def _quasi_static(
+    line: Line, mode: _Mode, t: NDArray[np.float64], mean: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """(L, E + G) the elements' torques under the mean torques alone, quasi-statically (the
+    static twist of :meth:`ModalSystem.static`; the free bodies accelerating as a whole)."""
+    x = mode.system.static(mean)
+    plain = _Mode(mode.key, mode.system)
+    return _element_torques(line, plain, t, x, np.zeros_like(x), mean)
+
+
+def _series(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    force: Forcing,
+    mean: Forcing,
+) -> NDArray[np.float64]:
+    """(L, 2 (E + G)): the torques, then their vibratory part (less the quasi-static torques
+    of the mean torques) at samples t."""
+    total = _element_torques(line, mode, t, x, v, force(t))
+    return np.concatenate([total, total - _quasi_static(line, mode, t, mean(t))], axis=1)
 
 
 @dataclass(eq=False)
@@ -277,7 +302,7 @@ class _Window:
     states: list[ModalState]  # at the window's samples
     u: NDArray[np.complex128]  # (samples, m)
     g: NDArray[np.float64]  # (samples, b)
-    force: Forcing  # the generalised torques (L, n) at times (L,)
+    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any]
 
 
 @dataclass(eq=False)
@@ -321,7 +346,7 @@ class _Recorder:
             vk = v[keep][:, line.mass_dof] + frame[:, None]
             self.times.append(t[keep])
             self.speeds.append(vk * line.mass_ratio[None, :])
-            self.torques.append(torque[keep])
+            self.torques.append(torque[keep][:, : torque.shape[1] // 2])
             total = float(np.sum(line.inertia))
             self.mean.append(v[keep] @ line.inertia / total + frame)
         for sign, attr in ((1.0, "high"), (-1.0, "low")):
@@ -361,7 +386,7 @@ def _refine(line: Line, rec: _Recorder) -> None:
             x, v = w.mode.system.to_physical(st)
             t = w.t0 + s * w.step + taus
             ts.append(t)
-            vals.append(sign * _element_torques(line, w.mode, t, x, v, w.force(t))[:, e])
+            vals.append(sign * w.series(t, x, v)[:, e])
         t_all, v_all = np.concatenate(ts), np.concatenate(vals)
         k = int(np.argmax(v_all))
         best, at = float(v_all[k]), float(t_all[k])
@@ -376,8 +401,7 @@ def _refine(line: Line, rec: _Recorder) -> None:
                     [vertex - w.t0 - s * w.step],
                 )
                 x, v = w.mode.system.to_physical(st)
-                tv = np.array([vertex])
-                value = float(sign * _element_torques(line, w.mode, tv, x, v, w.force(tv))[0, e])
+                value = float(sign * w.series(np.array([vertex]), x, v)[0, e])
                 if value > best:
                     best, at = value, vertex
         target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
@@ -393,6 +417,7 @@ class _Run:
 
     line: Line
     forcing: Forcing
+    mean: Forcing
     end: float
     step: float
     cuts: NDArray[np.float64]
@@ -422,7 +447,7 @@ def _state_at(start: ModalState, w: ModalState, j: int) -> ModalState:
 
 def _windows(
     mode: _Mode,
-    force: Forcing,
+    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any],
     start: ModalState,
     w: ModalState,
     times: NDArray[Any],
@@ -437,7 +462,7 @@ def _windows(
         last = min(s + 1, times.size - 1)
         states = [_state_at(start, w, j) for j in range(s - 1, last + 1)]
         return _Window(
-            mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1], force
+            mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1], series
         )
 
     return window
@@ -493,21 +518,24 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
         if mode.watch is not None:
             found = np.flatnonzero(np.asarray(mode.watch(tk, x, v)) >= 0.0)
             hit = int(found[0]) + 1 if found.size else None
-        windows = _windows(mode, force, state, w, times, u, g, h)
+        def series(tt: Any, xx: Any, vv: Any, force: Forcing = force) -> Any:
+            return _series(line, mode, tt, xx, vv, force, run.mean)
+
+        windows = _windows(mode, series, state, w, times, u, g, h)
         if hit is None:
-            torque = _element_torques(line, mode, tk, x, v, f[1:])
-            run.recorder.add(tk, x, v, torque, windows, keep_last=last and final)
+            run.recorder.add(tk, x, v, series(tk, x, v), windows, keep_last=last and final)
             state, t, done = w.last(), float(times[-1]), done + n
             continue
         prev = _state_at(state, w, hit - 1)
         if hit > 1:
             k = hit - 1
-            torque = _element_torques(line, mode, tk[:k], x[:k], v[:k], f[1 : k + 1])
-            run.recorder.add(tk[:k], x[:k], v[:k], torque, windows)
+            run.recorder.add(tk[:k], x[:k], v[:k], series(tk[:k], x[:k], v[:k]), windows)
         ts, xs, vs = _crossing(run, mode, prev, times, u, g, hit, h)
         tsa = np.array([ts])
-        torque = _element_torques(line, mode, tsa, xs[None], vs[None], force(tsa))
-        run.recorder.add(tsa, xs[None], vs[None], torque, lambda _k: None, keep_last=True)
+        run.recorder.add(
+            tsa, xs[None], vs[None], series(tsa, xs[None], vs[None]), lambda _k: None,
+            keep_last=True,
+        )
         assert mode.switch is not None
         new = mode.switch(ts, xs, vs)
         run.switches.append(f"{mode.key} -> {new.key} at {ts:.6g} s")
@@ -520,8 +548,8 @@ def _march(run: _Run, mode: _Mode, x0: NDArray[np.float64], v0: NDArray[np.float
     t = 0.0
     state = mode.system.to_modal(x0, v0)
     t0 = np.array([np.nextafter(0.0, np.inf)])
-    torque = _element_torques(run.line, mode, t0, x0[None], v0[None], _mode_forcing(run, mode)(t0))
-    run.recorder.add(np.array([0.0]), x0[None], v0[None], torque, lambda _k: None)
+    first = _series(run.line, mode, t0, x0[None], v0[None], _mode_forcing(run, mode), run.mean)
+    run.recorder.add(np.array([0.0]), x0[None], v0[None], first, lambda _k: None)
     while t < run.end * (1.0 - 1e-12):
         later = run.cuts[run.cuts > t + 1e-9 * run.step]
         stop = float(later[0]) if later.size else run.end
@@ -754,15 +782,18 @@ def event_response(
         per_step += 16 * harmonics.orders.size
     block = int(np.clip(BLOCK_BYTES // max(per_step, 1), 64, 16384))
     recorder = _Recorder(line, stride, frame)
-    run = _Run(line, forcing, t_end, step, cuts, block, recorder)
+    run = _Run(line, forcing, mean_part, t_end, step, cuts, block, recorder)
     _march(run, mode, x0, v0)
     _refine(line, recorder)
     rows = int(max_samples) + cuts.size + len(run.switches) + 2
-    kept = 8 * rows * (line.mass_dof.size + n_el + 2)
-    return _result(
+    kept = 8 * rows * (line.mass_dof.size + n_el + len(line.gears) + 2)
+    result = _result(
         EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
         float(kept + block * per_step),
     )
+    from crankdyn.torsion.event_checks import model_verdicts
+
+    return replace(result, verdicts=tuple(model_verdicts(result, model)))
 
 
 def _cuts(
@@ -810,6 +841,7 @@ def _result(
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
     n_el = line.element_stiffness.size
+    half = rec.high.size // 2
     limits = np.full(n_el + len(line.gears), np.nan)
     for e, shaft in enumerate(model.shafts):
         if shaft.coupling is not None and shaft.coupling.maximum_torque is not None:
@@ -831,10 +863,14 @@ def _result(
         speed=freeze(np.concatenate(rec.mean)),
         mass_speed=freeze(np.concatenate(rec.speeds)),
         torque=freeze(np.concatenate(rec.torques)),
-        max_torque=freeze(rec.high),
-        min_torque=freeze(rec.low),
-        max_time=freeze(rec.high_at),
-        min_time=freeze(rec.low_at),
+        max_torque=freeze(rec.high[:half]),
+        min_torque=freeze(rec.low[:half]),
+        max_time=freeze(rec.high_at[:half]),
+        min_time=freeze(rec.low_at[:half]),
+        max_vibratory=freeze(rec.high[half:]),
+        min_vibratory=freeze(rec.low[half:]),
+        max_vibratory_time=freeze(rec.high_at[half:]),
+        min_vibratory_time=freeze(rec.low_at[half:]),
         initial_torque=freeze(rec.torques[0][0]),
         event=event.name,
         kind=kind,

@@ -352,19 +352,17 @@ class ModalSystem:
         Parameters
         ----------
         forcing : array_like
-            (n,) generalised torques (N m).
+            (..., n) generalised torques (N m).
 
         Returns
         -------
         numpy.ndarray
-            (n,) angles (rad), M-orthogonal to the free bodies.
+            (..., n) angles (rad), M-orthogonal to the free bodies.
         """
         f = np.asarray(forcing, dtype=float)
         omega2 = self.natural_frequency**2
-        q = np.zeros(omega2.size)
-        stiff = omega2 > 0.0
-        q[stiff] = (self.modes.T @ f)[stiff] / omega2[stiff]
-        return self.modes @ q
+        inverse = np.where(omega2 > 0.0, 1.0 / np.where(omega2 > 0.0, omega2, 1.0), 0.0)
+        return ((f @ self.modes) * inverse) @ self.modes.T
 
     def harmonic(
         self, forcing: ArrayLike, omega: ArrayLike
