@@ -10,7 +10,6 @@ import math
 
 import pytest
 
-from crankdyn.session import Analysis
 from crankdyn.engine.torque import engine_torque
 from crankdyn.errors import InputError
 from crankdyn.io.catalogue import load_example
@@ -24,6 +23,7 @@ from crankdyn.plausibility import (
     check_piston_acceleration,
     check_transmission_angle,
 )
+from crankdyn.session import Analysis
 
 EXAMPLES = (
     "inline6-diesel",

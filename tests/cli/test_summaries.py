@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.session import Analysis
 from crankdyn.results import Result
+from crankdyn.session import Analysis
 
 ENGINE = "inline6-diesel"
 

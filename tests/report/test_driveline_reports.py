@@ -7,8 +7,8 @@ from __future__ import annotations
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.session import Analysis
 from crankdyn.report.sections import Context, builders
+from crankdyn.session import Analysis
 
 
 @pytest.mark.parametrize("name", ["marine-propulsion", "genset-1500"])

@@ -5,11 +5,11 @@ import math
 import pytest
 
 from crankdyn.engine.model import Engine
-from crankdyn.session import Analysis
 from crankdyn.measure.examples import example_signal
 from crankdyn.measure.orders import order_analysis
 from crankdyn.report.sections import Context, NotApplicable
 from crankdyn.report.sections.measurement import MeasurementInput, build
+from crankdyn.session import Analysis
 
 
 @pytest.fixture(scope="module")

@@ -10,10 +10,10 @@ import pytest
 
 import crankdyn.report.sections as sections
 from crankdyn.engine.model import Engine
-from crankdyn.session import Analysis
 from crankdyn.report.build import build_report
 from crankdyn.report.sections import Context, NotApplicable
 from crankdyn.report.write import write_report
+from crankdyn.session import Analysis
 
 OURS = ("firing", "balance", "flywheel")
 

@@ -61,8 +61,9 @@ def test_linear_recurrence_equals_the_loop():
 
 
 def test_free_bodies_of_a_split_line_and_a_grounded_one():
-    k = np.array([[1.0, -1.0, 0.0, 0.0], [-1.0, 1.0, 0.0, 0.0], [0.0, 0.0, 2.0, -1.0],
-                  [0.0, 0.0, -1.0, 1.0]])
+    k = np.array(
+        [[1.0, -1.0, 0.0, 0.0], [-1.0, 1.0, 0.0, 0.0], [0.0, 0.0, 2.0, -1.0], [0.0, 0.0, -1.0, 1.0]]
+    )
     assert [b.tolist() for b in free_bodies(k, np.zeros((4, 4)))] == [[0, 1]]
     k[2, 2] = 1.0  # no ground: two free bodies
     assert [b.tolist() for b in free_bodies(k, np.zeros((4, 4)))] == [[0, 1], [2, 3]]
@@ -90,7 +91,7 @@ def test_events_refuse_bad_data(make, key):
 
 
 def test_runner_names_an_unknown_mass_and_a_clutch_without_element():
-    with pytest.raises(InputError, match='no mass named "flywhel".*flywheel') as err:
+    with pytest.raises(InputError, match=r'no mass named "flywhel".*flywheel') as err:
         event_response(_line(), StepTorque("flywhel", 1.0))
     assert err.value.key == "at"
     with pytest.raises(InputError) as err:
@@ -167,20 +168,26 @@ def test_torque_history_errors_name_file_and_line(tmp_path):
     assert err.value.key == "line 4"
     good = tmp_path / "good.csv"
     good.write_text("# a kick\ntime_ms,torque_kN*m\n0,0\n10,-5\n20,0\n")
-    event = TabulatedTorque.from_csv(good, "propeller")
+    event = TabulatedTorque.from_file(good, "propeller")
     run = event_response(_line(), event, duration=0.5)
     assert run.event == good.name or run.event.endswith("good.csv")
 
 
 def test_event_tables_check_keys_and_take_the_model_defaults():
     with pytest.raises(InputError, match='did you mean "rise_time"'):
-        event_from_table({"kind": "step", "at": "engine", "torque": 1.0, "rise_tim": 1.0},
-                         model=_line())
+        event_from_table(
+            {"kind": "step", "at": "engine", "torque": 1.0, "rise_tim": 1.0}, model=_line()
+        )
     with pytest.raises(InputError, match="no mass named"):
         event_from_table({"kind": "step", "at": "engin", "torque": 1.0}, model=_line())
     clutch = event_from_table(
-        {"kind": "clutch", "between": "engine,flywheel", "torque": "2 kN*m",
-         "rise_time": "0.2 s", "speeds": ["300 rpm", "0 rpm"]},
+        {
+            "kind": "clutch",
+            "between": "engine,flywheel",
+            "torque": "2 kN*m",
+            "rise_time": "0.2 s",
+            "speeds": ["300 rpm", "0 rpm"],
+        },
         model=_line(),
     )
     assert clutch.speeds == pytest.approx((300 / RPM, 0.0))
@@ -202,13 +209,22 @@ def test_genset_three_phase_short_circuit_against_its_coupling():
     session = _genset()
     model = session.loaded_model
     event = event_from_table(
-        {"kind": "short-circuit", "line_frequency": "50 Hz", "xd2": 0.12, "xd1": 0.25,
-         "xd": 2.2, "td2": "15 ms", "td1": "0.35 s", "ta": "40 ms"},
+        {
+            "kind": "short-circuit",
+            "line_frequency": "50 Hz",
+            "xd2": 0.12,
+            "xd1": 0.25,
+            "xd": 2.2,
+            "td2": "15 ms",
+            "td1": "0.35 s",
+            "ta": "40 ms",
+        },
         model=model,
     )
     assert event.rated_torque == pytest.approx(565e3 / (1500 / RPM))
-    run = event_response(model, event, speed=1500 / RPM, excitation=session.excitation(),
-                         orders=session.orders)
+    run = event_response(
+        model, event, speed=1500 / RPM, excitation=session.excitation(), orders=session.orders
+    )
     rows = {v.component: v for v in run.summary().verdicts}
     assert rows["elastic coupling"].limit == 16e3 and rows["elastic coupling"].passed
     assert run.largest(("coupling",))[0] > abs(run.initial_torque[7])

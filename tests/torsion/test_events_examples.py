@@ -32,8 +32,13 @@ def test_marine_clutch_engagement():
     against tau_T, the gear mesh's reversals."""
     model = _marine().loaded_model
     event = event_from_table(
-        {"kind": "clutch", "between": ["coupling secondary", "pinion"], "torque": "60 kN*m",
-         "rise_time": "0.5 s", "speeds": ["350 rpm", "0 rpm"]},
+        {
+            "kind": "clutch",
+            "between": ["coupling secondary", "pinion"],
+            "torque": "60 kN*m",
+            "rise_time": "0.5 s",
+            "speeds": ["350 rpm", "0 rpm"],
+        },
         model=model,
     )
     run = event_response(model, event, duration=2.0)
@@ -53,8 +58,13 @@ def test_marine_start_through_the_speed_range():
     session = _marine()
     model = session.loaded_model
     event = event_from_table(
-        {"kind": "start", "start_speed": "280 rpm", "end_speed": "560 rpm",
-         "ramp_time": "4 s", "governor_time": "0.3 s"},
+        {
+            "kind": "start",
+            "start_speed": "280 rpm",
+            "end_speed": "560 rpm",
+            "ramp_time": "4 s",
+            "governor_time": "0.3 s",
+        },
         model=model,
     )
     run = event_response(model, event, excitation=session.excitation(), orders=session.orders)
@@ -72,8 +82,9 @@ def test_marine_ice_impact_sequence():
     model = session.loaded_model
     event = event_from_table({"kind": "ice", "q_max": "120 kN*m", "case": 1}, model=model)
     assert event.blades == 4  # the propeller source's blade order
-    run = event_response(model, event, speed=750 / RPM, excitation=session.excitation(),
-                         orders=session.orders)
+    run = event_response(
+        model, event, speed=750 / RPM, excitation=session.excitation(), orders=session.orders
+    )
     assert run.speed[-1] < run.speed[0]
     rows = _rows(run)
     assert rows[("intermediate shaft", "tau_T")].worst > 0.0

@@ -34,9 +34,7 @@ from crankdyn.torsion.integrator import modal_system
 def test_thomson1993_step_torque_two_masses_twice_static():
     """Undamped free two-mass line, 100 N m at mass a from t = 0: peak 2 x 60 N m."""
     j1, j2, k, torque = 2.0, 3.0, 1e4, 100.0
-    line = TorsionModel(
-        masses=(Mass("a", j1), Mass("b", j2)), shafts=(Shaft(("a", "b"), k),)
-    )
+    line = TorsionModel(masses=(Mass("a", j1), Mass("b", j2)), shafts=(Shaft(("a", "b"), k),))
     run = event_response(line, StepTorque("a", torque), duration=0.5, max_samples=100_000)
     static = torque * j2 / (j1 + j2)  # 60 N m: the torque that accelerates b with the line
     omega = math.sqrt(k * (j1 + j2) / (j1 * j2))
@@ -104,12 +102,27 @@ def _clutch_reference(j, k, c, t_max, rise, w0, t_end, t_eval):
 
     meet.terminal, meet.direction = True, -1
     y0 = np.concatenate([np.zeros(n), w0])
-    first = solve_ivp(slip, (0.0, t_end), y0, method="DOP853", rtol=1e-10, atol=1e-12,
-                      events=meet, t_eval=t_eval[t_eval < 2.0])
+    first = solve_ivp(
+        slip,
+        (0.0, t_end),
+        y0,
+        method="DOP853",
+        rtol=1e-10,
+        atol=1e-12,
+        events=meet,
+        t_eval=t_eval[t_eval < 2.0],
+    )
     t_lock = float(first.t_events[0][0])
     y_lock = first.y_events[0][0]
-    first = solve_ivp(slip, (0.0, t_lock), y0, method="DOP853", rtol=1e-10, atol=1e-12,
-                      t_eval=t_eval[t_eval < t_lock])
+    first = solve_ivp(
+        slip,
+        (0.0, t_lock),
+        y0,
+        method="DOP853",
+        rtol=1e-10,
+        atol=1e-12,
+        t_eval=t_eval[t_eval < t_lock],
+    )
     delta = y_lock[1] - y_lock[2] - friction(t_lock) / k[1]
 
     def locked(t, y):
@@ -118,16 +131,27 @@ def _clutch_reference(j, k, c, t_max, rise, w0, t_end, t_eval):
         return np.concatenate([y[n:], (f - kl @ y[:n] - cl @ y[n:]) / j])
 
     after = t_eval[t_eval > t_lock]
-    second = solve_ivp(locked, (t_lock, t_end), y_lock, method="DOP853", rtol=1e-10,
-                       atol=1e-12, t_eval=after)
+    second = solve_ivp(
+        locked, (t_lock, t_end), y_lock, method="DOP853", rtol=1e-10, atol=1e-12, t_eval=after
+    )
     x1, x2 = first.y[:n].T, second.y[:n].T
     t1 = first.t
-    torque1 = np.stack([k[0] * (x1[:, 0] - x1[:, 1]),
-                        np.array([friction(t) for t in t1]),
-                        k[2] * (x1[:, 2] - x1[:, 3])], axis=1)
-    torque2 = np.stack([k[0] * (x2[:, 0] - x2[:, 1]),
-                        k[1] * (x2[:, 1] - x2[:, 2] - delta),
-                        k[2] * (x2[:, 2] - x2[:, 3])], axis=1)
+    torque1 = np.stack(
+        [
+            k[0] * (x1[:, 0] - x1[:, 1]),
+            np.array([friction(t) for t in t1]),
+            k[2] * (x1[:, 2] - x1[:, 3]),
+        ],
+        axis=1,
+    )
+    torque2 = np.stack(
+        [
+            k[0] * (x2[:, 0] - x2[:, 1]),
+            k[1] * (x2[:, 1] - x2[:, 2] - delta),
+            k[2] * (x2[:, 2] - x2[:, 3]),
+        ],
+        axis=1,
+    )
     return t_lock, np.concatenate([t1, second.t]), np.concatenate([torque1, torque2])
 
 
@@ -137,7 +161,9 @@ def test_clutch_engagement_against_solve_ivp():
     k = (2e5, 5e5, 1e5)
     c = (5.0, 2.0, 5.0)
     model = TorsionModel(
-        masses=tuple(Mass(name, v) for name, v in zip(("engine", "a", "b", "load"), j)),
+        masses=tuple(
+            Mass(name, v) for name, v in zip(("engine", "a", "b", "load"), j, strict=True)
+        ),
         shafts=(
             Shaft(("engine", "a"), k[0], damping=c[0]),
             Shaft(("a", "b"), k[1], damping=c[1]),

@@ -62,8 +62,16 @@ def test_two_phase_short_circuit_peak_factor_1_3():
     """Without decay the two-phase torque T_b / X''_d (sin x - sin 2x / 2) peaks at 1.29904."""
     t = np.linspace(0.0, 0.02, 200_001)
     got = short_circuit_torque(
-        t, phases=2, frequency=2 * math.pi * 50, base_torque=1000.0,
-        xd2=0.1, xd1=0.1, xd=0.1, td2=1e9, td1=1e9, ta=1e9,
+        t,
+        phases=2,
+        frequency=2 * math.pi * 50,
+        base_torque=1000.0,
+        xd2=0.1,
+        xd1=0.1,
+        xd=0.1,
+        td2=1e9,
+        td1=1e9,
+        ta=1e9,
     )
     assert np.max(got) / 10_000.0 == pytest.approx(3 * math.sqrt(3) / 4, abs=1e-9)
     assert t[np.argmax(got)] == pytest.approx(1 / 150, abs=1e-7)  # omega t = 2 pi / 3
@@ -78,13 +86,25 @@ def test_fsicr2017_design_ice_torque_by_hand():
     x 1.562070 = 52.8415 kN m."""
     hand = 20.7 * 0.7 * 0.964927 * 0.121976 * 1.424050 * 13.928809 * 1.562070
     assert hand == pytest.approx(52.8415, abs=5e-4)
-    q = design_ice_torque(diameter=4.0, hub_diameter=1.2, pitch=3.2, thickness=0.12,
-                          speed=4 * math.pi, ice_thickness=1.5)
+    q = design_ice_torque(
+        diameter=4.0,
+        hub_diameter=1.2,
+        pitch=3.2,
+        thickness=0.12,
+        speed=4 * math.pi,
+        ice_thickness=1.5,
+    )
     # the factors to 6 decimals: relative error at most 0.5e-6 sum(1 / factor) = 5.3e-6
     assert q / 1e3 == pytest.approx(hand, rel=6e-6)
     # a smaller propeller (D = 2.5 m <= 2.7 m): 10.9 (1 - 0.3) (0.8)^0.16 (t/D)^0.6 (nD)^0.17 D^3
-    small = design_ice_torque(diameter=2.5, hub_diameter=0.75, pitch=2.0, thickness=0.075,
-                              speed=4 * math.pi, ice_thickness=1.5)
+    small = design_ice_torque(
+        diameter=2.5,
+        hub_diameter=0.75,
+        pitch=2.0,
+        thickness=0.075,
+        speed=4 * math.pi,
+        ice_thickness=1.5,
+    )
     hand_small = 10.9 * 0.7 * 0.964927 * 0.121976 * 5.0**0.17 * 2.5**3
     assert small / 1e3 == pytest.approx(hand_small, rel=6e-6)
 

@@ -690,8 +690,14 @@ def transient_command(
         if speeds is not None or cycles is not None:
             raise InputError("an --event takes --speed and --duration", key="--event", value=event)
         return run_event(
-            _session(model, None, orders, speed=w), event, params, speed=w, duration=t_end,
-            out=out, plot_path=plot_path, force=force,
+            _session(model, None, orders, speed=w),
+            event,
+            params,
+            speed=w,
+            duration=t_end,
+            out=out,
+            plot_path=plot_path,
+            force=force,
         )
     if params:
         raise InputError("-p gives the keys of an --event", key="-p", value=params[0])

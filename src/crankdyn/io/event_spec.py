@@ -28,7 +28,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from crankdyn.errors import InputError, did_you_mean
+from crankdyn.errors import did_you_mean
 from crankdyn.io.schema import Table
 from crankdyn.io.units import parse_quantity
 from crankdyn.torsion.events import (
@@ -40,6 +40,7 @@ from crankdyn.torsion.events import (
     StepTorque,
     TabulatedTorque,
 )
+from crankdyn.torsion.sources import HarmonicSource
 
 if TYPE_CHECKING:
     from crankdyn.torsion.events import Event
@@ -69,7 +70,9 @@ def _mass(t: Table, key: str, model: TorsionModel | None, roles: tuple[str, ...]
     if t.has(key):
         name = t.string(key)
         if model is not None and name not in model.mass_names:
-            raise t.error(key, f"no mass named {name!r}{did_you_mean(name, model.mass_names)}", name)
+            raise t.error(
+                key, f"no mass named {name!r}{did_you_mean(name, model.mass_names)}", name
+            )
         return str(name)
     found = [] if model is None else [m.name for m in model.masses if m.role in roles]
     if len(found) != 1:
@@ -103,7 +106,7 @@ def _clutch(t: Table, model: TorsionModel | None) -> Event:
         _pair(t, "between"),
         t.quantity("torque", "torque", check="positive"),
         t.quantity("rise_time", "time", 0.0, check="nonnegative"),
-        speeds=tuple(t.quantity_list("speeds", "speed", length=2)),  # type: ignore[arg-type]
+        speeds=tuple(t.quantity_list("speeds", "speed", length=2)),
         start=t.quantity("start", "time", 0.0, check="nonnegative"),
         drive_torque=t.quantity("drive_torque", "torque", 0.0),
         drive_at=t.string("drive_at", None),
@@ -147,7 +150,7 @@ def _ice(t: Table, model: TorsionModel | None) -> Event:
         found = [
             round(float(min(s.orders)))
             for s in model.sources
-            if getattr(s, "at", None) == at and getattr(s, "kind", "") == "propeller"
+            if isinstance(s, HarmonicSource) and s.at == at and s.kind == "propeller"
         ]
         blades = found[0] if found else None
     if blades is None:
@@ -229,7 +232,7 @@ def _table(t: Table, model: TorsionModel | None) -> Event:
     at = _mass(t, "at", model, ())
     path = t.input_file("file", "torque history")
     common = _common(t)
-    return TabulatedTorque.from_csv(
+    return TabulatedTorque.from_file(
         path, at, name=common.get("name"), severity=common.get("severity", "normal")
     )
 

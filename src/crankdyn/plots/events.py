@@ -70,20 +70,35 @@ def plot_event(
         extra = {result.element_index(k): float(v) for k, v in limits.items()}
     panels = (
         (axes[0, 0], _most_loaded(result, ("shaft",), SHAFTS_DRAWN), "Shaft torque (kN·m)"),
-        (axes[1, 0], _most_loaded(result, ("coupling", "mesh", "gear"), 6), "Coupling and mesh torque (kN·m)"),
+        (
+            axes[1, 0],
+            _most_loaded(result, ("coupling", "mesh", "gear"), 6),
+            "Coupling and mesh torque (kN·m)",
+        ),
     )
     for ax, elements, label in panels:
         for i, e in enumerate(elements):
             colour, style = COLORS[i % len(COLORS)], STYLES[(i // len(COLORS)) % len(STYLES)]
-            ax.plot(t, result.torque[:, e] * 1e-3, color=colour, linestyle=style,
-                    linewidth=0.8, label=result.element_names[e])
+            ax.plot(
+                t,
+                result.torque[:, e] * 1e-3,
+                color=colour,
+                linestyle=style,
+                linewidth=0.8,
+                label=result.element_names[e],
+            )
             level = extra.get(e)
             if level is None and limits is not False and np.isfinite(result.limit_torque[e]):
                 level = float(result.limit_torque[e])
             if level is not None:
                 for sign in (1.0, -1.0):
-                    ax.axhline(sign * level * 1e-3, color=colour, linestyle=":", linewidth=1.0,
-                               label=f"limit {result.element_names[e]}" if sign > 0 else None)
+                    ax.axhline(
+                        sign * level * 1e-3,
+                        color=colour,
+                        linestyle=":",
+                        linewidth=1.0,
+                        label=f"limit {result.element_names[e]}" if sign > 0 else None,
+                    )
         ax.set_ylabel(label)
         if not elements:
             ax.text(0.5, 0.5, "none in the model", transform=ax.transAxes, ha="center")
@@ -95,9 +110,14 @@ def plot_event(
         if kind == "coupling":
             shown += [result.masses.index(n) for n in result.elements[e] if n in result.masses]
     for i, m in enumerate(dict.fromkeys(shown)):
-        ax.plot(t, result.mass_speed[:, m] * RPM, color=COLORS[i % len(COLORS)],
-                linestyle=STYLES[(i // len(COLORS)) % len(STYLES)], linewidth=0.9,
-                label=result.masses[m])
+        ax.plot(
+            t,
+            result.mass_speed[:, m] * RPM,
+            color=COLORS[i % len(COLORS)],
+            linestyle=STYLES[(i // len(COLORS)) % len(STYLES)],
+            linewidth=0.9,
+            label=result.masses[m],
+        )
     ax.set_ylabel("Speed (rpm)")
     ax.set_xlabel("Time (s)")
     ax.set_xlim(float(t[0]), float(t[-1]))

@@ -15,7 +15,6 @@ from crankdyn.session.core import SessionCore
 from crankdyn.torsion.model import TorsionModel
 
 if TYPE_CHECKING:
-
     from crankdyn.measure.orders import OrderSpectrum, OrderTracking
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.damped import DampedModalResult

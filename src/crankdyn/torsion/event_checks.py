@@ -284,8 +284,12 @@ def model_verdicts(result: EventResult, model: TorsionModel) -> list[Verdict]:
                 if set(shaft.between) == ends or set(shaft.segment_of or ()) == ends:
                     whole = shaft.segment_of or shaft.between
                     name = shaft.name or f"{whole[0]} - {whole[1]}"
-                    key = (name, limit.strength_used, limit.design_factor,
-                           shaft.geometry.outer_diameter)
+                    key = (
+                        name,
+                        limit.strength_used,
+                        limit.design_factor,
+                        shaft.geometry.outer_diameter,
+                    )
                     groups.setdefault(key, []).append(e)
         for (name, strength, ck, diameter), idx in groups.items():
             e_peak = max(idx, key=result.vibratory_peak)

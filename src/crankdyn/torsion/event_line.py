@@ -303,10 +303,10 @@ def line_of(
         hysteretic_frequency = float(elastic[0]) if elastic.size else 1.0
     wh = float(hysteretic_frequency)
     r_el = np.abs(system.element_ratio)
-    damping = []
-    names = []
-    kinds = []
-    modulus = []
+    damping: list[float] = []
+    names: list[str] = []
+    kinds: list[str] = []
+    modulus: list[float] = []
     for s in model.shafts:
         r2 = float(r_el[len(damping)]) ** 2
         k_ref = float(system.element_stiffness[len(damping)])
@@ -385,7 +385,12 @@ class GearMesh:
     elements: tuple[tuple[int, float], ...]
 
 
-def _gear_meshes(model: TorsionModel, line_labels: Sequence[tuple[str, str]], mass_dof: NDArray[np.int_], ratio: NDArray[np.float64]) -> tuple[GearMesh, ...]:
+def _gear_meshes(
+    model: TorsionModel,
+    line_labels: Sequence[tuple[str, str]],
+    mass_dof: NDArray[np.int_],
+    ratio: NDArray[np.float64],
+) -> tuple[GearMesh, ...]:
     """The rigid gear meshes of a model (joints of bolted masses left out)."""
     out = []
     for g in model.gears:
@@ -400,7 +405,14 @@ def _gear_meshes(model: TorsionModel, line_labels: Sequence[tuple[str, str]], ma
         )
         name = g.name or f"{g.between[0]} - {wheel}"
         out.append(
-            GearMesh(name, (g.between[0], wheel), int(mass_dof[i]), float(model.masses[i].inertia), float(abs(ratio[i])), elements)
+            GearMesh(
+                name,
+                (g.between[0], wheel),
+                int(mass_dof[i]),
+                float(model.masses[i].inertia),
+                float(abs(ratio[i])),
+                elements,
+            )
         )
     return tuple(out)
 

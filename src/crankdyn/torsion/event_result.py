@@ -24,9 +24,7 @@ __all__ = ["EventResult", "time_above"]
 HZ = 1.0 / (2.0 * math.pi)
 
 
-def time_above(
-    time: NDArray[np.float64], values: NDArray[np.float64], level: float
-) -> float:
+def time_above(time: NDArray[np.float64], values: NDArray[np.float64], level: float) -> float:
     """The time (s) a sampled quantity spends above a level, its crossings interpolated
     linearly between the samples.
 
@@ -76,8 +74,9 @@ class EventResult(Result):
     on the exact solution between the steps (:mod:`crankdyn.torsion.event_run`), whatever was
     kept; so do those of the vibratory torque (``max_vibratory``, ``min_vibratory``): the
     torque less the quasi-static torque of the mean torques (the engines' and the loads',
-    without the event's), the quantity IACS UR M68's limits bound. ``element_kinds`` says what every element is (``"shaft"``, ``"coupling"``,
-    ``"mesh"``, ``"damper"``), ``section_modulus`` its W_p where it has a diameter (NaN
+    without the event's), the quantity IACS UR M68's limits bound. ``element_kinds`` says
+    what every element is (``"shaft"``, ``"coupling"``, ``"mesh"``, ``"damper"``, ``"gear"``
+    for a rigid gear mesh), ``section_modulus`` its W_p where it has a diameter (NaN
     otherwise), ``limit_torque`` a coupling's T_Kmax from the model (NaN otherwise).
     """
 
@@ -111,12 +110,8 @@ class EventResult(Result):
     source: str = scalar("source", "Source of the event", "", summary=False)
     masses: tuple[str, ...] = scalar("masses", "Masses", "", summary=False)
     elements: tuple[tuple[str, str], ...] = scalar("elements", "Elements", "", summary=False)
-    element_names: tuple[str, ...] = scalar(
-        "element_names", "Element names", "", summary=False
-    )
-    element_kinds: tuple[str, ...] = scalar(
-        "element_kinds", "Element kinds", "", summary=False
-    )
+    element_names: tuple[str, ...] = scalar("element_names", "Element names", "", summary=False)
+    element_kinds: tuple[str, ...] = scalar("element_kinds", "Element kinds", "", summary=False)
     duration: float = scalar("duration_s", "Duration", "s")
     step: float = scalar("step_s", "Time step", "s")
     step_rule: str = scalar("step_rule", "Step rule", "", summary=False)
@@ -128,9 +123,7 @@ class EventResult(Result):
     switches: tuple[str, ...] = scalar("switches", "Clutch switches", "", summary=False)
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     model_name: str = scalar("model", "Model", "", summary=False)
-    verdicts: tuple[Verdict, ...] = scalar(
-        "verdicts", "Verdicts", "", summary=False, default=()
-    )
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
 
     FIGURES = (
         derived(

@@ -53,7 +53,7 @@ from crankdyn.errors import InputError
 from crankdyn.roots import brentq
 from crankdyn.torsion.event_line import Line, Profile, constant_profile, line_of, speed_profile
 from crankdyn.torsion.events import ClutchEngagement, SpeedChange
-from crankdyn.torsion.integrator import ModalState, ModalSystem, free_bodies, modal_system
+from crankdyn.torsion.integrator import ModalState, ModalSystem, modal_system
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
@@ -88,9 +88,7 @@ class _Mode:
     system: ModalSystem
     extra: Forcing | None = None
     offset: NDArray[np.float64] | None = None  # (E,) torque subtracted from k twist / |r|
-    friction: tuple[int, float, Callable[[NDArray[np.float64]], NDArray[np.float64]]] | None = (
-        None
-    )
+    friction: tuple[int, float, Callable[[NDArray[np.float64]], NDArray[np.float64]]] | None = None
     watch: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any] | None = (
         None
     )
@@ -397,7 +395,12 @@ def _refine(line: Line, rec: _Recorder) -> None:
                 vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
                 s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
                 st = w.mode.system.within(
-                    w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step,
+                    w.states[s],
+                    w.u[s],
+                    w.u[s + 1],
+                    w.g[s],
+                    w.g[s + 1],
+                    w.step,
                     [vertex - w.t0 - s * w.step],
                 )
                 x, v = w.mode.system.to_physical(st)
@@ -474,23 +477,23 @@ def _crossing(
     """The instant in step (j - 1 -> j) where the mode's watched value reaches 0, and the
     angles and rates there (Brent's method on the exact solution within the step)."""
     system = mode.system
-    assert mode.watch is not None
+    watch = mode.watch
+    assert watch is not None
 
     def value(tau: float) -> float:
         st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
         x, v = system.to_physical(st)
-        return float(np.asarray(mode.watch(np.array([times[j - 1] + tau]), x, v))[0])
+        return float(np.asarray(watch(np.array([times[j - 1] + tau]), x, v))[0])
 
-    if value(0.0) >= 0.0:
-        tau = 0.0
-    else:
-        tau = brentq(value, 0.0, h, xtol=1e-15 + 1e-12 * h)
+    tau = 0.0 if value(0.0) >= 0.0 else brentq(value, 0.0, h, xtol=1e-15 + 1e-12 * h)
     st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
     x, v = system.to_physical(st)
     return float(times[j - 1] + tau), x[0], v[0]
 
 
-def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, final: bool):
+def _segment(
+    run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, final: bool
+) -> tuple[float, _Mode, ModalState]:
     """Integrate from t to stop in ``mode``; returns (t, mode, state) where it ended (a switch
     ends a segment early)."""
     line, system = run.line, mode.system
@@ -499,7 +502,7 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
     done = 0
     while done < count:
         n = min(run.block, count - done)
-        times = t + h * np.arange(n + 1)
+        times = np.asarray(t + h * np.arange(n + 1), dtype=np.float64)
         last = done + n == count
         if last:
             times[-1] = stop
@@ -518,6 +521,7 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
         if mode.watch is not None:
             found = np.flatnonzero(np.asarray(mode.watch(tk, x, v)) >= 0.0)
             hit = int(found[0]) + 1 if found.size else None
+
         def series(tt: Any, xx: Any, vv: Any, force: Forcing = force) -> Any:
             return _series(line, mode, tt, xx, vv, force, run.mean)
 
@@ -533,7 +537,11 @@ def _segment(run: _Run, mode: _Mode, t: float, stop: float, state: ModalState, f
         ts, xs, vs = _crossing(run, mode, prev, times, u, g, hit, h)
         tsa = np.array([ts])
         run.recorder.add(
-            tsa, xs[None], vs[None], series(tsa, xs[None], vs[None]), lambda _k: None,
+            tsa,
+            xs[None],
+            vs[None],
+            series(tsa, xs[None], vs[None]),
+            lambda _k: None,
             keep_last=True,
         )
         assert mode.switch is not None
@@ -623,7 +631,9 @@ def _step(
             w = w[w <= max_frequency]
         top = max(top, float(np.max(w, initial=0.0)))
     h_mode = 2.0 * math.pi / (MODE_POINTS * top) if top > 0.0 else math.inf
-    h_force = 2.0 * math.pi / (force_points * forcing_frequency) if forcing_frequency > 0 else math.inf
+    h_force = (
+        2.0 * math.pi / (force_points * forcing_frequency) if forcing_frequency > 0 else math.inf
+    )
     h = min(h_mode, h_force, duration / 200.0)
     rule = (
         f"h = {h:.4g} s: the smallest of T/{MODE_POINTS} of the highest mode of interest "
@@ -775,9 +785,7 @@ def event_response(
     n_steps = t_end / step + cuts.size + 1
     stride = max(1, math.ceil(n_steps / (int(max_samples) - 1)))
     n_el = line.element_stiffness.size
-    per_step = 8 * (
-        4 * line.size + 4 * systems[0].eigenvalues.size + 3 * n_el + line.mass_dof.size
-    )
+    per_step = 8 * (4 * line.size + 4 * systems[0].eigenvalues.size + 3 * n_el + line.mass_dof.size)
     if harmonics is not None:
         per_step += 16 * harmonics.orders.size
     block = int(np.clip(BLOCK_BYTES // max(per_step, 1), 64, 16384))
@@ -788,7 +796,17 @@ def event_response(
     rows = int(max_samples) + cuts.size + len(run.switches) + 2
     kept = 8 * rows * (line.mass_dof.size + n_el + len(line.gears) + 2)
     result = _result(
-        EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
+        EventResult,
+        model,
+        line,
+        event,
+        recorder,
+        run,
+        t_end,
+        step,
+        top,
+        rule,
+        stride,
         float(kept + block * per_step),
     )
     from crankdyn.torsion.event_checks import model_verdicts

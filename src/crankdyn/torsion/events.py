@@ -8,7 +8,7 @@ event_response` integrates the line's response (:mod:`crankdyn.torsion.integrato
 
 - :class:`StepTorque`: a torque applied suddenly (or rising linearly) at a mass;
 - :class:`TabulatedTorque`: a torque-time history (a CSV file: :meth:`TabulatedTorque.
-  from_csv`);
+  from_file`);
 - :class:`ShortCircuit`: a generator's two- or three-phase short circuit
   (:mod:`crankdyn.torsion.short_circuit`);
 - :class:`IceImpact`: a propeller's ice milling sequence (Finnish-Swedish Ice Class Rules 2017,
@@ -30,7 +30,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -99,35 +99,6 @@ def _name(value: object) -> str:
     return value
 
 
-class TorqueEvent(Protocol):
-    """What :func:`crankdyn.torsion.event_run.event_response` asks of a torque event."""
-
-    name: str
-    at: str
-    severity: str
-    source: str
-
-    def torque(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
-        """The torque at ``at`` (N m, own sense) at times ``t`` (s)."""
-        ...
-
-    def breakpoints(self) -> tuple[float, ...]:
-        """Times (s) where the torque jumps or kinks (the integration's samples fall there)."""
-        ...
-
-    def frequency(self) -> float:
-        """The highest angular frequency the torque holds (rad/s), 0 for none."""
-        ...
-
-    def default_duration(self) -> float | None:
-        """A duration (s) that covers the event, or None (the run chooses)."""
-        ...
-
-    def prepared(self, speed: float) -> TorqueEvent:
-        """This event at the nominal speed (rad/s, own sense) of its mass."""
-        ...
-
-
 @dataclass(frozen=True)
 class StepTorque:
     """A torque applied suddenly at ``start`` (or rising linearly over ``rise_time``) and held.
@@ -150,6 +121,8 @@ class StepTorque:
         The event's name (the verdicts' condition).
     severity : str
         ``"normal"`` or ``"exceptional"`` (:data:`SEVERITIES`).
+    source : str
+        Where the event comes from, for reports.
 
     Examples
     --------
@@ -315,7 +288,7 @@ class TabulatedTorque:
         _severity(self.severity)
 
     @classmethod
-    def from_csv(
+    def from_file(
         cls, path: str | Path, at: str, *, name: str | None = None, severity: str = "normal"
     ) -> TabulatedTorque:
         """The history in a CSV file with a time and a torque column, units in the header
@@ -454,6 +427,8 @@ class ShortCircuit:
         The event's name; default "two-phase short circuit" or "three-phase short circuit".
     severity : str
         Default ``"exceptional"``.
+    source : str
+        The event's source, for reports (the standards above).
 
     Examples
     --------
@@ -614,6 +589,8 @@ class IceImpact:
         The event's name; default "ice impact, case <case>".
     severity : str
         Default ``"normal"``.
+    source : str
+        The event's source, for reports (the rules above).
 
     Examples
     --------
@@ -745,7 +722,11 @@ class IceImpact:
         """
         angle = self._speed() * (np.asarray(t, dtype=float) - self.start)
         return -ice_torque(
-            angle, q_max=self.q_max, case=self.case, blades=self.blades, revolutions=self.revolutions
+            angle,
+            q_max=self.q_max,
+            case=self.case,
+            blades=self.blades,
+            revolutions=self.revolutions,
         )
 
     def breakpoints(self) -> tuple[float, ...]:
@@ -846,6 +827,8 @@ class ClutchEngagement:
         The event's name.
     severity : str
         Default ``"normal"``.
+    source : str
+        The event's source, for reports (VDI 2241).
 
     Examples
     --------
@@ -960,6 +943,8 @@ class SpeedChange:
         The event's name; default the kind.
     severity : str or None
         Default ``"exceptional"`` for an emergency stop, else ``"normal"``.
+    source : str
+        The event's source, for reports.
 
     Examples
     --------
@@ -1104,6 +1089,10 @@ class SpeedChange:
         return tuple(sorted({self.hold, self.hold + self.ramp_time}))
 
 
+TorqueEvent = StepTorque | TabulatedTorque | ShortCircuit | IceImpact
+"""An event that is a torque at one mass (:func:`crankdyn.torsion.event_run.event_response`
+asks of it ``torque(t)``, ``breakpoints()``, ``frequency()``, ``default_duration()`` and
+``prepared(speed)``)."""
+
 Event = StepTorque | TabulatedTorque | ShortCircuit | IceImpact | ClutchEngagement | SpeedChange
 """Any event of the library."""
-

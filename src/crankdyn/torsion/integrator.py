@@ -111,9 +111,7 @@ SCAN_BLOCK = 16
 """Samples per block of :func:`linear_recurrence`."""
 
 
-def linear_recurrence(
-    a: ArrayLike, c: ArrayLike, start: ArrayLike
-) -> NDArray[np.complex128]:
+def linear_recurrence(a: ArrayLike, c: ArrayLike, start: ArrayLike) -> NDArray[np.complex128]:
     """w_k = a w_(k-1) + c_k for k = 1..L, w_0 = ``start``, for many coordinates at once.
 
     A blocked scan: within blocks of B = :data:`SCAN_BLOCK` samples the sums
@@ -245,7 +243,13 @@ class ModalState:
     rd: NDArray[np.float64]
 
     def last(self) -> ModalState:
-        """The state at the last of many instants (this one for a single instant)."""
+        """The state at the last of many instants (this one for a single instant).
+
+        Returns
+        -------
+        ModalState
+            At one instant.
+        """
         if self.r.ndim == 1:
             return self
         return ModalState(self.w[-1], self.r[-1], self.rd[-1])
@@ -284,6 +288,8 @@ class ModalSystem:
     damping : numpy.ndarray
         (n, n) the C integrated (absolute damping projected off the free bodies by default)
         (N m s/rad).
+    inverse : numpy.ndarray
+        (m, 2p) the carried rows of V^-1 (the modal state of (q, q')).
     """
 
     inertia: NDArray[np.float64]
@@ -298,7 +304,7 @@ class ModalSystem:
     modal_damping: NDArray[np.float64]
     stiffness: NDArray[np.float64]
     damping: NDArray[np.float64]
-    _inverse: NDArray[np.complex128]
+    inverse: NDArray[np.complex128]
 
     @property
     def size(self) -> int:
@@ -321,11 +327,9 @@ class ModalSystem:
         mx = self.inertia * np.asarray(x, dtype=float)
         mv = self.inertia * np.asarray(v, dtype=float)
         z = np.concatenate([self.modes.T @ mx, self.modes.T @ mv])
-        return ModalState(self._inverse @ z, self.bodies.T @ mx, self.bodies.T @ mv)
+        return ModalState(self.inverse @ z, self.bodies.T @ mx, self.bodies.T @ mv)
 
-    def to_physical(
-        self, state: ModalState
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def to_physical(self, state: ModalState) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Angles (rad) and rates (rad/s) of a modal state, shape (..., n) each.
 
         Parameters
@@ -364,9 +368,7 @@ class ModalSystem:
         inverse = np.where(omega2 > 0.0, 1.0 / np.where(omega2 > 0.0, omega2, 1.0), 0.0)
         return ((f @ self.modes) * inverse) @ self.modes.T
 
-    def harmonic(
-        self, forcing: ArrayLike, omega: ArrayLike
-    ) -> NDArray[np.complex128]:
+    def harmonic(self, forcing: ArrayLike, omega: ArrayLike) -> NDArray[np.complex128]:
         """Steady-state amplitudes X of M x'' + C x' + K x = Re(F e^{i omega t}), for every
         frequency: (K - omega^2 M + i omega C) X = F solved in the modal coordinates (the same
         damping as the integration's).
@@ -632,5 +634,5 @@ def modal_system(
         modal_damping=d,
         stiffness=k,
         damping=c,
-        _inverse=inv[sel],
+        inverse=inv[sel],
     )

@@ -176,9 +176,7 @@ def short_circuit_torque(
     tb = _positive("rated_torque", base_torque)
     x2, x1, x0 = (_positive(k, v) for k, v in (("xd2", xd2), ("xd1", xd1), ("xd", xd)))
     if not x2 <= x1 <= x0:
-        raise InputError(
-            "expected X''d <= X'd <= Xd", key="xd2", value=f"{x2:g}, {x1:g}, {x0:g}"
-        )
+        raise InputError("expected X''d <= X'd <= Xd", key="xd2", value=f"{x2:g}, {x1:g}, {x0:g}")
     t2_, t1_, ta_ = (_positive(k, v) for k, v in (("td2", td2), ("td1", td1), ("ta", ta)))
     e0 = _positive("voltage", voltage)
     t = np.asarray(t, dtype=float)
@@ -191,7 +189,8 @@ def short_circuit_torque(
     else:
         a = float(angle)
         out = scale * (
-            env * dc * math.cos(a) * np.sin(w * tt + a) - 0.5 * env * env * np.sin(2.0 * (w * tt + a))
+            env * dc * math.cos(a) * np.sin(w * tt + a)
+            - 0.5 * env * env * np.sin(2.0 * (w * tt + a))
         )
     return np.where(t < 0.0, 0.0, out)
 

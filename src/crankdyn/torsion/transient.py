@@ -349,7 +349,7 @@ def _run_speeds(
 
 def _integrate(
     system: LinearSystem,
-    forcing: NDArray[np.complexfloating],
+    forcing: NDArray[np.complex128],
     grid: NDArray[np.float64],
     orders: NDArray[np.float64],
     speeds: tuple[float, float],
@@ -388,9 +388,7 @@ def _integrate(
         )
     from scipy.integrate import solve_ivp  # imported here: keeps the start-up light
 
-    sol = solve_ivp(
-        rhs, (0.0, duration), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol
-    )
+    sol = solve_ivp(rhs, (0.0, duration), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
     if not sol.success:  # pragma: no cover - scipy's own failure
         raise RuntimeError(sol.message)
     return sol.t, sol.y[:n].T
