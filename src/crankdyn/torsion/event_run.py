@@ -731,39 +731,9 @@ def event_response(
         profile = speed_profile(line, event, duration)
     else:
         profile = constant_profile(line, w0, loads=mean_torques)
-    torque_events: list[tuple[int, Any]] = []
-    w_start = float(profile.speed(np.array([0.0]))[0])
-    body_speed: Callable[[NDArray[np.int_]], float] = lambda _dofs: w_start  # noqa: E731
-    if isinstance(event, ClutchEngagement):
-        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping)
-        a, b = (int(v) for v in line.element_dofs[clutch_e])
-        r = float(line.element_ratio[clutch_e])
-
-        def body_speed(dofs: NDArray[np.int_]) -> float:
-            if a in dofs:
-                return event.speeds[0] / r
-            if b in dofs:
-                return event.speeds[1] / r
-            return w0
-
-        if event.drive_torque != 0.0:
-            from crankdyn.torsion.events import StepTorque
-
-            at = event.drive_at or next(
-                (m.name for m in model.masses if m.cylinders), model.masses[0].name
-            )
-            torque_events.append((line.mass(at, "drive_at"), StepTorque(at, event.drive_torque)))
-        systems = [mode.system, lock_system]
-    else:
-        system = modal_system(
-            line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
-        )
-        mode = _Mode("line", system)
-        systems = [system]
-        if not isinstance(event, SpeedChange):
-            index = line.mass(event.at)
-            prepared = event.prepared(float(line.mass_ratio[index]) * w0)
-            torque_events.append((index, prepared))
+    mode, systems, torque_events, body_speed = _setup(
+        model, line, event, w0, profile, absolute_damping
+    )
     harmonics = (
         _harmonics(model, line, excitation, orders if orders is not None else [], profile)
         if excitation is not None
@@ -786,8 +756,7 @@ def event_response(
     stride = max(1, math.ceil(n_steps / (int(max_samples) - 1)))
     n_el = line.element_stiffness.size
     per_step = 8 * (4 * line.size + 4 * systems[0].eigenvalues.size + 3 * n_el + line.mass_dof.size)
-    if harmonics is not None:
-        per_step += 16 * harmonics.orders.size
+    per_step += 0 if harmonics is None else 16 * harmonics.orders.size
     block = int(np.clip(BLOCK_BYTES // max(per_step, 1), 64, 16384))
     recorder = _Recorder(line, stride, frame)
     run = _Run(line, forcing, mean_part, t_end, step, cuts, block, recorder)
@@ -796,22 +765,57 @@ def event_response(
     rows = int(max_samples) + cuts.size + len(run.switches) + 2
     kept = 8 * rows * (line.mass_dof.size + n_el + len(line.gears) + 2)
     result = _result(
-        EventResult,
-        model,
-        line,
-        event,
-        recorder,
-        run,
-        t_end,
-        step,
-        top,
-        rule,
-        stride,
+        EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
         float(kept + block * per_step),
-    )
+    )  # fmt: skip
     from crankdyn.torsion.event_checks import model_verdicts
 
     return replace(result, verdicts=tuple(model_verdicts(result, model)))
+
+
+def _setup(
+    model: TorsionModel,
+    line: Line,
+    event: Any,
+    w0: float,
+    profile: Profile,
+    absolute_damping: str,
+) -> tuple[_Mode, list[ModalSystem], list[tuple[int, Any]], Callable[[NDArray[np.int_]], float]]:
+    """(the first mode, every system the run may be in, the torque events at their masses, the
+    free bodies' starting speeds) of an event."""
+    torque_events: list[tuple[int, Any]] = []
+    w_start = float(profile.speed(np.array([0.0]))[0])
+
+    def body_speed(dofs: NDArray[np.int_]) -> float:
+        return w_start
+
+    if isinstance(event, ClutchEngagement):
+        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping)
+        a, b = (int(v) for v in line.element_dofs[clutch_e])
+        r = float(line.element_ratio[clutch_e])
+
+        def halves(dofs: NDArray[np.int_]) -> float:
+            if a in dofs:
+                return event.speeds[0] / r
+            if b in dofs:
+                return event.speeds[1] / r
+            return w0
+
+        if event.drive_torque != 0.0:
+            from crankdyn.torsion.events import StepTorque
+
+            at = event.drive_at or next(
+                (m.name for m in model.masses if m.cylinders), model.masses[0].name
+            )
+            torque_events.append((line.mass(at, "drive_at"), StepTorque(at, event.drive_torque)))
+        return mode, [mode.system, lock_system], torque_events, halves
+    system = modal_system(
+        line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
+    )
+    if not isinstance(event, SpeedChange):
+        index = line.mass(event.at)
+        torque_events.append((index, event.prepared(float(line.mass_ratio[index]) * w0)))
+    return _Mode("line", system), [system], torque_events, body_speed
 
 
 def _cuts(
