@@ -26,7 +26,7 @@ SHARED = {
 }
 """The shared options and their one metavar (docs/cli.md, Vocabulary)."""
 
-METAVAR = re.compile(r"^[A-Z][A-Z0-9_]*(,[A-Z]+)?$|^LOW:HIGH\[:STEP\]$|^RAD/S2?$")
+METAVAR = re.compile(r"^[A-Z][A-Z0-9_]*(,[A-Z]+)?$|^LOW:HIGH\[:STEP\]$|^RAD/S2?$|^KEY=VALUE$")
 RETIRED = {"--range", "--run-up", "--torsion-orders", "--out", "--crank-speed"}
 
 WITH_FIGURES = {

@@ -515,6 +515,23 @@ def excitation_command(
     help="Working cycles at constant speed (default 30).",
 )
 @orders_option(_ORDERS_HELP)
+@click.option(
+    "--event",
+    "event",
+    default=None,
+    metavar="KIND",
+    help="A transient event instead: clutch, short-circuit, ice, start, stop, emergency-stop, "
+    "ramp, step or table (its keys with -p; crankdyn docs events).",
+)
+@click.option(
+    "-p",
+    "--param",
+    "params",
+    multiple=True,
+    metavar="KEY=VALUE",
+    help='A key of the --event, e.g. -p "torque=60 kN*m" (bare speeds in rpm; lists '
+    "comma-separated); repeat for each key.",
+)
 @plot_option("Write the torque of the most loaded shaft against time (.png, .svg or .pdf).")
 @output_options
 def transient_command(
@@ -525,19 +542,38 @@ def transient_command(
     duration: str | None,
     cycles: float | None,
     orders: str | None,
+    event: str | None,
+    params: tuple[str, ...],
     plot_path: str | None,
     fmt: str,
     output_path: str | None,
     force: bool,
 ) -> int:
     """Time-domain response of MODEL_OR_ENGINE to the engine torque (scipy's solve_ivp), at a
-    constant speed or in a run-up."""
+    constant speed or in a run-up; or through a transient event (--event)."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
     speeds = merge_alias(speeds, run_up, "--speeds", "--run-up")
     w = parse_speed(speed)
     t_end = option_quantity(duration, "time", "--duration", "s")
+    if event is not None:
+        from crankdyn.cli.torsion_events import run_event
+
+        if speeds is not None or cycles is not None:
+            raise InputError("an --event takes --speed and --duration", key="--event", value=event)
+        return run_event(
+            _session(model, None, orders, speed=w),
+            event,
+            params,
+            speed=w,
+            duration=t_end,
+            out=out,
+            plot_path=plot_path,
+            force=force,
+        )
+    if params:
+        raise InputError("-p gives the keys of an --event", key="-p", value=params[0])
     if w is not None and speeds is not None:
         raise InputError("give --speed or --speeds START:END, not both", key="--speed", value=speed)
     ramp = None

@@ -39,7 +39,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.torsion.excitation import interp_complex
-from crankdyn.torsion.solvers import linear_system
+from crankdyn.torsion.solvers import LinearSystem, linear_system
 from crankdyn.torsion.sources import assemble_forcing, check_model_orders
 
 if TYPE_CHECKING:
@@ -274,8 +274,56 @@ def transient_response(
     >>> round(amplitude / (100.0 / abs(1e6 - 900.0**2 + 900j * 20.0)), 5)
     1.0
     """
-    from crankdyn.torsion.modal import natural_modes
+    w0, w1, duration, cycle_angle = _run_speeds(excitation, speed, run_up, duration, cycles)
+    if start not in ("rest", "steady"):
+        raise InputError("expected rest or steady", key="start", value=start)
+    orders = check_model_orders(model, excitation, orders)
+    system = linear_system(model, model.dampers if dampers is None else dampers)
+    if hysteretic_frequency is None:
+        from crankdyn.torsion.modal import natural_modes
 
+        modes = natural_modes(model)
+        elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
+        hysteretic_frequency = float(elastic[0]) if elastic.size else 1.0
+    grid = np.array([w0]) if w0 == w1 else np.linspace(min(w0, w1), max(w0, w1), 201)
+    # the cylinders' and the sources' harmonic torques, as in the forced response
+    forcing, _notes = assemble_forcing(model, system, excitation, grid, orders)  # (G, Q, n)
+    mean = 0.5 * (w0 + w1)
+    count = max(math.ceil(duration * mean / cycle_angle * samples_per_cycle), 2)
+    t, theta = _integrate(
+        system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
+        np.linspace(0.0, duration, count + 1), method, rtol, atol,
+    )  # fmt: skip
+    rate = (w1 - w0) / duration
+    angles = theta[:, system.mass_dof] * system.mass_ratio[None, :]
+    ends = system.element_dofs
+    ta = np.where(ends[:, 0] >= 0, theta[:, np.maximum(ends[:, 0], 0)], 0.0)
+    tb = np.where(ends[:, 1] >= 0, theta[:, np.maximum(ends[:, 1], 0)], 0.0)
+    torque = (system.element_stiffness / system.element_ratio) * (tb - ta)
+    return TransientResult(
+        time=freeze(t),
+        speed=freeze(w0 + rate * t),
+        crank_angle=freeze(w0 * t + 0.5 * rate * t * t),
+        angle=freeze(angles),
+        shaft_torque=freeze(torque),
+        masses=system.mass_names,
+        shafts=system.element_labels,
+        orders=freeze(orders),
+        hysteretic_frequency=float(hysteretic_frequency),
+        method=method,
+        model_name=model.name,
+    )
+
+
+def _run_speeds(
+    excitation: Excitation,
+    speed: float | None,
+    run_up: tuple[float, float] | None,
+    duration: float | None,
+    cycles: float | None,
+) -> tuple[float, float, float, float]:
+    """(start speed, end speed, duration, cycle angle) of a run, checked (one-line errors as
+    :func:`transient_response` lists them)."""
     if (speed is None) == (run_up is None):
         raise InputError("give a constant speed or a run-up (start and end speeds)", key="speed")
     cycle_angle = 4.0 * math.pi if excitation.cycle == "four-stroke" else 2.0 * math.pi
@@ -296,33 +344,37 @@ def transient_response(
             raise InputError("a run-up needs its duration", key="duration")
     if not (math.isfinite(duration) and duration > 0.0):
         raise InputError("the duration must be positive", key="duration", value=duration)
-    orders = check_model_orders(model, excitation, orders)
-    if dampers is None:
-        dampers = model.dampers
-    system = linear_system(model, dampers)
-    if hysteretic_frequency is None:
-        modes = natural_modes(model)
-        elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
-        hysteretic_frequency = float(elastic[0]) if elastic.size else 1.0
-    n = system.size
-    grid = np.array([w0]) if w0 == w1 else np.linspace(min(w0, w1), max(w0, w1), 201)
-    # the cylinders' and the sources' harmonic torques, as in the forced response
-    forcing, _notes = assemble_forcing(model, system, excitation, grid, orders)  # (G, Q, n)
+    return w0, w1, float(duration), cycle_angle
 
+
+def _integrate(
+    system: LinearSystem,
+    forcing: NDArray[np.complex128],
+    grid: NDArray[np.float64],
+    orders: NDArray[np.float64],
+    speeds: tuple[float, float],
+    duration: float,
+    hysteretic_frequency: float,
+    start: str,
+    t_eval: NDArray[np.float64],
+    method: str,
+    rtol: float,
+    atol: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """(times, angles (T, n)) of the first-order system y' = A y + B T(t) integrated by
+    ``solve_ivp`` from rest or the steady state (module docstring)."""
+    n = system.size
+    w0, w1 = speeds
     mass = system.inertia
     damping = system.damping + system.hysteretic / hysteretic_frequency
-    stiffness = system.stiffness
     inv_m = 1.0 / mass
-    a_lower = np.hstack([-inv_m[:, None] * stiffness, -inv_m[:, None] * damping])
+    a_lower = np.hstack([-inv_m[:, None] * system.stiffness, -inv_m[:, None] * damping])
     rate = (w1 - w0) / duration
-
-    def crank(t: NDArray[np.float64] | float) -> NDArray[np.float64] | float:
-        return w0 * t + 0.5 * rate * t * t
 
     def rhs(t: float, y: NDArray[np.float64]) -> NDArray[np.float64]:
         w = w0 + rate * t
         f = forcing[0] if grid.size == 1 else interp_complex(np.array([w]), grid, forcing)[0]
-        torque = np.real(np.exp(1j * orders * crank(t)) @ f)
+        torque = np.real(np.exp(1j * orders * (w0 * t + 0.5 * rate * t * t)) @ f)
         acc = a_lower @ y + inv_m * torque
         return np.concatenate([y[n:], acc])
 
@@ -334,40 +386,9 @@ def transient_response(
         y0 = np.concatenate(
             [np.real(np.sum(x0, axis=0)), np.real(np.sum(1j * omega0[:, None] * x0, axis=0))]
         )
-    elif start != "rest":
-        raise InputError("expected rest or steady", key="start", value=start)
-    mean = 0.5 * (w0 + w1)
-    count = max(math.ceil(duration * mean / cycle_angle * samples_per_cycle), 2)
-    t_eval = np.linspace(0.0, duration, count + 1)
     from scipy.integrate import solve_ivp  # imported here: keeps the start-up light
 
-    sol = solve_ivp(
-        rhs,
-        (0.0, duration),
-        y0,
-        method=method,
-        t_eval=t_eval,
-        rtol=rtol,
-        atol=atol,
-    )
+    sol = solve_ivp(rhs, (0.0, duration), y0, method=method, t_eval=t_eval, rtol=rtol, atol=atol)
     if not sol.success:  # pragma: no cover - scipy's own failure
         raise RuntimeError(sol.message)
-    theta = sol.y[:n].T  # (T, n)
-    angles = theta[:, system.mass_dof] * system.mass_ratio[None, :]
-    ends = system.element_dofs
-    ta = np.where(ends[:, 0] >= 0, theta[:, np.maximum(ends[:, 0], 0)], 0.0)
-    tb = np.where(ends[:, 1] >= 0, theta[:, np.maximum(ends[:, 1], 0)], 0.0)
-    torque = (system.element_stiffness / system.element_ratio) * (tb - ta)
-    return TransientResult(
-        time=freeze(sol.t),
-        speed=freeze(w0 + rate * sol.t),
-        crank_angle=freeze(crank(sol.t)),
-        angle=freeze(angles),
-        shaft_torque=freeze(torque),
-        masses=system.mass_names,
-        shafts=system.element_labels,
-        orders=freeze(orders),
-        hysteretic_frequency=float(hysteretic_frequency),
-        method=method,
-        model_name=model.name,
-    )
+    return sol.t, sol.y[:n].T
