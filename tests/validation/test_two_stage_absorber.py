@@ -3,11 +3,11 @@ stages on one hub, and the resonances they add) against the closed form of a mai
 absorbers (J. P. Den Hartog, Mechanical Vibrations, 4th ed. 1956, sec. 3.2, the undamped absorber,
 and sec. 3.3, the damped one, extended to two stages on one mass).
 
-Main mass J on a spring k to the ground, stages J_i on complex stiffnesses k_i* = k_i + i (omega
-c_i + eta_i k_i) at it. Each stage's equation gives theta_i = k_i* theta / (k_i* - omega^2 J_i), so
+Main mass J on a spring k to the ground, stages J_i on complex stiffnesses k_i' = k_i + i (omega
+c_i + eta_i k_i) at it. Each stage's equation gives theta_i = k_i' theta / (k_i' - omega^2 J_i), so
 the hub's receptance is
 
-    theta / T = 1 / (k - omega^2 J + sum_i k_i* (-omega^2 J_i) / (k_i* - omega^2 J_i)),
+    theta / T = 1 / (k - omega^2 J + sum_i k_i' (-omega^2 J_i) / (k_i' - omega^2 J_i)),
 
 and without damping the natural frequencies are the roots in lambda = omega^2 of the cubic
 (k + k_1 + k_2 - lambda J)(k_1 - lambda J_1)(k_2 - lambda J_2) - k_1^2 (k_2 - lambda J_2)

@@ -10,7 +10,7 @@ clearance volume V_s / (eps - 1) for the swept volume V_s and compression ratio 
 the crank angle by the exact displacement x = y_TDC - (R cos(phi) + L cos(beta)) (seed 000 sec. 1,
 seed 002 eq. 2; :func:`crankdyn.crank.kinematics.slider_crank_exact`) solved for phi. With the
 cylinder axis at lateral offset e and the piston pin at height y = y_TDC - x above the crank
-centre, the rod closes the triangle (R sin(phi) - e)^2 + (R cos(phi) - y)^2 = L^2, i.e.
+centre, the rod closes the triangle (R sin(phi) - e)^2 + (R cos(phi) - y)^2 = L^2, i.e.::
 
     e sin(phi) + y cos(phi) = c,   c = (R^2 + e^2 + y^2 - L^2) / (2 R),
 

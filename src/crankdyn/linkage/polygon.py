@@ -5,7 +5,7 @@ Seed 004 sec. 2 ("用图解法作机构的动态静力分析", the reciprocating
 joint reactions graphically: the inertia forces are added to each link as external loads
 (D'Alembert), the mechanism is split into statically determinate link groups, and for each group,
 starting with the one farthest from the crank (the conveyor's group 4-5, then 2-3), the vector
-equation of its forces is closed as a polygon drawn to scale, e.g. for the slider 5
+equation of its forces is closed as a polygon drawn to scale, e.g. for the slider 5::
 
     P_r + G_5 + F_I5 + R_45 + R_65 = 0,
 

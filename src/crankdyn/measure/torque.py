@@ -17,7 +17,7 @@ cycle).
 angles per cycle (a not-a-knot cubic spline through the samples, whose error falls as the fourth
 power of the sample spacing: below 1e-4 of an order's amplitude at 25 samples per period of that
 order), and each cycle's discrete Fourier transform gives every order of the cycle exactly
-(synchronous sampling, as the torsiograph's orders, :mod:`crankdyn.measure.orders`):
+(synchronous sampling, as the torsiograph's orders, :mod:`crankdyn.measure.orders`)::
 
     T(psi) = T_0 + sum_q Re(T_q exp(i q psi)),   T_q = (2 / L) sum_j T_j exp(-i q psi_j),
 

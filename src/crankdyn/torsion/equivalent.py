@@ -37,7 +37,7 @@ A finer system: journals and webs as two inertias and a spring (seed 003)
     every part of the crankshaft (main journal 主轴颈, crank web 曲柄臂, the crankshaft's front
     end) of moment of inertia J and torsional stiffness k becomes two equal inertias J/2 joined
     by a spring k. Here each crank span between throws t and t + 1 is, in order, a web, the main
-    journal, a web: with the journal's inertia J_j and the web's J_w, the chain
+    journal, a web: with the journal's inertia J_j and the web's J_w, the chain::
 
         throw t -[k_w]- (J_w/2 + J_j/2) -[k_j]- (J_j/2 + J_w/2) -[k_w]- throw t + 1,
 
@@ -47,7 +47,7 @@ A finer system: journals and webs as two inertias and a spring (seed 003)
     refined spans (an outer web and half an end journal each, J_w + J_j/2), so that both systems
     hold the same inertia. The stiffnesses split Carter's compliance term by term (the seed's
     own formulas are not in its extracted text; Carter's terms are the journal's, the pin's and
-    the webs'):
+    the webs')::
 
         1/k_j = (32 / (pi G)) (l_j + 0.8 h) / (D_j^4 - d_j^4)
         1/k_w = (32 / (pi G)) [0.75 R / (h b^3) + 0.375 l_p / (D_p^4 - d_p^4)]
