@@ -301,3 +301,33 @@ def test_fourbar_plot_does_not_follow_the_table_step(cli, captured):
         for fig in captured
     }
     assert sizes == {1441}
+
+
+def test_truss_command_table_json_and_plot(cli, tmp_path):
+    from pathlib import Path
+
+    data = Path(__file__).parents[1] / "validation" / "data" / "beer_johnston_truss.toml"
+    run = cli("linkage", "truss", data)
+    assert run.status == 0, run
+    assert "Truss member forces" in run.out and "Support reactions" in run.out
+    run = cli("linkage", "truss", data, "--format", "json", "--plot", tmp_path / "truss.png")
+    assert run.status == 0, run
+    out = json.loads(run.out)
+    ef = out["member"].index("E-F")
+    assert out["force_N"][ef] == pytest.approx(out["force_sections_N"][ef])
+    assert out["reactions"]["component"] == ["B x", "B y", "J"]
+    assert (tmp_path / "truss.png").stat().st_size > 0
+    bad = tmp_path / "bad.toml"
+    bad.write_text(
+        '[nodes]\nA = ["0 m", "0 m"]\nB = ["1 m", "0 m"]\n[[members]]\nbetween = ["A", "Z"]\n'
+        '[[supports]]\nnode = "A"\n',
+        encoding="utf-8",
+    )
+    run = cli("linkage", "truss", bad)
+    assert run.status == 2 and "bad.toml" in run.err and '"Z"' in run.err
+
+
+def test_polygon_command_writes_the_figure(cli, tmp_path):
+    run = cli("linkage", "polygon", "conveyor-seed004", "--angle", "30", "-o", tmp_path / "p.png")
+    assert run.status == 0, run
+    assert (tmp_path / "p.png").stat().st_size > 0

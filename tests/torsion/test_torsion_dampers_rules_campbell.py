@@ -213,3 +213,48 @@ def test_time_domain_steady_state_matches_the_frequency_domain():
     assert run.angle[last] == pytest.approx(expected, abs=1e-6 * np.abs(expected).max())
     torque = np.real(np.exp(1j * np.outer(phi, orders)) @ steady.shaft_response[0])
     assert run.shaft_torque[last] == pytest.approx(torque, abs=1e-6 * np.abs(torque).max())
+
+
+def test_damper_modes_command_with_two_stages(cli, tmp_path):
+    """Two [[damper]] stages on one hub (a multi-stage damper): the command lists the modes, the
+    rings' shares and the damper modes' critical speeds (seed 003)."""
+    import json
+
+    text = """
+name = "two stages"
+[[mass]]
+name = "hub"
+inertia = "1 kg*m^2"
+cylinders = [1]
+[[shaft]]
+between = ["ground", "hub"]
+stiffness = "1e6 N*m/rad"
+[[damper]]
+name = "stage 1"
+at = "hub"
+kind = "tuned"
+inertia = "0.05 kg*m^2"
+stiffness = "45351.47 N*m/rad"
+damping = "10 N*m*s/rad"
+[[damper]]
+name = "stage 2"
+at = "hub"
+kind = "tuned"
+inertia = "0.02 kg*m^2"
+stiffness = "135200 N*m/rad"
+damping = "5 N*m*s/rad"
+[excitation]
+cycle = "two-stroke"
+torque = "100 N*m"
+"""
+    path = tmp_path / "two.toml"
+    path.write_text(text, encoding="utf-8")
+    run = cli("torsion", "damper-modes", path, "--speeds", "1000:30000", "--orders", "1,2",
+              "--format", "json")  # fmt: skip
+    assert run.status == 0, run
+    data = json.loads(run.out)
+    assert data["rings"] == ["stage 1", "stage 2"]
+    assert len(data["natural_frequency_hz"]) == 3 and data["damper_mode"][-1] == "yes"
+    assert data["added_resonances"] == len(data["resonances"]["speed_rpm"]) > 0
+    table = cli("torsion", "damper-modes", path, "--speeds", "1000:30000", "--orders", "1,2")
+    assert table.status == 0 and "Resonances of the damper modes" in table.out

@@ -601,6 +601,70 @@ def animate_command(
     return 0
 
 
+@linkage_group.command("polygon")
+@click.argument("linkage", metavar="LINKAGE")
+@click.option(
+    "--angle",
+    default=None,
+    metavar="DEG",
+    help="Crank angle (deg for a bare number, or with a unit); default: the drawn position.",
+)
+@speed_option(_SPEED_HELP)
+@click.option("--no-friction", is_flag=True, help="Ignore the joints' friction.")
+@click.option("-o", "--output", required=True, metavar="FILE", help="PNG, SVG or PDF to write.")
+@click.option("--force", is_flag=True, help="Overwrite an existing file.")
+def polygon_command(
+    linkage: str,
+    angle: str | None,
+    speed: str | None,
+    no_friction: bool,
+    output: str,
+    force: bool,
+) -> int:
+    """The force polygon of every link group of LINKAGE at one crank angle (seed 004's
+    graphical kinetostatics), drawn from the matrix method's solution."""
+    from crankdyn.linkage.polygon import force_polygons
+    from crankdyn.plots.linkage_statics import plot_force_polygons
+
+    mech = resolve_linkage(linkage)
+    check_writable(output, force=force)
+    theta0 = _one_angle(angle, mech)
+    result = kinetostatics(mech.motion([theta0], _speed(mech, speed)), friction=not no_friction)
+    title = f"{mech.name}: force polygons at crank angle {math.degrees(theta0):.4g} deg"
+    save_figure(plot_force_polygons(force_polygons(result), title), output, force)
+    return 0
+
+
+@linkage_group.command("truss")
+@click.argument("truss_file", metavar="FILE")
+@plot_option("Also write the truss with its member forces (.png, .svg or .pdf).")
+@output_options
+def truss_command(
+    truss_file: str, plot_path: str | None, fmt: str, output_path: str | None, force: bool
+) -> int:
+    """Member forces of the plane truss in FILE by the method of joints and by the method of
+    sections, checked against each other (seed 004; `crankdyn docs linkage-file`)."""
+    from crankdyn.io.truss_file import load_truss
+    from crankdyn.linkage.truss import truss_analysis
+
+    out = Output(fmt, output_path, force)
+    out.check()
+    check_plot_path(plot_path, force)
+    result = truss_analysis(load_truss(truss_file))
+    out.write(
+        blocks=[
+            result_table(result),
+            result_table(result.reactions),
+            *summary_blocks(result),
+        ],
+        json_data=result,
+        csv_text=result.to_csv(),
+    )
+    if plot_path:
+        save_figure(result.plot(), plot_path, force)
+    return 0
+
+
 linkage_group.add_command(examples_alias("linkage", "linkage"))
 linkage_group.add_command(example_alias("linkage"))
 

@@ -17,12 +17,20 @@ from crankdyn.cli.common import (
     option_quantity,
     orders_option,
     parse_orders,
+    parse_speed,
     plot_option,
     save_figure,
+    speed_option,
     teeth_option,
 )
 from crankdyn.cli.torsion import model_session
-from crankdyn.cli.writer import Output, TextTable, output_options
+from crankdyn.cli.writer import (
+    Output,
+    TextTable,
+    output_options,
+    result_table,
+    summary_blocks,
+)
 from crankdyn.constants import RPM
 from crankdyn.display import column_text, number
 from crankdyn.errors import InputError
@@ -31,6 +39,7 @@ from crankdyn.measure.signals import MIN_TEETH, PulseTrain
 
 if TYPE_CHECKING:
     from crankdyn.measure.compare import ModelComparison
+    from crankdyn.measure.torque import TorqueSpectrum
 
 _CYCLES = ("four-stroke", "two-stroke")
 _SHOWN = 6
@@ -416,6 +425,22 @@ _MEASURE_OPTIONS: tuple[Callable[[Any], Any], ...] = (
         help="Tooth-spacing errors: none (default), self (this record's mean over "
         "revolutions) or FILE, a calibration record of the same wheel.",
     ),
+    click.option(
+        "--torque",
+        is_flag=True,
+        help="SIGNAL is a measured shaft torque (strain gauges: torque over crank angle, or over "
+        "time with a once-per-cycle reference), analysed by order; with --model, --span.",
+    ),
+    click.option(
+        "--span",
+        default=None,
+        metavar="MASS,MASS",
+        help="With --torque and --model: the two masses at the ends of the measured span.",
+    ),
+    speed_option(
+        "With --torque: the mean speed (rpm for a bare number, or with a unit) of a record over "
+        "crank angle without times; default: from the record's times."
+    ),
     plot_option("Write order amplitudes (against speed for a run-up), with the model's."),
     click.option(
         "--plot-map",
@@ -468,6 +493,9 @@ def measure_command(
     bin_width: str | None,
     reference_angle: str | None,
     tooth_correction: str | None,
+    torque: bool,
+    span: str | None,
+    speed: str | None,
     plot_path: str | None,
     map_path: str | None,
     fit_path: str | None,
@@ -484,6 +512,9 @@ def measure_command(
     inline6-2000rpm. A steady record gives the orders at its speed; a run-up or run-down, the
     orders against speed, the resonances and their damping; with --model and --at, the model's
     forced response beside them and the damping written back as a shaft loss factor.
+    With --torque, SIGNAL is a measured shaft torque (`crank_angle [deg]` or `time [s]` with
+    `reference [s]`, and `torque [N*m]`): its mean and orders, with --model and --span the
+    model's torque at that span beside them.
     """
     # the options' own checks first, before any work
     for path, option in (
@@ -495,6 +526,17 @@ def measure_command(
         check_plot_path(path, force, option)
     out = Output(fmt, output_path, force)
     out.check()
+    if torque:
+        _refuse_pulse_options(teeth, tooth_correction, map_path, fit_path, trace_path, mass)
+        spectrum = _torque_record(signal, cycle, model, span, orders, reference_angle, speed)
+        if plot_path:
+            save_figure(spectrum.plot(), plot_path, force)
+        blocks: list[TextTable | str] = [result_table(spectrum), *summary_blocks(spectrum)]
+        out.write(blocks=blocks, json_data=spectrum, csv_text=spectrum.to_csv())
+        return 0
+    for option, value in (("--span", span), ("--speed", speed)):
+        if value is not None:
+            raise InputError("applies to a torque record (--torque)", key=option, value=value)
     if (model is None) != (mass is None):
         raise InputError(
             "--model and --at go together: the model and the mass that carries the wheel",
@@ -562,6 +604,91 @@ def measure_command(
         csv_text=result.to_csv(),
     )
     return 0
+
+
+def _refuse_pulse_options(
+    teeth: int | None,
+    tooth_correction: str | None,
+    map_path: str | None,
+    fit_path: str | None,
+    trace_path: str | None,
+    mass: str | None,
+) -> None:
+    """The torsiograph's options have no meaning for a torque record."""
+    for option, value in (
+        ("--teeth", teeth),
+        ("--tooth-correction", tooth_correction),
+        ("--plot-map", map_path),
+        ("--plot-fit", fit_path),
+        ("--plot-trace", trace_path),
+        ("--at", mass),
+    ):
+        if value is not None:
+            hint = " (the span is --span MASS,MASS)" if option == "--at" else ""
+            raise InputError(f"applies to a torsiograph signal, not to --torque{hint}", key=option,
+                             value=value)  # fmt: skip
+
+
+def _torque_record(
+    signal: str,
+    cycle: str | None,
+    model: str | None,
+    span: str | None,
+    orders: str | None,
+    reference_angle: str | None,
+    speed: str | None,
+) -> TorqueSpectrum:
+    """--torque: read the record, its orders, and with --model the model's torque at --span."""
+    from crankdyn.io.signals import read_torque_record
+    from crankdyn.measure.torque import torque_orders
+
+    if (model is None) != (span is None):
+        raise InputError(
+            "--model and --span go together: the model and the two masses of the measured span",
+            key="--span" if model else "--model",
+        )
+    session = excitation = None
+    ends: tuple[str, str] | None = None
+    if model is not None and span is not None:
+        parts = tuple(p.strip() for p in span.split(","))
+        if len(parts) != 2 or not all(parts):
+            raise InputError("expected two masses, MASS,MASS", key="--span", value=span)
+        ends = (parts[0], parts[1])
+        session = model_session(model)
+        if session.model is None:
+            raise InputError("has no torsional model", key="--model", value=model)
+        for end in ends:
+            try:
+                session.model.index(end)
+            except InputError as exc:
+                raise InputError(exc.message, key="--span", value=span) from None
+        excitation = session.excitation()
+        if cycle is not None and cycle != excitation.cycle:
+            raise InputError(
+                f"the model's excitation is {excitation.cycle}", key="--cycle", value=cycle
+            )
+        cycle = excitation.cycle
+    cycle = cycle or "four-stroke"
+    order_list = None if orders is None else parse_orders(orders, cycle)
+    angle = option_quantity(reference_angle, "angle", "--reference-angle", "deg") or 0.0
+    record = read_torque_record(signal, speed=parse_speed(speed))
+    try:
+        result = torque_orders(record, cycle=cycle, orders=order_list, reference_angle=angle)
+    except InputError as exc:
+        if exc.key == "speed":
+            raise InputError(exc.message, key="--speed") from None
+        raise exc.within(file=record.source) from None
+    if session is not None and ends is not None and excitation is not None:
+        assert session.model is not None  # (checked above)
+        try:
+            result = result.with_model(session.model, excitation, ends)
+        except InputError as exc:
+            if exc.key == "shaft":
+                raise InputError(
+                    f"no shaft joins {ends[0]} and {ends[1]}", key="--span", value=span
+                ) from None
+            raise
+    return result
 
 
 def register(group: click.Group) -> None:

@@ -27,7 +27,14 @@ from crankdyn.cli.common import (
     speeds_option,
 )
 from crankdyn.cli.torsion import model_session, torsion_group
-from crankdyn.cli.writer import Output, TextTable, output_options, summary_blocks, summary_table
+from crankdyn.cli.writer import (
+    Output,
+    TextTable,
+    output_options,
+    result_table,
+    summary_blocks,
+    summary_table,
+)
 from crankdyn.constants import DEG, RPM
 from crankdyn.display import column_text
 from crankdyn.docs import ref
@@ -313,6 +320,50 @@ def campbell_command(
     out.write(blocks=[table], json_data=result)
     if plot_path:
         save_figure(result.plot(), plot_path, force)
+    return 0
+
+
+@torsion_group.command("damper-modes")
+@_MODEL_ARG
+@speeds_option(
+    "Speed range (rpm for bare numbers), e.g. 1000:2500; default the model's operating range."
+)
+@orders_option(_ORDERS_HELP)
+@output_options
+def damper_modes_command(
+    model: str,
+    speeds: str | None,
+    orders: str | None,
+    fmt: str,
+    output_path: str | None,
+    force: bool,
+) -> int:
+    """The natural modes of MODEL_OR_ENGINE with its tuned damper stages (several [[damper]]
+    rings on one hub: a multi-stage damper), the rings' share of each mode's energy, and the
+    resonances the damper modes add in the operating range (seed 003)."""
+    from crankdyn.torsion.dampers import damper_modes
+
+    out = Output(fmt, output_path, force)
+    out.check()
+    parsed = parse_speeds(speeds, "--speeds")
+    sweep = None if parsed is None else np.array([parsed[0], parsed[1]])
+    if parsed is not None and not parsed[1] > parsed[0]:
+        raise InputError("the range is empty: HIGH is not above LOW", key="--speeds", value=speeds)
+    session = model_session(model, speeds=sweep, orders=orders)
+    the_model = session.model
+    if the_model is None:
+        raise InputError("has no torsional model", key="MODEL_OR_ENGINE", value=model)
+    excited = bool(the_model.cylinder_dofs) or bool(the_model.sources)
+    result = damper_modes(
+        the_model,
+        session.orders,
+        session.speed_range,
+        excitation=session.excitation() if excited else None,
+    )
+    blocks: list[TextTable | str] = [result_table(result), *summary_blocks(result)]
+    if result.critical_speeds:
+        blocks.insert(1, result_table(result.resonances))
+    out.write(blocks=blocks, json_data=result, csv_text=result.to_csv())
     return 0
 
 

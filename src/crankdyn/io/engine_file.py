@@ -262,6 +262,8 @@ def _pressure(
                 firing_tdc=firing_tdc,
                 cycle_angle=cycle_angle,
                 display=display_path(trace_path),
+                geometry=geometry,
+                compression_ratio=eps,
             )
             if eps is not None:
                 trace = PressureTrace(

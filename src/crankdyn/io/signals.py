@@ -22,12 +22,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.io.csv_tables import read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.csv_tables import CsvTable, read_csv_table, split_header_unit, unit_factor
 from crankdyn.io.files import display_name, read_numpy
 from crankdyn.io.units import SI_RANGE, check_si_range
 from crankdyn.measure.signals import PulseTrain, SpeedSignal
+from crankdyn.measure.torque import TorqueRecord
 
-__all__ = ["COLUMNS", "read_signal", "resolve_signal"]
+__all__ = ["COLUMNS", "TORQUE_COLUMNS", "read_signal", "read_torque_record", "resolve_signal"]
 
 COLUMNS = {"time": "time", "speed": "speed", "reference": "time"}
 """The columns a signal file may hold, with the kind of quantity of each."""
@@ -171,35 +172,7 @@ def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
     times = table.column(col, factor, kind="time")
     reference = reference_lines = None
     if "reference" in index:
-        col_r, factor_r = index["reference"]
-        values, ref_lines = [], []
-        for number, row in table.rows:
-            cell = row[col_r].strip() if col_r < len(row) else ""
-            if not cell:
-                continue
-            try:
-                value = float(cell)
-            except ValueError:
-                value = math.nan
-            if not math.isfinite(value):
-                raise InputError(
-                    "not a finite number in column 'reference'",
-                    file=name,
-                    key=f"line {number}",
-                    value=cell,
-                )
-            if not check_si_range(value * factor_r):
-                raise InputError(
-                    f"{value * factor_r:.3g} s in column 'reference' lies outside the range "
-                    "crankdyn computes with (1e-12 to 1e12 in SI units, or 0); check the unit",
-                    file=name,
-                    key=f"line {number}",
-                    value=cell,
-                )
-            values.append(value * factor_r)
-            ref_lines.append(number)
-        reference = np.array(values)
-        reference_lines = np.array(ref_lines)
+        reference, reference_lines = _reference_column(table, *index["reference"])
     if "speed" in index:
         col_s, factor_s = index["speed"]
         speed = table.column(col_s, factor_s, kind="speed")
@@ -214,6 +187,146 @@ def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
     return _pulses(
         name, times, teeth, reference=reference, lines=lines, reference_lines=reference_lines
     )
+
+
+def _reference_column(
+    table: CsvTable, col: int, factor: float
+) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The mark times of a reference column (s), shorter than the others (blank cells after
+    the last mark), with their lines."""
+    name = table.name
+    values, lines = [], []
+    for number, row in table.rows:
+        cell = row[col].strip() if col < len(row) else ""
+        if not cell:
+            continue
+        try:
+            value = float(cell)
+        except ValueError:
+            value = math.nan
+        if not math.isfinite(value):
+            raise InputError(
+                "not a finite number in column 'reference'",
+                file=name,
+                key=f"line {number}",
+                value=cell,
+            )
+        if not check_si_range(value * factor):
+            raise InputError(
+                f"{value * factor:.3g} s in column 'reference' lies outside the range "
+                "crankdyn computes with (1e-12 to 1e12 in SI units, or 0); check the unit",
+                file=name,
+                key=f"line {number}",
+                value=cell,
+            )
+        values.append(value * factor)
+        lines.append(number)
+    return np.array(values), np.array(lines, dtype=np.int64)
+
+
+TORQUE_COLUMNS = {"torque": "torque", "time": "time", "crank_angle": "angle", "reference": "time"}
+"""The columns a torque record may hold, with the kind of quantity of each."""
+_TORQUE_EXAMPLES = {
+    "torque": "torque [N*m]",
+    "time": "time [s]",
+    "crank_angle": "crank_angle [deg]",
+    "reference": "reference [s]",
+}
+
+
+def read_torque_record(path: str | Path, *, speed: float | None = None) -> TorqueRecord:
+    """Read a measured shaft torque (strain gauges): CSV with a ``torque`` column (``torque
+    [N*m]``) and either ``crank_angle`` (``crank_angle [deg]``, increasing over the cycles;
+    optionally ``time``) or ``time`` with a ``reference`` column of the once-per-cycle mark's
+    times (shorter, blank after the last mark); or a NumPy ``.npz`` archive of the same arrays
+    in SI (docs/measurement.md).
+
+    Parameters
+    ----------
+    path
+        The file.
+    speed
+        The mean crank speed (rad/s) of an angle-domain record without times, or None.
+
+    Returns
+    -------
+    crankdyn.measure.torque.TorqueRecord
+        The torque (N m) over crank angle (rad) or time (s) with its marks (s).
+
+    Raises
+    ------
+    InputError
+        An unreadable file, an unknown column or unit, a missing torque column, a value that
+        is not a number, or an inconsistent record; naming the file, the line and the cell.
+    """
+    name = display_name(path)
+    if Path(path).suffix.lower() == ".npz":
+        archive = read_numpy(path, names=TORQUE_COLUMNS, what="torque record")
+        assert isinstance(archive, dict)  # an .npz archive: its named arrays
+        if "torque" not in archive:
+            raise InputError("the archive needs an array named torque (N m)", file=name)
+        arrays = {k: _float_array(name, k, v) for k, v in archive.items()}
+    else:
+        arrays = _torque_csv(path, name)
+    try:
+        return TorqueRecord(
+            arrays["torque"],
+            crank_angle=arrays.get("crank_angle"),
+            time=arrays.get("time"),
+            reference=arrays.get("reference"),
+            speed=speed,
+            source=name,
+        )
+    except InputError as exc:
+        raise exc.within(file=name) from None
+
+
+def _torque_csv(path: str | Path, name: str) -> dict[str, NDArray[np.float64]]:
+    """The columns of a torque record's CSV, in SI."""
+    from crankdyn.errors import did_you_mean
+
+    table = read_csv_table(path, what="torque record")
+    if table.header_is_numeric:
+        raise InputError(
+            "the first line must name the columns with their units, e.g. "
+            "crank_angle [deg],torque [N*m] or time [s],torque [N*m],reference [s]",
+            file=name,
+            key=f"line {table.header_line}",
+        )
+    index: dict[str, tuple[int, float]] = {}
+    for i, cell in enumerate(table.header):
+        label, unit = split_header_unit(cell)
+        key = label.strip().lower().replace(" ", "_")
+        if key not in TORQUE_COLUMNS:
+            raise InputError(
+                f"unknown column {label!r}{did_you_mean(key, TORQUE_COLUMNS)} (a torque record "
+                f"has {', '.join(TORQUE_COLUMNS)})",
+                file=name,
+                key="header",
+                value=cell,
+            )
+        if key in index:
+            raise InputError(f"the column {key} appears twice", file=name, key="header", value=cell)
+        factor = unit_factor(
+            cell,
+            unit,
+            TORQUE_COLUMNS[key],
+            name,
+            missing=f"the column {key} needs a unit, e.g. {_TORQUE_EXAMPLES[key]}",
+            unknown=f"the unit {{unit}} of the column {key} is not a {TORQUE_COLUMNS[key]}",
+        )
+        index[key] = (i, factor)
+    if "torque" not in index:
+        raise InputError("a torque record needs a torque column, e.g. torque [N*m]", file=name)
+    if not table.rows:
+        raise InputError("the torque record holds no data", file=name)
+    out = {}
+    for key, (col, factor) in index.items():
+        if key == "reference":
+            out[key] = _reference_column(table, col, factor)[0]
+        else:
+            out[key] = table.column(col, factor, kind=TORQUE_COLUMNS[key])
+    return out
 
 
 def _float_array(name: str, key: str, value: Any) -> NDArray[np.float64]:

@@ -31,6 +31,7 @@ from crankdyn.torsion.elements import (
 )
 from crankdyn.torsion.equivalent import (
     CrankThrowGeometry,
+    ThrowParts,
     ThrowSpec,
     equivalent_system,
     throw_name,
@@ -50,6 +51,10 @@ __all__ = [
     "read_torsion_model",
 ]
 
+THROW_MODELS = ("throw", "parts")
+"""[torsion.throws] model: one mass per throw, or journals and webs as two inertias and a spring
+(seed 003; :class:`crankdyn.torsion.equivalent.ThrowParts`)."""
+_PART_KEYS = ("journal_inertia", "web_inertia", "journal_stiffness", "web_stiffness")
 _CARTER_KEYS = (
     "journal_diameter",
     "journal_length",
@@ -669,6 +674,26 @@ def _gear(t: Table) -> Gear:
 
 def _throws(t: Table) -> ThrowSpec:
     inertia = t.quantity("inertia", "inertia", check="nonnegative")
+    model = t.string("model", "throw", choices=THROW_MODELS)
+    parts = None
+    if model == "parts":
+        j_j = t.quantity("journal_inertia", "inertia", check="nonnegative")
+        j_w = t.quantity("web_inertia", "inertia", check="nonnegative")
+        k_j = t.quantity("journal_stiffness", "torsional_stiffness", None, check="positive")
+        k_w = t.quantity("web_stiffness", "torsional_stiffness", None, check="positive")
+        if t.has("stiffness"):
+            raise t.error(
+                "stiffness",
+                'with model = "parts" give journal_stiffness and web_stiffness, or the span\'s '
+                "dimensions (Carter's terms)",
+                t.data["stiffness"],
+            )
+        with t.context():
+            parts = ThrowParts(j_j, j_w, k_j, k_w)
+    else:
+        for key in _PART_KEYS:
+            if t.has(key):
+                raise t.error(key, 'applies with model = "parts"', t.data[key])
     stiffness = t.quantity("stiffness", "torsional_stiffness", None, check="positive")
     given = [k for k in (*_CARTER_KEYS, "journal_bore", "pin_bore") if t.has(k)]
     geometry = None
@@ -678,12 +703,22 @@ def _throws(t: Table) -> ThrowSpec:
             "give the crank span's stiffness or its dimensions (Carter's formula), not both",
             t.data[given[0]],
         )
-    if stiffness is None:
+    if parts is not None and parts.journal_stiffness is not None and given:
+        raise t.error(
+            given[0],
+            "give the parts' stiffnesses or the span's dimensions (Carter's terms), not both",
+            t.data[given[0]],
+        )
+    needs_geometry = stiffness is None and (parts is None or parts.journal_stiffness is None)
+    if needs_geometry:
         missing = [k for k in _CARTER_KEYS if k not in given]
         if missing:
+            first = "journal_stiffness" if parts is not None else "stiffness"
             raise t.error(
-                missing[0] if given else "stiffness",
-                "missing; give the crank span's stiffness, or "
+                missing[0] if given else first,
+                "missing; give the crank span's stiffness"
+                + (" (journal_stiffness and web_stiffness)" if parts is not None else "")
+                + ", or "
                 + ", ".join(_CARTER_KEYS)
                 + " (Carter's formula)",
             )
@@ -706,6 +741,7 @@ def _throws(t: Table) -> ThrowSpec:
             damping=damping,
             shaft_damping=shaft_damping,
             loss_factor=loss,
+            parts=parts,
         )
     t.finish()
     return spec

@@ -33,28 +33,52 @@ mode's frequency and energy as seen at the hub: with the mode shape phi scaled t
 The damper's mean power dissipation at a harmonic twist of amplitude Delta (ring relative to
 hub) at frequency omega is P = (1/2) omega (omega c + eta k_d) |Delta|^2 (W), summed over the
 orders (the orders are distinct frequencies, so their powers add).
+
+Multi-stage dampers and the resonances they add (seed 003, "装多级扭转减振器的发动机曲轴系统扭振
+分析"): a multi-stage rubber damper is several rings, each on its own rubber element, on one hub
+(the model's dampers with the same ``at``: they act in parallel on the hub; a ring mounted on
+another ring is not modelled). Each tuned stage adds a degree of freedom and so a natural
+mode; the seed finds that dampers chosen to minimise the resonance peaks under single harmonic
+excitations do control the first resonance of the crankshaft, but "cause resonances at other
+engine speeds (in essence, the damper's own natural vibration excited)". :func:`damper_modes`
+reports every natural mode of the undamped system with its tuned rings (as
+:func:`crankdyn.torsion.campbell.with_dampers` builds it) with the share of its kinetic energy
+held by the rings, sum_rings J phi^2 / sum J phi^2 (phi the mode shape, J the reflected
+inertias); a mode whose rings hold more than half of it is a damper mode, and its critical
+speeds n_c = omega_r / q inside the operating range are the resonances the dampers add. For an
+undamped main mass J on k with rings J_i on k_i at it, the natural frequencies are the roots in
+lambda = omega^2 of (k + sum k_i - lambda J) prod (k_i - lambda J_i) - sum_i k_i^2 prod_{j != i}
+(k_j - lambda J_j) = 0 (Den Hartog 1956, sec. 3.2, the undamped absorber extended to several;
+tested).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_finite, check_positive
 from crankdyn.errors import InputError
-from crankdyn.results import Result, scalar
+from crankdyn.results import Result, column, freeze, scalar
 
 if TYPE_CHECKING:
+    from crankdyn.torsion.campbell import CriticalSpeed
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "DAMPER_MODE_SHARE",
     "Damper",
     "DamperDesign",
+    "DamperModes",
+    "damper_modes",
     "design_damper",
     "equivalent_single_mass",
     "optimum_tuned",
@@ -62,6 +86,9 @@ __all__ = [
 ]
 
 HZ = 1.0 / (2.0 * math.pi)
+DAMPER_MODE_SHARE = 0.5
+"""A mode is a damper mode when its tuned rings hold more than this share of its kinetic
+energy (module docstring)."""
 
 
 @dataclass(frozen=True)
@@ -485,4 +512,167 @@ def design_damper(
         damping_ratio=zeta,
         damping=2.0 * zeta * j_d * omega,
         magnification=peak,
+    )
+
+
+@dataclass(frozen=True)
+class DamperResonances(Result):
+    """The critical speeds of the damper modes inside the operating range (:func:`damper_modes`):
+    n_c = omega_r / q (seed 003 ch. 5)."""
+
+    title = "Resonances of the damper modes"
+    mode: NDArray[np.int_] = column("mode", "Mode", "")
+    order: NDArray[np.float64] = column("order", "Order", "")
+    speed: NDArray[np.float64] = column("speed_rpm", "Critical speed", "rpm", RPM)
+    natural_frequency: NDArray[np.float64] = column(
+        "natural_frequency_hz", "Natural frequency", "Hz", HZ
+    )
+    major: NDArray[np.str_] = column("major", "Major order", "")
+
+
+@dataclass(frozen=True)
+class DamperModes(Result):
+    """The natural modes of a shaft line with its tuned damper stages and the resonances the
+    dampers add (:func:`damper_modes`; module docstring).
+
+    Parameters
+    ----------
+    critical_speeds : tuple of crankdyn.torsion.campbell.CriticalSpeed
+        The damper modes' critical speeds (rad/s) as objects (not exported: ``resonances``
+        holds them).
+    """
+
+    title = "Damper modes"
+    model_name: str = scalar("model", "Model", "")
+    rings: tuple[str, ...] = scalar("rings", "Tuned damper rings", "")
+    mode: NDArray[np.int_] = column("mode", "Mode", "")
+    natural_frequency: NDArray[np.float64] = column(
+        "natural_frequency_hz", "Natural frequency", "Hz", HZ
+    )
+    ring_share: NDArray[np.float64] = column("ring_energy_share", "Rings' share of the energy", "")
+    damper_mode: NDArray[np.str_] = column("damper_mode", "Damper mode", "")
+    without_dampers: NDArray[np.float64] = column(
+        "natural_frequency_without_dampers_hz", "Without the dampers (same mode number)", "Hz", HZ
+    )
+    damper_mode_count: int = scalar("damper_modes", "Damper modes", "")
+    lowest_damper_mode: float | None = scalar(
+        "lowest_damper_mode_hz", "Lowest damper mode", "Hz", HZ
+    )
+    added_resonances: int = scalar(
+        "added_resonances", "Resonances of damper modes in the operating range", ""
+    )
+    resonances: DamperResonances = scalar("resonances", "Critical speeds of the damper modes", "")
+    notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    critical_speeds: tuple[CriticalSpeed, ...] = field(default=(), repr=False, compare=False)
+
+
+def damper_modes(
+    model: TorsionModel,
+    orders: ArrayLike,
+    speed_range: tuple[float, float] | None = None,
+    *,
+    excitation: Excitation | None = None,
+) -> DamperModes:
+    """The natural modes of ``model`` with its tuned damper stages, the rings' share of each
+    mode's energy, and the critical speeds of the damper modes in the operating range (seed 003,
+    multi-stage dampers; module docstring).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The torsional model with its dampers (several on one hub: the stages of a multi-stage
+        damper).
+    orders : array_like
+        The orders to consider (dimensionless).
+    speed_range : tuple of (float, float) or None
+        (low, high) (rad/s); default the model's operating range.
+    excitation : crankdyn.torsion.excitation.Excitation or None
+        For the major orders (:func:`crankdyn.torsion.campbell.campbell`).
+
+    Returns
+    -------
+    DamperModes
+        Every elastic mode with dampers (frequency in rad/s, exported in Hz), the rings' share
+        of its energy, whether it is a damper mode (``"yes"``/``"no"``), the same-numbered
+        mode's frequency without the dampers, and the critical speeds (rad/s) of the damper
+        modes inside the range
+        (``resonances``; ``critical_speeds`` the same as
+        :class:`~crankdyn.torsion.campbell.CriticalSpeed` objects).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        As :func:`crankdyn.torsion.campbell.campbell` (no speed range, orders not of the
+        model's excitation).
+
+    Examples
+    --------
+    A 1 kg m^2 mass on 1e6 N m/rad (1000 rad/s) with a 0.05 kg m^2 stage tuned to 2000 rad/s:
+    the stage adds a mode near 2000 rad/s that it holds nearly all of.
+
+    >>> from crankdyn.torsion import Mass, Shaft, TorsionModel
+    >>> model = TorsionModel(
+    ...     masses=(Mass("hub", 1.0),), shafts=(Shaft(("ground", "hub"), 1e6),),
+    ...     dampers=(Damper("stage 1", "hub", 0.05, stiffness=0.05 * 2000.0**2),),
+    ... )
+    >>> result = damper_modes(model, [1.0], (100.0, 2500.0))
+    >>> [round(float(s), 3) for s in result.ring_share], [str(d) for d in result.damper_mode]
+    ([0.079, 0.921], ['no', 'yes'])
+    >>> [round(c.speed, 1) for c in result.critical_speeds]
+    [2064.3]
+    """
+    from crankdyn.torsion.campbell import campbell, with_dampers
+    from crankdyn.torsion.modal import natural_modes
+
+    full = with_dampers(model)
+    tuned = tuple(d.name for d in model.dampers if d.kind == "tuned")
+    notes = []
+    viscous = [d.name for d in model.dampers if d.kind == "viscous"]
+    if viscous:
+        notes.append(
+            f"untuned viscous rings ({', '.join(viscous)}) add no undamped mode and are left out"
+        )
+    if not tuned:
+        notes.append("the model has no tuned damper: no damper mode")
+    modes = natural_modes(full)
+    bare = natural_modes(dataclasses.replace(model, dampers=()))
+    elastic = np.flatnonzero(modes.natural_frequency > 0.0)
+    inertia = np.array([m.inertia for m in full.masses]) * np.asarray(full.speed_ratios) ** 2
+    shapes = np.asarray(modes.mode_shapes)[elastic]
+    energy = inertia * shapes**2
+    ring_idx = [full.index(name) for name in tuned]
+    share = energy[:, ring_idx].sum(axis=1) / energy.sum(axis=1)
+    is_damper = share > DAMPER_MODE_SHARE
+    numbers = np.asarray(modes.mode)[elastic]
+    bare_f = dict(
+        zip(np.asarray(bare.mode).tolist(), np.asarray(bare.natural_frequency), strict=True)
+    )
+    without = np.array([bare_f.get(int(r), np.nan) for r in numbers])
+    diagram = campbell(model, orders, speed_range, excitation=excitation)
+    damper_numbers = set(numbers[is_damper].tolist())
+    rows = tuple(c for c in diagram.critical_speeds if c.mode in damper_numbers)
+    lowest = float(np.min(modes.natural_frequency[elastic][is_damper])) if is_damper.any() else None
+    return DamperModes(
+        model_name=model.name,
+        rings=tuned,
+        mode=freeze(numbers, dtype=int),
+        natural_frequency=freeze(modes.natural_frequency[elastic]),
+        ring_share=freeze(share),
+        damper_mode=freeze(np.where(is_damper, "yes", "no"), dtype=str),
+        without_dampers=freeze(without),
+        damper_mode_count=int(np.count_nonzero(is_damper)),
+        lowest_damper_mode=lowest,
+        added_resonances=len(rows),
+        resonances=DamperResonances(
+            mode=freeze([c.mode for c in rows], dtype=int),
+            order=freeze([c.order for c in rows]),
+            speed=freeze([c.speed for c in rows]),
+            natural_frequency=freeze([c.natural_frequency for c in rows]),
+            major=freeze(
+                ["undetermined" if c.major is None else "yes" if c.major else "no" for c in rows],
+                dtype=str,
+            ),
+        ),
+        notes=tuple(notes) or None,
+        critical_speeds=rows,
     )
