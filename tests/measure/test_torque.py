@@ -18,7 +18,7 @@ import crankdyn
 from crankdyn.errors import InputError
 from crankdyn.io.signals import read_torque_record
 from crankdyn.measure.torque import TorqueRecord, compare_torque, torque_orders
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 SPEED = 1800.0 * math.pi / 30.0  # rad/s
 ORDERS = np.arange(1, 25) * 0.5

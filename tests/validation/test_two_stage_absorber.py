@@ -21,7 +21,7 @@ import pytest
 from crankdyn.torsion import Mass, Shaft, TorsionModel
 from crankdyn.torsion.dampers import Damper, damper_modes
 from crankdyn.torsion.excitation import UniformExcitation
-from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.sweep import forced_response
 
 J, K = 1.0, 1.0e6  # main system: omega_0 = 1000 rad/s
 J1, W1 = 0.05, 1000.0 / 1.05  # stage 1: Den Hartog's tuning 1/(1 + mu) for the main mode

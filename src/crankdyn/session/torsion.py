@@ -239,7 +239,7 @@ class TorsionAnalyses(SessionCore):
         torque: float | None = None,
     ) -> ResponseResult:
         """Steady-state forced response over the session's speeds and orders
-        (:func:`crankdyn.torsion.response.forced_response`), resolved: the critical speeds are
+        (:func:`crankdyn.torsion.sweep.forced_response`), resolved: the critical speeds are
         added to the grid and every resonance refined until each peak is resolved (the
         result's ``added_speeds`` and ``added_reasons`` say where and why).
 

@@ -2,7 +2,7 @@
 
 For an installation (a torsional model with its engine, couplings, gears, dampers, propeller or
 generator) the calculation runs every *running condition* over its speed range, each a resolved
-forced response (:func:`crankdyn.torsion.response.forced_response`: every resonance peak refined
+forced response (:func:`crankdyn.torsion.sweep.forced_response`: every resonance peak refined
 to 0.1 %):
 
 - normal firing;
@@ -494,7 +494,7 @@ def tvc(
         default all that apply.
     response_of : callable or None
         ``response_of(model, condition, speeds, orders)`` -> the condition's resolved forced
-        response; default :func:`crankdyn.torsion.response.forced_response` (the analysis
+        response; default :func:`crankdyn.torsion.sweep.forced_response` (the analysis
         session passes its own, cached).
 
     Returns

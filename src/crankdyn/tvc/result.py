@@ -156,7 +156,7 @@ class ConditionResult(Result):
     ----------
     response : ResponseResult or None
         The condition's resolved forced response
-        (:func:`crankdyn.torsion.response.forced_response`; for the misfire conditions the
+        (:func:`crankdyn.torsion.sweep.forced_response`; for the misfire conditions the
         worst cylinder's); not exported.
     curves : dict
         The checks plotted, {(component, quantity): :class:`crankdyn.tvc.analysis.Check`}; not
