@@ -121,3 +121,9 @@ def test_barred_range_permitted_and_tachometer():
         R.barred_range_permitted(kr, 50.0, 80.0, n0, "auxiliary")
     with pytest.raises(InputError, match="window"):
         R.major_critical_permitted(R.get("lr"), 90.0, n0)
+
+
+def test_citation_of_an_unread_society():
+    cite = R.get("abs").shaft_formula.cite()
+    assert cite.startswith("ABS Rules for Building and Classing Marine Vessels Pt 4 Ch 3 (4-3-2), ")
+    assert "not verified: not read" in cite

@@ -156,7 +156,8 @@ class Clause:
         str
             One line.
         """
-        text = f"{self.rule} {self.edition}, {self.clause}"
+        head = f"{self.rule} {self.edition}" if self.edition else self.rule
+        text = f"{head}, {self.clause}"
         if not self.verified:
             text += f" (not verified: {self.note})" if self.note else " (not verified)"
         return text
