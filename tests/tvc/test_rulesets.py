@@ -127,3 +127,54 @@ def test_citation_of_an_unread_society():
     cite = R.get("abs").shaft_formula.cite()
     assert cite.startswith("ABS Rules for Building and Classing Marine Vessels Pt 4 Ch 3 (4-3-2), ")
     assert "not verified: not read" in cite
+
+
+def test_values_are_named_as_the_clauses():
+    """Every value of :func:`values` names a clause of :meth:`RuleSet.clauses` (the formula
+    citations carry no value of their own)."""
+    for key in R.RULESET_KEYS:
+        rules = R.get(key)
+        clause_names = {name for name, _ in rules.clauses()}
+        names = set(R.values(rules))
+        assert names <= clause_names
+        assert clause_names - names >= {"scope", "shaft_formula", "size_factor"}
+    crank = R.values(R.get("kr"))["crankshaft"]
+    assert crank.clauses == {} and crank.a == {"A": 45e6, "B": 45e6}
+
+
+def test_differences_between_the_societies():
+    """The values a switch of ``rules`` changes (docs/tvc.md, "Where the sets differ"): LR
+    against IACS M68 the margin and LR 2.1.3's 500 N/mm^2; KR against both the carbon-steel cap
+    (202.1(1)), CPP (206.1(2)), misfire (206.1(3)), keyways (Table 5.4.1 note (2)), 1.2 n_0
+    (102.1(2)), crankshafts (201), gensets (203) and major criticals (204); DNV, ABS and BV none
+    (IACS M68's values, unverified)."""
+    get = R.get
+    assert R.differences(get("iacs-m68"), get("lr")) == ("widening", "min_strength_transient")
+    kr_only = {
+        "strength_caps carbon/intermediate",
+        "strength_caps carbon/thrust",
+        "cpp",
+        "misfire",
+        "keyways",
+        "calculation_upper",
+        "crankshaft",
+        "genset",
+        "transient_upper_genset",
+        "major_criticals propulsion",
+        "major_criticals generator",
+    }
+    assert set(R.differences(get("iacs-m68"), get("kr"))) == kr_only | {"widening"}
+    assert set(R.differences(get("lr"), get("kr"))) == kr_only | {"min_strength_transient"}
+    for key in ("dnv", "abs", "bv"):
+        assert R.differences(get("iacs-m68"), get(key)) == ()
+    for a in R.RULESET_KEYS:
+        assert R.differences(get(a), get(a)) == ()
+        for b in R.RULESET_KEYS:
+            assert set(R.differences(get(a), get(b))) == set(R.differences(get(b), get(a)))
+    # the rows whose values differ are exactly the rows whose limits differ
+    lr, kr = get("lr"), get("kr")
+    assert R.capped_strength(lr, 800e6) != R.capped_strength(kr, 800e6)
+    assert R.capped_strength(lr, 900e6, "alloy") == R.capped_strength(kr, 900e6, "alloy")
+    assert R.capped_strength(lr, 800e6, kind="propeller") == R.capped_strength(
+        kr, 800e6, kind="propeller"
+    )
