@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -181,19 +182,32 @@ def transient_limit(
     return permissible_transient(speed_ratio, tau_c, design_factor)
 
 
+@overload
 def barred_limits(
     critical_speed: float, rated_speed: float, widening: str = "lr"
-) -> tuple[float, float]:
+) -> tuple[float, float]: ...
+
+
+@overload
+def barred_limits(
+    critical_speed: NDArray[np.float64], rated_speed: float, widening: str = "lr"
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]: ...
+
+
+def barred_limits(
+    critical_speed: float | NDArray[np.float64], rated_speed: float, widening: str = "lr"
+) -> tuple[Any, Any]:
     """The least barred speed range a society's rule sets around a critical speed.
 
-    ``"lr"`` (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5; module docstring):
+    ``"lr"`` (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5; module docstring; the same formula
+    as KR Rules for Classification of Steel Ships 2025 Pt 5 Ch 4 206.1(1)):
     16 n_c / (18 - lambda_c) <= n <= (18 - lambda_c) n_c / 16 with lambda_c = n_c / n_0;
     ``"none"`` (IACS UR M68.4, no added margin): the critical speed alone.
 
     Parameters
     ----------
-    critical_speed : float
-        The critical speed n_c (rad/s).
+    critical_speed : float or numpy.ndarray
+        The critical speed n_c (rad/s); an array gives arrays.
     rated_speed : float
         The rated speed n_0 (rad/s).
     widening : str
@@ -201,8 +215,8 @@ def barred_limits(
 
     Returns
     -------
-    low, high : float
-        The least range (rad/s) to bar.
+    low, high : float or numpy.ndarray
+        The least range (rad/s) to bar, floats for a float ``critical_speed``.
 
     Examples
     --------
@@ -214,12 +228,19 @@ def barred_limits(
     ('275.862', '326.25')
     >>> barred_limits(31.4, 52.4, "none")
     (31.4, 31.4)
+    >>> low, high = barred_limits(np.array([300.0, 400.0]) / RPM, 500 / RPM)
+    >>> (low * RPM).round(3).tolist()
+    [275.862, 372.093]
     """
-    nc = float(critical_speed)
+    w = np.asarray(critical_speed, dtype=float)
     if widening == "none":
-        return nc, nc
-    lam = nc / float(rated_speed)
-    return 16.0 * nc / (18.0 - lam), (18.0 - lam) * nc / 16.0
+        low, high = w.copy(), w.copy()
+    else:
+        lam = w / float(rated_speed)
+        low, high = 16.0 * w / (18.0 - lam), (18.0 - lam) * w / 16.0
+    if w.ndim == 0:
+        return float(low), float(high)
+    return low, high
 
 
 @dataclass(frozen=True)

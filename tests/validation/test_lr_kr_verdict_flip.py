@@ -1,0 +1,94 @@
+"""Lloyd's Register against KR: the cap on sigma_B of a carbon-steel intermediate shaft, read from
+each text, turns a pass into a fail.
+
+LR Rules for Ships Pt 5 Ch 6 2.1.1 and 2.1.4 (imorules copy): carbon and carbon-manganese steel
+400-760 N/mm^2; higher strengths give no higher permissible vibration stress from the formulae
+of Pt 5 Ch 8 2.5 (used as 760). KR Rules for Classification of Steel Ships 2025 Pt 5 Ch 4
+202.1(1): T_s not above 600 N/mm^2 for carbon steel forgings. LR's Naval Ships rules (January
+2023) Vol 2 Pt 5 Ch 1 3.1.1 define C_d = 0.35 + 0.93 d^-0.2 as KR does.
+
+Hand arithmetic, sigma_B = 800 N/mm^2, plain (C_K = 1) 300 mm shaft, C_d = 0.6472068:
+  LR: (760 + 160)/18 = 51.11111; lambda = 0.5: 51.11111 x 0.6472068 x 2.5 = 82.6986;
+      lambda = 0.95: 51.11111 x 0.6472068 x 1.38 = 45.6497 N/mm^2;
+  KR: (600 + 160)/18 = 42.22222; lambda = 0.95: 37.7106 N/mm^2; LR/KR = 920/760 = 1.210526.
+  A synthesised stress of 40 N/mm^2 at lambda = 0.95 passes LR (40 < 45.6497) and fails KR
+  (40 > 37.7106, and above 0.8 n_0 no barred range is permitted).
+The line (a 60 mm shaft, 60^-0.2 = 0.4409301, C_d = 0.35 + 0.93 x 0.4409301 = 0.7600650), for
+0.9 <= lambda <= 1.05: LR 51.11111 x 0.7600650 x 1.38 = 53.6099, KR 42.22222 x 0.7600650 x
+1.38 = 44.2865 N/mm^2; its order-3 resonance at sqrt(k (1/J_e + 1/J_p))/3 = 598.3 rpm, n_0 =
+630 rpm, lambda = 0.950.
+Tolerances: the hand values carry 6 significant digits (relative 1e-5).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+from crankdyn.torsion.excitation import UniformExcitation
+from crankdyn.torsion.response import forced_response
+from crankdyn.torsion.rules import RuleSet as ShaftRules
+from crankdyn.torsion.rules import check_rules
+from crankdyn.tvc import rulesets as R
+
+MPA = 1e6
+REL = 1e-5
+RPM_ = math.pi / 30
+
+
+def test_lr_caps_from_pt5_ch6_2_1():
+    """LR Rules for Ships Pt 5 Ch 6 2.1.1/2.1.4: 760 N/mm^2 carbon, 800 N/mm^2 alloy; 2.1.3:
+    500 N/mm^2 where stresses come close to the transient limit."""
+    lr = R.get("lr")
+    assert R.capped_strength(lr, 800 * MPA, "carbon", "intermediate") == 760 * MPA
+    assert R.capped_strength(lr, 900 * MPA, "alloy", "intermediate") == 800 * MPA
+    assert lr.strength_caps[("carbon", "intermediate")].clause.verified
+    assert not lr.strength_caps[("carbon", "propeller")].clause.verified  # 3.5.1 not read
+    assert lr.min_strength_transient.value == 500 * MPA
+
+
+def test_tau_c_lr_against_kr_by_hand():
+    """LR (760) and KR (600) tau_C of an 800 N/mm^2 carbon-steel intermediate shaft."""
+    lam = np.array([0.5, 0.95])
+    lr = R.continuous_limit(R.get("lr"), lam, 800 * MPA, 1.0, 0.300)
+    kr = R.continuous_limit(R.get("kr"), lam, 800 * MPA, 1.0, 0.300)
+    assert lr / MPA == pytest.approx([82.6986, 45.6497], rel=REL)
+    assert kr[1] / MPA == pytest.approx(37.7106, rel=REL)
+    assert lr[1] / kr[1] == pytest.approx(1.210526, rel=REL)
+    stress = 40 * MPA  # at lambda = 0.95
+    assert stress < lr[1] and stress > kr[1]
+
+
+def test_verdict_flips_between_lr_and_kr_on_a_line():
+    """The rule check of a two-mass line whose resonance at 0.95 n_0 lies between KR's and LR's
+    tau_C: passed under LR, failed under KR (no barred range above 0.8 n_0)."""
+    model = TorsionModel(
+        masses=(Mass("engine", 2.0, damping=10.9, cylinders=(1,)), Mass("propeller", 6.0)),
+        shafts=(Shaft(("engine", "propeller"), 5.3e4, geometry=ShaftGeometry(0.06)),),
+    )
+    resonance = math.sqrt(5.3e4 * (1 / 2.0 + 1 / 6.0)) / 3.0
+    assert resonance / RPM_ == pytest.approx(598.3, abs=0.05)
+    n0 = 630 * RPM_
+    response = forced_response(
+        model,
+        UniformExcitation(60.0, [0.0], "two-stroke"),
+        np.linspace(400, 660, 27) * RPM_,
+        [3.0],
+        rules=False,
+    )
+    peak = float(np.max(response.synthesized_shaft_stress))
+    assert 44.2865 * MPA < peak < 53.6099 * MPA  # between KR's and LR's tau_C by hand
+    verdicts = {}
+    for key in ("lr", "kr"):
+        limit = R.shaft_limit(R.get(key), ("engine", "propeller"), 800 * MPA)
+        check = check_rules(response, ShaftRules(n0, [limit]), model)
+        verdicts[key] = check
+        top = float(np.nanmax(check.tau_c[check.speed >= 0.9 * n0]))
+        assert top / MPA == pytest.approx(53.6099 if key == "lr" else 44.2865, rel=REL)
+    assert verdicts["lr"].passed and not verdicts["lr"].barred_ranges
+    assert not verdicts["kr"].passed
+    (barred,) = verdicts["kr"].barred_ranges
+    assert barred.start < resonance < barred.end and barred.end > 0.8 * n0
