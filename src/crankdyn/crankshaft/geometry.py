@@ -33,7 +33,9 @@ __all__ = [
     "CONSTRUCTIONS",
     "ENGINE_TYPES",
     "MANUFACTURE_FACTORS",
+    "STRESS_FACTOR_NAMES",
     "SURFACE_TREATMENTS",
+    "YOUNGS_MODULUS_STEEL",
     "Crankshaft",
     "CrankshaftGeometry",
     "CrankshaftMaterial",
@@ -179,7 +181,9 @@ class CrankshaftGeometry:
                 )
         if self.overlap is not None:
             set_(self, "overlap", check_finite("overlap", self.overlap))
-        set_(self, "oil_bore_diameter", _optional_length("oil_bore_diameter", self.oil_bore_diameter))
+        set_(
+            self, "oil_bore_diameter", _optional_length("oil_bore_diameter", self.oil_bore_diameter)
+        )
         if self.oil_bore_diameter is not None and self.oil_bore_diameter >= self.pin_diameter:
             raise InputError(
                 "the oil bore must be smaller than the crankpin diameter",

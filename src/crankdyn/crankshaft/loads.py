@@ -39,7 +39,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.crank.pressure import PressureTrace
-from crankdyn.engine.forces import SUMMARY_STEP, CrankTrain, crank_train, cycle_grid, refined_extrema
+from crankdyn.engine.forces import (
+    SUMMARY_STEP,
+    CrankTrain,
+    crank_train,
+    cycle_grid,
+    refined_extrema,
+)
 from crankdyn.engine.model import Engine
 
 __all__ = ["ThrowLoads", "rod_positions", "simply_supported_moment", "throw_loads"]
@@ -71,8 +77,10 @@ def simply_supported_moment(
     --------
     A force at mid-span: F L / 4 in the middle, F x / 2 at x from a support.
 
-    >>> float(simply_supported_moment(1000.0, 0.5, 0.5, 1.0)), float(simply_supported_moment(1000.0, 0.5, 0.2, 1.0))
-    (250.0, 100.0)
+    >>> float(simply_supported_moment(1000.0, 0.5, 0.5, 1.0))
+    250.0
+    >>> float(simply_supported_moment(1000.0, 0.5, 0.2, 1.0))
+    100.0
     """
     f = np.asarray(force, dtype=float)
     a = np.asarray(at, dtype=float)

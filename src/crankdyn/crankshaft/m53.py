@@ -43,6 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "ADDITIONAL_STRESS",
+    "LOCATION_FACTORS",
     "Q_MIN",
     "REFERENCE_DIAMETER",
     "RULE",
@@ -65,8 +66,8 @@ __all__ = [
     "minimum_oversize",
     "nominal_web_stresses",
     "oil_bore_scf",
-    "polar_section_modulus",
     "pin_section_modulus",
+    "polar_section_modulus",
     "size_term",
     "validity",
     "web_section",
@@ -597,6 +598,14 @@ def oil_bore_scf(d_o: float) -> tuple[float, float]:
     return 3.0 - 5.88 * d_o + 34.6 * d_o**2, 4.0 - 6.0 * d_o + 30.0 * d_o**2
 
 
+LOCATION_FACTORS = {
+    "crankpin fillet": ("alpha_B", "alpha_T"),
+    "journal fillet": ("beta_B", "beta_Q", "beta_T"),
+    "oil bore": ("gamma_B", "gamma_T"),
+}
+"""The stress concentration factors of every location UR M53 checks (M53.1.3, M53.3)."""
+
+
 @dataclass(frozen=True)
 class ValidityRange:
     """A ratio of the throw against the range of the rule's empirical formulas (M53.3).
@@ -622,10 +631,44 @@ class ValidityRange:
     applies_to: str
     clause: str
 
+    def limits(self, location: str) -> bool:
+        """Whether the range limits the factors of a location.
+
+        Parameters
+        ----------
+        location : str
+            ``"crankpin fillet"``, ``"journal fillet"`` or ``"oil bore"``.
+
+        Returns
+        -------
+        bool
+            True when one of the location's factors is in :attr:`applies_to`.
+        """
+        return any(symbol in self.applies_to for symbol in LOCATION_FACTORS[location])
+
     @property
     def valid(self) -> bool:
         """Whether the value lies in the range (ends included)."""
         return self.low <= self.value <= self.high
+
+    def to_dict(self) -> dict[str, object]:
+        """The range as JSON data.
+
+        Returns
+        -------
+        dict
+            ``ratio``, ``value``, ``low``, ``high`` (None where open), ``valid``,
+            ``applies_to``, ``clause``.
+        """
+        return {
+            "ratio": self.name,
+            "value": self.value,
+            "low": None if math.isinf(self.low) else self.low,
+            "high": None if math.isinf(self.high) else self.high,
+            "valid": self.valid,
+            "applies_to": self.applies_to,
+            "clause": self.clause,
+        }
 
     def text(self) -> str:
         """The ratio and its range for people: ``"w = 0.85 outside 0.2 <= w <= 0.8"``.
@@ -774,8 +817,10 @@ def equivalent_oil_bore_stress(bending: ArrayLike, torsion: ArrayLike) -> NDArra
 
     Examples
     --------
-    >>> float(equivalent_oil_bore_stress(30e6, 0.0)) / 1e6, float(equivalent_oil_bore_stress(0.0, 7e6)) / 1e6
-    (30.0, 7.0)
+    >>> float(equivalent_oil_bore_stress(30e6, 0.0)) / 1e6
+    30.0
+    >>> float(equivalent_oil_bore_stress(0.0, 7e6)) / 1e6
+    7.0
     """
     b = np.abs(np.asarray(bending, dtype=float))
     t = np.asarray(torsion, dtype=float)
@@ -804,9 +849,7 @@ def size_term(diameter: float) -> float:
     return 0.264 + 1.073 * (diameter * _MM) ** -0.2
 
 
-def fatigue_strength(
-    tensile_strength: float, diameter: float, radius: float, k: float
-) -> float:
+def fatigue_strength(tensile_strength: float, diameter: float, radius: float, k: float) -> float:
     """sigma_DW, the crankshaft's fatigue strength (UR M53.6), in the rule's units (N/mm^2,
     mm):
 
@@ -877,7 +920,7 @@ def acceptability(strength: ArrayLike, equivalent: ArrayLike) -> NDArray[np.floa
         return np.where(v > 0.0, s / np.where(v > 0.0, v, 1.0), np.inf)
 
 
-# ---- shrink fits of semi-built crankshafts (M53.8) ------------------------------------------------
+# ---- shrink fits of semi-built crankshafts (M53.8) ---------------------------------------------
 
 
 def maximum_journal_bore(
