@@ -914,10 +914,11 @@ def acceptability(strength: ArrayLike, equivalent: ArrayLike) -> NDArray[np.floa
     >>> float(acceptability(230e6, 200e6))
     1.15
     """
-    s = np.asarray(strength, dtype=float)
-    v = np.asarray(equivalent, dtype=float)
-    with np.errstate(divide="ignore"):
-        return np.where(v > 0.0, s / np.where(v > 0.0, v, 1.0), np.inf)
+    s, v = np.broadcast_arrays(
+        np.asarray(strength, dtype=float), np.asarray(equivalent, dtype=float)
+    )
+    q = s / np.where(v > 0.0, v, 1.0)
+    return np.where(np.isnan(s) | np.isnan(v), np.nan, np.where(v > 0.0, q, np.inf))
 
 
 # ---- shrink fits of semi-built crankshafts (M53.8) ---------------------------------------------

@@ -7,7 +7,7 @@ journal fillet and oil bore with each intermediate quantity and its clause), the
 empirical formulas, the shrink fit of a semi-built crankshaft, and the verdicts: one per throw
 and location, Q >= 1.15 (M53.7) written as the equivalent stress against sigma_DW / 1.15, and
 the shrink-fit limits (M53.8). The verdicts are made here and nowhere else
-(:meth:`CrankshaftResult.verdicts`).
+(:meth:`CrankshaftResult.summary_verdicts`).
 """
 
 from __future__ import annotations
@@ -371,7 +371,7 @@ class CrankshaftResult(Result):
             "the rule's (give FE factors, M53 Appendix III).",
         )
 
-    def verdicts(self) -> list[Verdict]:
+    def summary_verdicts(self) -> list[Verdict]:
         """The rule's checks (module docstring): Q >= 1.15 at every throw's crankpin fillet,
         journal fillet (solid crankshafts) and oil bore (M53.7), as sigma_V against
         sigma_DW / 1.15; the largest journal bore and the oversize of a semi-built
@@ -402,17 +402,18 @@ class CrankshaftResult(Result):
                     )
                 out.append(
                     Verdict(
-                        check=f"σ_V vs σ_DW / {self.q_required:g} (Q >= {self.q_required:g})",
                         component=f"throw {t + 1} {location}",
                         condition=condition,
+                        quantity=(f"σ_V vs σ_DW / {self.q_required:g} (Q >= {self.q_required:g})"),
                         worst=float(np.asarray(self.equivalent)[t, j]),
                         limit=limit,
                         unit="Pa",
                         passed=bool(reason is None and q >= self.q_required),
-                        rule=self.rule,
+                        source=self.rule,
                         clause="M53.7",
-                        at=self.speed,
+                        speed=self.speed,
                         note=note,
+                        kind=location,
                     )
                 )
         out += self._shrink_fit_verdicts(condition)
@@ -426,44 +427,47 @@ class CrankshaftResult(Result):
         ok = math.isfinite(self.max_journal_bore) and bore <= self.max_journal_bore
         out.append(
             Verdict(
-                "journal bore D_BG vs the largest bore",
-                "shrink fit",
-                condition,
-                bore,
-                self.max_journal_bore,
-                "m",
-                bool(ok),
-                self.rule,
-                "M53.8.2",
+                component="shrink fit",
+                condition=condition,
+                quantity="journal bore D_BG vs the largest bore",
+                worst=bore,
+                limit=self.max_journal_bore,
+                unit="m",
+                passed=bool(ok),
+                source=self.rule,
+                clause="M53.8.2",
                 note="" if math.isfinite(self.max_journal_bore) else "even a solid pin yields",
+                kind="shrink fit bore",
             )
         )
         if self.oversize is not None and self.min_oversize is not None:
             out.append(
                 Verdict(
-                    "required oversize Z_min vs the oversize Z",
-                    "shrink fit",
-                    condition,
-                    self.min_oversize,
-                    self.oversize,
-                    "m",
-                    self.oversize >= self.min_oversize,
-                    self.rule,
-                    "M53.8.3",
+                    component="shrink fit",
+                    condition=condition,
+                    quantity="required oversize Z_min vs the oversize Z",
+                    worst=self.min_oversize,
+                    limit=self.oversize,
+                    unit="m",
+                    passed=self.oversize >= self.min_oversize,
+                    source=self.rule,
+                    clause="M53.8.3",
+                    kind="shrink fit minimum oversize",
                 )
             )
         if self.oversize is not None and self.max_oversize is not None:
             out.append(
                 Verdict(
-                    "oversize Z vs Z_max",
-                    "shrink fit",
-                    condition,
-                    self.oversize,
-                    self.max_oversize,
-                    "m",
-                    self.oversize <= self.max_oversize,
-                    self.rule,
-                    "M53.8.4",
+                    component="shrink fit",
+                    condition=condition,
+                    quantity="oversize Z vs Z_max",
+                    worst=self.oversize,
+                    limit=self.max_oversize,
+                    unit="m",
+                    passed=self.oversize <= self.max_oversize,
+                    source=self.rule,
+                    clause="M53.8.4",
+                    kind="shrink fit maximum oversize",
                 )
             )
         return out
