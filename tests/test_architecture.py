@@ -47,6 +47,7 @@ DOMAIN = {
     "crankdyn.crank.pressure",
     "crankdyn.engine.model",
     "crankdyn.torsion.model",
+    "crankdyn.crankshaft.geometry",
 }
 """The domain objects and what every layer shares (errors, units, the result mixin)."""
 
@@ -69,6 +70,9 @@ ANALYSES = {
     "crankdyn.torsion.dampers",
     "crankdyn.linkage.kinetostatics",
     "crankdyn.linkage.friction",
+    "crankdyn.crankshaft.m53",
+    "crankdyn.crankshaft.loads",
+    "crankdyn.crankshaft.strength",
 }
 
 

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -128,7 +129,7 @@ def parse_engine(
     torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
-    crankshaft = _crankshaft(root.table("crankshaft"))
+    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
     with root.context():
         engine = Engine(
             name=name,
@@ -440,9 +441,24 @@ _CRANKSHAFT_LENGTHS = (
 """The lengths of [crankshaft]: (key, sign, default; MISSING: required), docs/engine-file.md."""
 
 
-def _crankshaft(t: Table | None) -> Crankshaft | None:
+@contextmanager
+def _as_written(t: Table) -> Iterator[None]:
+    """Report a domain object's error against the key and the value the user wrote (the
+    table's section added in any case)."""
+    try:
+        with t.context():
+            yield
+    except InputError as exc:
+        key = exc.key.split(" ")[-1] if exc.key else None
+        if key is not None and key in t.data:
+            raise t.error(key, exc.message, t.data[key]) from None
+        raise
+
+
+def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
     """[crankshaft]: the crankshaft of the IACS UR M53 check (docs/engine-file.md), with its
-    optional [crankshaft.shrink_fit] and [crankshaft.factors] tables."""
+    optional [crankshaft.shrink_fit] and [crankshaft.factors] tables; L_1 checked against the
+    cylinder pitch when no bearing span is given."""
     if t is None:
         return None
     lengths = {
@@ -465,9 +481,12 @@ def _crankshaft(t: Table | None) -> Crankshaft | None:
     axial = t.quantity("axial_vibration_stress", "pressure", None, check="nonnegative")
     fit = _shrink_fit(t.table("shrink_fit"))
     factors = _stress_factors(t.table("factors"))
-    with t.context():
+    with _as_written(t):
+        geometry = CrankshaftGeometry(**lengths, oil_bore_angle=angle)
+        if geometry.bearing_span is None and pitch is not None:
+            geometry.check_span(pitch)
         crankshaft = Crankshaft(
-            geometry=CrankshaftGeometry(**lengths, oil_bore_angle=angle),
+            geometry=geometry,
             material=CrankshaftMaterial(**material),
             engine_type=engine_type,
             construction=construction,
@@ -492,7 +511,7 @@ def _shrink_fit(t: Table | None) -> ShrinkFit | None:
         "pin_yield_strength": t.quantity("pin_yield_strength", "pressure", None, check="positive"),
         "web_yield_strength": t.quantity("web_yield_strength", "pressure", None, check="positive"),
     }
-    with t.context():
+    with _as_written(t):
         fit = ShrinkFit(**values)
     t.finish()
     return fit
@@ -507,7 +526,7 @@ def _stress_factors(t: Table | None) -> StressFactors | None:
     values["source"] = t.string("source", "")
     if all(values[name] is None for name in STRESS_FACTOR_NAMES):
         raise t.error(None, f"give at least one of {', '.join(STRESS_FACTOR_NAMES)}")
-    with t.context():
+    with _as_written(t):
         factors = StressFactors(**values)
     t.finish()
     return factors
