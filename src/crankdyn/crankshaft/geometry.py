@@ -58,7 +58,9 @@ MANUFACTURE_FACTORS = {
 continuous grain flow forged or drop-forged crankshafts, 1.0 for free form forged crankshafts
 (without continuous grain flow), 0.93 for cast steel crankshafts with cold rolling of the
 fillets by an approved process. Values above 1 apply to the fillets only, never to the oil
-bore (M53.6)."""
+bore (M53.6). Verified: KR Rules 2025 Pt 5 Guidance Annex 5-3 6(2)(A), "factor for different
+types of crankshafts without surface treatment" (the text UR M53 was read in,
+:mod:`crankdyn.crankshaft.m53`)."""
 
 SURFACE_TREATMENTS = (
     "none",
@@ -68,11 +70,17 @@ SURFACE_TREATMENTS = (
     "shot-peened",
     "other",
 )
-"""Surface treatments of the fillets; their fatigue enhancement is not a formula of the rule
-but a factor the class society accepts from documented tests (M53.1.1, M53.6)."""
+"""Surface treatments of the fillets. The rule gives no factor for them: Annex 5-3 6(2)(B)
+requires the process to be approved by the society and points to its Appendix V (local
+fatigue strengths of induction-hardened, nitrided and cold-formed fillets); Appendix V 2(1)
+deals with induction hardening, nitriding, cold rolling and stroke peening only. The
+``surface_factor`` of :class:`CrankshaftMaterial` is crankdyn's way of taking the credit the
+society accepted; it is not verified against a text."""
 
-YOUNGS_MODULUS_STEEL = 2.06e11
-"""E of steel (Pa), the modulus of the shrink-fit formulas (M53.8) unless given."""
+YOUNGS_MODULUS_STEEL = 2.05e11
+"""E of steel (Pa), the modulus E_m of the shrink-fit formulas (M53.8) unless given. The
+shrink-fit clause gives no value; 2.05e5 N/mm^2 is the value Annex 5-3 Appendix III 2(2) and
+Appendix VI 2(2) advise for steel ("For steel the following is advised: E = 2.05 10^5 MPa")."""
 
 
 def _optional_length(name: str, value: float | None) -> float | None:
@@ -217,7 +225,8 @@ class CrankshaftGeometry:
             )
 
     def pin_journal_overlap(self, crank_radius: float) -> float:
-        """S: the overlap given, else (D + D_G)/2 - R (UR M53 Fig. 3).
+        """S: the overlap given, else (D + D_G)/2 - R (UR M53.3.1 [Annex 5-3 3(1)(G)]:
+        S = (D + D_G)/2 - E, E the pin eccentricity, the crank radius).
 
         Parameters
         ----------
@@ -259,8 +268,10 @@ class CrankshaftMaterial:
     surface_factor : float
         Fatigue enhancement of the surface treatment in the fillets (dimensionless, >= 1):
         what the class society accepted from documented tests; 1 (default) takes no credit.
+        It multiplies sigma_DW of the fillets: crankdyn's convention, not a formula of the
+        rule (:data:`SURFACE_TREATMENTS`; not verified against a text).
     youngs_modulus : float
-        E_m (Pa), for the shrink fits; default 206 GPa.
+        E_m (Pa), for the shrink fits; default 205 GPa (:data:`YOUNGS_MODULUS_STEEL`).
 
     Raises
     ------
@@ -343,15 +354,17 @@ class ShrinkFit:
         L_S, length of the shrink fit (m).
     web_outer_diameter : float
         D_A, outside diameter of the web or twice the smallest distance from the journal's
-        centre line to the web's outer contour, whichever is less (m).
+        centre line to the web's outer contour, whichever is less (m; Annex 5-3 8(1)(B)).
     oversize : float or None
         Z, the actual diametral oversize of the fit (m), checked against Z_min and Z_max; None
         to give the limits only.
     friction : float
-        mu, coefficient of static friction (dimensionless); 0.2 (M53.8: for L_S/D_S >= 0.4).
+        mu, coefficient of static friction (dimensionless); default 0.2, "a value not greater
+        than 0.2 is to be taken unless documented by experiments" (M53.8.2 [Annex 5-3
+        8(2)(A)]).
     slip_safety : float
-        S_R, safety factor against slipping (dimensionless); at least 2 unless documented by
-        experiments (M53.8), default 2.
+        S_R, safety factor against slipping (dimensionless); default 2, "a value not less than
+        2 is to be taken unless documented by experiments" (M53.8.2 [Annex 5-3 8(2)(A)]).
     pin_yield_strength : float or None
         sigma_SP, minimum yield strength of the journal pin (Pa); None: the material's.
     web_yield_strength : float or None

@@ -23,6 +23,16 @@ reactions F (L - a)/L and F a/L (statics; :func:`simply_supported_moment`). Henc
   section through the oil bore, taken at the pin's middle (x = L_3/2), combined at the
   outlet's position psi as M_BO = M_BTO cos(psi) + M_BRO sin(psi) (2.1.2.2).
 
+Verified against the text UR M53 was read in (KR Rules 2025 Pt 5 Guidance Annex 5-3,
+:mod:`crankdyn.crankshaft.m53`): 2(1)(A)(a) (a single crankthrow supported in the centres of
+the adjacent main journals, bending length L_3, gas and inertia forces), (b) (triangular
+bending moment diagrams of F_R and F_T), (c) (two rods on one pin superposed according to
+phase), (d)(i) (M_BRF and Q_RF at the web centre, L_1, from the radial component), (e) (M_BRO
+and M_BTO in the crankpin section through the oil bore) and 2(1)(B)(a)(i)-(iii), (c)
+(over one working cycle; M_BO = M_BTO cos(psi) + M_BRO sin(psi)). The rod positions of a V
+engine and the choice of the pin's middle for the oil bore's section are crankdyn's (the text's
+Fig 2 and Fig 4 are not in the copy read).
+
 The nominal alternating values are their half-ranges over the cycle (:func:`crankdyn.crankshaft.
 m53.half_range`), the largest and smallest found on a 1 deg grid and refined
 (:func:`crankdyn.engine.forces.refined_extrema`), so they do not depend on the grid. Of a

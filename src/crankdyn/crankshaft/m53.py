@@ -1,19 +1,46 @@
 """The formulas of IACS UR M53, "Calculation of crankshafts for I.C. engines" (numeric core).
 
-Source and edition: IACS Unified Requirement M53, Rev.2 (January 2011; the text of Rev.1, December
-2004, with the finite-element appendix added), in the clause numbering of that text (M53.2 to
-M53.8). Read in the public copies of the Rev.1 text (its table of contents and clause
-structure) and of the Indian Register of Shipping's Classification Notes "Calculation of
-Crankshafts for Internal Combustion Engines" (January 2012), which reproduce Rev.2 with its three
-appendices (I: definition of the fillets' SCF, II: SCF and stress distribution at the edge of
-oil drillings, III: SCF of the web fillets by finite elements); DNV's class guideline CG-0037
-"Calculation of crankshafts for reciprocating internal combustion engines" (July 2019) and the
-Lloyd's Register rules repeat the method. Later revisions (Rev.3 2015 to Rev.5 May 2023) were not
-read; check the revision your society applies.
+Text read and edition
+---------------------
+Every formula, coefficient and range here was checked against one readable text of the method:
+the Korean Register's *Rules for the Classification of Steel Ships 2025*, Part 5 Guidance,
+**Annex 5-3 "Guidance for Calculation of Crankshaft Stress (2)"** (RA-05-E 2025, English), read
+as markdown in a public repository (search-index file 68819297975; figures not reproduced). The
+Annex follows UR M53 section by section: its items 1 to 8 carry the titles and order of the
+UR's sections M53.1 to M53.8 (the UR's Rev.1 table of contents, December 2004, read in a public
+copy), and its Appendix III is the UR's FE appendix that Rev.2 (January 2011) added (the UR's
+history file, read in a public copy). Its Appendices IV (fatigue tests), V (surface-treated
+fillets and oil bores) and VI (SCF of the oil bores by FE) and the items KR marks "(2018)",
+"(2021)" and "(2024)" are later; which UR revision (Rev.3 to the current one) each came from was
+not read, nor what else those revisions changed: check the text your society applies. This
+module cites the UR's clause numbers with the Annex item in brackets, e.g. "M53.3.2 [Annex 5-3
+3(2)(A)]".
+
+What the copy read lacks or prints doubtfully, and what crankdyn does there:
+
+- **Item 7 (acceptability criteria) is missing** from the copy. Q = sigma_DW / sigma_V >= 1.15
+  is taken from Annex 5-3 Appendix V 3(3) ("compares the equivalent alternating stress and the
+  fatigue strength ratio to an acceptability factor of Q >= 1.15 for oil bore outlets, crankpin
+  fillets and journal fillets") and the form of Q from Appendix IV 4(3)(A) (Q = sigma_DWOT /
+  sigma_v at the oil bore). Appendices I and II (definitions of the factors) are missing too;
+  no formula here depends on them.
+- **Two coefficients are printed with fewer digits than their neighbours**: f(b) of alpha_T ends
+  in "- 0.85 b^3" and f_B(s,w) of beta_B has "- 1.527 w^2", where every other coefficient has
+  four decimals. crankdyn uses them as printed. The values -0.857 and -1.5276 that an earlier
+  version of this module carried were written from memory and are **not verified against a
+  text**; the printed ones give the larger factors (alpha_T larger by 0.007 b^3 / f(b): 0.6 %
+  at b = 1.1, 2.2 % at b = 1.5, 6.1 % at b = 2.2; beta_B by less than 0.07 % within the
+  ranges), so they err on the safe side.
+- The replacement of s < -0.5 by -0.5 is stated for f(s,w) and f(r,s) (3(1)(H)); crankdyn
+  also applies it in the journal fillet's f_B(s,w) and f_Q(s), which the text does not name
+  (**not verified against a text**; f_Q(s) turns negative below s = -0.6 otherwise).
+- The surface treatment's factor (``surface_factor`` of the material) is crankdyn's: the text
+  requires the process to be approved and gives guidance (Appendix V), not a factor.
 
 The rule writes its formulas in N/mm^2 and mm; the functions here take and give SI (Pa, m) and
-convert where a formula is not dimensionally homogeneous (the fatigue strength, M53.6). Every
-function names its clause; ``tests/validation/test_iacs_m53_*.py`` works each one by hand.
+convert where a formula is not dimensionally homogeneous (the fatigue strength, M53.6).
+``tests/validation/test_iacs_m53_formulas.py`` checks every function against the text's
+formulas evaluated by hand (GNU bc, ``tests/validation/data/iacs_m53_sheet.bc``).
 
 - Nominal stresses (M53.2): the web's alternating bending and compressive stresses
   sigma_BFN = M_BN / W_eqw K_e, sigma_QFN = Q_N / F K_e with W_eqw = B W^2 / 6, F = B W and
@@ -73,15 +100,17 @@ __all__ = [
     "web_section",
 ]
 
-RULE = "IACS UR M53 Rev.2 (2011)"
-"""The rule text cited in every M53 verdict (module docstring)."""
+RULE = "IACS UR M53 (as KR Rules 2025 Pt 5 Annex 5-3)"
+"""The rule cited in every M53 verdict, with the text it was read in (module docstring)."""
 
 Q_MIN = 1.15
-"""The smallest acceptability factor Q the rule accepts (M53.7)."""
+"""The smallest acceptability factor Q the rule accepts (M53.7; read in Annex 5-3 Appendix V
+3(3), "an acceptability factor of Q >= 1.15", item 7 itself missing from the copy read)."""
 
 ADDITIONAL_STRESS = {"trunk-piston": 10e6, "crosshead": 30e6}
-"""sigma_add of M53.4 (Pa): +-10 N/mm^2 for trunk-piston engines, +-30 N/mm^2 for crosshead
-engines (20 from axial vibration, 10 from misalignment and bedplate deformation)."""
+"""sigma_add of M53.4 [Annex 5-3 4(1), its table] (Pa): +-10 N/mm^2 for trunk-piston engines,
++-30 N/mm^2 for crosshead engines (its notes: 20 from axial vibration, 10 from misalignment and
+bedplate deformation)."""
 
 _AXIAL_CROSSHEAD = 20e6
 _MISALIGNMENT_CROSSHEAD = 10e6
@@ -92,8 +121,8 @@ _MIN_RADIUS_MM = 2.0  # M53.6: R_H, R_G, R_X not less than 2 mm
 
 REFERENCE_DIAMETER = (0.736 / 1.073) ** -5 / _MM
 """The diameter (m) at which the size term 0.264 + 1.073 D^-0.2 of the fatigue strength (M53.6,
-D in mm) is 1, about 6.59 mm: the size of the smooth specimen whose fatigue strength the
-factor (0.42 sigma_B + 39.3) is (:func:`size_term`)."""
+D in mm) is 1, about 6.59 mm (:func:`size_term`): algebra on the text's formula, for the
+limiting-case test; the text attaches no meaning to it."""
 
 
 # ---- nominal stresses (M53.2) ------------------------------------------------------------------
@@ -102,6 +131,9 @@ factor (0.42 sigma_B + 39.3) is (:func:`size_term`)."""
 def half_range(values: ArrayLike, axis: int = -1) -> NDArray[np.float64]:
     """Half of the range of a quantity over the working cycle, (largest - smallest)/2: the
     nominal alternating value of UR M53 2.1.2.1 (M_BN, Q_N), 2.1.2.2 (M_BON) and 2.2.2 (M_TN).
+
+    Verified: Annex 5-3 2(1)(B)(a)(v), X_N = +-1/2 [X_max - X_min], and the same for M_BRFN,
+    Q_RFN, M_BON (2(1)(B)(b), (c)) and M_TN (2(2)(A)(e)).
 
     Parameters
     ----------
@@ -128,6 +160,9 @@ def ke_factor(cycle: str) -> float:
     """K_e, the empirical factor for the restraint of the adjacent cranks and bearings (UR M53
     2.1.2.1): 0.8 for two-stroke, 1.0 for four-stroke engines.
 
+    Verified: Annex 5-3 2(1)(B)(b), "K_e = 0.8 for 2-stroke engines, K_e = 1.0 for 4-stroke
+    engines".
+
     Parameters
     ----------
     cycle : str
@@ -148,6 +183,9 @@ def ke_factor(cycle: str) -> float:
 
 def web_section(web_width: float, web_thickness: float) -> tuple[float, float]:
     """The web's cross-section at its centre (UR M53 2.1.2.1).
+
+    Verified: Annex 5-3 2(1)(B)(b), W_eqw = B W^2 / 6 (mm^3) and F = B W (mm^2), the reference
+    section of its Fig 3 (web thickness W, web width B).
 
     Parameters
     ----------
@@ -177,6 +215,9 @@ def nominal_web_stresses(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Nominal alternating bending and compressive stresses of the web (UR M53 2.1.2.1):
     sigma_BFN = M_BN / W_eqw K_e and sigma_QFN = Q_N / F K_e.
+
+    Verified: Annex 5-3 2(1)(B)(b), sigma_BFN = +-M_BRFN / W_eqw 10^3 K_e (M in N m, W_eqw in
+    mm^3, so 10^3 converts) and sigma_QFN = +-Q_RFN / F K_e; here in SI, no factor.
 
     Parameters
     ----------
@@ -212,6 +253,9 @@ def pin_section_modulus(diameter: float, bore: float = 0.0) -> float:
     """W_e = pi/32 (D^4 - D_BH^4)/D, the axially bored crankpin's section modulus in bending
     (UR M53 2.1.2.2).
 
+    Verified: Annex 5-3 2(1)(B)(c), W_e = pi/32 [(D^4 - D_BH^4)/D], for sigma_BON =
+    +-M_BON / W_e 10^3 with M_BO = M_BTO cos(psi) + M_BRO sin(psi).
+
     Parameters
     ----------
     diameter : float
@@ -235,6 +279,9 @@ def pin_section_modulus(diameter: float, bore: float = 0.0) -> float:
 def polar_section_modulus(diameter: float, bore: float = 0.0) -> float:
     """W_P = pi/16 (D^4 - D_B^4)/D, the polar section modulus of the crankpin or the journal
     (UR M53 2.2.2).
+
+    Verified: Annex 5-3 2(2)(A)(e), W_P = pi/16 ((D^4 - D_BH^4)/D) or pi/16 ((D_G^4 -
+    D_BG^4)/D_G), for tau_N = +-M_TN / W_P 10^3.
 
     Parameters
     ----------
@@ -262,6 +309,11 @@ def polar_section_modulus(diameter: float, bore: float = 0.0) -> float:
 @dataclass(frozen=True)
 class Ratios:
     """The dimensions of a crank throw related to the crankpin diameter D (UR M53.3.1).
+
+    Verified: Annex 5-3 3(1)(G), its table of related dimensions: r = R_H/D and r = R_G/D,
+    s = S/D, w = W/D (W_red/D where the web is reduced), b = B/D, d_O = D_O/D, d_G = D_BG/D,
+    d_H = D_BH/D, t_H = T_H/D, t_G = T_G/D; and 3(3)(C)(b), r = R_G/D_G for beta_T of a journal
+    differing from the crankpin.
 
     Parameters
     ----------
@@ -376,13 +428,18 @@ class Ratios:
 
 
 def _s_limited(s: float) -> float:
-    """s in f(s,w) and f(r,s): values below -0.5 replaced by -0.5 (M53.3.2)."""
+    """s below -0.5 replaced by -0.5: in f(s,w) and f(r,s) as Annex 5-3 3(1)(H) says (M53.3.1),
+    and here also in f_B(s,w) and f_Q(s) of the journal fillet (not verified against a text;
+    module docstring)."""
     return max(s, -0.5)
 
 
 def recess_factor(q: Ratios) -> float:
-    """f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s), not below 1 (UR M53.3.2: a value below 1
-    is not considered).
+    """f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s), not below 1 (UR M53.3.2).
+
+    Verified: Annex 5-3 3(2)(A) and 3(3)(A), (B), f(recess) = 1 + (t_H + t_G)(1.8 + 3.2 s);
+    3(1)(H), "if calculated f(recess) < 1 then the factor f(recess) is not to be considered
+    (f(recess) = 1)". s is the actual s here (3(1)(H) replaces it in f(s,w) and f(r,s) only).
 
     Parameters
     ----------
@@ -420,6 +477,9 @@ def crankpin_bending_scf(q: Ratios) -> float:
 
     with s below -0.5 taken as -0.5 and f(recess) (:func:`recess_factor`) not below 1.
 
+    Verified: Annex 5-3 3(2)(A), every coefficient as printed there; 3(1)(H) for s and
+    f(recess); r = R_H / D, d_G = D_BG / D, d_H = D_BH / D (3(1)(G)).
+
     Parameters
     ----------
     q : Ratios
@@ -450,10 +510,11 @@ def crankpin_bending_scf(q: Ratios) -> float:
 
 
 def _torsion_terms(r: float, s: float, b: float, w: float) -> float:
-    """f(r,s) f(b) f(w) of alpha_T and beta_T (M53.3.2, M53.3.3)."""
+    """f(r,s) f(b) f(w) of alpha_T and beta_T (M53.3.2 [Annex 5-3 3(2)(B)], M53.3.3; f(b)'s
+    last coefficient -0.85 as printed, module docstring)."""
     s = _s_limited(s)
     f_rs = r ** (-0.322 + 0.1015 * (1.0 - s))
-    f_b = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.857 * b**3
+    f_b = 7.8955 - 10.654 * b + 5.3482 * b**2 - 0.85 * b**3
     f_w = w**-0.145
     return f_rs * f_b * f_w
 
@@ -465,8 +526,13 @@ def crankpin_torsion_scf(q: Ratios) -> float:
 
         alpha_T = 0.8 f(r,s) f(b) f(w)
         f(r,s)  = r^(-0.322 + 0.1015 (1 - s))      (r = R_H / D)
-        f(b)    = 7.8955 - 10.654 b + 5.3482 b^2 - 0.857 b^3
+        f(b)    = 7.8955 - 10.654 b + 5.3482 b^2 - 0.85 b^3
         f(w)    = w^-0.145
+
+    Verified: Annex 5-3 3(2)(B) as printed, with s below -0.5 taken as -0.5 in f(r,s)
+    (3(1)(H)). The b^3 coefficient is printed "0.85" (two decimals where the others have
+    four); the -0.857 of an earlier version was not from a text. -0.85 gives the larger
+    alpha_T (module docstring).
 
     Parameters
     ----------
@@ -487,13 +553,19 @@ def journal_bending_scf(q: Ratios) -> float:
     ::
 
         beta_B   = 2.7146 f_B(s,w) f_B(w) f_B(b) f_B(r) f_B(d_G) f_B(d_H) f(recess)
-        f_B(s,w) = -1.7625 + 2.9821 w - 1.5276 w^2 + (1 - s)(5.1169 - 5.8089 w + 3.1391 w^2)
+        f_B(s,w) = -1.7625 + 2.9821 w - 1.527 w^2 + (1 - s)(5.1169 - 5.8089 w + 3.1391 w^2)
                    + (1 - s)^2 (-2.1567 + 2.3297 w - 1.2952 w^2)
         f_B(w)   = 2.2422 w^0.7548
         f_B(b)   = 0.5616 + 0.1197 b + 0.1176 b^2
         f_B(r)   = 0.1908 r^-0.5568         (r = R_G / D)
         f_B(d_G) = 1.0012 - 0.6441 d_G + 1.2265 d_G^2
         f_B(d_H) = 1.0022 - 0.1903 d_H + 0.0073 d_H^2
+
+    Verified: Annex 5-3 3(3)(A) as printed (not for semi-built crankshafts). The w^2
+    coefficient of f_B(s,w) is printed "1.527" (three decimals where the others have four);
+    the -1.5276 of an earlier version was not from a text; the printed value gives the larger
+    beta_B, by less than 0.07 % within the ranges (module docstring). s below -0.5 taken as
+    -0.5 in f_B(s,w): not verified against a text (3(1)(H) names f(s,w) and f(r,s)).
 
     Parameters
     ----------
@@ -510,7 +582,7 @@ def journal_bending_scf(q: Ratios) -> float:
     f_sw = (
         -1.7625
         + 2.9821 * w
-        - 1.5276 * w**2
+        - 1.527 * w**2
         + u * (5.1169 - 5.8089 * w + 3.1391 * w**2)
         + u**2 * (-2.1567 + 2.3297 * w - 1.2952 * w**2)
     )
@@ -534,6 +606,10 @@ def journal_shear_scf(q: Ratios) -> float:
         f_Q(b)   = -0.5 + b
         f_Q(r)   = 0.5331 r^-0.2038         (r = R_G / D)
         f_Q(d_H) = 0.9937 - 1.1949 d_H + 1.7373 d_H^2
+
+    Verified: Annex 5-3 3(3)(B) as printed. s below -0.5 taken as -0.5 in f_Q(s): not
+    verified against a text (3(1)(H) names f(s,w) and f(r,s); f_Q(s) is negative below
+    s = -0.6 without it).
 
     Parameters
     ----------
@@ -560,6 +636,10 @@ def journal_torsion_scf(q: Ratios) -> float:
     0.8 f(r,s) f(b) f(w) of :func:`crankpin_torsion_scf` with the journal fillet related to
     the journal diameter, r = R_G / D_G.
 
+    Verified: Annex 5-3 3(3)(C)(a) "if the diameters and fillet radii of crankpin and
+    journal are the same, beta_T = alpha_T" and (b) "... the radius of the journal fillet is
+    to be related to the journal diameter: r = R_G / D_G".
+
     Parameters
     ----------
     q : Ratios
@@ -579,6 +659,9 @@ def oil_bore_scf(d_o: float) -> tuple[float, float]:
     """gamma_B and gamma_T, the stress concentration factors at the outlet of the crankpin's
     oil bore (UR M53.3.4): gamma_B = 3 - 5.88 d_O + 34.6 d_O^2, gamma_T = 4 - 6 d_O +
     30 d_O^2 (d_O = D_O / D).
+
+    Verified: Annex 5-3 3(3)(D)(a), (b) (KR numbers the oil bore under item 3(3)); a radially
+    drilled oil hole only (3(1)(A)).
 
     Parameters
     ----------
@@ -603,7 +686,9 @@ LOCATION_FACTORS = {
     "journal fillet": ("beta_B", "beta_Q", "beta_T"),
     "oil bore": ("gamma_B", "gamma_T"),
 }
-"""The stress concentration factors of every location UR M53 checks (M53.1.3, M53.3)."""
+"""The stress concentration factors of every location UR M53 checks (M53.1.3, M53.3; Annex 5-3
+1(2)(B): the fillets between crankpin and web and between journal and web, and the outlets of
+the crankpin oil bores)."""
 
 
 @dataclass(frozen=True)
@@ -689,10 +774,17 @@ class ValidityRange:
 
 
 def validity(q: Ratios, *, journal: bool = True) -> list[ValidityRange]:
-    """The ranges of the empirical stress concentration factors (UR M53.3.2, 3.3 and 3.4)
-    with the throw's values: s <= 0.5, 0.2 <= w <= 0.8, 1.1 <= b <= 2.2, 0.03 <= r <= 0.13
-    (crankpin and journal fillet), 0 <= d_G <= 0.8, 0 <= d_H <= 0.8, 0 <= d_O <= 0.2. The
-    low end of s is open: the rule takes s below -0.5 as -0.5 in f(s,w) and f(r,s).
+    """The ranges of the empirical stress concentration factors (UR M53.3.1) with the throw's
+    values: s <= 0.5, 0.2 <= w <= 0.8, 1.1 <= b <= 2.2, 0.03 <= r <= 0.13 (crankpin and journal
+    fillet), 0 <= d_G <= 0.8, 0 <= d_H <= 0.8, 0 <= d_O <= 0.2. The low end of s is open: the
+    rule takes s below -0.5 as -0.5 in f(s,w) and f(r,s).
+
+    Verified: Annex 5-3 3(1)(G), the ranges printed in its table of related dimensions
+    (0.03 <= r <= 0.13 for r = R_H/D and r = R_G/D, s <= 0.5, 0.2 <= w <= 0.8, 1.1 <= b <= 2.2,
+    0 <= d_O <= 0.2, 0 <= d_G <= 0.8, 0 <= d_H <= 0.8; none for t_H, t_G); 3(1)(H), "low
+    range of s can be extended down to large negative values" with s < -0.5 taken as -0.5.
+    Which factors each range limits is crankdyn's reading (the table lists the ranges under
+    "crankpin fillet" and "journal fillet"; d_O limits the oil bore's).
 
     Parameters
     ----------
@@ -715,23 +807,23 @@ def validity(q: Ratios, *, journal: bool = True) -> list[ValidityRange]:
     inf = math.inf
     fillets = "alpha_B, alpha_T" + (", beta_B, beta_Q, beta_T" if journal else "")
     out = [
-        ValidityRange("s", q.s, -inf, 0.5, fillets, "M53.3.2"),
-        ValidityRange("w", q.w, 0.2, 0.8, fillets, "M53.3.2"),
-        ValidityRange("b", q.b, 1.1, 2.2, fillets, "M53.3.2"),
-        ValidityRange("r (crankpin fillet)", q.r_pin, 0.03, 0.13, "alpha_B, alpha_T", "M53.3.2"),
+        ValidityRange("s", q.s, -inf, 0.5, fillets, "M53.3.1"),
+        ValidityRange("w", q.w, 0.2, 0.8, fillets, "M53.3.1"),
+        ValidityRange("b", q.b, 1.1, 2.2, fillets, "M53.3.1"),
+        ValidityRange("r (crankpin fillet)", q.r_pin, 0.03, 0.13, "alpha_B, alpha_T", "M53.3.1"),
     ]
     if journal:
         out.append(
             ValidityRange(
-                "r (journal fillet)", q.r_journal, 0.03, 0.13, "beta_B, beta_Q, beta_T", "M53.3.3"
+                "r (journal fillet)", q.r_journal, 0.03, 0.13, "beta_B, beta_Q, beta_T", "M53.3.1"
             )
         )
     out += [
-        ValidityRange("d_G", q.d_g, 0.0, 0.8, fillets, "M53.3.2"),
-        ValidityRange("d_H", q.d_h, 0.0, 0.8, fillets, "M53.3.2"),
+        ValidityRange("d_G", q.d_g, 0.0, 0.8, fillets, "M53.3.1"),
+        ValidityRange("d_H", q.d_h, 0.0, 0.8, fillets, "M53.3.1"),
     ]
     if q.d_o is not None:
-        out.append(ValidityRange("d_O", q.d_o, 0.0, 0.2, "gamma_B, gamma_T", "M53.3.4"))
+        out.append(ValidityRange("d_O", q.d_o, 0.0, 0.2, "gamma_B, gamma_T", "M53.3.1"))
     return out
 
 
@@ -743,6 +835,11 @@ def additional_stress(engine_type: str, axial_vibration: float | None = None) ->
     axial and bending vibration (UR M53.4): 10 N/mm^2 for trunk-piston engines; 30 N/mm^2 for
     crosshead engines, of which 20 from axial vibration, which the calculated value replaces
     where the axial vibration calculation of the whole system gives it.
+
+    Verified: Annex 5-3 4(1) (table and notes: +-30 crosshead = +-20 axial vibration + +-10
+    misalignment/bedplate deformation; +-10 trunk piston), 4(2) (+-20 recommended where the
+    axial vibration results of the complete dynamic system are not available) and 4(3) (the
+    calculated figures may be used instead).
 
     Parameters
     ----------
@@ -774,6 +871,9 @@ def equivalent_fillet_stress(
     same with sigma_BG and tau_G in the journal fillet (UR M53.5.2; von Mises of the
     alternating stresses).
 
+    Verified: Annex 5-3 5(2) and 5(3), and 5(1)(A) (von Mises, bending and torsion time
+    phased with their peaks at the same location).
+
     Parameters
     ----------
     bending : array_like
@@ -803,6 +903,10 @@ def equivalent_oil_bore_stress(bending: ArrayLike, torsion: ArrayLike) -> NDArra
     the crankpin oil bore (UR M53.5.2), written as (sigma_BO + 2 sqrt(sigma_BO^2 +
     9/4 sigma_TO^2)) / 3, the same for sigma_BO > 0 and sigma_TO at sigma_BO = 0.
 
+    Verified: Annex 5-3 5(4) (and 5(1)(B): the largest principal stress of the two fields,
+    time phased). The form without the quotient is algebra on it, so that sigma_BO = 0 (no
+    bending) is defined.
+
     Parameters
     ----------
     bending : array_like
@@ -830,6 +934,8 @@ def equivalent_oil_bore_stress(bending: ArrayLike, torsion: ArrayLike) -> NDArra
 def size_term(diameter: float) -> float:
     """0.264 + 1.073 D^-0.2 (D in mm), the size term of the fatigue strength (UR M53.6); 1 at
     :data:`REFERENCE_DIAMETER`.
+
+    Verified: Annex 5-3 6(1) and 6(2)(A), the first two terms of the bracket.
 
     Parameters
     ----------
@@ -861,6 +967,13 @@ def fatigue_strength(tensile_strength: float, diameter: float, radius: float, k:
     related to the crankpin diameter D with R_X = R_H in the fillet and R_X = D_O/2 at the oil
     bore, or to the journal diameter D_G with R_G; R_H, R_G and R_X are taken as not less than
     2 mm.
+
+    Verified: Annex 5-3 6(1) (crankpin, R_X = R_H in the fillet area, D_O/2 in the oil bore
+    area), 6(2)(A) (journal, R_G; K = 1.05 continuous grain flow forged or drop-forged, 1.0
+    free form forged, 0.93 cast steel with approved cold rolling of the fillets, "values
+    greater than 1 are only applicable to fatigue strength in fillet area"; "R_H, R_G or R_X
+    are to be taken as not less than 2 mm"; sigma_B the minimum tensile strength). Surface
+    treatment: 6(2)(B), approved by the society, Appendix V; no factor in the text.
 
     Parameters
     ----------
@@ -896,6 +1009,12 @@ def fatigue_strength(tensile_strength: float, diameter: float, radius: float, k:
 def acceptability(strength: ArrayLike, equivalent: ArrayLike) -> NDArray[np.float64]:
     """Q = sigma_DW / sigma_V, the acceptability factor (UR M53.7), to be at least
     :data:`Q_MIN` = 1.15; infinite where sigma_V is 0.
+
+    Verified: item 7 of Annex 5-3 is missing from the copy read; Appendix V 3(3) states the
+    criterion ("compares the equivalent alternating stress and the fatigue strength ratio to an
+    acceptability factor of Q >= 1.15 for oil bore outlets, crankpin fillets and journal
+    fillets") and Appendix IV 4(3)(A) writes it as a ratio at the oil bore, Q = sigma_DWOT /
+    sigma_v. Q as fatigue strength over equivalent stress is therefore read, not remembered.
 
     Parameters
     ----------
@@ -940,6 +1059,12 @@ def maximum_journal_bore(
         D_BG <= D_S sqrt(1 - 4 S_R M_max / (mu pi D_S^2 L_S sigma_SP))
 
     so that the shrink pressure holding S_R M_max does not yield the hollow pin at its bore.
+
+    Verified: Annex 5-3 8(2)(A) (S_R not less than 2 and mu not greater than 0.2 unless
+    documented by experiments; M_max the absolute maximum of the torque M_Tmax of 2(2)(A);
+    sigma_SP the journal pin's minimum yield strength) and 8(2)(B) (to avoid plasticity in
+    the hole of the journal pin). Where the condition cannot be met, 8(1)(E): Z_min and Z_max
+    are to come from FE calculations (multizone plasticity).
 
     Parameters
     ----------
@@ -990,6 +1115,9 @@ def minimum_oversize(
 
     with Q_A = D_S / D_A and Q_S = D_BG / D_S (the rule's 4000 with M_max in N m and mm).
 
+    Verified: Annex 5-3 8(3) ("determined by the greater value"; E_m Young's modulus,
+    sigma_SW the web's minimum yield strength, Q_A the web ratio, Q_S the shaft ratio).
+
     Parameters
     ----------
     shrink_diameter, shrink_length, web_outer_diameter, journal_bore : float
@@ -1010,8 +1138,8 @@ def minimum_oversize(
 
     Examples
     --------
-    >>> round(minimum_oversize(0.5, 0.3, 0.9, 0.0, 1.0e6, 300e6, 2.06e11) * 1e3, 4)  # mm
-    0.7282
+    >>> round(minimum_oversize(0.5, 0.3, 0.9, 0.0, 1.0e6, 300e6, 2.05e11) * 1e3, 4)  # mm
+    0.7317
     """
     qa = shrink_diameter / web_outer_diameter
     qs = journal_bore / shrink_diameter
@@ -1031,6 +1159,9 @@ def maximum_oversize(shrink_diameter: float, web_yield: float, youngs_modulus: f
     """Z_max = D_S (sigma_SW / E_m + 0.8/1000), the largest oversize of the shrink fit (UR
     M53.8.4), which bounds the mean stress the fit induces in the journal fillet.
 
+    Verified: Annex 5-3 8(4)(A), (B) ("to restrict the shrinkage induced mean stress in the
+    fillet").
+
     Parameters
     ----------
     shrink_diameter : float
@@ -1047,7 +1178,7 @@ def maximum_oversize(shrink_diameter: float, web_yield: float, youngs_modulus: f
 
     Examples
     --------
-    >>> round(maximum_oversize(0.5, 300e6, 2.06e11) * 1e3, 4)  # mm
-    1.1282
+    >>> round(maximum_oversize(0.5, 300e6, 2.05e11) * 1e3, 4)  # mm
+    1.1317
     """
     return shrink_diameter * (web_yield / youngs_modulus + 0.8e-3)

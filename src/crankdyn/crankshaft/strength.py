@@ -197,7 +197,7 @@ def crankshaft_strength(
     >>> result = crankshaft_strength(engine, torsion_torque=30e3)
     >>> q, where = result.smallest_q()  # every throw's bending is the same
     >>> round(q, 2), where.split(", ")[1]
-    (1.65, 'journal fillet')
+    (1.64, 'journal fillet')
     """
     shaft = _shaft(engine, crankshaft)
     speed = engine.speed if speed is None else speed
@@ -248,7 +248,11 @@ def _shaft(engine: Engine, crankshaft: Crankshaft | None) -> Crankshaft:
 
 def _web_thickness(engine: Engine, shaft: Crankshaft) -> tuple[float, str | None]:
     """W, or W_red = W - (T_H - R_H) of a semi-built two-stroke crankshaft whose crankpin
-    recess is deeper than its fillet radius (M53.3.1, Fig. 3), with a note."""
+    recess is deeper than its fillet radius (M53.3.1 [Annex 5-3 3(1)(G)]: "in the case of
+    2 stroke semi-built crankshafts: when T_H > R_H, the web thickness must be considered as
+    equal to W_red = W - (T_H - R_H)"), with a note. The text's table also writes
+    w = W_red/D "for crankshafts without overlap"; W_red is defined for the case above only,
+    so crankdyn reduces W there and nowhere else."""
     g = shaft.geometry
     if shaft.semi_built and engine.cycle == "two-stroke" and g.pin_recess > g.pin_fillet_radius:
         reduced = g.web_thickness - (g.pin_recess - g.pin_fillet_radius)
@@ -379,7 +383,8 @@ def assess(
     if mat.surface_factor > 1.0:
         notes.append(
             f"fillets' fatigue strength raised by the {mat.surface_treatment} surface "
-            f"treatment's factor {mat.surface_factor:g} (documented by tests, M53.6)"
+            f"treatment's factor {mat.surface_factor:g} (accepted by the society from tests; "
+            "crankdyn's factor, not a formula of M53: its Appendix V gives local strengths)"
         )
     equivalent = stresses["equivalent"]
     qs = [
