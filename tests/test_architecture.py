@@ -51,6 +51,7 @@ DOMAIN = {
     "crankdyn.torsion.excitation_spec",
     "crankdyn.torsion.model",
     "crankdyn.torsion.topology",
+    "crankdyn.crankshaft.geometry",
 }
 """The domain objects and what every layer shares (errors, units, the result mixin)."""
 
@@ -78,6 +79,9 @@ ANALYSES = {
     "crankdyn.torsion.dampers",
     "crankdyn.linkage.kinetostatics",
     "crankdyn.linkage.friction",
+    "crankdyn.crankshaft.m53",
+    "crankdyn.crankshaft.loads",
+    "crankdyn.crankshaft.strength",
 }
 
 

@@ -23,6 +23,7 @@ from numpy.typing import NDArray
 from crankdyn.crank.geometry import CrankGeometry, check_finite, check_positive
 from crankdyn.crank.masses import Masses
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
+from crankdyn.crankshaft.geometry import Crankshaft
 from crankdyn.engine.firing import (
     CYCLE_ANGLE,
     VArrangement,
@@ -540,14 +541,18 @@ class Engine:
         (:mod:`crankdyn.plausibility`).
     aspiration : str or None
         ``"natural"`` or ``"turbocharged"`` (any pressure charging), or None when not stated.
+    crankshaft : crankdyn.crankshaft.geometry.Crankshaft or None
+        Dimensions, material and type of the crankshaft for its fatigue check by IACS UR M53
+        (:func:`crankdyn.crankshaft.strength.crankshaft_strength`), or None.
 
     Raises
     ------
     InputError
         If the name is empty, the fuel or aspiration unknown, the rod data do not fit the rod
         length, the crankcase pressure negative, the speed or efficiency out of range, the
-        torsional model's cylinders do not fit the engine's, or the pressure trace covers
-        another cycle.
+        torsional model's cylinders do not fit the engine's, the pressure trace covers
+        another cycle, or the crankshaft's web centre does not lie within half the cylinder
+        pitch (its bearing span when none is given).
 
     Examples
     --------
@@ -577,6 +582,7 @@ class Engine:
     source: str | None = field(default=None, compare=False)
     fuel: str | None = None
     aspiration: str | None = None
+    crankshaft: Crankshaft | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():
@@ -608,6 +614,12 @@ class Engine:
                     key="mechanical_efficiency",
                     value=eta,
                 )
+        if (
+            self.crankshaft is not None
+            and self.crankshaft.geometry.bearing_span is None
+            and self.cylinders.pitch is not None
+        ):
+            self.crankshaft.geometry.check_span(self.cylinders.pitch)
         if self.pressure is not None:
             expected = CYCLE_ANGLE[self.cycle]
             if abs(self.pressure.cycle_angle - expected) > 1e-9:

@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -11,6 +12,19 @@ from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.masses import Masses
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
+from crankdyn.crankshaft.geometry import (
+    CONSTRUCTIONS,
+    ENGINE_TYPES,
+    MANUFACTURE_FACTORS,
+    STRESS_FACTOR_NAMES,
+    SURFACE_TREATMENTS,
+    YOUNGS_MODULUS_STEEL,
+    Crankshaft,
+    CrankshaftGeometry,
+    CrankshaftMaterial,
+    ShrinkFit,
+    StressFactors,
+)
 from crankdyn.engine.firing import throw_angles_from_positions
 from crankdyn.engine.model import (
     ASPIRATIONS,
@@ -25,7 +39,7 @@ from crankdyn.engine.model import (
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
-from crankdyn.io.schema import Table
+from crankdyn.io.schema import MISSING, Table
 from crankdyn.io.torsion_file import parse_torsion_section, read_torsion_model
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.torsion.model import TorsionModel
@@ -77,8 +91,9 @@ def parse_engine(
     radius, rod length or ratio, offset: lengths), ``[cylinders]`` (count, layout, firing
     order, throw angles or positions, bank angle: angles), ``[masses]`` (kg, kg m^2),
     ``[pressure]`` (a trace file or the Wiebe model; pressures Pa), ``[operating]`` (speeds),
-    ``[balance]``, ``[flywheel]`` and ``[torsion]``; quantities as strings with units
-    (``"86 mm"``) or bare SI numbers.
+    ``[balance]``, ``[flywheel]``, ``[torsion]`` and ``[crankshaft]`` (the UR M53 check:
+    lengths, strengths in Pa); quantities as strings with units (``"86 mm"``) or bare SI
+    numbers.
 
     Parameters
     ----------
@@ -114,6 +129,7 @@ def parse_engine(
     torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
+    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
     with root.context():
         engine = Engine(
             name=name,
@@ -130,6 +146,7 @@ def parse_engine(
             source=file,
             fuel=fuel,
             aspiration=aspiration,
+            crankshaft=crankshaft,
         )
     root.finish()
     return engine
@@ -405,6 +422,116 @@ def _flywheel(t: Table | None) -> FlywheelInputs | None:
         inputs = FlywheelInputs(**values)
     t.finish()
     return inputs
+
+
+_CRANKSHAFT_LENGTHS = (
+    ("pin_diameter", "positive", MISSING),
+    ("journal_diameter", "positive", MISSING),
+    ("web_thickness", "positive", MISSING),
+    ("web_width", "positive", MISSING),
+    ("pin_fillet_radius", "positive", MISSING),
+    ("journal_fillet_radius", "positive", MISSING),
+    ("web_centre_distance", "positive", MISSING),
+    ("pin_bore", "nonnegative", 0.0),
+    ("journal_bore", "nonnegative", 0.0),
+    ("overlap", None, None),
+    ("pin_recess", "nonnegative", 0.0),
+    ("journal_recess", "nonnegative", 0.0),
+    ("oil_bore_diameter", "positive", None),
+    ("bearing_span", "positive", None),
+)
+"""The lengths of [crankshaft]: (key, sign, default; MISSING: required), docs/engine-file.md."""
+
+
+@contextmanager
+def _as_written(t: Table) -> Iterator[None]:
+    """Report a domain object's error against the key and the value the user wrote (the
+    table's section added in any case)."""
+    try:
+        with t.context():
+            yield
+    except InputError as exc:
+        key = exc.key.split(" ")[-1] if exc.key else None
+        if key is not None and key in t.data:
+            raise t.error(key, exc.message, t.data[key]) from None
+        raise
+
+
+def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
+    """[crankshaft]: the crankshaft of the IACS UR M53 check (docs/engine-file.md), with its
+    optional [crankshaft.shrink_fit] and [crankshaft.factors] tables; L_1 checked against the
+    cylinder pitch when no bearing span is given."""
+    if t is None:
+        return None
+    lengths = {
+        key: t.quantity(key, "length", default, check=sign)
+        for key, sign, default in _CRANKSHAFT_LENGTHS
+    }
+    angle = t.quantity("oil_bore_angle", "angle", 0.0)
+    material = {
+        "tensile_strength": t.quantity("tensile_strength", "pressure", check="positive"),
+        "yield_strength": t.quantity("yield_strength", "pressure", None, check="positive"),
+        "manufacture": t.string("manufacture", "free-form", choices=tuple(MANUFACTURE_FACTORS)),
+        "surface_treatment": t.string("surface_treatment", "none", choices=SURFACE_TREATMENTS),
+        "surface_factor": t.number("surface_factor", 1.0, check="positive"),
+        "youngs_modulus": t.quantity(
+            "youngs_modulus", "pressure", YOUNGS_MODULUS_STEEL, check="positive"
+        ),
+    }
+    engine_type = t.string("engine_type", "trunk-piston", choices=ENGINE_TYPES)
+    construction = t.string("construction", "solid", choices=CONSTRUCTIONS)
+    axial = t.quantity("axial_vibration_stress", "pressure", None, check="nonnegative")
+    fit = _shrink_fit(t.table("shrink_fit"))
+    factors = _stress_factors(t.table("factors"))
+    with _as_written(t):
+        geometry = CrankshaftGeometry(**lengths, oil_bore_angle=angle)
+        if geometry.bearing_span is None and pitch is not None:
+            geometry.check_span(pitch)
+        crankshaft = Crankshaft(
+            geometry=geometry,
+            material=CrankshaftMaterial(**material),
+            engine_type=engine_type,
+            construction=construction,
+            shrink_fit=fit,
+            factors=factors,
+            axial_vibration_stress=axial,
+        )
+    t.finish()
+    return crankshaft
+
+
+def _shrink_fit(t: Table | None) -> ShrinkFit | None:
+    if t is None:
+        return None
+    values = {
+        "diameter": t.quantity("diameter", "length", check="positive"),
+        "length": t.quantity("length", "length", check="positive"),
+        "web_outer_diameter": t.quantity("web_outer_diameter", "length", check="positive"),
+        "oversize": t.quantity("oversize", "length", None, check="positive"),
+        "friction": t.number("friction", 0.2, check="positive"),
+        "slip_safety": t.number("slip_safety", 2.0, check="positive"),
+        "pin_yield_strength": t.quantity("pin_yield_strength", "pressure", None, check="positive"),
+        "web_yield_strength": t.quantity("web_yield_strength", "pressure", None, check="positive"),
+    }
+    with _as_written(t):
+        fit = ShrinkFit(**values)
+    t.finish()
+    return fit
+
+
+def _stress_factors(t: Table | None) -> StressFactors | None:
+    if t is None:
+        return None
+    values: dict[str, Any] = {
+        name: t.number(name, None, check="positive") for name in STRESS_FACTOR_NAMES
+    }
+    values["source"] = t.string("source", "")
+    if all(values[name] is None for name in STRESS_FACTOR_NAMES):
+        raise t.error(None, f"give at least one of {', '.join(STRESS_FACTOR_NAMES)}")
+    with _as_written(t):
+        factors = StressFactors(**values)
+    t.finish()
+    return factors
 
 
 def _operating(t: Table | None) -> tuple[float | None, float | None]:
