@@ -1,0 +1,1 @@
+"""The crankshaft as a structure and its strength check (issue 38)."""
