@@ -437,8 +437,8 @@ class CrankshaftBeamModel:
         "timoshenko" or "euler-bernoulli".
     web_rigid_fraction : float
         The webs' rigid fraction f (module docstring).
-    web_stiffness_scale : float
-        Factor on the webs' E and G (1 for the material).
+    web_stiffness_scale, pin_stiffness_scale : float
+        Factors on the webs' and the pins' E and G (1 for the material).
     """
 
     geometry: CrankshaftBeamGeometry
@@ -459,6 +459,7 @@ class CrankshaftBeamModel:
     theory: str
     web_rigid_fraction: float
     web_stiffness_scale: float
+    pin_stiffness_scale: float
 
     @property
     def size(self) -> int:
@@ -637,6 +638,7 @@ def build_beam_model(
     theory: str = "timoshenko",
     web_rigid_fraction: float = 0.0,
     web_stiffness_scale: float = 1.0,
+    pin_stiffness_scale: float = 1.0,
 ) -> CrankshaftBeamModel:
     """Build and assemble the beam model of a crankshaft (module docstring).
 
@@ -654,6 +656,8 @@ def build_beam_model(
     web_stiffness_scale : float
         Factor on the webs' E and G (dimensionless, > 0; default 1). A large factor makes the
         webs rigid (the lumped-chain comparison).
+    pin_stiffness_scale : float
+        Factor on the pins' E and G (dimensionless, > 0; default 1).
 
     Returns
     -------
@@ -683,7 +687,10 @@ def build_beam_model(
     if theory not in THEORIES:
         raise InputError(f"expected one of {', '.join(THEORIES)}", key="theory", value=theory)
     fraction = _nonnegative("web_rigid_fraction", web_rigid_fraction)
-    scale = check_positive("web_stiffness_scale", web_stiffness_scale)
+    scale = (
+        check_positive("web_stiffness_scale", web_stiffness_scale),
+        check_positive("pin_stiffness_scale", pin_stiffness_scale),
+    )
     g = geometry
     b, journals, pins, cw = _frame(g, int(elements), fraction)
     t = g.throw
@@ -723,7 +730,7 @@ def _assemble(
     elements: int,
     theory: str,
     fraction: float,
-    scale: float,
+    scale: tuple[float, float],
 ) -> CrankshaftBeamModel:
     """K, M and C of the accumulated model, restricted to the active degrees of freedom."""
     el = b.el
@@ -732,7 +739,7 @@ def _assemble(
     kind = np.array(el["kind"])
     k_loc, m_loc = local_element_matrices(
         np.array(el["length"]), g.material, el["section"], shear=timo, rotary_inertia=timo,
-        stiffness_scale=np.where(kind == "web", scale, 1.0),
+        stiffness_scale=np.where(kind == "web", scale[0], np.where(kind == "pin", scale[1], 1.0)),
     )
     frames = element_frames(np.array(el["axis"]), np.array(el["ref"]))
     offsets = offset_matrices(np.array(el["oa"]), np.array(el["ob"]))
@@ -773,7 +780,8 @@ def _assemble(
         elements_per_part=elements,
         theory=theory,
         web_rigid_fraction=fraction,
-        web_stiffness_scale=scale,
+        web_stiffness_scale=scale[0],
+        pin_stiffness_scale=scale[1],
     )
 
 

@@ -181,6 +181,7 @@ def throw_stiffness(
     theory: str = "timoshenko",
     web_rigid_fraction: float = 0.0,
     web_stiffness_scale: float = 1.0,
+    pin_stiffness_scale: float = 1.0,
 ) -> ThrowStiffness:
     """Equivalent torsional and axial stiffness of one crank throw (module docstring).
 
@@ -198,8 +199,8 @@ def throw_stiffness(
         Beam theory.
     web_rigid_fraction : float
         Rigid fraction f of the webs (dimensionless; :mod:`crankdyn.crankshaft.beam_model`).
-    web_stiffness_scale : float
-        Factor on the webs' E and G (dimensionless).
+    web_stiffness_scale, pin_stiffness_scale : float
+        Factors on the webs' and the pins' E and G (dimensionless).
 
     Returns
     -------
@@ -215,7 +216,7 @@ def throw_stiffness(
     """
     model = _single_throw(
         throw, material, elements=elements, theory=theory, web_rigid_fraction=web_rigid_fraction,
-        web_stiffness_scale=web_stiffness_scale,
+        web_stiffness_scale=web_stiffness_scale, pin_stiffness_scale=pin_stiffness_scale,
     )
     a, b = (int(n) for n in model.journal_nodes)
     dof = model.dof
@@ -262,12 +263,21 @@ class LumpedChain:
 
 def _throw_inertias(model: CrankshaftBeamModel, first: int, last: int) -> NDArray[np.float64]:
     """Shares of r^T M r by chain position first..last (integers; module docstring): a node at
-    a journal centre (position k + 1/2) half to each side."""
+    a journal centre (position k + 1/2) half to each side, the end bodies' polar inertia to the
+    end positions."""
     r = model.rigid_rotation()
     energy = r * (model.mass @ r)
     per_node = np.zeros(model.node_xyz.shape[0])
     idx = model.dof_index
     np.add.at(per_node, np.nonzero(idx >= 0)[0], energy[idx[idx >= 0]])
+    # the end bodies' own inertia goes whole to their chain masses, wherever their node is
+    g = model.geometry
+    ends = []
+    for body, node, slot in ((g.free_end, model.free_end_node, first),
+                             (g.flywheel, model.flywheel_node, last)):
+        if body is not None:
+            per_node[node] -= body.polar_inertia
+            ends.append((slot, body.polar_inertia))
     c = np.clip(model.throw_of_node, first, last)
     half = np.isclose(c - np.floor(c), 0.5)
     below = np.where(half, np.floor(c), np.rint(c)).astype(int) - first
@@ -275,6 +285,8 @@ def _throw_inertias(model: CrankshaftBeamModel, first: int, last: int) -> NDArra
     out = np.zeros(last - first + 1)
     np.add.at(out, below, 0.5 * per_node)
     np.add.at(out, above, 0.5 * per_node)
+    for slot, inertia in ends:
+        out[slot - first] += inertia
     return out
 
 
@@ -299,6 +311,7 @@ def lumped_torsional_chain(model: CrankshaftBeamModel, *, supported: bool = True
     kt = throw_stiffness(
         t, g.material, supported=supported, elements=model.elements_per_part, theory=model.theory,
         web_rigid_fraction=model.web_rigid_fraction, web_stiffness_scale=model.web_stiffness_scale,
+        pin_stiffness_scale=model.pin_stiffness_scale,
     ).torsional
     n = g.throws
     first = -1 if g.free_end is not None else 0
