@@ -13,6 +13,7 @@ MODULES = (
     "engine_cycle",
     "process",
     "baseline",
+    "crankshaft_beam",
 )
 
 

@@ -51,8 +51,14 @@ def test_rigid_motions_store_no_strain_energy(theory):
     g = CrankshaftBeamGeometry(THROW, (0.0, 2.0, 4.5), STEEL)
     m = build_beam_model(g, theory=theory, web_rigid_fraction=0.3)
     scale = abs(m.stiffness).max()
-    for t, w in (((1, 0, 0), (0, 0, 0)), ((0, 1, 0), (0, 0, 0)), ((0, 0, 1), (0, 0, 0)),
-                 ((0, 0, 0), (1, 0, 0)), ((0, 0, 0), (0, 1, 0)), ((0, 0, 0), (0, 0, 1))):
+    for t, w in (
+        ((1, 0, 0), (0, 0, 0)),
+        ((0, 1, 0), (0, 0, 0)),
+        ((0, 0, 1), (0, 0, 0)),
+        ((0, 0, 0), (1, 0, 0)),
+        ((0, 0, 0), (0, 1, 0)),
+        ((0, 0, 0), (0, 0, 1)),
+    ):
         assert np.max(np.abs(m.stiffness @ _rigid(m, t, w))) < 1e-9 * scale
     assert abs(m.stiffness - m.stiffness.T).max() < 1e-14 * scale
     assert abs(m.mass - m.mass.T).max() < 1e-15 * abs(m.mass).max()
@@ -75,8 +81,9 @@ def test_element_is_frame_invariant_and_offsets_are_rigid_links():
             assert np.max(np.abs(kg @ u)) < 1e-9 * np.abs(kg).max()
     # eigenvalues do not depend on the frame (orthogonal transformation without offsets)
     plain = global_element_matrices(k, frames)[0]
-    np.testing.assert_allclose(np.linalg.eigvalsh(plain), np.linalg.eigvalsh(k[0]),
-                               rtol=1e-9, atol=1e-6 * np.abs(k).max())
+    np.testing.assert_allclose(
+        np.linalg.eigvalsh(plain), np.linalg.eigvalsh(k[0]), rtol=1e-9, atol=1e-6 * np.abs(k).max()
+    )
 
 
 def test_point_mass_parallel_axis():
@@ -89,11 +96,17 @@ def test_point_mass_parallel_axis():
 
 
 def test_mass_and_axial_inertia_against_hand_sums():
-    masses = ThrowMasses(rotating_mass=1.5, reciprocating_mass=1.2, counterweight_mass=2.0,
-                         counterweight_radius=0.05)
+    masses = ThrowMasses(
+        rotating_mass=1.5, reciprocating_mass=1.2, counterweight_mass=2.0, counterweight_radius=0.05
+    )
     g = CrankshaftBeamGeometry(
-        THROW, (0.0, math.pi), STEEL, MainBearings(1e9), masses=masses,
-        free_end=EndMass(5.0, 0.05, 0.03, 0.04), flywheel=EndMass(20.0, 0.8, 0.4, 0.0),
+        THROW,
+        (0.0, math.pi),
+        STEEL,
+        MainBearings(1e9),
+        masses=masses,
+        free_end=EndMass(5.0, 0.05, 0.03, 0.04),
+        flywheel=EndMass(20.0, 0.8, 0.4, 0.0),
     )
     m = build_beam_model(g, elements=3)
     t, rho = THROW, STEEL.density
@@ -140,9 +153,11 @@ def _cantilever_torsion(t, mat, fraction=0.0):
     w = BeamSection.rectangular(t.web_width, t.web_thickness, mat.poisson_ratio)
     G, E = mat.shear_modulus, mat.youngs_modulus
     web = t.crank_radius - fraction * 0.5 * (t.journal_diameter + t.pin_diameter)
-    return ((t.journal_length + t.web_thickness) / (G * j.torsion_constant)
-            + (t.pin_length + t.web_thickness) / (G * p.torsion_constant)
-            + 2 * web / (E * w.second_moment_z))
+    return (
+        (t.journal_length + t.web_thickness) / (G * j.torsion_constant)
+        + (t.pin_length + t.web_thickness) / (G * p.torsion_constant)
+        + 2 * web / (E * w.second_moment_z)
+    )
 
 
 def _cantilever_axial(t, mat, shear=True):
@@ -153,8 +168,12 @@ def _cantilever_axial(t, mat, shear=True):
     w = BeamSection.rectangular(t.web_width, t.web_thickness, mat.poisson_ratio)
     G, E, R = mat.shear_modulus, mat.youngs_modulus, t.crank_radius
     lp = t.pin_length + t.web_thickness
-    out = ((t.journal_length + t.web_thickness) / (E * j.area) + lp / (E * p.area)
-           + lp * R**2 / (E * p.second_moment_y) + 2 * R**3 / (3 * E * w.second_moment_y))
+    out = (
+        (t.journal_length + t.web_thickness) / (E * j.area)
+        + lp / (E * p.area)
+        + lp * R**2 / (E * p.second_moment_y)
+        + 2 * R**3 / (3 * E * w.second_moment_y)
+    )
     if shear:
         out += 2 * R / (w.shear_coefficient * G * w.area)
     return out
@@ -163,14 +182,15 @@ def _cantilever_axial(t, mat, shear=True):
 @pytest.mark.parametrize("theory", ["timoshenko", "euler-bernoulli"])
 @pytest.mark.parametrize("fraction", [0.0, 0.4])
 def test_throw_torsional_stiffness_closed_form_frame(theory, fraction):
-    s = throw_stiffness(THROW, STEEL, supported=False, elements=1, theory=theory,
-                        web_rigid_fraction=fraction)
-    assert s.torsional == pytest.approx(1.0 / _cantilever_torsion(THROW, STEEL, fraction),
-                                        rel=1e-9)
+    s = throw_stiffness(
+        THROW, STEEL, supported=False, elements=1, theory=theory, web_rigid_fraction=fraction
+    )
+    assert s.torsional == pytest.approx(1.0 / _cantilever_torsion(THROW, STEEL, fraction), rel=1e-9)
     # held in its bearings the symmetric throw twists the same (the pin's sideways motion
     # through one web is undone by the other)
-    held = throw_stiffness(THROW, STEEL, supported=True, elements=1, theory=theory,
-                           web_rigid_fraction=fraction)
+    held = throw_stiffness(
+        THROW, STEEL, supported=True, elements=1, theory=theory, web_rigid_fraction=fraction
+    )
     assert held.torsional == pytest.approx(s.torsional, rel=1e-9)
 
 
@@ -182,9 +202,14 @@ def test_throw_axial_stiffness_closed_form_frame(theory):
 
 
 def test_damper_and_shaft_line_are_torsional_only():
-    g = CrankshaftBeamGeometry(THROW, (0.0,), STEEL, MainBearings(1e9),
-                               damper=TorsionalDamper(0.05, 1e4, 10.0),
-                               shaft_line=((1.0, 5e5), (2.0, 3e5)))
+    g = CrankshaftBeamGeometry(
+        THROW,
+        (0.0,),
+        STEEL,
+        MainBearings(1e9),
+        damper=TorsionalDamper(0.05, 1e4, 10.0),
+        shaft_line=((1.0, 5e5), (2.0, 3e5)),
+    )
     m = build_beam_model(g)
     assert len(m.extra_nodes) == 3
     for node in m.extra_nodes:
@@ -197,22 +222,40 @@ def test_damper_and_shaft_line_are_torsional_only():
     "make,key",
     [
         (lambda: ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, -0.06), "crank_radius"),
-        (lambda: ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06, pin_bore=0.08),
-         "pin_bore"),
+        (
+            lambda: ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06, pin_bore=0.08),
+            "pin_bore",
+        ),
         (lambda: MainBearings(-1.0), "radial_stiffness"),
         (lambda: MainBearings(1.0, thrust_journal=0), "thrust_journal"),
         (lambda: CrankshaftBeamGeometry(THROW, (), STEEL), "pin_angles"),
-        (lambda: CrankshaftBeamGeometry(THROW, (0.0,), STEEL, MainBearings(1.0, thrust_journal=3)),
-         "thrust_journal"),
-        (lambda: CrankshaftBeamGeometry(THROW, (0.0,), STEEL,
-                                        masses=(ThrowMasses(), ThrowMasses())), "masses"),
+        (
+            lambda: CrankshaftBeamGeometry(
+                THROW, (0.0,), STEEL, MainBearings(1.0, thrust_journal=3)
+            ),
+            "thrust_journal",
+        ),
+        (
+            lambda: CrankshaftBeamGeometry(
+                THROW, (0.0,), STEEL, masses=(ThrowMasses(), ThrowMasses())
+            ),
+            "masses",
+        ),
         (lambda: BeamMaterial(210e9, 0.5, 7850.0), "poisson_ratio"),
-        (lambda: build_beam_model(CrankshaftBeamGeometry(THROW, (0.0,), STEEL), elements=0),
-         "elements"),
-        (lambda: build_beam_model(CrankshaftBeamGeometry(THROW, (0.0,), STEEL), theory="x"),
-         "theory"),
-        (lambda: build_beam_model(CrankshaftBeamGeometry(THROW, (0.0,), STEEL),
-                                  web_rigid_fraction=2.0), "web_rigid_fraction"),
+        (
+            lambda: build_beam_model(CrankshaftBeamGeometry(THROW, (0.0,), STEEL), elements=0),
+            "elements",
+        ),
+        (
+            lambda: build_beam_model(CrankshaftBeamGeometry(THROW, (0.0,), STEEL), theory="x"),
+            "theory",
+        ),
+        (
+            lambda: build_beam_model(
+                CrankshaftBeamGeometry(THROW, (0.0,), STEEL), web_rigid_fraction=2.0
+            ),
+            "web_rigid_fraction",
+        ),
     ],
 )
 def test_bad_input_names_its_key(make, key):

@@ -93,7 +93,9 @@ def test_bar_axial_and_torsion_closed_form(family, modulus, bc):
     n = 40
     h = LENGTH / n
     c = math.sqrt((STEEL.youngs_modulus if modulus == "E" else STEEL.shear_modulus) / STEEL.density)
-    fe = _frequencies(SLENDER, n, family, ("free", "free") if bc == "free-free" else ("clamped", "free"))
+    fe = _frequencies(
+        SLENDER, n, family, ("free", "free") if bc == "free-free" else ("clamped", "free")
+    )
     modes = np.arange(1, fe.size + 1)
     k = modes * math.pi / LENGTH if bc == "free-free" else (2 * modes - 1) * math.pi / (2 * LENGTH)
     exact = c * k / (2 * math.pi)
@@ -118,7 +120,10 @@ def test_euler_bernoulli_blevins_and_convergence(bc):
     s = SLENDER
     scale = math.sqrt(STEEL.youngs_modulus * s.second_moment_z / (STEEL.density * s.area))
     exact = np.array([b**2 * scale / (2 * math.pi * LENGTH**2) for b in BLEVINS[bc]])
-    f = {n: _frequencies(s, n, "bending", bc, shear=False, rotary=False, count=3) for n in (8, 16, 32)}
+    f = {
+        n: _frequencies(s, n, "bending", bc, shear=False, rotary=False, count=3)
+        for n in (8, 16, 32)
+    }
     errors = {n: np.abs(f[n] / exact - 1.0) for n in f}
     rate = np.log2(errors[8] / errors[16])
     assert np.all((rate > 3.8) & (rate < 4.3)), rate
@@ -154,8 +159,10 @@ def test_timoshenko_simply_supported_closed_form():
     np.testing.assert_allclose(richardson, exact, rtol=2e-6)
     # shear and rotary inertia lower the stocky beam's first frequency below Euler-Bernoulli's
     # (by 4.5 % at L / D = 5)
-    eb = math.pi / (2 * LENGTH**2) * math.sqrt(
-        STEEL.youngs_modulus * STOCKY.second_moment_z / (STEEL.density * STOCKY.area)
+    eb = (
+        math.pi
+        / (2 * LENGTH**2)
+        * math.sqrt(STEEL.youngs_modulus * STOCKY.second_moment_z / (STEEL.density * STOCKY.area))
     )
     assert exact[0] < eb
 

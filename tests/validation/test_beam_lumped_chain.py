@@ -13,12 +13,13 @@ difference chain / beam - 1 of the five lowest torsional modes falls with the sc
 2e-4 at 1e4 (1.5e-6 for the first mode).
 
 What stiffening only the webs does (stated, and checked to hold): the chain's torsional
-frequencies then lie 8-33 % below the beam model's (webs scaled by 1e4). A pin offset by R from the axis must bend as well as
-twist when the webs on either side of it turn relative to each other (its ends move apart by R
-times the angle), and with the journals held by their bearings that bending stiffens the throw;
-the chain's throw stiffness is that of one throw free to tilt in its two bearings
-(:func:`throw_stiffness`), which lets the pin twist alone. With flexible webs and pins the two
-effects nearly cancel on this crankshaft (1-2 %).
+frequencies then lie 8-33 % below the beam model's (webs scaled by 1e4). A pin offset by R
+from the axis must bend as well as twist when the webs on either side of it turn relative to
+each other (its ends move apart by R times the angle), and with the journals held by their
+bearings that bending stiffens the throw; the chain's throw stiffness is that of one throw free
+to tilt in its two bearings (crankdyn.crankshaft.beam_stiffness.throw_stiffness), which lets the
+pin twist alone. With flexible webs and pins the two effects nearly cancel on this crankshaft
+(1-2 %).
 """
 
 from __future__ import annotations
@@ -50,8 +51,13 @@ BALANCED = ThrowMasses(rotating_mass=5.5, counterweight_mass=5.5, counterweight_
 
 def _comparison(web, pin):
     g = CrankshaftBeamGeometry(
-        THROW, ANGLES, LIGHT, MainBearings(1e13, 0.0, 1e13, thrust_journal=1), masses=BALANCED,
-        free_end=EndMass(2.0, 0.05), flywheel=EndMass(20.0, 0.8),
+        THROW,
+        ANGLES,
+        LIGHT,
+        MainBearings(1e13, 0.0, 1e13, thrust_journal=1),
+        masses=BALANCED,
+        free_end=EndMass(2.0, 0.05),
+        flywheel=EndMass(20.0, 0.8),
     )
     model = build_beam_model(g, web_stiffness_scale=web, pin_stiffness_scale=pin)
     chain = lumped_torsional_chain(model)
@@ -79,8 +85,12 @@ def test_rigid_webs_alone_leave_the_pins_offset_coupling():
 
 def test_chain_inertias_are_the_beam_models():
     g = CrankshaftBeamGeometry(
-        THROW, ANGLES, BeamMaterial(210e9, 0.3, 7850.0), MainBearings(1e9),
-        masses=ThrowMasses(1.5, 1.2, 2.0, 0.05), free_end=EndMass(5.0, 0.05, 0.0, 0.04),
+        THROW,
+        ANGLES,
+        BeamMaterial(210e9, 0.3, 7850.0),
+        MainBearings(1e9),
+        masses=ThrowMasses(1.5, 1.2, 2.0, 0.05),
+        free_end=EndMass(5.0, 0.05, 0.0, 0.04),
         flywheel=EndMass(20.0, 0.8),
     )
     model = build_beam_model(g)

@@ -82,7 +82,9 @@ def load_matrix(model: CrankshaftBeamModel) -> sp.csr_matrix:
     return sp.csr_matrix((vals, (rows, cols)), shape=(model.size, 2 * model.geometry.throws))
 
 
-def _element_rows(model: CrankshaftBeamModel, element: int, end: int, comps: list[int]) -> sp.csr_matrix:
+def _element_rows(
+    model: CrankshaftBeamModel, element: int, end: int, comps: list[int]
+) -> sp.csr_matrix:
     """Rows mapping global displacements to local end forces of one element (end 0 or 1,
     local components 0..5)."""
     el = model.elements
@@ -120,7 +122,9 @@ def recovery_matrices(model: CrankshaftBeamModel) -> tuple[sp.csr_matrix, sp.csr
     bearing_rows = []
     for k, node in enumerate(model.journal_nodes):
         sides = []
-        for e in np.flatnonzero((el.kind == "journal") & ((el.node_a == node) | (el.node_b == node))):
+        for e in np.flatnonzero(
+            (el.kind == "journal") & ((el.node_a == node) | (el.node_b == node))
+        ):
             end = 0 if el.node_a[e] == node else 1
             # internal moment: -(end force on the element) at its first end, + at its second
             sign = -1.0 if end == 0 else 1.0
@@ -159,8 +163,9 @@ class BeamResponseResult(Result):
     free_end_axial_orders: np.ndarray = array(
         "free_end_axial_by_order_m", "Axial vibration at the free end by order", "m"
     )
-    bearing_moment: np.ndarray = array("bearing_moment_Nm", "Bending moment at the main bearings",
-                                       "N·m")
+    bearing_moment: np.ndarray = array(
+        "bearing_moment_Nm", "Bending moment at the main bearings", "N·m"
+    )
     web_moment: np.ndarray = array("web_moment_Nm", "Bending moment of the webs", "N·m")
     web_stress: np.ndarray = array("web_stress_Pa", "Nominal bending stress of the webs", "Pa")
     method: str = scalar("method", "Method", "", summary=False)
@@ -171,20 +176,44 @@ class BeamResponseResult(Result):
     section_modulus: float = field(default=math.nan, repr=False)
 
     FIGURES = (
-        derived("max_free_end_axial", "max_free_end_axial_m", "Largest axial vibration at the "
-                "free end", "m", lambda r: _peak(r, r.free_end_axial, None), better="min"),
-        derived("max_free_end_torsion", "max_free_end_torsion_rad", "Largest torsional "
-                "vibration at the free end", "rad", lambda r: _peak(r, r.free_end_torsion, None),
-                better="min"),
-        derived("max_bearing_moment", "max_bearing_moment_Nm", "Largest bending moment at a "
-                "main bearing", "N·m", lambda r: _peak(r, r.bearing_moment, "bearing"),
-                better="min"),
-        derived("max_web_stress", "max_web_stress_Pa", "Largest nominal web bending stress",
-                "Pa", lambda r: _peak(r, r.web_stress, "web"), better="min"),
+        derived(
+            "max_free_end_axial",
+            "max_free_end_axial_m",
+            "Largest axial vibration at the free end",
+            "m",
+            lambda r: _peak(r, r.free_end_axial, None),
+            better="min",
+        ),
+        derived(
+            "max_free_end_torsion",
+            "max_free_end_torsion_rad",
+            "Largest torsional vibration at the free end",
+            "rad",
+            lambda r: _peak(r, r.free_end_torsion, None),
+            better="min",
+        ),
+        derived(
+            "max_bearing_moment",
+            "max_bearing_moment_Nm",
+            "Largest bending moment at a main bearing",
+            "N·m",
+            lambda r: _peak(r, r.bearing_moment, "bearing"),
+            better="min",
+        ),
+        derived(
+            "max_web_stress",
+            "max_web_stress_Pa",
+            "Largest nominal web bending stress",
+            "Pa",
+            lambda r: _peak(r, r.web_stress, "web"),
+            better="min",
+        ),
     )
 
 
-def _peak(r: BeamResponseResult, values: NDArray[np.float64], item: str | None) -> tuple[float, str] | None:
+def _peak(
+    r: BeamResponseResult, values: NDArray[np.float64], item: str | None
+) -> tuple[float, str] | None:
     """The largest value of a (speed[, item]) array, with where."""
     data = np.asarray(values, dtype=float)
     if data.size == 0 or not np.isfinite(data).any():
@@ -204,7 +233,9 @@ def _cycle(orders: NDArray[np.float64]) -> float:
     return 2.0 * math.pi * den
 
 
-def _synthesise(y: NDArray[np.complex128], orders: NDArray[np.float64], components: int) -> NDArray[np.float64]:
+def _synthesise(
+    y: NDArray[np.complex128], orders: NDArray[np.float64], components: int
+) -> NDArray[np.float64]:
     """Largest magnitude over a cycle of sum_q Re(y_q exp(i q theta)).
 
     y has shape (speeds, orders, outputs); consecutive groups of ``components`` outputs are one
@@ -219,7 +250,9 @@ def _synthesise(y: NDArray[np.complex128], orders: NDArray[np.float64], componen
     return mag.max(axis=-1)
 
 
-def _modes_for(model: CrankshaftBeamModel, top: float, modes: int | None) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _modes_for(
+    model: CrankshaftBeamModel, top: float, modes: int | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Enough of the lowest modes to reach 2 x the highest excitation frequency (rad/s)."""
     size = model.size
     count = min(size, modes if modes is not None else 30)
@@ -231,7 +264,10 @@ def _modes_for(model: CrankshaftBeamModel, top: float, modes: int | None) -> tup
 
 
 def _residual(
-    model: CrankshaftBeamModel, lam: NDArray[np.float64], phi: NDArray[np.float64], loads: sp.csr_matrix
+    model: CrankshaftBeamModel,
+    lam: NDArray[np.float64],
+    phi: NDArray[np.float64],
+    loads: sp.csr_matrix,
 ) -> NDArray[np.float64]:
     """Static residual of the modes left out, G_e B - sum phi phi^T B / lambda (size x loads)."""
     rigid = lam == 0.0
@@ -271,7 +307,9 @@ def _modal(
     if model.damping is not None:
         c_modal = c_modal + phi.T @ (model.damping @ phi)
     if np.count_nonzero(c_modal - np.diag(np.diag(c_modal))) == 0:
-        denom = lam[None, None, :] - omega[..., None] ** 2 + 1j * omega[..., None] * np.diag(c_modal)
+        denom = (
+            lam[None, None, :] - omega[..., None] ** 2 + 1j * omega[..., None] * np.diag(c_modal)
+        )
         eta = p / denom
     else:
         eta = np.empty_like(p)
@@ -362,24 +400,34 @@ def beam_response(
     if method not in METHODS:
         raise InputError(f"expected one of {', '.join(METHODS)}", key="method", value=method)
     if damping_ratio < 0.0 or (method == "direct" and damping_ratio != 0.0):
-        raise InputError("expected >= 0, and 0 with the direct method (its damping is the "
-                         "dashpots')", key="damping_ratio", value=damping_ratio)
+        raise InputError(
+            "expected >= 0, and 0 with the direct method (its damping is the dashpots')",
+            key="damping_ratio",
+            value=damping_ratio,
+        )
     n = model.geometry.throws
     shape = (speed.size, order.size, n)
     try:
         z = np.broadcast_to(np.asarray(radial, dtype=complex), shape)
         t = np.broadcast_to(np.asarray(tangential, dtype=complex), shape)
     except ValueError:
-        raise InputError(f"expected forces of shape (orders, throws) = ({order.size}, {n}) or "
-                         f"(speeds, orders, throws)", key="radial") from None
+        raise InputError(
+            f"expected forces of shape (orders, throws) = ({order.size}, {n}) or "
+            f"(speeds, orders, throws)",
+            key="radial",
+        ) from None
     forces = np.stack([z, t], axis=-1).reshape(speed.size, order.size, 2 * n)
     omega = speed[:, None] * order[None, :]
     bearings, webs = recovery_matrices(model)
     free, fly = model.free_end_node, model.flywheel_node
     points = sp.csr_matrix(
-        ([1.0, 1.0, 1.0, -1.0],
-         ([0, 1, 2, 2], [model.dof(free, 2), model.dof(free, 5), model.dof(free, 5),
-                         model.dof(fly, 5)])),
+        (
+            [1.0, 1.0, 1.0, -1.0],
+            (
+                [0, 1, 2, 2],
+                [model.dof(free, 2), model.dof(free, 5), model.dof(free, 5), model.dof(fly, 5)],
+            ),
+        ),
         shape=(3, model.size),
     )
     recover = sp.vstack([points, bearings, webs]).tocsr()

@@ -122,7 +122,7 @@ def wilson_stiffness(throw: ThrowDimensions, shear_modulus: float) -> float:
     --------
     >>> t = ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06)
     >>> f"{wilson_stiffness(t, 80e9):.6g}"
-    '2.44616e+06'
+    '2.44416e+06'
     """
     t = throw
     journal = t.journal_diameter**4 - t.journal_bore**4
@@ -159,9 +159,7 @@ def _single_throw(
     return build_beam_model(geometry, **options)  # type: ignore[arg-type]
 
 
-def _static(
-    model: CrankshaftBeamModel, fixed: list[int], load: int
-) -> float:
+def _static(model: CrankshaftBeamModel, fixed: list[int], load: int) -> float:
     """Displacement at ``load`` under a unit load there, the ``fixed`` degrees of freedom held."""
     free = np.setdiff1d(np.arange(model.size), fixed)
     k = model.stiffness[free][:, free].tocsc()
@@ -211,12 +209,17 @@ def throw_stiffness(
     --------
     >>> t = ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06)
     >>> s = throw_stiffness(t, BeamMaterial(208e9, 0.3, 7850.0), supported=False)
-    >>> round(s.torsional / s.carter, 3)
-    1.0
+    >>> round(s.torsional / s.carter, 3), round(s.equivalent_length, 4)  # l_e (m)
+    (0.978, 0.3596)
     """
     model = _single_throw(
-        throw, material, elements=elements, theory=theory, web_rigid_fraction=web_rigid_fraction,
-        web_stiffness_scale=web_stiffness_scale, pin_stiffness_scale=pin_stiffness_scale,
+        throw,
+        material,
+        elements=elements,
+        theory=theory,
+        web_rigid_fraction=web_rigid_fraction,
+        web_stiffness_scale=web_stiffness_scale,
+        pin_stiffness_scale=pin_stiffness_scale,
     )
     a, b = (int(n) for n in model.journal_nodes)
     dof = model.dof
@@ -273,8 +276,10 @@ def _throw_inertias(model: CrankshaftBeamModel, first: int, last: int) -> NDArra
     # the end bodies' own inertia goes whole to their chain masses, wherever their node is
     g = model.geometry
     ends = []
-    for body, node, slot in ((g.free_end, model.free_end_node, first),
-                             (g.flywheel, model.flywheel_node, last)):
+    for body, node, slot in (
+        (g.free_end, model.free_end_node, first),
+        (g.flywheel, model.flywheel_node, last),
+    ):
         if body is not None:
             per_node[node] -= body.polar_inertia
             ends.append((slot, body.polar_inertia))
@@ -309,8 +314,13 @@ def lumped_torsional_chain(model: CrankshaftBeamModel, *, supported: bool = True
     g = model.geometry
     t = g.throw
     kt = throw_stiffness(
-        t, g.material, supported=supported, elements=model.elements_per_part, theory=model.theory,
-        web_rigid_fraction=model.web_rigid_fraction, web_stiffness_scale=model.web_stiffness_scale,
+        t,
+        g.material,
+        supported=supported,
+        elements=model.elements_per_part,
+        theory=model.theory,
+        web_rigid_fraction=model.web_rigid_fraction,
+        web_stiffness_scale=model.web_stiffness_scale,
         pin_stiffness_scale=model.pin_stiffness_scale,
     ).torsional
     n = g.throws
@@ -318,10 +328,12 @@ def lumped_torsional_chain(model: CrankshaftBeamModel, *, supported: bool = True
     last = n if g.flywheel is not None else n - 1
     shares = _throw_inertias(model, first, last)
     names = [f"throw {i + 1}" for i in range(n)]
-    inertias = list(shares[int(g.free_end is not None):][:n])
+    inertias = list(shares[int(g.free_end is not None) :][:n])
     stiff = [kt] * (n - 1)
-    gj = g.material.shear_modulus * BeamSection.circular(
-        t.journal_diameter, t.journal_bore, 0.0).torsion_constant
+    gj = (
+        g.material.shear_modulus
+        * BeamSection.circular(t.journal_diameter, t.journal_bore, 0.0).torsion_constant
+    )
     if g.free_end is not None:
         names.insert(0, "free end")
         inertias.insert(0, shares[0])
