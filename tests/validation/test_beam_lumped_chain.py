@@ -38,10 +38,8 @@ from crankdyn.crankshaft.beam_model import (
     ThrowMasses,
     build_beam_model,
 )
-from crankdyn.crankshaft.beam_modes import beam_modes, compare_torsional_modes
-from crankdyn.crankshaft.beam_stiffness import lumped_torsional_chain
-from crankdyn.torsion.modal import natural_modes
-from crankdyn.torsion.model import TorsionModel
+from crankdyn.crankshaft.beam_modes import beam_modes
+from crankdyn.crankshaft.beam_stiffness import lumped_chain_comparison, lumped_torsional_chain
 
 LIGHT = BeamMaterial(210e9, 0.3, 7.85)
 THROW = ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06)
@@ -60,9 +58,7 @@ def _comparison(web, pin):
         flywheel=EndMass(20.0, 0.8),
     )
     model = build_beam_model(g, web_stiffness_scale=web, pin_stiffness_scale=pin)
-    chain = lumped_torsional_chain(model)
-    lumped = natural_modes(TorsionModel.chain_of(chain.inertias, chain.stiffnesses))
-    return compare_torsional_modes(beam_modes(model, 24), lumped.natural_frequency)
+    return lumped_chain_comparison(model, beam_modes(model, 24))
 
 
 def test_rigid_throws_make_the_beam_a_lumped_chain():

@@ -25,7 +25,9 @@ Outputs, each as the amplitude of the signal synthesised from all orders over a 
 max over theta of |sum_q Re(Y_q exp(i q theta))| (for a vector, its largest magnitude):
 
 - the axial vibration u_z of the free end (and its amplitude per order);
-- the torsional vibration theta_z of the free end and the twist free end - flywheel;
+- the torsional vibration theta_z of the free end (absolute: it includes the rigid-body
+  rotation a net alternating torque gives the whole shaft, the speed fluctuation) and the twist
+  free end - flywheel (the elastic part);
 - the bending moment at every main bearing: the two components across the shaft of the journal's
   internal moment, the mean of the sections just either side of the bearing;
 - the bending moment of every web about its tangential axis (the bending of the throw plane that

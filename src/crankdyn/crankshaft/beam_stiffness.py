@@ -55,6 +55,11 @@ from crankdyn.crankshaft.beam_model import (
     ThrowDimensions,
     build_beam_model,
 )
+from crankdyn.crankshaft.beam_modes import (
+    BeamModesResult,
+    TorsionalComparison,
+    compare_torsional_modes,
+)
 from crankdyn.results import Result, scalar
 from crankdyn.torsion.equivalent import CrankThrowGeometry, carter_throw_stiffness
 
@@ -62,6 +67,7 @@ __all__ = [
     "LumpedChain",
     "ThrowStiffness",
     "carter_stiffness",
+    "lumped_chain_comparison",
     "lumped_torsional_chain",
     "throw_stiffness",
     "wilson_stiffness",
@@ -351,3 +357,33 @@ def lumped_torsional_chain(model: CrankshaftBeamModel, *, supported: bool = True
         inertias.append(inertia)
         stiff.append(stiffness)
     return LumpedChain(tuple(names), np.array(inertias), np.array(stiff), kt)
+
+
+def lumped_chain_comparison(
+    model: CrankshaftBeamModel, modes: BeamModesResult, *, supported: bool = True
+) -> TorsionalComparison:
+    """The beam model's torsional modes against the lumped chain made from it: how well the
+    lumped model holds (:func:`lumped_torsional_chain`, solved by
+    :func:`crankdyn.torsion.modal.natural_modes`; paired by
+    :func:`crankdyn.crankshaft.beam_modes.compare_torsional_modes`).
+
+    Parameters
+    ----------
+    model : CrankshaftBeamModel
+        The beam model.
+    modes : BeamModesResult
+        Its modes (:func:`crankdyn.crankshaft.beam_modes.beam_modes`).
+    supported : bool
+        Throw stiffness held as in its bearings (:func:`throw_stiffness`).
+
+    Returns
+    -------
+    TorsionalComparison
+        Beam and chain frequencies (rad/s, exported in Hz) and chain / beam - 1.
+    """
+    from crankdyn.torsion.modal import natural_modes
+    from crankdyn.torsion.model import TorsionModel
+
+    chain = lumped_torsional_chain(model, supported=supported)
+    lumped = natural_modes(TorsionModel.chain_of(chain.inertias, chain.stiffnesses))
+    return compare_torsional_modes(modes, lumped.natural_frequency)
