@@ -14,6 +14,7 @@ MODULES = (
     "engine_cycle",
     "process",
     "baseline",
+    "crankshaft_beam",
 )
 
 

@@ -8,7 +8,11 @@ engines" (docs/crankshaft.md).
 - :mod:`crankdyn.crankshaft.loads`: the throw's bending moments and forces over the cycle by the
   statically determinate method;
 - :mod:`crankdyn.crankshaft.strength`: :func:`crankshaft_strength`, the check of an engine;
-- :mod:`crankdyn.crankshaft.result`: :class:`CrankshaftResult`, its summary and verdicts.
+- :mod:`crankdyn.crankshaft.result`: :class:`CrankshaftResult`, its summary and verdicts;
+- the crankshaft as a structure (a 3-D beam model of the throws: coupled torsional, axial and
+  bending vibration): :mod:`crankdyn.crankshaft.beam_elements`, :mod:`~crankdyn.crankshaft.
+  beam_model`, :mod:`~crankdyn.crankshaft.beam_modes`, :mod:`~crankdyn.crankshaft.beam_stiffness`,
+  :mod:`~crankdyn.crankshaft.beam_response`.
 
 The domain objects are imported here; the analysis on first use (the engine model imports this
 package, and the analysis imports the engine model).

@@ -1,0 +1,508 @@
+"""Coupled natural frequencies and mode shapes of the crankshaft beam model (analysis).
+
+K phi = omega^2 M phi over the beam model's degrees of freedom
+(:mod:`crankdyn.crankshaft.beam_model`), the lowest modes by the sparse symmetric Lanczos solver
+in shift-invert mode (ARPACK through ``scipy.sparse.linalg.eigsh`` with ``sigma``: the modes
+nearest a shift sigma < 0 below every eigenvalue are the lowest; one sparse LU factorisation
+of K - sigma M; R. B. Lehoucq, D. C. Sorensen and C. Yang, *ARPACK Users' Guide*, SIAM, 1998,
+sec. 3.2.3), or a dense ``scipy.linalg.eigh`` for small models.
+
+Classification by modal kinetic energy (each shape mass-normalised, phi^T M phi = 1). The
+translation of every node off the shaft axis (webs, pins) is taken relative to the axis's at its
+station, q = T phi; with T^-T M phi the energy splits exactly, phi^T M phi = q^T (T^-T M phi) =
+sum over degrees of freedom of q_d (T^-T M phi)_d, and each degree of freedom's share goes to
+torsion (theta_z; the tangential motion of webs and pins relative to the axis), axial motion
+(u_z) or bending (the axis's translations across the shaft, theta_x, theta_y; the radial
+relative motion) (:func:`energy_fractions`). A pure rotation of the crankshaft is then all
+torsional, the pins' tangential motion included, and a lateral translation all bending. A mode
+is named after the motion with a fraction of at least ``threshold`` (default 0.75), else
+"coupled" with its two largest motions; the (near-)zero modes of an unsupported motion are
+"rigid".
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import scipy.linalg
+import scipy.sparse.linalg as spla
+from numpy.typing import ArrayLike, NDArray
+
+from crankdyn.crankshaft.beam_model import CrankshaftBeamModel
+from crankdyn.errors import InputError
+from crankdyn.results import Result, column, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, derived
+
+__all__ = [
+    "MOTIONS",
+    "BeamModesResult",
+    "TorsionalComparison",
+    "beam_modes",
+    "compare_torsional_modes",
+    "energy_fractions",
+    "solve_lowest_modes",
+]
+
+HZ = 1.0 / (2.0 * math.pi)
+MOTIONS = ("torsional", "axial", "bending")
+"""The motions a mode's kinetic energy is split into (module docstring)."""
+DENSE_SIZE = 120
+"""Models up to this many degrees of freedom are solved densely."""
+RIGID = 1e-9
+"""A mode with omega^2 below RIGID x the largest omega^2 found is a rigid-body mode (omega = 0)."""
+
+
+def solve_lowest_modes(
+    stiffness: Any, mass: Any, count: int, sigma: float | None = None
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The lowest ``count`` eigenpairs of K phi = lambda M phi (module docstring).
+
+    Parameters
+    ----------
+    stiffness, mass : scipy.sparse matrix
+        K and M, symmetric, M positive definite (SI).
+    count : int
+        Number of modes, >= 1 (at most the size).
+    sigma : float or None
+        The shift (rad^2/s^2), below every eigenvalue; default -(2 pi x 1 Hz)^2.
+
+    Returns
+    -------
+    lam : numpy.ndarray
+        omega^2 (rad^2/s^2), ascending, shape (count,); rigid-body modes set to 0.
+    shapes : numpy.ndarray
+        Mass-normalised shapes, shape (size, count).
+    """
+    n = stiffness.shape[0]
+    count = min(int(count), n)
+    if n <= DENSE_SIZE or count >= n - 1:
+        lam, vec = scipy.linalg.eigh(
+            stiffness.toarray(), mass.toarray(), subset_by_index=[0, count - 1]
+        )
+    else:
+        shift = -((2.0 * math.pi) ** 2) if sigma is None else float(sigma)
+        lam, vec = spla.eigsh(stiffness.tocsc(), k=count, M=mass.tocsc(), sigma=shift, which="LM")
+        order = np.argsort(lam)
+        lam, vec = lam[order], vec[:, order]
+    norm = np.sqrt(np.einsum("ij,ij->j", vec, mass @ vec))
+    vec = vec / norm
+    top = float(np.max(np.abs(lam))) if lam.size else 0.0
+    lam = np.where(lam < RIGID * top, 0.0, lam)
+    return lam, vec
+
+
+def _axis_reference(
+    model: CrankshaftBeamModel,
+) -> tuple[NDArray[np.int_], NDArray[np.int_], NDArray[np.int_], NDArray[np.float64]]:
+    """Off-axis beam nodes, the two axis nodes of their throw's webs, and the weight of the
+    second (linear in z between the web mid-planes, clamped)."""
+    xyz = model.node_xyz
+    idx = model.dof_index
+    beam = np.all(idx >= 0, axis=1)
+    off = np.flatnonzero(beam & (np.hypot(xyz[:, 0], xyz[:, 1]) > 0.0))
+    throw = np.clip(np.rint(model.throw_of_node[off]).astype(int), 0, model.geometry.throws - 1)
+    a, b = model.web_axis_nodes[throw, 0], model.web_axis_nodes[throw, 1]
+    za, zb = xyz[a, 2], xyz[b, 2]
+    weight = np.clip((xyz[off, 2] - za) / (zb - za), 0.0, 1.0)
+    return off, a, b, weight
+
+
+def energy_fractions(model: CrankshaftBeamModel, shapes: ArrayLike) -> NDArray[np.float64]:
+    """Kinetic-energy fractions of torsion, axial motion and bending.
+
+    The translation of every node off the shaft axis (webs, pins) is taken relative to the
+    axis's, interpolated between the axis nodes of its throw's two webs: q_u = u - u_axis(z)
+    (q = T phi, T = I - C with C^2 = 0, so T^-1 = I + C). The relative translation across the
+    shaft is split into its tangential part (torsional: the pins' and webs' motion as the throw
+    twists) and its radial part (bending); the energy q_d (T^-T M phi)_d of each degree of
+    freedom then sums exactly to phi^T M phi. Torsional: theta_z and the tangential relative
+    motion; axial: u_z; bending: the axis's translations across the shaft, the rotations
+    theta_x and theta_y and the radial relative motion (module docstring).
+
+    Parameters
+    ----------
+    model : CrankshaftBeamModel
+        The model.
+    shapes : array_like
+        Mode shapes, shape (size, modes) (any normalisation).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape (modes, 3): the fractions of :data:`MOTIONS` (dimensionless, each >= 0, summing
+        to 1; the small negative cross terms of a consistent mass clipped).
+    """
+    phi = np.atleast_2d(np.asarray(shapes, dtype=float).T).T
+    idx = model.dof_index
+    w = np.asarray(model.mass @ phi)
+    off, a, b, wt = _axis_reference(model)
+    q = phi.copy()
+    w_t = w.copy()
+    for d in (0, 1):
+        rows = idx[off, d]
+        ref_a, ref_b = idx[a, d], idx[b, d]
+        q[rows] -= (1.0 - wt)[:, None] * phi[ref_a] + wt[:, None] * phi[ref_b]
+        np.add.at(w_t, ref_a, (1.0 - wt)[:, None] * w[rows])  # (I + C^T) M phi
+        np.add.at(w_t, ref_b, wt[:, None] * w[rows])
+    names = np.zeros(model.size, dtype=int)
+    for d in range(6):
+        names[idx[idx[:, d] >= 0, d]] = d
+    kind = np.where(names == 5, 0, np.where(names == 2, 1, 2))
+    energy = q * w_t
+    # the relative translation of off-axis nodes: tangential part torsional, radial bending
+    xyz = model.node_xyz[off]
+    r = np.hypot(xyz[:, 0], xyz[:, 1])
+    er = np.stack([xyz[:, 0] / r, xyz[:, 1] / r], axis=1)
+    ux, uy = idx[off, 0], idx[off, 1]
+    q_t = -er[:, 1:2] * q[ux] + er[:, 0:1] * q[uy]
+    w_tan = -er[:, 1:2] * w_t[ux] + er[:, 0:1] * w_t[uy]
+    tangential = q_t * w_tan  # rotation of (x, y) into (radial, tangential): orthogonal
+    out = np.stack([energy[kind == k].sum(axis=0) for k in range(3)], axis=1)
+    moved = tangential.sum(axis=0)
+    out[:, 0] += moved
+    out[:, 2] -= moved
+    out = np.clip(out, 0.0, None)
+    return out / np.maximum(out.sum(axis=1, keepdims=True), np.finfo(float).tiny)
+
+
+def _labels(
+    fractions: NDArray[np.float64], rigid: NDArray[np.bool_], threshold: float
+) -> list[str]:
+    out = []
+    for f, r in zip(fractions, rigid, strict=True):
+        top = int(np.argmax(f))
+        if r:
+            out.append(f"rigid {MOTIONS[top]}")
+        elif f[top] >= threshold:
+            out.append(MOTIONS[top])
+        else:
+            two = sorted(np.argsort(f)[-2:].tolist())
+            out.append(f"coupled {MOTIONS[two[0]]}-{MOTIONS[two[1]]}")
+    return out
+
+
+def _lowest(motion: str) -> Any:
+    """The lowest elastic frequency (Hz) whose mode is ``motion`` (or coupled with it)."""
+
+    def value(r: BeamModesResult) -> tuple[float, str] | None:
+        for m, f, label in zip(r.mode, r.natural_frequency, r.motion, strict=True):
+            if not label.startswith("rigid") and motion in label:
+                return f * HZ, f"mode {int(m)}, {label}"
+        return None
+
+    return value
+
+
+@dataclass(frozen=True)
+class BeamModesResult(Result):
+    """Coupled natural frequencies and mode shapes of a crankshaft beam model
+    (:func:`beam_modes`; module docstring).
+
+    Parameters
+    ----------
+    shapes : numpy.ndarray
+        Mass-normalised mode shapes over the model's degrees of freedom (size x modes; not
+        exported: :meth:`node_displacements`).
+    model : CrankshaftBeamModel or None
+        The model (not exported).
+    """
+
+    title = "Crankshaft beam model: natural frequencies"
+    mode: np.ndarray = column("mode", "Mode", "")
+    natural_frequency: np.ndarray = column("natural_frequencies_hz", "Natural frequency", "Hz", HZ)
+    motion: np.ndarray = column("motion", "Motion", "")
+    torsional_fraction: np.ndarray = column("torsional_fraction", "Torsional energy", "")
+    axial_fraction: np.ndarray = column("axial_fraction", "Axial energy", "")
+    bending_fraction: np.ndarray = column("bending_fraction", "Bending energy", "")
+    mesh: str = scalar("mesh", "Mesh", "", summary=False)
+    threshold: float = scalar("threshold", "Fraction that names a motion", "", summary=False)
+    degrees_of_freedom: int = scalar("degrees_of_freedom", "Degrees of freedom", "", summary=False)
+    notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())
+    shapes: NDArray[np.float64] = field(
+        default_factory=lambda: np.zeros((0, 0)), repr=False, compare=False
+    )
+    model: CrankshaftBeamModel | None = field(default=None, repr=False, compare=False)
+
+    FIGURES = (
+        derived(
+            "lowest_frequency",
+            "lowest_natural_frequency_hz",
+            "Lowest elastic mode",
+            "Hz",
+            lambda r: next(
+                (
+                    (f * HZ, f"mode {int(m)}, {lab}")
+                    for m, f, lab in zip(r.mode, r.natural_frequency, r.motion, strict=True)
+                    if not lab.startswith("rigid")
+                ),
+                None,
+            ),
+        ),
+        derived(
+            "lowest_torsional_frequency",
+            "lowest_torsional_frequency_hz",
+            "Lowest torsional mode",
+            "Hz",
+            _lowest("torsional"),
+        ),
+        derived(
+            "lowest_axial_frequency",
+            "lowest_axial_frequency_hz",
+            "Lowest axial mode",
+            "Hz",
+            _lowest("axial"),
+        ),
+        derived(
+            "lowest_bending_frequency",
+            "lowest_bending_frequency_hz",
+            "Lowest bending mode",
+            "Hz",
+            _lowest("bending"),
+        ),
+    )
+
+    @property
+    def frequencies_hz(self) -> NDArray[np.float64]:
+        """Natural frequencies (Hz)."""
+        return self.natural_frequency * HZ
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The modes: frequency, motion and energy fractions.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            One table, one row per mode.
+        """
+        cols = (
+            SummaryColumn("mode", "Mode"),
+            SummaryColumn("natural_frequency_hz", "Natural frequency", "Hz"),
+            SummaryColumn("motion", "Motion"),
+            SummaryColumn("torsional_fraction", "Torsional energy"),
+            SummaryColumn("axial_fraction", "Axial energy"),
+            SummaryColumn("bending_fraction", "Bending energy"),
+        )
+        rows = tuple(
+            (int(m), float(f) * HZ, str(lab), float(a), float(b), float(c))
+            for m, f, lab, a, b, c in zip(
+                self.mode,
+                self.natural_frequency,
+                self.motion,
+                self.torsional_fraction,
+                self.axial_fraction,
+                self.bending_fraction,
+                strict=True,
+            )
+        )
+        return [
+            SummaryTable(
+                "beam_modes",
+                "Modes of the crankshaft beam model",
+                cols,
+                rows,
+                caption="Kinetic-energy fractions of torsion, axial motion and bending.",
+            )
+        ]
+
+    def node_displacements(self, mode: int) -> NDArray[np.float64]:
+        """The shape of one mode at every node (m, rad per unit modal coordinate).
+
+        Parameters
+        ----------
+        mode : int
+            The mode number (1-based, as :attr:`mode`).
+
+        Returns
+        -------
+        numpy.ndarray
+            Shape (nodes, 6): u_x, u_y, u_z, theta_x, theta_y, theta_z; 0 where inactive.
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            For a mode not computed (key ``mode``).
+        """
+        if self.model is None or not 1 <= mode <= self.shapes.shape[1]:
+            raise InputError(
+                f"expected a mode from 1 to {self.shapes.shape[1]}", key="mode", value=mode
+            )
+        idx = self.model.dof_index
+        out = np.zeros(idx.shape)
+        out[idx >= 0] = self.shapes[idx[idx >= 0], mode - 1]
+        return out
+
+
+def beam_modes(
+    model: CrankshaftBeamModel,
+    count: int = 12,
+    *,
+    threshold: float = 0.75,
+    sigma: float | None = None,
+) -> BeamModesResult:
+    """The lowest coupled modes of a crankshaft beam model, classified (module docstring).
+
+    Parameters
+    ----------
+    model : CrankshaftBeamModel
+        The model (:func:`crankdyn.crankshaft.beam_model.build_beam_model`).
+    count : int
+        Number of modes (>= 1), rigid-body modes included.
+    threshold : float
+        Energy fraction (dimensionless, 0.5 < threshold <= 1) that names a mode after one motion.
+    sigma : float or None
+        Shift of the eigensolver (rad^2/s^2), below the lowest eigenvalue; default
+        -(2 pi x 1 Hz)^2.
+
+    Returns
+    -------
+    BeamModesResult
+        Frequencies (rad/s, exported in Hz), motions, energy fractions and shapes.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        For a count below 1 or a threshold outside (0.5, 1].
+
+    Examples
+    --------
+    >>> from crankdyn.crankshaft.beam_elements import BeamMaterial
+    >>> from crankdyn.crankshaft.beam_model import (CrankshaftBeamGeometry, MainBearings,
+    ...     ThrowDimensions, build_beam_model)
+    >>> g = CrankshaftBeamGeometry(ThrowDimensions(0.1, 0.05, 0.08, 0.04, 0.025, 0.12, 0.06),
+    ...     (0.0, math.pi), BeamMaterial(210e9, 0.3, 7850.0), MainBearings(1e9))
+    >>> r = beam_modes(build_beam_model(g), 4)
+    >>> sorted(str(m) for m in r.motion[:2])  # no thrust bearing: free to move axially
+    ['rigid axial', 'rigid torsional']
+    """
+    if int(count) != count or count < 1:
+        raise InputError("expected a whole number of at least 1", key="count", value=count)
+    if not 0.5 < threshold <= 1.0:
+        raise InputError(
+            "expected a fraction above 0.5, at most 1", key="threshold", value=threshold
+        )
+    lam, shapes = solve_lowest_modes(model.stiffness, model.mass, int(count), sigma)
+    fractions = energy_fractions(model, shapes)
+    labels = _labels(fractions, lam == 0.0, threshold)
+    return BeamModesResult(
+        mode=np.arange(1, lam.size + 1),
+        natural_frequency=np.sqrt(lam),
+        motion=np.array(labels),
+        torsional_fraction=fractions[:, 0],
+        axial_fraction=fractions[:, 1],
+        bending_fraction=fractions[:, 2],
+        mesh=model.mesh_note,
+        threshold=float(threshold),
+        degrees_of_freedom=model.size,
+        notes=(
+            "Rotating frame, no gyroscopic or centrifugal terms, isotropic bearings; the "
+            "reciprocating masses as their mean over a revolution (m_j / 2 across the shaft).",
+        ),
+        shapes=shapes,
+        model=model,
+    )
+
+
+@dataclass(frozen=True)
+class TorsionalComparison(Result):
+    """The beam model's torsional modes against a lumped torsional chain's
+    (:func:`compare_torsional_modes`).
+
+    Parameters
+    ----------
+    beam_mode : numpy.ndarray
+        The beam model's mode number of each pair (int).
+    """
+
+    title = "Torsional modes: beam model against the lumped chain"
+    beam_frequency: np.ndarray = column("beam_frequency_hz", "Beam model", "Hz", HZ)
+    lumped_frequency: np.ndarray = column("lumped_frequency_hz", "Lumped chain", "Hz", HZ)
+    difference: np.ndarray = column("difference", "Lumped / beam - 1", "")
+    motion: np.ndarray = column("motion", "Beam mode's motion", "")
+    beam_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
+
+    FIGURES = (
+        derived(
+            "lumped_model_error",
+            "lumped_model_largest_difference",
+            "Largest difference of the lumped chain",
+            "",
+            lambda r: (
+                None
+                if r.difference.size == 0
+                else (
+                    float(np.max(np.abs(r.difference))),
+                    f"torsional mode {int(np.argmax(np.abs(r.difference))) + 1}",
+                )
+            ),
+        ),
+    )
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """One row per pair of torsional modes.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The comparison table.
+        """
+        cols = (
+            SummaryColumn("beam_mode", "Beam mode"),
+            SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
+            SummaryColumn("lumped_frequency_hz", "Lumped chain", "Hz"),
+            SummaryColumn("difference", "Lumped / beam - 1"),
+        )
+        rows = tuple(
+            (int(m), float(b) * HZ, float(c) * HZ, float(d))
+            for m, b, c, d in zip(
+                self.beam_mode,
+                self.beam_frequency,
+                self.lumped_frequency,
+                self.difference,
+                strict=True,
+            )
+        )
+        return [SummaryTable("torsional_comparison", "How well the lumped model holds", cols, rows)]
+
+
+def compare_torsional_modes(
+    result: BeamModesResult, lumped: Sequence[float] | NDArray[np.float64], *, minimum: float = 0.5
+) -> TorsionalComparison:
+    """Pair the beam model's torsional modes with a lumped chain's, in ascending order.
+
+    A beam mode counts as torsional when its torsional energy fraction is at least ``minimum``
+    (rigid modes excluded); the k-th such mode is paired with the k-th positive lumped frequency.
+
+    Parameters
+    ----------
+    result : BeamModesResult
+        The beam model's modes.
+    lumped : sequence of float
+        The lumped chain's natural frequencies (rad/s; zeros, the rigid-body mode, are
+        skipped), e.g. ``crankdyn.torsion.natural_modes(model).natural_frequency``.
+    minimum : float
+        Torsional energy fraction that makes a beam mode torsional (dimensionless).
+
+    Returns
+    -------
+    TorsionalComparison
+        As many pairs as both have.
+    """
+    elastic = ~np.char.startswith(result.motion.astype(str), "rigid")
+    use = elastic & (result.torsional_fraction >= minimum)
+    beam = result.natural_frequency[use]
+    modes = result.mode[use]
+    labels = result.motion[use]
+    chain = np.sort(np.asarray(lumped, dtype=float))
+    chain = chain[chain > 0.0]
+    n = min(beam.size, chain.size)
+    return TorsionalComparison(
+        beam_frequency=beam[:n],
+        lumped_frequency=chain[:n],
+        difference=chain[:n] / beam[:n] - 1.0,
+        motion=labels[:n],
+        beam_mode=modes[:n],
+    )
