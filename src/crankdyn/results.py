@@ -18,7 +18,7 @@ from __future__ import annotations
 import dataclasses
 import io
 import json
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import Field, field, fields
 from typing import TYPE_CHECKING, Any, ClassVar, Self
 
@@ -26,7 +26,7 @@ import numpy as np
 from numpy.typing import ArrayLike, DTypeLike, NDArray
 
 from crankdyn.export import jsonable, scaled, scaled_value, to_jsonable
-from crankdyn.summary import FigureSpec, KeyFigure, Summary, SummaryTable, Verdict
+from crankdyn.summary import FigureSpec, KeyFigure, Summary, SummaryColumn, SummaryTable, Verdict
 
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
@@ -388,8 +388,8 @@ class Result:
             if isinstance(value, Result):
                 out.extend(value.key_figures())
                 continue
-            if isinstance(value, (list, tuple)) and value and not _plain(value[0]):
-                continue  # lists of sub-results: tables, not figures
+            if isinstance(value, (list, tuple)) and (not value or not _plain(value[0])):
+                continue  # lists of sub-results: tables, not figures; empty lists: nothing
             out.append(
                 KeyFigure(
                     meta.get("name") or f.name,
@@ -417,6 +417,40 @@ class Result:
         """The completed declarations of :attr:`FIGURES`."""
         specs = cls.figure_specs()
         return specs[len(specs) - len(cls.FIGURES) :]
+
+    @classmethod
+    def table_of(
+        cls, items: Sequence[Result], key: str, title: str, caption: str = ""
+    ) -> SummaryTable:
+        """A summary table of several results of this class, one row each: a column per
+        scalar field that holds a number, text or flag (labels, units and scales as the fields
+        declare them; a field None in every row is left out).
+
+        Parameters
+        ----------
+        items : sequence of Result
+            The rows (instances of this class).
+        key, title, caption : str
+            As :class:`crankdyn.summary.SummaryTable`.
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable
+            The table.
+        """
+        columns: list[SummaryColumn] = []
+        cells: list[list[Any]] = []
+        for f in fields(cls):
+            meta = f.metadata
+            if meta.get("kind") != "scalar" or f.name == "notes":
+                continue
+            values = [getattr(item, f.name) for item in items]
+            if all(v is None for v in values) or not all(v is None or _plain(v) for v in values):
+                continue
+            columns.append(SummaryColumn(meta["key"], meta["label"], meta["unit"]))
+            cells.append([None if v is None else _figure_value(v, meta["scale"]) for v in values])
+        rows = tuple(tuple(row) for row in zip(*cells, strict=True))
+        return SummaryTable(key, title, tuple(columns), rows, caption=caption)
 
     def summary_tables(self) -> list[SummaryTable]:
         """The tables of the summary (none by default; a result with per-item figures, e.g.

@@ -22,6 +22,7 @@ Tolerances: the hand values carry 6 significant digits (relative 1e-5).
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -29,10 +30,12 @@ import pytest
 
 from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
 from crankdyn.torsion.excitation import UniformExcitation
-from crankdyn.torsion.response import forced_response
 from crankdyn.torsion.rules import RuleSet as ShaftRules
-from crankdyn.torsion.rules import check_rules
+from crankdyn.torsion.sweep import forced_response
 from crankdyn.tvc import rulesets as R
+from crankdyn.tvc.analysis import judge
+from crankdyn.tvc.checks import model_checks
+from crankdyn.tvc.spec import TvcSpec
 
 MPA = 1e6
 REL = 1e-5
@@ -77,18 +80,22 @@ def test_verdict_flips_between_lr_and_kr_on_a_line():
         UniformExcitation(60.0, [0.0], "two-stroke"),
         np.linspace(400, 660, 27) * RPM_,
         [3.0],
-        rules=False,
     )
     peak = float(np.max(response.synthesized_shaft_stress))
     assert 44.2865 * MPA < peak < 53.6099 * MPA  # between KR's and LR's tau_C by hand
-    verdicts = {}
+    spec = TvcSpec(tachometer_tolerance=0.0)
+    judged = {}
     for key in ("lr", "kr"):
         limit = R.shaft_limit(R.get(key), ("engine", "propeller"), 800 * MPA)
-        check = check_rules(response, ShaftRules(n0, [limit]), model)
-        verdicts[key] = check
-        top = float(np.nanmax(check.tau_c[check.speed >= 0.9 * n0]))
+        ruled = dataclasses.replace(model, rules=ShaftRules(n0, [limit]))
+        (check,), _ = model_checks(ruled, spec, n0, [])
+        top = float(np.nanmax(check.limit(response.speed[response.speed >= 0.9 * n0])))
         assert top / MPA == pytest.approx(53.6099 if key == "lr" else 44.2865, rel=REL)
-    assert verdicts["lr"].passed and not verdicts["lr"].barred_ranges
-    assert not verdicts["kr"].passed
-    (barred,) = verdicts["kr"].barred_ranges
+        judged[key] = judge(ruled, response, spec)
+    lr_rows, lr_barred = judged["lr"]
+    assert all(row.passed for row in lr_rows) and not lr_barred
+    kr_rows, kr_barred = judged["kr"]
+    assert not all(row.passed for row in kr_rows)
+    (barred,) = kr_barred
+    assert not barred.permitted
     assert barred.start < resonance < barred.end and barred.end > 0.8 * n0

@@ -204,6 +204,13 @@ class ModelComparison(Result):
     peaks: tuple[ResonancePeak, ...] = scalar("resonances", "Resonance peaks", "", default=())
     damping: DampingEstimate | None = scalar("damping", "Identified damping", "", default=None)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
+    model_at_peak: float | None = scalar(
+        "model_at_measured_peak_rad",
+        "Model synthesised amplitude where the measured one is largest",
+        "rad",
+        default=None,
+        summary=False,
+    )
     orders: np.ndarray | None = None
     steady: bool = False
 
@@ -373,8 +380,14 @@ def compare_with_model(
         "orders": orders,
     }
     if steady:
-        return ModelComparison(steady=True, notes=tuple(notes) or None, **common)
+        at_peak = float(result.synthesized_amplitude[0, i])
+        return ModelComparison(
+            steady=True, notes=tuple(notes) or None, model_at_peak=at_peak, **common
+        )
     tracking = cast("OrderTracking", measured)  # not steady: an order tracking
+    top = float(tracking.window_speed[int(np.argmax(tracking.window_synthesized))])
+    there = _response(model, excitation, [top], orders, dampers)
+    at_peak = float(there.synthesized_amplitude[0, i])
     lo, hi = float(np.min(tracking.window_speed)), float(np.max(tracking.window_speed))
     grid = np.linspace(lo, hi, CURVE_POINTS)
     curve = _response(model, excitation, grid, orders, dampers)
@@ -420,6 +433,7 @@ def compare_with_model(
         peaks=tuple(peaks),
         damping=damping,
         notes=tuple(notes) or None,
+        model_at_peak=at_peak,
         **common,
     )
 

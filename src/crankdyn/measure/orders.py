@@ -54,9 +54,11 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import CYCLE_ANGLE, DEG, RPM
 from crankdyn.errors import InputError
 from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
+from crankdyn.measure.figures import MEASURED_FIGURES, resonance_table
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
 from crankdyn.results import Result, array, column, freeze, scalar
+from crankdyn.summary import SummaryTable
 from crankdyn.torsion.orders import check_orders, fundamental_order, harmonic_index
 from crankdyn.torsion.synthesis import half_range
 
@@ -735,6 +737,7 @@ class OrderSpectrum(Result):
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
 
     kind = "steady"
+    FIGURES = MEASURED_FIGURES
 
     @property
     def coefficients(self) -> NDArray[np.complex128]:
@@ -833,6 +836,7 @@ class OrderTracking(Result):
     """
 
     title = "Measured orders (order tracking)"
+    FIGURES = MEASURED_FIGURES
     kind: str = scalar("kind", "Record", "")
     speed: np.ndarray = column("speed_rpm", "Speed", "rpm", RPM)
     windows: np.ndarray = column("windows", "Windows", "")
@@ -869,6 +873,17 @@ class OrderTracking(Result):
     comparison: Result | None = scalar("model", "Model", "", default=None)
     window_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The fitted resonances, beside the model's peaks where it was held against one
+        (:func:`crankdyn.measure.figures.resonance_table`).
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            One table, or none without fitted resonances.
+        """
+        return resonance_table(self)
 
     @property
     def coefficients(self) -> NDArray[np.complex128]:

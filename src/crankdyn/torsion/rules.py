@@ -435,7 +435,7 @@ def exceedances(
     >>> rpm = math.pi / 30
     >>> response = forced_response(
     ...     model, UniformExcitation(60.0, [0.0], "two-stroke"),
-    ...     np.linspace(200, 1050, 86) * rpm, [3.0], rules=False,
+    ...     np.linspace(200, 1050, 86) * rpm, [3.0],
     ... )
     >>> def tau_c(w):
     ...     return permissible_continuous(w[:, None] / (1000 * rpm), 600e6, 1.0, 0.06)

@@ -626,7 +626,7 @@ def forced_response(
         Amplitudes (rad), torques (N m), stresses (Pa) and damper power (W) per speed
         (rad/s); ``speed``, ``on_grid``, ``added_speeds`` and ``added_reasons``;
         :meth:`~crankdyn.torsion.response.ResponseResult.peak` for the largest value of any
-        quantity; ``rule_check``.
+        quantity (the response judges nothing: :func:`crankdyn.tvc.analysis.judge` does).
 
     Raises
     ------

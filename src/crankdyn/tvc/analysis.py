@@ -520,7 +520,7 @@ def tvc(
 
     >>> from crankdyn.torsion.campbell import OperatingRange
     >>> from crankdyn.torsion.excitation import ExcitationSpec
-    >>> from crankdyn.torsion.model import Mass, Shaft, ShaftGeometry, TorsionModel
+    >>> from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
     >>> from crankdyn.torsion.rules import RuleSet, ShaftLimit
     >>> model = TorsionModel(
     ...     (Mass("crank", 1.0, cylinders=(1,)), Mass("propeller", 3.0)),

@@ -139,20 +139,7 @@ def passages(
         spare = engine_at(w) - load_at(w)
         label = f"{a * RPM:.1f}-{b * RPM:.1f} rpm"
         if np.min(spare) <= 0.0:
-            verdicts.append(
-                Verdict(
-                    component="installation",
-                    condition=cond.name,
-                    quantity=f"acceleration torque through the barred range {label}",
-                    worst=float(np.min(spare)),
-                    limit=0.0,
-                    unit="N·m",
-                    margin=-math.inf,
-                    passed=False,
-                    source="the engine's torque less the load law: the range cannot be passed",
-                    kind="acceleration torque",
-                )
-            )
+            verdicts.append(_cannot_pass(cond.name, label, float(np.min(spare))))
             continue
         t_in = float(np.trapezoid(inertia / spare, w))
         w0, w1 = a * (1.0 - LEAD_IN), b * (1.0 + RUN_OUT)
@@ -199,32 +186,65 @@ def passages(
                 transient=run,
             )
         )
-        inside = run.speed >= a
-        for check in checks:
-            if check.transient_curve is None or check.transient_limit is None:
-                continue
-            if not any(x.component == check.component for x in barred):
-                continue
-            values = check.transient_curve(run, mean)[inside]
-            limits = check.transient_limit(run.speed[inside])
-            with np.errstate(invalid="ignore", divide="ignore"):
-                ratio = np.where(np.isfinite(limits) & (limits > 0), values / limits, np.nan)
-            if not np.any(np.isfinite(ratio)):
-                continue
-            k = int(np.nanargmax(ratio))
-            verdicts.append(
-                Verdict(
-                    component=check.component,
-                    condition=cond.name,
-                    quantity=f"transient peak passing {label} ({t_in:.3g} s in the range)",
-                    worst=float(values[k]),
-                    limit=float(limits[k]),
-                    unit=check.unit,
-                    margin=1.0 - float(ratio[k]),
-                    passed=bool(ratio[k] <= 1.0),
-                    source=check.transient_source,
-                    speed=float(run.speed[inside][k]),
-                    kind="transient passage",
-                )
-            )
+        title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
+        verdicts += _transient_verdicts(run, a, cond.name, title, checks, barred, mean)
     return passages, verdicts, notes
+
+
+def _cannot_pass(condition: str, label: str, spare: float) -> Verdict:
+    """The verdict on a barred range the engine's torque cannot accelerate through."""
+    return Verdict(
+        component="installation",
+        condition=condition,
+        quantity=f"acceleration torque through the barred range {label}",
+        worst=spare,
+        limit=0.0,
+        unit="N·m",
+        margin=-math.inf,
+        passed=False,
+        source="the engine's torque less the load law: the range cannot be passed",
+        kind="acceleration torque",
+    )
+
+
+def _transient_verdicts(
+    run: Any,
+    start: float,
+    condition: str,
+    quantity: str,
+    checks: Sequence[Check],
+    barred: Sequence[BarredSpeedRange],
+    mean: MeanTorque | None,
+) -> list[Verdict]:
+    """The largest transient value of every barred component inside the range (from
+    ``start``, rad/s) against its transient limit, by the component's own check."""
+    out: list[Verdict] = []
+    inside = run.speed >= start
+    for check in checks:
+        if check.transient_curve is None or check.transient_limit is None:
+            continue
+        if not any(x.component == check.component for x in barred):
+            continue
+        values = check.transient_curve(run, mean)[inside]
+        limits = check.transient_limit(run.speed[inside])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ratio = np.where(np.isfinite(limits) & (limits > 0), values / limits, np.nan)
+        if not np.any(np.isfinite(ratio)):
+            continue
+        k = int(np.nanargmax(ratio))
+        out.append(
+            Verdict(
+                component=check.component,
+                condition=condition,
+                quantity=quantity,
+                worst=float(values[k]),
+                limit=float(limits[k]),
+                unit=check.unit,
+                margin=1.0 - float(ratio[k]),
+                passed=bool(ratio[k] <= 1.0),
+                source=check.transient_source,
+                speed=float(run.speed[inside][k]),
+                kind="transient passage",
+            )
+        )
+    return out

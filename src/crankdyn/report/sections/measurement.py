@@ -3,15 +3,10 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
-
-from crankdyn.constants import RPM
-from crankdyn.display import number, quantity
-from crankdyn.report.model import KeyFigure, Plot, Section, Table
+from crankdyn.report.model import Plot, Section, Table
 from crankdyn.report.sections import Context, NotRequested
 
 __all__ = ["MeasurementInput", "build"]
@@ -34,117 +29,20 @@ class MeasurementInput:
     at: str
 
 
-def _mrad(value: float) -> str:
-    return quantity(value, "rad", to="mrad")
-
-
-def _cell(value: float | None, factor: float = 1.0) -> str:
-    return "-" if value is None else number(value * factor)
-
-
-def build(ctx: Context) -> Section:
-    """The measurement section: the measured torsional vibration (orders at the measured mass)
-    held against the engine's torsional model.
-
-    Parameters
-    ----------
-    ctx : crankdyn.report.sections.Context
-        The analysis session (SI units) and the optional inputs of the report.
-
-    Returns
-    -------
-    crankdyn.report.model.Section
-        The section: key figures, tables, plots and checks (numbers shown in the units their
-        labels name).
-
-    Raises
-    ------
-    NotRequested
-        No measurement was given (``ctx.measurement`` is None).
-    """
-    spec = getattr(ctx, "measurement", None)
-    if spec is None:
-        raise NotRequested(
-            "no measurement given (crankdyn analyze ENGINE --measurement SIGNAL --teeth N --at "
-            "MASS)"
-        )
-    a, measured = ctx.analysis, spec.result
-    model = a.model
-    notes = []
-    if model is not None and model.cylinder_dofs:
-        measured = a.measurement(measured, spec.at)
-    else:
-        notes.append("the engine has no torsional model with cylinders: measurement only")
-    cmp = measured.comparison
+def _plots(measured: Any, compared: bool) -> list[Plot]:
+    """The section's figures: the orders (and the model's), a run's map and fits, the trace."""
     steady = measured.kind == "steady"
-    figures, plots, tables = [], [], []
-    if steady:
-        synth, at_speed = float(measured.synthesized), float(measured.speed)
-    else:  # every window, not the bins
-        j = int(np.argmax(measured.window_synthesized))
-        synth, at_speed = float(measured.window_synthesized[j]), float(measured.window_speed[j])
-    display = f"{_mrad(synth)} at {at_speed * RPM:.0f} rpm"
-    if cmp is not None:
-        there = a.response_at([at_speed], measured.orders)
-        model_synth = float(there.synthesized_amplitude[0, there.mass_index(spec.at)])
-        display += f" (model there {_mrad(model_synth)})"
-    figures.append(
-        KeyFigure(
-            "measured_synthesized_amplitude_rad",
-            f"Largest measured vibration at {spec.at} (synthesised)",
-            synth,
-            display,
-        )
-    )
-    if not steady and measured.resonances:
-        top = max(measured.resonances, key=lambda f: f.peak_amplitude)
-        text = f"order {top.order:g}: {_mrad(top.peak_amplitude)} at {top.peak_speed * RPM:.0f} rpm"
-        peak = next((p for p in cmp.peaks if p.order == top.order), None) if cmp else None
-        if peak is not None:
-            text += f" (model {_mrad(peak.model_amplitude)} at {peak.model_speed * RPM:.0f} rpm)"
-        figures.append(
-            KeyFigure(
-                "measured_resonance_peak_rad",
-                "Largest measured resonance",
-                top.peak_amplitude,
-                text,
-            )
-        )
-        figures.append(
-            KeyFigure(
-                "measured_damping_ratio",
-                f"Damping ratio of that resonance (order {top.order:g})",
-                top.damping,
-                f"{number(top.damping)} (single-mode fit), "
-                + (
-                    f"{number(top.half_power_damping)} (half-power)"
-                    if top.half_power_damping is not None
-                    else "half-power not available"
-                ),
-            )
-        )
-    if cmp is not None and cmp.damping is not None and cmp.damping.loss_factor is not None:
-        d = cmp.damping
-        figures.append(
-            KeyFigure(
-                "identified_loss_factor",
-                "Shaft loss factor that reproduces the measured damping",
-                d.loss_factor,
-                f"{number(d.loss_factor)} (model: {d.current_loss_factor})",
-                note=d.advice,
-            )
-        )
-    plots.append(
+    plots = [
         Plot(
             "measurement_orders",
-            "Measured orders" + (" and the model's" if cmp is not None else ""),
+            "Measured orders" + (" and the model's" if compared else ""),
             measured.plot("orders"),
             "Order amplitudes of the angular vibration at the measured mass"
             + (" against speed" if not steady else "")
-            + ("; dashed: the model's forced response" if cmp is not None else "")
+            + ("; dashed: the model's forced response" if compared else "")
             + ".",
         )
-    )
+    ]
     if not steady:
         plots.append(
             Plot(
@@ -171,62 +69,61 @@ def build(ctx: Context) -> Section:
             "At the measured mass.",
         )
     )
-    if not steady:
-        rows = []
-        by_order = {p.order: p for p in (cmp.peaks if cmp is not None else ())}
-        for fit in measured.resonances:
-            p = by_order.get(fit.order)
-            rows.append(
-                [
-                    f"{fit.order:g}",
-                    _cell(fit.peak_speed, RPM),
-                    _cell(fit.peak_amplitude, 1e3),
-                    _cell(fit.damping),
-                    _cell(fit.half_power_damping),
-                    _cell(fit.natural_frequency, 1 / (2 * math.pi)),
-                    "-" if p is None else _cell(p.model_speed, RPM),
-                    "-" if p is None else _cell(p.model_amplitude, 1e3),
-                    "-" if p is None else _cell(p.model_damping),
-                ]
-            )
-        tables.append(
-            Table(
-                "measurement_resonances",
-                "Resonances: measured and model",
-                header=[
-                    "Order",
-                    "Peak at (rpm)",
-                    "Peak (mrad)",
-                    "ζ fit",
-                    "ζ half-power",
-                    "Natural frequency (Hz)",
-                    "Model peak at (rpm)",
-                    "Model peak (mrad)",
-                    "Model ζ (same fit)",
-                ],
-                rows=rows,
-            )
+    return plots
+
+
+def build(ctx: Context) -> Section:
+    """The measurement section: the measured torsional vibration (orders at the measured mass)
+    held against the engine's torsional model; its key figures and tables are those the order
+    analysis declares (:mod:`crankdyn.measure.figures`).
+
+    Parameters
+    ----------
+    ctx : crankdyn.report.sections.Context
+        The analysis session (SI units) and the optional inputs of the report.
+
+    Returns
+    -------
+    crankdyn.report.model.Section
+        The section: key figures, tables and plots.
+
+    Raises
+    ------
+    NotRequested
+        No measurement was given (``ctx.measurement`` is None).
+    """
+    spec = getattr(ctx, "measurement", None)
+    if spec is None:
+        raise NotRequested(
+            "no measurement given (crankdyn analyze ENGINE --measurement SIGNAL --teeth N --at "
+            "MASS)"
         )
-    tables.append(Table("measurement_orders", "Measured orders", result=measured, show=False))
+    a, measured = ctx.analysis, spec.result
+    model = a.model
+    notes = []
+    if model is not None and model.cylinder_dofs:
+        measured = a.measurement(measured, spec.at)
+    else:
+        notes.append("the engine has no torsional model with cylinders: measurement only")
+    cmp = measured.comparison
     intro = (
         f"Torsiograph signal {measured.source}: {measured.teeth} pulses per revolution at "
-        f"{spec.at}; {measured.window}; {measured.averaging}. Phase reference: "
-        f"{measured.reference}."
+        f"{spec.at}" + (", held against the torsional model." if cmp is not None else ".")
     )
-    extra = list(measured.notes or ()) + list((cmp.notes if cmp is not None else None) or ())
+    extra = list((cmp.notes if cmp is not None else None) or ())
     if extra or notes:
         intro += " Notes: " + "; ".join(notes + extra) + "."
-    data = {
-        "resonances": [f.to_dict() for f in (measured.resonances if not steady else ())],
+    data: dict[str, Any] = {
+        "resonances": [f.to_dict() for f in (getattr(measured, "resonances", None) or ())],
     }
     if cmp is not None and cmp.damping is not None:
         data["damping"] = cmp.damping.to_dict()
-    return Section(
-        key="measurement",
-        title="Measured torsional vibration",
+    return Section.of(
+        "measurement",
+        "Measured torsional vibration",
+        [measured],
         intro=intro,
-        figures=figures,
-        plots=plots,
-        tables=tables,
+        plots=_plots(measured, cmp is not None),
+        tables=[Table("measurement_orders", "Measured orders", result=measured, show=False)],
         json=data,
     )

@@ -238,7 +238,7 @@ def shaft_limit(
     feature: str | None = None,
 ) -> ShaftLimit:
     """The :class:`crankdyn.torsion.rules.ShaftLimit` of a shaft under the society's cap, for
-    the rule check (:func:`crankdyn.torsion.rules.check_rules`) and the TVC.
+    the TVC's shaft check (:class:`crankdyn.tvc.checks.M68Shafts`).
 
     Parameters
     ----------
