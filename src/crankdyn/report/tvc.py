@@ -14,7 +14,7 @@ from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.display import mass_elastic_tables, number
 from crankdyn.report.model import Plot, Report, Section, Table
-from crankdyn.tvc.limits import WIDENING_NAMES
+from crankdyn.tvc.evaluate import margins
 
 if TYPE_CHECKING:
     from crankdyn.tvc.result import TvcResult
@@ -108,8 +108,10 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
             ),
         ),
         ("Tachometer tolerance", f"±{number(100 * result.tachometer_tolerance, 3)} %"),
-        ("Barred-range margins", WIDENING_NAMES.get(result.widening, result.widening)),
+        ("Rule set", f"{result.rule_title} (rules = {result.rules})"),
     ]
+    if spec is not None:
+        rows.append(("Barred-range margins", margins(spec)[0]))
     if spec is not None and spec.source:
         rows.append(("TVC settings from", spec.source))
     return rows

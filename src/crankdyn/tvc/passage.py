@@ -243,6 +243,7 @@ def _transient_verdicts(
                 margin=1.0 - float(ratio[k]),
                 passed=bool(ratio[k] <= 1.0),
                 source=check.transient_source,
+                clause=check.transient_clause,
                 speed=float(run.speed[inside][k]),
                 kind="transient passage",
             )
