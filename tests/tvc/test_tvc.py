@@ -244,7 +244,7 @@ stiffness = "1 MN*m/rad"
         parse_torsion_model(tomllib.loads(bad), file="line.toml")
     assert "rules" in str(err.value) and "line.toml" in str(err.value)
     bad = text.replace('rules = "lr"', 'widening = "lr"')  # retired: one line naming rules
-    with pytest.raises(InputError, match='retired.*write rules = "lr"') as err:
+    with pytest.raises(InputError, match=r'retired.*write rules = "lr"') as err:
         parse_torsion_model(tomllib.loads(bad), file="line.toml")
     assert "\n" not in str(err.value) and "[tvc] widening" in str(err.value)
     bad = text.replace('permissible_torque = "20 kN*m"', "")

@@ -215,6 +215,10 @@ class CheckKind:
         raise NotImplementedError
 
 
+HAMMERING = "no rule clause: the tooth load reverses (crankdyn's criterion)"
+"""The clause of the gear-hammering rows: a physical criterion, no society's clause."""
+
+
 def _constant(value: float) -> Limit:
     """A limit that is the same at every speed."""
 
@@ -857,6 +861,7 @@ class Couplings(CheckKind):
             quantity="synthesised vibratory torque vs T_KW",
             unit="N·m",
             source=f"{maker}: T_KW = {c.vibratory_torque / 1e3:g} kN·m",
+            clause="[[shaft]] vibratory_torque (T_KW, the catalogue)",
             curve=torque,
             limit=_constant(c.vibratory_torque),
             barred=True,
@@ -867,6 +872,7 @@ class Couplings(CheckKind):
                 if t_max is not None
                 else ""
             ),
+            transient_clause="[[shaft]] maximum_torque (T_Kmax, the catalogue)",
             elements=(s,),
         )
 
@@ -887,6 +893,7 @@ class Couplings(CheckKind):
             quantity="power loss (damping work per cycle x frequency) vs P_KV",
             unit="W",
             source=f"{maker}: P_KV = {c.power_loss:g} W",
+            clause="[[shaft]] power_loss (P_KV, the catalogue)",
             curve=power,
             limit=_constant(c.power_loss),
         )
@@ -905,6 +912,7 @@ class Couplings(CheckKind):
             quantity="mean torque vs T_KN",
             unit="N·m",
             source=f"{maker}: T_KN = {c.nominal_torque / 1e3:g} kN·m",
+            clause="[[shaft]] nominal_torque (T_KN, the catalogue)",
             curve=mean_curve,
             limit=_constant(c.nominal_torque),
         )
@@ -935,6 +943,7 @@ class GearHammering(CheckKind):
                     quantity="synthesised vibratory torque vs the mean torque (hammering)",
                     unit="N·m",
                     source="gear hammering (mean torque from the load law)",
+                    clause=HAMMERING,
                     curve=mesh_curve,
                     limit=mesh_limit,
                 )
@@ -992,6 +1001,7 @@ class GearHammering(CheckKind):
             unit="N·m",
             source="gear hammering: the tooth load reverses where the vibratory torque "
             "exceeds the mean transmitted torque (mean torque from the load law)",
+            clause=HAMMERING,
             curve=mesh,
             limit=mesh_mean,
         )
@@ -1022,6 +1032,7 @@ class MachineLimits(CheckKind):
                         src,
                         _rotor_torque(tuple(attached)),
                         _constant(lim.vibratory_torque),
+                        clause="[mass.limits] vibratory_torque",
                     )
                 )
             if lim.angular_acceleration is not None:
@@ -1033,6 +1044,7 @@ class MachineLimits(CheckKind):
                         src,
                         _acceleration(j),
                         _constant(lim.angular_acceleration),
+                        clause="[mass.limits] angular_acceleration",
                     )
                 )
             if lim.amplitude is not None:
@@ -1044,6 +1056,7 @@ class MachineLimits(CheckKind):
                         src,
                         _amplitude(j),
                         _constant(lim.amplitude),
+                        clause="[mass.limits] amplitude",
                     )
                 )
         return out
@@ -1093,6 +1106,7 @@ class DamperHeat(CheckKind):
                     f"damper maker's limit{' (' + d.limit_source + ')' if d.limit_source else ''}",
                     dpower,
                     _constant(d.permissible_power),
+                    clause="[[damper]] permissible_power",
                 )
             )
         return out

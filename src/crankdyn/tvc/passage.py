@@ -203,6 +203,7 @@ def _cannot_pass(condition: str, label: str, spare: float) -> Verdict:
         margin=-math.inf,
         passed=False,
         source="the engine's torque less the load law: the range cannot be passed",
+        clause="[tvc] engine_torque or engine_torque_curve, the load law",
         kind="acceleration torque",
     )
 
