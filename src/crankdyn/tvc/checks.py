@@ -567,10 +567,11 @@ class SocietyCrankshaft:
         cited = society.genset if ctx.generating_set else society.crankshaft
         if cited is None or cited.value is None:
             where = cited.clause.cite() if cited is not None else society.title
+            why = f": {cited.clause.note}" if cited is not None and cited.clause.note else ""
             ctx.notes.append(
                 "the crankshaft is not checked: give the engine builder's permissible "
                 f"vibratory stress or torque in [tvc.crankshaft] ({society.title} states no "
-                f"crankshaft limit in the text read: {where})"
+                f"crankshaft limit in the text read: {where}{why})"
             )
             return []
         group, why = _engine_group(ctx)
