@@ -617,8 +617,9 @@ def transient_command(
     """Time-domain response of MODEL_OR_ENGINE to the engine torque (scipy's solve_ivp), at a
     constant speed or in a run-up; or through a transient event (--event).
 
-    Exit status: 0, or with --event when one of the event's verdicts failed 1 (the output is
-    written); 2 on an error; --no-fail gives 0 whatever the verdict."""
+    Exit status: 0 when every verdict passed (the verdicts of an --event; a run without one
+    has none), 1 when one failed (the output is written), 2 on an error; --no-fail gives 0
+    whatever the verdict."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)

@@ -31,10 +31,20 @@ VERDICT_FIELDS = (
     "margin",
     "passed",
     "source",
+    "clause",
 )
-"""The fields of every row of summary.json's ``verdicts`` (SI values, the unit named)."""
+"""The fields of every row of summary.json's ``verdicts`` (SI values, the unit named; the
+rule with its edition and the clause)."""
 
-BARRED_FIELDS = ("component", "condition", "start_rpm", "end_rpm", "permitted")
+BARRED_FIELDS = (
+    "component",
+    "condition",
+    "start_rpm",
+    "end_rpm",
+    "permitted",
+    "source",
+    "clause",
+)
 """The fields of every row of summary.json's ``barred_speed_ranges``."""
 
 
@@ -65,6 +75,7 @@ def summary_lists(result: TvcResult) -> dict[str, list[dict[str, Any]]]:
             "margin": float(v.margin),
             "passed": bool(v.passed),
             "source": v.source,
+            "clause": v.clause,
         }
         for v in result.verdicts
     ]
@@ -75,6 +86,8 @@ def summary_lists(result: TvcResult) -> dict[str, list[dict[str, Any]]]:
             "start_rpm": float(b.start * RPM),
             "end_rpm": float(b.end * RPM),
             "permitted": bool(b.permitted),
+            "source": b.source,
+            "clause": b.clause,
         }
         for b in result.barred_ranges
     ]
