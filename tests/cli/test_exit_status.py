@@ -98,9 +98,7 @@ def test_torsion_response_gives_the_tvcs_verdict(capsys, tvc_runs):
     assert status == 2 and out == "" and err.count("\n") == 1 and "--rules" in err
 
 
-@pytest.mark.parametrize(
-    "command", [("tvc",), ("torsion", "response"), ("torsion", "transient")]
-)
+@pytest.mark.parametrize("command", [("tvc",), ("torsion", "response"), ("torsion", "transient")])
 def test_verdict_commands_document_their_exit_status(capsys, command):
     status, out, _ = run(capsys, *command, "--help")
     assert status == 0

@@ -190,7 +190,7 @@ class ConditionResult(Result):
         ),
         derived(
             "max_stress_ratio", "max_stress_ratio",
-            "Largest shaft stress / permissible τ_C (IACS UR M68)", "",
+            "Largest shaft stress / permissible τ_C (the rule set's)", "",
             _largest_m68_ratio, reduction="max over the M68 shafts and the resolved speeds",
             better="min", unavailable="the torsional model has no [rules] (crankdyn docs "
             "torsion-file): no IACS UR M68 check",

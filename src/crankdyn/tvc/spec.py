@@ -18,8 +18,9 @@ from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_positive
 from crankdyn.defaults import RULES, SPEED_STEP
 from crankdyn.errors import InputError
-from crankdyn.tvc import rulesets
 from crankdyn.tvc.limits import CrankshaftLimit
+from crankdyn.tvc.rulesets import get as get_rules
+from crankdyn.tvc.rulesets import tachometer_tolerance
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
@@ -169,7 +170,7 @@ class TvcSpec:
                     value=self.tachometer_tolerance,
                 )
             object.__setattr__(self, "tachometer_tolerance", tol)
-        object.__setattr__(self, "rules", rulesets.get(self.rules).key)
+        object.__setattr__(self, "rules", get_rules(self.rules).key)
         if self.engine_torque is not None:
             object.__setattr__(
                 self,
@@ -210,7 +211,7 @@ class TvcSpec:
     def ruleset(self) -> RuleSet:
         """The classification society's rule set (:func:`crankdyn.tvc.rulesets.get` of
         :attr:`rules`): every value of the verdicts with its clause."""
-        return rulesets.get(self.rules)
+        return get_rules(self.rules)
 
     @property
     def tolerance(self) -> float:
@@ -218,7 +219,7 @@ class TvcSpec:
         speed): ``tachometer_tolerance`` where given, else the rule set's stated value, else
         :data:`crankdyn.defaults.TACHOMETER_TOLERANCE`
         (:func:`crankdyn.tvc.rulesets.tachometer_tolerance`)."""
-        return rulesets.tachometer_tolerance(self.ruleset, self.tachometer_tolerance)
+        return tachometer_tolerance(self.ruleset, self.tachometer_tolerance)
 
     def engine_torque_at(self, speeds: ArrayLike, default: float) -> NDArray[np.float64]:
         """The engine's torque while passing a barred range, at given speeds.
