@@ -9,8 +9,9 @@ Barred speed ranges. Where a component's synthesised response exceeds its contin
 range *as found* is bisected to 0.01 rpm on the resolved curve
 (:func:`crankdyn.torsion.rules.exceedances`); the range *as declared* is that range widened to
 the selected rule set's least range around the critical speed where its text states one (KR
-2025 Pt 5 Ch 4 206.1(1); :func:`crankdyn.tvc.limits.barred_limits`; crankdyn applies it to every
-component's range) and by the tachometer tolerance on both sides (``[tvc]
+2025 Pt 5 Ch 4 206.1(1), which bars ranges where the stresses exceed the tau_1 of 201-203:
+applied to the ranges of the rules' limits, not to a maker's limit such as a coupling's;
+:func:`crankdyn.tvc.limits.barred_limits`) and by the tachometer tolerance on both sides (``[tvc]
 tachometer_tolerance``, else the rule set's, else crankdyn's 2 %). A range is *permitted* when
 the rule allows one there: below the highest speed ratio the check's rule gives (a propulsion
 shaft 0.8 n_0: IACS UR M68.4, KR 202.1(2); a generating set's crankshaft and alternator shaft
@@ -106,14 +107,20 @@ def _column(
     return lambda x: func(x)[:, None]
 
 
-def margins(spec: TvcSpec) -> tuple[str, str, str]:
+def margins(spec: TvcSpec, rule_limit: bool = True) -> tuple[str, str, str]:
     """How a declared barred range is widened, in words, with the source and clauses: the rule
-    set's least range around a critical speed and the tachometer tolerance.
+    set's least range around a critical speed (for a rule's limit only: KR 2025 Pt 5 Ch 4 206.1
+    bars ranges where the stresses exceed the tau_1 of 201-203, not a maker's limit) and the
+    tachometer tolerance.
 
     Parameters
     ----------
     spec : TvcSpec
         The settings (the rule set, the tachometer tolerance).
+    rule_limit : bool
+        Whether the range is a rule limit's (a shaft's, the society's crankshaft or generator
+        shaft limit: the least range applies), or a maker's (a coupling's, the engine
+        builder's: the range where the limit is exceeded).
 
     Returns
     -------
@@ -133,7 +140,10 @@ def margins(spec: TvcSpec) -> tuple[str, str, str]:
     society = spec.ruleset
     widening = society.widening
     parts = [("least range", widening.clause)]
-    if widening.value == "none":
+    if not rule_limit:
+        parts = []
+        text = "a maker's limit: the range where it is exceeded (no society's least range)"
+    elif widening.value == "none":
         text = "no least range around the critical speed (the range where the limit is exceeded)"
     else:
         text = "least range 16 n_c/(18-λ_c) ≤ n ≤ (18-λ_c) n_c/16"
@@ -146,19 +156,20 @@ def margins(spec: TvcSpec) -> tuple[str, str, str]:
     else:
         how = "crankdyn's default: no text read states one"
     text += f"; tachometer tolerance ±{tol * 100:g} % ({how})"
-    source, clause = cite_row(parts)
+    source, clause = cite_row(parts) if parts else ("", "")
     return text, source, clause
 
 
 def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float) -> list[Found]:
     """Every exceedance of a check that bars speeds, with its declared range: widened by the
-    rule set's least range and by the tachometer tolerance on both sides."""
+    rule set's least range (a rule's limit: the check states its highest barred speed ratio)
+    and by the tachometer tolerance on both sides."""
     tol = spec.tolerance
-    widening = spec.ruleset.widening.value
     out = []
     for check in checks:
         if not check.barred:
             continue
+        widening = spec.ruleset.widening.value if check.barred_upper is not None else "none"
         for ex in exceedances(r, _column(check.curve), _column(check.limit)):
             lo, hi = barred_limits(ex.peak_speed, n0, widening)
             start = min(ex.start, lo) * (1.0 - tol)
@@ -174,7 +185,7 @@ def _declared_how(found: Found, spec: TvcSpec) -> str:
     society = spec.ruleset
     words = [f"found {ex.start * RPM:.1f}-{ex.end * RPM:.1f} rpm"]
     widened = []
-    if society.widening.value != "none":
+    if society.widening.value != "none" and found.check.barred_upper is not None:
         widened.append(f"to {society.title}'s least range ({society.widening.clause.clause})")
     if spec.tolerance:
         widened.append(f"by the {spec.tolerance * 100:g} % tachometer tolerance")
@@ -193,7 +204,7 @@ def _barred_range(
     check, ex = found.check, found.exceedance
     start, end = found.start, found.end
     how = _declared_how(found, spec)
-    text, m_source, m_clause = margins(spec)
+    text, m_source, m_clause = margins(spec, check.barred_upper is not None)
     reasons = []
     permitted = True
     upper = check.barred_upper
@@ -220,8 +231,12 @@ def _barred_range(
         reasons.append(
             f"{how}; limit exceeded only where a barred range is permitted: pass quickly"
         )
-    sources = [m_source] if upper is None else [check.barred_source, m_source]
-    clauses = [m_clause] if upper is None else [check.barred_clause, m_clause]
+    sources = (
+        [m_source or check.source.split(":")[0]]
+        if upper is None
+        else [check.barred_source, m_source]
+    )
+    clauses = [m_clause or check.clause] if upper is None else [check.barred_clause, m_clause]
     return BarredSpeedRange(
         component=check.component,
         condition=condition,
