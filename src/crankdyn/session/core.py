@@ -59,6 +59,10 @@ SESSION_PARAMETERS = """
         :data:`~crankdyn.defaults.DELTA`.
     relative : (str, str) or None
         The two masses of the relative angle; default the model's first and last.
+    rules : str or None
+        The classification society's rule set of the verdicts (a key of
+        :data:`crankdyn.tvc.rulesets.RULESETS`); default the model's ``[tvc] rules``, else
+        :data:`~crankdyn.defaults.RULES`.
 
     Attributes are the analyses: properties for those without options (``torque``,
     ``modes``...), methods with keyword options for the others (``forces(cylinder=2)``,
@@ -67,8 +71,8 @@ SESSION_PARAMETERS = """
     Raises
     ------
     InputError
-        If the subject is neither, the speed or the speeds are not positive, or the step does
-        not divide the engine's working cycle.
+        If the subject is neither, the speed or the speeds are not positive, the step does
+        not divide the engine's working cycle, or the rule set is unknown.
 
 """
 """The parameters of every session class (:class:`crankdyn.session.Analysis` and its parts),
@@ -96,6 +100,7 @@ class SessionCore:
         engine: Engine | None = None,
         delta: float | None = None,
         relative: tuple[str, str] | None = None,
+        rules: str | None = None,
     ) -> None:
         if isinstance(subject, Engine):
             self.engine: Engine | None = subject
@@ -134,6 +139,11 @@ class SessionCore:
             check_step(self.step, self.engine.cycle_angle)
         self.delta = None if delta is None else float(delta)
         self.relative = None if relative is None else (str(relative[0]), str(relative[1]))
+        self.rules: str | None = None
+        if rules is not None:
+            from crankdyn.tvc.rulesets import get
+
+            self.rules = get(rules).key
         self._memo: dict[Any, Any] = {}
 
     def __repr__(self) -> str:

@@ -33,9 +33,11 @@ class BarredSpeedRange(Result):
 
     ``exceeds_start``/``exceeds_end`` where the response exceeds the continuous limit (ends
     bisected to 0.01 rpm, :func:`crankdyn.torsion.rules.exceedances`), ``start``/``end`` the
-    declared range after the society's widening (:func:`crankdyn.tvc.limits.barred_limits`)
+    declared range after the rule set's least range (:func:`crankdyn.tvc.limits.barred_limits`)
     and the tachometer tolerance; ``permitted`` whether the rule allows a barred range there
-    (IACS UR M68.4: below 0.8 n_0 and under tau_T; a coupling under T_Kmax, DIN 740-2).
+    (IACS UR M68.4: below 0.8 n_0 and under tau_T; a coupling under T_Kmax, DIN 740-2);
+    ``source`` and ``clause`` the rule text with its edition and the clauses the range's
+    permission and margins come from (:func:`crankdyn.tvc.evaluate.margins`).
 
     Examples
     --------
@@ -58,7 +60,9 @@ class BarredSpeedRange(Result):
     critical_speed: float = scalar("critical_speed_rpm", "Largest response at", "rpm", RPM)
     worst_ratio: float = scalar("worst_to_limit", "Largest value / continuous limit", "")
     reason: str = scalar("reason", "Why", "")
-    margins: str = scalar("margins", "Margins (rule text)", "")
+    margins: str = scalar("margins", "Margins", "")
+    source: str = scalar("source", "Rule", "", default="")
+    clause: str = scalar("clause", "Clause", "", default="")
 
 
 BARRED_COLUMNS = (
@@ -70,6 +74,7 @@ BARRED_COLUMNS = (
     SummaryColumn("end_rpm", "Declared to", "rpm"),
     SummaryColumn("permitted", "Permitted"),
     SummaryColumn("reason", "Why"),
+    SummaryColumn("clause", "Rule clause"),
 )
 """The columns of a barred-range table, in every front end: each range as found (where the
 limit is exceeded) and as declared (widened), permitted or not and why."""
@@ -90,6 +95,7 @@ def barred_table(
             round(b.end * RPM, 1),
             "yes" if b.permitted else "no",
             b.reason,
+            f"{b.source}, {b.clause}" if b.clause else b.source,
         )
         for b in ranges
     )
@@ -184,7 +190,7 @@ class ConditionResult(Result):
         ),
         derived(
             "max_stress_ratio", "max_stress_ratio",
-            "Largest shaft stress / permissible τ_C (IACS UR M68)", "",
+            "Largest shaft stress / permissible τ_C (the rule set's)", "",
             _largest_m68_ratio, reduction="max over the M68 shafts and the resolved speeds",
             better="min", unavailable="the torsional model has no [rules] (crankdyn docs "
             "torsion-file): no IACS UR M68 check",
@@ -195,6 +201,12 @@ class ConditionResult(Result):
             lambda c: _worst(c), reduction="min over the verdict rows", better="max",
         ),
     )  # fmt: skip
+
+    @property
+    def passed(self) -> bool:
+        """Whether every verdict row of the condition passed (False without a row: nothing was
+        checked)."""
+        return bool(self.verdicts) and all(v.passed for v in self.verdicts)
 
     def summary_verdicts(self) -> list[Verdict]:
         """The condition's verdict rows.
@@ -289,7 +301,7 @@ class TvcResult(Result):
     >>> result = TvcResult(model_name="demo", rated_speed=500 / RPM, load="propeller",
     ...                    passed=False, verdicts=(shaft, coupling), barred_ranges=(),
     ...                    passages=(), conditions=(), notes=(), tachometer_tolerance=0.02,
-    ...                    widening="none")
+    ...                    rules="iacs-m68")
     >>> [v.component for v in result.failed()], result.worst_margin()
     (['coupling C1'], -0.2)
     >>> result.to_dict()["rated_speed_rpm"]
@@ -311,7 +323,7 @@ class TvcResult(Result):
     conditions: tuple[ConditionResult, ...] = scalar("conditions", "Conditions", "", summary=False)
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     tachometer_tolerance: float = scalar("tachometer_tolerance", "Tachometer tolerance", "")
-    widening: str = scalar("barred_range_widening", "Barred-range widening", "")
+    rules: str = scalar("rules", "Rule set", "")
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     engine: Engine | None = field(default=None, repr=False, compare=False)
     modes: ModalResult | None = field(default=None, repr=False, compare=False)
@@ -392,6 +404,42 @@ class TvcResult(Result):
                 )
             )
         return out
+
+    @property
+    def rule_title(self) -> str:
+        """The rule set's name (:data:`crankdyn.tvc.rulesets.RULESETS`), e.g. ``"Korean
+        Register (KR)"``."""
+        from crankdyn.tvc.rulesets import get
+
+        return get(self.rules).title
+
+    def unverified_table(self) -> SummaryTable | None:
+        """The clauses of the rule set that could not be verified against its text (the rows
+        citing them say "not verified against the text"), or None where every clause was read.
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable or None
+            Columns: the value, the clause cited, where the value is taken from instead.
+        """
+        from crankdyn.tvc.rulesets import get, unverified
+
+        rows = tuple(
+            (name, clause.cite(), clause.value_as or clause.note)
+            for name, clause in unverified(get(self.rules))
+        )
+        if not rows:
+            return None
+        return SummaryTable(
+            "unverified_clauses",
+            f"{self.rule_title}: values not verified against the text",
+            (
+                SummaryColumn("value", "Value"),
+                SummaryColumn("clause", "Clause cited"),
+                SummaryColumn("value_as", "Value taken as"),
+            ),
+            rows,
+        )
 
     def failed(self) -> tuple[Verdict, ...]:
         """The verdict rows that did not pass.
