@@ -247,7 +247,12 @@ def response_command(
         data["relative_angle"] = rel.to_dict()
     if judged is not None:  # its key figures, verdict rows and barred ranges
         data["judged"] = judged.to_dict()
-    out.write(blocks=response_tables(result, rel, judged), json_data=data, csv_text=result.to_csv())
+    out.write(
+        blocks=response_tables(result, rel, judged),
+        json_data=data,
+        csv_text=result.to_csv(),
+        warnings=(result, judged),
+    )
     if plot_path:
         save_figure(result.plot(what, target), plot_path, force)
     if stress_path:

@@ -34,6 +34,9 @@ from crankdyn.engine.firing import (
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import TorsionModel
 
+if TYPE_CHECKING:
+    from crankdyn.plausibility import PlausibilityWarning
+
 FUELS = ("petrol", "diesel")
 """Engine types by ignition: spark-ignition (petrol, gas) and compression-ignition (diesel)."""
 ASPIRATIONS = ("natural", "turbocharged")
@@ -544,6 +547,10 @@ class Engine:
     crankshaft : crankdyn.crankshaft.geometry.Crankshaft or None
         Dimensions, material and type of the crankshaft for its fatigue check by IACS UR M53
         (:func:`crankdyn.crankshaft.strength.crankshaft_strength`), or None.
+    input_warnings : tuple of crankdyn.plausibility.InputWarning
+        The values of the engine file that lie outside the plausible range of their role
+        (:mod:`crankdyn.io.plausibility`); every result of an analysis session on the engine
+        carries them, and its verdicts cannot read a clean "passed".
 
     Raises
     ------
@@ -583,6 +590,7 @@ class Engine:
     fuel: str | None = None
     aspiration: str | None = None
     crankshaft: Crankshaft | None = None
+    input_warnings: tuple[PlausibilityWarning, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():

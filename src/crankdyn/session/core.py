@@ -4,9 +4,10 @@ defaults and the cache (:class:`SessionCore`); the analyses themselves are in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Hashable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +18,7 @@ from crankdyn.defaults import MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.docs import ref
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
+from crankdyn.plausibility import PlausibilityWarning, merge_warnings
 from crankdyn.results import Result
 from crankdyn.torsion.model import TorsionModel
 
@@ -152,10 +154,45 @@ class SessionCore:
         """
         return [k[0] if isinstance(k, tuple) else k for k in self._memo]
 
+    @property
+    def input_warnings(self) -> tuple[PlausibilityWarning, ...]:
+        """The input warnings of the subject (the engine's and the torsional model's, each
+        once: values of their files outside the plausible range of their role,
+        :mod:`crankdyn.io.plausibility`); every result the session computes carries them."""
+        engine = self.engine.input_warnings if self.engine is not None else ()
+        model = self.model.input_warnings if self.model is not None else ()
+        return merge_warnings(engine, model)
+
     def _cached(self, key: Hashable, compute: Callable[[], _T]) -> _T:
         if key not in self._memo:
-            self._memo[key] = compute()
+            self._memo[key] = self.with_input_warnings(compute())
         return self._memo[key]
+
+    def with_input_warnings(self, value: _T) -> _T:
+        """A result (one with a ``warnings`` field) carrying the subject's input warnings
+        first, then its own: whatever the inputs' values, a verdict computed from them says
+        so (:func:`crankdyn.summary.verdict_text`). Every analysis of the session goes through
+        it; a front end that computes from the session's model passes its result here.
+
+        Parameters
+        ----------
+        value : object
+            A result (anything else is returned as it is).
+
+        Returns
+        -------
+        object
+            ``value`` with :attr:`input_warnings` added to its ``warnings``.
+        """
+        found = self.input_warnings
+        if not found or not isinstance(value, Result) or not dataclasses.is_dataclass(value):
+            return value
+        if not any(f.name == "warnings" for f in dataclasses.fields(value)):
+            return value
+        merged = merge_warnings(found, value.warnings)
+        if merged == tuple(value.warnings):
+            return value
+        return cast(_T, dataclasses.replace(value, warnings=merged))
 
     # ---- what the session analyses ----------------------------------------------------------
     def _need_engine(self, what: str) -> Engine:
