@@ -658,12 +658,16 @@ def _with_status(figure: KeyFigure, warnings: Any) -> KeyFigure:
     """The figure with status ``"warn"`` when one of the warnings is its plausibility check's,
     or when it says "pass" and the inputs carry warnings (a verdict on implausible inputs is
     never a clean pass, :func:`crankdyn.summary.verdict_text`)."""
-    from crankdyn.plausibility import InputWarning
+    from crankdyn.plausibility import input_warnings
 
     if figure.check and any(w.key == figure.check for w in warnings):
         return dataclasses.replace(figure, status="warn")
-    if figure.status == "pass" and any(isinstance(w, InputWarning) for w in warnings):
-        return dataclasses.replace(figure, status="warn")
+    given = len(input_warnings(warnings))
+    if figure.status == "pass" and given:
+        plural = "s" if given != 1 else ""
+        return dataclasses.replace(
+            figure, status="warn", qualifier=f"with {given} input warning{plural}"
+        )
     return figure
 
 

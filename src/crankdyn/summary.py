@@ -169,6 +169,9 @@ class KeyFigure:
     headline : bool
         Whether it is one of the few figures a whole report's summary shows (every figure is
         shown with its own analysis).
+    qualifier : str
+        What the value stands on, shown after it (``"with 1 input warning"``: a "pass" on
+        implausible inputs reads "warn"); ``""`` for nothing.
     """
 
     name: str
@@ -183,6 +186,7 @@ class KeyFigure:
     description: str = ""
     check: str = ""
     headline: bool = False
+    qualifier: str = ""
 
     def text(self, significant: int = 5) -> tuple[str, str]:
         """(digits, display unit) in engineering units (:func:`crankdyn.display.
@@ -232,7 +236,8 @@ class KeyFigure:
         """
         digits, unit = self.text(significant)
         out = f"{digits} {unit}".rstrip() if digits != "-" else digits
-        return f"{out} ({self.where})" if self.where else out
+        out = f"{out} ({self.where})" if self.where else out
+        return f"{out}, {self.qualifier}" if self.qualifier else out
 
     def number(self) -> float | None:
         """The value as a float.
@@ -571,12 +576,14 @@ class Summary:
         Returns
         -------
         list of (str, str, str)
-            (label, value with where it was found, display unit) of every figure.
+            (label, value with where it was found and what it stands on, display unit) of
+            every figure.
         """
         out = []
         for f in self.figures:
             digits, unit = f.text()
-            out.append((f.label, f"{digits} ({f.where})" if f.where else digits, unit))
+            shown = f"{digits} ({f.where})" if f.where else digits
+            out.append((f.label, f"{shown}, {f.qualifier}" if f.qualifier else shown, unit))
         return out
 
     @property

@@ -476,7 +476,7 @@ def damper_command(
             from crankdyn.plots.torsion_response import plot_damper_comparison
 
             save_figure(plot_damper_comparison(with_d, without, "amplitude", hub), plot_path, force)
-    out.write(blocks=blocks, json_data=data)
+    out.write(blocks=blocks, json_data=data, warnings=session.input_warnings)
     return 0
 
 

@@ -720,6 +720,26 @@ class Output:
         if self.path is not None:
             check_writable(self.path, force=self.force, option="--force")
 
+    def say_warnings(self, *sources: Any) -> list[PlausibilityWarning]:
+        """Print the plausibility warnings of ``sources`` (:func:`warnings_of`) on standard
+        error, one ``crankdyn: warning: ...`` line each (the writer's own path, also for the
+        outputs written a piece at a time).
+
+        Parameters
+        ----------
+        *sources
+            Results, warnings, or lists of either.
+
+        Returns
+        -------
+        list of PlausibilityWarning
+            The warnings printed, each once.
+        """
+        found = warnings_of(*sources)
+        for w in found:
+            warn(w.message)
+        return found
+
     def write(
         self,
         *,
@@ -762,9 +782,8 @@ class Output:
         tables = [b for b in blocks if isinstance(b, TextTable)]
         if self.fmt == "csv" and csv_text is None and not tables:
             raise InputError(f"{what} has no CSV output", key="--format", value="csv")
-        found = warnings_of(json_data if isinstance(json_data, Result) else None, warnings)
-        for w in found:  # after the checks: an error stays the one line
-            warn(w.message)
+        # after the checks: an error stays the one line
+        found = self.say_warnings(json_data if isinstance(json_data, Result) else None, warnings)
         blocks = printable_blocks(blocks)  # no control character reaches the terminal
         if self.fmt == "json":
             data = jsonable(json_data)

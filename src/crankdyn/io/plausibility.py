@@ -35,6 +35,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from crankdyn.constants import RPM
+from crankdyn.display import number
 from crankdyn.io.units import COMMON_UNITS, KINDS
 from crankdyn.plausibility import InputWarning
 
@@ -135,18 +136,19 @@ class Role:
 
 
 def _g(x: float) -> str:
-    """Three significant digits, exponents without padding (``1e7``, ``3e-4``, ``0.003``)."""
-    text = f"{x:.3g}"
-    if "e" in text:
-        mantissa, exponent = text.split("e")
-        text = f"{mantissa}e{int(exponent)}"
-    return text
+    """About three significant digits as people write them (``45000``, ``0.003``), powers of
+    ten for very large and very small magnitudes, without padding (``1e7``, ``2e-5``)."""
+    magnitude = abs(x)
+    if magnitude == 0.0 or 1e-4 <= magnitude < 1e6:
+        return number(x, 3)
+    mantissa, exponent = f"{x:.3g}".split("e")
+    return f"{mantissa}e{int(exponent)}"
 
 
 HINTS: dict[str, tuple[str, ...]] = {
     "length": ("mm", "cm", "m"),
     "mass": ("g", "kg", "t"),
-    "inertia": ("kg*cm^2", "kg*m^2", "t*m^2"),
+    "inertia": ("kg*m^2", "kg*cm^2", "t*m^2"),
     "torsional_stiffness": ("N*m/rad", "kN*m/rad", "MN*m/rad"),
     "torsional_damping": ("N*m*s/rad", "kN*m*s/rad"),
     "stiffness": ("N/mm", "kN/mm", "MN/m"),

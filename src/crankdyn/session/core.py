@@ -170,7 +170,8 @@ class SessionCore:
 
     def with_input_warnings(self, value: _T) -> _T:
         """A result (one with a ``warnings`` field) carrying the subject's input warnings
-        first, then its own: whatever the inputs' values, a verdict computed from them says
+        first, then its own, and so the results it holds (a TVC's conditions, their
+        responses, its modes): whatever the inputs' values, a verdict computed from them says
         so (:func:`crankdyn.summary.verdict_text`). Every analysis of the session goes through
         it; a front end that computes from the session's model passes its result here.
 
@@ -185,14 +186,9 @@ class SessionCore:
             ``value`` with :attr:`input_warnings` added to its ``warnings``.
         """
         found = self.input_warnings
-        if not found or not isinstance(value, Result) or not dataclasses.is_dataclass(value):
+        if not found:
             return value
-        if not any(f.name == "warnings" for f in dataclasses.fields(value)):
-            return value
-        merged = merge_warnings(found, value.warnings)
-        if merged == tuple(value.warnings):
-            return value
-        return cast(_T, dataclasses.replace(value, warnings=merged))
+        return cast(_T, _carrying(value, found, {}))
 
     # ---- what the session analyses ----------------------------------------------------------
     def _need_engine(self, what: str) -> Engine:
@@ -319,6 +315,36 @@ class SessionCore:
         return self._cached(
             (key, "rows", float(step)), lambda: compute_rows().with_summary_of(full)
         )
+
+
+def _carrying(value: Any, found: tuple[PlausibilityWarning, ...], done: dict[int, Any]) -> Any:
+    """``value`` with the input warnings ``found`` first in its ``warnings``, and in those of
+    the results it holds (a TVC's conditions, their responses, its modes): the same object
+    held twice stays one object (``done``, by identity)."""
+    if id(value) in done:
+        return done[id(value)]
+    out = value
+    if isinstance(value, tuple) and value and isinstance(value[0], Result):
+        out = tuple(_carrying(v, found, done) for v in value)
+    elif isinstance(value, Result) and dataclasses.is_dataclass(value):
+        names = {f.name for f in dataclasses.fields(value)}
+        changes: dict[str, Any] = {}
+        for name in names - {"warnings"}:
+            held = getattr(value, name)
+            if isinstance(held, Result) or (
+                isinstance(held, tuple) and held and isinstance(held[0], Result)
+            ):
+                new = _carrying(held, found, done)
+                if new is not held:
+                    changes[name] = new
+        if "warnings" in names:
+            merged = merge_warnings(found, value.warnings)
+            if merged != tuple(value.warnings):
+                changes["warnings"] = merged
+        if changes:
+            out = dataclasses.replace(value, **changes)
+    done[id(value)] = out
+    return out
 
 
 def with_parameters(klass: type) -> type:
