@@ -138,10 +138,10 @@ class Role:
 def _g(x: float) -> str:
     """About three significant digits as people write them (``45000``, ``0.003``), powers of
     ten for very large and very small magnitudes, without padding (``1e7``, ``2e-5``)."""
-    magnitude = abs(x)
-    if magnitude == 0.0 or 1e-4 <= magnitude < 1e6:
-        return number(x, 3)
-    mantissa, exponent = f"{x:.3g}".split("e")
+    text = f"{x:.3g}"
+    if "e" not in text or 1e-4 <= abs(float(text)) < 1e6:
+        return number(float(text), 3)
+    mantissa, exponent = text.split("e")
     return f"{mantissa}e{int(exponent)}"
 
 
@@ -212,9 +212,17 @@ ROLES: tuple[Role, ...] = (
         "a fraction of the crank radius (desaxe and V-engine rod offsets)",
     ),
     Role(
-        "shaft lengths", "length", ("length",), 1 * _M, 200.0,
-        "a coupling's short shaft to the longest propulsion shaft lines",
+        "shaft lengths", "length", ("length",), 1 * _M, 60.0,
+        "a coupling's short shaft to a large ship's whole intermediate shaft line as one shaft",
         sections=("shaft",),
+    ),
+    Role(
+        "crankshaft dimensions", "length",
+        ("pin_fillet_radius", "journal_fillet_radius", "web_thickness", "web_width",
+         "web_centre_distance", "overlap", "pin_recess", "journal_recess", "oil_bore_diameter",
+         "bearing_span", "journal_length", "pin_length", "oversize"),
+        1e-5, 4.0, "fits of hundredths of a millimetre and fillets of a model engine to the "
+        "webs and bearing spans of " + _LARGEST + " (about 2 m)",
     ),
     Role(
         "lengths", "length", (), 1e-5, 1e3,
@@ -616,12 +624,12 @@ def roles_markdown() -> str:
     for r in ROLES:
         keys = ", ".join(f"`{k}`" for k in r.keys) or f"any other {KINDS_WORDS.get(r.kind, r.kind)}"
         where = ", ".join(f"`{s}`" for s in r.sections) or "any"
-        lines.append(f"| {r.name} | {keys} | {where} | {r.range_text()} | {r.reason} |")
+        lines.append(f"| {r.name} | {keys} | {where} | `{r.range_text()}` | {r.reason} |")
     low, high = RATED_SPEED_RANGE
     lines.append(
         "| speed ranges against the rated speed | `speed_range`, `speed_ranges.*` | "
-        f"`operating`, `tvc` | upper end {low:g}-{high:g} n_0 | a TVC runs to the overspeed, "
-        "about 1.05-1.2 n_0 |"
+        f"`operating`, `tvc` | upper end `{low:g}-{high:g} n_0` | a TVC runs to the "
+        "overspeed, about 1.05-1.2 n_0 |"
     )
     return "\n".join(lines) + "\n"
 
