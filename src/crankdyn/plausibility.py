@@ -201,8 +201,8 @@ class InputWarning(PlausibilityWarning):
     written : object
         The value as written in the file.
     value_shown, range_shown : str
-        The value and the range as the message shows them (``"3342 rpm"``, ``"1-60000
-        rpm"``): in the role's display unit.
+        The value and the range as the message shows them, in the role's display unit
+        (``"3342 rpm"``, ``"1-60000 rpm"``).
     """
 
     file: str | None = None
