@@ -112,6 +112,42 @@ def test_a_load_curve_speed_column_without_unit_is_refused(tmp_path):
     assert text.startswith('load.csv: header = "speed": ') and BARE_SPEED in text
 
 
+@pytest.mark.parametrize(
+    "body, key, value",
+    [
+        (
+            '[[parameter]]\nkey = "operating.speed"\nvalues = [1000, 2000]\n',
+            "[[parameter]] #1 values",
+            "[1000, 2000]",
+        ),
+        (
+            '[[parameter]]\nkey = "operating.speed"\nrange = [1000, 3000]\nsteps = 3\n',
+            "[[parameter]] #1 range",
+            "[1000, 3000]",
+        ),
+        (
+            '[[parameter]]\nkey = "geometry.bore"\nvalues = ["75 mm", "76 mm"]\n'
+            "[analysis]\nspeed = 3000\n",
+            "[analysis] speed",
+            "3000",
+        ),
+    ],
+)
+def test_a_bare_speed_in_a_study_file_is_refused(tmp_path, body, key, value):
+    """A study varying the engine's speed with bare numbers (or giving its own speed bare) is
+    refused before any case runs, naming the study file, the key and the values."""
+    from crankdyn.io.study_file import load_study
+    from tests.study.helpers import ENGINE
+
+    (tmp_path / "engine.toml").write_text(ENGINE.format(name="e"), encoding="utf-8")
+    analysis = "" if "[analysis]" in body else "[analysis]\n"
+    text = 'engine = "engine.toml"\n' + body + analysis + 'figures = ["mean_torque"]\n'
+    (tmp_path / "study.toml").write_text(text, encoding="utf-8")
+    with pytest.raises(InputError) as exc:
+        load_study(tmp_path / "study.toml")
+    assert _one_line(exc).endswith(f"study.toml: {key} = {value}: {BARE_SPEED}")
+
+
 # ---- units of the wrong dimension for their key ----------------------------------------------
 def test_a_torque_unit_as_a_stiffness_is_refused():
     """pint counts the radian as dimensionless, so N*m and N*m/rad have one dimension: the kind
