@@ -224,6 +224,19 @@ def test_a_unit_slip_with_a_unit_is_a_warning_too():
     assert w.message.endswith("did you mean 90000 kg*m^2?")
 
 
+def test_an_engine_files_implausible_number_is_a_warning():
+    """A skirt friction coefficient of 0.5 (the model takes any mu < 1) is warned, and the
+    engine carries the warning."""
+    data = load_toml(example_path("vaz2108"))
+    data["forces"] = {"ring_friction": "40 N", "skirt_friction": 0.5}
+    engine = parse_engine(data, file="vaz.toml", base_dir=example_path("vaz2108").parent)
+    (w,) = engine.input_warnings
+    assert w.message.startswith(
+        "vaz.toml: [forces] skirt_friction = 0.5: 0.5 is outside the 0-0.4 of skirt friction "
+        "coefficients"
+    )
+
+
 def test_a_speed_range_far_from_the_rated_speed_is_a_warning():
     """Hz for rpm: the range ends at 60 times the rated speed."""
     model = _model(LINE.replace('["300 rpm", "750 rpm"]', '["300 Hz", "750 Hz"]'))

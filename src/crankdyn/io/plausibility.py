@@ -342,6 +342,8 @@ ROLES: tuple[Role, ...] = (
          0.0, 2.0, "no counterweight to full and over-balance"),
     Role("temperature factors", "ratio", ("temperature_factor", "damping_temperature_factor"),
          0.2, 2.0, "rubber couplings' catalogue factors at their operating temperatures"),
+    Role("skirt friction coefficients", "ratio", ("skirt_friction",), 0.0, 0.4,
+         "lubricated piston skirts (about 0.01-0.1) to dry steel on cast iron (about 0.2-0.4)"),
     Role("mechanical efficiencies", "ratio", ("mechanical_efficiency",), 0.3, 1.0,
          "idle to full load (Heywood sec. 2.5: 0.75-0.9 at full load)"),
 )  # fmt: skip
