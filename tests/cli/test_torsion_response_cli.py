@@ -294,7 +294,6 @@ def test_misfire_without_compression_ratio_is_one_line(tmp_path, capsys):
     assert status == 2 and len(err) == 1 and "compression ratio" in err[0]
 
 
-
 def test_transient_table_from_the_result(capsys):
     """The terminal's shaft-torque table is the result's summary table; its half ranges over
     the last cycle and largest |T| agree with the exported arrays (JSON)."""
