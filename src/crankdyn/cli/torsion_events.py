@@ -140,13 +140,15 @@ def run_event(
             excitation = None  # a model without cylinders or sources: the event alone
     if speed is None and not isinstance(event, (ClutchEngagement, SpeedChange)):
         speed = session.speed
-    result = event_response(
-        model,
-        event,
-        speed=speed,
-        duration=duration,
-        excitation=excitation,
-        orders=session.orders if excitation is not None else None,
+    result = session.with_input_warnings(
+        event_response(
+            model,
+            event,
+            speed=speed,
+            duration=duration,
+            excitation=excitation,
+            orders=session.orders if excitation is not None else None,
+        )
     )
     out.write(blocks=summary_blocks(result), json_data=result, csv_text=result.to_csv())
     if plot_path:

@@ -259,7 +259,12 @@ def response_command(
         data["relative_angle"] = rel.to_dict()
     if judged is not None:  # its key figures, verdict rows and barred ranges
         data["judged"] = judged.to_dict()
-    out.write(blocks=response_tables(result, rel, judged), json_data=data, csv_text=result.to_csv())
+    out.write(
+        blocks=response_tables(result, rel, judged),
+        json_data=data,
+        csv_text=result.to_csv(),
+        warnings=(result, judged),
+    )
     if plot_path:
         save_figure(result.plot(what, target), plot_path, force)
     if stress_path:
@@ -483,7 +488,7 @@ def damper_command(
             from crankdyn.plots.torsion_response import plot_damper_comparison
 
             save_figure(plot_damper_comparison(with_d, without, "amplitude", hub), plot_path, force)
-    out.write(blocks=blocks, json_data=data)
+    out.write(blocks=blocks, json_data=data, warnings=session.input_warnings)
     return 0
 
 

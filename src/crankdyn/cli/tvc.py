@@ -81,13 +81,13 @@ def tvc_command(
 
         # the folder written: a numbered sibling when ``target`` appeared meanwhile
         target = write_report(report, target, force=force, finish=finish)
+    # the verdict line (with the input warnings it stands on) is the summary's
     blocks: list = summary_blocks(result, f"{result.model_name}: torsional vibration calculation")
-    blocks.append(f"Verdict: {'passed' if result.passed else 'FAILED'}")
     blocks.extend(pdf_note)
     blocks.append(f"Report: {target / 'index.html'}")
     if not no_pdf and not pdf_note:
         blocks.append(f"PDF: {target / 'report.pdf'}")
-    Output("table").write(blocks=blocks)
+    Output("table").write(blocks=blocks, warnings=result)
     return verdict_status(result.passed, no_fail)
 
 

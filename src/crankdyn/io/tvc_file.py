@@ -31,6 +31,10 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     ``permissible_torque`` (Pa or N m), ``diameter`` (m), ``stress_concentration`` (-, at least
     1), ``transient_stress`` (Pa), ``transient_torque`` (N m), ``source``.
 
+    Every quantity is held to the plausible range of its role, and every speed range's upper
+    end to the rated speed of ``operating`` (:mod:`crankdyn.io.plausibility`; warnings in the
+    table's ``warnings``).
+
     Every condition's speed grid (its range at ``speed_step``) holds at most
     :data:`crankdyn.defaults.MAX_SPEEDS` speeds (100,000, as ``--speeds``), checked here
     before any grid is made.
@@ -63,7 +67,9 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     if t is None:
         return None
     values = {}
+    rated = operating.rated if operating is not None else None
     pair = t.quantity_list("speed_range", "speed", None, length=2, check="positive")
+    t.speed_range("speed_range", pair, rated)
     if pair is not None:
         values["speed_range"] = pair
     rt = t.table("speed_ranges")
@@ -71,6 +77,7 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
         ranges = {}
         for kind in CONDITION_KINDS:
             p = rt.quantity_list(kind, "speed", None, length=2, check="positive")
+            rt.speed_range(kind, p, rated)
             if p is not None:
                 ranges[kind] = p
         rt.finish()
@@ -118,11 +125,8 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
                 '"38 kN*m"]]',
                 curve,
             )
-        from crankdyn.io.units import parse_quantity
-
-        label = t.label("engine_torque_curve")
-        speeds = [parse_quantity(r[0], "speed", key=label, file=t.file) for r in curve]
-        torques = [parse_quantity(r[1], "torque", key=label, file=t.file) for r in curve]
+        speeds = [t.item("engine_torque_curve", r[0], "speed") for r in curve]
+        torques = [t.item("engine_torque_curve", r[1], "torque") for r in curve]
         values["engine_torque_curve"] = (speeds, torques)
     passage = t.string("passage_load", None, choices=("law", "none"))
     if passage is not None:

@@ -9,13 +9,22 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from crankdyn.constants import RPM
+from crankdyn.plausibility import input_warnings
 from crankdyn.results import Result, scalar
-from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived
+from crankdyn.summary import (
+    SummaryColumn,
+    SummaryTable,
+    Verdict,
+    derived,
+    verdict_status,
+    verdict_text,
+)
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crankdyn.engine.model import Engine
+    from crankdyn.plausibility import PlausibilityWarning
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.model import TorsionModel
@@ -167,6 +176,10 @@ class ConditionResult(Result):
     curves : dict
         The checks plotted, {(component, quantity): :class:`crankdyn.tvc.analysis.Check`}; not
         exported.
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
     """
 
     name: str = scalar("condition", "Condition", "")
@@ -181,6 +194,7 @@ class ConditionResult(Result):
     passages: tuple[Passage, ...] = scalar("passages", "Passages", "", summary=False)
     response: ResponseResult | None = field(default=None, repr=False, compare=False)
     curves: dict[tuple[str, str], Check] = field(default_factory=dict, repr=False, compare=False)
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
         derived(
@@ -288,6 +302,10 @@ class TvcResult(Result):
         The settings the calculation ran with.
     condition_results : tuple of ConditionResult
         Every condition, with its response (the same objects as ``conditions``).
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
 
     Examples
     --------
@@ -312,7 +330,7 @@ class TvcResult(Result):
     model_name: str = scalar("model", "Installation", "")
     rated_speed: float = scalar("rated_speed_rpm", "Rated speed n_0", "rpm", RPM)
     load: str = scalar("load", "Load", "")
-    passed: bool = scalar("passed", "Passed", "", headline=True)
+    passed: bool = scalar("passed", "Passed", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
         "barred_speed_ranges", "Barred speed ranges", "", summary=False
@@ -330,6 +348,7 @@ class TvcResult(Result):
     campbell: CampbellResult | None = field(default=None, repr=False, compare=False)
     spec: TvcSpec | None = field(default=None, repr=False, compare=False)
     condition_results: tuple[ConditionResult, ...] = field(default=(), repr=False, compare=False)
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
         """The result as a JSON-ready dict (:meth:`crankdyn.results.Result.to_dict`).
@@ -350,6 +369,10 @@ class TvcResult(Result):
 
     FIGURES = (
         derived(
+            "verdict", "verdict", "Verdict", "", lambda r: r.summary_verdict(),
+            status=verdict_status, headline=True,
+        ),
+        derived(
             "worst_margin", "worst_margin", "Smallest margin of the verdict rows", "",
             lambda r: _worst(r), reduction="min over the verdict rows", better="max",
             headline=True,
@@ -359,6 +382,19 @@ class TvcResult(Result):
             lambda r: len(r.failed()), better="min",
         ),
     )  # fmt: skip
+
+    def summary_verdict(self) -> str | None:
+        """The overall verdict in words (:func:`crankdyn.summary.verdict_text`): ``passed``
+        or ``FAILED``, with the number of input warnings it stands on.
+
+        Returns
+        -------
+        str or None
+            The verdict; None without verdict rows.
+        """
+        if not self.verdicts:
+            return None
+        return verdict_text(self.passed, len(input_warnings(self.warnings)))
 
     def summary_verdicts(self) -> list[Verdict]:
         """Every verdict row (every component x condition).
