@@ -46,6 +46,7 @@ COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "balance": ("firing-orders", "balance", "flywheel"),
     "torsion_response": ("torsion",),  # its commands join the torsion group
     "study": ("study",),
+    "design": ("design",),
     "measure": ("measure",),
     "tvc": ("tvc",),
     "docs": ("docs",),
@@ -63,6 +64,10 @@ COMMAND_SUMMARIES: dict[str, str] = {
     ),
     "coefficients": (
         "The seeds' dimensionless tables: A = x/R, B = v/(Rω), C = a/(Rω²) vs crank angle."
+    ),
+    "design": (
+        "Search SPACE's catalogue choices and ranges for the design that passes the verdicts "
+        "with the widest margin."
     ),
     "demo": "The full report on the built-in inline-6 diesel (crankdyn analyze inline6-diesel).",
     "docs": (

@@ -85,6 +85,10 @@ def load_example(name: str, kind: str | None = None) -> Any:
         from crankdyn.io.linkage_file import parse_linkage  # the linkage solvers: on demand
 
         return parse_linkage(data, file=source)
+    if found == "design":
+        from crankdyn.io.design_file import parse_design  # the design search: on demand
+
+        return parse_design(data, file=source, base_dir=path.parent, default_name=name)
     from crankdyn.io.study_file import parse_study  # scipy and the study registry: on demand
 
     return parse_study(data, file=source, base_dir=path.parent, default_name=name)
@@ -394,4 +398,9 @@ def _describe(obj: Any, kind: str) -> tuple[str, str]:
     if kind == "linkage":
         groups = "; ".join(f"{g.kind} {'-'.join(g.links)}" for g in obj.link_groups())
         return obj.name, f"{len(obj.links)} links, {len(obj.joints)} joints: {groups}"
+    if kind == "design":
+        study = obj.study
+        return study.name, (
+            f"searches {study.base.source}: {len(obj.choices)} choices, {len(obj.ranges)} ranges"
+        )
     return obj.name, f"varies {obj.base.source}: {obj.case_count} cases"

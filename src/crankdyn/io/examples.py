@@ -34,6 +34,7 @@ EXAMPLE_KINDS = {
     "model": ("torsion", "torsional model"),
     "linkage": ("linkages", "linkage"),
     "study": ("studies", "study"),
+    "design": ("designs", "design space"),
 }
 """kind -> (folder under crankdyn/examples, what it is called in messages)."""
 
@@ -198,6 +199,8 @@ def _named_files(path: Path, data: dict[str, Any], files: list[Path]) -> None:
         add(t.get("file"), follow=True)
     for t in entries(data.get("engine")):
         add(t.get("file"), follow=True)
+    for t in entries(data.get("choice")):
+        add(t.get("catalogue"))
 
 
 def display_path(path: Path) -> str:

@@ -42,6 +42,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "analysis_settings",
     "load_study",
     "parse_base",
     "parse_study",
@@ -335,12 +336,27 @@ def _parameter(t: Table, base_document: dict) -> Parameter:
 # ---- the whole file ---------------------------------------------------------------------------
 
 
-def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
-    if t is None:
-        raise InputError(
-            'missing table [analysis]; it names the figures to keep, e.g. figures = ["mean_torque"]'
-        )
-    values = []
+def analysis_settings(t: Table) -> list[tuple[str, Any]]:
+    """The ``[analysis]`` settings of a study (or design) file, every key of
+    :data:`crankdyn.study.figures.SETTINGS` it gives (the table is not finished).
+
+    Parameters
+    ----------
+    t
+        The ``[analysis]`` table.
+
+    Returns
+    -------
+    list of (str, object)
+        (name, value in SI) of the keys given.
+
+    Raises
+    ------
+    InputError
+        For a value of the wrong kind or unit, or a crank-angle step that does not divide
+        360 deg; naming the file, the key and the value.
+    """
+    values: list[tuple[str, Any]] = []
     for name, setting in SETTINGS.items():
         if setting.kind == "number":
             value = t.number(name, None, check=setting.check)
@@ -359,6 +375,15 @@ def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
         count = 2.0 * math.pi / step
         if abs(count - round(count)) > 1e-9 * count:
             raise t.error("step", "must divide 360 deg (e.g. 0.5, 1, 2 or 5 deg)", t.data["step"])
+    return values
+
+
+def _settings(t: Table | None) -> tuple[AnalysisSettings, tuple[str, ...]]:
+    if t is None:
+        raise InputError(
+            'missing table [analysis]; it names the figures to keep, e.g. figures = ["mean_torque"]'
+        )
+    values = analysis_settings(t)
     names = t.string_list("figures")
     if not names:
         raise t.error("figures", "name at least one figure", names)
@@ -509,14 +534,16 @@ def _probe(spec: StudySpec, entries: list[Table]) -> None:
     """Stop before running when a parameter names a key the base file's reader does not know,
     or varies a speed with bare numbers (tried on the first case: every case would fail the
     same way)."""
-    first = {
-        path: p.values[0]
-        if p.values is not None
-        # a parameter without values has a distribution (Parameter's invariant)
-        else p.document_value(p.distribution.quantile(0.5))  # type: ignore[union-attr, arg-type]
-        for p in spec.parameters
-        for path in p.paths
-    }
+    first: dict[Any, Any] = {}
+    for p in spec.parameters:
+        first.update(
+            p.assignments(
+                p.values[0]
+                if p.values is not None
+                # a parameter without values has a distribution (Parameter's invariant)
+                else p.document_value(p.distribution.quantile(0.5))  # type: ignore[union-attr, arg-type]
+            )
+        )
     document = apply_values(spec.base.document, first, spec.remove)
     try:
         parse_base(spec.base.kind, document, file=spec.base.source, base_dir=spec.base.base_dir)

@@ -336,6 +336,21 @@ def load_shaft_line(path: Path, display: str) -> tuple[TorsionModel, str]:
     return model, line_input
 
 
+def _inline_shaft_line(t: Table) -> tuple[TorsionModel, str]:
+    """A shaft line written in the engine file itself, ``[torsion.shaft_line]`` (the content of
+    a shaft-line file as a table; what the design search edits): its model and input mass."""
+    for key, why in (
+        ("geometry", "an engine's [geometry] has no place in a shaft line"),
+        ("engine", "a shaft line joined to an engine cannot include engines itself ([[engine]])"),
+    ):
+        if t.has(key):
+            raise t.error(key, why)
+    line = read_torsion_model(t, default_name="shaft line")
+    line_input = t.string("input", line.masses[0].name)
+    t.finish()
+    return with_input_warnings(line, t), line_input
+
+
 def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
     """``shaft_line`` (with ``connect_at``) and ``[[torsion.line]]`` of an engine's [torsion]."""
     from crankdyn.torsion.driveline import join, rename
@@ -351,11 +366,13 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
         return model
     base_name = model.name
     for table, file_key, at_key, prefix_key in entries:
-        path = table.path(file_key)
-        if not path.is_file():
-            raise table.error(
-                file_key, f"no such shaft-line file (looked for {path})", table.data[file_key]
-            )
+        inline = file_key == "shaft_line" and isinstance(table.data.get(file_key), dict)
+        if not inline:
+            path = table.path(file_key)
+            if not path.is_file():
+                raise table.error(
+                    file_key, f"no such shaft-line file (looked for {path})", table.data[file_key]
+                )
         at = table.string(at_key, model.masses[-1].name if at_key == "connect_at" else MISSING)
         if at not in model.mass_names:
             raise table.error(
@@ -364,7 +381,10 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
         prefix = table.string(prefix_key, "") if prefix_key else ""
         if prefix_key:
             table.finish()
-        line, line_input = load_shaft_line(path, display_path(path))
+        if inline:
+            line, line_input = _inline_shaft_line(table.table(file_key, required=True))
+        else:
+            line, line_input = load_shaft_line(path, display_path(path))
         t.warnings.extend(w for w in line.input_warnings if w not in t.warnings)
         with table.context():
             line = rename(line, prefix)

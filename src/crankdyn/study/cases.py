@@ -153,7 +153,7 @@ def _grid_entry(p: Parameter, i: int) -> tuple[Any, Any]:
     if p.is_numeric:
         assert p.numbers is not None  # a numeric grid parameter has its magnitudes
         return value, p.numbers[i]
-    number = label(value)
+    number = p.names[i] if p.names is not None else label(value)
     return value, number
 
 

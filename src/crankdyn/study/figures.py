@@ -495,6 +495,111 @@ def _register_analyses() -> None:
 _register_analyses()
 
 
+# ---- the whole TVC (every condition, the passages): the design search's figures ---------------
+
+TVC = Analysed("tvc", "crankdyn.tvc.result.TvcResult", ("engine", "model"))
+"""The session's whole TVC (:meth:`crankdyn.session.Analysis.tvc`: every running condition and
+the passages through the barred ranges, as ``crankdyn tvc`` writes it); its declared figures
+:data:`TVC_FIGURES` are study figures."""
+TVC_FIGURES = ("worst_margin", "failed_rows")
+"""The TVC's key figures kept as study figures (declared by :class:`crankdyn.tvc.TvcResult`)."""
+
+register_setting(
+    Setting(
+        "barred_band",
+        "list:speed",
+        None,
+        "Speed band [low, high] for the figure barred_width_in_band (a design search's "
+        "constraint: no barred speed range inside it).",
+        length=2,
+    )
+)
+
+
+def band_overlap(ranges: Any, low: float, high: float) -> float:
+    """The total width of the parts of speed ranges inside a band.
+
+    Parameters
+    ----------
+    ranges : iterable of (float, float)
+        (start, end) of each range (rad/s).
+    low, high : float
+        The band (rad/s).
+
+    Returns
+    -------
+    float
+        Sum over the ranges of max(0, min(end, high) - max(start, low)) (rad/s).
+
+    Examples
+    --------
+    >>> band_overlap([(10.0, 20.0), (30.0, 50.0)], 15.0, 40.0)
+    15.0
+    """
+    return float(sum(max(0.0, min(e, high) - max(s, low)) for s, e in ranges))
+
+
+def _barred_in_band(ctx: CaseContext) -> float:
+    band = ctx.settings["barred_band"]
+    if band is None:
+        raise InputError("the figure needs [analysis] barred_band", key="barred_width_in_band")
+    result = TVC.of(ctx.analysis)
+    return band_overlap(((b.start, b.end) for b in result.barred_ranges), band[0], band[1])
+
+
+def _installation_inertia(ctx: CaseContext) -> float:
+    model = ctx.analysis.model
+    if model is None:
+        return math.nan
+    masses = sum(float(m.inertia) for m in model.masses)
+    return masses + sum(float(getattr(d, "inertia", 0.0) or 0.0) for d in model.dampers)
+
+
+def _register_tvc() -> None:
+    """:data:`TVC_FIGURES`, the barred width in a band and the installation's inertia."""
+    for spec in TVC.result_class().figure_specs():
+        if spec.name in TVC_FIGURES:
+            register_figure(
+                Figure(
+                    name=spec.name,
+                    key=spec.key,
+                    label=spec.label,
+                    unit=spec.unit,
+                    function=_reader(TVC, spec),
+                    better=spec.better,
+                    subjects=TVC.subjects,
+                    description=f"{spec.label}, over every condition of crankdyn tvc",
+                )
+            )
+    register_figure(
+        Figure(
+            "barred_width_in_band",
+            "barred_width_in_band_rad_s",
+            "Width of the TVC's barred speed ranges inside [analysis] barred_band",
+            "rad/s",
+            _barred_in_band,
+            better="min",
+            subjects=TVC.subjects,
+        )
+    )
+    register_figure(
+        Figure(
+            "installation_inertia",
+            "installation_inertia_kgm2",
+            "Inertia of the torsional model's masses and dampers",
+            "kg·m²",
+            _installation_inertia,
+            better="min",
+            subjects=TVC.subjects,
+            description="Sum of the mass and damper inertias as written (each at its own "
+            "shaft's speed)",
+        )
+    )
+
+
+_register_tvc()
+
+
 def figures_markdown() -> str:
     """The table of every figure of :data:`FIGURES` as docs/study-file.md lists it (one row per
     figure, grouped by the analysis that declares it), generated from the declarations so the

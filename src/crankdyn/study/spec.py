@@ -279,12 +279,20 @@ class Parameter:
         The distribution of a random (Monte Carlo) parameter.
     integer : bool
         Write generated values as whole numbers (a range of whole numbers).
+    bundle : bool
+        Every value is a *bundle*: a dict {key path text: value} that sets several keys of the
+        document at once, each to its own value (a catalogue coupling sets a shaft's stiffness
+        and torques and its two masses' inertias); ``path`` and ``also`` are every key path
+        the bundles set, and a bundle leaves the paths it does not name as the base has them.
+        Default False: every path takes the same value.
+    names : tuple of str or None
+        The values' names in tables (a bundle's catalogue name), or None for their text.
 
     Raises
     ------
     InputError
-        If not exactly one of ``values`` and ``distribution`` is given, or a distribution is
-        given to a categorical parameter.
+        If not exactly one of ``values`` and ``distribution`` is given, a distribution is
+        given to a categorical parameter, or a bundle is not a dict of the parameter's paths.
     """
 
     path: KeyPath
@@ -294,6 +302,8 @@ class Parameter:
     unit: str | None = None
     distribution: Distribution | None = None
     integer: bool = False
+    bundle: bool = False
+    names: tuple[str, ...] | None = None
 
     def __post_init__(self) -> None:
         if (self.values is None) == (self.distribution is None):
@@ -302,6 +312,35 @@ class Parameter:
             )
         if self.distribution is not None and self.unit is None:
             raise InputError("a distribution needs a numeric parameter", key=self.path.text)
+        if self.bundle:
+            known = {p.text for p in self.paths}
+            for value in self.values or ():
+                if not isinstance(value, dict) or not set(value) <= known:
+                    raise InputError(
+                        "a bundle is a table of the parameter's key paths",
+                        key=self.path.text,
+                        value=value,
+                    )
+        if self.names is not None and len(self.names) != len(self.values or ()):
+            raise InputError("one name per value", key=self.path.text, value=list(self.names))
+
+    def assignments(self, value: Any) -> dict[KeyPath, Any]:
+        """The document values one of the parameter's values sets.
+
+        Parameters
+        ----------
+        value : object
+            A value of the parameter as written into the document (a bundle: a dict).
+
+        Returns
+        -------
+        dict of KeyPath to object
+            Every path the value sets: all of :attr:`paths` to ``value``, or for a bundle the
+            paths it names to their own values.
+        """
+        if self.bundle:
+            return {p: value[p.text] for p in self.paths if p.text in value}
+        return dict.fromkeys(self.paths, value)
 
     @property
     def key(self) -> str:

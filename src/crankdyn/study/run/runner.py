@@ -56,6 +56,7 @@ from crankdyn.study.spec import StudySpec
 
 __all__ = [
     "SCHEDULER_TIMEOUT",
+    "CaseRunner",
     "StudyRun",
     "available_cpus",
     "payload_of",
@@ -125,6 +126,7 @@ def payload_of(spec: StudySpec, *, ship_files: bool = False) -> Payload:
         figures=spec.figures,
         modules=modules,
         files=spec.base.files if ship_files else (),
+        bundles=tuple(p.key for p in spec.parameters if p.bundle),
     )
 
 
@@ -693,3 +695,146 @@ def run_study(
             file=str(folder.path),
         )
     return run
+
+
+class CaseRunner:
+    """Cases evaluated batch by batch on one executor and one study folder: what an optimiser
+    needs (:mod:`crankdyn.design`), which chooses the next cases from the results of the last.
+
+    The folder is opened as :func:`run_study` opens it (the same fingerprint resumes, another
+    study is refused unless ``force``); :meth:`run` returns the journal's record of every case
+    of a batch, running on the executor (one process, the local pool or the Dask cluster,
+    started at the first batch that has something to run) only the cases the journal does not
+    hold. Use it as a context manager: leaving it closes the journal, the executor and the
+    folder.
+
+    Parameters
+    ----------
+    spec : crankdyn.study.spec.StudySpec
+        The study whose payload (base document, settings, figures) the cases share; its own
+        parameters name the keys a case sets (its cases need not be the spec's grid).
+    out : str or pathlib.Path
+        The output folder.
+    workers, scheduler, force
+        As for :func:`run_study`.
+    batch : int
+        The size of a batch (caps the local pool, as the case count does in a study).
+    progress : callable or None
+        ``progress(finished_now, to_run, record)`` after every case run.
+    on_start : callable or None
+        ``on_start(to_run, already_finished, executor_description)`` when the executor starts.
+    """
+
+    def __init__(
+        self,
+        spec: StudySpec,
+        out: str | Path,
+        *,
+        workers: int | None = None,
+        scheduler: str | None = None,
+        force: bool = False,
+        batch: int = 1,
+        progress: Progress | None = None,
+        on_start: Callable[[int, int, str], None] | None = None,
+    ) -> None:
+        require("studies", "pyarrow", *(("distributed",) if scheduler else ()))
+        self.spec = spec
+        self.workers = workers
+        self.scheduler = scheduler
+        self.batch = max(1, batch)
+        self.progress = progress
+        self.on_start = on_start
+        info = {"name": spec.name, "source": spec.source, "base": spec.base.source}
+        info["crankdyn_version"] = __version__
+        self.folder = StudyFolder(out, spec.fingerprint(), force=force, info=info)
+        self.records, self.damaged = self.folder.records()
+        self.skipped = 0
+        self.ran = 0
+        self.elapsed = 0.0
+        self.description = "nothing to run"
+        self._executor: _Executor | None = None
+        self._journal: Journal | None = None
+
+    def __enter__(self) -> CaseRunner:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close(interrupted=exc[0] is not None)
+
+    @property
+    def path(self) -> Path:
+        """The output folder."""
+        return self.folder.path
+
+    def _start(self, to_run: int) -> None:
+        def payload_for(ship: bool) -> Payload:
+            return payload_of(self.spec, ship_files=ship)
+
+        self._executor = _executor(payload_for, self.workers, self.scheduler, self.batch)
+        self.description = self._executor.description
+        self._journal = Journal(self.folder.journal_path)
+        if self.on_start is not None:
+            self.on_start(to_run, len(self.records), self.description)
+
+    def run(self, cases: list[Case]) -> list[dict[str, Any]]:
+        """The records of a batch of cases, running those the journal does not hold.
+
+        Parameters
+        ----------
+        cases : list of crankdyn.study.cases.Case
+            The batch (a case id given twice runs once).
+
+        Returns
+        -------
+        list of dict
+            The journal record of every case (:func:`crankdyn.study.run.worker.evaluate_case`),
+            in the batch's order.
+
+        Raises
+        ------
+        KeyboardInterrupt
+            On Ctrl-C (the finished cases are in the journal).
+        InputError
+            If a worker process died (the finished cases are kept).
+        """
+        todo: list[Case] = []
+        seen: set[str] = set()
+        for case in cases:
+            if case.case_id in self.records or case.case_id in seen:
+                continue
+            seen.add(case.case_id)
+            todo.append(case)
+        self.skipped += len({c.case_id for c in cases} - seen)
+        if todo:
+            if self._executor is None:
+                self._start(len(todo))
+            assert self._executor is not None and self._journal is not None
+            count = [0]
+            start = time.perf_counter()
+            try:
+                _drive(self._executor, todo, self._journal, self.records, self.progress, count)
+            except _PoolBroken as exc:
+                raise InputError(
+                    f"{exc}; the finished cases are kept, run again to resume",
+                    file=str(self.folder.path),
+                ) from None
+            finally:
+                self.elapsed += time.perf_counter() - start
+                self.ran += count[0]
+        return [self.records[case.case_id] for case in cases]
+
+    def close(self, interrupted: bool = False) -> None:
+        """Close the journal, end the executor and release the folder.
+
+        Parameters
+        ----------
+        interrupted : bool
+            End running cases at once (Ctrl-C) instead of waiting for them.
+        """
+        if self._journal is not None:
+            self._journal.close()
+            self._journal = None
+        if self._executor is not None:
+            self._executor.close(interrupted)
+            self._executor = None
+        self.folder.close()

@@ -67,6 +67,9 @@ class Payload:
         Keys deleted from the document before the parameters are applied.
     targets : tuple of (str, tuple of KeyPath)
         (parameter key, the paths it sets).
+    bundles : tuple of str
+        The keys of the parameters whose values are bundles (dicts of key path text to value:
+        :attr:`crankdyn.study.spec.Parameter.bundle`).
     settings : crankdyn.study.figures.AnalysisSettings
         The ``[analysis]`` values.
     figures : tuple of str
@@ -87,6 +90,32 @@ class Payload:
     figures: tuple[str, ...]
     modules: tuple[str, ...]  # modules defining the figures (imported before a case runs)
     files: tuple[tuple[str, bytes], ...] = ()  # (relative path, bytes) for remote workers
+    bundles: tuple[str, ...] = ()  # parameters whose values set several keys each
+
+    def assignments(self, params: dict[str, Any]) -> dict[KeyPath, Any]:
+        """The document values a case sets.
+
+        Parameters
+        ----------
+        params : dict of str to object
+            Parameter key -> value as written into the document (a bundle: a dict of key path
+            text to value).
+
+        Returns
+        -------
+        dict of KeyPath to object
+            Every key path the case sets, with its value.
+        """
+        values: dict[KeyPath, Any] = {}
+        for key, paths in self.targets:
+            if key not in params:  # left as the base has it (a design search's base design)
+                continue
+            value = params[key]
+            if key in self.bundles:
+                values.update((p, value[p.text]) for p in paths if p.text in value)
+            else:
+                values.update(dict.fromkeys(paths, value))
+        return values
 
 
 def warm_up() -> str:
@@ -181,8 +210,7 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
     error = None
     try:
         prepare_worker(payload)
-        values = {path: params[key] for key, paths in payload.targets for path in paths}
-        document = apply_values(payload.document, values, payload.remove)
+        document = apply_values(payload.document, payload.assignments(params), payload.remove)
         base_dir = _base_dir(payload)
         subject = parse_base(payload.kind, document, file=payload.source, base_dir=base_dir)
         ctx = CaseContext(subject, payload.settings, payload.kind)

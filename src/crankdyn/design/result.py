@@ -1,0 +1,216 @@
+"""The result of a design search: the candidates evaluated, the feasible ones, the chosen design
+(the best feasible candidate by the first objective) with its verdict rows, the best designs
+with their margin per verdict row, and the Pareto front of several objectives."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+from crankdyn.results import Result, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from crankdyn.design.search import Candidate
+    from crankdyn.design.space import DesignSpace
+
+__all__ = ["DesignResult"]
+
+
+def _value(value: float | None) -> float | None:
+    return None if value is None or not math.isfinite(value) else float(value)
+
+
+@dataclass(frozen=True)
+class DesignResult(Result):
+    """What a design search found (:func:`crankdyn.design.search.run_search`).
+
+    Parameters
+    ----------
+    space : crankdyn.design.space.DesignSpace
+        The space searched.
+    candidates : tuple of crankdyn.design.search.Candidate
+        Every candidate evaluated, best first.
+    base : crankdyn.design.search.Candidate or None
+        The base design, evaluated for reference.
+    verdicts : tuple of crankdyn.summary.Verdict
+        The chosen design's verdict rows (those its constraints and objective read).
+    best_verdicts : tuple of tuple of crankdyn.summary.Verdict
+        The verdict rows of each of the best feasible designs (best first), for the table of
+        margins per verdict row.
+    front : tuple of int
+        Indices into ``candidates`` of the Pareto front (several objectives; else empty).
+    """
+
+    title = "Design search"
+    name: str = scalar("design", "Design space", "")
+    method: str = scalar("method", "Search", "")
+    objective: str = scalar("objective", "Objective", "")
+    evaluated: int = scalar("candidates", "Candidates evaluated", "")
+    feasible_count: int = scalar("feasible", "Feasible candidates", "")
+    failed_count: int = scalar("failed", "Failed candidates", "")
+    best_objective: float | None = scalar(
+        "best_objective", "Objective of the chosen design", "", headline=True
+    )
+    base_objective: float | None = scalar("base_objective", "Objective of the base design", "")
+    chosen: str = scalar("chosen_design", "Chosen design", "", headline=True)
+    space: DesignSpace | None = field(default=None, repr=False, compare=False)
+    candidates: tuple[Candidate, ...] = field(default=(), repr=False, compare=False)
+    base: Candidate | None = field(default=None, repr=False, compare=False)
+    verdicts: tuple[Verdict, ...] = field(default=(), repr=False, compare=False)
+    best_verdicts: tuple[tuple[Verdict, ...], ...] = field(
+        default=(), repr=False, compare=False
+    )
+    front: tuple[int, ...] = field(default=(), repr=False, compare=False)
+
+    FIGURES = (
+        derived(
+            "design_found", "design_found", "A feasible design was found", "",
+            lambda r: r.feasible_count > 0,
+            status=lambda found: "pass" if found else "fail",
+        ),
+        derived(
+            "objective_gain", "objective_gain", "Chosen design's objective - base design's", "",
+            lambda r: None if r.best_objective is None or r.base_objective is None
+            else r.best_objective - r.base_objective,
+            reduction="the first objective, in its own unit",
+        ),
+    )  # fmt: skip
+
+    @property
+    def best(self) -> Candidate | None:
+        """The chosen design: the best feasible candidate, or None."""
+        return next((c for c in self.candidates if c.feasible), None)
+
+    @property
+    def found(self) -> bool:
+        """Whether a feasible design was found."""
+        return self.best is not None
+
+    def ranked(self, count: int = 5) -> list[Candidate]:
+        """The best feasible candidates.
+
+        Parameters
+        ----------
+        count : int
+            How many (default 5).
+
+        Returns
+        -------
+        list of crankdyn.design.search.Candidate
+            Best first.
+        """
+        return [c for c in self.candidates if c.feasible][:count]
+
+    def summary_verdicts(self) -> list[Verdict]:
+        """The chosen design's verdict rows.
+
+        Returns
+        -------
+        list of crankdyn.summary.Verdict
+            The rows.
+        """
+        return list(self.verdicts)
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The best designs (parameters, objectives, figures), their margins per verdict row,
+        and the Pareto front of several objectives.
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            The tables.
+        """
+        if self.space is None:
+            return []
+        out = [self._table("best_designs", "Best designs", self.ranked())]
+        if self.best_verdicts:
+            out.append(self._margins())
+        if self.front:
+            out.append(
+                self._table("pareto_front", "Pareto front", [self.candidates[i] for i in self.front])
+            )
+        return out
+
+    def _columns(self) -> tuple[list[SummaryColumn], list[Any]]:
+        from crankdyn.study.figures import FIGURES
+
+        space = self.space
+        assert space is not None
+        columns = [SummaryColumn("candidate", "Candidate")]
+        getters: list[Any] = [lambda c: c.number]
+        for p in space.parameters:
+            unit = p.unit or "" if space.ranges and p.key in space.ranges else ""
+            columns.append(SummaryColumn(p.column, space.name_of(p.key), unit))
+            getters.append(lambda c, k=p.key: c.case.numbers.get(k))
+        for i, o in enumerate(space.objectives):
+            columns.append(SummaryColumn(o.column, o.label or o.name, o.unit))
+            getters.append(lambda c, i=i: _value(c.objectives[i]))
+        for name in space.study.figures:
+            if any(o.name == name for o in space.objectives):
+                continue
+            f = FIGURES[name]
+            columns.append(SummaryColumn(f.key, f.label, f.unit))
+            getters.append(lambda c, n=name: _value(c.figures.get(n)))
+        return columns, getters
+
+    def _table(self, key: str, title: str, rows: list[Candidate]) -> SummaryTable:
+        columns, getters = self._columns()
+        return SummaryTable(
+            key,
+            title,
+            tuple(columns),
+            tuple(tuple(g(c) for g in getters) for c in rows),
+            caption="feasible candidates, best first by the first objective",
+        )
+
+    def _margins(self) -> SummaryTable:
+        """Margin 1 - worst/limit of every verdict row (rows) of each best design (columns)."""
+        ranked = self.ranked(len(self.best_verdicts))
+        keys: list[tuple[str, str, str]] = []
+        margins: list[dict[tuple[str, str, str], float]] = []
+        for rows in self.best_verdicts:
+            mine = {}
+            for v in rows:
+                k = (v.component, v.condition, v.quantity)
+                if k not in keys:
+                    keys.append(k)
+                mine[k] = v.margin
+            margins.append(mine)
+        columns = [
+            SummaryColumn("component", "Component"),
+            SummaryColumn("condition", "Condition"),
+            SummaryColumn("quantity", "Quantity"),
+            *(SummaryColumn(f"margin_{c.number}", f"Margin, candidate {c.number}") for c in ranked),
+        ]
+        rows = tuple(
+            (*k, *(_value(m.get(k)) for m in margins[: len(ranked)])) for k in keys
+        )
+        return SummaryTable(
+            "margins",
+            "Margin of every verdict row of the best designs",
+            tuple(columns),
+            rows,
+            caption="margin = 1 - worst/limit; negative where a limit is exceeded",
+        )
+
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """The candidates in the plane of the first two objectives, the Pareto front marked
+        (one objective: the objective of every candidate in evaluation order).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            Figure to draw into (new when None).
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.design import plot_design
+
+        return plot_design(self, fig)

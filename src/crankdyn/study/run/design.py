@@ -1,0 +1,275 @@
+"""Running a design search on the study runner, and writing its outputs.
+
+The search (:mod:`crankdyn.design.search`) runs in this process and hands its candidates, a
+generation at a time, to a :class:`crankdyn.study.run.runner.CaseRunner` (one process, the local
+pool or a Dask cluster, as a study's cases; every candidate journalled by its case id, so a
+second run of the same search reads its candidates back instead of computing them). The
+outputs, in the folder ``out``:
+
+    journal.jsonl, study.json   the study runner's journal and manifest
+    results.csv                 every candidate: number, id, status, parameters, objectives,
+                                feasible, constraint violation, figures, error
+    results.parquet             the same (when pyarrow is installed)
+    best.toml                   the chosen design as a file ``crankdyn tvc`` reads (with the
+                                files the base names, beside it)
+    pareto.png                  the candidates and the Pareto front (several objectives)
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from pathlib import Path
+from typing import Any
+
+from crankdyn.design.result import DesignResult
+from crankdyn.design.search import Candidate, run_search
+from crankdyn.design.space import DesignSpace
+from crankdyn.display import csv_text
+from crankdyn.io.output import write_bytes, write_text
+from crankdyn.io.study_file import parse_base
+from crankdyn.io.toml_text import dumps
+from crankdyn.study.cases import Case, case_id
+from crankdyn.study.docpath import apply_values, referenced_files
+from crankdyn.study.figures import FIGURES, CaseContext
+from crankdyn.study.run.runner import CaseRunner, Progress
+
+__all__ = ["BEST_DESIGNS", "candidate_document", "run_design", "write_design"]
+
+BEST_DESIGNS = 3
+"""The best designs whose verdict rows are tabled (each one analysed again in this process)."""
+
+
+def base_case() -> Case:
+    """The base design as a case: no parameter set.
+
+    Returns
+    -------
+    crankdyn.study.cases.Case
+        The case with empty parameters.
+    """
+    return Case(index=0, case_id=case_id({}), params={}, numbers={})
+
+
+def candidate_document(space: DesignSpace, case: Case) -> dict[str, Any]:
+    """The base document with a candidate's values written in.
+
+    Parameters
+    ----------
+    space : crankdyn.design.space.DesignSpace
+        The space.
+    case : crankdyn.study.cases.Case
+        The candidate.
+
+    Returns
+    -------
+    dict
+        The document (a copy).
+    """
+    values: dict[Any, Any] = {}
+    for p in space.parameters:
+        if p.key in case.params:
+            values.update(p.assignments(case.params[p.key]))
+    return apply_values(space.study.base.document, values, space.study.remove)
+
+
+def _verdicts(space: DesignSpace, case: Case) -> tuple[Any, ...]:
+    """The verdict rows a candidate's constraints and objective read, analysed again here: the
+    normal-firing condition's (``judged``), or every condition's (the whole TVC)."""
+    base = space.study.base
+    subject = parse_base(
+        base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
+    )
+    ctx = CaseContext(subject, space.study.settings, base.kind)
+    if "worst_margin" in space.study.figures or "failed_rows" in space.study.figures:
+        return tuple(ctx.analysis.tvc().verdicts)
+    judged = ctx.analysis.judged()
+    return () if judged is None else tuple(judged.verdicts)
+
+
+def _text(space: DesignSpace, c: Candidate) -> str:
+    parts = []
+    for p in space.parameters:
+        value = c.case.numbers.get(p.key)
+        unit = f" {p.unit}" if p.unit and p.key in space.ranges else ""
+        parts.append(f"{space.name_of(p.key)} = {value}{unit}")
+    return "; ".join(parts)
+
+
+def run_design(
+    space: DesignSpace,
+    out: str | Path,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    force: bool = False,
+    progress: Progress | None = None,
+    on_start: Any = None,
+) -> DesignResult:
+    """Search a design space on the study runner (module docstring).
+
+    Parameters
+    ----------
+    space : crankdyn.design.space.DesignSpace
+        The space.
+    out : str or pathlib.Path
+        The output folder (its journal makes a rerun resume).
+    workers, scheduler, force
+        As for :func:`crankdyn.study.run.runner.run_study`.
+    progress, on_start
+        As for :class:`crankdyn.study.run.runner.CaseRunner`.
+
+    Returns
+    -------
+    crankdyn.design.result.DesignResult
+        The search's result (the chosen design's verdict rows, the best designs').
+
+    Raises
+    ------
+    InputError
+        If the folder cannot be used, the workers or the scheduler are wrong, or the search
+        cannot run (an exhaustive search of too large a space).
+    """
+    from crankdyn.design.search import pareto_front
+
+    method = space.method()
+    batch = space.discrete_count if method == "exhaustive" else max(5, space.search.population)
+    if method != "exhaustive":
+        batch = max(5, space.search.population * (len(space.parameters)))
+    with CaseRunner(
+        space.study,
+        out,
+        workers=workers,
+        scheduler=scheduler,
+        force=force,
+        batch=batch,
+        progress=progress,
+        on_start=on_start,
+    ) as runner:
+        method, candidates, base = run_search(space, runner.run, base_case())
+        path = runner.path
+    feasible = [c for c in candidates if c.feasible]
+    best = feasible[0] if feasible else None
+    best_verdicts = tuple(_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS])
+    front: tuple[int, ...] = ()
+    if len(space.objectives) > 1:
+        front = tuple(pareto_front(candidates, [o.sense for o in space.objectives]))
+    first = space.objectives[0]
+
+    def objective_of(c: Candidate | None) -> float | None:
+        if c is None or not c.ok or c.objectives[0] is None:
+            return None
+        value = c.objectives[0]
+        return value if math.isfinite(value) else None
+
+    result = DesignResult(
+        name=space.study.name,
+        method=method,
+        objective=f"{first.sense} {first.label or first.name}",
+        evaluated=len(candidates),
+        feasible_count=len(feasible),
+        failed_count=sum(1 for c in candidates if not c.ok),
+        best_objective=objective_of(best),
+        base_objective=objective_of(base),
+        chosen=_text(space, best) if best is not None else "none feasible",
+        space=space,
+        candidates=tuple(candidates),
+        base=base,
+        verdicts=best_verdicts[0] if best_verdicts else (),
+        best_verdicts=best_verdicts,
+        front=front,
+    )
+    write_design(result, path)
+    return result
+
+
+def _columns(space: DesignSpace) -> list[tuple[str, Any]]:
+    cols: list[tuple[str, Any]] = [
+        ("candidate", lambda c: c.number),
+        ("case_id", lambda c: c.case.case_id),
+        ("status", lambda c: c.record.get("status")),
+    ]
+    for p in space.parameters:
+        cols.append((p.column, lambda c, k=p.key: c.case.numbers.get(k)))
+    for i, o in enumerate(space.objectives):
+        cols.append((o.column, lambda c, i=i: c.objectives[i]))
+    cols.append(("feasible", lambda c: c.feasible))
+    cols.append(("violation", lambda c: c.violation))
+    for name in space.study.figures:
+        cols.append((FIGURES[name].key, lambda c, n=name: c.figures.get(n)))
+    cols.append(("error", lambda c: c.record.get("error")))
+    cols.append(("elapsed_s", lambda c: c.record.get("elapsed_s")))
+    return cols
+
+
+def _cell(value: Any) -> Any:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value) if math.isfinite(value) else None
+    return value
+
+
+def write_design(result: DesignResult, out: Path) -> list[Path]:
+    """Write a design search's tables, its chosen design and its Pareto plot (module
+    docstring).
+
+    Parameters
+    ----------
+    result : crankdyn.design.result.DesignResult
+        The search's result.
+    out : pathlib.Path
+        The output folder.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The files written.
+    """
+    space = result.space
+    assert space is not None  # a search's result
+    columns = _columns(space)
+    ordered = sorted(result.candidates, key=lambda c: c.number)
+    rows = [[name for name, _ in columns]]
+    rows.extend([_cell(get(c)) for _, get in columns] for c in ordered)
+    written = [write_text(out / "results.csv", csv_text(rows), force=True)]
+    try:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+    except ImportError:  # the studies extra is optional for the table in Parquet
+        pa = None
+    if pa is not None:
+        data = {}
+        for name, get in columns:
+            values = [get(c) for c in ordered]
+            if all(v is None or isinstance(v, bool) for v in values):
+                data[name] = pa.array(values, type=pa.bool_())
+            elif all(v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+                     for v in values):
+                data[name] = pa.array(
+                    [None if v is None or not math.isfinite(float(v)) else float(v)
+                     for v in values], type=pa.float64())
+            else:
+                data[name] = pa.array([None if v is None else str(v) for v in values])
+        sink = io.BytesIO()
+        pq.write_table(pa.table(data), sink)
+        written.append(write_bytes(out / "results.parquet", sink.getvalue(), force=True))
+    best = result.best
+    if best is not None:
+        base = space.study.base
+        document = candidate_document(space, best.case)
+        named = {text for text, _ in referenced_files(document, base.base_dir or Path("."))}
+        for text, data_bytes in base.files:
+            if text in named:  # the files the chosen design names, beside it
+                (out / text).parent.mkdir(parents=True, exist_ok=True)
+                written.append(write_bytes(out / text, data_bytes, force=True))
+        header = (
+            f"# The chosen design of the design search {space.study.name!r} (crankdyn design):\n"
+            f"# {_text(space, best)}\n# base: {base.source}\n"
+        )
+        written.append(write_text(out / "best.toml", header + dumps(document), force=True))
+    if len(space.objectives) > 1:
+        image = io.BytesIO()
+        result.plot().savefig(image, format="png", dpi=120)
+        written.append(write_bytes(out / "pareto.png", image.getvalue(), force=True))
+    return written
