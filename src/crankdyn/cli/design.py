@@ -61,9 +61,7 @@ class _Progress:
         if record.get("status") == "failed":
             self.failed += 1
         if done == total:
-            click.echo(
-                f"  {self.done} candidates evaluated ({self.failed} failed)", err=True
-            )
+            click.echo(f"  {self.done} candidates evaluated ({self.failed} failed)", err=True)
 
 
 @click.command("design")

@@ -61,9 +61,7 @@ class DesignResult(Result):
     candidates: tuple[Candidate, ...] = field(default=(), repr=False, compare=False)
     base: Candidate | None = field(default=None, repr=False, compare=False)
     verdicts: tuple[Verdict, ...] = field(default=(), repr=False, compare=False)
-    best_verdicts: tuple[tuple[Verdict, ...], ...] = field(
-        default=(), repr=False, compare=False
-    )
+    best_verdicts: tuple[tuple[Verdict, ...], ...] = field(default=(), repr=False, compare=False)
     front: tuple[int, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
@@ -131,11 +129,14 @@ class DesignResult(Result):
             out.append(self._margins())
         if self.front:
             out.append(
-                self._table("pareto_front", "Pareto front", [self.candidates[i] for i in self.front])
+                self._table(
+                    "pareto_front", "Pareto front", [self.candidates[i] for i in self.front]
+                )
             )
         return out
 
     def _columns(self) -> tuple[list[SummaryColumn], list[Any]]:
+        from crankdyn.design.search import column_of
         from crankdyn.study.figures import FIGURES
 
         space = self.space
@@ -143,8 +144,8 @@ class DesignResult(Result):
         columns = [SummaryColumn("candidate", "Candidate")]
         getters: list[Any] = [lambda c: c.number]
         for p in space.parameters:
-            unit = p.unit or "" if space.ranges and p.key in space.ranges else ""
-            columns.append(SummaryColumn(p.column, space.name_of(p.key), unit))
+            unit = (p.unit or "") if p.key in space.ranges else ""
+            columns.append(SummaryColumn(column_of(space, p.key), space.name_of(p.key), unit))
             getters.append(lambda c, k=p.key: c.case.numbers.get(k))
         for i, o in enumerate(space.objectives):
             columns.append(SummaryColumn(o.column, o.label or o.name, o.unit))
@@ -186,14 +187,14 @@ class DesignResult(Result):
             SummaryColumn("quantity", "Quantity"),
             *(SummaryColumn(f"margin_{c.number}", f"Margin, candidate {c.number}") for c in ranked),
         ]
-        rows = tuple(
+        cells: tuple[tuple[Any, ...], ...] = tuple(
             (*k, *(_value(m.get(k)) for m in margins[: len(ranked)])) for k in keys
         )
         return SummaryTable(
             "margins",
             "Margin of every verdict row of the best designs",
             tuple(columns),
-            rows,
+            cells,
             caption="margin = 1 - worst/limit; negative where a limit is exceeded",
         )
 

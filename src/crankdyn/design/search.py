@@ -44,6 +44,7 @@ __all__ = [
     "Candidate",
     "Evaluate",
     "candidate_case",
+    "column_of",
     "pareto_front",
     "run_search",
     "score",
@@ -101,6 +102,29 @@ class Candidate:
     def figures(self) -> dict[str, float | None]:
         """Its study figures (SI)."""
         return dict(self.record.get("figures") or {})
+
+
+def column_of(space: DesignSpace, key: str) -> str:
+    """A parameter's column in the design's tables: its name in the design file, with the
+    unit of a range (``damper inertia_kg_m2``).
+
+    Parameters
+    ----------
+    space : crankdyn.design.space.DesignSpace
+        The space.
+    key : str
+        The parameter's key.
+
+    Returns
+    -------
+    str
+        The column name.
+    """
+    from crankdyn.study.spec import column_suffix
+
+    p = space.parameter(key)
+    name = space.name_of(key).replace(" ", "_")
+    return f"{name}_{column_suffix(p.unit)}" if key in space.ranges and p.unit else name
 
 
 def _round(x: float, digits: int) -> float:
@@ -289,8 +313,9 @@ def pareto_front(candidates: Sequence[Candidate], senses: Sequence[str]) -> list
     """
     rows = []
     for i, c in enumerate(candidates):
-        if c.feasible and all(v is not None and math.isfinite(v) for v in c.objectives):
-            signed = [v if s == "min" else -v for v, s in zip(c.objectives, senses, strict=True)]
+        values = [v for v in c.objectives if v is not None and math.isfinite(v)]
+        if c.feasible and len(values) == len(c.objectives):
+            signed = [v if s == "min" else -v for v, s in zip(values, senses, strict=True)]
             rows.append((i, np.array(signed, dtype=float)))
     front = []
     for i, a in rows:

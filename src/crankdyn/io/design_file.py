@@ -256,18 +256,23 @@ def read_coupling_catalogue(
     out = []
     for r in range(len(sizes)):
         tkn = float(values["T_KN"][r])
-        if -1.0 in stiff:
-            rows = [[0.0, float(stiff[-1.0][r])], [tkn, float(stiff[-1.0][r])]]
+        keys: dict[str, Any] = {}
+        if -1.0 in stiff:  # one C_Tdyn: no torque dependence
+            keys["dynamic_stiffness"] = f"{float(stiff[-1.0][r])!r} N*m/rad"
+            keys["stiffness_table"] = None  # removed from the base's coupling
         else:
             rows = [[p / 100.0 * tkn, float(stiff[p][r])] for p in sorted(stiff)]
             if rows[0][0] > 0.0:  # below the lowest torque given: its C_Tdyn (no slope guessed)
                 rows.insert(0, [0.0, rows[0][1]])
-        keys: dict[str, Any] = {
-            "stiffness_table": [[f"{q!r} N*m", f"{c!r} N*m/rad"] for q, c in rows],
-            "relative_damping": float(values["psi"][r]),
-            "nominal_torque": f"{tkn!r} N*m",
-            "designation": sizes[r],
-        }
+            keys["stiffness_table"] = [[f"{q!r} N*m", f"{c!r} N*m/rad"] for q, c in rows]
+            keys["dynamic_stiffness"] = None
+        keys.update(
+            {
+                "relative_damping": float(values["psi"][r]),
+                "nominal_torque": f"{tkn!r} N*m",
+                "designation": sizes[r],
+            }
+        )
         for column, key, unit in (
             ("T_KW", "vibratory_torque", "N*m"),
             ("T_Kmax", "maximum_torque", "N*m"),
@@ -285,7 +290,9 @@ def read_coupling_catalogue(
 # ---- choices and ranges -----------------------------------------------------------------------
 
 
-def _coupling_choice(t: Table, document: dict[str, Any]) -> tuple[Parameter, list[float] | None, str]:
+def _coupling_choice(
+    t: Table, document: dict[str, Any]
+) -> tuple[Parameter, list[float] | None, str]:
     shaft = t.string("shaft")
     shaft_path, primary, secondary = _coupling_paths(document, t, shaft)
     path = t.input_file("catalogue", "coupling catalogue")
@@ -301,7 +308,10 @@ def _coupling_choice(t: Table, document: dict[str, Any]) -> tuple[Parameter, lis
 
 
 def _bundle(
-    t: Table, document: dict[str, Any], texts: list[str], bundles: list[dict[str, Any]],
+    t: Table,
+    document: dict[str, Any],
+    texts: list[str],
+    bundles: list[dict[str, Any]],
     names: list[str] | None,
 ) -> Parameter:
     paths = [parse_path(text, file=t.file, key=t.label("key")) for text in texts]
@@ -331,8 +341,11 @@ def _firing_orders(t: Table, base: Base) -> tuple[list[Any], list[str]]:
     orders = sorted({tuple(int(c) for c in o) for o in schemes.orders})
     if not orders:
         raise t.error("values", "the crankshaft admits no even firing order", "all")
-    keep = {k: base.document["cylinders"][k] for k in ("throw_angles", "throw_positions")
-            if k in base.document.get("cylinders", {})}
+    keep = {
+        k: base.document["cylinders"][k]
+        for k in ("throw_angles", "throw_positions")
+        if k in base.document.get("cylinders", {})
+    }
     throws = [f"{float(np.degrees(a))!r} deg" for a in cylinders.throw_angles]
     bundles = []
     for order in orders:
@@ -374,7 +387,8 @@ def _choice(t: Table, base: Base) -> tuple[str, Parameter, list[float] | None, s
     else:
         raise t.error("values", 'expected a non-empty list, or "all"', raw)
     if costs is not None and (
-        not isinstance(costs, list) or len(costs) != len(p.values or ())
+        not isinstance(costs, list)
+        or len(costs) != len(p.values or ())
         or not all(isinstance(c, int | float) for c in costs)
     ):
         raise t.error("costs", "expected one number per value", costs)
@@ -395,17 +409,23 @@ def _range(t: Table, document: dict[str, Any]) -> tuple[str, Parameter]:
     if any(s is None for s in split):
         raise t.error("bounds", "expected two numbers or quantities", bounds)
     (low, unit), (high_raw, high_unit) = split  # type: ignore[misc]
-    high = convert_magnitude(high_raw, high_unit, unit, key=t.label("bounds"), file=t.file,
-                             value=bounds[1])
+    high = convert_magnitude(
+        high_raw, high_unit, unit, key=t.label("bounds"), file=t.file, value=bounds[1]
+    )
     if not low < high:
         raise t.error("bounds", "the first value must be below the second", bounds)
     integer = t.boolean("integer", False)
     name = t.string("name", texts[0])
     t.finish()
     with t.context():
-        p = Parameter(path=paths[0], also=tuple(paths[1:]), unit=unit, integer=integer,
-                      distribution=Distribution("uniform", (float(low), float(high))))
-    return name, p
+        parameter = Parameter(
+            path=paths[0],
+            also=tuple(paths[1:]),
+            unit=unit,
+            integer=integer,
+            distribution=Distribution("uniform", (float(low), float(high))),
+        )
+    return name, parameter
 
 
 # ---- constraints and objectives ---------------------------------------------------------------
@@ -415,7 +435,7 @@ def _constraints(t: Table | None, settings: list[tuple[str, Any]], verdicts: str
     from crankdyn.design.space import Constraint
 
     out = []
-    worst, passed = VERDICT_FIGURES[verdicts] if verdicts != "none" else (None, None)
+    passed = VERDICT_FIGURES[verdicts][1] if verdicts != "none" else None
     if passed == "condition_passed":
         out.append(Constraint(passed, low=1.0, label="every verdict row of normal firing passes"))
     elif passed == "failed_rows":
@@ -425,15 +445,20 @@ def _constraints(t: Table | None, settings: list[tuple[str, Any]], verdicts: str
     band = t.quantity_list("barred_band", "speed", None, length=2, check="positive")
     if band is not None:
         if not band[0] < band[1]:
-            raise t.error("barred_band", "the first speed must be below the second",
-                          t.data["barred_band"])
+            raise t.error(
+                "barred_band", "the first speed must be below the second", t.data["barred_band"]
+            )
         settings.append(("barred_band", tuple(band)))
-        out.append(Constraint("barred_width_in_band", high=0.0,
-                              label="no barred speed range inside the band"))
+        out.append(
+            Constraint(
+                "barred_width_in_band", high=0.0, label="no barred speed range inside the band"
+            )
+        )
     limit = t.quantity("max_added_inertia", "inertia", None, check="nonnegative")
     if limit is not None:
-        out.append(Constraint("installation_inertia", high=limit,
-                              label="added inertia within the limit"))  # base added later
+        out.append(
+            Constraint("installation_inertia", high=limit, label="added inertia within the limit")
+        )  # base added later
     for ft in t.tables("figure"):
         name = ft.string("name", choices=tuple(FIGURES))
         low = ft.number("min", None)
@@ -444,7 +469,9 @@ def _constraints(t: Table | None, settings: list[tuple[str, Any]], verdicts: str
     return out
 
 
-def _objectives(root: Table, verdicts: str, costs: dict[str, Any], units: dict[str, str]) -> list[Any]:
+def _objectives(
+    root: Table, verdicts: str, costs: dict[str, Any], units: dict[str, str]
+) -> list[Any]:
     from crankdyn.design.space import Objective
 
     entries = root.tables("objective")
@@ -467,10 +494,16 @@ def _objectives(root: Table, verdicts: str, costs: dict[str, Any], units: dict[s
         else:
             name = t.string("cost")
             if name not in costs:
-                raise t.error("cost", "no choice of this name has costs"
-                              + did_you_mean(name, list(costs)), name)
-            out.append(Objective(name, "min", kind="cost", label=f"Cost of {name}",
-                                 unit=units.get(name, "")))
+                raise t.error(
+                    "cost",
+                    "no choice of this name has costs" + did_you_mean(name, list(costs)),
+                    name,
+                )
+            out.append(
+                Objective(
+                    name, "min", kind="cost", label=f"Cost of {name}", unit=units.get(name, "")
+                )
+            )
         t.finish()
     return out
 
@@ -485,8 +518,7 @@ def _search(t: Table | None) -> Any:
         max_candidates=t.integer("max_candidates", MAX_EXHAUSTIVE, minimum=1, maximum=1_000_000),
         population=t.integer("population", 10, minimum=1, maximum=1000),
         tolerance=t.number("tolerance", 1e-3, check="positive"),
-        method=t.string("method", "auto",
-                        choices=("auto", "exhaustive", "differential-evolution")),
+        method=t.string("method", "auto", choices=("auto", "exhaustive", "differential-evolution")),
         digits=t.integer("digits", 8, minimum=3, maximum=15),
     )
     t.finish()
@@ -600,14 +632,19 @@ def parse_design(
                 raise root.error(None, f"the key {path.text} is set by two choices or ranges")
             taken.append(path.text)
     ct = root.table("constraints")
-    verdicts = ct.string("verdicts", "normal", choices=("normal", "all", "none")) if ct else "normal"
+    verdicts = (
+        ct.string("verdicts", "normal", choices=("normal", "all", "none")) if ct else "normal"
+    )
     at = root.table("analysis")
     settings = analysis_settings(at) if at is not None else []
     constraints = _constraints(ct, settings, verdicts)
     objectives = _objectives(root, verdicts, costs, units)
     search = _search(root.table("search"))
     figures: list[str] = []
-    for f in (*(c.figure for c in constraints), *(o.name for o in objectives if o.kind == "figure")):
+    for f in (
+        *(c.figure for c in constraints),
+        *(o.name for o in objectives if o.kind == "figure"),
+    ):
         if f not in figures:
             figures.append(f)
     default = VERDICT_FIGURES["all" if verdicts == "all" else "normal"][0]
@@ -652,13 +689,11 @@ def _added_inertia(constraints: list[Any], base: Base) -> list[Any]:
     limit."""
     import dataclasses
 
-    from crankdyn.study.figures import FIGURES as ALL
-
     from crankdyn.study.figures import CaseContext
 
     subject = parse_base(base.kind, base.document, file=base.source, base_dir=base.base_dir)
     ctx = CaseContext(subject, AnalysisSettings(), base.kind)
-    own = ALL["installation_inertia"].evaluate(ctx) or 0.0
+    own = FIGURES["installation_inertia"].evaluate(ctx) or 0.0
     return [
         dataclasses.replace(c, high=own + c.high) if c.figure == "installation_inertia" else c
         for c in constraints

@@ -49,7 +49,10 @@ def plot_design(result: DesignResult, fig: Figure | None = None) -> Figure:
     first = objectives[0]
     if len(objectives) >= 2:
         second = objectives[1]
-        for group, color, name in ((infeasible, COLORS[6], "infeasible"), (feasible, COLORS[0], "feasible")):
+        for group, color, name in (
+            (infeasible, COLORS[6], "infeasible"),
+            (feasible, COLORS[0], "feasible"),
+        ):
             if group:
                 xs = np.array([c.objectives[0] for c in group], dtype=float)
                 ys = np.array([c.objectives[1] for c in group], dtype=float)
@@ -64,7 +67,10 @@ def plot_design(result: DesignResult, fig: Figure | None = None) -> Figure:
         ax.set_ylabel(_axis(second.label or second.name, second.unit))
         ax.set_title("Design search: candidates and Pareto front")
     else:
-        for group, color, name in ((infeasible, COLORS[6], "infeasible"), (feasible, COLORS[0], "feasible")):
+        for group, color, name in (
+            (infeasible, COLORS[6], "infeasible"),
+            (feasible, COLORS[0], "feasible"),
+        ):
             if group:
                 xs = np.array([c.number for c in group], dtype=float)
                 ys = np.array([c.objectives[0] for c in group], dtype=float)

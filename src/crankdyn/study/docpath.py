@@ -200,7 +200,9 @@ def apply_values(
     document : dict
         The parsed base document (not modified).
     values : dict of KeyPath to object
-        The values to set (tables on the way created when missing).
+        The values to set (tables on the way created when missing); None removes the key
+        (TOML has no null, so a file never gives it: a bundle that replaces one key by
+        another, e.g. a coupling's ``stiffness_table`` by its ``dynamic_stiffness``).
     remove : tuple of KeyPath
         Keys deleted first; default none.
 
@@ -228,6 +230,12 @@ def apply_values(
             else:
                 del parent[name][index - 1]
     for path, value in values.items():
+        if value is None:
+            parent = _parent(out, path, create=False)
+            name, index = path.parts[-1]
+            if parent is not None and index is None and name in parent:
+                del parent[name]
+            continue
         parent = _parent(out, path, create=True)
         name, index = path.parts[-1]
         if index is None:

@@ -23,7 +23,7 @@ from pathlib import Path
 from typing import Any
 
 from crankdyn.design.result import DesignResult
-from crankdyn.design.search import Candidate, run_search
+from crankdyn.design.search import Candidate, column_of, run_search
 from crankdyn.design.space import DesignSpace
 from crankdyn.display import csv_text
 from crankdyn.io.output import write_bytes, write_text
@@ -190,7 +190,7 @@ def _columns(space: DesignSpace) -> list[tuple[str, Any]]:
         ("status", lambda c: c.record.get("status")),
     ]
     for p in space.parameters:
-        cols.append((p.column, lambda c, k=p.key: c.case.numbers.get(k)))
+        cols.append((column_of(space, p.key), lambda c, k=p.key: c.case.numbers.get(k)))
     for i, o in enumerate(space.objectives):
         cols.append((o.column, lambda c, i=i: c.objectives[i]))
     cols.append(("feasible", lambda c: c.feasible))
@@ -244,11 +244,17 @@ def write_design(result: DesignResult, out: Path) -> list[Path]:
             values = [get(c) for c in ordered]
             if all(v is None or isinstance(v, bool) for v in values):
                 data[name] = pa.array(values, type=pa.bool_())
-            elif all(v is None or (isinstance(v, int | float) and not isinstance(v, bool))
-                     for v in values):
+            elif all(
+                v is None or (isinstance(v, int | float) and not isinstance(v, bool))
+                for v in values
+            ):
                 data[name] = pa.array(
-                    [None if v is None or not math.isfinite(float(v)) else float(v)
-                     for v in values], type=pa.float64())
+                    [
+                        None if v is None or not math.isfinite(float(v)) else float(v)
+                        for v in values
+                    ],
+                    type=pa.float64(),
+                )
             else:
                 data[name] = pa.array([None if v is None else str(v) for v in values])
         sink = io.BytesIO()

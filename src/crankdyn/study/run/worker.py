@@ -104,7 +104,8 @@ class Payload:
         Returns
         -------
         dict of KeyPath to object
-            Every key path the case sets, with its value.
+            Every key path the case sets, with its value (None: the key is removed,
+            :func:`crankdyn.study.docpath.apply_values`).
         """
         values: dict[KeyPath, Any] = {}
         for key, paths in self.targets:
