@@ -155,6 +155,9 @@ def design_command(
         progress=bar.update,
         on_start=bar.start,
     )
+    kept = result.evaluated + (result.base is not None) - result.computed
+    if kept and not result.computed:
+        click.echo(f"{kept} candidates evaluated in an earlier run are kept", err=True)
     blocks: list[Any] = summary_blocks(result, f"Design search: {spec.study.name}")
     written = [folder / "results.csv", *([folder / "best.toml"] if result.found else [])]
     if result.found and not no_report:

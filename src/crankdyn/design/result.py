@@ -50,6 +50,7 @@ class DesignResult(Result):
     method: str = scalar("method", "Search", "")
     objective: str = scalar("objective", "Objective", "")
     evaluated: int = scalar("candidates", "Candidates evaluated", "")
+    computed: int = scalar("computed", "Candidates computed in this run (not in the journal)", "")
     feasible_count: int = scalar("feasible", "Feasible candidates", "")
     failed_count: int = scalar("failed", "Failed candidates", "")
     best_objective: float | None = scalar(

@@ -148,6 +148,7 @@ def run_design(
     ) as runner:
         method, candidates, base = run_search(space, runner.run, base_case())
         path = runner.path
+        computed = runner.ran
     feasible = [c for c in candidates if c.feasible]
     best = feasible[0] if feasible else None
     best_verdicts = tuple(_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS])
@@ -167,6 +168,7 @@ def run_design(
         method=method,
         objective=f"{first.sense} {first.label or first.name}",
         evaluated=len(candidates),
+        computed=computed,
         feasible_count=len(feasible),
         failed_count=sum(1 for c in candidates if not c.ok),
         best_objective=objective_of(best),
