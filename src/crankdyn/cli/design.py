@@ -109,9 +109,9 @@ def design_command(
     force: bool,
     list_: bool,
 ) -> int:
-    """Search the design space SPACE (a design file, or a built-in example; --list shows them)
-    for the design that keeps every constraint (by default: every verdict row passes) with the
-    best objective (by default: the widest worst margin of the verdict rows). Every candidate
+    """Search SPACE's catalogue choices and ranges for the design that passes the verdicts
+    with the widest margin. SPACE is a design file or a built-in example (--list shows them);
+    by default every verdict row must pass and the worst margin is maximised. Every candidate
     is a case of the study runner (a local pool, or a Dask cluster with --scheduler),
     journalled in DIR, so a rerun resumes. Writes DIR/results.csv (every candidate),
     DIR/best.toml (the chosen design, which crankdyn tvc reads), DIR/tvc/ (its TVC report) and

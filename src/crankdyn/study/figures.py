@@ -568,7 +568,8 @@ def _register_tvc() -> None:
                     function=_reader(TVC, spec),
                     better=spec.better,
                     subjects=TVC.subjects,
-                    description=f"{spec.label}, over every condition of crankdyn tvc",
+                    description="over every condition of crankdyn tvc (normal firing, each "
+                    "misfire, damper out of order, the passages)",
                 )
             )
     register_figure(
@@ -611,7 +612,7 @@ def figures_markdown() -> str:
         A Markdown table: figure, column (the results table's key, SI), better, what.
     """
     owner: dict[str, str] = {}
-    for analysed in ANALYSES:
+    for analysed in (*ANALYSES, TVC):
         for spec in analysed.result_class().figure_specs():
             owner.setdefault(spec.name, analysed.name)
     lines = ["| figure | column | analysis | better | what |", "|---|---|---|---|---|"]
