@@ -34,8 +34,11 @@ if TYPE_CHECKING:
     from crankdyn.summary import FigureSpec
 
 __all__ = [
+    "COMBINED",
     "FIGURES",
     "SETTINGS",
+    "TVC",
+    "TVC_FIGURES",
     "AnalysisSettings",
     "CaseContext",
     "Figure",
@@ -503,6 +506,10 @@ the passages through the barred ranges, as ``crankdyn tvc`` writes it); its decl
 :data:`TVC_FIGURES` are study figures."""
 TVC_FIGURES = ("worst_margin", "failed_rows")
 """The TVC's key figures kept as study figures (declared by :class:`crankdyn.tvc.TvcResult`)."""
+COMBINED = ("barred_width_in_band", "installation_inertia")
+"""The figures that are no key figure of a result: the TVC's barred ranges inside a speed band
+of the study's settings, and the torsional model's masses' and dampers' inertias as written
+(the design search's constraints on a barred band and on added inertia)."""
 
 register_setting(
     Setting(
