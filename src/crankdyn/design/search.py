@@ -188,8 +188,10 @@ def score(space: DesignSpace, case: Case, record: dict[str, Any], number: int) -
         if o.kind == "cost":
             p = next(k for k in space.choices if space.name_of(k) == o.name)
             values = space.parameter(p).values or ()
-            i = values.index(case.params[p])
-            objectives.append(space.costs[o.name][i])
+            if p not in case.params:  # the base design: no catalogue item chosen
+                objectives.append(None)
+                continue
+            objectives.append(space.costs[o.name][values.index(case.params[p])])
         else:
             objectives.append(figures.get(o.name))
     if record.get("status") != "ok":

@@ -720,6 +720,13 @@ def _probe(space: Any, tables: list[Table]) -> None:
     except InputError as exc:
         if not exc.message.startswith("unknown key"):
             return  # a property of that candidate, recorded when it runs
+        for t, p in zip(tables, space.parameters, strict=True):
+            for path in p.paths:
+                if exc.key and exc.key.split(" ")[-1].strip('"') == path.parts[-1][0]:
+                    which = "key" if "key" in t.data else "catalogue"
+                    raise t.error(
+                        which, f"the {base.kind} file has no such key ({exc.message})", path.text
+                    ) from None
         raise InputError(
             f"a choice or range names a key the {base.kind} file does not know: {exc}",
             file=space.source,
