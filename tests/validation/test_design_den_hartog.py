@@ -1,4 +1,5 @@
-"""The design search recovers Den Hartog's optimum damped vibration absorber.
+"""The design search recovers Den Hartog's optimum damped vibration absorber and the optimum
+damping of a Lanchester (untuned viscous) damper.
 
 J. P. Den Hartog, *Mechanical Vibrations*, 4th ed., McGraw-Hill 1956, section 3.3: for a main
 mass J on a spring K (undamped) with an auxiliary mass j = mu J on a spring k and a dashpot c,
@@ -80,3 +81,40 @@ def test_the_exact_minimax_optimum_lies_within_one_percent_of_den_hartogs():
     r = minimize(peak, [f0, z0], method="Nelder-Mead", options={"xatol": 1e-7, "fatol": 1e-12})
     assert abs(r.x[0] / f0 - 1.0) < 1e-3
     assert abs(r.x[1] / z0 - 1.0) < 0.01
+
+
+def test_differential_evolution_finds_the_lanchester_dampers_optimum_damping(tmp_path):
+    """The untuned viscous (Lanchester) damper: a free ring j = mu J coupled to the main mass by
+    viscous damping c alone. Den Hartog (1956, the untuned viscous damper) gives the optimum
+    c / (2 j omega_n) = 1 / sqrt(2 (1 + mu)(2 + mu)) and the smallest largest amplitude
+    (1 + 2/mu) T/K; both checked independently by minimising the closed-form receptance
+    (below). Tolerances: 1 % on the damping (the peak is flat near the optimum), 0.1 % on the
+    amplitude (crankdyn resolves a peak to 0.1 %)."""
+    mu, stiffness = 0.1, J_MAIN * OMEGA_N**2
+    space = load_design(DATA / "lanchester_design.toml")
+    with CaseRunner(space.study, tmp_path / "search", workers=1) as runner:
+        _, candidates, _ = run_search(space, runner.run)
+    best = candidates[0]
+    c = best.case.numbers["damper[1].damping"]  # N m s/rad
+    zeta = c / (2.0 * mu * J_MAIN * OMEGA_N)
+    assert zeta == pytest.approx(1.0 / math.sqrt(2.0 * (1.0 + mu) * (2.0 + mu)), rel=0.01)
+    assert best.objectives[0] * stiffness == pytest.approx(1.0 + 2.0 / mu, rel=1e-3)
+
+
+def test_the_lanchester_formulas_against_the_closed_form_receptance():
+    from scipy.optimize import minimize_scalar
+
+    mu = 0.1
+    j = mu * J_MAIN
+    w = np.linspace(0.3, 1.5, 400_001) * OMEGA_N
+    big_k = J_MAIN * OMEGA_N**2
+
+    def peak(c: float) -> float:
+        icw = 1j * c * w
+        x = 1.0 / ((big_k - J_MAIN * w**2) + icw * (-j * w**2) / (icw - j * w**2))
+        return float(np.abs(x).max())
+
+    r = minimize_scalar(peak, bounds=(0.5, 20.0), method="bounded", options={"xatol": 1e-9})
+    zeta = r.x / (2.0 * j * OMEGA_N)
+    assert zeta == pytest.approx(1.0 / math.sqrt(2.0 * (1.0 + mu) * (2.0 + mu)), rel=1e-3)
+    assert r.fun * big_k == pytest.approx(1.0 + 2.0 / mu, rel=1e-6)
