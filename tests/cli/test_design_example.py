@@ -7,10 +7,13 @@ from __future__ import annotations
 import csv
 import dataclasses
 
+import pytest
+
 from crankdyn.io.catalogue import load_example, resolve_engine
 from crankdyn.session import Analysis
 
 
+@pytest.mark.slow
 def test_the_marine_example_finds_a_wider_margin_than_the_built_in_design(tmp_path, cli):
     # the first population of the differential evolution (20 candidates) suffices here; the
     # file's own budget (120) is for the command line
