@@ -103,6 +103,8 @@ def test_the_small_design_space(space_file):
          "[search]", "bounds"),
         ("[search]", '[[objective]]\nfigure = "max_shaft_torqe"\n[search]',
          'did you mean "max_shaft_torque"'),
+        ('speed_step = "20 rpm"', 'speed_step = "20 rpm"\nspeed_stp = "5 rpm"',
+         '[analysis] speed_stp = "5 rpm": unknown key'),
     ],
 )  # fmt: skip
 def test_errors_are_one_line_naming_file_key_and_value(space_file, old, new, expected):

@@ -636,7 +636,10 @@ def parse_design(
         ct.string("verdicts", "normal", choices=("normal", "all", "none")) if ct else "normal"
     )
     at = root.table("analysis")
-    settings = analysis_settings(at) if at is not None else []
+    settings = []
+    if at is not None:
+        settings = analysis_settings(at)
+        at.finish()
     constraints = _constraints(ct, settings, verdicts)
     objectives = _objectives(root, verdicts, costs, units)
     search = _search(root.table("search"))

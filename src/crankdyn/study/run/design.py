@@ -133,9 +133,10 @@ def run_design(
     from crankdyn.design.search import pareto_front
 
     method = space.method()
-    batch = space.discrete_count if method == "exhaustive" else max(5, space.search.population)
-    if method != "exhaustive":
-        batch = max(5, space.search.population * (len(space.parameters)))
+    if method == "exhaustive":
+        batch = space.discrete_count
+    else:  # a generation of the differential evolution
+        batch = max(5, space.search.population * len(space.parameters))
     with CaseRunner(
         space.study,
         out,
