@@ -148,3 +148,28 @@ def test_toml_text_reads_back_and_a_bundle_may_remove_a_key():
     changed = apply_values(document, {parse_path("torsion.damper[1].permissible_power"): None})
     assert "permissible_power" not in changed["torsion"]["damper"][0]
     assert "permissible_power" in document["torsion"]["damper"][0]
+
+
+def test_every_condition_a_barred_band_and_an_inertia_limit(space_file, tmp_path):
+    """[constraints] verdicts = "all" (every row of crankdyn tvc), barred_band and
+    max_added_inertia become constraints on the study figures failed_rows,
+    barred_width_in_band and installation_inertia (the base's inertia plus the limit)."""
+    from crankdyn.study.run.design import run_design
+
+    limits = '[constraints]\nverdicts = "all"\nbarred_band = ["1700 rpm", "2000 rpm"]\n'
+    edit(space_file, "[search]", limits + 'max_added_inertia = "0.05 kg*m^2"\n[search]')
+    space = load_design(space_file)
+    figures = [c.figure for c in space.constraints]
+    assert figures == ["failed_rows", "barred_width_in_band", "installation_inertia"]
+    base_inertia = 0.4 * 3 + 3 + 0.3 + 0.2 + 4  # kg m^2, the line's masses (no damper)
+    assert space.constraints[2].high == pytest.approx(base_inertia + 0.05)
+    assert space.objectives[0].name == "worst_margin"
+    result = run_design(space, tmp_path / "out", workers=1)
+    for c in (c for c in result.candidates if c.ok):
+        inertia = c.figures["installation_inertia"]
+        assert (inertia <= base_inertia + 0.05 + 1e-12) or not c.feasible
+        assert c.figures["failed_rows"] == 0 or not c.feasible
+    chosen = result.best
+    assert chosen is not None and chosen.figures["barred_width_in_band"] == 0.0
+    # S-10's halves (0.35 kg m^2) add none; S-40's (0.9 kg m^2) exceed the limit
+    assert all(c.case.numbers[space.choices[0]] not in ("S-40", "H-25") for c in result.ranked(12))
