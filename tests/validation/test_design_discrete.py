@@ -118,6 +118,16 @@ def test_local_pool_gives_the_same_best_and_a_rerun_resumes(by_hand, tmp_path):
     one = run_design(space, tmp_path / "one", workers=1)
     pool = run_design(space, tmp_path / "pool", workers=2)
     assert identity(one.best) == identity(pool.best) == by_hand[0]
+    # the sensitivity's main effect of the coupling: the range of its mean objective over the
+    # candidates that ran, by hand from the candidates
+    sens = one.sensitivity()
+    assert sens is not None and sens.rows[0][0] == "coupling"
+    by_size: dict[str, list[float]] = {}
+    for c in one.candidates:
+        if c.ok:
+            by_size.setdefault(identity(c)[0], []).append(c.objectives[0])
+    means = [sum(v) / len(v) for v in by_size.values()]
+    assert sens.rows[0][1] == pytest.approx(max(means) - min(means), rel=1e-12)
     assert one.best_objective == pool.best_objective == by_hand[1]
     assert table(tmp_path / "pool") == table(tmp_path / "one")
     again = []
