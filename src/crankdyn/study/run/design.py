@@ -4,7 +4,7 @@ The search (:mod:`crankdyn.design.search`) runs in this process and hands its ca
 generation at a time, to a :class:`crankdyn.study.run.runner.CaseRunner` (one process, the local
 pool or a Dask cluster, as a study's cases; every candidate journalled by its case id, so a
 second run of the same search reads its candidates back instead of computing them). The
-outputs, in the folder ``out``:
+outputs, in the folder ``out``::
 
     journal.jsonl, study.json   the study runner's journal and manifest
     results.csv                 every candidate: number, id, status, parameters, objectives,
