@@ -33,6 +33,7 @@ import click
 
 from crankdyn import __version__
 from crankdyn.errors import InputError
+from crankdyn.threads import limit_blas_threads
 
 __all__ = ["COMMAND_MODULES", "COMMAND_SUMMARIES", "LazyGroup", "Terminated", "cli", "main", "run"]
 
@@ -381,6 +382,11 @@ def main(argv: list[str] | None = None) -> int:
     2
     """
     args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        limit_blas_threads()  # the processors not already busy (crankdyn.threads)
+    except InputError as exc:
+        _error(str(exc))
+        return 2
     with _terminate_like_interrupt() as received, warnings.catch_warnings():
         # a RuntimeWarning of crankdyn's numerics (an overflow, an invalid value) is a bug, as
         # in the test suite (pyproject's filterwarnings): raised with its traceback, never
