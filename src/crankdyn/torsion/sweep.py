@@ -355,10 +355,12 @@ class Sweep:
         (ends, delta (S, count), eta (count,)) of the load-dependent couplings at S speeds
         (:meth:`loaded_poles`), or of the model's own (None): (S or 1, P) complex, ascending in
         the real part, NaN-padded (:meth:`poles`); above :data:`POLE_LIMIT` degrees of freedom
-        the modes up to ``top`` (rad/s) only."""
+        (:data:`TRACK_POLE_LIMIT` with changes) the undamped modes with their modal damping, a
+        chain's up to ``top`` (rad/s) only."""
         system = self.system
         size = system.size
-        if system.chain is not None and size > POLE_LIMIT:
+        limit = POLE_LIMIT if change is None else TRACK_POLE_LIMIT
+        if system.chain is not None and size > limit:
             return self._chain_pole_rows(change, top)
         c, h = self._damping()
         k = system.stiffness
@@ -369,7 +371,7 @@ class Sweep:
                 h = h + change_matrix(ends, delta * eta, size)
             else:
                 c = c + change_matrix(ends, delta * eta / self.hysteretic_frequency, size)
-        if size <= POLE_LIMIT:
+        if size <= limit:
             return damped_frequency_rows(system.inertia, k, c, h)
         j = np.sqrt(system.inertia)
         lam, psi = np.linalg.eigh(k / j[:, None] / j[None, :])
@@ -661,6 +663,13 @@ stiffness (each one batched eigenproblem; they converge superlinearly, in a few)
 POLE_LIMIT = 200
 """Largest system (degrees of freedom) whose damped natural frequencies are found by the
 quadratic eigenproblem; above it the undamped modes with modal damping are used."""
+
+TRACK_POLE_LIMIT = 64
+"""The same limit for the poles followed to the load-dependent couplings' stiffness
+(:meth:`Sweep.loaded_poles`: one eigenproblem per resonance and secant iteration): the
+quadratic eigenproblem's (2n)^3 work there took 91 % of a whole TVC of a 200-mass line
+(sampled profile, bench/tvc_line.py), the undamped modes' n^3 a sixtieth of it; the poles only
+place the seed speeds, the forced response and its peaks are exact either way."""
 
 
 def _per_order(k: int, count: int, names: Sequence[str], orders: np.ndarray) -> str:
