@@ -362,16 +362,35 @@ class Sweep:
         limit = POLE_LIMIT if change is None else TRACK_POLE_LIMIT
         if system.chain is not None and size > limit:
             return self._chain_pole_rows(change, top)
-        c, h = self._damping()
-        k = system.stiffness
-        if change is not None:
-            ends, delta, eta = change
-            k = k + change_matrix(ends, delta, size)
+        c0, h0 = self._damping()
+        if change is None:
+            return self._dense_pole_rows(system.stiffness, c0, h0, size <= limit)
+        ends, delta, eta = change
+        delta = np.asarray(delta, dtype=float)
+        rows = max(1, POLE_BLOCK // (size * size))  # speeds per block: bounded memory
+        parts = []
+        for s0 in range(0, delta.shape[0], rows):
+            d = delta[s0 : s0 + rows]
+            k = system.stiffness + change_matrix(ends, d, size)
+            c, h = c0, h0
             if self.hysteretic_frequency is None:
-                h = h + change_matrix(ends, delta * eta, size)
+                h = h0 + change_matrix(ends, d * eta, size)
             else:
-                c = c + change_matrix(ends, delta * eta / self.hysteretic_frequency, size)
-        if size <= limit:
+                c = c0 + change_matrix(ends, d * eta / self.hysteretic_frequency, size)
+            parts.append(self._dense_pole_rows(k, c, h, size <= limit))
+        width = max(p.shape[-1] for p in parts)
+        out = np.full((delta.shape[0], width), np.nan, dtype=complex)
+        for s0, part in zip(range(0, delta.shape[0], rows), parts, strict=True):
+            out[s0 : s0 + part.shape[0], : part.shape[-1]] = part
+        return out
+
+    def _dense_pole_rows(
+        self, k: np.ndarray, c: np.ndarray, h: np.ndarray, exact: bool
+    ) -> np.ndarray:
+        """:meth:`_pole_rows` of dense matrices (..., n, n): the quadratic eigenproblem
+        (``exact``) or the undamped modes with their modal damping."""
+        system = self.system
+        if exact:
             return damped_frequency_rows(system.inertia, k, c, h)
         j = np.sqrt(system.inertia)
         lam, psi = np.linalg.eigh(k / j[:, None] / j[None, :])
@@ -663,6 +682,11 @@ stiffness (each one batched eigenproblem; they converge superlinearly, in a few)
 POLE_LIMIT = 200
 """Largest system (degrees of freedom) whose damped natural frequencies are found by the
 quadratic eigenproblem; above it the undamped modes with modal damping are used."""
+
+POLE_BLOCK = 1 << 22
+"""Elements of the (speeds, n, n) matrices of :meth:`Sweep.loaded_poles` per block of speeds
+(32 MiB of each): the memory of following the poles is bounded by a block, not by the number
+of speeds (at least one speed per block)."""
 
 TRACK_POLE_LIMIT = 64
 """The same limit for the poles followed to the load-dependent couplings' stiffness
