@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import numpy as np
@@ -197,6 +197,15 @@ def _lowest(motion: str) -> Any:
     return value
 
 
+def _largest_difference(r: BeamModesResult) -> tuple[float, str] | None:
+    """max |lumped / beam - 1| over the paired torsional modes, with the mode."""
+    if r.lumped_difference is None or not np.isfinite(r.lumped_difference).any():
+        return None
+    d = np.where(np.isfinite(r.lumped_difference), np.abs(r.lumped_difference), -1.0)
+    i = int(np.argmax(d))
+    return float(d[i]), f"mode {int(r.mode[i])}, {r.natural_frequency[i] * HZ:.4g} Hz"
+
+
 @dataclass(frozen=True)
 class BeamModesResult(Result):
     """Coupled natural frequencies and mode shapes of a crankshaft beam model
@@ -221,6 +230,27 @@ class BeamModesResult(Result):
     mesh: str = scalar("mesh", "Mesh", "", summary=False)
     threshold: float = scalar("threshold", "Fraction that names a motion", "", summary=False)
     degrees_of_freedom: int = scalar("degrees_of_freedom", "Degrees of freedom", "", summary=False)
+    lumped_frequency: np.ndarray | None = column(
+        "lumped_frequency_hz", "Lumped model", "Hz", HZ, default=None
+    )
+    lumped_difference: np.ndarray | None = column(
+        "lumped_difference", "Lumped / beam - 1", "", default=None
+    )
+    throw_torsional_stiffness: float | None = scalar(
+        "throw_torsional_stiffness_Nm_per_rad",
+        "Torsional stiffness of a throw (beam model)",
+        "N·m/rad",
+        default=None,
+    )
+    throw_axial_stiffness: float | None = scalar(
+        "throw_axial_stiffness_N_per_m",
+        "Axial stiffness of a throw (beam model)",
+        "N/m",
+        default=None,
+    )
+    lumped_model: str = scalar(
+        "lumped_model", "Lumped model compared", "", default="", summary=False
+    )
     notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())
     shapes: NDArray[np.float64] = field(
         default_factory=lambda: np.zeros((0, 0)), repr=False, compare=False
@@ -263,6 +293,16 @@ class BeamModesResult(Result):
             "Hz",
             _lowest("bending"),
         ),
+        derived(
+            "lumped_model_error",
+            "lumped_model_largest_difference",
+            "Largest difference of the lumped model's torsional modes",
+            "",
+            lambda r: _largest_difference(r),
+            reduction="max |lumped / beam - 1| over the paired torsional modes",
+            better="min",
+            unavailable="no torsional mode paired with the lumped model",
+        ),
     )
 
     @property
@@ -271,12 +311,13 @@ class BeamModesResult(Result):
         return self.natural_frequency * HZ
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The modes: frequency, motion and energy fractions.
+        """The modes: frequency, motion and energy fractions, and the lumped model's frequency
+        of the torsional ones (the comparison, :meth:`with_lumped`).
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
-            One table, one row per mode.
+            The modes, one row per mode; the comparison, one row per paired torsional mode.
         """
         cols = (
             SummaryColumn("mode", "Mode"),
@@ -298,7 +339,7 @@ class BeamModesResult(Result):
                 strict=True,
             )
         )
-        return [
+        out = [
             SummaryTable(
                 "beam_modes",
                 "Modes of the crankshaft beam model",
@@ -307,6 +348,61 @@ class BeamModesResult(Result):
                 caption="Kinetic-energy fractions of torsion, axial motion and bending.",
             )
         ]
+        if self.lumped_frequency is not None and self.lumped_difference is not None:
+            paired = np.isfinite(self.lumped_frequency)
+            out.append(
+                SummaryTable(
+                    "lumped_comparison",
+                    "Torsional modes: how well the lumped model holds",
+                    (
+                        SummaryColumn("mode", "Beam mode"),
+                        SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
+                        SummaryColumn("lumped_frequency_hz", "Lumped model", "Hz"),
+                        SummaryColumn("lumped_difference", "Lumped / beam - 1"),
+                        SummaryColumn("torsional_fraction", "Torsional energy"),
+                    ),
+                    tuple(
+                        (int(m), float(f) * HZ, float(c) * HZ, float(d), float(t))
+                        for m, f, c, d, t in zip(
+                            self.mode[paired],
+                            self.natural_frequency[paired],
+                            self.lumped_frequency[paired],
+                            self.lumped_difference[paired],
+                            self.torsional_fraction[paired],
+                            strict=True,
+                        )
+                    ),
+                    caption=f"Against {self.lumped_model}; the k-th torsional beam mode (torsional "
+                    "energy at least one half) paired with the k-th elastic lumped mode.",
+                )
+            )
+        return out
+
+    def with_lumped(self, comparison: TorsionalComparison, model: str) -> BeamModesResult:
+        """These modes with a lumped model's torsional frequencies beside the paired ones
+        (:func:`compare_torsional_modes`).
+
+        Parameters
+        ----------
+        comparison : TorsionalComparison
+            The pairs.
+        model : str
+            What the lumped model is, for the table's caption.
+
+        Returns
+        -------
+        BeamModesResult
+            A copy with :attr:`lumped_frequency` (rad/s, exported in Hz) and
+            :attr:`lumped_difference` (NaN where a mode is not paired).
+        """
+        lumped = np.full(self.mode.size, np.nan)
+        difference = np.full(self.mode.size, np.nan)
+        index = np.searchsorted(self.mode, comparison.beam_mode)
+        lumped[index] = comparison.lumped_frequency
+        difference[index] = comparison.difference
+        return replace(
+            self, lumped_frequency=lumped, lumped_difference=difference, lumped_model=model
+        )
 
     def node_displacements(self, mode: int) -> NDArray[np.float64]:
         """The shape of one mode at every node (m, rad per unit modal coordinate).

@@ -54,6 +54,8 @@ class CrankshaftResult(Result):
         outside (their verdicts fail: the rule's formulas do not apply there).
     torsion_given : bool
         Whether a torsional stress was given (else Q is that of bending alone).
+    torsion_where : tuple of str or None
+        Where each throw's M_TN comes from (the crank span and the speed), or None.
     warnings : tuple of crankdyn.plausibility.PlausibilityWarning
         Legal but unlikely inputs.
     """
@@ -151,11 +153,18 @@ class CrankshaftResult(Result):
     journal_bore: float | None = scalar(
         "journal_bore_m", "D_BG, journal bore", "m", default=None, summary=False
     )
+    additional_source: str = scalar(
+        "sigma_add_source", "σ_add from", "", default="rule M53.4", summary=False
+    )
+    vibration_stress: float | None = scalar(
+        "sigma_vibration_Pa", "σ_vib, web bending from vibration (beam model)", "Pa", default=None
+    )
     rule: str = scalar("rule", "Rule", "", default=RULE)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
     validity: tuple[ValidityRange, ...] = field(default=(), repr=False, compare=False)
     extrapolated: tuple[tuple[str, str], ...] = field(default=(), repr=False, compare=False)
     torsion_given: bool = field(default=True, repr=False, compare=False)
+    torsion_where: tuple[str, ...] | None = field(default=None, repr=False, compare=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
@@ -268,6 +277,9 @@ class CrankshaftResult(Result):
             SummaryColumn("tau_n_crankpin_Pa", "τ_N crankpin (2.2.2)", "Pa"),
             SummaryColumn("tau_n_journal_Pa", "τ_N journal (2.2.2)", "Pa"),
         )
+        where = self.torsion_where
+        if where is not None:
+            cols = (*cols, SummaryColumn("torque_from", "M_TN from (2.2.2)"))
         rows = tuple(
             (
                 t + 1,
@@ -285,6 +297,7 @@ class CrankshaftResult(Result):
                         self.tau_journal,
                     )
                 ),
+                *(() if where is None else (where[t],)),
             )
             for t in range(self.throw_count)
         )
@@ -337,7 +350,8 @@ class CrankshaftResult(Result):
             "Fillets and oil bores (UR M53.3 to M53.7)",
             cols,
             tuple(rows),
-            caption=f"Q = σ_DW / σ_V, at least {self.q_required:g} (M53.7).",
+            caption=f"Q = σ_DW / σ_V, at least {self.q_required:g} (M53.7); σ_add from "
+            f"{self.additional_source}.",
         )
 
     def _validity_table(self) -> SummaryTable:
@@ -395,6 +409,8 @@ class CrankshaftResult(Result):
                 reason = dict(self.extrapolated).get(location)
                 limit = strengths[j] / self.q_required
                 note = f"Q = {q:.4g}"
+                if location != "oil bore":
+                    note += f"; σ_add {self.additional / 1e6:.4g} MPa: {self.additional_source}"
                 if reason is not None:
                     note += (
                         f"; the empirical factors do not apply ({reason}): give FE factors "
