@@ -25,7 +25,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.linalg
@@ -36,6 +36,9 @@ from crankdyn.crankshaft.beam_model import CrankshaftBeamModel
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, derived
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "MOTIONS",
@@ -403,6 +406,26 @@ class BeamModesResult(Result):
         return replace(
             self, lumped_frequency=lumped, lumped_difference=difference, lumped_model=model
         )
+
+    def plot(self, modes: Sequence[int] | None = None, fig: Figure | None = None) -> Figure:
+        """The mode shapes in three projections
+        (:func:`crankdyn.plots.crankshaft.plot_beam_mode_shapes`).
+
+        Parameters
+        ----------
+        modes : sequence of int or None
+            Mode numbers (from 1); None: the first four elastic modes.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.crankshaft import plot_beam_mode_shapes
+
+        return plot_beam_mode_shapes(self, modes, fig=fig)
 
     def node_displacements(self, mode: int) -> NDArray[np.float64]:
         """The shape of one mode at every node (m, rad per unit modal coordinate).

@@ -49,6 +49,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -61,6 +62,9 @@ from crankdyn.crankshaft.beam_modes import solve_lowest_modes
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, scalar
 from crankdyn.summary import derived
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "BeamResponseResult",
@@ -272,6 +276,24 @@ class BeamResponseResult(Result):
             better="min",
         ),
     )
+
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """The free end's axial vibration and the webs' bending stress against speed
+        (:func:`crankdyn.plots.crankshaft.plot_axial_response`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.crankshaft import plot_axial_response
+
+        return plot_axial_response(self, fig=fig)
 
 
 def _peak(

@@ -25,7 +25,7 @@ from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result, array, column, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived, reduced
 
-__all__ = ["LOCATIONS", "CrankshaftResult"]
+__all__ = ["LOCATIONS", "QUANTITIES", "CrankshaftResult"]
 
 LOCATIONS = ("crankpin fillet", "journal fillet", "oil bore")
 """The locations UR M53 checks in every throw (M53.1.3)."""
@@ -488,9 +488,54 @@ class CrankshaftResult(Result):
             )
         return out
 
+    def quantities_table(self) -> SummaryTable:
+        """Every quantity of the check, one row each: per throw its nominal loads, per throw and
+        location the nominal stresses, the stress concentration factors, the stresses, the
+        additional and equivalent stresses, the fatigue strength and Q, each with its unit and
+        clause (:data:`QUANTITIES`; the JSON's ``quantities``, the command line's CSV).
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable
+            ``m53_quantities``: throw, location, quantity, symbol, value (SI), unit, clause.
+        """
+        rows = []
+        strengths = self.strengths()
+        for t in range(self.throw_count):
+            for j, location in enumerate(("throw", *LOCATIONS)):
+                if j and not math.isfinite(float(self.q_table()[t, j - 1])):
+                    continue
+                for symbol, words, unit, clause, value in _quantities(self, t, location):
+                    rows.append((t + 1, location, words, symbol, _cell(value), unit, clause))
+                if j:
+                    rows.append(
+                        (t + 1, location, "fatigue strength", "σ_DW", strengths[j - 1], "Pa",
+                         "M53.6")
+                    )  # fmt: skip
+                    rows.append(
+                        (t + 1, location, "acceptability factor", "Q",
+                         float(self.q_table()[t, j - 1]), "", "M53.7")
+                    )  # fmt: skip
+        return SummaryTable(
+            "m53_quantities",
+            "Every quantity of the check (UR M53)",
+            (
+                SummaryColumn("throw", "Throw"),
+                SummaryColumn("location", "Location"),
+                SummaryColumn("quantity", "Quantity"),
+                SummaryColumn("symbol", "Symbol"),
+                SummaryColumn("value", "Value (SI)"),
+                SummaryColumn("unit", "Unit"),
+                SummaryColumn("clause", "Clause"),
+            ),
+            tuple(rows),
+            caption=f"{self.rule}; values in SI units.",
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """The result as JSON data (:meth:`crankdyn.results.Result.to_dict`) with the validity
-        of the empirical factors.
+        of the empirical factors, every quantity with its unit and clause
+        (:meth:`quantities_table`), where each throw's M_TN comes from, and the verdict rows.
 
         Returns
         -------
@@ -499,7 +544,78 @@ class CrankshaftResult(Result):
         """
         out = super().to_dict()
         out["validity"] = [v.to_dict() for v in self.validity]
+        out["quantities"] = self.quantities_table().to_dict()["rows"]
+        if self.torsion_where is not None:
+            out["nominal_torque_from"] = list(self.torsion_where)
+        out["verdicts"] = [v.to_dict() for v in self.summary_verdicts()]
         return out
+
+
+QUANTITIES = {
+    "throw": (
+        ("M_BN", "web bending moment half-range", "N·m", "M53.2.1.2.1", "moment_half_range"),
+        ("Q_N", "web radial force half-range", "N", "M53.2.1.2.1", "force_half_range"),
+        ("M_TN", "alternating torque half-range", "N·m", "M53.2.2.2", "torsion_torque"),
+    ),
+    "crankpin fillet": (
+        ("σ_BFN", "nominal web bending stress", "Pa", "M53.2.1.2.1", "sigma_bfn"),
+        ("α_B", "bending stress concentration factor", "", "M53.3.2", "alpha_b"),
+        ("σ_BH", "bending stress in the fillet", "Pa", "M53.2.1.3", "bending"),
+        ("τ_N", "nominal torsional stress (crankpin)", "Pa", "M53.2.2.2", "tau_pin"),
+        ("α_T", "torsion stress concentration factor", "", "M53.3.2", "alpha_t"),
+        ("τ_H", "torsional stress in the fillet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_add", "additional bending stress", "Pa", "M53.4", "additional"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+    "journal fillet": (
+        ("σ_BFN", "nominal web bending stress", "Pa", "M53.2.1.2.1", "sigma_bfn"),
+        ("σ_QFN", "nominal web compressive stress", "Pa", "M53.2.1.2.1", "sigma_qfn"),
+        ("β_B", "bending stress concentration factor", "", "M53.3.3", "beta_b"),
+        ("β_Q", "compression stress concentration factor", "", "M53.3.3", "beta_q"),
+        ("σ_BG", "bending stress in the fillet", "Pa", "M53.2.1.3", "bending"),
+        ("τ_N", "nominal torsional stress (journal)", "Pa", "M53.2.2.2", "tau_journal"),
+        ("β_T", "torsion stress concentration factor", "", "M53.3.3", "beta_t"),
+        ("τ_G", "torsional stress in the fillet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_add", "additional bending stress", "Pa", "M53.4", "additional"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+    "oil bore": (
+        ("M_BON", "oil bore bending moment half-range", "N·m", "M53.2.1.2.2",
+         "oil_bore_half_range"),
+        ("σ_BON", "nominal oil bore bending stress", "Pa", "M53.2.1.2.2", "sigma_bon"),
+        ("γ_B", "bending stress concentration factor", "", "M53.3.4", "gamma_b"),
+        ("σ_BO", "bending stress at the outlet", "Pa", "M53.2.1.4", "bending"),
+        ("τ_N", "nominal torsional stress (crankpin)", "Pa", "M53.2.2.2", "tau_pin"),
+        ("γ_T", "torsion stress concentration factor", "", "M53.3.4", "gamma_t"),
+        ("σ_TO", "torsional stress at the outlet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+}  # fmt: skip
+"""The rows of :meth:`CrankshaftResult.quantities_table` by location: symbol, words, unit,
+clause and the field holding the value (per throw, per throw and location, or one for all)."""
+
+_BY_LOCATION = {"bending", "torsion", "equivalent"}
+
+
+def _quantities(
+    r: CrankshaftResult, throw: int, location: str
+) -> list[tuple[str, str, str, str, float]]:
+    """(symbol, words, unit, clause, value) of one throw's location."""
+    out = []
+    j = LOCATIONS.index(location) if location in LOCATIONS else -1
+    for symbol, words, unit, clause, name in QUANTITIES[location]:
+        raw = getattr(r, name)
+        if raw is None:
+            continue
+        data = np.asarray(raw, dtype=float)
+        if name in _BY_LOCATION:
+            value = float(data[throw, j])
+        elif data.ndim == 1:
+            value = float(data[throw])
+        else:
+            value = float(data)
+        out.append((symbol, words, unit, clause, value))
+    return out
 
 
 def _cell(value: float) -> float | None:
