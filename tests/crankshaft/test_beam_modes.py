@@ -109,8 +109,11 @@ def test_result_summary_table_and_json():
     r = beam_modes(_six(), 12)
     summary = r.summary()
     keys = [fig.key for fig in summary.figures]
-    assert "lowest_natural_frequency_hz" in keys and "lowest_torsional_frequency_hz" in keys
-    assert summary.figure("lowest_natural_frequency_hz").value == pytest.approx(r.frequencies_hz[1])
+    assert "beam_lowest_natural_frequency_hz" in keys
+    assert "beam_lowest_torsional_frequency_hz" in keys
+    assert summary.figure("beam_lowest_natural_frequency_hz").value == pytest.approx(
+        r.frequencies_hz[1]
+    )
     table = summary.tables[0]
     assert len(table.rows) == 12 and table.rows[0][2] == "rigid torsional"
     data = json.loads(r.to_json())

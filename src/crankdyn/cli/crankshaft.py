@@ -133,8 +133,8 @@ def strength_command(
     output_path: str | None,
     force: bool,
 ) -> int:
-    """The crankshaft's fatigue strength by IACS UR M53: Q of the crankpin fillet, the journal
-    fillet and the oil bore of every throw with the nominal stresses, stress concentration
+    """The fatigue strength of ENGINE's crankshaft by IACS UR M53: Q of the crankpin fillet, the
+    journal fillet and the oil bore of every throw with the nominal stresses, stress concentration
     factors, equivalent stresses and fatigue strengths, each with its clause; the nominal
     torsional stress from the forced torsional response over the speed range (the one the TVC
     judges, barred ranges left out). CSV: every quantity with its unit and clause. Exit status

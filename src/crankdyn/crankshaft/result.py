@@ -114,38 +114,83 @@ class CrankshaftResult(Result):
         "q_journal_fillet", "Acceptability factor Q, journal fillet", ""
     )
     q_oil: NDArray[np.float64] = array("q_oil_bore", "Acceptability factor Q, oil bore", "")
-    alpha_b: float = scalar("alpha_b", "α_B, crankpin fillet bending SCF", "", fmt=".4f")
-    alpha_t: float = scalar("alpha_t", "α_T, crankpin fillet torsion SCF", "", fmt=".4f")
-    beta_b: float | None = scalar("beta_b", "β_B, journal fillet bending SCF", "", fmt=".4f")
-    beta_q: float | None = scalar("beta_q", "β_Q, journal fillet shear SCF", "", fmt=".4f")
-    beta_t: float | None = scalar("beta_t", "β_T, journal fillet torsion SCF", "", fmt=".4f")
-    gamma_b: float | None = scalar("gamma_b", "γ_B, oil bore bending SCF", "", fmt=".4f")
-    gamma_t: float | None = scalar("gamma_t", "γ_T, oil bore torsion SCF", "", fmt=".4f")
-    additional: float = scalar("sigma_add_Pa", "σ_add, additional bending stress", "Pa")
+    alpha_b: float = scalar(
+        "alpha_b", "α_B, crankpin fillet bending SCF", "", fmt=".4f", name="scf_alpha_b"
+    )
+    alpha_t: float = scalar(
+        "alpha_t", "α_T, crankpin fillet torsion SCF", "", fmt=".4f", name="scf_alpha_t"
+    )
+    beta_b: float | None = scalar(
+        "beta_b", "β_B, journal fillet bending SCF", "", fmt=".4f", name="scf_beta_b"
+    )
+    beta_q: float | None = scalar(
+        "beta_q", "β_Q, journal fillet shear SCF", "", fmt=".4f", name="scf_beta_q"
+    )
+    beta_t: float | None = scalar(
+        "beta_t", "β_T, journal fillet torsion SCF", "", fmt=".4f", name="scf_beta_t"
+    )
+    gamma_b: float | None = scalar(
+        "gamma_b", "γ_B, oil bore bending SCF", "", fmt=".4f", name="scf_gamma_b"
+    )
+    gamma_t: float | None = scalar(
+        "gamma_t", "γ_T, oil bore torsion SCF", "", fmt=".4f", name="scf_gamma_t"
+    )
+    additional: float = scalar(
+        "sigma_add_Pa", "σ_add, additional bending stress", "Pa", name="additional_bending_stress"
+    )
     strength_pin: float = scalar(
-        "sigma_dw_crankpin_fillet_Pa", "σ_DW, fatigue strength, crankpin fillet", "Pa"
+        "sigma_dw_crankpin_fillet_Pa",
+        "σ_DW, fatigue strength, crankpin fillet",
+        "Pa",
+        name="fatigue_strength_crankpin_fillet",
     )
     strength_journal: float | None = scalar(
-        "sigma_dw_journal_fillet_Pa", "σ_DW, fatigue strength, journal fillet", "Pa"
+        "sigma_dw_journal_fillet_Pa",
+        "σ_DW, fatigue strength, journal fillet",
+        "Pa",
+        name="fatigue_strength_journal_fillet",
     )
     strength_oil: float | None = scalar(
-        "sigma_dw_oil_bore_Pa", "σ_DW, fatigue strength, oil bore", "Pa"
+        "sigma_dw_oil_bore_Pa",
+        "σ_DW, fatigue strength, oil bore",
+        "Pa",
+        name="fatigue_strength_oil_bore",
     )
-    factor_k: float = scalar("factor_k", "K, manufacture factor", "", fmt=".3g")
-    ke: float = scalar("factor_ke", "K_e, web restraint factor", "", fmt=".3g")
+    factor_k: float = scalar(
+        "factor_k", "K, manufacture factor", "", fmt=".3g", name="manufacture_factor_k"
+    )
+    ke: float = scalar(
+        "factor_ke", "K_e, web restraint factor", "", fmt=".3g", name="web_restraint_factor_ke"
+    )
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     q_required: float = scalar("q_required", "Smallest acceptable Q", "", fmt=".3g", summary=False)
     max_torque: float | None = scalar(
-        "shrink_fit_torque_Nm", "M_max, largest torque of a crank span", "N·m", default=None
+        "shrink_fit_torque_Nm",
+        "M_max, largest torque of a crank span",
+        "N·m",
+        default=None,
+        name="shrink_fit_torque",
     )
     max_journal_bore: float | None = scalar(
-        "max_journal_bore_m", "Largest journal bore D_BG (shrink fit)", "m", default=None
+        "max_journal_bore_m",
+        "Largest journal bore D_BG (shrink fit)",
+        "m",
+        default=None,
+        name="shrink_fit_max_journal_bore",
     )
     min_oversize: float | None = scalar(
-        "min_oversize_m", "Z_min, smallest oversize of the shrink fit", "m", default=None
+        "min_oversize_m",
+        "Z_min, smallest oversize of the shrink fit",
+        "m",
+        default=None,
+        name="shrink_fit_min_oversize",
     )
     max_oversize: float | None = scalar(
-        "max_oversize_m", "Z_max, largest oversize of the shrink fit", "m", default=None
+        "max_oversize_m",
+        "Z_max, largest oversize of the shrink fit",
+        "m",
+        default=None,
+        name="shrink_fit_max_oversize",
     )
     oversize: float | None = scalar(
         "oversize_m", "Z, oversize of the shrink fit", "m", default=None, summary=False
@@ -157,7 +202,11 @@ class CrankshaftResult(Result):
         "sigma_add_source", "σ_add from", "", default="rule M53.4", summary=False
     )
     vibration_stress: float | None = scalar(
-        "sigma_vibration_Pa", "σ_vib, web bending from vibration (beam model)", "Pa", default=None
+        "sigma_vibration_Pa",
+        "σ_vib, web bending from vibration (beam model)",
+        "Pa",
+        default=None,
+        name="m53_vibration_stress",
     )
     rule: str = scalar("rule", "Rule", "", default=RULE)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)

@@ -67,9 +67,7 @@ def build(ctx: Context) -> Section:
         ],
         tables=[
             Table("crankshaft_beam_modes", "Beam model modes", result=modes, show=False),
-            Table(
-                "crankshaft_beam_response", "Beam model response", result=response, show=False
-            ),
+            Table("crankshaft_beam_response", "Beam model response", result=response, show=False),
         ],
         json={"crankshaft_modes": modes.to_dict(), "crankshaft_response": response.to_dict()},
     )
