@@ -314,7 +314,7 @@ class CrankshaftResult(Result):
         return [self._nominal_table(), self._locations_table(), self._validity_table()]
 
     def _nominal_table(self) -> SummaryTable:
-        cols = (
+        cols: tuple[SummaryColumn, ...] = (
             SummaryColumn("throw", "Throw"),
             SummaryColumn("nominal_web_moment_Nm", "M_BN (2.1.2.1)", "N·m"),
             SummaryColumn("nominal_web_force_N", "Q_N (2.1.2.1)", "N"),

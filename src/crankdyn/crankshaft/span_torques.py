@@ -80,7 +80,7 @@ def nominal_torques(
     >>> a = crankdyn.Analysis(crankdyn.Engine.example("marine-propulsion"))
     >>> m_tn, where, notes = nominal_torques(a.engine, a.loaded_model, a.response())
     >>> m_tn.shape, where[0].split(" at ")[0]
-    ((6,), 'free end - throw 1')
+    ((6,), 'throw 1 - throw 2')
     """
     cyl = engine.cylinders
     speeds = np.asarray(response.speed, dtype=float)
