@@ -45,6 +45,17 @@ def _chosen(result: BeamModesResult, modes: Iterable[int] | None) -> list[int]:
     return chosen
 
 
+def _segments(
+    xyz: np.ndarray, a: np.ndarray, b: np.ndarray, h: int, v: int
+) -> tuple[np.ndarray, np.ndarray]:
+    """The elements a-b as one polyline broken by NaN (one artist per panel)."""
+    gap = np.full(a.size, np.nan)
+    return (
+        np.stack([xyz[a, h], xyz[b, h], gap], axis=1).ravel(),
+        np.stack([xyz[a, v], xyz[b, v], gap], axis=1).ravel(),
+    )
+
+
 def plot_beam_mode_shapes(
     result: BeamModesResult, modes: Iterable[int] | None = None, fig: Figure | None = None
 ) -> Figure:
@@ -91,14 +102,8 @@ def plot_beam_mode_shapes(
         title = f"mode {mode}: {result.natural_frequency[i] * HZ:.4g} Hz, {result.motion[i]}"
         for col, (h, v, xlabel, ylabel) in enumerate(VIEWS):
             ax = axes[row, col]
-            ax.plot(
-                np.stack([xyz[a, h], xyz[b, h]]), np.stack([xyz[a, v], xyz[b, v]]),
-                color="#b0b0b0", linewidth=0.8,
-            )  # fmt: skip
-            ax.plot(
-                np.stack([moved[a, h], moved[b, h]]), np.stack([moved[a, v], moved[b, v]]),
-                color=color, linewidth=1.4,
-            )  # fmt: skip
+            ax.plot(*_segments(xyz, a, b, h, v), color="#b0b0b0", linewidth=0.8)
+            ax.plot(*_segments(moved, a, b, h, v), color=color, linewidth=1.4)
             ax.set_aspect("equal", adjustable="datalim")
             ax.set_xlabel(xlabel)
             ax.set_ylabel(ylabel)
