@@ -400,11 +400,15 @@ def engine_beam_model(engine: Engine, model: TorsionModel | None = None) -> Engi
     if axial is None:
         axial = RIGID_FACTOR * e * journal.area / span
     thrust = cyl.throw_count + 1 if inputs.thrust_journal is None else inputs.thrust_journal
-    if inputs.defaulted()[:2]:
+    rigid = [
+        key
+        for key in ("bearing_radial_stiffness", "thrust_axial_stiffness")
+        if getattr(inputs, key) is None
+    ]
+    if rigid:
         notes.append(
-            "main bearings taken as rigid supports free to tilt (UR M53's statically determinate "
-            "throw; 100 times the shaft's stiffness): give [crankshaft.beam] "
-            "bearing_radial_stiffness and thrust_axial_stiffness"
+            "main bearings taken as rigid supports (UR M53's statically determinate throw; 100 "
+            f"times the shaft's stiffness): give [crankshaft.beam] {' and '.join(rigid)}"
         )
     torsion = model if model is not None else engine.torsion
     line = _line(torsion, cyl.throw_count, notes)
