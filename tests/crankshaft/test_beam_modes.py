@@ -18,6 +18,7 @@ from crankdyn.crankshaft.beam_model import (
     MainBearings,
     ThrowDimensions,
     ThrowMasses,
+    TorsionalDamper,
     build_beam_model,
 )
 from crankdyn.crankshaft.beam_modes import (
@@ -95,6 +96,24 @@ def test_free_crankshaft_has_six_rigid_modes():
     assert labels.count("rigid bending") == 4
     assert not r.motion[6].startswith("rigid")
     assert np.all(r.natural_frequency[:6] == 0.0)
+
+
+def test_a_viscous_dampers_free_ring_is_its_own_rigid_mode():
+    # k = 0: undamped, the ring turns alone (a second zero mode), named so and kept out of the
+    # elastic modes; its shape is the ring's unit rotation, the shaft's rigid mode leaves it
+    model = _six(damper=TorsionalDamper(0.4, 0.0, 300.0))
+    r = beam_modes(model, 10)
+    ring = int(model.dof_index[model.extra_nodes[0]].max())
+    labels = [str(m) for m in r.motion]
+    assert labels[:2] == ["rigid torsional", "rigid damper ring"]
+    shape = r.shapes[:, 1]
+    assert abs(abs(shape[ring]) - 1 / math.sqrt(0.4)) < 1e-9
+    assert np.max(np.abs(np.delete(shape, ring))) < 1e-9
+    assert abs(r.shapes[ring, 0]) < 1e-9
+    np.testing.assert_allclose(r.shapes.T @ (model.mass @ r.shapes), np.eye(10), atol=1e-9)
+    # the elastic modes are those of the model without the ring
+    bare = beam_modes(_six(), 9)
+    np.testing.assert_allclose(r.natural_frequency[2:], bare.natural_frequency[1:], rtol=1e-8)
 
 
 def test_mesh_convergence_of_the_lowest_modes():

@@ -193,6 +193,40 @@ def _labels(
     return out
 
 
+def _decoupled_ring(model: CrankshaftBeamModel, shapes: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each mode's kinetic-energy fraction in the ring of a viscous damper with no spring
+    (k = 0: in the undamped modes the ring turns freely, one more rigid-body mode; the lumped
+    model leaves such a ring out, :func:`crankdyn.torsion.campbell.with_dampers`); zeros when
+    the damper has a spring or there is none."""
+    damper = model.geometry.damper
+    if damper is None or damper.stiffness > 0.0 or not model.extra_nodes:
+        return np.zeros(shapes.shape[1])
+    dof = int(model.dof_index[model.extra_nodes[0]].max())
+    return np.asarray(damper.ring_inertia * shapes[dof] ** 2, dtype=float)
+
+
+def _separate_ring(
+    model: CrankshaftBeamModel, lam: NDArray[np.float64], shapes: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The rigid-body shapes rotated within their (degenerate) space so that the free ring of a
+    viscous damper is one of them alone, the last (:func:`_decoupled_ring`): Z Q with Q
+    orthogonal, its first column Z^T M r of the ring's unit shape r; the others stay
+    M-orthonormal."""
+    zero = np.flatnonzero(lam == 0.0)
+    damper = model.geometry.damper
+    if zero.size < 2 or damper is None or damper.stiffness > 0.0 or not model.extra_nodes:
+        return shapes
+    dof = int(model.dof_index[model.extra_nodes[0]].max())
+    c = math.sqrt(damper.ring_inertia) * shapes[dof, zero]
+    if np.linalg.norm(c) < 0.99:  # the ring is not in the rigid-body space found
+        return shapes
+    q, _ = np.linalg.qr(np.column_stack([c, np.eye(zero.size)[:, 1:]]))
+    rotated = shapes[:, zero] @ q
+    out = shapes.copy()
+    out[:, zero] = np.column_stack([rotated[:, 1:], rotated[:, 0]])
+    return out
+
+
 def _lowest(motion: str) -> Any:
     """The lowest elastic frequency (Hz) whose mode is ``motion`` (or coupled with it)."""
 
@@ -509,8 +543,12 @@ def beam_modes(
             "expected a fraction above 0.5, at most 1", key="threshold", value=threshold
         )
     lam, shapes = solve_lowest_modes(model.stiffness, model.mass, int(count), sigma)
+    shapes = _separate_ring(model, lam, shapes)
     fractions = energy_fractions(model, shapes)
     labels = _labels(fractions, lam == 0.0, threshold)
+    ring = _decoupled_ring(model, shapes)
+    for j in np.flatnonzero((lam == 0.0) & (ring > 0.99)):
+        labels[j] = "rigid damper ring"
     return BeamModesResult(
         mode=np.arange(1, lam.size + 1),
         natural_frequency=np.sqrt(lam),
