@@ -101,3 +101,40 @@ def test_the_rule_or_the_beam_not_both(write):
     with pytest.raises(InputError) as info:
         load_engine(write("bad.toml", bad))
     assert "[crankshaft] additional_stress" in str(info.value)
+
+
+THROWS = '[torsion]\n[torsion.throws]\ninertia = "9.5 kg*m^2"\nstiffness = "beam"\n'
+
+
+def test_the_lumped_models_span_stiffness_from_the_beam(write):
+    # [torsion.throws] stiffness = "beam": the crank span of the lumped model is the beam
+    # model's throw (the stiffness crankdyn crankshaft modes reports), with [crankshaft.beam]'s
+    # mesh and web stiffening; the stiffness itself is validated in tests/validation
+    # (test_beam_throw_stiffness.py: Carter, Ker Wilson; Castigliano's frame)
+    from crankdyn.crankshaft.beam_elements import BeamMaterial
+    from crankdyn.crankshaft.beam_engine import throw_dimensions
+    from crankdyn.crankshaft.beam_stiffness import throw_stiffness
+
+    engine = load_engine(write("e.toml", BASE + THROWS))
+    (shaft,) = engine.torsion.shafts
+    expected = throw_stiffness(
+        throw_dimensions(engine), BeamMaterial(205e9, 0.3, 7850.0), elements=2
+    ).torsional
+    assert shaft.between == ("throw 1", "throw 2")
+    assert shaft.stiffness == pytest.approx(expected, rel=1e-12)
+    stiff = load_engine(
+        write("s.toml", BASE + THROWS + "[crankshaft.beam]\nweb_rigid_fraction = 0.5\n")
+    )
+    assert stiff.torsion.shafts[0].stiffness > 1.05 * shaft.stiffness
+
+
+def test_beam_span_stiffness_needs_the_crankshaft(write):
+    text = BASE.split("[crankshaft]")[0] + THROWS
+    with pytest.raises(InputError) as info:
+        load_engine(write("bad.toml", text))
+    message = str(info.value)
+    assert "\n" not in message and "[torsion.throws] stiffness" in message
+    assert "[crankshaft]" in message
+    with pytest.raises(InputError) as info:
+        load_engine(write("bad.toml", BASE + THROWS.replace('"beam"', '"bean"')))
+    assert "[torsion.throws] stiffness" in str(info.value)

@@ -82,6 +82,7 @@ from crankdyn.torsion.model import TorsionModel
 __all__ = [
     "SAMPLES",
     "EngineBeam",
+    "beam_throw_stiffness",
     "disc_of_inertia",
     "engine_beam_model",
     "pin_force_harmonics",
@@ -138,12 +139,19 @@ def throw_dimensions(engine: Engine, crankshaft: Crankshaft | None = None) -> Th
     (0.155, 0.145, 0.53)
     """
     shaft = crankshaft if crankshaft is not None else _crankshaft(engine)
+    return _throw(shaft, engine.geometry.crank_radius, engine.cylinders.pitch, engine.source)
+
+
+def _throw(
+    shaft: Crankshaft, crank_radius: float, pitch: float | None, source: str | None
+) -> ThrowDimensions:
+    """:func:`throw_dimensions` from the crank radius (m) and the cylinder pitch (m)."""
     g = shaft.geometry
-    span = g.bearing_span if g.bearing_span is not None else engine.cylinders.pitch
+    span = g.bearing_span if g.bearing_span is not None else pitch
     if span is None:
         raise InputError(
             "the bearing span L_3 is unknown: give [crankshaft] bearing_span or the cylinder pitch",
-            file=engine.source,
+            file=source,
             key="[crankshaft] bearing_span",
         )
     journal = 2.0 * g.web_centre_distance - g.web_thickness
@@ -152,7 +160,7 @@ def throw_dimensions(engine: Engine, crankshaft: Crankshaft | None = None) -> Th
         what = "journal (2 L_1 - W)" if journal <= 0.0 else "crankpin (L_3 - 2 L_1 - W)"
         raise InputError(
             f"L_1, W and L_3 leave no {what} for the beam model",
-            file=engine.source,
+            file=source,
             key="[crankshaft] web_centre_distance",
             value=g.web_centre_distance,
         )
@@ -163,10 +171,68 @@ def throw_dimensions(engine: Engine, crankshaft: Crankshaft | None = None) -> Th
         pin_length=pin,
         web_thickness=g.web_thickness,
         web_width=g.web_width,
-        crank_radius=engine.geometry.crank_radius,
+        crank_radius=crank_radius,
         journal_bore=g.journal_bore,
         pin_bore=g.pin_bore,
     )
+
+
+def beam_throw_stiffness(
+    crankshaft: Crankshaft, crank_radius: float, pitch: float | None, source: str | None = None
+) -> float:
+    """The torsional stiffness of one crank span (N m/rad) from the beam model of its throw, for
+    the lumped torsional model (``[torsion.throws] stiffness = "beam"``, docs/crankshaft.md).
+
+    One throw of the ``[crankshaft]`` geometry (:func:`throw_dimensions`), held as its main
+    bearings hold it, with the mesh, beam theory and rigid web fraction of
+    ``[crankshaft.beam]`` (:func:`crankdyn.crankshaft.beam_stiffness.throw_stiffness`): the
+    throw stiffness the beam model's modes report, in place of an empirical formula (Carter's,
+    Ker Wilson's) or a given value.
+
+    Parameters
+    ----------
+    crankshaft : Crankshaft
+        The engine file's ``[crankshaft]``.
+    crank_radius : float
+        The crank radius (m).
+    pitch : float or None
+        The cylinder pitch (m), the bearing span L_3 unless ``[crankshaft] bearing_span`` is given.
+    source : str or None
+        The file, for messages.
+
+    Returns
+    -------
+    float
+        k_t (N m/rad).
+
+    Raises
+    ------
+    InputError
+        As :func:`throw_dimensions`.
+
+    Examples
+    --------
+    >>> import crankdyn
+    >>> e = crankdyn.Engine.example("marine-propulsion")
+    >>> assert e.crankshaft is not None
+    >>> k = beam_throw_stiffness(e.crankshaft, e.geometry.crank_radius, e.cylinders.pitch)
+    >>> round(k / 1e6, 2)  # MN m/rad, the "Torsional stiffness of a throw" of crankshaft modes
+    74.09
+    """
+    from crankdyn.crankshaft.beam_stiffness import throw_stiffness
+
+    inputs: BeamInputs = crankshaft.beam_inputs
+    throw = _throw(crankshaft, crank_radius, pitch, source)
+    material = BeamMaterial(
+        crankshaft.material.youngs_modulus, inputs.poisson_ratio, inputs.density
+    )
+    return throw_stiffness(
+        throw,
+        material,
+        elements=inputs.elements,
+        theory=inputs.theory,
+        web_rigid_fraction=inputs.web_rigid_fraction,
+    ).torsional
 
 
 def disc_of_inertia(polar_inertia: float, density: float) -> tuple[float, float]:

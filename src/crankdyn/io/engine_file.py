@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -127,10 +128,13 @@ def parse_engine(
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
-    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
+    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
+    beam = None
+    if crankshaft is not None:
+        beam = partial(_beam_stiffness, crankshaft, geometry.crank_radius, cylinders.pitch, file)
+    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses, beam)
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
-    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
     with root.context():
         engine = Engine(
             name=name,
@@ -337,18 +341,35 @@ _MODEL_KEYS = {
 """Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
 
 
+def _beam_stiffness(
+    crankshaft: Crankshaft, crank_radius: float, pitch: float | None, file: str | None
+) -> float:
+    """The crank span's torsional stiffness (N m/rad) from the beam model of the [crankshaft]
+    throw (:func:`crankdyn.crankshaft.beam_engine.beam_throw_stiffness`), built when asked."""
+    from crankdyn.crankshaft.beam_engine import beam_throw_stiffness
+
+    return beam_throw_stiffness(crankshaft, crank_radius, pitch, file)
+
+
 def _torsion(
     t: Table | None,
     name: str,
     geometry: CrankGeometry,
     cylinders: Cylinders,
     masses: Masses | None,
+    beam: Callable[[], float] | None = None,
 ) -> TorsionModel | None:
-    """The [torsion] section: the lumped torsional model (docs/torsion-file.md)."""
+    """The [torsion] section: the lumped torsional model (docs/torsion-file.md); ``beam``, the
+    crank span's stiffness from the [crankshaft] beam model (N m/rad), when there is one."""
     if t is None:
         return None
     return parse_torsion_section(
-        t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
+        t,
+        engine_name=name,
+        geometry=geometry,
+        cylinders=cylinders,
+        masses=masses,
+        beam_stiffness=beam,
     )
 
 
