@@ -154,6 +154,35 @@ def test_compare_torsional_modes_pairs_in_order():
     assert np.all(r.torsional_fraction[strict.beam_mode - 1] >= 0.5)
 
 
+def test_compare_torsional_modes_pairs_by_shape_whatever_the_order():
+    # lumped modes made from the beam's own torsional shapes at the web centres' theta_z, listed
+    # in reverse with 10 % higher frequencies: the MAC assignment finds every pair (MAC 1),
+    # where the k-th with the k-th pairs them crosswise
+    model = _six()
+    r = beam_modes(model, 12)
+    rows = [model.dof(int(n), 5) for n in model.web_axis_nodes.ravel()]
+    use = np.flatnonzero((r.torsional_fraction >= 0.3) & (r.natural_frequency > 0))
+    assert use.size >= 2
+    at = r.shapes[rows]
+    flipped = use[::-1]
+    lumped = [0.0, *(1.1 * r.natural_frequency[flipped])]
+    shapes = np.column_stack([np.ones(len(rows)), -3.0 * at[:, flipped]])
+    c = compare_torsional_modes(r, lumped, shapes=(at, shapes), minimum=0.3)
+    np.testing.assert_array_equal(c.beam_mode, r.mode[use])
+    np.testing.assert_allclose(c.difference, 0.1, rtol=1e-12)
+    np.testing.assert_allclose(c.mac, 1.0, rtol=1e-12)
+    assert "MAC" in c.pairing
+    # the lower beam mode's shape at a lumped frequency above the higher one's: order pairs
+    # them crosswise, the shapes do not
+    a, b = r.mode[use[:2]]
+    fb = r.natural_frequency[use[1]]
+    swapped = [fb, 2.0 * fb]
+    c = compare_torsional_modes(r, swapped, shapes=(at, at[:, use[1::-1]]), minimum=0.3)
+    assert dict(zip(c.beam_mode.tolist(), c.lumped_frequency, strict=True)) == {b: fb, a: 2 * fb}
+    crossed = compare_torsional_modes(r, swapped, minimum=0.3)
+    assert crossed.mac is None and crossed.beam_mode[0] == a and crossed.lumped_frequency[0] == fb
+
+
 @pytest.mark.parametrize("kw,key", [({"count": 0}, "count"), ({"threshold": 0.4}, "threshold")])
 def test_bad_arguments(kw, key):
     with pytest.raises(InputError) as err:

@@ -87,6 +87,7 @@ __all__ = [
     "engine_beam_model",
     "pin_force_harmonics",
     "throw_dimensions",
+    "torsional_rows",
 ]
 
 SAMPLES = 7200
@@ -348,6 +349,46 @@ def _line(model: TorsionModel | None, throws: int, notes: list[str]) -> _Line:
             whole = whole and d.kind != "tuned"
     out.whole = whole
     return out
+
+
+def torsional_rows(model: CrankshaftBeamModel, torsion: TorsionModel) -> NDArray[np.int_] | None:
+    """The beam model's theta_z degrees of freedom at each degree of freedom of the torsional
+    chain it carries (:func:`engine_beam_model`, module docstring), for pairing modes by shape
+    (:func:`crankdyn.crankshaft.beam_modes.compare_torsional_modes`).
+
+    The body at the free end and the flywheel are their nodes, a throw the mean of its two web
+    mid-planes' axis nodes, the shaft line its torsional nodes (after a damper ring).
+
+    Parameters
+    ----------
+    model : CrankshaftBeamModel
+        The beam model built with ``torsion``.
+    torsion : TorsionModel
+        The torsional model.
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Indices, shape (the chain's degrees of freedom, 2): a row's two entries are averaged
+        (the same index twice for one node); None when ``torsion`` is not a chain whose degrees
+        of freedom the beam model carries one to one.
+    """
+    chain = torsion.chain
+    throws = model.geometry.throws
+    dofs = sorted(set(torsion.cylinder_dofs.values()))
+    first = dofs[0] if dofs else -1
+    if chain is None or first > 1 or dofs != list(range(first, first + throws)):
+        return None
+    line = list(model.extra_nodes[1 if model.geometry.damper is not None else 0 :])
+    after = chain.size - first - throws
+    if after != (1 + len(line) if after else 0):
+        return None
+    end, wheel = model.free_end_node, model.flywheel_node
+    nodes = [(end, end)] if first == 1 else []
+    nodes += [(int(a), int(b)) for a, b in model.web_axis_nodes]
+    if after:
+        nodes += [(wheel, wheel)] + [(n, n) for n in line]
+    return np.array([[model.dof(a, 5), model.dof(b, 5)] for a, b in nodes], dtype=int)
 
 
 def _stub(

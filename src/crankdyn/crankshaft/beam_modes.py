@@ -293,6 +293,12 @@ class BeamModesResult(Result):
     lumped_model: str = scalar(
         "lumped_model", "Lumped model compared", "", default="", summary=False
     )
+    lumped_mac: np.ndarray | None = column(
+        "lumped_mac", "MAC with the lumped mode", "", default=None
+    )
+    lumped_pairing: str = scalar(
+        "lumped_pairing", "How the modes are paired", "", default="", summary=False
+    )
     notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())
     shapes: NDArray[np.float64] = field(
         default_factory=lambda: np.zeros((0, 0)), repr=False, compare=False
@@ -391,34 +397,41 @@ class BeamModesResult(Result):
             )
         ]
         if self.lumped_frequency is not None and self.lumped_difference is not None:
-            paired = np.isfinite(self.lumped_frequency)
-            out.append(
-                SummaryTable(
-                    "lumped_comparison",
-                    "Torsional modes: how well the lumped model holds",
-                    (
-                        SummaryColumn("mode", "Beam mode"),
-                        SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
-                        SummaryColumn("lumped_frequency_hz", "Lumped model", "Hz"),
-                        SummaryColumn("lumped_difference", "Lumped / beam - 1"),
-                        SummaryColumn("torsional_fraction", "Torsional energy"),
-                    ),
-                    tuple(
-                        (int(m), float(f) * HZ, float(c) * HZ, float(d), float(t))
-                        for m, f, c, d, t in zip(
-                            self.mode[paired],
-                            self.natural_frequency[paired],
-                            self.lumped_frequency[paired],
-                            self.lumped_difference[paired],
-                            self.torsional_fraction[paired],
-                            strict=True,
-                        )
-                    ),
-                    caption=f"Against {self.lumped_model}; the k-th torsional beam mode (torsional "
-                    "energy at least one half) paired with the k-th elastic lumped mode.",
-                )
-            )
+            out.append(self._lumped_table())
         return out
+
+    def _lumped_table(self) -> SummaryTable:
+        """The paired torsional modes (:meth:`summary_tables`)."""
+        assert self.lumped_frequency is not None and self.lumped_difference is not None
+        paired = np.isfinite(self.lumped_frequency)
+        cols = [
+            SummaryColumn("mode", "Beam mode"),
+            SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
+            SummaryColumn("lumped_frequency_hz", "Lumped model", "Hz"),
+            SummaryColumn("lumped_difference", "Lumped / beam - 1"),
+            SummaryColumn("torsional_fraction", "Torsional energy"),
+        ]
+        values = [
+            self.mode[paired],
+            self.natural_frequency[paired] * HZ,
+            self.lumped_frequency[paired] * HZ,
+            self.lumped_difference[paired],
+            self.torsional_fraction[paired],
+        ]
+        if self.lumped_mac is not None:
+            cols.append(SummaryColumn("lumped_mac", "MAC"))
+            values.append(self.lumped_mac[paired])
+        rows = tuple(
+            (int(row[0]), *(float(v) for v in row[1:])) for row in zip(*values, strict=True)
+        )
+        pairing = self.lumped_pairing or ORDER_PAIRING
+        return SummaryTable(
+            "lumped_comparison",
+            "Torsional modes: how well the lumped model holds",
+            tuple(cols),
+            rows,
+            caption=f"Against {self.lumped_model}; {pairing}.",
+        )
 
     def with_lumped(self, comparison: TorsionalComparison, model: str) -> BeamModesResult:
         """These modes with a lumped model's torsional frequencies beside the paired ones
@@ -442,8 +455,17 @@ class BeamModesResult(Result):
         index = np.searchsorted(self.mode, comparison.beam_mode)
         lumped[index] = comparison.lumped_frequency
         difference[index] = comparison.difference
+        mac = None
+        if comparison.mac is not None:
+            mac = np.full(self.mode.size, np.nan)
+            mac[index] = comparison.mac
         return replace(
-            self, lumped_frequency=lumped, lumped_difference=difference, lumped_model=model
+            self,
+            lumped_frequency=lumped,
+            lumped_difference=difference,
+            lumped_model=model,
+            lumped_mac=mac,
+            lumped_pairing=comparison.pairing,
         )
 
     def plot(self, modes: Sequence[int] | None = None, fig: Figure | None = None) -> Figure:
@@ -575,6 +597,10 @@ class TorsionalComparison(Result):
 
     Parameters
     ----------
+    mac : numpy.ndarray or None
+        The modal assurance criterion of each pair (dimensionless) when paired by shape.
+    pairing : str
+        How the modes were paired, for captions.
     beam_mode : numpy.ndarray
         The beam model's mode number of each pair (int).
     """
@@ -584,6 +610,8 @@ class TorsionalComparison(Result):
     lumped_frequency: np.ndarray = column("lumped_frequency_hz", "Lumped chain", "Hz", HZ)
     difference: np.ndarray = column("difference", "Lumped / beam - 1", "")
     motion: np.ndarray = column("motion", "Beam mode's motion", "")
+    mac: np.ndarray | None = column("mac", "MAC", "", default=None)
+    pairing: str = scalar("pairing", "How the modes are paired", "", default="", summary=False)
     beam_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     FIGURES = (
@@ -630,13 +658,35 @@ class TorsionalComparison(Result):
         return [SummaryTable("torsional_comparison", "How well the lumped model holds", cols, rows)]
 
 
+ORDER_PAIRING = (
+    "the k-th torsional beam mode (torsional energy at least one half) paired with the k-th "
+    "elastic lumped mode"
+)
+SHAPE_PAIRING = (
+    "each torsional beam mode (torsional energy at least one half) paired with the elastic "
+    "lumped mode whose shape it matches (the largest sum of MAC; pairs with MAC at least one half)"
+)
+
+
 def compare_torsional_modes(
-    result: BeamModesResult, lumped: Sequence[float] | NDArray[np.float64], *, minimum: float = 0.5
+    result: BeamModesResult,
+    lumped: Sequence[float] | NDArray[np.float64],
+    *,
+    minimum: float = 0.5,
+    shapes: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> TorsionalComparison:
-    """Pair the beam model's torsional modes with a lumped chain's, in ascending order.
+    """Pair the beam model's torsional modes with a lumped chain's: in ascending order, or by
+    their shapes.
 
     A beam mode counts as torsional when its torsional energy fraction is at least ``minimum``
-    (rigid modes excluded); the k-th such mode is paired with the k-th positive lumped frequency.
+    (rigid modes excluded). Without ``shapes`` the k-th such mode is paired with the k-th
+    positive lumped frequency; this crosses pairs where a mode of one model has no counterpart
+    below the other's next (a crankshaft mode that bending lowers below a shaft-line mode).
+    With ``shapes`` the pairs are those of the largest sum of the modal assurance criterion,
+    MAC = (phi_b . phi_l)^2 / (|phi_b|^2 |phi_l|^2) over the lumped model's degrees of freedom
+    (R. J. Allemang and D. L. Brown, "A correlation coefficient for modal vector analysis",
+    Proc. 1st IMAC, 1982, 110-116), an assignment problem
+    (``scipy.optimize.linear_sum_assignment``), and pairs with MAC below one half are dropped.
 
     Parameters
     ----------
@@ -647,24 +697,44 @@ def compare_torsional_modes(
         skipped), e.g. ``crankdyn.torsion.natural_modes(model).natural_frequency``.
     minimum : float
         Torsional energy fraction that makes a beam mode torsional (dimensionless).
+    shapes : tuple of two arrays, or None
+        The beam modes' rotations theta_z at the lumped model's degrees of freedom (dof x beam
+        mode, every mode of ``result``) and the lumped modes' shapes (dof x lumped mode, in the
+        order of ``lumped``); any normalisation.
 
     Returns
     -------
     TorsionalComparison
-        As many pairs as both have.
+        The pairs, in the beam's order.
     """
     elastic = ~np.char.startswith(result.motion.astype(str), "rigid")
-    use = elastic & (result.torsional_fraction >= minimum)
+    use = np.flatnonzero(elastic & (result.torsional_fraction >= minimum))
+    frequencies = np.asarray(lumped, dtype=float)
+    if shapes is None:
+        order = np.argsort(frequencies)
+        chain = order[frequencies[order] > 0.0]
+        n = min(use.size, chain.size)
+        use, chain, mac, pairing = use[:n], chain[:n], None, ORDER_PAIRING
+    else:
+        from scipy.optimize import linear_sum_assignment
+
+        chain = np.flatnonzero(frequencies > 0.0)
+        b = np.asarray(shapes[0], dtype=float)[:, use]
+        c = np.asarray(shapes[1], dtype=float)[:, chain]
+        b = b / np.maximum(np.linalg.norm(b, axis=0), np.finfo(float).tiny)
+        c = c / np.maximum(np.linalg.norm(c, axis=0), np.finfo(float).tiny)
+        table = (b.T @ c) ** 2
+        rows, cols = linear_sum_assignment(table, maximize=True)
+        keep = table[rows, cols] >= 0.5
+        rows, cols = rows[keep], cols[keep]
+        use, chain, mac, pairing = use[rows], chain[cols], table[rows, cols], SHAPE_PAIRING
     beam = result.natural_frequency[use]
-    modes = result.mode[use]
-    labels = result.motion[use]
-    chain = np.sort(np.asarray(lumped, dtype=float))
-    chain = chain[chain > 0.0]
-    n = min(beam.size, chain.size)
     return TorsionalComparison(
-        beam_frequency=beam[:n],
-        lumped_frequency=chain[:n],
-        difference=chain[:n] / beam[:n] - 1.0,
-        motion=labels[:n],
-        beam_mode=modes[:n],
+        beam_frequency=beam,
+        lumped_frequency=frequencies[chain],
+        difference=frequencies[chain] / beam - 1.0,
+        motion=result.motion[use],
+        mac=mac,
+        pairing=pairing,
+        beam_mode=result.mode[use],
     )

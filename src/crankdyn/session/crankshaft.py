@@ -91,6 +91,7 @@ class CrankshaftAnalyses(TorsionAnalyses):
     def _beam_modes(self, count: int) -> BeamModesResult:
         from dataclasses import replace
 
+        from crankdyn.crankshaft.beam_engine import torsional_rows
         from crankdyn.crankshaft.beam_modes import beam_modes, compare_torsional_modes
         from crankdyn.crankshaft.beam_stiffness import lumped_chain_comparison, throw_stiffness
 
@@ -109,8 +110,19 @@ class CrankshaftAnalyses(TorsionAnalyses):
             from crankdyn.torsion.campbell import with_dampers
             from crankdyn.torsion.modal import natural_modes
 
-            lumped = natural_modes(with_dampers(self.model))
-            comparison = compare_torsional_modes(modes, lumped.natural_frequency)
+            chain = with_dampers(self.model)
+            lumped = natural_modes(chain)
+            rows = torsional_rows(model, self.model)
+            shapes = None
+            if (
+                rows is not None
+                and chain.dof_names == self.model.dof_names
+                and lumped.shapes_dof is not None
+                and lumped.shapes_dof.shape == (lumped.natural_frequency.size, rows.shape[0])
+            ):
+                at = 0.5 * (modes.shapes[rows[:, 0]] + modes.shapes[rows[:, 1]])
+                shapes = (at, lumped.shapes_dof.T)
+            comparison = compare_torsional_modes(modes, lumped.natural_frequency, shapes=shapes)
             what = f"the torsional model {self.model.name or ''}".rstrip()
         else:
             comparison = lumped_chain_comparison(model, modes)
