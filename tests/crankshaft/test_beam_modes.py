@@ -172,6 +172,8 @@ def test_compare_torsional_modes_pairs_by_shape_whatever_the_order():
     np.testing.assert_allclose(c.difference, 0.1, rtol=1e-12)
     np.testing.assert_allclose(c.mac, 1.0, rtol=1e-12)
     assert "MAC" in c.pairing
+    (table,) = c.summary().tables
+    assert table.columns[-1].label == "MAC" and table.caption == c.pairing
     # the lower beam mode's shape at a lumped frequency above the higher one's: order pairs
     # them crosswise, the shapes do not
     a, b = r.mode[use[:2]]

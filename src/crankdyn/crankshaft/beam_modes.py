@@ -639,23 +639,29 @@ class TorsionalComparison(Result):
         list of crankdyn.summary.SummaryTable
             The comparison table.
         """
-        cols = (
+        cols = [
             SummaryColumn("beam_mode", "Beam mode"),
             SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
             SummaryColumn("lumped_frequency_hz", "Lumped chain", "Hz"),
             SummaryColumn("difference", "Lumped / beam - 1"),
-        )
+        ]
+        values = [self.beam_frequency * HZ, self.lumped_frequency * HZ, self.difference]
+        if self.mac is not None:
+            cols.append(SummaryColumn("mac", "MAC"))
+            values.append(self.mac)
         rows = tuple(
-            (int(m), float(b) * HZ, float(c) * HZ, float(d))
-            for m, b, c, d in zip(
-                self.beam_mode,
-                self.beam_frequency,
-                self.lumped_frequency,
-                self.difference,
-                strict=True,
-            )
+            (int(m), *(float(v) for v in row))
+            for m, *row in zip(self.beam_mode, *values, strict=True)
         )
-        return [SummaryTable("torsional_comparison", "How well the lumped model holds", cols, rows)]
+        return [
+            SummaryTable(
+                "torsional_comparison",
+                "How well the lumped model holds",
+                tuple(cols),
+                rows,
+                caption=self.pairing or ORDER_PAIRING,
+            )
+        ]
 
 
 ORDER_PAIRING = (
