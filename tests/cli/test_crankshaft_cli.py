@@ -83,6 +83,10 @@ def test_a_failed_verdict_ends_with_status_1(cli, write):
     passed = {v["component"]: v["passed"] for v in data["verdicts"]}
     assert not passed["throw 1 crankpin fillet"] and passed["throw 1 journal fillet"]
     assert any("no torsional stress" in n for n in data["notes"])
+    # the shared --no-fail (cli/common.py): the same output, status 0
+    kept = cli("crankshaft", path, "--no-fail")
+    assert kept.status == 0, kept.err
+    assert kept.out == run.out
 
 
 def test_modes_command(cli, tmp_path):

@@ -4,8 +4,8 @@ its beam model (``crankshaft modes``) and its forced response (``crankshaft resp
 numbers come from the analysis session (:meth:`crankdyn.Analysis.crankshaft`,
 :meth:`~crankdyn.Analysis.crankshaft_modes`, :meth:`~crankdyn.Analysis.crankshaft_response`).
 
-``crankshaft strength`` ends with exit status 1 when a verdict fails (:func:`verdict_status`,
-the one place that says so)."""
+``crankshaft strength`` ends with exit status 1 when a verdict fails, 0 with ``--no-fail``
+(:func:`crankdyn.cli.common.verdict_status`, the one place that says so)."""
 
 from __future__ import annotations
 
@@ -16,6 +16,7 @@ import click
 from crankdyn.cli.common import (
     check_plot_path,
     engine_argument,
+    no_fail_option,
     orders_option,
     parse_speed,
     plot_option,
@@ -23,6 +24,7 @@ from crankdyn.cli.common import (
     speed_option,
     speed_sweep,
     speeds_option,
+    verdict_status,
 )
 from crankdyn.cli.writer import Output, output_options, summary_blocks
 from crankdyn.crankshaft.beam_inputs import ADDITIONAL_STRESS_SOURCES
@@ -30,7 +32,7 @@ from crankdyn.errors import InputError
 from crankdyn.io.catalogue import resolve_engine
 from crankdyn.session import Analysis
 
-__all__ = ["crankshaft_group", "register", "verdict_status"]
+__all__ = ["crankshaft_group", "register"]
 
 DEFAULT_COMMAND = "strength"
 """The command ``crankdyn crankshaft ENGINE`` runs."""
@@ -43,23 +45,6 @@ _SPEEDS_HELP = (
     "The speed range of the forced responses (rpm for bare numbers); default the torsional "
     "model's operating range every 10 rpm."
 )
-
-
-def verdict_status(passed: bool | None) -> int:
-    """The exit status of a command that judges: 0 when every verdict passed (or there is
-    none), 1 when one failed.
-
-    Parameters
-    ----------
-    passed : bool or None
-        The summary's verdict (:attr:`crankdyn.summary.Summary.passed`).
-
-    Returns
-    -------
-    int
-        0 or 1.
-    """
-    return 1 if passed is False else 0
 
 
 class _DefaultGroup(click.Group):
@@ -122,6 +107,7 @@ def _session(engine: str, speed: str | None, speeds: str | None, orders: str | N
     "(M53.4) or the beam model's forced response (M53.4(3)); default the engine file's "
     "(beam when it has [crankshaft.beam]).",
 )
+@no_fail_option
 @output_options
 def strength_command(
     engine: str,
@@ -129,6 +115,7 @@ def strength_command(
     speeds: str | None,
     orders: str | None,
     additional_stress: str | None,
+    no_fail: bool,
     fmt: str,
     output_path: str | None,
     force: bool,
@@ -137,8 +124,9 @@ def strength_command(
     journal fillet and the oil bore of every throw with the nominal stresses, stress concentration
     factors, equivalent stresses and fatigue strengths, each with its clause; the nominal
     torsional stress from the forced torsional response over the speed range (the one the TVC
-    judges, barred ranges left out). CSV: every quantity with its unit and clause. Exit status
-    1 when a verdict fails.
+    judges, barred ranges left out). CSV: every quantity with its unit and clause. Exit status:
+    0 when every verdict passed, 1 when one failed (the analysis ran and its output is written),
+    2 on an error; --no-fail gives 0 whatever the verdict.
     """
     out = Output(fmt, output_path, force)
     out.check()
@@ -157,7 +145,7 @@ def strength_command(
         json_data=result,
         csv_text=result.quantities_table().csv_text(),
     )
-    return verdict_status(result.summary().passed)
+    return verdict_status(result.summary().passed, no_fail)
 
 
 @crankshaft_group.command("modes")
