@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import io
 import math
-import re
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
@@ -40,8 +39,6 @@ CHUNK_BYTES = 1 << 22
 """Bytes of a CSV file read at a time (4 MiB, some 300,000 lines of a pulse record)."""
 MAX_LINE_BYTES = 1 << 20
 """The longest line read (1 MiB): a file with a longer one is not a table."""
-_EXOTIC = re.compile(r"[\x0b\x0c\x1c-\x1e\x85\u2028\u2029]")  # line breaks of str.splitlines
-_SPACE = (32, 9, 13)  # what a plain line's cells hold besides their values
 
 
 @dataclass(frozen=True)
@@ -216,85 +213,73 @@ def csv_blocks(
     """
     line = header.next_line
     for data in _pieces(path, header.name, what, header.offset):
-        text = _decode(data, header.name, what, line)
-        block = _fast(data, text, line, len(header.cells), dense, sparse)
+        block, count = _fast(data, line, len(header.cells), dense, sparse)
         if block is None:
-            block = _slow(text, line, header, dense, sparse)
+            text = _decode(data, header.name, what, line)
+            block, count = _slow(text, line, header, dense, sparse), _line_count(text)
         yield block
-        line += _line_count(text)
+        line += count
 
 
 # ---- the chunk at C speed ---------------------------------------------------------------------
 
 
-def _plain(data: bytes, text: str) -> bytes | None:
-    """The chunk's bytes when it is plain (module docstring), ``\\r\\n`` made ``\\n``."""
-    if '"' in text or _EXOTIC.search(text):
-        return None
-    if "\r" in text:
-        if text.count("\r") != text.count("\r\n"):
-            return None
-        data = data.replace(b"\r\n", b"\n")
-    return data
+_VALUE_START = np.ones(256, dtype=bool)
+_VALUE_START[[9, 10, 13, 32, 35, 44]] = False  # a row's first byte: not blank, #, a comma
 
 
 def _fast(
     data: bytes,
-    text: str,
     first_line: int,
     width: int,
     dense: dict[int, tuple[float, str]],
     sparse: dict[int, float],
-) -> CsvBlock | None:
-    """The rows of a plain chunk by array operations and numpy's C reader, or None when the
-    chunk is not plain or a value fails a check (the line-by-line reader then says which)."""
-    plain = _plain(data, text)
-    if plain is None:
-        return None
-    buf = np.frombuffer(plain, dtype=np.uint8).copy()
-    if np.any(buf >= 128) or np.any((buf < 32) & (buf != 9) & (buf != 10) & (buf != 13)):
-        return None
-    if not np.any(~np.isin(buf, (*_SPACE, 10, 44))):  # no value at all: no rows
-        return CsvBlock(
-            np.empty(0, dtype=np.int64),
-            {c: np.empty(0) for c in dense},
-            {c: (np.empty(0), np.empty(0, dtype=np.int64)) for c in sparse},
-        )
-    breaks = np.flatnonzero(buf == 10)
-    ends = breaks if buf.size and buf[-1] == 10 else np.append(breaks, buf.size)
-    starts = np.concatenate([[0], ends[:-1] + 1]).astype(np.int64)
-    nonspace = ~np.isin(buf, (*_SPACE, 10))
-    where = np.flatnonzero(nonspace)
-    at = np.searchsorted(where, starts)
-    first = np.where(at < where.size, where[np.minimum(at, where.size - 1)], buf.size)
-    first = np.where(first < ends, first, -1)
-    comment = (first >= 0) & (buf[np.maximum(first, 0)] == ord("#"))
-    value = np.flatnonzero(nonspace & (buf != 44))
-    last_at = np.searchsorted(value, ends) - 1  # the last value byte before each line's end
-    last = np.where(last_at >= 0, value[np.maximum(last_at, 0)], -1)
-    filled = (last >= starts) & ~comment
-    hashes = np.flatnonzero(buf == ord("#"))
-    line_of = np.searchsorted(ends, hashes)
-    if np.any(filled[line_of]):  # a # within a row: read line by line
-        return None
-    commas = np.flatnonzero(buf == 44)
-    cells = np.searchsorted(commas, last) - np.searchsorted(commas, starts) + 1
-    if np.any(cells[filled] > width):
-        return None
-    # the lines that are not rows become comments for numpy's reader
-    mask = np.zeros(buf.size + 1, dtype=np.int64)
-    skip = ~filled & (ends > starts)
-    np.add.at(mask, starts[skip], 1)
-    np.add.at(mask, ends[skip], -1)
-    buf[np.cumsum(mask[:-1]) > 0] = ord("#")
+) -> tuple[CsvBlock | None, int]:
+    """The rows of a plain chunk (module docstring) and its lines, by array operations and
+    numpy's C reader; (None, 0) when the chunk is not plain or a value fails a check (the
+    line-by-line reader then says which)."""
+    b = np.frombuffer(data, dtype=np.uint8)
+    if np.any(b >= 128) or np.any((b < 32) & (b != 9) & (b != 10) & (b != 13)) or b'"' in data:
+        return None, 0
+    if b"\r" in data:
+        if data.count(b"\r") != data.count(b"\r\n"):
+            return None, 0
+        data = data.replace(b"\r\n", b"\n")
+        b = np.frombuffer(data, dtype=np.uint8)
+    breaks = np.flatnonzero(b == 10)
+    ends = breaks if b.size and b[-1] == 10 else np.append(breaks, b.size)
+    starts = np.concatenate([[0], ends[:-1] + 1])
+    filled = _VALUE_START[np.append(b, 10)[starts]] & (ends > starts)  # a row, plainly
+    odd = np.flatnonzero(~filled & (ends > starts))  # blank, comment or indented lines
+    text = data.decode("ascii")
+    skip = []
+    for i in odd.tolist():  # rare: as csv_rows reads them
+        line = text[starts[i] : ends[i]]
+        if not line.strip() or line.lstrip().startswith("#") or not line.replace(",", "").strip():
+            skip.append(i)
+        elif "#" in line:
+            return None, 0
+        else:
+            filled[i] = True
+    if b"#" in data and np.any(filled[np.searchsorted(ends, np.flatnonzero(b == 35))]):
+        return None, 0  # a # within a row: read line by line
+    commas = np.flatnonzero(b == 44)
+    per_line = np.bincount(np.searchsorted(ends, commas), minlength=ends.size)
+    if np.any(per_line[filled] > width - 1):
+        return None, 0  # more cells than the header names, or trailing empty ones
     rows = np.flatnonzero(filled)
     lines = (first_line + rows).astype(np.int64)
-    values: dict[int, NDArray[np.float64]] = {}
+    if skip:  # the lines that are not rows become comments for numpy's reader
+        chars = bytearray(data)
+        for i in skip:
+            chars[starts[i] : ends[i]] = b"#" * int(ends[i] - starts[i])
+        text = chars.decode("ascii")
+    values: dict[int, NDArray[np.float64]] = {col: np.empty(0) for col in dense}
     if dense and rows.size:
         columns = sorted(dense)
         try:
             table = np.loadtxt(
-                io.StringIO(buf.tobytes().decode("ascii")),
+                io.StringIO(text),
                 delimiter=",",
                 comments="#",
                 usecols=columns,
@@ -302,23 +287,21 @@ def _fast(
                 quotechar=None,
             )
         except ValueError:
-            return None
+            return None, 0
         if table.shape[0] != rows.size:
-            return None
+            return None, 0
         for k, col in enumerate(columns):
             si = table[:, k] * dense[col][0]
             if not _all_in_range(table[:, k], si):
-                return None
+                return None, 0
             values[col] = si
-    elif dense:
-        values = {col: np.empty(0) for col in dense}
     out_sparse = {}
     for col, factor in sparse.items():
-        found = _sparse(buf, starts[rows], ends[rows], commas, col, factor)
+        found = _sparse(data, starts[rows], ends[rows], commas, col, factor)
         if found is None:
-            return None
+            return None, 0
         out_sparse[col] = (found[0], lines[found[1]])
-    return CsvBlock(lines, values, out_sparse)
+    return CsvBlock(lines, values, out_sparse), int(ends.size)
 
 
 def _all_in_range(raw: NDArray[np.float64], si: NDArray[np.float64]) -> bool:
@@ -330,39 +313,40 @@ def _all_in_range(raw: NDArray[np.float64], si: NDArray[np.float64]) -> bool:
 
 
 def _sparse(
-    buf: NDArray[np.uint8],
-    starts: NDArray[np.int64],
-    ends: NDArray[np.int64],
+    data: bytes,
+    starts: NDArray[np.intp],
+    ends: NDArray[np.intp],
     commas: NDArray[np.intp],
     col: int,
     factor: float,
 ) -> tuple[NDArray[np.float64], NDArray[np.intp]] | None:
     """The non-blank cells of column ``col`` of the rows (their values in SI and the rows), or
     None when one fails a check."""
+    if commas.size == 0:  # one cell a row
+        if col > 0:
+            return np.empty(0), np.empty(0, dtype=np.intp)
+        commas = np.array([np.iinfo(np.intp).max])
     first = np.searchsorted(commas, starts)  # each row's first comma
+    last = commas.size - 1
     if col == 0:
         lo = starts
     else:
-        k = first + col - 1
-        has = (k < commas.size) & (commas[np.minimum(k, commas.size - 1)] < ends)
-        lo = np.where(has, commas[np.minimum(k, commas.size - 1)] + 1, ends)
-    k = first + col
-    nxt = np.where(k < commas.size, commas[np.minimum(k, commas.size - 1)], ends)
-    hi = np.minimum(nxt, ends)
-    hi = np.maximum(hi, lo)
-    value = np.flatnonzero(~np.isin(buf, (*_SPACE, 10, 44)))
-    nonblank = np.searchsorted(value, hi) > np.searchsorted(value, lo)
-    rows = np.flatnonzero(nonblank)
-    raw = buf.tobytes()
-    cells = [raw[lo[r] : hi[r]] for r in rows]
+        k = np.minimum(first + col - 1, last)
+        has = (first + col - 1 <= last) & (commas[k] < ends)
+        lo = np.where(has, commas[k] + 1, ends)
+    k = np.minimum(first + col, last)
+    hi = np.where((first + col <= last) & (commas[k] < ends), commas[k], ends)
+    rows = np.flatnonzero(hi > lo)
+    cells = [data[lo[r] : hi[r]].strip() for r in rows.tolist()]
+    keep = [i for i, c in enumerate(cells) if c]
     try:
-        numbers = np.array([float(c) for c in cells], dtype=float)
+        numbers = np.array([float(cells[i]) for i in keep], dtype=float)
     except ValueError:
         return None
     si = numbers * factor
     if not _all_in_range(numbers, si):
         return None
-    return si, rows
+    return si, rows[keep]
 
 
 # ---- the chunk line by line (the messages) ----------------------------------------------------

@@ -370,7 +370,7 @@ def csv_rows(text: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
 
     Examples
     --------
-    >>> csv_rows("# c\ntime [s],reference [s]\n0.1,0.05\n\n0.2,\n", first_line=3)
+    >>> csv_rows("# c\\ntime [s],reference [s]\\n0.1,0.05\\n\\n0.2,\\n", first_line=3)
     [(4, ['time [s]', 'reference [s]']), (5, ['0.1', '0.05']), (7, ['0.2'])]
     """
     # a comment is a line that starts with # as written (a quoted "#1" is a cell)

@@ -161,10 +161,10 @@ def layout(positions: int, length: int, block: int = BLOCK) -> Layout:
 
 
 def _block_times(
-    record: PulseRecord, lay: Layout
+    scan: ScannedRecord, lay: Layout
 ) -> Iterator[tuple[int, int, int, NDArray[np.float64]]]:
     """(c0, c1, a, times of tooth positions a .. e - 1) of every block, in one reading."""
-    segments = prepared_segments(record)
+    segments = prepared_segments(scan.record, scan.gappy)
     parts: list[NDArray[np.float64]] = []
     first = have = 0
     for c0, c1, a, e in lay.blocks():
@@ -216,7 +216,7 @@ def blocked_pattern(
         raise InputError("at least two whole revolutions are needed for the tooth correction")
     end = s + revolutions * n
     pattern = np.zeros(n)
-    for c0, c1, a, t in _block_times(scan.record, lay):
+    for c0, c1, a, t in _block_times(scan, lay):
         lo, hi = max(c0, s), min(c1, end)
         if lo < hi:
             pos = positions(t, a, length)
@@ -257,6 +257,7 @@ def corrected_marks(scan: ScannedRecord, errors: NDArray[np.float64], tooth_orig
             scan.record,
             scan.reference_times,
             lambda k: actual_positions(k, errors, tooth_origin, n),
+            scan.gappy,
         )
     m = np.arange(marks.size)
     return float(np.mean(marks - scan.reference_period * m))
@@ -502,7 +503,7 @@ def blocked_analysis(
     cyc = _Cycles(length, q, cycle_angle, window_cycles, window, tracking)
     start = end = -1
     first_cycle = np.empty(0)
-    for c0, c1, a, t in _block_times(scan.record, lay):
+    for c0, c1, a, t in _block_times(scan, lay):
         pos = positions(t, a, length)
         keep = pos.keep
         v = pos.vibration(pitch)

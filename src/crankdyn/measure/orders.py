@@ -87,6 +87,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ANALYSES",
+    "CACHE",
     "DEFAULT_BIN",
     "STEADY_LIMIT",
     "WINDOWS",
@@ -101,6 +102,9 @@ ANALYSES = ("auto", "steady", "tracking")
 """The analyses :func:`order_analysis` runs."""
 WINDOWS = ("hann", "uniform")
 """The windows of order tracking."""
+CACHE = 1 << 22
+"""A record analysed block by block is read again for each pass, unless it holds at most this
+many pulses (4,194,304: 32 MiB of times), which the first reading keeps."""
 DEFAULT_BIN = 10.0 / RPM
 """Default speed bin of order tracking (rad/s): 10 rpm."""
 STEADY_LIMIT = 0.02
@@ -386,7 +390,8 @@ def order_analysis(
     if isinstance(pulses, PulseTrain) and pulses.times.size > block:
         pulses = PulseRecord.from_train(pulses, chunk=SEGMENT)
     if isinstance(pulses, PulseRecord):
-        return _blocked(pulses, orders, settings, tooth_correction, int(block))
+        record = pulses.cached(CACHE)  # read once when it is short enough
+        return _blocked(record, orders, settings, tooth_correction, int(block))
     q = _check_orders(orders, cycle, pulses.teeth)
     prep = prepare_pulses(pulses)
     notes = list(prep.notes)

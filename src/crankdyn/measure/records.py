@@ -145,6 +145,41 @@ class PulseRecord:
 
         return cls(read, train.teeth, train.source)
 
+    def cached(self, limit: int) -> PulseRecord:
+        """This record, its pulse times kept in memory after a first whole reading when they
+        are at most ``limit``: later readings replay them (without lines and marks, which the
+        first reading gave) instead of reading the file again.
+
+        Parameters
+        ----------
+        limit : int
+            The most pulses kept (8 bytes each).
+
+        Returns
+        -------
+        PulseRecord
+            The same record.
+        """
+        kept: list[NDArray[np.float64]] | None = None
+
+        def read() -> Iterator[PulseChunk]:
+            nonlocal kept
+            if kept is not None:
+                yield from (PulseChunk(t) for t in kept)
+                return
+            parts: list[NDArray[np.float64]] | None = []
+            count = 0
+            for chunk in self.chunks():
+                count += chunk.times.size
+                if parts is not None and count <= limit:
+                    parts.append(chunk.times)
+                else:
+                    parts = None
+                yield chunk
+            kept = parts
+
+        return PulseRecord(read, self.teeth, self.source)
+
     def train(self) -> PulseTrain:
         """The whole record as a pulse train in memory (its checks as a train's).
 

@@ -157,7 +157,9 @@ def _positions(w: _Window, origin: int) -> _Positions:
     )
 
 
-def prepared_segments(record: PulseRecord) -> Iterator[tuple[int, NDArray[np.float64]]]:
+def prepared_segments(
+    record: PulseRecord, gappy: frozenset[int] | None = None
+) -> Iterator[tuple[int, NDArray[np.float64]]]:
     """The time of every tooth position of a record, segment by segment (module docstring):
     what :func:`~crankdyn.measure.signals.prepare_pulses` gives as ``times``, gaps filled.
 
@@ -165,6 +167,9 @@ def prepared_segments(record: PulseRecord) -> Iterator[tuple[int, NDArray[np.flo
     ----------
     record : crankdyn.measure.records.PulseRecord
         A record already checked by :func:`scan_record` (its errors are not repeated).
+    gappy : frozenset of int or None
+        The segments (numbered from 0) with gaps (:attr:`ScannedRecord.gappy`): the others'
+        times are the pulses' own, taken as they are; None: every segment looked at.
 
     Yields
     ------
@@ -173,7 +178,12 @@ def prepared_segments(record: PulseRecord) -> Iterator[tuple[int, NDArray[np.flo
         tooth positions.
     """
     origin = 0
-    for w in _windows(record.chunks()):
+    for number, w in enumerate(_windows(record.chunks())):
+        if gappy is not None and number not in gappy:
+            times = w.times[w.start - w.first : None if w.last else w.stop - w.first]
+            yield origin, times
+            origin += times.size
+            continue
         pos = _positions(w, origin)
         b = w.stop - w.first if not w.last else w.times.size - 1
         end = pos.index[b] if not w.last else pos.index[-1] + 1
@@ -208,6 +218,8 @@ class ScannedRecord:
         The wheel has missing teeth.
     notes : tuple of str
         What was repaired or assumed.
+    gappy : frozenset of int
+        The segments of :data:`SEGMENT` pulses with gaps (dropped pulses or missing teeth).
     """
 
     record: PulseRecord
@@ -220,6 +232,7 @@ class ScannedRecord:
     reference_period: int | None
     missing_tooth: bool
     notes: tuple[str, ...]
+    gappy: frozenset[int] = frozenset()
 
     @property
     def teeth(self) -> int:
@@ -256,6 +269,8 @@ class _Scan:
         self.name = record.source
         self.teeth = record.teeth
         self.origin = 0
+        self.segments = 0
+        self.gappy: set[int] = set()
         self.gaps = _Gaps()
         self.off: InputError | None = None
         self.short: InputError | None = None
@@ -292,9 +307,12 @@ class _Scan:
     # ---- segment by segment -----------------------------------------------------------------
     def segment(self, w: _Window) -> None:
         """Check a segment's intervals and gaps, locate the marks within it."""
+        number, self.segments = self.segments, self.segments + 1
         if w.times.size < 2:
             return
         pos = _positions(w, self.origin)
+        if pos.gaps.size:
+            self.gappy.add(number)
         where = lambda i: sample_place(w.lines, i - w.first, w.first)  # noqa: E731 (record index i)
         if pos.short.size and self.short is None:
             i = int(pos.short[0]) + 1
@@ -383,6 +401,7 @@ class _Scan:
             period,
             bool(missing_tooth),
             tuple(notes),
+            frozenset(self.gappy),
         )
 
     def _marks_checked(self) -> tuple[NDArray[np.float64], NDArray[np.float64], int]:
@@ -391,9 +410,8 @@ class _Scan:
         if self.late:
             index = np.concatenate(self.late)
             late = flat[index.astype(np.int64)]
-            rows = np.concatenate(
-                [rows, np.column_stack([mark_positions(self.record, late), late, index])]
-            )
+            found = mark_positions(self.record, late, gappy=frozenset(self.gappy))
+            rows = np.concatenate([rows, np.column_stack([found, late, index])])
             rows = rows[np.argsort(rows[:, 2], kind="stable")]
         if rows.shape[0] == 0:
             raise InputError(
@@ -445,6 +463,7 @@ def mark_positions(
     record: PulseRecord,
     marks: NDArray[np.float64],
     value: Callable[[NDArray[np.int64]], NDArray[np.float64]] | None = None,
+    gappy: frozenset[int] | None = None,
 ) -> NDArray[np.float64]:
     """A cubic spline through the tooth positions' times, at mark times, in one more reading of
     the record: of the tooth position (``value`` None) or of ``value(positions)``; each mark
@@ -459,6 +478,8 @@ def mark_positions(
     value : callable or None
         The spline's values at tooth positions (an array of int positions to values); None:
         the positions themselves.
+    gappy : frozenset of int or None
+        The segments with gaps (:func:`prepared_segments`).
 
     Returns
     -------
@@ -480,7 +501,7 @@ def mark_positions(
             done = upto
 
     first, buffer = 0, np.empty(0)
-    for start, times in prepared_segments(record):
+    for start, times in prepared_segments(record, gappy):
         if not buffer.size:
             first = start
         buffer = np.concatenate([buffer, times])
