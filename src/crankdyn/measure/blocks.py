@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -54,7 +54,7 @@ from crankdyn.measure.angle import (
 from crankdyn.measure.records import PulseRecord
 from crankdyn.measure.scan import ScannedRecord, mark_positions, prepared_segments
 from crankdyn.measure.signals import PulseTrain
-from crankdyn.measure.windows import Windows, joined, window_coefficients
+from crankdyn.measure.windows import Windows, window_coefficients
 
 __all__ = [
     "BLOCK",
@@ -320,31 +320,61 @@ class BlockedAnalysis:
     envelope: Envelope
 
 
-@dataclass
+class _Series:
+    """Windows written in order into arrays allocated once, for at most ``capacity`` of them:
+    the record's per-cycle figures are not interleaved on the heap with the blocks' working
+    arrays, whose memory is then reused from block to block, and are not joined at the end."""
+
+    def __init__(self, capacity: int, orders: int) -> None:
+        self.coefficients = np.empty((capacity, orders), dtype=complex)
+        self.speed = np.empty(capacity)
+        self.start_angle = np.empty(capacity)
+        self.count = 0
+
+    def add(self, part: Windows) -> None:
+        """The next windows."""
+        n, i = part.speed.size, self.count
+        self.coefficients[i : i + n] = part.coefficients
+        self.speed[i : i + n] = part.speed
+        self.start_angle[i : i + n] = part.start_angle
+        self.count = i + n
+
+    def windows(self) -> Windows:
+        """The windows added."""
+        n = self.count
+        return Windows(self.coefficients[:n], self.speed[:n], self.start_angle[:n])
+
+
 class _Cycles:
     """The whole cycles of the grid as the blocks give them: the windows over them, their
-    average and envelope (module docstring, step 3)."""
+    average and envelope (module docstring, step 3), for at most ``capacity`` cycles."""
 
-    length: int
-    orders: NDArray[np.float64]
-    cycle_angle: float
-    window_cycles: int
-    window: str
-    tracking: bool
-    angle0: float = math.nan  # the crank angle of the grid's first sample
-    samples: NDArray[np.float64] = field(default_factory=lambda: np.empty(0))
-    first: int = 0  # the cycle of samples[0]
-    boundaries: list[NDArray[np.float64]] = field(default_factory=list)
-    known: int = 0  # boundary times known
-    next_cycle: int = 0  # the next single cycle's window
-    next_window: int = 0  # the next tracking window
-    total: NDArray[np.float64] | None = None
-    singles: list[Windows] = field(default_factory=list)
-    windows: list[Windows] = field(default_factory=list)
-    low: list[NDArray[np.float64]] = field(default_factory=list)
-    high: list[NDArray[np.float64]] = field(default_factory=list)
-    speed_low: list[NDArray[np.float64]] = field(default_factory=list)
-    speed_high: list[NDArray[np.float64]] = field(default_factory=list)
+    def __init__(
+        self,
+        length: int,
+        orders: NDArray[np.float64],
+        cycle_angle: float,
+        window_cycles: int,
+        window: str,
+        tracking: bool,
+        capacity: int,
+    ) -> None:
+        self.length, self.orders, self.cycle_angle = length, orders, cycle_angle
+        self.window_cycles, self.window, self.tracking = window_cycles, window, tracking
+        self.angle0 = math.nan  # the crank angle of the grid's first sample
+        self.samples: NDArray[np.float64] = np.empty(0)
+        self.first = 0  # the cycle of samples[0]
+        self.boundaries = np.empty(capacity + 1)  # the boundary times known, in order
+        self.known = 0
+        self.next_cycle = 0  # the next single cycle's window
+        self.next_window = 0  # the next tracking window
+        self.total: NDArray[np.float64] | None = None
+        self.singles = _Series(capacity, orders.size)
+        self.windows = _Series(capacity if tracking else 0, orders.size)
+        # the envelope: per cycle, the least and largest vibration and pulse speed
+        self.low, self.high = np.empty(capacity), np.empty(capacity)
+        self.speed_low, self.speed_high = np.empty(capacity), np.empty(capacity)
+        self.speeds = 0
 
     def add(
         self,
@@ -355,31 +385,32 @@ class _Cycles:
         """The next grid samples (rad), boundary times (s) and cycles' pulse speeds (rad/s,
         (cycles, L))."""
         self.samples = np.concatenate([self.samples, vibration])
-        if boundary_times.size:
-            self.boundaries.append(boundary_times)
-            self.known += boundary_times.size
+        k, n = self.known, boundary_times.size
+        self.boundaries[k : k + n] = boundary_times
+        self.known = k + n
         if speeds.size:
-            self.speed_low.append(np.min(speeds, axis=1))
-            self.speed_high.append(np.max(speeds, axis=1))
+            j, m = self.speeds, speeds.shape[0]
+            np.min(speeds, axis=1, out=self.speed_low[j : j + m])
+            np.max(speeds, axis=1, out=self.speed_high[j : j + m])
+            self.speeds = j + m
         self._flush()
 
     def _times(self, start: int, stop: int) -> NDArray[np.float64]:
-        times = np.concatenate(self.boundaries) if len(self.boundaries) > 1 else self.boundaries[0]
-        self.boundaries = [times]
-        return times[start:stop]
+        return self.boundaries[: self.known][start:stop]
 
     def _flush(self) -> None:
         L, wc = self.length, self.window_cycles
         complete = self.first + self.samples.size // L
         upto = min(complete, self.known - 1)
         if upto > self.next_cycle:  # single cycles: their windows, sum and envelope
-            per = self._cycles(self.next_cycle, upto)
-            self.singles.append(
+            c0 = self.next_cycle
+            per = self._cycles(c0, upto)
+            self.singles.add(
                 window_coefficients(
                     per,
-                    self.next_cycle,
+                    c0,
                     self.angle0,
-                    self._times(self.next_cycle, upto + 1),
+                    self._times(c0, upto + 1),
                     self.orders,
                     self.cycle_angle,
                     1,
@@ -387,14 +418,14 @@ class _Cycles:
             )
             part = np.add.reduce(per, axis=0)
             self.total = part if self.total is None else self.total + part
-            self.low.append(np.min(per, axis=1))
-            self.high.append(np.max(per, axis=1))
+            np.min(per, axis=1, out=self.low[c0:upto])
+            np.max(per, axis=1, out=self.high[c0:upto])
             self.next_cycle = upto
         if self.tracking:
             last = min(complete, self.known - 1) - wc  # the last window's first cycle
             if last >= self.next_window:
                 per = self._cycles(self.next_window, last + wc)
-                self.windows.append(
+                self.windows.add(
                     window_coefficients(
                         per,
                         self.next_window,
@@ -418,18 +449,17 @@ class _Cycles:
 
     def result(self, cycles: int) -> tuple[Windows, Windows | None, NDArray[np.float64], Envelope]:
         """The single cycles' windows, the tracking windows, the average and the envelope."""
-        q = self.orders.size
-        single = joined(self.singles, q)
-        windows = joined(self.windows, q) if self.tracking else None
         average = (np.zeros(self.length) if self.total is None else self.total) / cycles
+        done = self.next_cycle
         envelope = Envelope(
             np.asarray(self.angle0 + self.cycle_angle * np.arange(cycles), dtype=float),
-            np.concatenate(self.speed_low)[:cycles],
-            np.concatenate(self.speed_high)[:cycles],
-            np.concatenate(self.low),
-            np.concatenate(self.high),
+            self.speed_low[: min(cycles, self.speeds)],
+            self.speed_high[: min(cycles, self.speeds)],
+            self.low[:done],
+            self.high[:done],
         )
-        return single, windows, average, envelope
+        windows = self.windows.windows() if self.tracking else None
+        return self.singles.windows(), windows, average, envelope
 
 
 def _too_wide(reason: str) -> InputError:
@@ -500,7 +530,8 @@ def blocked_analysis(
     )
     origin = reference_angle - (nominal if kappa is None else kappa) * pitch
     errors = None if tooth_errors is None else np.asarray(tooth_errors, dtype=float)
-    cyc = _Cycles(length, q, cycle_angle, window_cycles, window, tracking)
+    # at most K / L whole cycles (and boundaries, and cycles of pulse speeds)
+    cyc = _Cycles(length, q, cycle_angle, window_cycles, window, tracking, K // length + 2)
     start = end = -1
     first_cycle = np.empty(0)
     for c0, c1, a, t in _block_times(scan, lay):
