@@ -68,7 +68,11 @@ from crankdyn.measure.blocks import (
     corrected_marks,
     gathered,
 )
-from crankdyn.measure.figures import MEASURED_FIGURES, resonance_table
+from crankdyn.measure.figures import (
+    MEASURED_FIGURES,
+    largest_per_order_table,
+    resonance_table,
+)
 from crankdyn.measure.records import PulseRecord
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.scan import SEGMENT, ScannedRecord, scan_record
@@ -1057,15 +1061,16 @@ class OrderTracking(Result):
     envelope: Envelope | None = field(default=None, repr=False, compare=False)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The fitted resonances, beside the model's peaks where it was held against one
+        """The largest bin per order (:func:`crankdyn.measure.figures.largest_per_order_table`)
+        and the fitted resonances, beside the model's peaks where it was held against one
         (:func:`crankdyn.measure.figures.resonance_table`).
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
-            One table, or none without fitted resonances.
+            The largest bin per order, then the resonances (none without fits).
         """
-        return resonance_table(self)
+        return [*largest_per_order_table(self), *resonance_table(self)]
 
     @property
     def coefficients(self) -> NDArray[np.complex128]:
