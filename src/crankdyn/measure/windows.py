@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["Windows", "joined", "window_coefficients"]
+__all__ = ["Windows", "window_coefficients"]
 
 
 @dataclass(frozen=True)
@@ -115,27 +115,3 @@ def window_coefficients(
     times = boundary_times
     speed = cycles * cycle_angle / (times[cycles:] - times[:count])
     return Windows(coefficients, speed, start)
-
-
-def joined(parts: list[Windows], orders: int) -> Windows:
-    """Consecutive runs of windows as one.
-
-    Parameters
-    ----------
-    parts : list of Windows
-        The runs, in order.
-    orders : int
-        The number of orders Q (for an empty result).
-
-    Returns
-    -------
-    Windows
-        Their windows, in order.
-    """
-    if not parts:
-        return Windows(np.empty((0, orders), dtype=complex), np.empty(0), np.empty(0))
-    return Windows(
-        np.concatenate([p.coefficients for p in parts]),
-        np.concatenate([p.speed for p in parts]),
-        np.concatenate([p.start_angle for p in parts]),
-    )
