@@ -15,6 +15,7 @@ MODULES = (
     "process",
     "baseline",
     "crankshaft_beam",
+    "records",
 )
 
 
