@@ -44,7 +44,7 @@ its system to the pivoting solver (module docstring)."""
 DENSE_FALLBACK = 200
 """Degrees of freedom up to which a flagged system is solved densely (above: sparse LU)."""
 
-_FREQUENCY_BLOCK = 1 << 13
+_FREQUENCY_BLOCK = 1 << 12
 """Frequencies per block: a block's rows stay in the processor's cache through the
 elimination."""
 
@@ -214,36 +214,54 @@ class TreeSolver:
         (module docstring)."""
         count = w.size
         r = rhs.shape[-1]
-        out = np.empty((count, self.n, r), dtype=complex)
+        n = self.n
+        out = np.empty((count, n, r), dtype=complex)
         flagged: list[NDArray[np.intp]] = []
+        size = min(count, _FREQUENCY_BLOCK)
+        buffers = (  # allocated once, reused by every block (no fresh pages per block)
+            np.empty((max(n - 1, 0), size), dtype=complex),  # off
+            np.empty((n, size), dtype=complex),  # diag
+            np.empty((n, r, size), dtype=complex),  # x
+            np.empty((2, size), dtype=complex),  # multiplier, product
+            np.empty((r, size), dtype=complex),
+            np.empty((2, 2 * size)),  # the multipliers' largest and smallest parts
+            np.empty(size),  # w^2
+        )
         for a in range(0, count, _FREQUENCY_BLOCK):
             b = min(count, a + _FREQUENCY_BLOCK)
             part = None if change is None else (change[0], change[1][a:b])
-            flagged.append(a + self._block(w[a:b], rhs[a:b], out[a:b], hysteretic_frequency, part))
+            found = self._block(w[a:b], rhs[a:b], out[a:b], hysteretic_frequency, part, buffers)
+            flagged.append(a + found)
         bad = np.concatenate(flagged) if flagged else np.zeros(0, dtype=np.intp)
         return out, bad
 
     def _rows(
-        self, w: NDArray[np.float64], hysteretic_frequency: float | None
-    ) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        self,
+        w: NDArray[np.float64],
+        hysteretic_frequency: float | None,
+        off: NDArray[np.complex128],
+        diag: NDArray[np.complex128],
+        w2: NDArray[np.float64],
+    ) -> None:
         """(off (n-1, F), diag (n, F)) in elimination order: off = k + i (w c + eta k f) of the
         link to the parent (D_kp = -off), diag = K_kk - w^2 J_k + i (w C_kk + H_kk f), f = 1
-        or w / omega_h."""
+        or w / omega_h (then w (c + eta k / omega_h): viscous), written into ``off`` and
+        ``diag``; ``w2`` a buffer (F,)."""
         k, c, h = self.off_values
         kd, cd, hd = self.diag_values
-        count = w.size
-        off = np.empty((self.n - 1, count), dtype=complex)
-        diag = np.empty((self.n, count), dtype=complex)
-        np.multiply(c[:, None], w, out=off.imag)
-        np.multiply(cd[:, None], w, out=diag.imag)
-        if self.hysteretic:
-            f = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
-            off.imag += h[:, None] * f
-            diag.imag += hd[:, None] * f
+        exact = hysteretic_frequency is None
+        if not exact and self.hysteretic:  # eta k f = w eta k / omega_h: viscous
+            c, cd = c + h / hysteretic_frequency, cd + hd / hysteretic_frequency
         off.real = k[:, None]
-        np.multiply(self.inertia[:, None], -(w * w), out=diag.real)
+        np.multiply(c[:, None], w, out=off.imag)
+        np.multiply(w, w, out=w2)
+        np.negative(w2, out=w2)
+        np.multiply(self.inertia[:, None], w2, out=diag.real)
         diag.real += kd[:, None]
-        return off, diag
+        np.multiply(cd[:, None], w, out=diag.imag)
+        if exact and self.hysteretic:
+            off.imag += h[:, None]
+            diag.imag += hd[:, None]
 
     def _block(
         self,
@@ -252,11 +270,17 @@ class TreeSolver:
         out: np.ndarray,
         hysteretic_frequency: float | None,
         change: tuple[NDArray[np.intp], np.ndarray] | None,
+        buffers: tuple[np.ndarray, ...],
     ) -> NDArray[np.intp]:
-        """Solve one block of frequencies into ``out``; the indices of its flagged systems."""
+        """Solve one block of frequencies into ``out`` in the ``buffers`` of :meth:`solve`; the
+        indices of its flagged systems."""
         n, parent = self.n, self.parent
         count = w.size
-        off, d = self._rows(w, hysteretic_frequency)
+        off, d, x = buffers[0][:, :count], buffers[1][:, :count], buffers[2][:, :, :count]
+        m, tmp, w2 = buffers[3][0, :count], buffers[3][1, :count], buffers[6][:count]
+        t = buffers[4][:, :count]
+        high, low = buffers[5][0, : 2 * count], buffers[5][1, : 2 * count]
+        self._rows(w, hysteretic_frequency, off, d, w2)
         if change is not None:  # the changed links: their off-diagonal and both diagonals
             where, delta = change
             for j, k in enumerate(where.tolist()):
@@ -264,14 +288,12 @@ class TreeSolver:
                 off[k] += dj
                 d[k] += dj
                 d[parent[k]] += dj
-        order = self.tree.order
-        x = np.ascontiguousarray(np.moveaxis(rhs[:, order, :], 0, -1), dtype=complex)
-        m = np.empty(count, dtype=complex)
-        tmp = np.empty(count, dtype=complex)
-        t = np.empty_like(x[0])
-        high = np.zeros(2 * count)
-        low = np.zeros(2 * count)
-        parts = m.view(float)
+        order = self.tree.order.tolist()
+        for k, i in enumerate(order):  # the right-hand sides in elimination order
+            x[k] = rhs[:, i, :].T
+        high.fill(0.0)
+        low.fill(0.0)
+        parts = buffers[3][0].view(float)[: 2 * count]  # the multipliers' parts
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             for k in range(n - 1):  # forward: eliminate k into its parent
                 p = parent[k]
@@ -284,11 +306,12 @@ class TreeSolver:
                 np.multiply(m, x[k], out=t)
                 np.add(x[p], t, out=x[p])
             np.divide(x[n - 1], d[n - 1], out=x[n - 1])
+            out[:, order[n - 1], :] = x[n - 1].T
             for k in range(n - 2, -1, -1):  # back substitution, from the root outward
                 np.multiply(off[k], x[parent[k]], out=t)
                 xk = x[k]
                 np.add(xk, t, out=xk)
                 np.divide(xk, d[k], out=xk)
-        out[:, order, :] = np.moveaxis(x, -1, 0)
+                out[:, order[k], :] = xk.T
         inside = (high <= GROWTH) & (low >= -GROWTH)  # False for NaN
         return np.flatnonzero(~np.all(inside.reshape(count, 2), axis=1))
