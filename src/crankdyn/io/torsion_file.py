@@ -215,6 +215,7 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
             raise mt.error("name", f"{what} has this name already", m.name)
         seen[m.name] = mt
     known = [*seen, *throw_names]
+    names = frozenset(known)
     if engine is not None:
         _check_cylinders(mass_tables, masses, engine[1], bool(throw_names))
     else:
@@ -223,12 +224,12 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
     shafts = []
     for st in t.tables("shaft"):
         shaft = _shaft(st)
-        _check_ends(st, shaft.between, known)
+        _check_ends(st, shaft.between, known, names)
         shafts.append(shaft)
     gears = []
     for gt in t.tables("gear"):
         gear = _gear(gt)
-        _check_ends(gt, gear.between, known)
+        _check_ends(gt, gear.between, known, names)
         gears.append(gear)
 
     with t.context():
@@ -347,9 +348,14 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
     return model
 
 
-def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
+def _check_ends(
+    t: Table, ends: tuple[str, str], known: list[str], names: set[str] | frozenset[str]
+) -> None:
+    """Both ends of a shaft or gear are masses (``names``, a set: a look-up per end, so that a
+    model file is read in time linear in its size) or ground; ``known`` in order, for the
+    did-you-mean."""
     for end in ends:
-        if end != GROUND and end not in known:
+        if end != GROUND and end not in names:
             raise t.error("between", f'no mass named "{end}"{did_you_mean(end, known)}', list(ends))
 
 
