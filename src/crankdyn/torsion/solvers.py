@@ -78,6 +78,15 @@ _FREQUENCY_BLOCK = 1 << 13
 """Frequencies per block of the chain solve: a block's rows (16 bytes x block each) stay in the
 processor's cache through the elimination."""
 
+_BLOCK_ELEMENTS = 1 << 23
+"""At most this many elements (128 MB of complex numbers) per buffer of the chain solve, down
+to :data:`_MIN_BLOCK` frequencies: a long chain's blocks hold fewer frequencies, and its
+buffers, reused by every block, stay a fraction of the result's size."""
+
+_MIN_BLOCK = 512
+"""The fewest frequencies per block of the chain solve (fewer: a numpy call's fixed cost would
+outweigh its work)."""
+
 
 def _abs2(z: NDArray[np.complex128]) -> NDArray[np.float64]:
     """|z|^2 of a complex array."""
@@ -546,7 +555,9 @@ class LinearSystem:
         fb = np.broadcast_to(fb, (*batch, n, r))
         out = np.empty((*batch, n, r), dtype=complex)
         inner = math.prod(batch[1:])
-        rows = max(1, _FREQUENCY_BLOCK // max(inner, 1))
+        per_block = max(_MIN_BLOCK, min(_FREQUENCY_BLOCK, _BLOCK_ELEMENTS // max(n * r, 1)))
+        rows = max(1, per_block // max(inner, 1))
+        rows = -(-batch[0] // -(-batch[0] // rows))  # blocks of even size
         flat_omega = omega.reshape(-1)
         flat_out = out.reshape(-1, n, r)
         blocks = _ChainBlocks(self, min(batch[0], rows) * inner, r, hysteretic_frequency)
@@ -587,6 +598,12 @@ candidate for the exact growth test (:class:`_ChainBlocks`)."""
 _TINY, _HUGE = 1e-140, 1e140
 """The range of |off| in which the candidate filter's argument holds (:class:`_ChainBlocks`)."""
 
+_CHUNK_ELEMENTS = 1 << 13
+"""Rows of the chain solve built at a time: about this many elements (128 KB of complex numbers)
+of each of ``off``, ``diag`` and ``x``, still in cache when the elimination reaches them; one
+row at a time for a block of 8192 frequencies, several for a long chain's small blocks (fewer
+numpy calls per row)."""
+
 _TILE = 8
 """Chain rows copied to the result at a time (a cache-friendly transposition)."""
 
@@ -597,7 +614,8 @@ class _ChainBlocks:
 
     Elimination without interchanges (the Thomas algorithm) with the chain along the rows:
     the negated off-diagonal ``off`` and the diagonal of every row are built inside the forward
-    loop, when the row is reached (the same operations in the same order as
+    loop, a few rows (:data:`_CHUNK_ELEMENTS`) just before the elimination reaches them
+    (:meth:`_rows`: the same operations in the same order as
     :meth:`LinearSystem._diagonals_of`, so the same numbers), the right-hand side copied in at
     the same time; the back substitution divides by the stored pivots and copies the solved
     rows to the result :data:`_TILE` rows at a time while they are in cache.
@@ -627,15 +645,9 @@ class _ChainBlocks:
         self.system = system
         self.n = n
         self.hysteretic_frequency = hysteretic_frequency
-        self.values = (
-            kb.tolist(),
-            cb.tolist(),
-            hb.tolist(),
-            kg.tolist(),
-            cg.tolist(),
-            hg.tolist(),
-            system.inertia.tolist(),
-        )
+        self.arrays = (kb, cb, hb, kg, cg, hg, system.inertia)
+        # rows built at a time (_CHUNK_ELEMENTS), in cache when the elimination reaches them
+        self.chunk = max(1, min(64, _CHUNK_ELEMENTS // max(block * r, 1)))
         self.magnitudes = (np.abs(kb), np.abs(cb), np.abs(hb))  # |off| >= |kb| (class docstring)
         # the loss factors' terms: hb * factor, added unless they are zero (factor 1.0)
         self.hysteretic = hysteretic_frequency is not None or bool(np.any(hb) or np.any(hg))
@@ -647,7 +659,7 @@ class _ChainBlocks:
         self.tmp_b = np.empty((r, block), dtype=complex)
         self.w2 = np.empty(block)
         self.factor = np.empty(block)
-        self.term = np.empty(block)
+        self.term = np.empty((self.chunk, block))
         self.high = np.empty(2 * block)
         self.low = np.empty(2 * block)
 
@@ -655,15 +667,13 @@ class _ChainBlocks:
         """Solve one block into ``out``: w (F,) rad/s, rhs (F, n, r) N m, out (F, n, r)."""
         n = self.n
         count = w.size
-        kb, cb, hb, kg, cg, hg, inertia = self.values
         off, d = self.off[:, :count], self.diag[:, :count]
         x = self.x[:, :, :count]
         mult, tmp, tmp_b = self.mult[:count], self.tmp[:count], self.tmp_b[:, :count]
-        w2, factor, term = self.w2[:count], self.factor[:count], self.term[:count]
+        w2, factor = self.w2[:count], self.factor[:count]
         high, low = self.high[: 2 * count], self.low[: 2 * count]
         np.multiply(w, w, out=w2)
-        hysteretic = self.hysteretic
-        if hysteretic:
+        if self.hysteretic:
             if self.hysteretic_frequency is None:
                 factor.fill(1.0)
             else:
@@ -671,29 +681,14 @@ class _ChainBlocks:
         high.fill(0.0)
         low.fill(0.0)
         parts = mult.view(float)  # the multipliers' real and imaginary parts
+        chunk = self.chunk
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             for i in range(n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
-                di = d[i]
-                if i < n - 1:  # off = k + i (w c + h factor)
-                    oi = off[i]
-                    oi.real = kb[i]
-                    np.multiply(w, cb[i], out=oi.imag)
-                    if hysteretic:
-                        np.multiply(factor, hb[i], out=term)
-                        np.add(oi.imag, term, out=oi.imag)
-                np.multiply(w2, inertia[i], out=di.real)  # k_g - w^2 J + i (w c_g + h_g)
-                np.subtract(kg[i], di.real, out=di.real)
-                np.multiply(w, cg[i], out=di.imag)
-                if hysteretic:
-                    np.multiply(factor, hg[i], out=term)
-                    np.add(di.imag, term, out=di.imag)
-                if i < n - 1:
-                    np.add(di, off[i], out=di)
-                x[i] = rhs[:, i, :].T
+                if i % chunk == 0:  # the next rows, built while the elimination reaches them
+                    self._rows(i, min(n, i + chunk), w, w2, factor, rhs, count)
                 if i == 0:
                     continue
-                prev = off[i - 1]
-                np.add(di, prev, out=di)
+                prev, di = off[i - 1], d[i]
                 np.divide(prev, d[i - 1], out=mult)
                 np.maximum(high, parts, out=high)
                 np.minimum(low, parts, out=low)
@@ -709,14 +704,51 @@ class _ChainBlocks:
                 np.add(x[i], tmp_b, out=x[i])
                 np.divide(x[i], d[i], out=x[i])
                 if i % _TILE == 0:  # rows i..top-1 solved, still in cache
-                    out[:, i:top] = np.moveaxis(x[i:top], 2, 0)
+                    out[:, i:top] = x[i:top].transpose(2, 0, 1)
                     top = i
             if top > 0:  # n == 1
-                out[:, :top] = np.moveaxis(x[:top], 2, 0)
+                out[:, :top] = x[:top].transpose(2, 0, 1)
         if flagged.size:  # rare: part of the chain at its resonance
             off_k, diag_k = self.system._diagonals_of(w[flagged], self.hysteretic_frequency)
             lower = -off_k.T
             out[flagged] = solve_tridiagonal(lower, diag_k.T, lower, rhs[flagged])
+
+    def _rows(
+        self,
+        a: int,
+        b: int,
+        w: NDArray[np.float64],
+        w2: NDArray[np.float64],
+        factor: NDArray[np.float64],
+        rhs: np.ndarray,
+        count: int,
+    ) -> None:
+        """Rows a..b-1 of the block's ``off`` (the links a..min(b, n-1)-1: k + i (w c + h
+        factor)), ``diag`` (k_g - w^2 J + i (w c_g + h_g factor) + off[i] + off[i-1]) and
+        right-hand sides ``x``: the operations of :meth:`LinearSystem._diagonals_of` in the
+        same order on every element (the same numbers), a few numpy calls for the rows
+        together (class docstring)."""
+        kb, cb, hb, kg, cg, hg, inertia = self.arrays
+        col = np.newaxis
+        e = min(b, self.n - 1)
+        off, rows = self.off[a:e, :count], self.diag[a:b, :count]
+        term = self.term[: b - a, :count]
+        off.real = kb[a:e, col]
+        np.multiply(w, cb[a:e, col], out=off.imag)
+        np.multiply(w2, inertia[a:b, col], out=rows.real)
+        np.subtract(kg[a:b, col], rows.real, out=rows.real)
+        np.multiply(w, cg[a:b, col], out=rows.imag)
+        if self.hysteretic:
+            np.multiply(factor, hb[a:e, col], out=term[: e - a])
+            np.add(off.imag, term[: e - a], out=off.imag)
+            np.multiply(factor, hg[a:b, col], out=term)
+            np.add(rows.imag, term, out=rows.imag)
+        np.add(rows[: e - a], off, out=rows[: e - a])
+        lo = max(a, 1)
+        np.add(
+            self.diag[lo:b, :count], self.off[lo - 1 : b - 1, :count], out=self.diag[lo:b, :count]
+        )
+        np.copyto(self.x[a:b, :, :count], rhs[:, a:b, :].transpose(1, 2, 0))
 
     def _flagged(
         self,
