@@ -75,3 +75,24 @@ def test_long_chain_poles_from_the_tridiagonal_form(frozen):
     assert np.allclose(mine.real, dense.real, rtol=1e-9, atol=0)
     assert np.allclose(mine.imag, dense.imag, rtol=1e-7, atol=1e-9 * top)
     assert math.isfinite(float(np.max(mine.real)))
+
+
+def test_long_chain_blocks_split_evenly_match_the_dense_solve(monkeypatch):
+    """A long chain's frequencies in several blocks (the buffer cap forced low here), its rows
+    built a few at a time: every system the dense solve's to 1e-9 (exact and frozen loss
+    factors, two right-hand sides)."""
+    import crankdyn.torsion.solvers as solvers
+
+    monkeypatch.setattr(solvers, "_BLOCK_ELEMENTS", 1)
+    monkeypatch.setattr(solvers, "_MIN_BLOCK", 7)
+    model = _chain(120, seed=9, grounded=True)
+    system = linear_system(model)
+    w = np.linspace(5.0, 3000.0, 25)[:, None] * np.array([1.0, 2.5])  # 25 x 2: 9 blocks of 3 speeds
+    f = np.zeros((*w.shape, 120, 2), dtype=complex)
+    f[..., :6, 0] = np.exp(2j * np.arange(6))
+    f[..., -1, 1] = 1.0
+    for frozen in (None, 400.0):
+        x = steady_state(model, w, f, hysteretic_frequency=frozen)
+        ref = np.linalg.solve(system.matrix(w, frozen), f)
+        dev = np.max(np.abs(x - ref), axis=-2) / np.max(np.abs(ref), axis=-2)
+        assert dev.max() < 1e-9
