@@ -357,3 +357,19 @@ def test_plain_entries_refused_with_the_table_readers_message(old, new, message)
     with pytest.raises(InputError, match=message) as info:
         parse_torsion_model(tomllib.loads(text), file="p.toml")
     assert "p.toml" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "key"),
+    [
+        ("inertia = 0.5", "inertia = 5e8", "inertia"),
+        ("stiffness = 2.5e6", "stiffness = 0.5", "stiffness"),
+        ("loss_factor = 0.02", "loss_factor = 0.9", "loss_factor"),
+    ],
+)
+def test_plain_entries_keep_the_table_readers_plausibility_warnings(old, new, key):
+    """An implausible bare number in a plain entry goes through the Table reader: the model
+    carries its warning, as for the same entry with any other key."""
+    assert not parse_torsion_model(tomllib.loads(PLAIN), file="p.toml").input_warnings
+    model = parse_torsion_model(tomllib.loads(PLAIN.replace(old, new, 1)), file="p.toml")
+    assert len(model.input_warnings) == 1 and key in model.input_warnings[0].message

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import load_toml
+from crankdyn.io.plausibility import role_of, section_of
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.io.units import check_si_range
 from crankdyn.torsion.coupling import Coupling
@@ -210,7 +211,7 @@ def parse_torsion_section(
 def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> TorsionModel:
     name = t.string("name", default_name)
     mass_tables = t.tables("mass")
-    masses = [_plain_mass(mt.data) or _mass(mt) for mt in mass_tables]
+    masses = [_plain_mass(mt) or _mass(mt) for mt in mass_tables]
     throws_table = t.table("throws")
     if throws_table is not None and engine is None:
         raise t.error(
@@ -248,7 +249,7 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
 
     shafts = []
     for st in t.tables("shaft"):
-        shaft = _plain_shaft(st.data) or _shaft(st)
+        shaft = _plain_shaft(st) or _shaft(st)
         _check_ends(st, shaft.between, known, names)
         shafts.append(shaft)
     gears = []
@@ -448,35 +449,49 @@ def _check_firing_count(t: Table, tables: Sequence[Table], masses: Sequence[Mass
 # A long model (a subdivided shaft line, a detailed crank model) is thousands of entries like
 # {name = "m12", inertia = 0.5} and {between = ["m12", "m13"], stiffness = 2.1e6}: numbers in
 # SI. Such an entry is read directly, with the checks the Table reader makes (a plain number,
-# finite, in the SI range, of the right sign); any other entry, and any entry the checks or the
-# element refuse, goes through the Table reader (_mass, _shaft), which reads it the same way
-# or names the file, the entry and the key in its error.
+# finite, in the SI range, of the right sign, plausible for its role); any other entry, and any
+# entry the checks or the element refuse, goes through the Table reader (_mass, _shaft), which
+# reads it the same way, records its plausibility warnings or names the file, the entry and the
+# key in its error.
 _PLAIN_MASS_KEYS = frozenset({"name", "inertia", "damping"})
 _PLAIN_SHAFT_KEYS = frozenset({"between", "stiffness", "damping", "loss_factor"})
+_KINDS = {
+    "inertia": "inertia",
+    "stiffness": "torsional_stiffness",
+    "damping": "torsional_damping",
+    "loss_factor": "ratio",
+}
+"""The kind of each plain key, as the Table reader reads it (``loss_factor`` a plain number)."""
 
 
-def _plain(value: Any, positive: bool) -> float | None:
-    """A plain number as the Table reader takes it (:meth:`Table.quantity` of a bare SI
-    number, :meth:`Table.number`): not a bool, finite, 0 or in the SI range, > 0 when
-    ``positive`` else >= 0; None otherwise (the Table reader then reads, or refuses, it)."""
+def _plain(t: Table, key: str, positive: bool) -> float | None:
+    """The value of ``key`` in ``t`` as the Table reader takes a bare number
+    (:meth:`Table.quantity` of an SI number, :meth:`Table.number`): not a bool, finite, 0 or
+    in the SI range, > 0 when ``positive`` else >= 0, plausible for its role
+    (:func:`crankdyn.io.plausibility.role_of`); 0.0 when absent (the readers' default); None
+    otherwise (the Table reader then reads it, warns or refuses)."""
+    if key not in t.data:
+        return 0.0
+    value = t.data[key]
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         return None
     number = float(value)
     if not math.isfinite(number) or not check_si_range(number):
         return None
-    if number > 0.0 or (number == 0.0 and not positive):
-        return number
-    return None
+    if not (number > 0.0 or (number == 0.0 and not positive)):
+        return None
+    role = role_of(_KINDS[key], key, section_of(t.name))
+    return number if role is None or role.holds(number) else None
 
 
-def _plain_mass(data: dict[str, Any]) -> Mass | None:
+def _plain_mass(t: Table) -> Mass | None:
     """A ``[[mass]]`` entry of a name, a bare inertia and damping, read directly (above); None
     for any other, or one the checks or :class:`Mass` refuse."""
-    if not _PLAIN_MASS_KEYS.issuperset(data):
+    if not _PLAIN_MASS_KEYS.issuperset(t.data) or "inertia" not in t.data:
         return None
-    name = data.get("name")
-    inertia = _plain(data.get("inertia"), True)
-    damping = _plain(data.get("damping", 0.0), False)
+    name = t.data.get("name")
+    inertia = _plain(t, "inertia", True)
+    damping = _plain(t, "damping", False)
     if not isinstance(name, str) or inertia is None or damping is None:
         return None
     try:
@@ -485,15 +500,15 @@ def _plain_mass(data: dict[str, Any]) -> Mass | None:
         return None
 
 
-def _plain_shaft(data: dict[str, Any]) -> Shaft | None:
+def _plain_shaft(t: Table) -> Shaft | None:
     """A ``[[shaft]]`` entry of two ends, a bare stiffness, damping and loss factor, read
     directly (above); None for any other, or one the checks or :class:`Shaft` refuse."""
-    if not _PLAIN_SHAFT_KEYS.issuperset(data):
+    if not _PLAIN_SHAFT_KEYS.issuperset(t.data) or "stiffness" not in t.data:
         return None
-    between = data.get("between")
-    stiffness = _plain(data.get("stiffness"), True)
-    damping = _plain(data.get("damping", 0.0), False)
-    loss = _plain(data.get("loss_factor", 0.0), False)
+    between = t.data.get("between")
+    stiffness = _plain(t, "stiffness", True)
+    damping = _plain(t, "damping", False)
+    loss = _plain(t, "loss_factor", False)
     if (
         not isinstance(between, list)
         or len(between) != 2
