@@ -9,6 +9,7 @@ MODULES = (
     "chain_modes",
     "damped_modes",
     "forced_response",
+    "branched_response",
     "fourbar",
     "sixbar",
     "engine_cycle",
