@@ -21,6 +21,8 @@ from crankdyn.report.build import build_report
 from crankdyn.session import ANALYSES
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
 
+pytestmark = pytest.mark.slow  # long: started first (tests/conftest.py)
+
 COMMANDS = {  # the command that shows each analysis (the engine's name follows)
     "kinematics": ("kinematics",),
     "pressure": ("pressure",),
@@ -33,6 +35,9 @@ COMMANDS = {  # the command that shows each analysis (the engine's name follows)
     "response": ("torsion", "response"),
     "relative_angle": ("torsion", "response"),
     "judged": ("torsion", "response"),
+    "crankshaft": ("crankshaft",),
+    "crankshaft_modes": ("crankshaft", "modes"),
+    "crankshaft_response": ("crankshaft", "response"),
 }
 JSON_PART = {"relative_angle": "relative_angle", "judged": "judged"}  # where the JSON holds it
 

@@ -34,8 +34,10 @@ from crankdyn.cli.writer import (
 from crankdyn.constants import RPM
 from crankdyn.display import column_text, number
 from crankdyn.errors import InputError
+from crankdyn.measure.figures import largest_per_order_table
 from crankdyn.measure.orders import ANALYSES, WINDOWS, OrderSpectrum, OrderTracking
-from crankdyn.measure.signals import MIN_TEETH, PulseTrain
+from crankdyn.measure.records import PulseRecord
+from crankdyn.measure.signals import MIN_TEETH, PulseTrain, SpeedSignal
 
 if TYPE_CHECKING:
     from crankdyn.measure.compare import ModelComparison
@@ -124,7 +126,7 @@ def load_measurement(
     try:
         data = resolve_signal(signal, teeth)
         source = data.source
-        correction: str | PulseTrain | None = None
+        correction: str | PulseTrain | PulseRecord | None = None
         if tooth_correction not in (None, "none"):
             if tooth_correction == "self":
                 correction = "self"
@@ -132,7 +134,7 @@ def load_measurement(
                 source = tooth_correction
                 wheel = teeth or getattr(data, "teeth", None)
                 calibration = resolve_signal(tooth_correction, wheel)
-                if not isinstance(calibration, PulseTrain):
+                if not isinstance(calibration, (PulseTrain, PulseRecord)):
                     raise InputError(
                         "the calibration record must hold pulse times of the same wheel",
                         key="--tooth-correction",
@@ -150,7 +152,7 @@ def load_measurement(
             bin_width=bin_width,
             reference_angle=reference_angle,
             tooth_correction=correction,
-            resolution=teeth if not isinstance(data, PulseTrain) else None,
+            resolution=teeth if isinstance(data, SpeedSignal) else None,
         )
     except InputError as exc:
         raise _named(exc, source) from None
@@ -264,24 +266,10 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
     bins, the resonance fits, the damping identified, a summary."""
     cmp = cast("ModelComparison | None", result.comparison)
     n = result.speed * RPM
-    at = [int(np.argmax(result.amplitude[:, j])) for j in range(result.orders.size)]
-    columns: list[tuple[str, Sequence[Any]]] = [
-        ("Order", [f"{q:g}" for q in result.orders]),
-        ("Largest bin (mrad)", _mrad_values(result.amplitude[k, j] for j, k in enumerate(at))),
-        ("at (rpm)", [n[k] for k in at]),
-    ]
-    if cmp is not None:
-        columns.append(
-            (
-                "Model at that speed (mrad)",
-                _mrad_values(cmp.amplitude[k, j] for j, k in enumerate(at)),
-            )
-        )
-    orders = _table(
-        "Largest per order",
-        columns,
-        "speed bins; resolved resonance peaks below" if result.resonances else "",
-    )
+    tables: list[TextTable | str] = []
+    for table in largest_per_order_table(result):
+        header, rows = table.cells()
+        tables.append(TextTable(table.title, header, rows, table.text_columns(), table.caption))
     shown = np.sort(np.argsort(np.max(result.amplitude, axis=0))[::-1][:_SHOWN])
     columns = [
         ("Speed (rpm)", list(n)),
@@ -299,7 +287,7 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
         f"the {len(shown)} largest of {result.orders.size} orders; every order in "
         "--format csv or json",
     )
-    tables: list[TextTable | str] = [orders, bins]
+    tables.append(bins)
     fits = result.resonances
     columns = [
         ("Order", [f"{f.order:g}" for f in fits]),

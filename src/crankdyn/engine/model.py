@@ -31,8 +31,12 @@ from crankdyn.engine.firing import (
     even_firing_throw_angles,
     firing_angles,
 )
+from crankdyn.engine.force_model import ForceModel
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import TorsionModel
+
+if TYPE_CHECKING:
+    from crankdyn.plausibility import PlausibilityWarning
 
 FUELS = ("petrol", "diesel")
 """Engine types by ignition: spark-ignition (petrol, gas) and compression-ignition (diesel)."""
@@ -544,6 +548,13 @@ class Engine:
     crankshaft : crankdyn.crankshaft.geometry.Crankshaft or None
         Dimensions, material and type of the crankshaft for its fatigue check by IACS UR M53
         (:func:`crankdyn.crankshaft.strength.crankshaft_strength`), or None.
+    forces : crankdyn.engine.force_model.ForceModel or None
+        The optional forces on the crank train (gravity, piston friction; ``[forces]``), or
+        None: the gas and inertia forces alone.
+    input_warnings : tuple of crankdyn.plausibility.InputWarning
+        The values of the engine file that lie outside the plausible range of their role
+        (:mod:`crankdyn.io.plausibility`); every result of an analysis session on the engine
+        carries them, and its verdicts cannot read a clean "passed".
 
     Raises
     ------
@@ -583,6 +594,8 @@ class Engine:
     fuel: str | None = None
     aspiration: str | None = None
     crankshaft: Crankshaft | None = None
+    forces: ForceModel | None = None
+    input_warnings: tuple[PlausibilityWarning, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():

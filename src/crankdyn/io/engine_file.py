@@ -2,16 +2,19 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
 from typing import Any
 
 from crankdyn.crank.geometry import CrankGeometry
-from crankdyn.crank.masses import Masses
+from crankdyn.crank.masses import ROD_SPLITS, Masses, crank_unbalance_from_parts
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
+from crankdyn.crankshaft.beam_inputs import ADDITIONAL_STRESS_SOURCES, THEORIES, BeamInputs
 from crankdyn.crankshaft.geometry import (
     CONSTRUCTIONS,
     ENGINE_TYPES,
@@ -26,6 +29,7 @@ from crankdyn.crankshaft.geometry import (
     StressFactors,
 )
 from crankdyn.engine.firing import throw_angles_from_positions
+from crankdyn.engine.force_model import ForceModel
 from crankdyn.engine.model import (
     ASPIRATIONS,
     CYCLES,
@@ -40,7 +44,11 @@ from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import MISSING, Table
-from crankdyn.io.torsion_file import parse_torsion_section, read_torsion_model
+from crankdyn.io.torsion_file import (
+    parse_torsion_section,
+    read_torsion_model,
+    with_input_warnings,
+)
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.torsion.model import TorsionModel
 
@@ -126,10 +134,20 @@ def parse_engine(
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
-    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
+    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
+    beam = None
+    if crankshaft is not None:
+        beam = partial(_beam_stiffness, crankshaft, geometry.crank_radius, cylinders.pitch, file)
+    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses, beam)
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
-    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
+    forces = _forces(root.table("forces"))
+    if forces is not None and forces.active and masses is None:
+        raise root.error("forces", "gravity and piston friction act on the masses: give [masses]")
+    warnings = tuple(root.warnings)  # of every section, the shaft lines' among them
+    if warnings and torsion is not None:
+        with root.context():
+            torsion = dataclasses.replace(torsion, input_warnings=warnings)
     with root.context():
         engine = Engine(
             name=name,
@@ -147,6 +165,8 @@ def parse_engine(
             fuel=fuel,
             aspiration=aspiration,
             crankshaft=crankshaft,
+            forces=forces,
+            input_warnings=warnings,
         )
     root.finish()
     return engine
@@ -158,6 +178,7 @@ def _geometry(t: Table) -> CrankGeometry:
     radius = t.quantity(which, "length", check="positive") / (2.0 if which == "stroke" else 1.0)
     rod_key = t.exclusive("rod_length", "rod_ratio")
     offset = t.quantity("offset", "length", 0.0)
+    intake = t.quantity("intake_area", "area", None, check="positive")
     with t.context():
         if rod_key == "rod_ratio":
             ratio = t.number("rod_ratio", check="positive")
@@ -171,7 +192,9 @@ def _geometry(t: Table) -> CrankGeometry:
         else:
             rod = t.quantity("rod_length", "length", check="positive")
         try:
-            geometry = CrankGeometry(bore=bore, crank_radius=radius, rod_length=rod, offset=offset)
+            geometry = CrankGeometry(
+                bore=bore, crank_radius=radius, rod_length=rod, offset=offset, intake_area=intake
+            )
         except InputError as exc:
             if exc.key == "rod_length":  # report against the key the user wrote
                 raise t.error(rod_key, exc.message, t.data[rod_key]) from None
@@ -236,6 +259,17 @@ def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
         "rod_cg_from_big_end", "length", None, check="positive"
     )
     values["rod_inertia"] = t.quantity("rod_inertia", "inertia", None, check="positive")
+    values["rod_split"] = t.string("rod_split", "centre-of-gravity", choices=ROD_SPLITS)
+    parts = _crank_parts(t, geometry)
+    if parts is not None:
+        if values["crank_unbalance"] is not None:
+            raise t.error(
+                "crank_unbalance",
+                "give crank_unbalance or its parts (crank_pin, crank_web, crank_web_radius), "
+                "not both",
+                t.data["crank_unbalance"],
+            )
+        values["crank_unbalance"] = parts
     if values["crank_unbalance"] is None:
         values["crank_unbalance"] = 0.0
     with t.context():
@@ -248,6 +282,27 @@ def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
         raise
     t.finish()
     return masses
+
+
+def _crank_parts(t: Table, geometry: CrankGeometry) -> float | None:
+    """m_k from crank_pin, crank_web and crank_web_radius (seed 000 section 2.1), or None."""
+    pin = t.quantity("crank_pin", "mass", None, check="nonnegative")
+    web = t.quantity("crank_web", "mass", None, check="nonnegative")
+    rho = t.quantity("crank_web_radius", "length", None, check="positive")
+    given = {"crank_pin": pin, "crank_web": web, "crank_web_radius": rho}
+    if all(v is None for v in given.values()):
+        return None
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        present = next(k for k, v in given.items() if v is not None)
+        raise t.error(
+            present,
+            f"the crank's unbalance from its parts also needs {', '.join(missing)} "
+            "(m_k = m_z + 2 m_w rho / R)",
+            t.data[present],
+        )
+    assert pin is not None and web is not None and rho is not None
+    return crank_unbalance_from_parts(pin, web, rho, geometry.crank_radius)
 
 
 def _pressure(
@@ -336,18 +391,35 @@ _MODEL_KEYS = {
 """Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
 
 
+def _beam_stiffness(
+    crankshaft: Crankshaft, crank_radius: float, pitch: float | None, file: str | None
+) -> float:
+    """The crank span's torsional stiffness (N m/rad) from the beam model of the [crankshaft]
+    throw (:func:`crankdyn.crankshaft.beam_engine.beam_throw_stiffness`), built when asked."""
+    from crankdyn.crankshaft.beam_engine import beam_throw_stiffness
+
+    return beam_throw_stiffness(crankshaft, crank_radius, pitch, file)
+
+
 def _torsion(
     t: Table | None,
     name: str,
     geometry: CrankGeometry,
     cylinders: Cylinders,
     masses: Masses | None,
+    beam: Callable[[], float] | None = None,
 ) -> TorsionModel | None:
-    """The [torsion] section: the lumped torsional model (docs/torsion-file.md)."""
+    """The [torsion] section: the lumped torsional model (docs/torsion-file.md); ``beam``, the
+    crank span's stiffness from the [crankshaft] beam model (N m/rad), when there is one."""
     if t is None:
         return None
     return parse_torsion_section(
-        t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
+        t,
+        engine_name=name,
+        geometry=geometry,
+        cylinders=cylinders,
+        masses=masses,
+        beam_stiffness=beam,
     )
 
 
@@ -424,6 +496,21 @@ def _flywheel(t: Table | None) -> FlywheelInputs | None:
     return inputs
 
 
+def _forces(t: Table | None) -> ForceModel | None:
+    """[forces]: gravity and the piston's friction (crankdyn.engine.force_model)."""
+    if t is None:
+        return None
+    values = {
+        "gravity": t.boolean("gravity", False),
+        "ring_friction": t.quantity("ring_friction", "force", 0.0, check="nonnegative"),
+        "skirt_friction": t.number("skirt_friction", 0.0, check="nonnegative"),
+    }
+    with t.context():
+        model = ForceModel(**values)
+    t.finish()
+    return model
+
+
 _CRANKSHAFT_LENGTHS = (
     ("pin_diameter", "positive", MISSING),
     ("journal_diameter", "positive", MISSING),
@@ -481,8 +568,10 @@ def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
     engine_type = t.string("engine_type", "trunk-piston", choices=ENGINE_TYPES)
     construction = t.string("construction", "solid", choices=CONSTRUCTIONS)
     axial = t.quantity("axial_vibration_stress", "pressure", None, check="nonnegative")
+    source = t.string("additional_stress", None, choices=ADDITIONAL_STRESS_SOURCES)
     fit = _shrink_fit(t.table("shrink_fit"))
     factors = _stress_factors(t.table("factors"))
+    beam = _crankshaft_beam(t.table("beam"))
     with _as_written(t):
         geometry = CrankshaftGeometry(**lengths, oil_bore_angle=angle)
         if geometry.bearing_span is None and pitch is not None:
@@ -495,9 +584,50 @@ def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
             shrink_fit=fit,
             factors=factors,
             axial_vibration_stress=axial,
+            beam=beam,
+            additional_stress=source,
         )
     t.finish()
     return crankshaft
+
+
+def _crankshaft_beam(t: Table | None) -> BeamInputs | None:
+    """[crankshaft.beam]: the beam model's own inputs (docs/engine-file.md), every key
+    optional."""
+    if t is None:
+        return None
+    values: dict[str, Any] = {
+        "poisson_ratio": t.number("poisson_ratio", 0.3, check="nonnegative", maximum=0.4999),
+        "density": t.quantity("density", "density", 7850.0, check="positive"),
+        "bearing_radial_stiffness": t.quantity(
+            "bearing_radial_stiffness", "stiffness", None, check="nonnegative"
+        ),
+        "bearing_tilting_stiffness": t.quantity(
+            "bearing_tilting_stiffness", "torsional_stiffness", 0.0, check="nonnegative"
+        ),
+        "thrust_axial_stiffness": t.quantity(
+            "thrust_axial_stiffness", "stiffness", None, check="nonnegative"
+        ),
+        "thrust_journal": t.integer("thrust_journal", None, minimum=1),
+        "counterweight_mass": t.quantity("counterweight_mass", "mass", 0.0, check="nonnegative"),
+        "counterweight_radius": t.quantity(
+            "counterweight_radius", "length", None, check="nonnegative"
+        ),
+        "free_end_mass": t.quantity("free_end_mass", "mass", None, check="nonnegative"),
+        "flywheel_mass": t.quantity("flywheel_mass", "mass", None, check="nonnegative"),
+        "free_end_distance": t.quantity("free_end_distance", "length", None, check="nonnegative"),
+        "flywheel_distance": t.quantity("flywheel_distance", "length", None, check="nonnegative"),
+        "axial_damping": t.quantity("axial_damping", "damping", 0.0, check="nonnegative"),
+        "elements": t.integer("elements", 2, minimum=1, maximum=64),
+        "theory": t.string("theory", "timoshenko", choices=THEORIES),
+        "web_rigid_fraction": t.number("web_rigid_fraction", 0.0, check="nonnegative"),
+        "modes": t.integer("modes", 24, minimum=1, maximum=500),
+        "damping_ratio": t.number("damping_ratio", 0.02, check="nonnegative", maximum=1.0),
+    }
+    with _as_written(t):
+        beam = BeamInputs(**values)
+    t.finish()
+    return beam
 
 
 def _shrink_fit(t: Table | None) -> ShrinkFit | None:
@@ -581,7 +711,7 @@ def parse_model_file(
     model = read_torsion_model(root, default_name=default_name)
     model = join_engines(root, model)
     root.finish()
-    return model
+    return with_input_warnings(model, root)
 
 
 def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
@@ -615,8 +745,6 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
     tables = t.tables("engine")
     if not tables:
         return line
-    import dataclasses
-
     from crankdyn.torsion.driveline import join, rename, strip_cylinders
     from crankdyn.torsion.excitation import EngineExcitation
     from crankdyn.torsion.sources import EngineSource
@@ -631,6 +759,7 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
         if not path.is_file():
             raise et.error("file", f"no such engine file (looked for {path})", et.data["file"])
         engine = load_engine(path)
+        t.warnings.extend(w for w in engine.input_warnings if w not in t.warnings)
         if engine.torsion is None:
             raise et.error("file", "the engine file has no [torsion] section", et.data["file"])
         if not engine.torsion.cylinder_dofs:
