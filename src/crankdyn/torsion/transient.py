@@ -300,9 +300,8 @@ def transient_response(
         ``"modal"`` (default: module docstring) or a ``solve_ivp`` method (``"DOP853"``,
         ``"RK45"``, ``"Radau"``, ...).
     rtol : float
-        The relative accuracy (dimensionless, 0 < rtol < 1; default 1e-8): of the modal
-        method's cubic hold at the highest excitation frequency, or ``solve_ivp``'s relative
-        tolerance.
+        The relative accuracy (dimensionless, 0 < rtol < 1; default 1e-8): the modal method's
+        cubic hold at the highest excitation frequency, or ``solve_ivp``'s rtol.
     atol : float or None
         ``solve_ivp``'s absolute tolerance (rad and rad/s; default 1e-12); the modal method
         has none.
@@ -329,9 +328,8 @@ def transient_response(
         Naming the key and value: neither or both of ``speed`` and ``run_up``, a speed that is
         not positive and finite, neither ``duration`` nor ``cycles`` at constant speed, a run-up
         without a duration, a duration that is not positive, a ``start`` other than ``rest``
-        or ``steady``, an unknown method, a relative tolerance outside (0, 1), an absolute
-        tolerance given to the modal method, a cut-off frequency that is not positive, or
-        orders the model cannot take (:func:`crankdyn.torsion.sources.check_model_orders`).
+        or ``steady``, an unknown method, rtol outside (0, 1), atol given to the modal method,
+        a cut-off that is not positive, or orders the model cannot take (``check_model_orders``).
 
     Examples
     --------
@@ -355,40 +353,23 @@ def transient_response(
     1.0
     """
     w0, w1, duration, cycle_angle = _run_speeds(excitation, speed, run_up, duration, cycles)
-    if start not in ("rest", "steady"):
-        raise InputError("expected rest or steady", key="start", value=start)
-    _check_method(method, rtol, atol, max_frequency)
+    _check_method(method, rtol, atol, max_frequency, start)
     orders = check_model_orders(model, excitation, orders)
     system = linear_system(model, model.dampers if dampers is None else dampers)
     if hysteretic_frequency is None:
-        from crankdyn.torsion.modal import natural_modes
-
-        modes = natural_modes(model)
-        elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
-        hysteretic_frequency = float(elastic[0]) if elastic.size else 1.0
+        hysteretic_frequency = _lowest_elastic(model)
     grid = np.array([w0]) if w0 == w1 else np.linspace(min(w0, w1), max(w0, w1), 201)
     # the cylinders' and the sources' harmonic torques, as in the forced response
     forcing, _notes = assemble_forcing(model, system, excitation, grid, orders)  # (G, Q, n)
     mean = 0.5 * (w0 + w1)
     count = max(math.ceil(duration * mean / cycle_angle * samples_per_cycle), 2)
     t = np.linspace(0.0, duration, count + 1)
-    extra: dict[str, float | int | None] = {}
+    extra: dict[str, float | int] = {}
     if method == "modal":
-        from crankdyn.torsion.modal_run import harmonic_run
-
-        run = harmonic_run(
+        theta, torque, extra = _modal(
             system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
-            count, cutoff=max_frequency, rtol=rtol,
+            count, max_frequency, rtol,
         )  # fmt: skip
-        theta = run.angles
-        change = _element_torques(system, run.change)
-        torque = _element_torques(system, theta)
-        top = float(np.max(np.abs(torque), initial=0.0))
-        extra = {
-            "modal_cutoff": run.cutoff,
-            "modes_integrated": run.modes,
-            "truncation_error": float(np.max(np.abs(change), initial=0.0)) / top if top else 0.0,
-        }
     else:
         t, theta = _integrate(
             system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
@@ -418,8 +399,12 @@ METHODS = ("modal", "DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
 """The integration methods: the modal one and ``scipy.integrate.solve_ivp``'s."""
 
 
-def _check_method(method: str, rtol: float, atol: float | None, cutoff: float | None) -> None:
+def _check_method(
+    method: str, rtol: float, atol: float | None, cutoff: float | None, start: str
+) -> None:
     """One-line errors for the integration settings (:func:`transient_response`)."""
+    if start not in ("rest", "steady"):
+        raise InputError("expected rest or steady", key="start", value=start)
     if method not in METHODS:
         raise InputError(
             f"unknown integration method{did_you_mean(method, METHODS)}",
@@ -444,6 +429,50 @@ def _check_method(method: str, rtol: float, atol: float | None, cutoff: float | 
             key="max_frequency",
             value=cutoff,
         )
+
+
+def _modal(
+    system: LinearSystem,
+    forcing: NDArray[np.complex128],
+    grid: NDArray[np.float64],
+    orders: NDArray[np.float64],
+    speeds: tuple[float, float],
+    duration: float,
+    hysteretic_frequency: float,
+    start: str,
+    count: int,
+    cutoff: float | None,
+    rtol: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], dict[str, float | int]]:
+    """The modal method's angles (T, n) (rad), element torques (T, E) (N m) and the result's
+    fields omega_c, modes integrated and the truncation error estimate
+    (:func:`crankdyn.torsion.modal_run.harmonic_run`; the estimate relative to the largest
+    element torque)."""
+    from crankdyn.torsion.modal_run import harmonic_run
+
+    run = harmonic_run(
+        system, forcing, grid, orders, speeds, duration, hysteretic_frequency, start, count,
+        cutoff=cutoff, rtol=rtol,
+    )  # fmt: skip
+    change = _element_torques(system, run.change)
+    torque = _element_torques(system, run.angles)
+    top = float(np.max(np.abs(torque), initial=0.0))
+    error = float(np.max(np.abs(change), initial=0.0)) / top if top else 0.0
+    return (
+        run.angles,
+        torque,
+        {"modal_cutoff": run.cutoff, "modes_integrated": run.modes, "truncation_error": error},
+    )
+
+
+def _lowest_elastic(model: TorsionModel) -> float:
+    """The lowest elastic natural frequency of ``model`` (rad/s), 1 rad/s when there is none
+    (the default omega_h of :func:`transient_response`)."""
+    from crankdyn.torsion.modal import natural_modes
+
+    modes = natural_modes(model)
+    elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
+    return float(elastic[0]) if elastic.size else 1.0
 
 
 def _element_torques(system: LinearSystem, theta: NDArray[np.float64]) -> NDArray[np.float64]:
