@@ -103,6 +103,23 @@ DEFAULTS: dict[str, Default] = {
             "IACS UR M68 Rev.3 (2021) M68.4 (barred speed ranges); LR Pt 5 Ch 8 3.4",
         ),
         Default(
+            "idle_band",
+            0.05,
+            "",
+            "the TVC's idle condition sweeps the idle speed +- this fraction (a governor's band "
+            "around the set speed; a [tvc.speed_ranges] idle overrides it)",
+            "crankdyn convention (an assumption: no rule text read states a band)",
+        ),
+        Default(
+            "event_mode_factor",
+            4.0,
+            "",
+            "the TVC's transient events resolve in time the natural modes up to this factor "
+            "times the highest excitation frequency (the highest order at the top speed; the "
+            "exact integrator carries every mode, the step only samples them)",
+            "crankdyn convention",
+        ),
+        Default(
             "max_speeds",
             100_000,
             "",

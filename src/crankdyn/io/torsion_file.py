@@ -8,6 +8,7 @@ See docs/torsion-file.md. A model file holds ``name`` and the arrays of tables `
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -262,14 +263,26 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
     model = read_response_sections(t, model, engine)
     # drivelines: shaft lines joined to an engine, engines joined to a line
     if engine is not None:
-        return _join_lines(t, model)
+        return _tvc_events(t, _join_lines(t, model))
     if t.has("input"):
         line_input = t.string("input")
         if line_input not in model.mass_names:
             raise t.error(
                 "input", f'no mass named "{line_input}"{did_you_mean(line_input, model.mass_names)}'
             )
-    return model
+    return _tvc_events(t, model)
+
+
+def _tvc_events(t: Table, model: TorsionModel) -> TorsionModel:
+    """The model with the ``[[tvc.event]]`` events of its ``[tvc]``, read with the whole model
+    (:func:`crankdyn.io.tvc_file.read_tvc_events`)."""
+    tt = t.table("tvc")
+    if tt is None or "event" not in tt.data or model.tvc is None:
+        return model
+    from crankdyn.io.tvc_file import read_tvc_events
+
+    events = read_tvc_events(tt, model)
+    return dataclasses.replace(model, tvc=dataclasses.replace(model.tvc, events=events))
 
 
 # ---- drivelines ---------------------------------------------------------------------------------

@@ -45,6 +45,8 @@ from crankdyn.defaults import speed_grid
 from crankdyn.errors import InputError
 from crankdyn.summary import Verdict
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
+from crankdyn.tvc.conditions import Condition
+from crankdyn.tvc.conditions import conditions as conditions_of
 from crankdyn.tvc.evaluate import evaluate_condition
 from crankdyn.tvc.passage import passages as passages_of
 from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult
@@ -63,9 +65,7 @@ if TYPE_CHECKING:
 
     Excitation: TypeAlias = EngineExcitation | UniformExcitation | SourceExcitation
     # one condition's (condition, verdicts, barred ranges, response)
-    Evaluated: TypeAlias = tuple[
-        "_Condition", list[Verdict], list[BarredSpeedRange], ResponseResult
-    ]
+    Evaluated: TypeAlias = tuple[Condition, list[Verdict], list[BarredSpeedRange], ResponseResult]
 
 __all__ = ["Check", "ResponseOf", "judge", "rated_speed", "tvc", "tvc_model"]
 
@@ -74,18 +74,6 @@ ResponseOf: TypeAlias = (
 )
 """``response_of(model, condition, speeds, orders)``: a condition's resolved forced response
 (the session passes its cached one)."""
-
-
-@dataclass(frozen=True, eq=False)
-class _Condition:
-    name: str
-    kind: str
-    excitation: Excitation
-    dampers: tuple[Damper, ...]
-    low: float
-    high: float
-    description: str
-    misfire: int | None = None
 
 
 def load_of(model: TorsionModel, spec: TvcSpec) -> str:
@@ -122,63 +110,9 @@ def with_load(model: TorsionModel, engine: Engine | None, load: str, rated: floa
     return model
 
 
-def _conditions(
-    model: TorsionModel,
-    engine: Engine | None,
-    spec: TvcSpec,
-    notes: list[str],
-    kinds: Sequence[str] = CONDITION_KINDS,
-) -> list[_Condition]:
-    from crankdyn.torsion.excitation import EngineExcitation, excitation_for
-
-    base = excitation_for(model, engine)
-    dampers = tuple(model.dampers)
-    low, high = spec.range_of("normal", model)
-    out = [_Condition("normal firing", "normal", base, dampers, low, high, "all cylinders firing")]
-    if "misfire" not in kinds:
-        pass
-    elif spec.misfire and isinstance(base, EngineExcitation):
-        try:
-            base.__class__(base.engine, base.spec, (1,))._motored_trace  # noqa: B018
-        except InputError as exc:
-            notes.append(f"misfire not calculated: {exc.message}")
-        else:
-            low, high = spec.range_of("misfire", model)
-            for c in range(1, base.cylinder_count + 1):
-                out.append(
-                    _Condition(
-                        f"misfire cylinder {c}",
-                        "misfire",
-                        excitation_for(model, engine, misfire=(c,)),
-                        dampers,
-                        low,
-                        high,
-                        f"cylinder {c} not firing (motored pressure), the others normal",
-                        misfire=c,
-                    )
-                )
-    elif spec.misfire:
-        notes.append("misfire not calculated: the excitation is not an engine's pressure")
-    if "damper-out" in kinds and spec.damper_out and dampers:
-        low, high = spec.range_of("damper-out", model)
-        names = ", ".join(d.name for d in dampers)
-        out.append(
-            _Condition(
-                "damper out of order",
-                "damper-out",
-                base,
-                (),
-                low,
-                high,
-                f"without the damper(s) {names} (a viscous damper's ring runs free)",
-            )
-        )
-    return out
-
-
 def _passage_cases(
     group: Sequence[Evaluated], barred: Sequence[BarredSpeedRange]
-) -> list[tuple[_Condition, list[BarredSpeedRange]]]:
+) -> list[tuple[Condition, list[BarredSpeedRange]]]:
     """(condition, permitted barred ranges) to pass in the time domain: a single condition's
     own; for the misfiring cylinders every united range once, with the cylinder whose own
     range there responds most."""
@@ -354,7 +288,7 @@ def judge(
 
 
 def _response(
-    model: TorsionModel, cond: _Condition, speeds: NDArray[np.float64], orders: NDArray[np.float64]
+    model: TorsionModel, cond: Condition, speeds: NDArray[np.float64], orders: NDArray[np.float64]
 ) -> ResponseResult:
     """A condition's resolved forced response (:func:`crankdyn.torsion.response.
     forced_response`)."""
@@ -371,8 +305,7 @@ def _grouped(results: Sequence[Evaluated]) -> list[list[Evaluated]]:
     groups = [[x] for x in kept]
     if misfires:
         groups.append(misfires)
-    order_of = {"normal": 0, "misfire": 1, "damper-out": 2}
-    groups.sort(key=lambda g: order_of[g[0][0].kind])
+    groups.sort(key=lambda g: CONDITION_KINDS.index(g[0][0].kind))
     return groups
 
 
@@ -392,8 +325,9 @@ def _group_rows(
             if row not in worst_of or v.margin < worst_of[row].margin:
                 worst_of[row] = v
     overall = min(group, key=lambda x: min((v.margin for v in x[1]), default=math.inf))
+    how = cond0.description.partition("(")[2].partition(")")[0] or "not firing"
     description = (
-        f"each of the {len(group)} cylinders not firing in turn (motored pressure); every "
+        f"each of the {len(group)} cylinders not firing in turn ({how}); every "
         "check reports its worst cylinder (named in its condition); the plots show "
         f"{overall[0].name}, the worst overall"
     )
@@ -419,8 +353,38 @@ class _Run:
     orders: NDArray[np.float64]
     rated: float
     load: str
-    checks: dict[tuple[Damper, ...], list[Check]]
+    checks: dict[tuple[int, tuple[Damper, ...]], list[Check]]
     notes: list[str]
+
+    def line(self, cond: Condition) -> TorsionModel:
+        """The line a condition runs on: its own (declutched, unloaded) or the installation."""
+        return cond.model if cond.model is not None else self.model
+
+    def orders_of(self, cond: Condition) -> NDArray[np.float64]:
+        """The orders of a condition: the calculation's, less those its own line has no
+        source for (a line without its propeller has no blade orders)."""
+        if cond.model is None:
+            return self.orders
+        from crankdyn.torsion.sources import check_model_orders
+
+        kept = []
+        for q in self.orders:  # a few dozen orders, once per condition
+            try:
+                check_model_orders(cond.model, cond.excitation, [q])
+            except InputError:
+                continue
+            kept.append(q)
+        return np.array(kept, dtype=float)
+
+    def checks_of(self, cond: Condition) -> list[Check]:
+        """The checks of a condition's line and dampers (made once per line and dampers)."""
+        key = (id(self.line(cond)), cond.dampers)
+        if key not in self.checks:
+            checks, notes = model_checks(self.line(cond), self.spec, self.rated, cond.dampers)
+            self.checks[key] = checks
+            if cond.kind == "normal":
+                self.notes.extend(notes)
+        return self.checks[key]
 
 
 def _condition_result(
@@ -429,14 +393,15 @@ def _condition_result(
     """One row group of the verdict table: its verdicts, barred ranges and, with ``passage``,
     the passages through them (and their verdicts)."""
     cond0 = group[0][0]
-    checks = run.checks[cond0.dampers]
+    checks = run.checks_of(cond0)
     name, description, verdicts, response, barred = _group_rows(group, run.notes)
     found: list[Passage] = []
     if passage:
-        mean = mean_torque_function(run.model)
+        line = run.line(cond0)
+        mean = mean_torque_function(line)
         for cond, bs in _passage_cases(group, barred):
             more, rows, pnotes = passages_of(
-                run.model, cond, run.orders, checks, bs, run.spec, run.rated, run.load, mean
+                line, cond, run.orders_of(cond), checks, bs, run.spec, run.rated, run.load, mean
             )
             found.extend(more)
             verdicts.extend(rows)
@@ -550,22 +515,18 @@ def tvc(
     engine = engine or getattr(model, "engine", None)
     notes: list[str] = []
     model, load, rated = tvc_model(model, engine, spec)
-    conds = _conditions(model, engine, spec, notes, conditions)
+    conds = conditions_of(model, engine, spec, rated, notes, conditions)
     base = conds[0].excitation
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes)
-    for cond in conds:
-        if cond.dampers not in run.checks:
-            checks, check_notes = model_checks(model, spec, rated, cond.dampers)
-            run.checks[cond.dampers] = checks
-            if cond.kind == "normal":
-                notes.extend(check_notes)
     respond = response_of or _response
     results = []
     for cond in conds:
-        r = respond(model, cond, speed_grid(cond.low, cond.high, spec.step), run.orders)
-        verdicts, barred = evaluate_condition(r, cond.name, run.checks[cond.dampers], spec, rated)
+        checks = run.checks_of(cond)
+        grid = speed_grid(cond.low, cond.high, spec.step)
+        r = respond(run.line(cond), cond, grid, run.orders_of(cond))
+        verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
         results.append((cond, verdicts, barred, r))
     condition_results, verdicts_all, passages_all = [], [], []
     for group in _grouped(results):
