@@ -476,6 +476,8 @@ _COUPLING_KEYS = (
     "nominal_torque",
     "maximum_torque",
     "vibratory_torque",
+    "maximum_torque_1",
+    "maximum_torque_2",
     "power_loss",
     "designation",
 )
@@ -615,7 +617,13 @@ def _coupling(t: Table) -> Coupling:
     zeta = t.number("damping_ratio", None, check="positive")
     values = {
         key: t.quantity(key, "torque", None, check="positive")
-        for key in ("nominal_torque", "maximum_torque", "vibratory_torque")
+        for key in (
+            "nominal_torque",
+            "maximum_torque",
+            "vibratory_torque",
+            "maximum_torque_1",
+            "maximum_torque_2",
+        )
     }
     reference = t.quantity("reference_torque", "torque", None, check="nonnegative")
     power = t.quantity("power_loss", "power", None, check="positive")

@@ -22,7 +22,7 @@ event_response` integrates the line's response (:mod:`crankdyn.torsion.integrato
 Every event has a ``severity``: ``"normal"`` for the transient conditions of service (a start,
 a stop, a clutch engagement, ice impacts) and ``"exceptional"`` for the rare ones (a short
 circuit, an emergency stop): a coupling maker's catalogue gives T_Kmax1 for the first and
-T_Kmax2 for the second (:mod:`crankdyn.torsion.event_checks`).
+T_Kmax2 for the second (the TVC's checks, :mod:`crankdyn.tvc.checks`).
 """
 
 from __future__ import annotations

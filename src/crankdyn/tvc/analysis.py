@@ -430,6 +430,7 @@ def tvc(
     orders: ArrayLike | None = None,
     conditions: Sequence[str] = CONDITION_KINDS,
     response_of: ResponseOf | None = None,
+    events: bool = True,
 ) -> TvcResult:
     """The torsional vibration calculation of an installation (module docstring).
 
@@ -461,6 +462,9 @@ def tvc(
         ``response_of(model, condition, speeds, orders)`` -> the condition's resolved forced
         response; default :func:`crankdyn.torsion.sweep.forced_response` (the analysis
         session passes its own, cached).
+    events : bool
+        Whether to run the transient events of the settings (``[[tvc.event]]``,
+        :mod:`crankdyn.tvc.events`; default True).
 
     Returns
     -------
@@ -534,6 +538,14 @@ def tvc(
         condition_results.append(result)
         passages_all.extend(found)
         verdicts_all.extend(verdicts)
+    found_events = []
+    if events and spec.events:
+        from crankdyn.tvc.events import event_conditions
+
+        found_events = event_conditions(
+            model, spec, rated, base, run.orders, run.checks_of(conds[0])
+        )
+        verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)
     try:
@@ -555,6 +567,7 @@ def tvc(
         notes=tuple(notes),
         tachometer_tolerance=spec.tachometer_tolerance,
         widening=spec.widening,
+        events=tuple(found_events),
         model=model,
         engine=engine,
         modes=natural_modes(model),
