@@ -3,18 +3,22 @@
 For an installation (a torsional model with its engine, couplings, gears, dampers, propeller or
 generator) the calculation runs every *running condition* over its speed range, each a resolved
 forced response (:func:`crankdyn.torsion.sweep.forced_response`: every resonance peak refined
-to 0.1 %):
+to 0.1 %; the conditions: :mod:`crankdyn.tvc.conditions`):
 
 - normal firing;
 - each single cylinder misfiring (no ignition: the motored pressure,
-  :class:`crankdyn.torsion.excitation.EngineExcitation`), the worst cylinder reported for every
+  :class:`crankdyn.torsion.excitation.EngineExcitation`, or the misfire coefficients of the
+  engine builder's table of a model without an engine), the worst cylinder reported for every
   check;
 - the damper out of order, where the model has one (the damper left out: a viscous damper
   whose fluid is lost leaves its ring free, which no longer acts on the line);
+- overspeed, normal firing to the rule's top speed (1.05 n_0 in IACS UR M68.4);
+- declutched and idle running, where a clutch is modelled;
 
 under the installation's load law: the propeller law (the gas load following the model's load
 curve, the propeller's mean torque ~ n^2) or constant speed (a generating set: full load at
-every speed of its range).
+every speed of its range); and every transient event of the settings (``[[tvc.event]]``:
+:mod:`crankdyn.tvc.events`).
 
 Every component with a limit is checked against it (the table of check kinds of
 :mod:`crankdyn.tvc.checks`; the limits and their sources: :mod:`crankdyn.tvc.limits`,
@@ -26,8 +30,9 @@ above the mean transmitted torque reverses the tooth load), generators against t
 vibratory torque, angular acceleration and amplitude, and dampers against the maker's heat load.
 
 Barred speed ranges and the verdict rows of each condition: :mod:`crankdyn.tvc.evaluate` (the
-one place a check is evaluated; ``crankdyn torsion response`` uses it too). The passage through
-the barred ranges in the time domain: :mod:`crankdyn.tvc.passage`.
+one place a check is evaluated; ``crankdyn torsion response`` uses it too, and the events'
+rows come from it). The passage through the barred ranges in the time domain:
+:mod:`crankdyn.tvc.passage`.
 """
 
 from __future__ import annotations
