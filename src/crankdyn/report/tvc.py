@@ -234,9 +234,7 @@ def _passage_section(result: TvcResult) -> Section:
                     f"passage-{k + 1}",
                     f"Passage {number(p.start * RPM, 5)}-{number(p.end * RPM, 5)} rpm "
                     f"({p.condition})",
-                    p.transient.plot(
-                        shaft=p.transient.shafts[p.elements[0]] if p.elements else None
-                    ),
+                    p.transient.plot(),
                     "Run-up through the barred range in the time domain.",
                 )
             )

@@ -370,8 +370,8 @@ class TorsionAnalyses(SessionCore):
         every running condition (normal, each misfire, damper out of order, overspeed,
         declutched and idle where a clutch is modelled) and every transient event of its
         ``[tvc]`` against every component's limit, the barred speed ranges and their passage,
-        with the session's orders; each condition's response is the session's own where its speeds are the
-        session's (:meth:`response`), so its verdicts are :meth:`judged`'s.
+        with the session's orders; each condition's response is the session's own where its
+        speeds are the session's (:meth:`response`), so its verdicts are :meth:`judged`'s.
 
         Parameters
         ----------

@@ -308,6 +308,15 @@ class EventResult(Result):
         """
         return time_above(self.time, np.abs(self.torque[:, e]), level)
 
+    @property
+    def shaft_torque(self) -> NDArray[np.float64]:
+        """(time, element) the vibratory torque of every element at the kept samples (N m):
+        the model's shafts first, in their order (the reading of the TVC's passage checks, as
+        :attr:`crankdyn.torsion.transient.TransientResult.shaft_torque`)."""
+        if self.vibratory_torque is None:
+            raise ValueError("this run kept no vibratory torques")
+        return np.asarray(self.vibratory_torque)
+
     def samples(self, e: int, *, vibratory: bool = False) -> NDArray[np.float64]:
         """Element e's |torque| (or |vibratory torque|) at the kept samples (N m).
 

@@ -1,14 +1,19 @@
 """The passage through barred speed ranges in the time domain (analysis).
 
-A time-domain run-up (:func:`crankdyn.torsion.transient.transient_response`, starting in the
-steady state of its first speed) from :data:`LEAD_IN` below to :data:`RUN_OUT` above the declared
-range at the acceleration the engine's torque leaves over the load, J_total dOmega/dt =
-T_engine - T_load(Omega) (Newton's second law of the whole line, reflected to the reference
-shaft): the time in the range is the integral of J dOmega / (T_engine - T_load) over it
-(trapezoidal rule, 400 points), the run is linear in time with the same duration (the
-acceleration torque varies little across a barred range); the largest transient stress
-(torque) of every component during the run is checked against its transient limit (tau_T,
-T_Kmax) by the component's own check (:mod:`crankdyn.tvc.checks`).
+A time-domain run-up (:func:`crankdyn.torsion.event_run.event_response`, the exact integrator
+of the transient events, starting in the steady state of its first speed; the speed a ramp,
+:class:`crankdyn.torsion.events.SpeedChange`) from :data:`LEAD_IN` below to :data:`RUN_OUT`
+above the declared range at the acceleration the engine's torque leaves over the load,
+J_total dOmega/dt = T_engine - T_load(Omega) (Newton's second law of the whole line,
+reflected to the reference shaft): the time in the range is the integral of
+J dOmega / (T_engine - T_load) over it (trapezoidal rule, 400 points), the run is linear in
+time with the same duration (the acceleration torque varies little across a barred range);
+the largest transient stress (torque) of every component during the run, its vibratory part
+(less the quasi-static torque of the mean torques), is checked against its transient limit
+(tau_T, T_Kmax less the mean torque) by the component's own check
+(:mod:`crankdyn.tvc.checks`). The run resolves the modes up to
+:data:`crankdyn.tvc.events.EVENT_MODE_FACTOR` times the highest order's frequency at its top
+speed.
 
 The engine's torque (:func:`engine_torque`) is its torque-speed curve (``[tvc]
 engine_torque_curve``: the torque limit of the engine builder's load diagram), else a given
@@ -32,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.tvc.evaluate import merge_intervals
+from crankdyn.tvc.events import EVENT_MODE_FACTOR
 from crankdyn.tvc.result import BarredSpeedRange, Passage
 
 if TYPE_CHECKING:
@@ -179,8 +185,9 @@ def passages(
     notes : list of str
         Why a passage was not calculated.
     """
+    from crankdyn.torsion.event_run import event_response
+    from crankdyn.torsion.events import SpeedChange
     from crankdyn.torsion.solvers import linear_system
-    from crankdyn.torsion.transient import transient_response
 
     passages: list[Passage] = []
     verdicts: list[Verdict] = []
@@ -211,15 +218,17 @@ def passages(
         w0, w1 = a * (1.0 - LEAD_IN), b * (1.0 + RUN_OUT)
         ww = np.linspace(w0, w1, 801)
         duration = float(np.trapezoid(inertia / np.maximum(engine_at(ww) - load_at(ww), 1e-9), ww))
-        run = transient_response(
+        ramp = SpeedChange(
+            "ramp", w0, w1, ramp_time=duration, load=passage_load == "law", name=f"pass {label}"
+        )
+        run = event_response(
             model,
-            cond.excitation,
-            orders,
-            run_up=(w0, w1),
+            ramp,
             duration=duration,
+            excitation=cond.excitation,
+            orders=orders,
             dampers=cond.dampers,
-            samples_per_cycle=360,
-            start="steady",
+            max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
         )
         passages.append(
             Passage(

@@ -22,7 +22,6 @@ if TYPE_CHECKING:
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
-    from crankdyn.torsion.transient import TransientResult
     from crankdyn.tvc.checks import Check
     from crankdyn.tvc.spec import TvcSpec
 
@@ -116,9 +115,9 @@ class Passage(Result):
 
     Parameters
     ----------
-    transient : TransientResult or None
-        The time-domain run (:func:`crankdyn.torsion.transient.transient_response`; not
-        exported).
+    transient : EventResult or None
+        The time-domain run (:func:`crankdyn.torsion.event_run.event_response`, a speed ramp;
+        not exported).
     elements : tuple of int
         The model's shaft indices of the component whose barred range this is (for plots).
     """
@@ -134,7 +133,7 @@ class Passage(Result):
     run_to: float = scalar("run_to_rpm", "Run to", "rpm", RPM)
     duration: float = scalar("duration_s", "Duration of the run", "s")
     note: str = scalar("note", "How", "")
-    transient: TransientResult | None = field(default=None, repr=False, compare=False)
+    transient: EventResult | None = field(default=None, repr=False, compare=False)
     elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
 
 
