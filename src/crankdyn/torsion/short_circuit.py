@@ -57,8 +57,9 @@ unidirectional torque of the armature resistance's losses (small: the resistance
 and, in the three-phase fault, the second harmonic of subtransient saliency (X''_q differing
 from X''_d: taken equal here); the two-phase fault's decays are taken as the three-phase ones
 (its negative-sequence reactance X_2 = X''_d). The formulas below are checked against their
-own derivation worked by hand (tests/validation/test_events_rule_formulas.py), not against a
-standard.
+own derivation worked by hand (tests/validation/test_events_rule_formulas.py) and against the
+phase power of the currents integrated numerically from the circuit equation v = L di/dt
+(tests/validation/test_short_circuit_phase_power.py), not against a standard.
 
 T_b = S_r / Omega_m = T_r / cos(phi_r) is the torque base (rated apparent power over the
 mechanical synchronous speed: the rated torque over the rated power factor) and E the internal
