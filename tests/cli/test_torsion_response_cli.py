@@ -292,3 +292,30 @@ def test_misfire_without_compression_ratio_is_one_line(tmp_path, capsys):
     )
     err = capsys.readouterr().err.strip().splitlines()
     assert status == 2 and len(err) == 1 and "compression ratio" in err[0]
+
+
+
+def test_transient_table_from_the_result(capsys):
+    """The terminal's shaft-torque table is the result's summary table; its half ranges over
+    the last cycle and largest |T| agree with the exported arrays (JSON)."""
+    import json
+
+    import numpy as np
+
+    from crankdyn.display import column_text
+
+    args = ["torsion", "transient", "seed003-v6", "--speed", "1500", "--cycles", "3"]
+    args += ["--orders", "3,6"]
+    status, text, _ = run(capsys, *args)
+    assert status == 0 and "last cycle" in text and "Half range" in text
+    status, json_text, _ = run(capsys, *args, "--format", "json")
+    data = json.loads(json_text)
+    angle = np.array(data["crank_angle_deg"])
+    torque = np.array(data["shaft_torque_Nm"])
+    last = angle >= angle[-1] - data["cycle_angle_deg"] * (1 - 1e-12)
+    half = 0.5 * (torque[last].max(axis=0) - torque[last].min(axis=0))
+    largest = np.abs(torque).max(axis=0)
+    flat = " ".join(text.split())
+    for values in (half, largest):
+        cells, _unit = column_text(list(values), "N·m")
+        assert all(cell in flat for cell in cells)

@@ -643,24 +643,9 @@ def transient_command(
     if ramp is None:
         session.speed  # noqa: B018  (no speed: the one-line error before the run)
     result = session.transient(run_up=ramp, duration=t_end, cycles=cycles)
-    cycle_angle = 4.0 * math.pi if session.cycle == "four-stroke" else 2.0 * math.pi
-    last = result.last_cycle(cycle_angle)
-    half = [
-        0.5 * (np.max(result.shaft_torque[last, s]) - np.min(result.shaft_torque[last, s]))
-        for s in range(len(result.shafts))
-    ]
-    largest = [np.max(np.abs(result.shaft_torque[:, s])) for s in range(len(result.shafts))]
-    half_t, half_unit = column_text(half, "N·m")
-    big_t, big_unit = column_text(largest, "N·m")
-    table = TextTable(
-        f"{result.model_name}: shaft torques, last cycle",
-        ["Shaft", f"Half range ({half_unit})", f"Largest |T| over the run ({big_unit})"],
-        [[f"{a} - {b}", half_t[s], big_t[s]] for s, (a, b) in enumerate(result.shafts)],
-        text_columns={0},
-        caption=f"{result.time.size} samples to {result.time[-1]:.4g} s; loss factors "
-        f"as viscous at {result.hysteretic_frequency / (2 * math.pi):.4g} Hz",
+    out.write(
+        blocks=summary_blocks(result, figures=False), json_data=result, csv_text=result.to_csv()
     )
-    out.write(blocks=[table], json_data=result, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(), plot_path, force)
     return 0
