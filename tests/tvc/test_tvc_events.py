@@ -94,7 +94,8 @@ def test_m68_shaft_against_tau_t_at_the_speed_ratio():
     at_half = 1.7 * (760.0 / 18.0) * 0.775294 * 2.5  # lambda = 0.5: the docstring's digits
     assert at_half == pytest.approx(139.122, abs=0.0005)
     assert row.worst == pytest.approx(150.0 / (math.pi * 0.05**3 / 16), rel=1e-6)
-    assert row.passed and row.source.startswith("IACS UR M68") and row.clause == "M68.4"
+    assert row.passed and row.source.startswith("IACS UR M68")
+    assert row.clause.startswith("τ_T: M68.4")  # the rule set's citation of tau_T
 
 
 MODEL = """

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -41,7 +42,11 @@ from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import MISSING, Table
-from crankdyn.io.torsion_file import parse_torsion_section, read_torsion_model
+from crankdyn.io.torsion_file import (
+    parse_torsion_section,
+    read_torsion_model,
+    with_input_warnings,
+)
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.torsion.model import TorsionModel
 
@@ -134,6 +139,10 @@ def parse_engine(
     forces = _forces(root.table("forces"))
     if forces is not None and forces.active and masses is None:
         raise root.error("forces", "gravity and piston friction act on the masses: give [masses]")
+    warnings = tuple(root.warnings)  # of every section, the shaft lines' among them
+    if warnings and torsion is not None:
+        with root.context():
+            torsion = dataclasses.replace(torsion, input_warnings=warnings)
     with root.context():
         engine = Engine(
             name=name,
@@ -152,6 +161,7 @@ def parse_engine(
             aspiration=aspiration,
             crankshaft=crankshaft,
             forces=forces,
+            input_warnings=warnings,
         )
     root.finish()
     return engine
@@ -636,7 +646,7 @@ def parse_model_file(
     model = read_torsion_model(root, default_name=default_name)
     model = join_engines(root, model)
     root.finish()
-    return model
+    return with_input_warnings(model, root)
 
 
 def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
@@ -670,8 +680,6 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
     tables = t.tables("engine")
     if not tables:
         return line
-    import dataclasses
-
     from crankdyn.torsion.driveline import join, rename, strip_cylinders
     from crankdyn.torsion.excitation import EngineExcitation
     from crankdyn.torsion.sources import EngineSource
@@ -686,6 +694,7 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
         if not path.is_file():
             raise et.error("file", f"no such engine file (looked for {path})", et.data["file"])
         engine = load_engine(path)
+        t.warnings.extend(w for w in engine.input_warnings if w not in t.warnings)
         if engine.torsion is None:
             raise et.error("file", "the engine file has no [torsion] section", et.data["file"])
         if not engine.torsion.cylinder_dofs:

@@ -19,6 +19,8 @@ from crankdyn.summary import Verdict, derived
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+    from crankdyn.plausibility import PlausibilityWarning
+
 __all__ = ["EventResult", "time_above"]
 
 HZ = 1.0 / (2.0 * math.pi)
@@ -86,6 +88,10 @@ class EventResult(Result):
     ----------
     vibratory_torque : numpy.ndarray or None
         (time, element) the vibratory torque at the kept samples (N m; not exported).
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
     """
 
     title = "Transient event"
@@ -133,6 +139,7 @@ class EventResult(Result):
     model_name: str = scalar("model", "Model", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
     vibratory_torque: np.ndarray | None = field(default=None, repr=False, compare=False)
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
         derived(

@@ -49,6 +49,7 @@ from crankdyn.torsion.topology import Structure, model_structure, reference_mass
 
 if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
+    from crankdyn.plausibility import PlausibilityWarning
     from crankdyn.torsion.campbell import OperatingRange
     from crankdyn.torsion.dampers import Damper
     from crankdyn.torsion.excitation_spec import ExcitationSpec
@@ -258,6 +259,10 @@ class TorsionModel:
     tvc : crankdyn.tvc.TvcSpec or None
         The settings of a torsional vibration calculation (:class:`crankdyn.tvc.TvcSpec`,
         ``[tvc]``), or None (the defaults).
+    input_warnings : tuple of crankdyn.plausibility.InputWarning
+        The values of the file(s) the model was read from that lie outside the plausible
+        range of their role (:mod:`crankdyn.io.plausibility`); every result of an analysis
+        session on the model carries them, and its verdicts cannot read a clean "passed".
 
     Raises
     ------
@@ -303,6 +308,7 @@ class TorsionModel:
     sources: tuple[HarmonicSource | EngineSource, ...] = ()
     engine: Engine | None = field(default=None, compare=False, repr=False)
     tvc: TvcSpec | None = field(default=None, compare=False, repr=False)
+    input_warnings: tuple[PlausibilityWarning, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "dampers", tuple(self.dampers))

@@ -21,13 +21,16 @@ every speed of its range); and every transient event of the settings (``[[tvc.ev
 :mod:`crankdyn.tvc.events`).
 
 Every component with a limit is checked against it (the table of check kinds of
-:mod:`crankdyn.tvc.checks`; the limits and their sources: :mod:`crankdyn.tvc.limits`,
-docs/tvc.md): propulsion shafts against IACS UR M68 (tau_C,
-tau_T, C_K, C_D, the cap on sigma_B), crank spans against the engine builder's permissible
-vibratory stress or torque, elastic couplings against T_KW, T_Kmax, T_KN and P_KV (DIN 740-2,
-the maker's catalogue), gear meshes against gear hammering (the vibratory torque at the mesh
-above the mean transmitted torque reverses the tooth load), generators against the maker's
-vibratory torque, angular acceleration and amplitude, and dampers against the maker's heat load.
+:mod:`crankdyn.tvc.checks`; the rule values and their clauses: the rule set selected by
+``[tvc] rules``, :mod:`crankdyn.tvc.rulesets`, docs/tvc.md): propulsion shafts against the
+society's tau_C and tau_T (the IACS UR M68.4 form; C_K, C_D, the society's cap on sigma_B),
+crank spans against the engine builder's permissible vibratory stress or torque (else the
+society's crankshaft limits where its text states them), a generating set's alternator shaft
+against the society's limit where stated, elastic couplings against T_KW, T_Kmax, T_KN and
+P_KV (DIN 740-2, the maker's catalogue), gear meshes against gear hammering (the vibratory
+torque at the mesh above the mean transmitted torque reverses the tooth load), generators
+against the maker's vibratory torque, angular acceleration and amplitude, and dampers against
+the maker's heat load.
 
 Barred speed ranges and the verdict rows of each condition: :mod:`crankdyn.tvc.evaluate` (the
 one place a check is evaluated; ``crankdyn torsion response`` uses it too, and the events'
@@ -53,6 +56,7 @@ from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
 from crankdyn.tvc.conditions import Condition
 from crankdyn.tvc.conditions import conditions as conditions_of
 from crankdyn.tvc.evaluate import evaluate_condition
+from crankdyn.tvc.installation import installation_verdicts, rule_notes
 from crankdyn.tvc.passage import passages as passages_of
 from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult
 from crankdyn.tvc.spec import CONDITION_KINDS, TvcSpec
@@ -255,7 +259,9 @@ def judge(
     """A forced response judged by the installation's checks: the verdict rows and the barred
     speed ranges (as found and as declared) of one condition, by the TVC's own evaluation
     (:func:`crankdyn.tvc.checks.model_checks`, :func:`crankdyn.tvc.evaluate.
-    evaluate_condition`).
+    evaluate_condition`); for normal firing with the rows of the installation as a whole
+    (:func:`crankdyn.tvc.installation.installation_verdicts`), as the TVC's normal-firing
+    condition has them.
 
     Parameters
     ----------
@@ -264,8 +270,8 @@ def judge(
     response : ResponseResult
         The condition's resolved forced response.
     spec : TvcSpec or None
-        The settings (tachometer tolerance, widening); None: the model's ``[tvc]`` or the
-        defaults.
+        The settings (the rule set, the tachometer tolerance); None: the model's ``[tvc]`` or
+        the defaults.
     engine : Engine or None
         The engine (for its rated speed where the model gives none).
     condition : str
@@ -287,9 +293,13 @@ def judge(
     """
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
     rated = rated_speed(model, engine)
+    load = load_of(model, spec)
     used = model.dampers if dampers is None else dampers
-    checks, _notes = model_checks(model, spec, rated, used)
-    return evaluate_condition(response, condition, checks, spec, rated)
+    checks, _notes = model_checks(model, spec, rated, used, engine=engine, load=load)
+    verdicts, barred = evaluate_condition(response, condition, checks, spec, rated)
+    if condition == "normal firing":
+        verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
+    return verdicts, barred
 
 
 def _response(
@@ -360,6 +370,7 @@ class _Run:
     load: str
     checks: dict[tuple[int, tuple[Damper, ...]], list[Check]]
     notes: list[str]
+    engine: Engine | None = None
 
     def line(self, cond: Condition) -> TorsionModel:
         """The line a condition runs on: its own (declutched, unloaded) or the installation."""
@@ -385,7 +396,14 @@ class _Run:
         """The checks of a condition's line and dampers (made once per line and dampers)."""
         key = (id(self.line(cond)), cond.dampers)
         if key not in self.checks:
-            checks, notes = model_checks(self.line(cond), self.spec, self.rated, cond.dampers)
+            checks, notes = model_checks(
+                self.line(cond),
+                self.spec,
+                self.rated,
+                cond.dampers,
+                engine=self.engine,
+                load=self.load,
+            )
             self.checks[key] = checks
             if cond.kind == "normal":
                 self.notes.extend(notes)
@@ -440,11 +458,14 @@ def tvc(
     """The torsional vibration calculation of an installation (module docstring).
 
     Every running condition's resolved forced response, checked component by component
-    against its limit: propulsion shafts against IACS UR M68.4 (tau_C, tau_T, barred ranges
-    only below 0.8 n_0), elastic couplings against the catalogue's T_KW, T_Kmax, T_KN and P_KV
-    (DIN 740-2), crank spans, gears, machines and dampers against their makers' limits; the
-    barred ranges widened by the chosen rule (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5,
-    or none) and the tachometer tolerance; the passage through them in the time domain.
+    against its limit, every rule value from the rule set of ``spec.rules`` with its clause:
+    propulsion shafts against tau_C and tau_T (the IACS UR M68.4 form, the society's caps on
+    sigma_B and C_K table; barred ranges only below 0.8 n_0), elastic couplings against the
+    catalogue's T_KW, T_Kmax, T_KN and P_KV (DIN 740-2), crank spans against the builder's or
+    the society's limits, gears, machines and dampers against their makers' limits; the
+    major criticals against the society's window (normal firing); the barred ranges widened by
+    the society's least range (KR 2025 Pt 5 Ch 4 206.1(1), or none) and the tachometer
+    tolerance; the passage through them in the time domain.
 
     Parameters
     ----------
@@ -504,7 +525,7 @@ def tvc(
     ...     operating=OperatingRange(100.0, 400.0, rated=400.0),
     ...     rules=RuleSet(None, (ShaftLimit(("crank", "propeller"), 600e6),)),
     ... )
-    >>> result = tvc(model, orders=[1.0, 2.0])
+    >>> result = tvc(model, spec=TvcSpec(overspeed=False), orders=[1.0, 2.0])
     >>> result.passed, [c.name for c in result.conditions]
     (True, ['normal firing'])
 
@@ -528,7 +549,7 @@ def tvc(
     base = conds[0].excitation
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
-    run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes)
+    run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
     respond = response_of or _response
     results = []
     for cond in conds:
@@ -536,6 +557,8 @@ def tvc(
         grid = speed_grid(cond.low, cond.high, spec.step)
         r = respond(run.line(cond), cond, grid, run.orders_of(cond))
         verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
+        if cond.kind == "normal":
+            verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
         results.append((cond, verdicts, barred, r))
     condition_results, verdicts_all, passages_all = [], [], []
     for group in _grouped(results):
@@ -560,6 +583,13 @@ def tvc(
         notes.append(f"Campbell diagram not drawn: {exc.message}")
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
+    notes += rule_notes(
+        spec,
+        rated=rated,
+        high=high,
+        misfire=any(c.kind == "misfire" for c in conds),
+        propeller=any(getattr(s, "kind", None) == "propeller" for s in model.sources),
+    )
     return TvcResult(
         model_name=model.name,
         rated_speed=rated,
@@ -570,8 +600,8 @@ def tvc(
         passages=tuple(passages_all),
         conditions=tuple(condition_results),
         notes=tuple(notes),
-        tachometer_tolerance=spec.tachometer_tolerance,
-        widening=spec.widening,
+        tachometer_tolerance=spec.tolerance,
+        rules=spec.rules,
         events=tuple(found_events),
         model=model,
         engine=engine,

@@ -120,9 +120,7 @@ def overspeed_ratio(spec: TvcSpec) -> tuple[float, str]:
     """
     if spec.overspeed_limit is not None:
         return spec.overspeed_limit, "[tvc] overspeed_limit"
-    from crankdyn.tvc.rulesets import get
-
-    rules = get(getattr(spec, "rules", None) or "iacs-m68")
+    rules = spec.ruleset
     return float(rules.overspeed.value), rules.overspeed.clause.cite()
 
 

@@ -273,6 +273,7 @@ def _cannot_pass(condition: str, label: str, spare: float, words: str) -> Verdic
         margin=-math.inf,
         passed=False,
         source="the engine's torque less the load law: the range cannot be passed",
+        clause="[tvc] engine_torque_curve, engine_torque or passage_torque, the load law",
         note=words,
         kind="acceleration torque",
     )
@@ -316,6 +317,7 @@ def _transient_verdicts(
                 margin=1.0 - float(ratio[k]),
                 passed=bool(ratio[k] <= 1.0),
                 source=check.transient_source,
+                clause=check.transient_clause,
                 speed=float(run.speed[inside][k]),
                 note=how,
                 kind="transient passage",
