@@ -52,6 +52,7 @@ DOMAIN = {
     "crankdyn.torsion.model",
     "crankdyn.torsion.topology",
     "crankdyn.crankshaft.geometry",
+    "crankdyn.crankshaft.beam_inputs",
 }
 """The domain objects and what every layer shares (errors, units, the result mixin)."""
 
@@ -82,6 +83,12 @@ ANALYSES = {
     "crankdyn.crankshaft.m53",
     "crankdyn.crankshaft.loads",
     "crankdyn.crankshaft.strength",
+    "crankdyn.crankshaft.span_torques",
+    "crankdyn.crankshaft.beam_engine",
+    "crankdyn.crankshaft.beam_model",
+    "crankdyn.crankshaft.beam_modes",
+    "crankdyn.crankshaft.beam_response",
+    "crankdyn.crankshaft.beam_stiffness",
 }
 
 

@@ -48,6 +48,7 @@ COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "study": ("study",),
     "measure": ("measure",),
     "tvc": ("tvc",),
+    "crankshaft": ("crankshaft",),
     "docs": ("docs",),
 }
 """The command modules (``crankdyn.cli.<module>``) and the top-level commands each registers;
@@ -65,6 +66,10 @@ COMMAND_SUMMARIES: dict[str, str] = {
         "The seeds' dimensionless tables: A = x/R, B = v/(Rω), C = a/(Rω²) vs crank angle."
     ),
     "demo": "The full report on the built-in inline-6 diesel (crankdyn analyze inline6-diesel).",
+    "crankshaft": (
+        "The crankshaft: its fatigue strength by IACS UR M53 and the coupled vibration of its "
+        "beam model."
+    ),
     "docs": (
         "Read the user documentation offline: without TOPIC, list the topics; with one, show its "
         "page in the terminal (paged when the output is a terminal)."

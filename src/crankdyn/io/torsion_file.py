@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -174,6 +174,7 @@ def parse_torsion_section(
     geometry: CrankGeometry,
     cylinders: Cylinders,
     masses: Masses | None,
+    beam_stiffness: Callable[[], float] | None = None,
 ) -> TorsionModel:
     """The engine file's [torsion] section (explicit masses, and/or [torsion.throws]).
 
@@ -189,6 +190,10 @@ def parse_torsion_section(
         The engine's cylinders (count, cycle, firing), for the excitation.
     masses
         The engine's reciprocating and rotating masses (kg), or None.
+    beam_stiffness
+        The crank span's torsional stiffness (N m/rad) from the beam model of the engine's
+        ``[crankshaft]`` (:func:`crankdyn.crankshaft.beam_engine.beam_throw_stiffness`), for
+        ``[torsion.throws] stiffness = "beam"``; None without a ``[crankshaft]``.
 
     Returns
     -------
@@ -201,12 +206,20 @@ def parse_torsion_section(
         As :func:`parse_torsion_model`, and for cylinders that do not exist or share a throw
         but not a mass; naming the file, the key and the value.
     """
-    model = _read(t, default_name=engine_name, engine=(geometry, cylinders, masses))
+    model = _read(
+        t, default_name=engine_name, engine=(geometry, cylinders, masses), beam=beam_stiffness
+    )
     t.finish()
     return model
 
 
-def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> TorsionModel:
+def _read(
+    t: Table,
+    *,
+    default_name: str,
+    engine: EngineParts | None,
+    beam: Callable[[], float] | None = None,
+) -> TorsionModel:
     name = t.string("name", default_name)
     mass_tables = t.tables("mass")
     masses = [_mass(mt) for mt in mass_tables]
@@ -228,7 +241,7 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
             raise throws_table.error(
                 None, "the crank throws need the engine's [masses] (reciprocating and rotating)"
             )
-        spec = _throws(throws_table)
+        spec = _throws(throws_table, beam)
         throw_names = [throw_name(i) for i in range(1, cylinders.throw_count + 1)]
 
     # names: unique, and known to the shafts and gears
@@ -712,7 +725,23 @@ def _gear(t: Table) -> Gear:
     return gear
 
 
-def _throws(t: Table) -> ThrowSpec:
+def _span_stiffness(t: Table, beam: Callable[[], float] | None) -> float | None:
+    """[torsion.throws] stiffness (N m/rad): a quantity, or "beam", the beam model's."""
+    value = t.data.get("stiffness")
+    if not (isinstance(value, str) and value.strip().lower() == "beam"):
+        return t.quantity("stiffness", "torsional_stiffness", None, check="positive")
+    t.string("stiffness")
+    if beam is None:
+        raise t.error(
+            "stiffness",
+            "\"beam\" takes the crank span's stiffness from the beam model of the engine file's "
+            "[crankshaft] section, which this file does not have",
+            value,
+        )
+    return beam()
+
+
+def _throws(t: Table, beam: Callable[[], float] | None = None) -> ThrowSpec:
     inertia = t.quantity("inertia", "inertia", check="nonnegative")
     model = t.string("model", "throw", choices=THROW_MODELS)
     parts = None
@@ -734,7 +763,7 @@ def _throws(t: Table) -> ThrowSpec:
         for key in _PART_KEYS:
             if t.has(key):
                 raise t.error(key, 'applies with model = "parts"', t.data[key])
-    stiffness = t.quantity("stiffness", "torsional_stiffness", None, check="positive")
+    stiffness = _span_stiffness(t, beam)
     given = [k for k in (*_CARTER_KEYS, "journal_bore", "pin_bore") if t.has(k)]
     geometry = None
     if stiffness is not None and given:

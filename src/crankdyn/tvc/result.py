@@ -596,6 +596,32 @@ class TvcResult(Result):
             ),
         )
 
+    def with_verdicts(self, rows: tuple[Verdict, ...], notes: tuple[str, ...] = ()) -> TvcResult:
+        """This calculation with further verdict rows made elsewhere (the crankshaft's check by
+        UR M53, :meth:`crankdyn.session.Analysis.tvc`): rendered with the others, never
+        recomputed here.
+
+        Parameters
+        ----------
+        rows : tuple of Verdict
+            The rows, appended.
+        notes : tuple of str
+            Notes, appended.
+
+        Returns
+        -------
+        TvcResult
+            A copy; passed only if it passed and every row added passes.
+        """
+        from dataclasses import replace
+
+        return replace(
+            self,
+            verdicts=(*self.verdicts, *rows),
+            passed=bool(self.passed and all(v.passed for v in rows)),
+            notes=(*self.notes, *notes),
+        )
+
     @property
     def rule_title(self) -> str:
         """The rule set's name (:data:`crankdyn.tvc.rulesets.RULESETS`), e.g. ``"Korean
