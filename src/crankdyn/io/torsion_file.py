@@ -17,7 +17,9 @@ from typing import TYPE_CHECKING, Any
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import load_toml
+from crankdyn.io.plausibility import role_of, section_of
 from crankdyn.io.schema import MISSING, Table
+from crankdyn.io.units import check_si_range
 from crankdyn.torsion.coupling import Coupling
 from crankdyn.torsion.elements import (
     GEAR_DIRECTIONS,
@@ -222,7 +224,7 @@ def _read(
 ) -> TorsionModel:
     name = t.string("name", default_name)
     mass_tables = t.tables("mass")
-    masses = [_mass(mt) for mt in mass_tables]
+    masses = [_plain_mass(mt) or _mass(mt) for mt in mass_tables]
     throws_table = t.table("throws")
     if throws_table is not None and engine is None:
         raise t.error(
@@ -252,6 +254,7 @@ def _read(
             raise mt.error("name", f"{what} has this name already", m.name)
         seen[m.name] = mt
     known = [*seen, *throw_names]
+    names = frozenset(known)
     if engine is not None:
         _check_cylinders(mass_tables, masses, engine[1], bool(throw_names))
     else:
@@ -259,13 +262,13 @@ def _read(
 
     shafts = []
     for st in t.tables("shaft"):
-        shaft = _shaft(st)
-        _check_ends(st, shaft.between, known)
+        shaft = _plain_shaft(st) or _shaft(st)
+        _check_ends(st, shaft.between, known, names)
         shafts.append(shaft)
     gears = []
     for gt in t.tables("gear"):
         gear = _gear(gt)
-        _check_ends(gt, gear.between, known)
+        _check_ends(gt, gear.between, known, names)
         gears.append(gear)
 
     with t.context():
@@ -397,9 +400,14 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
     return model
 
 
-def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
+def _check_ends(
+    t: Table, ends: tuple[str, str], known: list[str], names: set[str] | frozenset[str]
+) -> None:
+    """Both ends of a shaft or gear are masses (``names``, a set: a look-up per end, so that a
+    model file is read in time linear in its size) or ground; ``known`` in order, for the
+    did-you-mean."""
     for end in ends:
-        if end != GROUND and end not in known:
+        if end != GROUND and end not in names:
             raise t.error("between", f'no mass named "{end}"{did_you_mean(end, known)}', list(ends))
 
 
@@ -460,6 +468,85 @@ def _check_firing_count(t: Table, tables: Sequence[Table], masses: Sequence[Mass
                 f"the [excitation] {key} names {count} cylinders (1..{count})",
                 list(m.cylinders),
             )
+
+
+# ---- the plain entries of a long model: read directly ---------------------------------------
+# A long model (a subdivided shaft line, a detailed crank model) is thousands of entries like
+# {name = "m12", inertia = 0.5} and {between = ["m12", "m13"], stiffness = 2.1e6}: numbers in
+# SI. Such an entry is read directly, with the checks the Table reader makes (a plain number,
+# finite, in the SI range, of the right sign, plausible for its role); any other entry, and any
+# entry the checks or the element refuse, goes through the Table reader (_mass, _shaft), which
+# reads it the same way, records its plausibility warnings or names the file, the entry and the
+# key in its error.
+_PLAIN_MASS_KEYS = frozenset({"name", "inertia", "damping"})
+_PLAIN_SHAFT_KEYS = frozenset({"between", "stiffness", "damping", "loss_factor"})
+_KINDS = {
+    "inertia": "inertia",
+    "stiffness": "torsional_stiffness",
+    "damping": "torsional_damping",
+    "loss_factor": "ratio",
+}
+"""The kind of each plain key, as the Table reader reads it (``loss_factor`` a plain number)."""
+
+
+def _plain(t: Table, key: str, positive: bool) -> float | None:
+    """The value of ``key`` in ``t`` as the Table reader takes a bare number
+    (:meth:`Table.quantity` of an SI number, :meth:`Table.number`): not a bool, finite, 0 or
+    in the SI range, > 0 when ``positive`` else >= 0, plausible for its role
+    (:func:`crankdyn.io.plausibility.role_of`); 0.0 when absent (the readers' default); None
+    otherwise (the Table reader then reads it, warns or refuses)."""
+    if key not in t.data:
+        return 0.0
+    value = t.data[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    number = float(value)
+    if not math.isfinite(number) or not check_si_range(number):
+        return None
+    if not (number > 0.0 or (number == 0.0 and not positive)):
+        return None
+    role = role_of(_KINDS[key], key, section_of(t.name))
+    return number if role is None or role.holds(number) else None
+
+
+def _plain_mass(t: Table) -> Mass | None:
+    """A ``[[mass]]`` entry of a name, a bare inertia and damping, read directly (above); None
+    for any other, or one the checks or :class:`Mass` refuse."""
+    if not _PLAIN_MASS_KEYS.issuperset(t.data) or "inertia" not in t.data:
+        return None
+    name = t.data.get("name")
+    inertia = _plain(t, "inertia", True)
+    damping = _plain(t, "damping", False)
+    if not isinstance(name, str) or inertia is None or damping is None:
+        return None
+    try:
+        return Mass(name=name, inertia=inertia, damping=damping)
+    except InputError:
+        return None
+
+
+def _plain_shaft(t: Table) -> Shaft | None:
+    """A ``[[shaft]]`` entry of two ends, a bare stiffness, damping and loss factor, read
+    directly (above); None for any other, or one the checks or :class:`Shaft` refuse."""
+    if not _PLAIN_SHAFT_KEYS.issuperset(t.data) or "stiffness" not in t.data:
+        return None
+    between = t.data.get("between")
+    stiffness = _plain(t, "stiffness", True)
+    damping = _plain(t, "damping", False)
+    loss = _plain(t, "loss_factor", False)
+    if (
+        not isinstance(between, list)
+        or len(between) != 2
+        or not all(isinstance(end, str) for end in between)
+        or stiffness is None
+        or damping is None
+        or loss is None
+    ):
+        return None
+    try:
+        return Shaft(between=tuple(between), stiffness=stiffness, damping=damping, loss_factor=loss)
+    except InputError:
+        return None
 
 
 def _mass(t: Table) -> Mass:

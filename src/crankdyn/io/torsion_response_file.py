@@ -79,15 +79,20 @@ def read_response_sections(
     from crankdyn.io.tvc_file import read_tvc
 
     tvc = read_tvc(t.table("tvc"), operating)
-    with t.context():
-        model = dataclasses.replace(
-            model,
-            excitation=excitation,
-            rules=rules,
-            operating=operating,
-            sources=model.sources + sources,
-            tvc=tvc if tvc is not None else model.tvc,
-        )
+    # a model file without these sections keeps the model as built: rebuilding it would check
+    # every mass and shaft and walk its topology again
+    found = (excitation, rules, operating, model.tvc if tvc is None else tvc)
+    old = (model.excitation, model.rules, model.operating, model.tvc)
+    if sources or any(a is not b for a, b in zip(found, old, strict=True)):
+        with t.context():
+            model = dataclasses.replace(
+                model,
+                excitation=excitation,
+                rules=rules,
+                operating=operating,
+                sources=model.sources + sources,
+                tvc=tvc if tvc is not None else model.tvc,
+            )
     dampers = tuple(_damper(dt, model) for dt in t.tables("damper"))
     if dampers:
         with t.context():

@@ -330,10 +330,52 @@ class Sweep:
         :mod:`crankdyn.torsion.resolve`), with the model's stiffness (load-dependent couplings
         at their reference torque): the quadratic eigenproblem for systems of up to
         :data:`POLE_LIMIT` degrees of freedom, else the undamped modes with the modal damping
-        of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M phi))."""
-        w = self._pole_rows(self.system.stiffness, *self._damping())
+        of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M phi)); a large
+        chain's from its tridiagonal form, only the modes up to ``top`` (:meth:`_chain_poles`)."""
+        system = self.system
+        if system.chain is not None and system.size > POLE_LIMIT:
+            w = self._chain_poles(top)
+        else:
+            w = self._pole_rows(system.stiffness, *self._damping())
         w = w[np.isfinite(w)]
         return np.sort_complex(w[w.real <= top])
+
+    def _chain_poles(self, top: float) -> np.ndarray:
+        """:meth:`poles` of a chain above :data:`POLE_LIMIT` degrees of freedom in O(n) memory:
+        the undamped modes with omega_r <= top of the mass-normalised tridiagonal matrix
+        (bisection and inverse iteration, LAPACK ``dstebz`` and ``dstein``: n x modes, never
+        n x n), their modal damping b_r = phi^T (H + omega_r C) phi / (2 omega_r) summed over
+        the chain's links and terms to ground (phi^T C phi = sum c_l (phi_a - phi_b)^2 +
+        sum c_g phi^2; the quadratic forms of :meth:`_pole_rows`'s dense branch). Complex
+        (P,), NaN for the rigid-body modes."""
+        import scipy.linalg  # here, not at start-up
+
+        system = self.system
+        assert system.chain is not None  # called for a chain only
+        kb, cb, hb, kg, cg, hg = system.chain
+        if self.hysteretic_frequency is not None:  # loss factors as viscous eta k / omega_h
+            cb, cg = cb + hb / self.hysteretic_frequency, cg + hg / self.hysteretic_frequency
+            hb, hg = np.zeros_like(hb), np.zeros_like(hg)
+        j = system.inertia
+        root = np.sqrt(j)
+        diag = np.array(kg, dtype=float)
+        diag[:-1] += kb
+        diag[1:] += kb
+        d, e = diag / j, -kb / (root[:-1] * root[1:])
+        bound = float(np.max(np.abs(d)) + 2.0 * np.max(np.abs(e), initial=0.0))  # Gershgorin
+        lam, u = scipy.linalg.eigh_tridiagonal(
+            d, e, select="v", select_range=(-bound - 1.0, top * top), lapack_driver="stebz"
+        )
+        rigid = self._rigid_count()
+        lam, u = lam[rigid:], u[:, rigid:]
+        phi = u / root[:, None]  # mass-normalised mode shapes
+        omega = np.sqrt(np.maximum(lam, 0.0))
+        twist = np.diff(phi, axis=0)
+        modal_c = cb @ (twist * twist) + cg @ (phi * phi)
+        modal_h = hb @ (twist * twist) + hg @ (phi * phi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            b = (modal_h + omega * modal_c) / (2.0 * np.maximum(omega, 1e-300))
+        return np.where(omega > 0.0, omega + 1j * np.abs(b), np.nan)
 
     def _pole_rows(self, stiffness: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
         """Damped natural frequencies of systems with the stiffness matrices (..., n, n) (the
