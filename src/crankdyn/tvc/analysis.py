@@ -444,6 +444,56 @@ def _condition_result(
     return result, found, verdicts
 
 
+def _run_conditions(
+    run: _Run, conds: Sequence[Condition], respond: ResponseOf, passage: bool
+) -> tuple[list[Any], list[Any], list[Any]]:
+    """Every condition's resolved forced response judged by its checks (normal firing also by
+    the installation's own rows), grouped into condition results with their passages.
+
+    Returns
+    -------
+    condition_results, verdicts, passages : list
+        The condition results, every verdict row and every passage, in condition order.
+    """
+    model, spec, rated = run.model, run.spec, run.rated
+    results = []
+    for cond in conds:
+        checks = run.checks_of(cond)
+        grid = speed_grid(cond.low, cond.high, spec.step)
+        r = respond(run.line(cond), cond, grid, run.orders_of(cond))
+        verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
+        if cond.kind == "normal":
+            verdicts += installation_verdicts(model, spec, rated, engine=run.engine, load=run.load)
+        results.append((cond, verdicts, barred, r))
+    condition_results: list[Any] = []
+    verdicts_all: list[Any] = []
+    passages_all: list[Any] = []
+    for group in _grouped(results):
+        result, found, verdicts = _condition_result(run, group, passage)
+        condition_results.append(result)
+        passages_all.extend(found)
+        verdicts_all.extend(verdicts)
+    return condition_results, verdicts_all, passages_all
+
+
+def _campbell(
+    model: TorsionModel,
+    orders: NDArray[np.float64],
+    speeds: tuple[float, float],
+    excitation: Any,
+    notes: list[str],
+) -> Any:
+    """The Campbell diagram of the calculation over the conditions' speeds (rad/s), or None
+    with a note where it cannot be drawn."""
+    from crankdyn.torsion.campbell import campbell
+
+    try:
+        return campbell(model, orders, speeds, excitation=excitation)
+    except InputError as exc:  # pragma: no cover - the same inputs ran the responses
+        notes.append(f"Campbell diagram not drawn: {exc.message}")
+        return None
+
+
 def tvc(
     model: TorsionModel,
     engine: Engine | None = None,
@@ -537,7 +587,6 @@ def tvc(
     >>> f"{row.worst / 1e6:.3f} MPa <= {row.limit / 1e6:.3f} MPa at {row.speed:.3f} rad/s"
     '30.558 MPa <= 45.174 MPa at 365.148 rad/s'
     """
-    from crankdyn.torsion.campbell import campbell
     from crankdyn.torsion.modal import natural_modes
     from crankdyn.torsion.sources import default_orders
 
@@ -550,22 +599,9 @@ def tvc(
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
-    respond = response_of or _response
-    results = []
-    for cond in conds:
-        checks = run.checks_of(cond)
-        grid = speed_grid(cond.low, cond.high, spec.step)
-        r = respond(run.line(cond), cond, grid, run.orders_of(cond))
-        verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
-        if cond.kind == "normal":
-            verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
-        results.append((cond, verdicts, barred, r))
-    condition_results, verdicts_all, passages_all = [], [], []
-    for group in _grouped(results):
-        result, found, verdicts = _condition_result(run, group, passage)
-        condition_results.append(result)
-        passages_all.extend(found)
-        verdicts_all.extend(verdicts)
+    condition_results, verdicts_all, passages_all = _run_conditions(
+        run, conds, response_of or _response, passage
+    )
     found_events = []
     if events and spec.events:
         from crankdyn.tvc.events import event_conditions
@@ -576,11 +612,7 @@ def tvc(
         verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)
-    try:
-        diagram = campbell(model, run.orders, (low, high), excitation=base)
-    except InputError as exc:  # pragma: no cover - the same inputs ran the responses
-        diagram = None
-        notes.append(f"Campbell diagram not drawn: {exc.message}")
+    diagram = _campbell(model, run.orders, (low, high), base, notes)
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
     notes += rule_notes(
