@@ -302,14 +302,26 @@ def _read(
     model = read_response_sections(t, model, engine)
     # drivelines: shaft lines joined to an engine, engines joined to a line
     if engine is not None:
-        return _join_lines(t, model)
+        return _tvc_events(t, _join_lines(t, model))
     if t.has("input"):
         line_input = t.string("input")
         if line_input not in model.mass_names:
             raise t.error(
                 "input", f'no mass named "{line_input}"{did_you_mean(line_input, model.mass_names)}'
             )
-    return model
+    return _tvc_events(t, model)
+
+
+def _tvc_events(t: Table, model: TorsionModel) -> TorsionModel:
+    """The model with the ``[[tvc.event]]`` events of its ``[tvc]``, read with the whole model
+    (:func:`crankdyn.io.tvc_file.read_tvc_events`)."""
+    tt = t.table("tvc")
+    if tt is None or "event" not in tt.data or model.tvc is None:
+        return model
+    from crankdyn.io.tvc_file import read_tvc_events
+
+    events = read_tvc_events(tt, model)
+    return dataclasses.replace(model, tvc=dataclasses.replace(model.tvc, events=events))
 
 
 # ---- drivelines ---------------------------------------------------------------------------------
@@ -588,6 +600,8 @@ _COUPLING_KEYS = (
     "nominal_torque",
     "maximum_torque",
     "vibratory_torque",
+    "maximum_torque_1",
+    "maximum_torque_2",
     "power_loss",
     "designation",
 )
@@ -722,7 +736,13 @@ def _coupling(t: Table) -> Coupling:
     zeta = t.number("damping_ratio", None, check="positive")
     values = {
         key: t.quantity(key, "torque", None, check="positive")
-        for key in ("nominal_torque", "maximum_torque", "vibratory_torque")
+        for key in (
+            "nominal_torque",
+            "maximum_torque",
+            "vibratory_torque",
+            "maximum_torque_1",
+            "maximum_torque_2",
+        )
     }
     reference = t.quantity("reference_torque", "torque", None, check="nonnegative")
     power = t.quantity("power_loss", "power", None, check="positive")

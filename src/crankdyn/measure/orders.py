@@ -396,7 +396,20 @@ def order_analysis(
     if isinstance(pulses, PulseRecord):
         record = pulses.cached(CACHE)  # read once when it is short enough
         return _blocked(record, orders, settings, tooth_correction, int(block))
-    q = _check_orders(orders, cycle, pulses.teeth)
+    return _whole_record(pulses, signal, orders, settings, tooth_correction)
+
+
+def _whole_record(
+    pulses: PulseTrain,
+    signal: PulseTrain | SpeedSignal | PulseRecord,
+    orders: ArrayLike | None,
+    settings: _Settings,
+    tooth_correction: str | PulseTrain | PulseRecord | ArrayLike | None,
+) -> OrderSpectrum | OrderTracking:
+    """The analysis of a record held whole (:func:`order_analysis`, up to ``block`` pulses):
+    the angle domain of every pulse, the per-cycle orders, then the steady spectrum or the
+    tracking windows."""
+    q = _check_orders(orders, settings.cycle, pulses.teeth)
     prep = prepare_pulses(pulses)
     notes = list(prep.notes)
     if isinstance(signal, SpeedSignal):
@@ -405,15 +418,17 @@ def order_analysis(
             f"speed signal integrated to the shaft angle and resampled at {pulses.teeth} "
             "angles per revolution",
         )
-    reference, more = _reference_text(prep, cycle, reference_angle)
+    reference, more = _reference_text(prep, settings.cycle, settings.reference_angle)
     notes.extend(more)
     _, _, fraction = tooth_numbering(prep)
-    cycle_angle = CYCLE_ANGLE[cycle]
-    errors, estimate, correction = _tooth_correction(tooth_correction, prep, cycle, fraction)
+    cycle_angle = CYCLE_ANGLE[settings.cycle]
+    errors, estimate, correction = _tooth_correction(
+        tooth_correction, prep, settings.cycle, fraction
+    )
     domain, estimated = angle_domain(
         prep,
         cycle_angle,
-        reference_angle=reference_angle,
+        reference_angle=settings.reference_angle,
         tooth_errors=errors,
         estimate_teeth=estimate,
     )
@@ -441,8 +456,8 @@ def order_analysis(
         return _steady_spectrum(cycles, q, notes, common, settings)
     win = (
         per_cycle
-        if window_cycles == 1 and window == "uniform"
-        else _windows(domain, q, cycle_angle, window_cycles, window)
+        if settings.window_cycles == 1 and settings.window == "uniform"
+        else _windows(domain, q, cycle_angle, settings.window_cycles, settings.window)
     )
     return _order_tracking(win, q, settings, notes, common)
 
