@@ -32,7 +32,9 @@ def _run(*args):
 def marine(tmp_path_factory):
     target = tmp_path_factory.mktemp("tvc") / "marine"
     status, out, err = _run("tvc", "marine-propulsion", "--output", target)
-    assert status == 0, err
+    # one row fails by design: the reduction gear's torque reverses while the line settles
+    # after the clutch-in (docs/events.md): exit status 1, the report written
+    assert status == 1, err
     return target, out, err
 
 
@@ -69,6 +71,8 @@ def test_tvc_folder_and_summary_lists(marine):
     assert len(verdicts) == len(full) == len(rows)
     for v, f in zip(verdicts, full, strict=True):
         assert (v["component"], v["worst"], v["limit"]) == (f["component"], f["worst"], f["limit"])
+    failed = [(v["component"], v["condition"]) for v in verdicts if not v["passed"]]
+    assert failed == [("reduction gear", "clutch-in at 350 rpm")], failed
     conditions = {v["condition"] for v in verdicts}
     assert "normal firing" in conditions and "damper out of order" in conditions
     assert any(c.startswith("misfire cylinder") for c in conditions)
