@@ -173,3 +173,43 @@ def test_every_condition_a_barred_band_and_an_inertia_limit(space_file, tmp_path
     assert chosen is not None and chosen.figures["barred_width_in_band"] == 0.0
     # S-10's halves (0.35 kg m^2) add none; S-40's (0.9 kg m^2) exceed the limit
     assert all(c.case.numbers[space.choices[0]] not in ("S-40", "H-25") for c in result.ranked(12))
+
+
+def test_dampers_from_a_list_are_bundles_of_their_keys(tmp_path):
+    """``key = "damper[1]"`` with a list of tables: each a damper (its keys set together). On
+    the Lanchester system the best of three is the one nearest the optimum damping, as the
+    closed-form receptance ranks them (independent of crankdyn's solver)."""
+    import numpy as np
+
+    from crankdyn.design.search import run_search
+    from crankdyn.study.run.runner import CaseRunner
+
+    shutil.copy(DATA / "lanchester_single_mass.toml", tmp_path / "line.toml")
+    space_file = tmp_path / "dampers.toml"
+    space_file.write_text(
+        'base = "line.toml"\n[[choice]]\nname = "damper"\nkey = "damper[1]"\n'
+        'names = ["small", "medium", "large"]\n'
+        'values = [{inertia = "0.1 kg*m^2", damping = "3 N*m*s/rad"},\n'
+        '          {inertia = "0.1 kg*m^2", damping = "6 N*m*s/rad"},\n'
+        '          {inertia = "0.1 kg*m^2", damping = "12 N*m*s/rad"}]\n'
+        '[constraints]\nverdicts = "none"\n[[objective]]\nfigure = "max_free_end_amplitude"\n'
+        '[analysis]\nmax_order = 1\nspeed_step = "5 rpm"\n',
+        encoding="utf-8",
+    )
+    space = load_design(space_file)
+    p = space.parameter(space.choices[0])
+    assert p.bundle and {q.text for q in p.paths} == {"damper[1].inertia", "damper[1].damping"}
+    with CaseRunner(space.study, tmp_path / "out", workers=1) as runner:
+        method, candidates, _ = run_search(space, runner.run)
+    assert method == "exhaustive"
+    omega_n, j = 2 * np.pi * 10.0, 0.1
+    w = np.linspace(0.3, 1.5, 200_001) * omega_n
+
+    def peak(c: float) -> float:
+        icw = 1j * c * w
+        return float(np.abs(1 / (omega_n**2 - w**2 + icw * (-j * w**2) / (icw - j * w**2))).max())
+
+    by_hand = sorted(
+        ("small", "medium", "large"), key=lambda n: peak({"small": 3, "medium": 6, "large": 12}[n])
+    )
+    assert [c.case.numbers[space.choices[0]] for c in candidates] == by_hand

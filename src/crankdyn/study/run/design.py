@@ -10,6 +10,7 @@ outputs, in the folder ``out``::
     results.csv                 every candidate: number, id, status, parameters, objectives,
                                 feasible, constraint violation, figures, error
     results.parquet             the same (when pyarrow is installed)
+    design.json                 the search's key figures (DesignResult.to_dict)
     best.toml                   the chosen design as a file ``crankdyn tvc`` reads (with the
                                 files the base names, beside it)
     pareto.png                  the candidates and the Pareto front (several objectives)
@@ -236,6 +237,7 @@ def write_design(result: DesignResult, out: Path) -> list[Path]:
     rows = [[name for name, _ in columns]]
     rows.extend([_cell(get(c)) for _, get in columns] for c in ordered)
     written = [write_text(out / "results.csv", csv_text(rows), force=True)]
+    written.append(write_text(out / "design.json", result.to_json() + "\n", force=True))
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
