@@ -213,3 +213,36 @@ def test_dampers_from_a_list_are_bundles_of_their_keys(tmp_path):
         ("small", "medium", "large"), key=lambda n: peak({"small": 3, "medium": 6, "large": 12}[n])
     )
     assert [c.case.numbers[space.choices[0]] for c in candidates] == by_hand
+
+
+def test_a_shaft_diameter_range_moves_the_stiffness_the_reader_derives(tmp_path):
+    """A range over a shaft's diameter: the file reader derives the stiffness
+    k = G pi d^4 / (32 L) from each candidate's diameter, so the two-disc system's natural
+    frequency (1/2 pi) sqrt(k (J1 + J2) / (J1 J2)) follows it (closed form, exact)."""
+    import math
+
+    from crankdyn.design.search import run_search
+    from crankdyn.study.run.runner import CaseRunner
+
+    (tmp_path / "discs.toml").write_text(
+        '[[mass]]\nname = "a"\ninertia = "2 kg*m^2"\n[[mass]]\nname = "b"\ninertia = "3 kg*m^2"\n'
+        '[[shaft]]\nbetween = ["a", "b"]\nlength = "1 m"\nouter_diameter = "60 mm"\n'
+        'shear_modulus = "80 GPa"\n',
+        encoding="utf-8",
+    )
+    (tmp_path / "space.toml").write_text(
+        'base = "discs.toml"\n[[range]]\nname = "diameter"\nkey = "shaft[1].outer_diameter"\n'
+        'bounds = ["40 mm", "80 mm"]\n[constraints]\nverdicts = "none"\n'
+        '[[objective]]\nfigure = "natural_frequency_1"\nsense = "max"\n'
+        "[search]\nmax_candidates = 10\npopulation = 5\n",
+        encoding="utf-8",
+    )
+    space = load_design(tmp_path / "space.toml")
+    with CaseRunner(space.study, tmp_path / "out", workers=1) as runner:
+        _, candidates, _ = run_search(space, runner.run)
+    assert len(candidates) >= 5
+    for c in candidates:
+        d = c.case.numbers["shaft[1].outer_diameter"] * 1e-3  # m (the range's unit: mm)
+        k = 80e9 * math.pi * d**4 / 32.0
+        expected = math.sqrt(k * 5.0 / 6.0) / (2.0 * math.pi)
+        assert c.objectives[0] == pytest.approx(expected, rel=1e-9)

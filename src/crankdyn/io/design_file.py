@@ -650,9 +650,10 @@ def parse_design(
     ):
         if f not in figures:
             figures.append(f)
-    default = VERDICT_FIGURES["all" if verdicts == "all" else "normal"][0]
-    if default not in figures:
-        figures.append(default)
+    if verdicts != "none":  # the worst margin of the rows constrained, tabled for every design
+        default = VERDICT_FIGURES[verdicts][0]
+        if default not in figures:
+            figures.append(default)
     base_values = {p.key: _base_value(p, base.document) for p in parameters}
     if any(c.figure == "installation_inertia" for c in constraints):
         constraints = _added_inertia(constraints, base)
