@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
 
 from crankdyn.errors import InputError
 from crankdyn.study.figures import FIGURES
@@ -236,10 +235,6 @@ class DesignSpace:
         The first is the search's; with several, the results hold their Pareto front.
     search : SearchSettings
         How the search runs.
-    base_values : dict of str to object
-        A parameter key -> the base file's own value (a bundle of the base's values, a number
-        in the range's unit), for the reference candidate (the base design); a key missing
-        here has no base value.
     source : str or None
         The design file, for messages.
 
@@ -258,7 +253,6 @@ class DesignSpace:
     constraints: tuple[Constraint, ...] = ()
     objectives: tuple[Objective, ...] = ()
     search: SearchSettings = SearchSettings()
-    base_values: dict[str, Any] = field(default_factory=dict)
     source: str | None = field(default=None, compare=False)
 
     def __post_init__(self) -> None:

@@ -525,35 +525,6 @@ def _search(t: Table | None) -> Any:
     return SearchSettings(**values)
 
 
-# ---- the base design as a candidate -----------------------------------------------------------
-
-
-def _get(document: dict[str, Any], path: KeyPath) -> Any:
-    node: Any = document
-    for name, index in path.parts:
-        if not isinstance(node, dict) or name not in node:
-            return None
-        node = node[name]
-        if index is not None:
-            node = node[index - 1] if isinstance(node, list) and index <= len(node) else None
-    return node
-
-
-def _base_value(p: Parameter, document: dict[str, Any]) -> Any:
-    """The base document's own value of a parameter, as the parameter writes it (None when the
-    base does not give it)."""
-    if p.bundle:
-        bundle = {q.text: _get(document, q) for q in p.paths}
-        return None if any(v is None for v in bundle.values()) else bundle
-    value = _get(document, p.path)
-    if value is None or p.unit is None:
-        return value
-    parsed = split_quantity(value, key=p.key)
-    if parsed is None:
-        return None
-    return convert_magnitude(parsed[0], parsed[1], p.unit, key=p.key, value=value)
-
-
 # ---- the whole file ---------------------------------------------------------------------------
 
 
@@ -654,7 +625,6 @@ def parse_design(
         default = VERDICT_FIGURES[verdicts][0]
         if default not in figures:
             figures.append(default)
-    base_values = {p.key: _base_value(p, base.document) for p in parameters}
     if any(c.figure == "installation_inertia" for c in constraints):
         constraints = _added_inertia(constraints, base)
     if ct is not None:
@@ -681,7 +651,6 @@ def parse_design(
             constraints=tuple(constraints),
             objectives=tuple(objectives),
             search=search,
-            base_values={k: v for k, v in base_values.items() if v is not None},
             source=file,
         )
     _probe(space, [*choice_tables, *range_tables])
