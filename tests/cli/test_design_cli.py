@@ -3,6 +3,7 @@ the chosen design as a file ``crankdyn tvc`` reads, and the built-in example lis
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -26,6 +27,8 @@ def test_design_writes_the_table_the_chosen_design_and_its_tvc_report(tmp_path, 
     assert "Chosen design" in result.out and "coupling = S-10" in result.out
     assert "Margin of every verdict row" in result.out
     assert "Sensitivity of the" in result.out and "Spearman" in result.out
+    # the chosen design was checked against the whole TVC (every condition) and passes it
+    assert re.search(r"Chosen design passes every row of crankdyn tvc\s*│\s*yes", result.out)
     assert "evaluating candidates on a 1 process" in result.err
     rows = (out / "results.csv").read_text(encoding="utf-8").splitlines()
     assert rows[0].startswith("candidate,case_id,status,coupling,firing_order,")

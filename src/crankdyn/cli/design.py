@@ -161,21 +161,23 @@ def design_command(
     blocks: list[Any] = summary_blocks(result, f"Design search: {spec.study.name}")
     written = [folder / "results.csv", *([folder / "best.toml"] if result.found else [])]
     if result.found and not no_report:
-        written.append(_report(folder, force))
+        written.append(_report(folder, result.tvc))
     Output("table").write(blocks=blocks)
     click.echo("wrote " + ", ".join(str(p) for p in written), err=True)
     return 0 if result.found else 1
 
 
-def _report(folder: Path, force: bool) -> Path:
-    """The chosen design's TVC report (no PDF), from best.toml as crankdyn tvc reads it."""
+def _report(folder: Path, tvc: Any) -> Path:
+    """The chosen design's TVC report (no PDF): its whole TVC where the search checked it,
+    else from best.toml as crankdyn tvc reads it."""
     from crankdyn.cli.torsion import model_session
     from crankdyn.report.tvc import build_tvc_report
     from crankdyn.report.write import write_report
 
-    session = model_session(str(folder / "best.toml"))
     with console(stderr=True).status("TVC report of the chosen design"):
-        report = build_tvc_report(session.tvc())
+        if tvc is None:
+            tvc = model_session(str(folder / "best.toml")).tvc()
+        report = build_tvc_report(tvc)
         return write_report(report, folder / "tvc", force=True) / "index.html"
 
 

@@ -43,6 +43,11 @@ class DesignResult(Result):
         margins per verdict row.
     front : tuple of int
         Indices into ``candidates`` of the Pareto front (several objectives; else empty).
+    chosen_number : int or None
+        The number of the chosen candidate when the search's best feasible one was not chosen
+        (it failed a row of the whole TVC that the search did not constrain); None: the best.
+    tvc : crankdyn.tvc.TvcResult or None
+        The chosen design's whole TVC, where it was checked.
     """
 
     title = "Design search"
@@ -64,6 +69,12 @@ class DesignResult(Result):
     verdicts: tuple[Verdict, ...] = field(default=(), repr=False, compare=False)
     best_verdicts: tuple[tuple[Verdict, ...], ...] = field(default=(), repr=False, compare=False)
     front: tuple[int, ...] = field(default=(), repr=False, compare=False)
+    chosen_number: int | None = field(default=None, repr=False, compare=False)
+    tvc: Any = field(default=None, repr=False, compare=False)
+    tvc_passed: bool | None = scalar(
+        "tvc_passed", "Chosen design passes every row of crankdyn tvc", "", default=None
+    )
+    notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())
 
     FIGURES = (
         derived(
@@ -81,7 +92,10 @@ class DesignResult(Result):
 
     @property
     def best(self) -> Candidate | None:
-        """The chosen design: the best feasible candidate, or None."""
+        """The chosen design: the best feasible candidate (the best of those checked against
+        the whole TVC that passes it: :attr:`chosen_number`), or None."""
+        if self.chosen_number is not None:
+            return next(c for c in self.candidates if c.number == self.chosen_number)
         return next((c for c in self.candidates if c.feasible), None)
 
     @property
@@ -100,9 +114,14 @@ class DesignResult(Result):
         Returns
         -------
         list of crankdyn.design.search.Candidate
-            Best first.
+            The chosen design first, then the others best first.
         """
-        return [c for c in self.candidates if c.feasible][:count]
+        feasible = [c for c in self.candidates if c.feasible]
+        chosen = self.best
+        if chosen is not None and chosen in feasible:  # the chosen design first
+            feasible.remove(chosen)
+            feasible.insert(0, chosen)
+        return feasible[:count]
 
     def summary_verdicts(self) -> list[Verdict]:
         """The chosen design's verdict rows.

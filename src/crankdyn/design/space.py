@@ -181,6 +181,10 @@ class SearchSettings:
     digits : int
         Significant digits a continuous value is written with (a candidate is what is
         written: rounding makes the journal's ids repeat exactly).
+    verify : int
+        When the search's constraints read the normal-firing rows only: how many of the best
+        feasible designs, best first, are checked against the whole TVC (every condition,
+        the events, the passages) until one passes every row; that one is chosen. 0: none.
 
     Raises
     ------
@@ -194,6 +198,7 @@ class SearchSettings:
     tolerance: float = 1e-3
     method: str = "auto"
     digits: int = 8
+    verify: int = 3
 
     def __post_init__(self) -> None:
         if self.method not in ("auto", "exhaustive", "differential-evolution"):
@@ -206,6 +211,8 @@ class SearchSettings:
             raise InputError("must be at least 1", key="max_candidates", value=self.max_candidates)
         if self.population < 1:
             raise InputError("must be at least 1", key="population", value=self.population)
+        if self.verify < 0:
+            raise InputError("must be 0 or more", key="verify", value=self.verify)
         if not 3 <= self.digits <= 15:
             raise InputError("expected 3 to 15", key="digits", value=self.digits)
 

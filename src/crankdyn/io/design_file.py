@@ -520,6 +520,7 @@ def _search(t: Table | None) -> Any:
         tolerance=t.number("tolerance", 1e-3, check="positive"),
         method=t.string("method", "auto", choices=("auto", "exhaustive", "differential-evolution")),
         digits=t.integer("digits", 8, minimum=3, maximum=15),
+        verify=t.integer("verify", 3, minimum=0, maximum=100),
     )
     t.finish()
     return SearchSettings(**values)

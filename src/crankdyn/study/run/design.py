@@ -88,6 +88,16 @@ def _verdicts(space: DesignSpace, case: Case) -> tuple[Any, ...]:
     return () if judged is None else tuple(judged.verdicts)
 
 
+def _whole_tvc(space: DesignSpace, case: Case) -> Any:
+    """A candidate's whole TVC (:meth:`crankdyn.session.Analysis.tvc`: every condition, the
+    events and the passages), as ``crankdyn tvc`` computes it for the file."""
+    base = space.study.base
+    subject = parse_base(
+        base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
+    )
+    return CaseContext(subject, space.study.settings, base.kind).analysis.tvc()
+
+
 def _text(space: DesignSpace, c: Candidate) -> str:
     parts = []
     for p in space.parameters:
@@ -153,6 +163,30 @@ def run_design(
         computed = runner.ran
     feasible = [c for c in candidates if c.feasible]
     best = feasible[0] if feasible else None
+    chosen_number, tvc, notes = None, None, []
+    normal_only = "failed_rows" not in space.study.figures and any(
+        c.figure == "condition_passed" for c in space.constraints
+    )
+    if best is not None and normal_only and space.search.verify:
+        for c in feasible[: space.search.verify]:
+            tvc = _whole_tvc(space, c.case)
+            if tvc.passed:
+                chosen_number, best = c.number, c
+                break
+        else:
+            tvc = None
+            notes.append(
+                f"none of the {min(len(feasible), space.search.verify)} best designs passes every "
+                "row of the whole TVC (misfires, damper out of order, events, passages); the "
+                'best by the search is shown: give [constraints] verdicts = "all"'
+            )
+        if chosen_number is not None and chosen_number != feasible[0].number:
+            notes.append(
+                f"candidate {feasible[0].number}, the best by the normal-firing rows, fails a row "
+                f"of the whole TVC; candidate {chosen_number} is the best that passes it"
+            )
+        if chosen_number is not None:
+            feasible = [best, *(c for c in feasible if c is not best)]
     best_verdicts = tuple(_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS])
     front: tuple[int, ...] = ()
     if len(space.objectives) > 1:
@@ -176,6 +210,10 @@ def run_design(
         best_objective=objective_of(best),
         base_objective=objective_of(base),
         chosen=_text(space, best) if best is not None else "none feasible",
+        chosen_number=chosen_number,
+        tvc=tvc,
+        tvc_passed=None if tvc is None and not notes else tvc is not None,
+        notes=tuple(notes),
         space=space,
         candidates=tuple(candidates),
         base=base,
