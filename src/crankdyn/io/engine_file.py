@@ -39,6 +39,7 @@ from crankdyn.engine.model import (
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
+from crankdyn.io.project_file import with_project
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.io.torsion_file import parse_torsion_section, read_torsion_model
 from crankdyn.io.traces import read_pressure_trace
@@ -126,7 +127,7 @@ def parse_engine(
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
-    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses)
+    torsion = with_project(root, _torsion(root.table("torsion"), name, geometry, cylinders, masses))
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
     crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
@@ -580,6 +581,7 @@ def parse_model_file(
     root = Table(data, file=file, base_dir=base_dir)
     model = read_torsion_model(root, default_name=default_name)
     model = join_engines(root, model)
+    model = with_project(root, model) or model
     root.finish()
     return model
 
