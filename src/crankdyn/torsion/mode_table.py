@@ -38,13 +38,14 @@ from crankdyn.constants import DEG
 from crankdyn.results import Result, array, freeze, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, derived
 from crankdyn.torsion.harmonics import cylinder_amplitudes
-from crankdyn.torsion.orders import major_orders, relative_amplitude_sums
+from crankdyn.torsion.orders import fundamental_order, major_orders, relative_amplitude_sums
 
 if TYPE_CHECKING:
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["MODES_SHOWN", "ModeTable", "mode_table"]
+__all__ = ["MODES_SHOWN", "ModeTable", "excited_mode_table", "mode_table"]
 
 HZ = 1.0 / (2.0 * math.pi)
 
@@ -274,3 +275,43 @@ def mode_table(
         notes=tuple(notes),
         shown=tuple(m for m in modes.masses if m not in inner),
     )
+
+
+def excited_mode_table(
+    modes: ModalResult,
+    model: TorsionModel,
+    excitation: Excitation,
+    orders: ArrayLike,
+    *,
+    count: int = MODES_SHOWN,
+) -> ModeTable:
+    """:func:`mode_table` for an engine's excitation: the orders of its working cycle among
+    ``orders`` (a source's own orders, e.g. a propeller's blade orders, have no vector sum) and
+    its firing angles where they are known.
+
+    Parameters
+    ----------
+    modes : crankdyn.torsion.modal.ModalResult
+        The natural modes of ``model``.
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    excitation : crankdyn.torsion.excitation.Excitation
+        The cylinders' excitation (its ``cycle``, ``firing_angles`` in rad and whether its
+        phases are known).
+    orders : array_like
+        Orders (dimensionless); those that are not multiples of the cycle's fundamental order
+        (:func:`crankdyn.torsion.orders.fundamental_order`) are left out.
+    count : int
+        The lowest elastic modes tabulated.
+
+    Returns
+    -------
+    ModeTable
+        The table.
+    """
+    q = np.atleast_1d(np.asarray(orders, dtype=float))
+    ratio = q / fundamental_order(excitation.cycle)
+    q = q[np.abs(ratio - np.round(ratio)) < 1e-9]
+    known = bool(getattr(excitation, "phases_known", True)) and excitation.cylinder_count > 0
+    angles = excitation.firing_angles if known else None
+    return mode_table(modes, model, q, angles, count=count)

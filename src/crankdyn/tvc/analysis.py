@@ -544,6 +544,7 @@ def tvc(
     """
     from crankdyn.torsion.campbell import campbell
     from crankdyn.torsion.modal import natural_modes
+    from crankdyn.torsion.mode_table import excited_mode_table
     from crankdyn.torsion.sources import default_orders
 
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
@@ -582,6 +583,7 @@ def tvc(
         notes.append(f"Campbell diagram not drawn: {exc.message}")
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
+    modes = natural_modes(model)
     return TvcResult(
         model_name=model.name,
         rated_speed=rated,
@@ -596,7 +598,8 @@ def tvc(
         widening=spec.widening,
         model=model,
         engine=engine,
-        modes=natural_modes(model),
+        modes=modes,
+        mode_table=excited_mode_table(modes, model, base, run.orders),
         campbell=diagram,
         spec=spec,
         condition_results=tuple(condition_results),

@@ -18,6 +18,7 @@ if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.mode_table import ModeTable
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.torsion.transient import TransientResult
@@ -269,6 +270,9 @@ class TvcResult(Result):
         The engine whose cylinders excite it, or None.
     modes : ModalResult or None
         The model's natural modes (:func:`crankdyn.torsion.modal.natural_modes`).
+    mode_table : ModeTable or None
+        The lowest modes' relative amplitudes and the relative vector sums per order
+        (:func:`crankdyn.torsion.mode_table.excited_mode_table`).
     campbell : CampbellResult or None
         The Campbell diagram over the conditions' speeds
         (:func:`crankdyn.torsion.campbell.campbell`), None where it could not be drawn.
@@ -315,6 +319,7 @@ class TvcResult(Result):
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     engine: Engine | None = field(default=None, repr=False, compare=False)
     modes: ModalResult | None = field(default=None, repr=False, compare=False)
+    mode_table: ModeTable | None = field(default=None, repr=False, compare=False)
     campbell: CampbellResult | None = field(default=None, repr=False, compare=False)
     spec: TvcSpec | None = field(default=None, repr=False, compare=False)
     condition_results: tuple[ConditionResult, ...] = field(default=(), repr=False, compare=False)
