@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "CLASS_UNITS",
     "ROUNDOFF",
     "SIGNIFICANT",
     "clean",
@@ -557,13 +558,26 @@ def html_table(
     return f"<div>{title_html}<table><tr>{head}</tr>{body}</table>{cap}</div>"
 
 
+CLASS_UNITS = {
+    "kg·m²": "kg·m²",
+    "N·m/rad": "MN·m/rad",
+    "N·m·s/rad": "kN·m·s/rad",
+    "m": "mm",
+    "Pa": "GPa",
+    "N·m": "kN·m",
+    "W": "kW",
+}
+"""The units of a mass-elastic table, as class societies' forms give them (one unit per
+column, whatever the magnitudes: inertia kg·m², stiffness MN·m/rad, lengths mm)."""
+
+
 def _elastic_table(
     name: str, title: str, columns: Iterable[tuple[str, str | None, Sequence[Any]]], caption: str
 ) -> tuple[str, str, list[str], list[list[str]], str]:
-    """(name, title, header, rows, caption) from (label, SI unit, values) columns: numbers in one
-    engineering unit per column with five significant digits in each cell (the values of a
-    model span decades), None as '-'; text columns have unit None; a column given for no row
-    is left out."""
+    """(name, title, header, rows, caption) from (label, SI unit, values) columns: numbers in
+    the column's class-form unit (:data:`CLASS_UNITS`, else one engineering unit per column)
+    with five significant digits in each cell (the values of a model span decades), None as
+    '-'; text columns have unit None; a column given for no row is left out."""
     header: list[str] = []
     cells: list[list[str]] = []
     for label, unit, values in columns:
@@ -573,7 +587,15 @@ def _elastic_table(
             header.append(label)
             cells.append(["-" if v is None else str(v) for v in values])
             continue
-        texts, shown = column_text(values, unit, aligned=False)
+        shown = CLASS_UNITS.get(unit)
+        if shown is None:
+            texts, shown = column_text(values, unit, aligned=False)
+        else:
+            factor = dict(_LADDERS.get(unit, ((unit, 1.0),)))[shown]
+            texts = [
+                "-" if v is None or not math.isfinite(float(v)) else _figure(float(v) * factor, 5)
+                for v in values
+            ]
         header.append(unit_label(label, shown))
         cells.append(texts)
     rows = [list(r) for r in zip(*cells, strict=True)]
