@@ -235,6 +235,24 @@ class ConditionResult(Result):
 
         return plot_condition(self, fig=fig)
 
+    def plot_orders(self, fig: Figure | None = None) -> Figure:
+        """Every component that bars speeds: its quantity per order and synthesised against
+        its limits (:func:`crankdyn.plots.tvc.plot_condition_orders`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.tvc import plot_condition_orders
+
+        return plot_condition_orders(self, fig=fig)
+
     def plot_stress_limits(self, fig: Figure | None = None) -> Figure:
         """The shafts checked by IACS UR M68: stress against tau_C and tau_T with the barred
         ranges (:func:`crankdyn.plots.torsion_response.plot_stress_limits`).
