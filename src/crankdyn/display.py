@@ -628,7 +628,7 @@ def shaft_kind(s: Any) -> str:
 
 
 def mass_elastic_tables(
-    model: TorsionModel,
+    model: TorsionModel, *, elements: bool = True
 ) -> list[tuple[str, str, list[str], list[list[str]], str]]:
     """The mass-elastic system of a torsional model as the report and the notebook view show it.
 
@@ -636,6 +636,10 @@ def mass_elastic_tables(
     ----------
     model : crankdyn.torsion.model.TorsionModel
         The lumped torsional model.
+    elements : bool
+        Whether a distributed shaft's elements are listed one by one (True) or as one row of
+        the whole shaft (False: its stiffness 1 / sum(1 / k_i), its length the sum; the
+        interior element masses left out, their count and inertia in the caption).
 
     Returns
     -------
@@ -647,10 +651,59 @@ def mass_elastic_tables(
         rigid gear meshes (ratio, teeth, sense of rotation), the dampers and the excitation
         sources; numbers in engineering units, the unit in the header.
     """
-    return [table for build in _ELASTIC_TABLES if (table := build(model)) is not None]
+    tables = [table for build in _ELASTIC_TABLES if (table := build(model)) is not None]
+    return tables if elements else [_whole_shafts(model, t) for t in tables]
 
 
 _Table = tuple[str, str, list[str], list[list[str]], str]
+
+
+def _whole_shafts(model: TorsionModel, table: _Table) -> _Table:
+    """A masses or shafts table with every distributed shaft as one row (see
+    :func:`mass_elastic_tables`); other tables as they are."""
+    name, title, header, rows, caption = table
+    groups: dict[tuple[str, str], list[int]] = {}
+    for i, sh in enumerate(model.shafts):
+        segment = getattr(sh, "segment_of", None)
+        if segment is not None:
+            groups.setdefault(tuple(segment), []).append(i)
+    if not groups:
+        return table
+    inner = {n for idx in groups.values() for i in idx for n in model.shafts[i].between}
+    inner -= {n for pair in groups for n in pair}
+    if name == "torsion_masses":
+        kept = [r for r, m in zip(rows, model.masses, strict=True) if m.name not in inner]
+        total = sum(m.inertia for m in model.masses if m.name in inner)
+        note = (
+            f" The {len(inner)} interior element masses of the distributed shafts (together "
+            f"{_figure(total, 5)} kg·m²) are not listed."
+        )
+        return name, title, header, kept, caption + note
+    if name != "torsion_shafts":
+        return table
+    col = {h.split(" (")[0]: k for k, h in enumerate(header)}
+    out: list[list[str]] = []
+    for i, row in enumerate(rows):
+        sh = model.shafts[i]
+        segment = getattr(sh, "segment_of", None)
+        if segment is None:
+            out.append(row)
+            continue
+        idx = groups[tuple(segment)]
+        if i != idx[0]:
+            continue
+        merged = list(row)
+        merged[col["Between"]] = f"{segment[0]} - {segment[1]}"
+        if "Kind" in col:
+            merged[col["Kind"]] = f"distributed shaft, {len(idx)} elements"
+        k = 1.0 / sum(1.0 / model.shafts[j].stiffness for j in idx)
+        merged[col["Stiffness k"]] = _figure(k * 1e-6, 5)
+        lengths = [getattr(model.shafts[j].geometry, "length", None) for j in idx]
+        if "Length" in col and all(x is not None for x in lengths):
+            merged[col["Length"]] = _figure(sum(lengths) * 1e3, 5)  # type: ignore[arg-type]
+        out.append(merged)
+    note = " Every distributed shaft in one row: its stiffness 1/Σ(1/k_i), its whole length."
+    return name, title, header, out, caption + note
 
 
 def _masses_table(model: TorsionModel) -> _Table:

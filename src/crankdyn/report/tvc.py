@@ -13,7 +13,9 @@ from typing import TYPE_CHECKING, Any
 from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.display import mass_elastic_tables, number
-from crankdyn.report.model import Plot, Report, Section, Table
+from crankdyn.project import Project
+from crankdyn.report.model import FrontMatter, Plot, Report, Section, Table
+from crankdyn.summary import Verdict, verdict_cells
 from crankdyn.tvc.limits import WIDENING_NAMES
 
 if TYPE_CHECKING:
@@ -107,6 +109,11 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
                 for c in result.conditions
             ),
         ),
+    ]
+    rules = getattr(spec, "rules", None)
+    if rules:
+        rows.append(("Rule set", str(rules)))
+    rows += [
         ("Tachometer tolerance", f"±{number(100 * result.tachometer_tolerance, 3)} %"),
         ("Barred-range margins", WIDENING_NAMES.get(result.widening, result.widening)),
     ]
@@ -115,14 +122,85 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
     return rows
 
 
+def _front(result: TvcResult, created: str) -> FrontMatter:
+    """The title page: the project's document control (``[project]``), the installation and
+    the overall verdict."""
+    model: Any = result.model
+    engine: Any = result.engine
+    project: Project | None = getattr(model, "project", None)
+    p = project or Project()
+    rows = list(p.rows())
+    rows.append(("Installation (model)", model.name))
+    if engine is not None:
+        c = engine.cylinders
+        firing = "-".join(map(str, c.firing_order))
+        rows.append(("Engine (model)", f"{engine.name}: {c.count} {c.layout}, firing {firing}"))
+    rows.append(("Rated speed n_0", f"{number(result.rated_speed * RPM, 6)} rpm"))
+    warnings = tuple(getattr(result, "warnings", ()) or ())
+    failed = len(result.failed())
+    if not result.verdicts:
+        verdict, status = "nothing checked (no component has a limit)", "warn"
+    elif failed:
+        verdict, status = f"FAILED: {failed} of {len(result.verdicts)} verdict rows", "fail"
+    elif warnings:
+        verdict, status = f"passed, with {len(warnings)} input warnings", "warn"
+    else:
+        verdict, status = f"passed: all {len(result.verdicts)} verdict rows", "pass"
+    document = [
+        ("Document", p.document or "-"),
+        ("Revision", p.revision or "-"),
+        ("Date", p.date or created),
+        ("Classification society", p.classification or "-"),
+    ]
+    rules = getattr(result.spec, "rules", None)
+    if rules:
+        document.append(("Rule set", str(rules)))
+    return FrontMatter(
+        title="Torsional vibration calculation",
+        subtitle=p.project or model.name,
+        verdict=verdict,
+        status=status,
+        rows=rows,
+        document=document,
+        revisions=[(r.revision, r.date, r.description, r.by) for r in p.revisions],
+        signatures=p.signatures(),
+        note=(
+            ""
+            if project is not None and project.given
+            else "No [project] section: the document control (project, engine type, MCR, "
+            "revisions, signatures) is not given (crankdyn docs tvc)."
+        ),
+    )
+
+
+def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
+    """Every verdict row (:func:`crankdyn.summary.verdict_cells`; the CSV holds the whole rule
+    text); the page shows the clause with a numbered reference to its source, listed once
+    under the table."""
+    header, rows = verdict_cells(verdicts)
+    sources = list(dict.fromkeys(v.source for v in verdicts))
+    page = [
+        [*row[:-1], f"{v.clause or '-'} [{sources.index(v.source) + 1}]"]
+        for row, v in zip(rows, verdicts, strict=True)
+    ]
+    return Table(
+        "verdicts",
+        "Verdicts",
+        header=header,
+        rows=rows,
+        page_rows=page,
+        notes=[f"[{i + 1}] {text}" for i, text in enumerate(sources)],
+        caption="Rule: the clause, [n] the source of the limit (listed under the table).",
+    )
+
+
 def _verdict_section(result: TvcResult) -> Section:
-    """The verdict table: the calculation's key figures, every verdict row, the barred ranges
-    as found and as declared with why, the passages (the result's summary)."""
-    return Section.of(
+    """The verdict table: every verdict row, the barred ranges as found and as declared with
+    why, the passages (the result's summary; its key figures are the document's summary)."""
+    section = Section.of(
         "verdicts",
         "Verdict table",
         [result],
-        verdicts_name="verdicts",
         intro=(
             "Every component in every condition: its worst value on the resolved response "
             "(the resonance peaks refined to 0.1 %, the worst value to 1e-6), the limit and "
@@ -131,31 +209,51 @@ def _verdict_section(result: TvcResult) -> Section:
             "and the tachometer tolerance added), permitted or not and why."
         ),
     )
+    tables = [t for t in section.tables if t.name not in ("verdicts-verdicts", "conditions")]
+    section.tables = [_verdict_table(result.verdicts), *tables] if result.verdicts else tables
+    section.show_figures = False
+    return section
 
 
 def _model_sections(result: TvcResult) -> list[Section]:
-    """The mass-elastic system, the natural frequencies and mode shapes, the Campbell diagram."""
+    """The mass-elastic system (schematic and tables), the natural frequencies with the mode
+    shapes and relative vector sums, the Campbell diagram."""
     model: Any = result.model  # a TorsionModel
     modes: Any = result.modes  # a ModalResult
+    from crankdyn.plots.schematic import plot_schematic
+
     sections = [
         Section(
             key="mass-elastic",
             title="Mass-elastic system",
             intro=(
                 f"{model.name}: {len(model.masses)} masses, {len(model.shafts)} shaft(s), "
-                f"{len(model.gears)} gear mesh(es), {len(model.dampers)} damper(s)."
+                f"{len(model.gears)} gear mesh(es), {len(model.dampers)} damper(s). Units as "
+                "the class forms give them: inertia kg·m², stiffness MN·m/rad, lengths mm."
             ),
+            plots=[
+                Plot(
+                    "schematic",
+                    "Schematic of the mass-elastic system",
+                    plot_schematic(model),
+                    "Drawn from the model: block heights grow with log10 of the inertia; "
+                    "distributed shafts as one double line.",
+                )
+            ],
             tables=[
                 Table(name, title, header=header, rows=rows, caption=caption)
-                for name, title, header, rows, caption in mass_elastic_tables(model)
+                for name, title, header, rows, caption in mass_elastic_tables(model, elements=False)
             ],
         ),
         Section.of(
             "modes",
-            "Natural frequencies and mode shapes",
-            [modes],
-            intro="Undamped natural frequencies (elastic modes numbered from 1).",
+            "Natural frequencies, mode shapes and relative vector sums",
+            [modes] + ([result.mode_table] if result.mode_table is not None else []),
+            intro="Undamped natural frequencies (elastic modes numbered from 1); the lowest "
+            "modes' relative amplitudes per mass and nodes; per order the relative vector sum "
+            "of the cylinders' amplitudes with the firing order's phase angles.",
             plots=[Plot("mode-shapes", "Mode shapes", modes.plot(), "")],
+            limits={"natural_frequencies": 8},
         ),
     ]
     campbell: Any = result.campbell  # a CampbellResult, or None
@@ -165,36 +263,52 @@ def _model_sections(result: TvcResult) -> list[Section]:
                 "campbell",
                 "Campbell diagram",
                 [campbell],
-                intro="Engine orders and the orders of the excitation sources (propeller blade "
-                "orders, machine harmonics) against the natural frequencies.",
+                intro="Engine orders (half orders included) and the orders of the excitation "
+                "sources (propeller blade orders, machine harmonics) against the natural "
+                "frequencies; every order labelled at its end.",
                 plots=[Plot("campbell", "Campbell diagram", campbell.plot(), "")],
             )
         )
+    for s in sections:
+        s.show_figures = False  # the headline figures are the summary's
     return sections
 
 
 def _condition_sections(result: TvcResult) -> list[Section]:
-    """Every condition: its components against their limits (plot), verdicts, barred ranges."""
-    return [
-        Section.of(
+    """Every condition: every component against its limit, and per component the forced
+    response per order and synthesised against its limits (the rows and barred ranges are the
+    verdict table's)."""
+    out = []
+    for k, cond in enumerate(result.condition_results):
+        section = Section.of(
             f"condition-{k + 1}",
             f"Condition: {cond.name}",
             [cond],
             intro=(
-                f"{cond.description}; {number(cond.low * RPM, 6)}-{number(cond.high * RPM, 6)} rpm."
+                f"{cond.description}; {number(cond.low * RPM, 6)}-"
+                f"{number(cond.high * RPM, 6)} rpm. Its verdict rows and barred ranges are in "
+                "the verdict table."
             ),
             plots=[
                 Plot(
                     f"condition-{k + 1}",
-                    f"{cond.name}: components against their limits",
+                    f"{cond.name}: every component against its limit",
                     cond.plot(),
                     "Value / limit of every check on the resolved response; barred ranges "
-                    "shaded (red: not permitted).",
-                )
+                    "shaded (red: not permitted, amber: permitted).",
+                ),
+                Plot(
+                    f"condition-{k + 1}-orders",
+                    f"{cond.name}: forced response per order and synthesised",
+                    cond.plot_orders(),
+                    "Every component that bars speeds: the largest orders (major solid), the "
+                    "synthesised value (black) and its limits (red; transient dashed).",
+                ),
             ],
         )
-        for k, cond in enumerate(result.condition_results)
-    ]
+        section.tables, section.show_figures = [], False
+        out.append(section)
+    return out
 
 
 def _passage_section(result: TvcResult) -> Section:
@@ -206,8 +320,7 @@ def _passage_section(result: TvcResult) -> Section:
             plots.append(
                 Plot(
                     f"passage-{k + 1}",
-                    f"Passage {number(p.start * RPM, 5)}-{number(p.end * RPM, 5)} rpm "
-                    f"({p.condition})",
+                    f"Passage {p.start * RPM:.1f}-{p.end * RPM:.1f} rpm ({p.condition})",
                     p.transient.plot(
                         shaft=p.transient.shafts[p.elements[0]] if p.elements else None
                     ),
@@ -227,9 +340,14 @@ def _passage_section(result: TvcResult) -> Section:
 
 
 def build_tvc_report(result: TvcResult) -> Report:
-    """The report of a :class:`~crankdyn.tvc.TvcResult` (module docstring): every section
-    renders a result's summary (the verdict rows, barred ranges, modes and critical speeds
-    are those the result declares, the same as the command line's).
+    """The report of a :class:`~crankdyn.tvc.TvcResult` (module docstring): a title page with
+    the document control of the model's ``[project]``, a numbered contents list, the summary
+    (the key figures and the conditions' table, once), the installation data, the
+    mass-elastic system (schematic, tables in the class forms' units), the natural frequencies
+    with mode-shape tables and relative vector sums, the Campbell diagram, the verdict table,
+    every condition's plots and the passages. Every section renders a result's summary (the
+    verdict rows, barred ranges, modes and critical speeds are those the result declares, the
+    same as the command line's).
 
     Parameters
     ----------
@@ -244,20 +362,34 @@ def build_tvc_report(result: TvcResult) -> Report:
         (:func:`summary_lists`); write it with :func:`crankdyn.report.write.write_report`.
     """
     model: Any = result.model  # a TorsionModel
+    created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     sections = [
-        _verdict_section(result),
         *_model_sections(result),
+        _verdict_section(result),
         *_condition_sections(result),
         _passage_section(result),
     ]
+    front = _front(result, created)
+    project: Project = getattr(model, "project", None) or Project()
+    left = " · ".join(x for x in ("TVC", project.document, project.project or model.name) if x)
+    right = " · ".join(
+        x for x in (f"Rev. {project.revision}" if project.revision else "", project.date) if x
+    )
+    tables = [Table.of(t) for t in result.summary().tables if t.key == "conditions"]
     return Report(
         title=f"Torsional vibration calculation: {model.name}",
         inputs=_inputs(result),
         sections=sections,
         source=model.source,
         version=__version__,
-        created=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
+        created=created,
         notes=list(result.notes),
         data=summary_lists(result),
         subject="installation",
+        front=front,
+        contents=True,
+        header=(left, right),
+        inputs_title="Installation data and settings",
+        notes_title="Notes",
+        summary_tables=tables,
     )

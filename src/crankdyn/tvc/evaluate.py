@@ -121,20 +121,17 @@ def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float)
 
 
 def _declared_how(found: Found, spec: TvcSpec) -> str:
-    """How the found range became the declared one: ``found 789.4-790.3 rpm, widened by the
-    2 % tachometer tolerance to 773.6-806.1 rpm``."""
-    ex = found.exceedance
-    words = [f"found {ex.start * RPM:.1f}-{ex.end * RPM:.1f} rpm"]
+    """How the found range became the declared one, in words without its ends (the table's
+    columns give them once, from the range itself): ``declared: the range found, widened by the
+    2 % tachometer tolerance``."""
     widened = []
     if spec.widening != "none":
         widened.append(f"by the {spec.widening.upper()} margins")
     if spec.tachometer_tolerance:
         widened.append(f"by the {spec.tachometer_tolerance * 100:g} % tachometer tolerance")
     if widened:
-        words.append(
-            f"widened {' and '.join(widened)} to {found.start * RPM:.1f}-{found.end * RPM:.1f} rpm"
-        )
-    return ", ".join(words)
+        return f"declared: the range found, widened {' and '.join(widened)}"
+    return "declared: the range found"
 
 
 def _barred_range(

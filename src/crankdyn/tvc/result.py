@@ -382,14 +382,16 @@ class TvcResult(Result):
         return list(self.verdicts)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The barred speed ranges (as found and as declared, and why) and the passages.
+        """The conditions (speed range, verdict rows, failed, smallest margin and where, barred
+        ranges), the barred speed ranges (as found and as declared, and why) and the passages.
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
             The tables.
         """
-        out = [barred_table(self.barred_ranges)] if self.barred_ranges else []
+        out = [_conditions_table(self.conditions)] if self.conditions else []
+        out += [barred_table(self.barred_ranges)] if self.barred_ranges else []
         if self.passages:
             out.append(
                 SummaryTable(
@@ -437,6 +439,42 @@ class TvcResult(Result):
         """
         margins = [v.margin for v in self.verdicts if np.isfinite(v.margin)]
         return min(margins) if margins else float("nan")
+
+
+def _conditions_table(conditions: tuple[ConditionResult, ...]) -> SummaryTable:
+    """One row per condition: its speed range (rpm), verdict rows, rows failed, smallest
+    margin and its component, barred ranges declared."""
+    rows = []
+    for c in conditions:
+        worst = _worst(c)
+        rows.append(
+            (
+                c.name,
+                round(c.low * RPM, 1),
+                round(c.high * RPM, 1),
+                len(c.verdicts),
+                sum(1 for v in c.verdicts if not v.passed),
+                None if worst is None else round(worst[0], 4),
+                "-" if worst is None else worst[1].rsplit(", ", 1)[0],
+                len(c.barred_ranges),
+            )
+        )
+    return SummaryTable(
+        "conditions",
+        "Conditions",
+        (
+            SummaryColumn("condition", "Condition"),
+            SummaryColumn("from_rpm", "From", "rpm"),
+            SummaryColumn("to_rpm", "To", "rpm"),
+            SummaryColumn("rows", "Verdict rows"),
+            SummaryColumn("failed", "Failed"),
+            SummaryColumn("smallest_margin", "Smallest margin"),
+            SummaryColumn("where", "Smallest margin at"),
+            SummaryColumn("barred_ranges", "Barred ranges"),
+        ),
+        tuple(rows),
+        "Every running condition: its rows of the verdict table; margin = 1 - worst / limit.",
+    )
 
 
 def _worst(result: TvcResult | ConditionResult) -> tuple[float, str] | None:
