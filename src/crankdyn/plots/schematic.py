@@ -260,7 +260,7 @@ def _draw_link(ax: Axes, lk: Link, pos: dict, half: dict[str, float]) -> None:
         (xa + xb) / 2,
         y_line + 0.06,
         lk.label,
-        fontsize=6.5,
+        fontsize=7.5,
         color=color,
         ha="center",
         va="bottom",
@@ -318,7 +318,7 @@ def plot_schematic(model: TorsionModel, fig: Figure | None = None) -> Figure:
             x,
             y - 0.5,
             f"{name}\n{quantity(m.inertia, 'kg·m²', significant=4)}",
-            fontsize=6.5,
+            fontsize=7.5,
             ha="right",
             va="top",
             rotation=35,
@@ -327,7 +327,7 @@ def plot_schematic(model: TorsionModel, fig: Figure | None = None) -> Figure:
         )
         for k, d in enumerate(dampers.get(name, [])):
             ax.add_patch(_rectangle((x - 0.14, y + h + 0.08 + 0.3 * k), 0.28, 0.22, COLORS[4]))
-            ax.text(x + 0.2, y + h + 0.19 + 0.3 * k, f"{d.name} ({d.kind})", fontsize=6.5,
+            ax.text(x + 0.2, y + h + 0.19 + 0.3 * k, f"{d.name} ({d.kind})", fontsize=7.5,
                     color=COLORS[4], va="center")  # fmt: skip
     xs = [p[0] for p in pos.values()]
     ys = [p[1] for p in pos.values()]

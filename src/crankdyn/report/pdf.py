@@ -89,14 +89,16 @@ class _DevTools:
         to_browser_r, self._to_browser = os.pipe()
         self._from_browser, from_browser_w = os.pipe()
 
-        def fds() -> None:  # the browser reads fd 3 and writes fd 4
-            high = [fcntl.fcntl(fd, fcntl.F_DUPFD, 10) for fd in (to_browser_r, from_browser_w)]
+        def fds() -> None:  # the browser reads fd 3 and writes fd 4 (dup2: kept over exec)
+            high = [
+                fcntl.fcntl(fd, fcntl.F_DUPFD_CLOEXEC, 10) for fd in (to_browser_r, from_browser_w)
+            ]
             os.dup2(high[0], 3)
             os.dup2(high[1], 4)
 
         self._process = subprocess.Popen(
             [browser, *_ARGS, "--remote-debugging-pipe", "about:blank"],
-            pass_fds=(3, 4),  # kept open after preexec_fn (the others are closed then)
+            close_fds=False,  # the others are close-on-exec (PEP 446); 3 and 4 must stay
             preexec_fn=fds,
             stdin=subprocess.DEVNULL,
             stdout=subprocess.DEVNULL,

@@ -307,6 +307,8 @@ def _condition_sections(result: TvcResult) -> list[Section]:
             ],
         )
         section.tables, section.show_figures = [], False
+        for figure in section.figures:  # the conditions' table of the summary shows them
+            figure.headline = False
         out.append(section)
     return out
 
