@@ -211,7 +211,7 @@ def _verdict_section(result: TvcResult) -> Section:
     )
     tables = [t for t in section.tables if t.name not in ("verdicts-verdicts", "conditions")]
     section.tables = [_verdict_table(result.verdicts), *tables] if result.verdicts else tables
-    section.show_figures = False
+    section.show_figures, section.notes = False, []  # the summary shows both once
     return section
 
 
