@@ -291,7 +291,7 @@ def plot_schematic(model: TorsionModel, fig: Figure | None = None) -> Figure:
     cols = 1 + max(int(c) for c, _r in lay.position.values())
     rows = lay.rows
     fig, axes = new_figure(
-        1, 1, width=min(max(4.0, 0.62 * cols + 1.2), 10.0), height=0.9 + 1.45 * rows, fig=fig
+        1, 1, width=min(max(7.0, 0.62 * cols + 1.2), 10.0), height=0.9 + 1.45 * rows, fig=fig
     )
     ax = axes[0, 0]
     ax.grid(False)

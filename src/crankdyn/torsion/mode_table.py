@@ -4,7 +4,7 @@ calculation tabulates for its natural modes.
 Per elastic mode r: the natural frequency, the relative amplitude a_j of every mass j (the mode
 shape of :func:`crankdyn.torsion.modal.natural_modes`, reflected to the reference speed, largest
 magnitude 1) and the nodes. Per order q of the engine's cycle and per mode, the *relative vector
-sum* of the cylinders:
+sum* of the cylinders::
 
     R_q,r = | sum_k beta_k,r exp(-i q Phi_k) |
 
