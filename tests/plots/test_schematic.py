@@ -15,6 +15,7 @@ from crankdyn.torsion.dampers import Damper
 
 @pytest.fixture(scope="module")
 def model():
+    rubber = Coupling(stiffness=3e5, relative_damping=1.0)
     masses = (
         Mass("damper hub", 2.0),
         Mass("crank 1", 5.0, cylinders=(1,)),
@@ -32,7 +33,7 @@ def model():
         Shaft(("damper hub", "crank 1"), 4e7),
         Shaft(("crank 1", "crank 2"), 4e7),
         Shaft(("crank 2", "flywheel"), 5e7),
-        Shaft(("flywheel", "coupling out"), 3e5, coupling=Coupling(stiffness=3e5, relative_damping=1.0)),
+        Shaft(("flywheel", "coupling out"), 3e5, coupling=rubber),
         Shaft(("coupling out", "pinion"), 8e6),
         Shaft(("wheel", "propeller"), 2e7),
         Shaft(("PTO pinion", "generator"), 4e6),

@@ -164,7 +164,8 @@ def layout_schematic(model: TorsionModel) -> SchematicLayout:
 
     def follow(name: str) -> tuple[list[tuple[str, str, Link]], list[tuple[str, str, Link]]]:
         """Lay the line on from ``name`` to the right; return the meshes and branches met."""
-        meshes, branches = [], []
+        meshes: list[tuple[str, str, Link]] = []
+        branches: list[tuple[str, str, Link]] = []
         while True:
             col, row = out.position[name]
             ahead = [(o, lk) for o, lk in neighbours[name] if o not in out.position]

@@ -268,6 +268,7 @@ def plot_campbell(
     n = np.array([0.0, top_speed])
     sources = result.order_sources or ("engine",) * len(result.orders)
     drawn: set[str] = set()
+    style: Any
     for j, q in enumerate(result.orders):
         major = result.major is not None and bool(result.major[j])
         engine = "engine" in sources[j].split(", ") if sources[j] else True
