@@ -138,6 +138,21 @@ def _check_pdf(target, out, rows):
     assert not missing, missing[:3]
 
 
+def test_tvc_page_says_each_thing_once(marine):
+    """Issue 32: the summary's table once (the verdict section repeats no key figures), no
+    raw keys in the input, the misfire note under "Notes" (not "Not analysed"), a range's
+    ends once (the barred-range table's columns; its "why" repeats no speeds)."""
+    target, _out, _err = marine
+    page = (target / "index.html").read_text(encoding="utf-8")
+    assert page.count("<h3>Conditions</h3>") == 1
+    assert page.count("Smallest margin of the verdict rows") == 1
+    assert "Every check passed" not in page
+    assert "Not analysed" not in page and "<h3>Notes</h3>" in page
+    assert "Barred-range widening" not in page and "Lloyd&#x27;s Register (Pt 5 Ch 8 2.5)" in page
+    barred = list(csv.DictReader((target / "data" / "barred_speed_ranges.csv").open()))
+    assert barred and all(not re.search(r"(found|to) \d", r["reason"]) for r in barred)
+
+
 def test_tvc_existing_folder_not_overwritten(hostile, cli):
     run = cli("tvc", "verdict-geared-line", "--output", hostile)
     assert run.status == 2 and "already exists" in run.err
