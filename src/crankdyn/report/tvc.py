@@ -150,7 +150,6 @@ def _front(result: TvcResult, created: str) -> FrontMatter:
         ("Document", p.document or "-"),
         ("Revision", p.revision or "-"),
         ("Date", p.date or created),
-        ("Classification society", p.classification or "-"),
     ]
     rules = getattr(result.spec, "rules", None)
     if rules:
@@ -180,7 +179,7 @@ def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
     header, rows = verdict_cells(verdicts)
     sources = list(dict.fromkeys(v.source for v in verdicts))
     page = [
-        [*row[:-1], f"{v.clause or '-'} [{sources.index(v.source) + 1}]"]
+        [*row[:-1], f"{v.clause} [{sources.index(v.source) + 1}]".strip()]
         for row, v in zip(rows, verdicts, strict=True)
     ]
     return Table(
@@ -190,7 +189,8 @@ def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
         rows=rows,
         page_rows=page,
         notes=[f"[{i + 1}] {text}" for i, text in enumerate(sources)],
-        caption="Rule: the clause, [n] the source of the limit (listed under the table).",
+        caption="Rule: the clause and [n], the source of the limit (listed under the table, "
+        "with the values it was evaluated with).",
     )
 
 
