@@ -63,3 +63,10 @@ def write(tmp_path):
         return path
 
     return _write
+
+
+def pytest_collection_modifyitems(config, items):
+    """The tests marked ``slow`` run first (stable order otherwise): with ``pytest -n 2`` the
+    workers start on the long ones and finish together, instead of one worker running a long
+    test alone at the end (the longest-processing-time-first rule of scheduling)."""
+    items.sort(key=lambda item: item.get_closest_marker("slow") is None)

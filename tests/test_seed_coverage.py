@@ -18,17 +18,9 @@ ROOT = Path(__file__).parents[1]
 TABLE = ROOT / "docs" / "seeds.md"
 STATUSES = ("present", "partial", "pending")
 SECOND_ROUND = "second round: engine results"
-PENDING = {
-    "000-13": "gravity",
-    "000-14": "friction",
-    "000-16": "m_k",
-    "000-45": "I_1",
-    "002-02": "6 n t",
-    "002-09": "intake",
-    "002-11": "m_rod/3",
-}
-"""The rows allowed to be pending (the engine results' second round, issue 34), each with a word
-its 'what the seed says' cell holds."""
+PENDING: dict[str, str] = {}
+"""The rows allowed to be pending, each with a word its 'what the seed says' cell holds: none
+(the engine results' second round of issue 34 did the last seven)."""
 TEST_REF = re.compile(r"(tests/[\w/]+\.py)::(\w+)")
 DOTTED = re.compile(r"`(crankdyn(?:\.\w+)+)`")
 COMMAND = re.compile(r"`crankdyn [a-z]")
@@ -112,7 +104,7 @@ def test_every_row_names_a_capability_and_existing_tests(row):
         assert name in _defined(path), f"{where}: {path} defines no {name}"
 
 
-def test_exactly_the_second_round_is_pending():
+def test_nothing_is_pending():
     pending = {r["id"] for r in ROWS if r["status"].startswith("pending")}
     assert pending == set(PENDING)
 

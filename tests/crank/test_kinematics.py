@@ -245,3 +245,48 @@ def test_summary_of_a_denormal_offset():
     centred = piston_kinematics(CrankGeometry(bore=0.08, crank_radius=0.04, rod_length=0.16), 100.0)
     assert s.max_rod_angular_velocity == pytest.approx(centred.extrema.max_rod_angular_velocity)
     assert s.max_acceleration == pytest.approx(centred.extrema.max_acceleration)
+
+
+def test_time_column_is_phi_over_6n_seed002():
+    """Seed 002 eq. 1: phi = w t = 6 n t (phi in degrees, n in rpm, t in s). By hand at
+    4900 rpm: phi = 90 deg at t = 90 / (6 x 4900) = 3.0612245e-3 s; a revolution takes
+    60 / 4900 = 1.2244898e-2 s. The forces' time column follows the same law on their cycle."""
+    import crankdyn
+
+    engine = crankdyn.Engine.example("vaz2108")
+    w = 4900 * math.pi / 30
+    k = piston_kinematics(engine.geometry, w)
+    t = dict(zip(np.round(np.degrees(k.crank_angle), 9), k.time, strict=True))
+    assert t[90.0] == pytest.approx(90 / (6 * 4900), rel=1e-12)
+    assert t[360.0] == pytest.approx(60 / 4900, rel=1e-12)
+    assert "time_s" in k.to_csv().splitlines()[0].split(",")
+    from crankdyn.session import Analysis
+
+    forces = Analysis(engine, speed=w).forces()
+    np.testing.assert_allclose(
+        forces.time, np.degrees(forces.crank_angle) / (6 * 4900), rtol=1e-12, atol=0
+    )
+
+
+def test_intake_gas_velocity_seed002_eq10():
+    """Seed 002 eq. 10: V_in = c_m F_p / F_in. By hand for bore 76 mm, stroke 71 mm at 4900 rpm
+    and an intake of 12 cm^2: c_m = S n / 30 = 11.59667 m/s, F_p = pi 0.076^2 / 4 =
+    4.536460e-3 m^2, V_in = 11.59667 x 4.536460e-3 / 12e-4 = 43.8398 m/s (6 digits)."""
+    from crankdyn.io.engine_file import parse_engine
+    from crankdyn.session import Analysis
+
+    doc = {
+        "name": "intake",
+        "geometry": {"bore": "76 mm", "stroke": "71 mm", "rod_ratio": 0.26,
+                     "intake_area": "12 cm^2"},
+        "operating": {"speed": "4900 rpm"},
+    }  # fmt: skip
+    engine = parse_engine(doc, file="e.toml")
+    summary = Analysis(engine).kinematics().extrema
+    assert summary.mean_piston_speed == pytest.approx(11.59667, rel=1e-6)
+    assert summary.intake_velocity == pytest.approx(43.8398, rel=1e-5)
+    figures = {f.key: f.value for f in summary.key_figures()}
+    assert figures["intake_velocity_m_s"] == pytest.approx(43.8398, rel=1e-5)
+    no_intake = parse_engine({**doc, "geometry": {"bore": "76 mm", "stroke": "71 mm",
+                                                  "rod_ratio": 0.26}}, file="e.toml")  # fmt: skip
+    assert Analysis(no_intake).kinematics().extrema.intake_velocity is None

@@ -142,3 +142,60 @@ def test_geometry_check_happens_for_direct_construction():
             Masses(piston_group=0.3, rod=0.3, rod_cg_from_big_end=0.2),
             CrankGeometry(0.08, 0.04, 0.15).rod_length,
         )
+
+
+def test_crank_unbalance_from_its_parts_seed000():
+    """Seed 000 section 2.1: m_k = m_z + 2 m_w rho / R. By hand for R = 40 mm (stroke 80 mm):
+    m_z = 0.30 kg, m_w = 0.25 kg at rho = 30 mm: 0.30 + 2 x 0.25 x 30/40 = 0.675 kg."""
+    engine = _engine(
+        {
+            "piston_group": "0.4 kg",
+            "rod": "0.5 kg",
+            "rod_cg_from_big_end": "40 mm",
+            "crank_pin": "0.30 kg",
+            "crank_web": "0.25 kg",
+            "crank_web_radius": "30 mm",
+        }
+    )
+    assert engine.masses.crank_unbalance == pytest.approx(0.675, rel=1e-15)
+    eq = equivalent_mass_model(engine.masses, engine.geometry.rod_length)
+    assert eq.crank == pytest.approx(0.675, rel=1e-15)
+    assert eq.rotating == pytest.approx(0.675 + 0.5 * 100 / 140, rel=1e-14)  # m_k + m_CB
+
+
+@pytest.mark.parametrize(
+    ("extra", "message"),
+    [
+        ({"crank_pin": "0.3 kg"}, "also needs crank_web, crank_web_radius"),
+        (
+            {
+                "crank_pin": "0.3 kg",
+                "crank_web": "0.2 kg",
+                "crank_web_radius": "30 mm",
+                "crank_unbalance": "0.5 kg",
+            },
+            "give crank_unbalance or its parts",
+        ),
+        ({"rod_split": "halves"}, "rod_split"),
+    ],
+)
+def test_crank_parts_and_rod_split_errors_are_one_line(extra, message):
+    with pytest.raises(InputError) as info:
+        _engine(
+            {"piston_group": "0.4 kg", "rod": "0.5 kg", "rod_cg_from_big_end": "40 mm", **extra}
+        )
+    text = str(info.value)
+    assert "\n" not in text and text.startswith("e.toml: [masses]") and message in text
+
+
+def test_rod_thirds_rule_seed002():
+    """Seed 002 eq. 15: P_j = m_j j with m_j = m_piston + m_rod/3 (the rest of the rod rotates).
+    By hand: m_p = 0.4 kg, m_rod = 0.6 kg: m_j = 0.6 kg, m_r = m_k + 0.4 kg; no centre of gravity
+    is needed for this split."""
+    engine = _engine({"piston_group": "0.4 kg", "rod": "0.6 kg", "rod_split": "thirds",
+                      "crank_unbalance": "0.1 kg"})  # fmt: skip
+    eq = equivalent_mass_model(engine.masses, engine.geometry.rod_length)
+    assert eq.reciprocating == pytest.approx(0.6, rel=1e-15)
+    assert eq.rotating == pytest.approx(0.5, rel=1e-15)
+    assert "m_rod/3" in eq.source
+    assert eq.three_mass_centre is None  # the 3-mass model is a centre-of-gravity model

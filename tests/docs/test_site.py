@@ -43,6 +43,7 @@ def build_site(out: Path) -> subprocess.CompletedProcess:
     )
 
 
+@pytest.mark.slow
 @pytest.mark.browser
 def test_docs_site_builds_without_warnings_and_renders(tmp_path, request):
     built = build_site(tmp_path)

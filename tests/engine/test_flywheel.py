@@ -100,6 +100,37 @@ def test_flywheel_from_the_required_inertia():
         assert isinstance(d[key], float), key
 
 
+def test_seed_shortcut_beside_the_exact_sizing():
+    """Seed 000 section 2.4: the flywheel is usually I_F = (0.8-0.9) I_0. By hand for the
+    single-harmonic case above: I_0 = Delta E / (delta w^2) with Delta E = 2 x 800 / 2 = 800 J
+    (the swing of 800 sin(2 theta) integrated: 800/2 from crest to trough, twice), and the exact
+    I_F = I_0 - 0.1 kg m^2; the shortcut is 0.85 I_0 and the share I_F / I_0."""
+    torque = 500.0 + 800.0 * np.sin(2 * THETA)
+    inputs = FlywheelInputs(delta=0.02, other_inertia=0.03)
+    r = flywheel_analysis(
+        THETA, torque, W, FOUR, rotating_inertia=0.05, reciprocating_inertia=0.02, inputs=inputs
+    )
+    rel = _trapezoid_rel(2)  # the swing on the grid (test_single_harmonic_closed_form)
+    i0 = 800.0 / (0.02 * W**2)
+    assert r.required_inertia == pytest.approx(i0, rel=rel)
+    figures = {f.key: f for f in r.key_figures()}
+    shortcut = figures["shortcut_flywheel_inertia_kgm2"]
+    assert shortcut.value == pytest.approx(0.85 * i0, rel=rel)
+    assert shortcut.where.startswith("range ")
+    assert figures["flywheel_share"].value == pytest.approx((i0 - 0.1) / i0, rel=rel)
+    assert "flywheel_share" in r.to_dict()
+    given = flywheel_analysis(
+        THETA,
+        torque,
+        W,
+        FOUR,
+        rotating_inertia=0.05,
+        reciprocating_inertia=0.02,
+        inputs=FlywheelInputs(inertia=0.4),
+    )
+    assert "shortcut_flywheel_inertia_kgm2" not in {f.key for f in given.key_figures()}
+
+
 def test_no_flywheel_needed():
     torque = 500.0 + 10.0 * np.sin(6 * THETA)
     r = flywheel_analysis(THETA, torque, W, FOUR, rotating_inertia=1.0, delta=0.01)

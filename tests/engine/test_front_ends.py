@@ -21,6 +21,8 @@ from crankdyn.report.build import build_report
 from crankdyn.session import ANALYSES
 from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
 
+pytestmark = pytest.mark.slow  # long: started first (tests/conftest.py)
+
 COMMANDS = {  # the command that shows each analysis (the engine's name follows)
     "kinematics": ("kinematics",),
     "pressure": ("pressure",),

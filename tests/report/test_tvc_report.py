@@ -16,6 +16,8 @@ import pytest
 from crankdyn.cli import main
 from crankdyn.report.tvc import BARRED_FIELDS, VERDICT_FIELDS
 
+pytestmark = pytest.mark.slow  # long: started first (tests/conftest.py)
+
 HOSTILE = "<script>alert(1)</script>"
 
 

@@ -33,6 +33,8 @@ from crankdyn.torsion import Mass, Shaft, TorsionModel
 from crankdyn.torsion.damped import damped_modes
 from crankdyn.torsion.quadratic import ChainPencil, condition_numbers
 
+pytestmark = pytest.mark.slow  # long: started first (tests/conftest.py)
+
 EPS = float(np.finfo(float).eps)
 
 

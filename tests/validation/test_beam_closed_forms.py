@@ -199,6 +199,7 @@ def _exact_timoshenko(section, bc, count):
     return np.array(roots[:count])
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("bc", [("clamped", "free"), ("free", "free"), ("clamped", "clamped")])
 def test_timoshenko_exact_transfer_matrix(bc):
     exact = _exact_timoshenko(STOCKY, bc, 3)

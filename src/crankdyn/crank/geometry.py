@@ -190,6 +190,9 @@ class CrankGeometry:
     offset : float
         Offset (desaxe) e of the cylinder axis from the crank centre (m), sign as above;
         default 0 (central slider-crank).
+    intake_area : float or None
+        Flow area of the intake F_in (m^2), for the mean intake gas velocity (seed 002 eq. 10);
+        default none.
 
     Raises
     ------
@@ -217,6 +220,7 @@ class CrankGeometry:
     crank_radius: float
     rod_length: float
     offset: float = 0.0
+    intake_area: float | None = None
     _derived: dict[Any, Any] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )  # what analyses of this geometry alone computed once (kinematics summaries)
@@ -240,6 +244,12 @@ class CrankGeometry:
                 key="offset",
                 value=self.offset,
             )
+        if self.intake_area is not None:
+            area = check_finite("intake_area", self.intake_area)
+            if area <= 0.0:
+                raise InputError("the intake area must be positive", key="intake_area",
+                                 value=self.intake_area)  # fmt: skip
+            object.__setattr__(self, "intake_area", area)
         for name, value in (
             ("bore", bore),
             ("crank_radius", radius),

@@ -67,6 +67,7 @@ __all__ = [
     "exact_acceleration",
     "extrema_grid",
     "half_binomial",
+    "intake_velocity",
     "kinematics_summary",
     "local_extrema",
     "piston_jerk",
@@ -872,6 +873,12 @@ class KinematicsSummary(Result):
     min_rod_angular_acceleration: float = scalar(
         "min_rod_angular_acceleration_rad_s2", "Min rod angular acceleration", "rad/s²"
     )
+    intake_velocity: float | None = scalar(
+        "intake_velocity_m_s", "Mean intake gas velocity V_in = c_m F_p/F_in", "m/s",
+        description="Seed 002 eq. 10: the mean gas velocity in the intake of area F_in, for its "
+        "pressure loss (with [geometry] intake_area)",
+        default=None,
+    )  # fmt: skip
 
     FIGURES = (
         derived(
@@ -921,7 +928,9 @@ class KinematicsResult(Result):
     """Piston and rod motion over one revolution, with its summary.
 
     The arrays are held in SI (angles in rad); the exports convert angles to degrees under
-    ``_deg`` keys. Made by :func:`piston_kinematics`.
+    ``_deg`` keys. Made by :func:`piston_kinematics`. The time column is t = phi / w from the
+    crank angle at the constant speed (seed 002 eq. 1: phi = w t = 6 n t, phi in degrees and n
+    in rpm).
 
     Parameters
     ----------
@@ -943,6 +952,7 @@ class KinematicsResult(Result):
     rod_angular_acceleration: NDArray[np.float64] = column(
         "rod_angular_acceleration_rad_s2", "Rod angular acceleration", "rad/s²"
     )
+    time: NDArray[np.float64] = column("time_s", "Time t = φ/ω (φ = 6 n t)", "s")
     extrema: KinematicsSummary = scalar("summary", "Summary", "")
     geometry: CrankGeometry | None = field(default=None, repr=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
@@ -1050,6 +1060,7 @@ def piston_kinematics(
         rod_angle=freeze(m.rod_angle),
         rod_angular_velocity=freeze(m.rod_angular_velocity),
         rod_angular_acceleration=freeze(m.rod_angular_acceleration),
+        time=freeze(phi / w),
         extrema=summary,
         geometry=geometry,
         warnings=summary.plausibility(fuel),
@@ -1160,7 +1171,38 @@ def _summary(
         min_rod_angular_velocity=pick(rod_rate, "min").value,
         max_rod_angular_acceleration=pick(rod_acc, "max").value,
         min_rod_angular_acceleration=pick(rod_acc, "min").value,
+        intake_velocity=intake_velocity(mean_speed, geometry),
     )
+
+
+def intake_velocity(mean_speed: float, geometry: CrankGeometry) -> float | None:
+    """The mean gas velocity in the intake, seed 002 eq. 10: V_in = c_m F_p / F_in, from the mean
+    piston speed c_m, the piston area F_p and the intake's area F_in (continuity of the charge
+    drawn in by the piston), for the intake's pressure loss.
+
+    Parameters
+    ----------
+    mean_speed : float
+        c_m (m/s).
+    geometry : CrankGeometry
+        Its bore and ``intake_area`` (m^2).
+
+    Returns
+    -------
+    float or None
+        V_in (m/s); None without an intake area.
+
+    Examples
+    --------
+    Bore 76 mm, c_m = 11.6 m/s, an intake of 12 cm^2: 11.6 x 45.36 / 12 = 43.85 m/s.
+
+    >>> g = CrankGeometry(0.076, 0.0355, 0.1365, intake_area=12e-4)
+    >>> round(intake_velocity(11.6, g), 2)
+    43.85
+    """
+    if geometry.intake_area is None:
+        return None
+    return mean_speed * geometry.piston_area / geometry.intake_area
 
 
 @dataclass(frozen=True)

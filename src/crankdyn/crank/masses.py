@@ -13,13 +13,53 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, scalar
 
 __all__ = [
+    "ROD_SPLITS",
     "EquivalentMasses",
     "Masses",
+    "crank_unbalance_from_parts",
     "equivalent_mass_model",
     "equivalent_masses",
     "rod_three_mass",
     "rod_two_mass",
 ]
+
+
+ROD_SPLITS = ("centre-of-gravity", "thirds")
+"""How the rod's mass is split between its ends: by its centre of gravity (the two-mass model,
+seed 000 section 2.1), or the rule of thumb m_j = m_piston + m_rod/3 (seed 002 eq. 15: a third at
+the small end, two thirds at the big end)."""
+
+
+def crank_unbalance_from_parts(
+    pin: float, web: float, web_radius: float, crank_radius: float
+) -> float:
+    """The crank's rotating (unbalanced) mass referred to the crank radius from its parts, seed
+    000 section 2.1: m_k = m_z + 2 m_w rho / R, the crank pin's mass m_z at the radius R and each
+    of the two webs' unbalanced mass m_w at its centre of mass's radius rho (the same centrifugal
+    force m w^2 rho as a mass m_w rho / R at the radius R).
+
+    Parameters
+    ----------
+    pin : float
+        The crank pin's mass m_z (kg).
+    web : float
+        One web's unbalanced mass m_w (kg).
+    web_radius : float
+        The radius rho of that mass's centre from the crankshaft axis (m).
+    crank_radius : float
+        R (m).
+
+    Returns
+    -------
+    float
+        m_k (kg).
+
+    Examples
+    --------
+    >>> round(crank_unbalance_from_parts(0.30, 0.25, 0.030, 0.040), 9)  # 0.30 + 2 x 0.25 x 0.75
+    0.675
+    """
+    return pin + 2.0 * web * web_radius / crank_radius
 
 
 def _nonnegative(name: str, value: float | None) -> float | None:
@@ -56,6 +96,9 @@ class Masses:
         m_k = m_z + 2 m_w rho / R); default 0.
     reciprocating, rotating : float or None
         Equivalent reciprocating mass m_j and rotating mass m_r per cylinder (kg), if known.
+    rod_split : str
+        :data:`ROD_SPLITS`: ``"centre-of-gravity"`` (default; needs ``rod_cg_from_big_end``) or
+        ``"thirds"`` (m_rod/3 at the small end, seed 002 eq. 15).
 
     Raises
     ------
@@ -78,10 +121,17 @@ class Masses:
     crank_unbalance: float = 0.0
     reciprocating: float | None = None
     rotating: float | None = None
+    rod_split: str = "centre-of-gravity"
 
     def __post_init__(self) -> None:
         for name in ("piston_group", "rod", "crank_unbalance", "reciprocating", "rotating"):
             object.__setattr__(self, name, _nonnegative(name, getattr(self, name)))
+        if self.rod_split not in ROD_SPLITS:
+            raise InputError(
+                f"unknown rod split; choose one of {', '.join(ROD_SPLITS)}",
+                key="rod_split",
+                value=self.rod_split,
+            )
         if self.rod_cg_from_big_end is not None:
             object.__setattr__(
                 self,
@@ -103,11 +153,34 @@ class Masses:
                 key=missing,
             )
         splits_rod = self.reciprocating is None or self.rotating is None
-        if self.rod and self.rod_cg_from_big_end is None and splits_rod:
+        by_cg = self.rod_split == "centre-of-gravity"
+        if self.rod and self.rod_cg_from_big_end is None and splits_rod and by_cg:
             raise InputError(
                 "the rod's centre of gravity is needed to split its mass",
                 key="rod_cg_from_big_end",
             )
+
+    def rod_ends(self, rod_length: float) -> tuple[float, float] | None:
+        """The rod's mass at its small and big ends (kg) by :attr:`rod_split`, or None when the
+        rod's mass (or, split by the centre of gravity, its centre of gravity) is not given.
+
+        Parameters
+        ----------
+        rod_length : float
+            L (m).
+
+        Returns
+        -------
+        (float, float) or None
+            (m_CA, m_CB).
+        """
+        if self.rod is None:
+            return None
+        if self.rod_split == "thirds":
+            return self.rod / 3.0, self.rod - self.rod / 3.0
+        if self.rod_cg_from_big_end is None:
+            return (0.0, 0.0) if self.rod == 0.0 else None
+        return rod_two_mass(self.rod, rod_length, self.rod_cg_from_big_end)
 
     def check_rod(self, rod_length: float) -> None:
         """Check the rod data against the rod length.
@@ -194,9 +267,7 @@ def equivalent_masses(masses: Masses, rod_length: float) -> tuple[float, float]:
     m_j, m_r : float
         Reciprocating and rotating mass (kg).
     """
-    small = big = 0.0
-    if masses.rod and masses.rod_cg_from_big_end is not None:
-        small, big = rod_two_mass(masses.rod, rod_length, masses.rod_cg_from_big_end)
+    small, big = masses.rod_ends(rod_length) or (0.0, 0.0)
     m_j = masses.reciprocating
     if m_j is None:
         m_j = (masses.piston_group or 0.0) + small
@@ -321,19 +392,17 @@ def equivalent_mass_model(
         If the rod data do not fit the rod length (:meth:`Masses.check_rod`).
     """
     masses.check_rod(rod_length)
-    small = big = None
     three: tuple[float | None, float | None, float | None] = (None, None, None)
     error = None
-    if masses.rod is not None and masses.rod_cg_from_big_end is not None:
-        small, big = rod_two_mass(masses.rod, rod_length, masses.rod_cg_from_big_end)
-        if masses.rod_inertia is not None:
-            three = rod_three_mass(
-                masses.rod, rod_length, masses.rod_cg_from_big_end, masses.rod_inertia
-            )
-            lb = masses.rod_cg_from_big_end
-            error = masses.rod * (rod_length - lb) * lb - masses.rod_inertia
-    elif masses.rod == 0.0:
-        small = big = 0.0
+    ends = masses.rod_ends(rod_length)
+    small, big = ends if ends is not None else (None, None)
+    by_cg = masses.rod_split == "centre-of-gravity"
+    if by_cg and masses.rod and masses.rod_cg_from_big_end is not None and masses.rod_inertia:
+        three = rod_three_mass(
+            masses.rod, rod_length, masses.rod_cg_from_big_end, masses.rod_inertia
+        )
+        lb = masses.rod_cg_from_big_end
+        error = masses.rod * (rod_length - lb) * lb - masses.rod_inertia
     m_j = masses.reciprocating
     if m_j is None:
         m_j = (masses.piston_group or 0.0) + (small or 0.0)
@@ -343,7 +412,8 @@ def equivalent_mass_model(
         crank = masses.crank_unbalance
         m_r = crank / rods_per_throw + (big or 0.0)
     given = [k for k in ("reciprocating", "rotating") if getattr(masses, k) is not None]
-    source = "given " + " and ".join(given) if given else "components (two-mass rod model)"
+    model = "two-mass rod model" if by_cg else "rod split m_rod/3 : 2 m_rod/3 (seed 002 eq. 15)"
+    source = "given " + " and ".join(given) if given else f"components ({model})"
     return EquivalentMasses(
         reciprocating=float(m_j),
         rotating=float(m_r),

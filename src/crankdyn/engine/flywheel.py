@@ -44,6 +44,7 @@ from crankdyn.engine.model import FlywheelInputs
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, freeze, scalar
 from crankdyn.roots import brentq
+from crankdyn.summary import derived
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -375,6 +376,22 @@ class FlywheelResult(Result):
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     cycle_angle: float = field(default=4.0 * math.pi, repr=False)
 
+    FIGURES = (
+        derived(
+            "flywheel_share", "flywheel_share", "Flywheel share of the total inertia I_F/I₀", "",
+            lambda r: _share(r),
+            description="The flywheel's part of the total inertia; seed 000 section 2.4's "
+            "shortcut I_F ≈ (0.8-0.9) I₀",
+        ),
+        derived(
+            "shortcut_flywheel_inertia", "shortcut_flywheel_inertia_kgm2",
+            "Shortcut flywheel I_F ≈ 0.85 I₀", "kg·m²", lambda r: _shortcut(r),
+            description="Seed 000 section 2.4's estimate of the flywheel from the required "
+            "total inertia, I_F ≈ (0.8-0.9) I₀ (mid value; the exact sizing above)",
+            unavailable="no target δ: no required total inertia I₀",
+        ),
+    )  # fmt: skip
+
     def plot(self, fig: Figure | None = None) -> Figure:
         """Torque, excess work (energy swing) and instantaneous speed.
 
@@ -391,6 +408,29 @@ class FlywheelResult(Result):
         from crankdyn.plots.flywheel import plot_flywheel
 
         return plot_flywheel(self, fig=fig)
+
+
+SHORTCUT_SHARE = (0.8, 0.9)
+"""Seed 000 section 2.4: the flywheel is usually 0.8-0.9 of the engine's total inertia, a
+shortcut for its size from the required total inertia I_0 (the exact sizing subtracts the crank
+train's inertias)."""
+
+
+def _share(r: FlywheelResult) -> tuple[float, str] | None:
+    if not r.total_inertia > 0.0:
+        return None
+    share = r.flywheel_inertia / r.total_inertia
+    low, high = SHORTCUT_SHARE
+    inside = "within" if low <= share <= high else "outside"
+    return share, f"{inside} the seed's {low:g}-{high:g}"
+
+
+def _shortcut(r: FlywheelResult) -> tuple[float, str] | None:
+    if r.required_inertia is None:
+        return None
+    low, high = (f * r.required_inertia for f in SHORTCUT_SHARE)
+    mid = 0.5 * (low + high)
+    return mid, f"range {low:.4g}-{high:.4g} kg·m², exact {r.flywheel_inertia:.4g} kg·m²"
 
 
 def flywheel_analysis(

@@ -56,6 +56,7 @@ from crankdyn.crank.kinematics import (
 from crankdyn.crank.masses import EquivalentMasses, equivalent_mass_model
 from crankdyn.crank.pressure import PressureTrace
 from crankdyn.crank.pressure_model import default_pressure
+from crankdyn.engine.force_model import G, piston_force_with_friction
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
 from crankdyn.plausibility import PlausibilityWarning, pressure_warnings
@@ -310,6 +311,11 @@ class CrankTrain:
         Side force N, rod force K, tangential force T, radial force Z (N).
     gas_tangential, inertia_tangential : numpy.ndarray
         The tangential forces of the gas and of the inertia force alone (N).
+    weight, friction : numpy.ndarray or None
+        With the engine's optional forces (:mod:`crankdyn.engine.force_model`): the
+        reciprocating mass's weight along the axis and the piston's friction force, both in P
+        (N); None when off. T and Z then hold, besides the rod's, the rotating mass's weight at
+        the crank radius (gravity on).
     masses : tuple of crankdyn.crank.masses.EquivalentMasses
         Equivalent masses of every cylinder (kg).
     trace : PressureTrace
@@ -338,6 +344,8 @@ class CrankTrain:
     trace: PressureTrace
     engine: Engine = field(repr=False)
     motion: SliderCrankMotion | None = field(default=None, repr=False)
+    weight: NDArray[np.float64] | None = field(default=None, repr=False)
+    friction: NDArray[np.float64] | None = field(default=None, repr=False)
     _derived: dict[str, Any] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )  # what summary_train() and warnings() computed once
@@ -416,7 +424,13 @@ class CrankTrain:
         w2r = self.speed**2 * self.crank_radius
         big_end = np.array([m.rod_big_end or 0.0 for m in self.masses])
         radial = self.radial - (big_end * w2r)[:, None]
-        t_pin = throw_sums(self.tangential, cyl.throws, cyl.throw_count)
+        tangential = self.tangential
+        if self.weight is not None:  # T and Z hold m_r's weight: the pin carries m_CB's only
+            crank = np.array([m.rotating - (m.rod_big_end or 0.0) for m in self.masses])[:, None]
+            chi = self.throw_direction
+            tangential = tangential - crank * G * np.sin(chi)
+            radial = radial - crank * G * np.cos(chi)
+        t_pin = throw_sums(tangential, cyl.throws, cyl.throw_count)
         z_pin = throw_sums(radial, cyl.throws, cyl.throw_count)
         return t_pin, z_pin
 
@@ -442,6 +456,8 @@ class CrankTrain:
         chi = self.throw_direction
         fx = fx + centrifugal * np.sin(chi)
         fy = fy + centrifugal * np.cos(chi)
+        if self.weight is not None:  # the rotating masses' weight (the piston's is in P)
+            fy = fy - rotating * G
         hx = throw_sums(fx, cyl.throws, cyl.throw_count)
         hy = throw_sums(fy, cyl.throws, cyl.throw_count)
         return hx, hy
@@ -483,8 +499,10 @@ def crank_train(
     motion = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, speed, terms=terms)
     m_j = np.array([m.reciprocating for m in masses])[:, None]
     inertia = -m_j * motion.acceleration
-    piston = gas + inertia
+    piston, weight, friction = _axial(engine, masses, gas + inertia, terms)
     side, rod, tangential, radial = rod_forces(piston, phi, g.lam, g.k, terms=terms)
+    if weight is not None:
+        tangential, radial = _with_rotating_weight(engine, masses, phi, tangential, radial)
     lever = (1.0 / terms.cos_beta) * terms.sin_phi_beta  # sin(phi + beta)/cos(beta)
     return CrankTrain(
         theta=theta,
@@ -505,7 +523,48 @@ def crank_train(
         trace=trace,
         engine=engine,
         motion=motion,
+        weight=weight,
+        friction=friction,
     )
+
+
+def _axial(
+    engine: Engine, masses: list[EquivalentMasses], p0: NDArray[np.float64], terms: CrankTerms
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None, NDArray[np.float64] | None]:
+    """P with the engine's optional forces (:mod:`crankdyn.engine.force_model`): the
+    reciprocating weight along the axis m_j g cos(alpha), then the piston's friction solved
+    exactly; (P, weight or None, friction or None), each (cylinders, angles) in N."""
+    model = engine.forces
+    if model is None or not model.active:
+        return p0, None, None
+    weight = None
+    if model.gravity:
+        m_j = np.array([m.reciprocating for m in masses])[:, None]
+        alpha = np.asarray(engine.cylinders.bank_axis_angles)[:, None]
+        weight = m_j * G * np.cos(alpha) * np.ones_like(p0)
+        p0 = p0 + weight
+    if not model.friction:
+        return p0, weight, None
+    tan_beta = terms.sin_beta / terms.cos_beta
+    piston, friction = piston_force_with_friction(
+        p0, terms.sin_phi_beta, tan_beta, model.ring_friction, model.skirt_friction
+    )
+    return piston, weight, friction
+
+
+def _with_rotating_weight(
+    engine: Engine,
+    masses: list[EquivalentMasses],
+    phi: NDArray[np.float64],
+    tangential: NDArray[np.float64],
+    radial: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """T and Z with the rotating mass's weight at the crank radius: m_r g sin(chi) in the
+    direction of rotation, m_r g cos(chi) toward the centre, chi = alpha + phi
+    (:mod:`crankdyn.engine.force_model`)."""
+    m_r = np.array([m.rotating for m in masses])[:, None]
+    chi = np.asarray(engine.cylinders.bank_axis_angles)[:, None] + phi
+    return tangential + m_r * G * np.sin(chi), radial + m_r * G * np.cos(chi)
 
 
 def _train_inputs(
@@ -556,13 +615,16 @@ def crank_tangential(
     numpy.ndarray
         T (N), shape (cylinders, angles).
     """
-    masses, _, _, _, _, _, gas, terms = _train_inputs(engine, speed, theta, pressure)
+    masses, _, _, phi, _, _, gas, terms = _train_inputs(engine, speed, theta, pressure)
     g = engine.geometry
     r, l, w = float(g.crank_radius), float(g.rod_length), float(speed)
     acceleration = exact_acceleration(terms, r, r / l, w)  # as slider_crank_exact
     m_j = np.array([m.reciprocating for m in masses])[:, None]
-    piston = gas + -m_j * acceleration
-    return (piston / terms.cos_beta) * terms.sin_phi_beta  # rod_forces' rod force, then T
+    piston, weight, _ = _axial(engine, masses, gas + -m_j * acceleration, terms)
+    tangential = (piston / terms.cos_beta) * terms.sin_phi_beta  # rod_forces' rod force, then T
+    if weight is not None:
+        tangential = _with_rotating_weight(engine, masses, phi, tangential, tangential)[0]
+    return tangential
 
 
 SUMMARY_STEP = math.radians(1.0)
@@ -775,7 +837,8 @@ def reuse_train(
 @dataclass(frozen=True)
 class ForcesResult(Result):
     """Forces of one cylinder over the working cycle (:func:`engine_forces`; module docstring
-    for signs).
+    for signs). The time column is t = theta / w at the constant speed (seed 002 eq. 1:
+    phi = w t = 6 n t, in degrees and rpm), from theta = 0 at cylinder 1's firing TDC.
 
     Parameters
     ----------
@@ -813,6 +876,13 @@ class ForcesResult(Result):
     inertia_torque: NDArray[np.float64] = column("inertia_torque_Nm", "Inertia torque", "N·m")
     inertia_torque_error: NDArray[np.float64] | None = column(
         "rod_model_torque_error_Nm", "Rod-model torque error", "N·m"
+    )
+    time: NDArray[np.float64] = column("time_s", "Time t = θ/ω (θ = 6 n t)", "s")
+    weight_force: NDArray[np.float64] | None = column(
+        "weight_force_N", "Weight along the axis m_j g cos α", "N"
+    )
+    friction_force: NDArray[np.float64] | None = column(
+        "friction_force_N", "Piston friction F_f", "N"
     )
     cylinder: int = scalar("cylinder", "Cylinder", "")
     bank: str = scalar("bank", "Bank", "")
@@ -987,6 +1057,8 @@ def engine_forces(
         )
     if engine.pressure is None:
         notes.append("no pressure trace: synthetic Wiebe model with default parameters")
+    if engine.forces is not None and engine.forces.active:
+        notes.append(f"with {engine.forces.describe()} ([forces])")
     return ForcesResult(
         crank_angle=freeze(theta),
         cylinder_angle=freeze(train.cycle_phase[i]),
@@ -1010,6 +1082,9 @@ def engine_forces(
         gas_torque=freeze(train.gas_tangential[i] * r),
         inertia_torque=freeze(train.inertia_tangential[i] * r),
         inertia_torque_error=None if error is None else freeze(error),
+        time=freeze(theta / w),
+        weight_force=None if train.weight is None else freeze(train.weight[i]),
+        friction_force=None if train.friction is None else freeze(train.friction[i]),
         cylinder=int(cylinder),
         bank=cyl.banks[i],
         throw=int(cyl.throws[i]),

@@ -31,6 +31,7 @@ from crankdyn.engine.firing import (
     even_firing_throw_angles,
     firing_angles,
 )
+from crankdyn.engine.force_model import ForceModel
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import TorsionModel
 
@@ -544,6 +545,9 @@ class Engine:
     crankshaft : crankdyn.crankshaft.geometry.Crankshaft or None
         Dimensions, material and type of the crankshaft for its fatigue check by IACS UR M53
         (:func:`crankdyn.crankshaft.strength.crankshaft_strength`), or None.
+    forces : crankdyn.engine.force_model.ForceModel or None
+        The optional forces on the crank train (gravity, piston friction; ``[forces]``), or
+        None: the gas and inertia forces alone.
 
     Raises
     ------
@@ -583,6 +587,7 @@ class Engine:
     fuel: str | None = None
     aspiration: str | None = None
     crankshaft: Crankshaft | None = None
+    forces: ForceModel | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():

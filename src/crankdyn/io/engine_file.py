@@ -9,7 +9,7 @@ from pathlib import Path
 from typing import Any
 
 from crankdyn.crank.geometry import CrankGeometry
-from crankdyn.crank.masses import Masses
+from crankdyn.crank.masses import ROD_SPLITS, Masses, crank_unbalance_from_parts
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
 from crankdyn.crankshaft.geometry import (
@@ -26,6 +26,7 @@ from crankdyn.crankshaft.geometry import (
     StressFactors,
 )
 from crankdyn.engine.firing import throw_angles_from_positions
+from crankdyn.engine.force_model import ForceModel
 from crankdyn.engine.model import (
     ASPIRATIONS,
     CYCLES,
@@ -131,6 +132,9 @@ def parse_engine(
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
     crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
+    forces = _forces(root.table("forces"))
+    if forces is not None and forces.active and masses is None:
+        raise root.error("forces", "gravity and piston friction act on the masses: give [masses]")
     with root.context():
         engine = Engine(
             name=name,
@@ -148,6 +152,7 @@ def parse_engine(
             fuel=fuel,
             aspiration=aspiration,
             crankshaft=crankshaft,
+            forces=forces,
         )
     root.finish()
     return engine
@@ -159,6 +164,7 @@ def _geometry(t: Table) -> CrankGeometry:
     radius = t.quantity(which, "length", check="positive") / (2.0 if which == "stroke" else 1.0)
     rod_key = t.exclusive("rod_length", "rod_ratio")
     offset = t.quantity("offset", "length", 0.0)
+    intake = t.quantity("intake_area", "area", None, check="positive")
     with t.context():
         if rod_key == "rod_ratio":
             ratio = t.number("rod_ratio", check="positive")
@@ -172,7 +178,9 @@ def _geometry(t: Table) -> CrankGeometry:
         else:
             rod = t.quantity("rod_length", "length", check="positive")
         try:
-            geometry = CrankGeometry(bore=bore, crank_radius=radius, rod_length=rod, offset=offset)
+            geometry = CrankGeometry(
+                bore=bore, crank_radius=radius, rod_length=rod, offset=offset, intake_area=intake
+            )
         except InputError as exc:
             if exc.key == "rod_length":  # report against the key the user wrote
                 raise t.error(rod_key, exc.message, t.data[rod_key]) from None
@@ -237,6 +245,17 @@ def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
         "rod_cg_from_big_end", "length", None, check="positive"
     )
     values["rod_inertia"] = t.quantity("rod_inertia", "inertia", None, check="positive")
+    values["rod_split"] = t.string("rod_split", "centre-of-gravity", choices=ROD_SPLITS)
+    parts = _crank_parts(t, geometry)
+    if parts is not None:
+        if values["crank_unbalance"] is not None:
+            raise t.error(
+                "crank_unbalance",
+                "give crank_unbalance or its parts (crank_pin, crank_web, crank_web_radius), "
+                "not both",
+                t.data["crank_unbalance"],
+            )
+        values["crank_unbalance"] = parts
     if values["crank_unbalance"] is None:
         values["crank_unbalance"] = 0.0
     with t.context():
@@ -249,6 +268,27 @@ def _masses(t: Table | None, geometry: CrankGeometry) -> Masses | None:
         raise
     t.finish()
     return masses
+
+
+def _crank_parts(t: Table, geometry: CrankGeometry) -> float | None:
+    """m_k from crank_pin, crank_web and crank_web_radius (seed 000 section 2.1), or None."""
+    pin = t.quantity("crank_pin", "mass", None, check="nonnegative")
+    web = t.quantity("crank_web", "mass", None, check="nonnegative")
+    rho = t.quantity("crank_web_radius", "length", None, check="positive")
+    given = {"crank_pin": pin, "crank_web": web, "crank_web_radius": rho}
+    if all(v is None for v in given.values()):
+        return None
+    missing = [k for k, v in given.items() if v is None]
+    if missing:
+        present = next(k for k, v in given.items() if v is not None)
+        raise t.error(
+            present,
+            f"the crank's unbalance from its parts also needs {', '.join(missing)} "
+            "(m_k = m_z + 2 m_w rho / R)",
+            t.data[present],
+        )
+    assert pin is not None and web is not None and rho is not None
+    return crank_unbalance_from_parts(pin, web, rho, geometry.crank_radius)
 
 
 def _pressure(
@@ -423,6 +463,21 @@ def _flywheel(t: Table | None) -> FlywheelInputs | None:
         inputs = FlywheelInputs(**values)
     t.finish()
     return inputs
+
+
+def _forces(t: Table | None) -> ForceModel | None:
+    """[forces]: gravity and the piston's friction (crankdyn.engine.force_model)."""
+    if t is None:
+        return None
+    values = {
+        "gravity": t.boolean("gravity", False),
+        "ring_friction": t.quantity("ring_friction", "force", 0.0, check="nonnegative"),
+        "skirt_friction": t.number("skirt_friction", 0.0, check="nonnegative"),
+    }
+    with t.context():
+        model = ForceModel(**values)
+    t.finish()
+    return model
 
 
 _CRANKSHAFT_LENGTHS = (

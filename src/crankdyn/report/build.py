@@ -71,6 +71,8 @@ def engine_inputs(engine: Engine) -> list[tuple[str, str]]:
             rows.append(("Rod CG from big end", f"{m.rod_cg_from_big_end * 1e3:.6g} mm"))
         if m.rod_inertia is not None:
             rows.append(("Rod moment of inertia", f"{m.rod_inertia:.6g} kg·m²"))
+        if m.rod_split != "centre-of-gravity":
+            rows.append(("Rod split", "m_rod/3 at the small end, 2 m_rod/3 at the big end"))
     if engine.pressure is not None:
         peak, at = engine.pressure.peak
         rows.append(
