@@ -93,14 +93,12 @@ def _links(model: TorsionModel) -> list[Link]:
                     if getattr(x, "segment_of", None) == segment
                 )
                 out.append(
-                    Link(
-                        segment[0], segment[1], "distributed", f"{_stiffness(stiff)} ({count} el.)"
-                    )
+                    Link(segment[0], segment[1], "distributed", f"{_stiffness(stiff)}\n{count} el.")
                 )
             continue
         a, b = s.between
         if s.coupling is not None:
-            out.append(Link(a, b, "coupling", f"coupling {_stiffness(s.stiffness)}"))
+            out.append(Link(a, b, "coupling", _stiffness(s.stiffness)))
         elif s.gear is not None:
             out.append(Link(a, b, "mesh", f"i = {1.0 / s.ratio:.4g}\n(elastic)"))
         else:
@@ -228,10 +226,10 @@ def _draw_link(ax: Axes, lk: Link, pos: dict, half: dict[str, float]) -> None:
             ax.plot([xa, xb], [ya, yb], color="#7f7f7f", linewidth=1.0, linestyle=":")
         else:  # two wheels in mesh: a short thick bar between them, the ratio beside it
             ax.plot([xa, xb], [ya, yb], color=COLORS[3], linewidth=3.0, zorder=1)
-        ax.annotate(
+        ax.annotate(  # beside the bar, below the upper mass's name (drawn down its right)
             lk.label,
-            ((xa + xb) / 2, (ya + yb) / 2),
-            xytext=(6, 0),
+            (xa + 0.4 * (xb - xa), ya + 0.6 * (yb - ya)),
+            xytext=(12, 0),
             textcoords="offset points",
             fontsize=7,
             color=COLORS[3] if lk.kind == "mesh" else "#7f7f7f",
@@ -261,7 +259,8 @@ def _draw_link(ax: Axes, lk: Link, pos: dict, half: dict[str, float]) -> None:
         (xa + xb) / 2,
         y_line + 0.06,
         lk.label,
-        fontsize=7.5,
+        fontsize=7.5 if "\n" not in lk.label else 6.5,
+        linespacing=1.0,
         color=color,
         ha="center",
         va="bottom",
@@ -325,6 +324,7 @@ def plot_schematic(model: TorsionModel, fig: Figure | None = None) -> Figure:
             rotation=35,
             rotation_mode="anchor",
             zorder=4,
+            bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 0.5},
         )
         for k, d in enumerate(dampers.get(name, [])):
             ax.add_patch(_rectangle((x - 0.14, y + h + 0.08 + 0.3 * k), 0.28, 0.22, COLORS[4]))
@@ -336,7 +336,8 @@ def plot_schematic(model: TorsionModel, fig: Figure | None = None) -> Figure:
     ax.set_ylim(min(ys) - 1.3, max(ys) + 0.9)
     ax.set_title(
         f"Mass-elastic system: {model.name}\n(inertia in kg·m², stiffness in MN·m/rad, "
-        "gear ratio i = n_in / n_out; blue: cylinders, green: propeller)",
+        "gear ratio i = n_in / n_out;\nblue: cylinders, green: propeller, "
+        "red spring: elastic coupling, dotted: rigid joint)",
         fontsize=9,
     )
     return fig

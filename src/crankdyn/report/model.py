@@ -8,7 +8,7 @@ the units people read (``15.2 MPa``).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from crankdyn.results import Result
@@ -203,6 +203,11 @@ class Table:
             The same table for the report.
         """
         header, rows = table.cells(aligned=False)
+        if limit is not None and len(table.rows) > limit:
+            # the page's units from the rows it shows (36 modes' frequencies would put the
+            # first eight, 4-230 Hz, in kHz); the others are only counted on the page
+            header, shown = replace(table, rows=table.rows[:limit]).cells(aligned=False)
+            rows = shown + rows[limit:]
         return cls(
             table.key,
             table.title,
