@@ -162,16 +162,34 @@ def plot_condition(condition: ConditionResult, fig: Figure | None = None) -> Fig
 
 
 def _per_order(r: Any, check: Any, values: np.ndarray) -> np.ndarray | None:
-    """The check's quantity per order (S, Q), where it is proportional to one shaft's
-    vibratory torque (a stress or a torque read on one shaft): the shaft's torque of each order
-    scaled by the quantity / synthesised torque; None otherwise."""
-    if len(check.elements) != 1 or check.unit not in ("Pa", "N·m"):
+    """The check's quantity per order (S, Q), where it is proportional to a shaft's vibratory
+    torque (a stress or a torque read on its shafts): at each speed the torque of each order on
+    the shaft (of the check's elements, e.g. a distributed shaft's) whose synthesised torque is
+    largest, scaled by the quantity / that synthesised torque; None otherwise."""
+    if not check.elements or check.unit not in ("Pa", "N·m"):
         return None
-    s = check.elements[0]
-    synth = np.asarray(r.synthesized_shaft_torque[:, s], dtype=float)
+    elements = list(check.elements)
+    synth_all = np.asarray(r.synthesized_shaft_torque[:, elements], dtype=float)  # (S, E)
+    at = np.argmax(synth_all, axis=1)
+    synth = synth_all[np.arange(len(at)), at]
     with np.errstate(divide="ignore", invalid="ignore"):
         scale = np.where(synth > 0.0, values / synth, np.nan)
-    return np.asarray(r.order_shaft_torque[:, :, s], dtype=float) * scale[:, None]
+    per = np.asarray(r.order_shaft_torque[:, :, elements], dtype=float)  # (S, Q, E)
+    return per[np.arange(len(at)), :, at] * scale[:, None]
+
+
+def _transient(ax: Axes, transient: np.ndarray, speed: np.ndarray, top: float, unit: str) -> None:
+    """The transient limit (red, dashed) where the plot's scale (up to ``top``, set by the
+    response and the continuous limit) holds it; above it the legend gives its values instead
+    of a stray piece of curve at the top edge."""
+    finite = transient[np.isfinite(transient)]
+    style = {"color": "#c62828", "linewidth": 1.0, "linestyle": (0, (5, 2))}
+    if finite.size and float(np.max(finite)) > top:
+        lo, hi = float(np.min(finite)), float(np.max(finite))
+        words = f"{lo:.3g}-{hi:.3g}" if hi > 1.001 * lo else f"{hi:.3g}"
+        ax.plot([], [], **style, label=f"transient limit\n{words} {unit}, off scale")
+        return
+    ax.plot(speed, transient, **style, label="transient limit")
 
 
 def plot_condition_orders(condition: ConditionResult, fig: Figure | None = None) -> Figure:
@@ -226,17 +244,10 @@ def plot_condition_orders(condition: ConditionResult, fig: Figure | None = None)
                 )
         ax.plot(speed, values * factor, color="black", linewidth=1.8, label="synthesised")
         ax.plot(speed, limit * factor, color="#c62828", linewidth=1.4, label="limit")
-        if check.transient_limit is not None:
-            ax.plot(
-                speed,
-                np.asarray(check.transient_limit(r.speed), dtype=float) * factor,
-                color="#c62828",
-                linewidth=1.0,
-                linestyle=(0, (5, 2)),
-                label="transient limit",
-            )
-        _shade(ax, condition, check.component)
         top = np.nanmax(np.concatenate([values, limit[np.isfinite(limit)]])) * factor
+        if check.transient_limit is not None:
+            _transient(ax, np.asarray(check.transient_limit(r.speed), dtype=float) * factor,
+                       speed, 1.12 * float(top), shown)  # fmt: skip
         ax.set_ylim(0.0, 1.12 * float(top) if np.isfinite(top) and top > 0 else 1.0)
         ax.set_xlim(float(speed[0]), float(speed[-1]))
         ax.tick_params(labelsize=7)
