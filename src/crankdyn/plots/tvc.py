@@ -183,7 +183,7 @@ def _transient(ax: Axes, transient: np.ndarray, speed: np.ndarray, top: float, u
     response and the continuous limit) holds it; above it the legend gives its values instead
     of a stray piece of curve at the top edge."""
     finite = transient[np.isfinite(transient)]
-    style = {"color": "#c62828", "linewidth": 1.0, "linestyle": (0, (5, 2))}
+    style: dict[str, Any] = {"color": "#c62828", "linewidth": 1.0, "linestyle": (0, (5, 2))}
     if finite.size and float(np.max(finite)) > top:
         lo, hi = float(np.min(finite)), float(np.max(finite))
         words = f"{lo:.3g}-{hi:.3g}" if hi > 1.001 * lo else f"{hi:.3g}"
