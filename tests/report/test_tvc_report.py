@@ -153,6 +153,10 @@ def test_tvc_page_says_each_thing_once(marine):
     assert "Barred-range widening" not in page and "Lloyd&#x27;s Register (Pt 5 Ch 8 2.5)" in page
     barred = list(csv.DictReader((target / "data" / "barred_speed_ranges.csv").open()))
     assert barred and all(not re.search(r"(found|to) \d", r["reason"]) for r in barred)
+    # one value per quantity: the conditions' smallest margins are the verdict rows' own
+    worst = json.loads((target / "summary.json").read_text(encoding="utf-8"))["key_figures"]
+    conditions = list(csv.DictReader((target / "data" / "conditions.csv").open()))
+    assert min(float(c["smallest_margin"]) for c in conditions) == worst["worst_margin"]
 
 
 def test_tvc_existing_folder_not_overwritten(hostile, cli):

@@ -454,7 +454,7 @@ def _conditions_table(conditions: tuple[ConditionResult, ...]) -> SummaryTable:
                 round(c.high * RPM, 1),
                 len(c.verdicts),
                 sum(1 for v in c.verdicts if not v.passed),
-                None if worst is None else round(worst[0], 4),
+                None if worst is None else worst[0],
                 "-" if worst is None else worst[1].rsplit(", ", 1)[0],
                 len(c.barred_ranges),
             )
