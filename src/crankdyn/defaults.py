@@ -29,6 +29,7 @@ __all__ = [
     "DELTA",
     "MAX_ORDER",
     "MAX_SPEEDS",
+    "RULES",
     "SPEED_STEP",
     "STEP",
     "TACHOMETER_TOLERANCE",
@@ -98,9 +99,18 @@ DEFAULTS: dict[str, Default] = {
             "tachometer_tolerance",
             0.02,
             "",
-            "the tachometer's tolerance by which a barred speed range is widened on both sides "
-            "(a [tvc] tachometer_tolerance in the model file overrides it)",
-            "IACS UR M68 Rev.3 (2021) M68.4 (barred speed ranges); LR Pt 5 Ch 8 3.4",
+            "the tachometer's tolerance by which a barred speed range is widened on both sides, "
+            "where neither the model file ([tvc] tachometer_tolerance) nor the rule set states one",
+            "crankdyn convention: no rule text read states a value (KR 2025 Pt 5 Ch 4 206.3 asks "
+            "for the tachometer's accuracy to be regarded, without a number)",
+        ),
+        Default(
+            "rules",
+            "iacs-m68",
+            "",
+            "the classification society's rule set of the verdicts (limits, barred-range rules, "
+            "each value with its clause; a [tvc] rules or --rules overrides it)",
+            "IACS UR M68, which every IACS member society implements (crankdyn docs tvc)",
         ),
         Default(
             "max_speeds",
@@ -126,6 +136,8 @@ TACHOMETER_TOLERANCE = float(DEFAULTS["tachometer_tolerance"].value)
 """The tachometer's tolerance (fraction of the speed) a barred range is widened by."""
 MAX_SPEEDS = int(DEFAULTS["max_speeds"].value)
 """The largest number of speeds of a sweep."""
+RULES = str(DEFAULTS["rules"].value)
+"""The rule set of the verdicts (:data:`crankdyn.tvc.rulesets.RULESETS`)."""
 
 
 def speed_grid(low: float, high: float, step: float = SPEED_STEP) -> NDArray[np.float64]:

@@ -4,6 +4,9 @@ An error (:class:`crankdyn.errors.InputError`) stops a run; a warning does not. 
 :class:`PlausibilityWarning` says which quantity lies outside the range such machines reach,
 its value, that range and where the range comes from, so the user can check a unit or a typo
 (an IMEP of 19 MPa is usually 1.9 MPa typed with a wrong exponent) or confirm an unusual design.
+An :class:`InputWarning` says the same of a value read from a file, against the plausible range
+of its role (:mod:`crankdyn.io.plausibility`, where the ranges are declared), naming the file,
+the key and the value as written.
 The checks are pure functions of SI numbers; the analyses attach their warnings to their result
 objects (``result.warnings``; an engine's together: :func:`crankdyn.engine.forces.
 engine_warnings`), the command line's writer prints them (``crankdyn: warning: ...``) and lists
@@ -50,6 +53,7 @@ __all__ = [
     "PEAK_PRESSURE_RANGES",
     "PISTON_ACCELERATION_G",
     "TRANSMISSION_ANGLE_MIN",
+    "InputWarning",
     "PlausibilityWarning",
     "check_imep",
     "check_mean_piston_speed",
@@ -57,7 +61,9 @@ __all__ = [
     "check_piston_acceleration",
     "check_transmission_angle",
     "engine_type_text",
+    "input_warnings",
     "kinematics_warnings",
+    "merge_warnings",
     "pressure_warnings",
 ]
 
@@ -162,6 +168,128 @@ class PlausibilityWarning:
     def range_text(self) -> str:
         """The typical range for people: ``"1.2-3.8 MPa"``, ``"200-800 g"``, ``"40-90 deg"``."""
         return _range_text(self.low, self.high, self.unit)
+
+
+@dataclass(frozen=True)
+class InputWarning(PlausibilityWarning):
+    """An input value outside the plausible range of its role (a shaft diameter of 180 m: a
+    bare number is SI, and 180 mm was meant), found where the file is read
+    (:mod:`crankdyn.io.plausibility`) and carried by the domain objects read from the file
+    (``input_warnings``) into every result computed from them. A result whose inputs carry
+    one cannot show a clean "passed" (:func:`crankdyn.summary.verdict_text`).
+
+    Parameters
+    ----------
+    key : str
+        Unique per input (``"input:"`` and the message), so that each is listed once.
+    quantity : str
+        The role of the value (``"shaft diameter"``).
+    value : float
+        The value (SI, in ``unit``).
+    unit : str
+        Its SI unit.
+    low, high : float
+        The plausible range of the role (SI, in ``unit``).
+    source : str
+        Why the range is plausible (the machines it spans).
+    message : str
+        One line: file, key, value as written, the value, the range, a hint.
+    file : str or None
+        The file, as named in messages.
+    input_key : str
+        The key as messages name it (``"[[shaft]] #3 outer_diameter"``, ``"line 4 inertia"``).
+    written : object
+        The value as written in the file.
+    value_shown, range_shown : str
+        The value and the range as the message shows them, in the role's display unit
+        (``"3342 rpm"``, ``"1-60000 rpm"``).
+    """
+
+    file: str | None = None
+    input_key: str = ""
+    written: Any = None
+    value_shown: str = ""
+    range_shown: str = ""
+
+    @property
+    def value_text(self) -> str:
+        """The value for people, in the role's display unit (``"180 m"``, ``"3342 rpm"``)."""
+        return self.value_shown or super().value_text
+
+    @property
+    def range_text(self) -> str:
+        """The plausible range for people, in the role's display unit (``"0.003-3 m"``)."""
+        return self.range_shown or super().range_text
+
+    def to_dict(self) -> dict[str, Any]:
+        """The warning as a JSON-ready dict.
+
+        Returns
+        -------
+        dict
+            ``check`` (``"input"``), ``file``, ``key``, ``value_as_written``, ``role``,
+            ``value``, ``unit``, ``plausible_low``, ``plausible_high`` (SI), ``reason`` and
+            ``message``.
+        """
+        written = self.written
+        if not isinstance(written, (str, int, float, bool)) and written is not None:
+            written = str(written)
+        return {
+            "check": "input",
+            "file": self.file,
+            "key": self.input_key,
+            "value_as_written": written,
+            "role": self.quantity,
+            "value": self.value,
+            "unit": self.unit,
+            "plausible_low": self.low,
+            "plausible_high": self.high,
+            "reason": self.source,
+            "message": self.message,
+        }
+
+
+def input_warnings(warnings: Any) -> tuple[InputWarning, ...]:
+    """The input warnings among ``warnings`` (the others are the analyses' plausibility
+    warnings).
+
+    Parameters
+    ----------
+    warnings : iterable of PlausibilityWarning
+        The warnings of a result or a summary.
+
+    Returns
+    -------
+    tuple of InputWarning
+        Those that are :class:`InputWarning`, in order.
+    """
+    return tuple(w for w in warnings if isinstance(w, InputWarning))
+
+
+def merge_warnings(*groups: Any) -> tuple[PlausibilityWarning, ...]:
+    """The warnings of several groups, each once (by message), in the order first met.
+
+    Parameters
+    ----------
+    *groups : iterable of PlausibilityWarning
+        The groups (an engine's and its model's input warnings, a result's own).
+
+    Returns
+    -------
+    tuple of PlausibilityWarning
+        The warnings, each message once.
+
+    Examples
+    --------
+    >>> w = PlausibilityWarning("imep", "IMEP", 19e6, "Pa", 1.2e6, 3.8e6, "Heywood", "too high")
+    >>> merge_warnings((w,), (w,)) == (w,)
+    True
+    """
+    seen: dict[str, PlausibilityWarning] = {}
+    for group in groups:
+        for w in group or ():
+            seen.setdefault(w.message, w)
+    return tuple(seen.values())
 
 
 def _engine_type(fuel: str | None, aspiration: str | None) -> list[tuple[str, str]]:

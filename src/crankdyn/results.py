@@ -26,7 +26,16 @@ import numpy as np
 from numpy.typing import ArrayLike, DTypeLike, NDArray
 
 from crankdyn.export import jsonable, scaled, scaled_value, to_jsonable
-from crankdyn.summary import FigureSpec, KeyFigure, Summary, SummaryColumn, SummaryTable, Verdict
+from crankdyn.summary import (
+    FigureSpec,
+    KeyFigure,
+    Summary,
+    SummaryColumn,
+    SummaryTable,
+    Verdict,
+    verdict_text,
+    warnings_dict,
+)
 
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
@@ -207,7 +216,11 @@ class Result:
 
     A result whose inputs may be legal but implausible declares a field ``warnings`` (a tuple of
     :class:`crankdyn.plausibility.PlausibilityWarning`); they are exported as a ``warnings``
-    list in :meth:`to_dict`, shown in the notebook view and printed by the command line.
+    list in :meth:`to_dict`, shown in the notebook view and printed by the command line. The
+    analysis session puts the input warnings of its subject's files first
+    (:class:`crankdyn.plausibility.InputWarning`, exported as ``input_warnings``); a result
+    carrying one shows no key figure with status "pass" (it reads "warn") and no clean
+    "passed" verdict (:func:`crankdyn.summary.verdict_text`).
     """
 
     warnings: tuple[PlausibilityWarning, ...] = ()
@@ -230,7 +243,9 @@ class Result:
         dict
             {key: value} of every exported field: SI values (degrees where the key says
             ``_deg``, rpm where it says ``_rpm``), the unit in the key; arrays as lists, NaN
-            and inf as None, nested results as dicts, and ``warnings`` when there are any.
+            and inf as None, nested results as dicts; ``input_warnings`` and ``warnings``
+            when there are any (:func:`crankdyn.summary.warnings_dict`), and ``verdict`` (in
+            words, :func:`crankdyn.summary.verdict_text`) when the result has verdicts.
         """
         out: dict[str, Any] = {}
         for _f, meta, value in self._fields("column", "array", "scalar"):
@@ -242,7 +257,13 @@ class Result:
             if got is not None:
                 out.setdefault(spec.key, to_jsonable(got[0], 1.0))
         if self.warnings:
-            out["warnings"] = [w.to_dict() for w in self.warnings]
+            out.update(warnings_dict(self.warnings))
+        verdicts = self.summary_verdicts()
+        if verdicts:  # the verdict in words, never a clean "passed" on implausible inputs
+            from crankdyn.plausibility import input_warnings
+
+            passed = all(v.passed for v in verdicts)
+            out.setdefault("verdict", verdict_text(passed, len(input_warnings(self.warnings))))
         return out
 
     def to_json(self, indent: int | None = 2) -> str:
@@ -634,9 +655,19 @@ def _format(value: Any, meta: Any) -> tuple[str, str]:
 
 
 def _with_status(figure: KeyFigure, warnings: Any) -> KeyFigure:
-    """The figure with status ``"warn"`` when one of the warnings is its plausibility check's."""
+    """The figure with status ``"warn"`` when one of the warnings is its plausibility check's,
+    or when it says "pass" and the inputs carry warnings (a verdict on implausible inputs is
+    never a clean pass, :func:`crankdyn.summary.verdict_text`)."""
+    from crankdyn.plausibility import input_warnings
+
     if figure.check and any(w.key == figure.check for w in warnings):
         return dataclasses.replace(figure, status="warn")
+    given = len(input_warnings(warnings))
+    if figure.status == "pass" and given:
+        plural = "s" if given != 1 else ""
+        return dataclasses.replace(
+            figure, status="warn", qualifier=f"with {given} input warning{plural}"
+        )
     return figure
 
 

@@ -11,10 +11,14 @@ summary`, a :class:`Summary`. Its parts are declared by the result class, never 
   where it occurs: "bearing 3", "at 2165 rpm") or :func:`derived` (a formula of the result);
 - **tables** (:class:`SummaryTable`): what the result's ``summary_tables()`` method returns
   (SI values with their columns' keys, labels and units);
-- **notes** and **warnings**: the result's ``notes`` field and its plausibility warnings;
+- **notes** and **warnings**: the result's ``notes`` field and its plausibility warnings
+  (the input warnings among them: values of the input files outside the plausible range of
+  their role, :mod:`crankdyn.io.plausibility`);
 - **verdicts** (:class:`Verdict`): what the result's ``summary_verdicts()`` returns (a rule
   check, the TVC): check, component, condition, quantity, worst value, limit, margin, passed,
-  rule and clause.
+  rule and clause; and the verdict in words (:attr:`Summary.verdict`,
+  :func:`verdict_text`): never a clean "passed" while the inputs carry warnings
+  ("passed, with 1 input warning").
 
 The command line prints the figures as its summary table, the report lays them out as the
 section's key figures, the study keeps them as the columns of its table (by their ``name``), the
@@ -62,6 +66,9 @@ __all__ = [
     "reduced",
     "summary_html",
     "verdict_cells",
+    "verdict_status",
+    "verdict_text",
+    "warnings_dict",
 ]
 
 REDUCTIONS = ("max", "min", "maxabs")
@@ -70,6 +77,63 @@ magnitude (the value kept is the magnitude)."""
 
 STATUSES = ("pass", "warn", "fail")
 """A key figure's status (None: information)."""
+
+
+def verdict_text(passed: bool | None, input_warnings: int = 0) -> str | None:
+    """The verdict in words, as every front end shows it: ``passed`` or ``FAILED``, with the
+    number of input warnings the verdict stands on (values of the input files outside the
+    plausible range of their role, :mod:`crankdyn.io.plausibility`): a verdict on implausible
+    inputs is never a clean "passed".
+
+    Parameters
+    ----------
+    passed : bool or None
+        Whether every verdict row passed; None without verdict rows.
+    input_warnings : int
+        How many input warnings the result carries.
+
+    Returns
+    -------
+    str or None
+        The verdict; None without verdict rows.
+
+    Examples
+    --------
+    >>> verdict_text(True), verdict_text(True, 1), verdict_text(False, 2)
+    ('passed', 'passed, with 1 input warning', 'FAILED, with 2 input warnings')
+    """
+    if passed is None:
+        return None
+    word = "passed" if passed else "FAILED"
+    if not input_warnings:
+        return word
+    return f"{word}, with {input_warnings} input warning{'s' if input_warnings != 1 else ''}"
+
+
+def verdict_status(text: str | None) -> str | None:
+    """The status of a verdict in words (:func:`verdict_text`): ``"pass"`` for a clean
+    "passed", ``"warn"`` for one with input warnings, ``"fail"`` for a failure.
+
+    Parameters
+    ----------
+    text : str or None
+        The verdict.
+
+    Returns
+    -------
+    str or None
+        The status; None without a verdict.
+
+    Examples
+    --------
+    >>> verdict_status("passed"), verdict_status("passed, with 1 input warning")
+    ('pass', 'warn')
+    """
+    if text is None:
+        return None
+    if text == "passed":
+        return "pass"
+    return "warn" if text.startswith("passed") else "fail"
 
 
 @dataclass(frozen=True)
@@ -105,6 +169,9 @@ class KeyFigure:
     headline : bool
         Whether it is one of the few figures a whole report's summary shows (every figure is
         shown with its own analysis).
+    qualifier : str
+        What the value stands on, shown after it (``"with 1 input warning"``: a "pass" on
+        implausible inputs reads "warn"); ``""`` for nothing.
     """
 
     name: str
@@ -119,6 +186,7 @@ class KeyFigure:
     description: str = ""
     check: str = ""
     headline: bool = False
+    qualifier: str = ""
 
     def text(self, significant: int = 5) -> tuple[str, str]:
         """(digits, display unit) in engineering units (:func:`crankdyn.display.
@@ -168,7 +236,8 @@ class KeyFigure:
         """
         digits, unit = self.text(significant)
         out = f"{digits} {unit}".rstrip() if digits != "-" else digits
-        return f"{out} ({self.where})" if self.where else out
+        out = f"{out} ({self.where})" if self.where else out
+        return f"{out}, {self.qualifier}" if self.qualifier else out
 
     def number(self) -> float | None:
         """The value as a float.
@@ -507,12 +576,14 @@ class Summary:
         Returns
         -------
         list of (str, str, str)
-            (label, value with where it was found, display unit) of every figure.
+            (label, value with where it was found and what it stands on, display unit) of
+            every figure.
         """
         out = []
         for f in self.figures:
             digits, unit = f.text()
-            out.append((f.label, f"{digits} ({f.where})" if f.where else digits, unit))
+            shown = f"{digits} ({f.where})" if f.where else digits
+            out.append((f.label, f"{shown}, {f.qualifier}" if f.qualifier else shown, unit))
         return out
 
     @property
@@ -522,6 +593,20 @@ class Summary:
             return None
         return all(v.passed for v in self.verdicts)
 
+    @property
+    def input_warnings(self) -> tuple[PlausibilityWarning, ...]:
+        """The input warnings among :attr:`warnings` (values of the input files outside the
+        plausible range of their role)."""
+        from crankdyn.plausibility import input_warnings
+
+        return input_warnings(self.warnings)
+
+    @property
+    def verdict(self) -> str | None:
+        """The verdict in words (:func:`verdict_text`): ``"passed"``, ``"passed, with 1 input
+        warning"``, ``"FAILED"``...; None without verdicts."""
+        return verdict_text(self.passed, len(self.input_warnings))
+
     def to_dict(self) -> dict[str, Any]:
         """The summary as JSON data.
 
@@ -529,7 +614,8 @@ class Summary:
         -------
         dict
             ``key_figures`` {key: value}, ``where`` {key: text} of the reduced ones,
-            ``tables``, ``notes``, ``warnings``, ``verdicts`` and ``passed``.
+            ``tables``, ``notes``, ``input_warnings`` (listed first), ``warnings`` (the
+            analyses' own), ``verdicts``, ``passed`` and ``verdict`` (in words).
         """
         from crankdyn.export import jsonable
 
@@ -544,12 +630,39 @@ class Summary:
             out["tables"] = {t.key: t.to_dict() for t in self.tables}
         if self.notes:
             out["notes"] = list(self.notes)
-        if self.warnings:
-            out["warnings"] = [w.to_dict() for w in self.warnings]
+        out.update(warnings_dict(self.warnings))
         if self.verdicts:
             out["verdicts"] = [v.to_dict() for v in self.verdicts]
             out["passed"] = self.passed
+            out["verdict"] = self.verdict
         return out
+
+
+def warnings_dict(warnings: Sequence[PlausibilityWarning]) -> dict[str, list[dict[str, Any]]]:
+    """Warnings as JSON lists: ``input_warnings`` (values of the input files outside the
+    plausible range of their role) and ``warnings`` (the analyses' plausibility warnings),
+    each present only when it has any.
+
+    Parameters
+    ----------
+    warnings : sequence of PlausibilityWarning
+        The warnings.
+
+    Returns
+    -------
+    dict
+        ``{"input_warnings": [...], "warnings": [...]}``, without empty lists.
+    """
+    from crankdyn.plausibility import InputWarning
+
+    out: dict[str, list[dict[str, Any]]] = {}
+    given = [w.to_dict() for w in warnings if isinstance(w, InputWarning)]
+    own = [w.to_dict() for w in warnings if not isinstance(w, InputWarning)]
+    if given:
+        out["input_warnings"] = given
+    if own:
+        out["warnings"] = own
+    return out
 
 
 VERDICT_HEADER = (
@@ -890,6 +1003,7 @@ def summary_html(summary: Summary) -> str:
     if summary.verdicts:
         header, cells = verdict_cells(summary.verdicts)
         parts.append(html_table(header, cells, title="Verdicts"))
+        parts.append(f"<p><strong>Verdict: {html_text(summary.verdict or '')}</strong></p>")
     for table in summary.tables:
         header, cells = table.cells(aligned=False)
         parts.append(html_table(header, cells, title=table.title, caption=table.caption))

@@ -317,3 +317,16 @@ def test_json_keys_the_docs_list_are_always_present(cli, steady_csv, runup_csv):
     tracking += ["window_speed_rpm", "window_cycles", "bin_width_rpm", "resonances", "notes"]
     data = json.loads(cli("measure", runup_csv, "--teeth", "60", "--format", "json").out)
     assert set(tracking) <= set(data), set(tracking) - set(data)
+
+
+def test_largest_per_order_is_the_results_table(cli, runup_csv):
+    """The terminal's "Largest per order" is the result's summary table: each order's largest
+    speed bin as the exported amplitudes give it."""
+    from crankdyn.display import column_text
+
+    data = json.loads(cli("measure", runup_csv, "--teeth", "60", "--format", "json").out)
+    amplitude = np.array(data["amplitude_rad"])
+    text = cli("measure", runup_csv, "--teeth", "60").out
+    part = " ".join(text[text.index("Largest per order") : text.index("Per speed bin")].split())
+    cells, unit = column_text(list(amplitude.max(axis=0)), "rad")
+    assert f"({unit})" in part and all(cell in part for cell in cells)

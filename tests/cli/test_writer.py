@@ -278,7 +278,8 @@ def test_a_split_verdict_table_repeats_component_and_condition():
     v = Verdict("intermediate shaft (thrust collar - stern tube flange)", "misfire cylinder 3",
                 "synthesised vibratory shear stress (half range)", 30e6, 40e6, "Pa", True,
                 "IACS UR M68 (Corr.2 Nov 2012, Aug 2014 text)", "M68.4", speed=70.0)  # fmt: skip
-    (table,) = summary_blocks(Summary("tvc", verdicts=(v,)))
+    table, verdict = summary_blocks(Summary("tvc", verdicts=(v,)))
+    assert verdict == "Verdict: passed"
     parts = _titled_parts(table, 80)
     assert len(parts) > 1
     for _title, columns in parts:

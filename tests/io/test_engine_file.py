@@ -55,7 +55,7 @@ def test_bare_si_numbers_and_alternative_keys(write):
     text = (
         BASE.replace('stroke = "71 mm"', "crank_radius = 0.0355")
         .replace('rod_length = "136.5 mm"', "rod_ratio = 0.26")
-        .replace('speed = "4900 rpm"', "speed = 513.1268")
+        .replace('speed = "4900 rpm"', 'speed = "513.1268 rad/s"')  # a bare speed is refused
     )
     e = load_engine(write("e.toml", text))
     assert e.geometry.crank_radius == 0.0355

@@ -95,8 +95,12 @@ def _pint_entry(unit: str):
     ureg = registry()
     units = ureg.parse_units(unit)
     angular = "radian" in str(ureg.get_root_units(units)[1])
+    per_angle = dict(ureg.get_root_units(units)[1]._units).get("radian", 0) == -1
     kinds = tuple(
-        k for k, v in KINDS.items() if units.dimensionality == _dimensionality(v.dimensionality)
+        k
+        for k, v in KINDS.items()
+        if units.dimensionality == _dimensionality(v.dimensionality)
+        and v.per_angle in (None, per_angle)  # a torque is no torsional stiffness (per radian)
     )
     target = {"speed": "rad/s" if angular else "Hz", "frequency": "rad/s" if angular else "Hz"}
     factors = {

@@ -50,7 +50,7 @@ def hostile(tmp_path_factory):
     model.write_text(text, encoding="utf-8")
     target = folder / "report"
     status, _out, err = _run("tvc", model, "--output", target, "--no-pdf", "--no-passage")
-    assert status == 0, err
+    assert status == 1, err  # the line's verdict fails by design: exit status 1, report written
     return target
 
 
@@ -150,7 +150,9 @@ def test_tvc_page_says_each_thing_once(marine):
     assert page.count("Smallest margin of the verdict rows") == 1
     assert "Every check passed" not in page
     assert "Not analysed" not in page and "<h3>Notes</h3>" in page
-    assert "Barred-range widening" not in page and "Lloyd&#x27;s Register (Pt 5 Ch 8 2.5)" in page
+    assert "Barred-range widening" not in page and "rules = " not in page
+    assert "<th>Rule set</th><td class='text'>Lloyd&#x27;s Register</td>" in page
+    assert "<th>Barred-range margins</th><td class='text'>least range 16 n_c/(18-λ_c)" in page
     barred = list(csv.DictReader((target / "data" / "barred_speed_ranges.csv").open()))
     assert barred and all(not re.search(r"(found|to) \d", r["reason"]) for r in barred)
     # one value per quantity: the conditions' smallest margins are the verdict rows' own
@@ -177,7 +179,7 @@ def test_tvc_without_a_browser_says_so(monkeypatch, cli, tmp_path):
     monkeypatch.setattr(pdf, "find_browser", lambda: None)
     target = tmp_path / "r"
     run = cli("tvc", "verdict-geared-line", "--out", target, "--no-passage")
-    assert run.status == 0, run.err
+    assert run.status == 1, run.err  # the line fails by design (exit status 1)
     assert "no PDF: no Chromium found" in run.out
     assert "--out is deprecated" in run.err
     assert (target / "index.html").is_file() and not (target / "report.pdf").exists()

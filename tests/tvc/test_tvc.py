@@ -156,7 +156,7 @@ def test_barred_range_ends_margins_and_placement(geared):
         assert not b.permitted  # the declared range reaches above 0.8 n_0 = 800 rpm
     ends = [v for v in tol.verdicts if "end of the declared" in v.quantity]
     assert ends and not any(v.passed for v in ends) and all(v.limit == 0.8 for v in ends)
-    lr = tvc(geared, spec=TvcSpec(tachometer_tolerance=0.0, widening="lr"), passage=False)
+    lr = tvc(geared, spec=TvcSpec(tachometer_tolerance=0.0, rules="lr"), passage=False)
     for b in lr.barred_ranges:
         nc, lam = b.critical_speed, b.critical_speed / (1000 / RPM)
         assert b.start == pytest.approx(16 * nc / (18 - lam), rel=1e-12)
@@ -208,7 +208,7 @@ rated_speed = "1000 rpm"
 [excitation]
 torque = "1 kN*m"
 [tvc]
-widening = "lr"
+rules = "lr"
 tachometer_tolerance = 0.03
 speed_step = "20 rpm"
 engine_torque_curve = [["400 rpm", "20 kN*m"], ["1000 rpm", "40 kN*m"]]
@@ -230,7 +230,7 @@ stiffness = "1 MN*m/rad"
 """
     model = parse_torsion_model(tomllib.loads(text), file="line.toml")
     spec = model.tvc
-    assert spec.widening == "lr" and spec.tachometer_tolerance == 0.03
+    assert spec.rules == "lr" and spec.tachometer_tolerance == 0.03 and spec.tolerance == 0.03
     assert spec.step == pytest.approx(20 / RPM)
     assert spec.ranges["misfire"] == pytest.approx((500 / RPM, 900 / RPM))
     assert spec.crankshaft.torque == 20e3 and spec.crankshaft.source == "builder"
@@ -239,10 +239,14 @@ stiffness = "1 MN*m/rad"
     bad = text.replace('["1000 rpm", "40 kN*m"]]', '"1000 rpm"]')
     with pytest.raises(InputError, match="engine_torque_curve"):
         parse_torsion_model(tomllib.loads(bad), file="line.toml")
-    bad = text.replace('widening = "lr"', 'widening = "dnv"')
-    with pytest.raises(InputError) as err:
+    bad = text.replace('rules = "lr"', 'rules = "dvn"')
+    with pytest.raises(InputError, match='did you mean "dnv"') as err:
         parse_torsion_model(tomllib.loads(bad), file="line.toml")
-    assert "widening" in str(err.value) and "line.toml" in str(err.value)
+    assert "rules" in str(err.value) and "line.toml" in str(err.value)
+    bad = text.replace('rules = "lr"', 'widening = "lr"')  # retired: one line naming rules
+    with pytest.raises(InputError, match=r'retired.*write rules = "lr"') as err:
+        parse_torsion_model(tomllib.loads(bad), file="line.toml")
+    assert "\n" not in str(err.value) and "[tvc] widening" in str(err.value)
     bad = text.replace('permissible_torque = "20 kN*m"', "")
     with pytest.raises(InputError, match="permissible"):
         parse_torsion_model(tomllib.loads(bad), file="line.toml")

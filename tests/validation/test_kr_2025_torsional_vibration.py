@@ -203,3 +203,97 @@ def test_kr_every_clause_read():
     assert all("Pt 5 Ch 4" in c.clause for _, c in KR.clauses())
     with pytest.raises(InputError, match="group"):
         R.crankshaft_limits(KR, 0.5, "C")
+
+
+# ---- the same clauses in the TVC's checks (crankdyn.tvc.checks, crankdyn.tvc.installation) ----
+def _spans_model(load_kw: dict | None = None):
+    """Two crank masses on a 200 mm crank span and an alternator on a 120 mm shaft."""
+    from crankdyn.torsion import Mass, Shaft, ShaftGeometry, TorsionModel
+
+    return TorsionModel(
+        (
+            Mass("throw 1", 10.0, cylinders=(1,)),
+            Mass("throw 2", 10.0, cylinders=(2,)),
+            Mass("alternator", 40.0, role="alternator"),
+        ),
+        (
+            Shaft(("throw 1", "throw 2"), 50e6, geometry=ShaftGeometry(0.2), role="crankshaft"),
+            Shaft(("throw 2", "alternator"), 3e6, geometry=ShaftGeometry(0.12)),
+        ),
+        **(load_kw or {}),
+    )
+
+
+def test_kr_201_in_the_tvc_crank_span_check():
+    """KR 2025 Pt 5 Ch 4 201 as the TVC's crank-span check (no engine builder's limit, no engine:
+    group B): tau_1 = 45 - 29 lambda^2 (lambda = 0.5: 37.75 MPa), tau_3 = 16 + 237 (lambda -
+    0.8) sqrt(lambda - 1) (lambda = 1.1: 38.48379 MPa), tau_2 = 2 tau_1 (75.5 MPa) up to 0.8,
+    where a barred range may reach; the nominal stress T / W_p, W_p = pi 0.2^3/16; each row
+    cites 201.1-201.4. IACS UR M68 states none (M68.1: UR M53's): a note, no row."""
+    from crankdyn.tvc.checks import model_checks
+    from crankdyn.tvc.spec import TvcSpec
+
+    model, n0 = _spans_model(), 100.0
+    checks, notes = model_checks(model, TvcSpec(rules="kr"), n0, ())
+    (span,) = [c for c in checks if c.component.startswith("crank span")]
+    lam = np.array([0.5, 1.1, 1.2])
+    limit = span.limit(lam * n0)
+    assert limit[0] / MPA == pytest.approx(37.75, rel=REL)
+    assert limit[1] / MPA == pytest.approx(38.48379, rel=REL) and np.isnan(limit[2])
+    assert span.transient_limit(np.array([0.5 * n0]))[0] / MPA == pytest.approx(75.5, rel=REL)
+    assert span.barred_upper == 0.8
+    assert span.clause == "τ_1: Pt 5 Ch 4 201.1; τ_3: Pt 5 Ch 4 201.3; f_m: Pt 5 Ch 4 201.4"
+    assert "group B" in span.source and any("group B" in n for n in notes)
+
+    class R1:
+        synthesized_shaft_torque = np.array([[1000.0, 0.0]])
+
+    w_p = math.pi * 0.2**3 / 16.0
+    assert span.curve(R1())[0] == pytest.approx(1000.0 / w_p, rel=1e-12)
+    checks, notes = model_checks(model, TvcSpec(rules="iacs-m68"), n0, ())
+    assert not [c for c in checks if c.component.startswith("crank span")]
+    assert any("crankshafts are IACS UR M53's" in n for n in notes)
+
+
+def test_kr_203_in_the_tvc_generating_set():
+    """KR 2025 Pt 5 Ch 4 203 for a generating set (constant-speed load): the crank span at 16
+    MPa (group B) to 1.1 n_0, 90 MPa while passing at and below 0.9 n_0 (203.1); the alternator
+    shaft at 31 MPa and 118 MPa (203.2); a barred range may reach 0.9 n_0."""
+    from crankdyn.tvc.checks import model_checks
+    from crankdyn.tvc.spec import TvcSpec
+
+    model, n0 = _spans_model(), 100.0
+    checks, _ = model_checks(model, TvcSpec(rules="kr"), n0, (), load="constant-speed")
+    span = next(c for c in checks if c.component.startswith("crank span"))
+    shaft = next(c for c in checks if c.component.startswith("alternator shaft"))
+    lam = np.array([0.5, 1.0, 1.1, 1.15])
+    assert (span.limit(lam * n0)[:3] / MPA).tolist() == [16.0, 16.0, 16.0]
+    assert np.isnan(span.limit(lam * n0)[3])
+    assert span.transient_limit(np.array([0.9, 0.95]) * n0)[0] / MPA == 90.0
+    assert np.isnan(span.transient_limit(np.array([0.95 * n0]))[0])
+    assert (shaft.limit(lam * n0)[:3] / MPA).tolist() == [31.0, 31.0, 31.0]
+    assert shaft.transient_limit(np.array([0.5 * n0]))[0] / MPA == 118.0
+    assert span.barred_upper == shaft.barred_upper == 0.9
+    assert "Pt 5 Ch 4 203.2" in shaft.clause and "Pt 5 Ch 4 203.1" in span.clause
+
+
+def test_kr_204_in_the_tvc_major_critical_rows():
+    """KR 2025 Pt 5 Ch 4 204 as rows of the normal-firing condition: two masses, J = 1 and 3
+    kg m^2 on k = 1e5 N m/rad, omega_1 = sqrt(k (1 + 1/3)) = 365.148 rad/s; one four-stroke
+    cylinder (majors 0.5 and 1); n_0 = 400 rad/s: order 1 at lambda = 0.912871 lies within
+    0.8-1.1 (failed), order 0.5 at 1.825742 outside; a generating set's window 0.9-1.1."""
+    from crankdyn.torsion import Mass, Shaft, TorsionModel
+    from crankdyn.tvc.installation import installation_verdicts
+    from crankdyn.tvc.spec import TvcSpec
+
+    model = TorsionModel(
+        (Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)), (Shaft(("a", "b"), stiffness=1e5),)
+    )
+    omega = math.sqrt(1e5 * (1.0 + 1.0 / 3.0))
+    assert omega == pytest.approx(365.148, rel=REL)
+    half, one = installation_verdicts(model, TvcSpec(rules="kr"), 400.0)
+    assert half.worst == pytest.approx(1.825742, rel=REL) and half.passed
+    assert one.worst == pytest.approx(0.912871, rel=REL) and not one.passed
+    assert one.clause == "major criticals: Pt 5 Ch 4 204" and one.speed == pytest.approx(omega)
+    gen = installation_verdicts(model, TvcSpec(rules="kr"), 400.0, load="constant-speed")
+    assert gen[1].limit == 0.9 and "0.9" in gen[1].quantity

@@ -18,12 +18,17 @@ The line (a 60 mm shaft, 60^-0.2 = 0.4409301, C_d = 0.35 + 0.93 x 0.4409301 = 0.
 1.38 = 44.2865 N/mm^2; its order-3 resonance at sqrt(k (1/J_e + 1/J_p))/3 = 598.3 rpm, n_0 =
 630 rpm, lambda = 0.950.
 Tolerances: the hand values carry 6 significant digits (relative 1e-5).
+
+The same flip on a marine line of engine, elastic coupling, gearbox and propeller
+(tests/tvc/data/class-flip-line.toml) through the whole TVC, and the rows LR Pt 5 Ch 6 2.1.3 and
+KR Table 5.4.1 note (2) attach to a barred range.
 """
 
 from __future__ import annotations
 
 import dataclasses
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -99,3 +104,87 @@ def test_verdict_flips_between_lr_and_kr_on_a_line():
     (barred,) = kr_barred
     assert not barred.permitted
     assert barred.start < resonance < barred.end and barred.end > 0.8 * n0
+
+
+# ---- a marine line of engine, elastic coupling, gearbox and propeller (tests/tvc/data) ----------
+FLIP_LINE = Path(__file__).parents[1] / "tvc" / "data" / "class-flip-line.toml"
+
+
+def test_class_flip_marine_line_passes_lr_and_fails_kr():
+    """The class-flip line (a six-cylinder engine, highly elastic coupling, 3:1 gearbox and
+    propeller, lightly damped): its carbon-steel intermediate shaft (sigma_B = 800 N/mm^2,
+    d = 200 mm, C_K = 1 for integral flanges) for 0.9 <= lambda <= 1.05, by hand:
+      200^-0.2 = 0.3465724, C_d = 0.35 + 0.93 x 0.3465724 = 0.6723124;
+      LR (760):  51.11111 x 0.6723124 x 1.38 = 47.4204 N/mm^2;
+      KR (600):  42.22222 x 0.6723124 x 1.38 = 39.1734 N/mm^2.
+    The order-3 resonance of the gearbox mode lies at 0.936 n_0 with about 43 MPa between the
+    two: the TVC passes under LR (and IACS M68 as crankdyn reads it, 760 too), fails under KR
+    (the stress exceeds tau_C above 0.8 n_0: the declared range, KR's least range 206.1(1) and
+    the 2 % tachometer tolerance, holds the rated speed). Tolerances: 6 printed digits (1e-5)."""
+    from crankdyn.tvc import tvc
+
+    model = TorsionModel.from_file(FLIP_LINE)
+    results = {
+        key: tvc(model, spec=dataclasses.replace(model.tvc, rules=key), passage=False)
+        for key in ("iacs-m68", "lr", "kr")
+    }
+    shaft = "intermediate shaft (thrust collar - propeller)"
+    lr_row = next(v for v in results["lr"].verdicts if v.component == shaft)
+    assert 0.9 * 750 * RPM_ < lr_row.speed < 1.05 * 750 * RPM_  # the worst in 0.9-1.05 n_0
+    assert lr_row.limit / MPA == pytest.approx(47.4204, rel=REL)
+    assert 39.1734 * MPA < lr_row.worst < 47.4204 * MPA
+    assert results["lr"].passed and results["iacs-m68"].passed
+    kr = results["kr"]
+    assert not kr.passed
+    (barred,) = [b for b in kr.barred_ranges if b.component == shaft]
+    assert not barred.permitted and barred.start < 750 * RPM_ < barred.end
+    assert barred.clause == "barred ranges: Pt 5 Ch 4 202.1(2); least range: Pt 5 Ch 4 206.1(1)"
+    spec = dataclasses.replace(model.tvc, rules="kr")
+    (check, *_), _ = model_checks(model, spec, 750 * RPM_, [])
+    at = np.array([lr_row.speed])
+    assert float(check.limit(at)[0]) / MPA == pytest.approx(39.1734, rel=REL)
+
+
+def test_lr_2_1_3_least_strength_and_kr_keyway_rows():
+    """LR Rules for Ships Pt 5 Ch 6 2.1.3: a shaft whose stresses come close to tau_T (crankdyn:
+    a declared barred range) needs sigma_B >= 500 N/mm^2 (a 450 N/mm^2 shaft fails, 600
+    passes); KR 2025 Pt 5 Ch 4 Table 5.4.1 note (2): a keyway with a barred range fails. The
+    built-in verdict-geared-line has barred ranges of both its shafts near 0.79 n_0."""
+    from crankdyn.io.catalogue import resolve_model_and_engine
+    from crankdyn.session import Analysis
+    from crankdyn.torsion.rules import ShaftLimit
+
+    geared, _ = resolve_model_and_engine("verdict-geared-line")
+    response = Analysis(geared).response()
+
+    def rows(model, key, kind):
+        verdicts, barred = judge(model, response, TvcSpec(rules=key))
+        assert barred
+        return [v for v in verdicts if v.kind == kind]
+
+    least = rows(geared, "lr", "least tensile strength")
+    assert least and all(v.passed and v.worst == 500 * MPA for v in least)
+    assert all(v.clause == "least σ_B: Pt 5 Ch 6 2.1.3" for v in least)
+    assert not rows(geared, "kr", "least tensile strength")  # KR Ch 4 states none
+    weak = dataclasses.replace(
+        geared.rules,
+        shafts=tuple(
+            dataclasses.replace(s, tensile_strength=450 * MPA) for s in geared.rules.shafts
+        ),
+    )
+    assert not any(
+        v.passed for v in rows(dataclasses.replace(geared, rules=weak), "lr", least[0].kind)
+    )
+    keyed = dataclasses.replace(
+        geared.rules,
+        shafts=tuple(
+            ShaftLimit(s.between, s.tensile_strength, feature="keyway tapered", design_factor=0.6)
+            for s in geared.rules.shafts
+        ),
+    )
+    keys = rows(dataclasses.replace(geared, rules=keyed), "kr", "keyway with a barred range")
+    assert keys and not any(v.passed for v in keys)
+    assert all(v.clause == "keyways: Pt 5 Ch 4 Table 5.4.1 note (2)" for v in keys)
+    assert not rows(
+        dataclasses.replace(geared, rules=keyed), "iacs-m68", "keyway with a barred range"
+    )

@@ -104,9 +104,10 @@ COMMAND_SUMMARIES: dict[str, str] = {
     "tvc": (
         "The torsional vibration calculation of MODEL_OR_ENGINE: every running condition (normal "
         "firing, each cylinder misfiring, damper out of order) against every component's limit "
-        "(IACS UR M68, the engine builder's, the coupling, gear, generator and damper makers'), "
-        "barred speed ranges and their passage, as a report folder with index.html, report.pdf "
-        "(headless Chromium, where installed) and summary.json (crankdyn docs tvc)."
+        "(the classification society's rule set, the engine builder's, the coupling, gear, "
+        "generator and damper makers'), barred speed ranges and their passage, as a report "
+        "folder with index.html, report.pdf (headless Chromium, where installed) and "
+        "summary.json (crankdyn docs tvc)."
     ),
 }
 """What ``crankdyn --help`` lists for each top-level command: its help up to the first word
@@ -372,8 +373,9 @@ def main(argv: list[str] | None = None) -> int:
     -------
     int
         0 on success (also when the reader of standard output quit early: a closed pipe ends
-        the command quietly), 2 after an input error or an output that failed (one line on
-        standard error), 128 + the signal's number after an interrupt or termination.
+        the command quietly), 1 when a command that prints a verdict ran and its verdict
+        failed (``--no-fail`` gives 0), 2 after an input error or an output that failed (one
+        line on standard error), 128 + the signal's number after an interrupt or termination.
 
     Examples
     --------

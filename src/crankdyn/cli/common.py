@@ -12,6 +12,9 @@ they are read.
 - a torsiograph signal is read with ``--teeth N`` pulses per revolution from the wheel on the
   torsional model's mass ``--at MASS`` (``measure``, ``analyze --measurement``);
 - ``--format table|csv|json``, ``-o/--output FILE`` and ``--force`` (:mod:`crankdyn.cli.writer`);
+- every command that prints a verdict takes ``--rules KEY`` (the classification society's rule
+  set, where the command judges by one) and ``--no-fail``, and exits with status 0 when every
+  verdict passed, 1 when one failed (its output written), 2 on an error (:func:`verdict_status`);
 - renamed options stay as hidden aliases that print a deprecation line.
 """
 
@@ -940,3 +943,95 @@ def before_work(check: Callable[[Mapping[str, Any]], object]) -> Decorator:
         return cast(F, command)
 
     return decorate
+
+
+# ---- verdicts: the rule set and the exit status ---------------------------------------------
+EXIT_STATUS_HELP = (
+    "Exit status: 0 when every verdict passed, 1 when one failed (the analysis ran and its "
+    "output is written), 2 on an error; --no-fail gives 0 whatever the verdict."
+)
+"""What every command that prints a verdict says of its exit status (docs/errors.md)."""
+
+
+def rules_option(help: str | None = None) -> Decorator:
+    """``--rules KEY``: the classification society's rule set of the verdicts, a key of
+    :data:`crankdyn.tvc.rulesets.RULESETS` (replacing the file's ``[tvc] rules``).
+
+    Parameters
+    ----------
+    help
+        The option's help text; default: the keys and the default. The callback's parameter
+        is ``rules`` (the key, normalised, or None).
+
+    Returns
+    -------
+    callable
+        A decorator that adds the option to a command.
+    """
+    from crankdyn.defaults import RULES
+    from crankdyn.tvc.rulesets import RULESET_KEYS
+
+    text = help or (
+        f"The classification society's rule set of the verdicts: {', '.join(RULESET_KEYS)} "
+        f"(default: the file's [tvc] rules, else {RULES}; crankdyn docs tvc)."
+    )
+
+    def check(_ctx: click.Context, _param: click.Parameter, value: str | None) -> str | None:
+        if value is None:
+            return None
+        from crankdyn.tvc.rulesets import get
+
+        try:
+            return get(value).key
+        except InputError as exc:
+            raise InputError(exc.message, key="--rules", value=value) from None
+
+    return click.option("--rules", default=None, metavar="KEY", callback=check, help=text)
+
+
+def no_fail_option(f: F) -> F:
+    """``--no-fail``: exit with status 0 even when a verdict fails (:func:`verdict_status`).
+
+    Parameters
+    ----------
+    f
+        The command callback; its parameter is ``no_fail`` (bool).
+
+    Returns
+    -------
+    callable
+        The callback with the option.
+    """
+    return click.option(
+        "--no-fail",
+        is_flag=True,
+        help="Exit with status 0 even when a verdict fails (default 1; the output is written "
+        "either way).",
+    )(f)
+
+
+def verdict_status(passed: bool | None, no_fail: bool = False) -> int:
+    """The exit status of a command that prints a verdict: 1 when the result's verdict failed
+    (unless ``--no-fail``), else 0. The verdict is the result's own (``TvcResult.passed``,
+    ``ConditionResult.passed``, ``result.summary().passed``), never re-derived here.
+
+    Parameters
+    ----------
+    passed
+        The result's verdict: True, False, or None where nothing was judged.
+    no_fail
+        ``--no-fail``: 0 whatever the verdict.
+
+    Returns
+    -------
+    int
+        0 or 1.
+
+    Examples
+    --------
+    >>> verdict_status(True), verdict_status(False), verdict_status(False, True)
+    (0, 1, 0)
+    >>> verdict_status(None)
+    0
+    """
+    return 1 if passed is False and not no_fail else 0

@@ -34,6 +34,7 @@ from crankdyn.cli.writer import (
 from crankdyn.constants import RPM
 from crankdyn.display import column_text, number
 from crankdyn.errors import InputError
+from crankdyn.measure.figures import largest_per_order_table
 from crankdyn.measure.orders import ANALYSES, WINDOWS, OrderSpectrum, OrderTracking
 from crankdyn.measure.signals import MIN_TEETH, PulseTrain
 
@@ -264,24 +265,10 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
     bins, the resonance fits, the damping identified, a summary."""
     cmp = cast("ModelComparison | None", result.comparison)
     n = result.speed * RPM
-    at = [int(np.argmax(result.amplitude[:, j])) for j in range(result.orders.size)]
-    columns: list[tuple[str, Sequence[Any]]] = [
-        ("Order", [f"{q:g}" for q in result.orders]),
-        ("Largest bin (mrad)", _mrad_values(result.amplitude[k, j] for j, k in enumerate(at))),
-        ("at (rpm)", [n[k] for k in at]),
-    ]
-    if cmp is not None:
-        columns.append(
-            (
-                "Model at that speed (mrad)",
-                _mrad_values(cmp.amplitude[k, j] for j, k in enumerate(at)),
-            )
-        )
-    orders = _table(
-        "Largest per order",
-        columns,
-        "speed bins; resolved resonance peaks below" if result.resonances else "",
-    )
+    tables: list[TextTable | str] = []
+    for table in largest_per_order_table(result):
+        header, rows = table.cells()
+        tables.append(TextTable(table.title, header, rows, table.text_columns(), table.caption))
     shown = np.sort(np.argsort(np.max(result.amplitude, axis=0))[::-1][:_SHOWN])
     columns = [
         ("Speed (rpm)", list(n)),
@@ -299,7 +286,7 @@ def _tracking_tables(result: OrderTracking) -> list[TextTable | str]:
         f"the {len(shown)} largest of {result.orders.size} orders; every order in "
         "--format csv or json",
     )
-    tables: list[TextTable | str] = [orders, bins]
+    tables.append(bins)
     fits = result.resonances
     columns = [
         ("Order", [f"{f.order:g}" for f in fits]),

@@ -345,13 +345,14 @@ def modes_command(
             except InputError as exc:
                 raise InputError(exc.message, key="--plot-modes", value=plot_modes) from None
     if result is None:  # a large chain: block by block, never N x N (ModeBlocks)
-        write_streamed(out, ModeBlocks(torsion_model, tabled))
+        write_streamed(out, ModeBlocks(torsion_model, tabled), warnings=session.input_warnings)
     elif out.for_people:
         out.write(
             blocks=[
                 summary_table(result, f"{result.model_name}: modes"),
                 *modes_tables(result, shown),
-            ]
+            ],
+            warnings=result,
         )
     else:
         out.write(json_data=result, csv_text=result.to_csv() if out.fmt == "csv" else None)
@@ -369,12 +370,15 @@ def streamed(model: TorsionModel, solver: str, count: int | None) -> bool:
     return solver == "eigen" and model.is_chain and listed * n > STREAMED_SIZE
 
 
-def write_streamed(out: Output, modes: ModeBlocks) -> None:
+def write_streamed(out: Output, modes: ModeBlocks, warnings: Any = ()) -> None:
     """Write the JSON or CSV of ``modes`` (a ModeBlocks) a piece at a time: to standard output
     as it comes, or to the ``-o`` file atomically (:func:`crankdyn.io.output.atomic_file`: a
     temporary file in the target's folder, moved into place when complete), the path written
-    said on stderr as :meth:`Output.write` does."""
+    said on stderr as :meth:`Output.write` does, and so are ``warnings`` (the model's input
+    warnings)."""
     from crankdyn.io.output import atomic_file
+
+    out.say_warnings(warnings)
 
     if out.fmt == "json":
         spool = None if out.path is None else str(Path(out.path).resolve().parent)
@@ -522,7 +526,7 @@ def table_command(model: str, output_path: str | None, force: bool) -> int:
     out.check()
     torsion_model = model_session(model).model
     assert torsion_model is not None  # resolve_model_and_engine always gives a model
-    out.write(csv_text=mass_elastic_csv(torsion_model))
+    out.write(csv_text=mass_elastic_csv(torsion_model), warnings=torsion_model.input_warnings)
     return 0
 
 

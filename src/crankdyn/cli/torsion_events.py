@@ -91,6 +91,7 @@ def run_event(
     out: Output,
     plot_path: str | None,
     force: bool,
+    no_fail: bool = False,
 ) -> int:
     """Run one event on the session's model and write its summary, verdicts and histories.
 
@@ -112,13 +113,16 @@ def run_event(
         The figure file, or None.
     force : bool
         Whether existing files may be replaced.
+    no_fail : bool
+        ``--no-fail``: status 0 whatever the verdict.
 
     Returns
     -------
     int
-        0.
+        The exit status: 1 where a verdict of the event failed (unless ``no_fail``), else 0
+        (:func:`crankdyn.cli.common.verdict_status` of the result's summary).
     """
-    from crankdyn.cli.common import save_figure
+    from crankdyn.cli.common import save_figure, verdict_status
     from crankdyn.cli.writer import summary_blocks
     from crankdyn.io.event_spec import event_from_table
     from crankdyn.torsion.event_run import event_response
@@ -136,15 +140,17 @@ def run_event(
             excitation = None  # a model without cylinders or sources: the event alone
     if speed is None and not isinstance(event, (ClutchEngagement, SpeedChange)):
         speed = session.speed
-    result = event_response(
-        model,
-        event,
-        speed=speed,
-        duration=duration,
-        excitation=excitation,
-        orders=session.orders if excitation is not None else None,
+    result = session.with_input_warnings(
+        event_response(
+            model,
+            event,
+            speed=speed,
+            duration=duration,
+            excitation=excitation,
+            orders=session.orders if excitation is not None else None,
+        )
     )
     out.write(blocks=summary_blocks(result), json_data=result, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(), plot_path, force)
-    return 0
+    return verdict_status(result.summary().passed, no_fail)

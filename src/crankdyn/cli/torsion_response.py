@@ -15,16 +15,19 @@ from crankdyn.cli.common import (
     check_plot_path,
     deprecated_alias,
     merge_alias,
+    no_fail_option,
     option_quantity,
     orders_option,
     parse_orders,
     parse_speed,
     parse_speeds,
     plot_option,
+    rules_option,
     save_figure,
     speed_option,
     speed_sweep,
     speeds_option,
+    verdict_status,
 )
 from crankdyn.cli.torsion import model_session, torsion_group
 from crankdyn.cli.writer import (
@@ -177,6 +180,8 @@ _MODEL_ARG = click.argument("model", metavar="MODEL_OR_ENGINE")
     metavar="FILE",
     help="Write the shaft stresses against the rule limits (needs [rules]).",
 )
+@rules_option()
+@no_fail_option
 @output_options
 def response_command(
     model: str,
@@ -190,6 +195,8 @@ def response_command(
     plot_quantity: str | None,
     item: str | None,
     stress_path: str | None,
+    rules: str | None,
+    no_fail: bool,
     fmt: str,
     output_path: str | None,
     force: bool,
@@ -198,7 +205,12 @@ def response_command(
 
     Per speed, order and mass the angular amplitude; synthesised over all orders (half of the
     peak-to-peak in the time domain, and the sum of the order amplitudes); vibratory torque and
-    nominal shear stress of every shaft; the IACS UR M68 check when the model has [rules].
+    nominal shear stress of every shaft; the installation's checks (the TVC's rows of the same
+    condition: the shafts of [rules] against the rule set's limits, couplings, gears, machines,
+    dampers), each row citing its rule, edition and clause (--rules chooses the rule set).
+
+    Exit status: 0 when every verdict passed (or nothing was judged), 1 when one failed (the
+    output is written), 2 on an error; --no-fail gives 0 whatever the verdict.
     """
     out = Output(fmt, output_path, force)
     out.check()
@@ -206,7 +218,7 @@ def response_command(
     cylinders = _int_list(misfire, "--misfire")
     check_plot_path(plot_path, force)
     check_plot_path(stress_path, force)
-    session = _session(model, speeds, orders)
+    session = _session(model, speeds, orders, rules=rules)
     result = session.response(
         dampers=() if no_dampers else None, misfire=cylinders, torque=_torque_amplitude(torque)
     )
@@ -247,13 +259,18 @@ def response_command(
         data["relative_angle"] = rel.to_dict()
     if judged is not None:  # its key figures, verdict rows and barred ranges
         data["judged"] = judged.to_dict()
-    out.write(blocks=response_tables(result, rel, judged), json_data=data, csv_text=result.to_csv())
+    out.write(
+        blocks=response_tables(result, rel, judged),
+        json_data=data,
+        csv_text=result.to_csv(),
+        warnings=(result, judged),
+    )
     if plot_path:
         save_figure(result.plot(what, target), plot_path, force)
     if stress_path:
         assert judged is not None
         save_figure(judged.plot_stress_limits(), stress_path, force)
-    return 0
+    return verdict_status(judged.passed if judged is not None else None, no_fail)
 
 
 @torsion_group.command("campbell")
@@ -471,7 +488,7 @@ def damper_command(
             from crankdyn.plots.torsion_response import plot_damper_comparison
 
             save_figure(plot_damper_comparison(with_d, without, "amplitude", hub), plot_path, force)
-    out.write(blocks=blocks, json_data=data)
+    out.write(blocks=blocks, json_data=data, warnings=session.input_warnings)
     return 0
 
 
@@ -584,6 +601,7 @@ def excitation_command(
     "comma-separated); repeat for each key.",
 )
 @plot_option("Write the torque of the most loaded shaft against time (.png, .svg or .pdf).")
+@no_fail_option
 @output_options
 def transient_command(
     model: str,
@@ -596,12 +614,17 @@ def transient_command(
     event: str | None,
     params: tuple[str, ...],
     plot_path: str | None,
+    no_fail: bool,
     fmt: str,
     output_path: str | None,
     force: bool,
 ) -> int:
     """Time-domain response of MODEL_OR_ENGINE to the engine torque (scipy's solve_ivp), at a
-    constant speed or in a run-up; or through a transient event (--event)."""
+    constant speed or in a run-up; or through a transient event (--event).
+
+    Exit status: 0 when every verdict passed (the verdicts of an --event; a run without one
+    has none), 1 when one failed (the output is written), 2 on an error; --no-fail gives 0
+    whatever the verdict."""
     out = Output(fmt, output_path, force)
     out.check()
     check_plot_path(plot_path, force)
@@ -622,6 +645,7 @@ def transient_command(
             out=out,
             plot_path=plot_path,
             force=force,
+            no_fail=no_fail,
         )
     if params:
         raise InputError("-p gives the keys of an --event", key="-p", value=params[0])
@@ -643,24 +667,9 @@ def transient_command(
     if ramp is None:
         session.speed  # noqa: B018  (no speed: the one-line error before the run)
     result = session.transient(run_up=ramp, duration=t_end, cycles=cycles)
-    cycle_angle = 4.0 * math.pi if session.cycle == "four-stroke" else 2.0 * math.pi
-    last = result.last_cycle(cycle_angle)
-    half = [
-        0.5 * (np.max(result.shaft_torque[last, s]) - np.min(result.shaft_torque[last, s]))
-        for s in range(len(result.shafts))
-    ]
-    largest = [np.max(np.abs(result.shaft_torque[:, s])) for s in range(len(result.shafts))]
-    half_t, half_unit = column_text(half, "N·m")
-    big_t, big_unit = column_text(largest, "N·m")
-    table = TextTable(
-        f"{result.model_name}: shaft torques, last cycle",
-        ["Shaft", f"Half range ({half_unit})", f"Largest |T| over the run ({big_unit})"],
-        [[f"{a} - {b}", half_t[s], big_t[s]] for s, (a, b) in enumerate(result.shafts)],
-        text_columns={0},
-        caption=f"{result.time.size} samples to {result.time[-1]:.4g} s; loss factors "
-        f"as viscous at {result.hysteretic_frequency / (2 * math.pi):.4g} Hz",
+    out.write(
+        blocks=summary_blocks(result, figures=False), json_data=result, csv_text=result.to_csv()
     )
-    out.write(blocks=[table], json_data=result, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(), plot_path, force)
     return 0

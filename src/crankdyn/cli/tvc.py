@@ -7,7 +7,14 @@ from pathlib import Path
 
 import click
 
-from crankdyn.cli.common import console, deprecated_alias, merge_alias
+from crankdyn.cli.common import (
+    console,
+    deprecated_alias,
+    merge_alias,
+    no_fail_option,
+    rules_option,
+    verdict_status,
+)
 from crankdyn.cli.torsion import model_session
 from crankdyn.cli.writer import Output, summary_blocks
 from crankdyn.errors import InputError
@@ -26,6 +33,8 @@ _HELP_OUTPUT = "Report folder (default: <name>-tvc); built aside and moved into 
     help="Leave out the time-domain passage through the barred ranges.",
 )
 @click.option("--force", is_flag=True, help="Replace an existing report folder.")
+@rules_option()
+@no_fail_option
 def tvc_command(
     model: str,
     output_dir: str | None,
@@ -33,12 +42,19 @@ def tvc_command(
     no_pdf: bool,
     no_passage: bool,
     force: bool,
+    rules: str | None,
+    no_fail: bool,
 ) -> int:
     """The torsional vibration calculation of MODEL_OR_ENGINE: every running condition (normal
     firing, each cylinder misfiring, damper out of order) against every component's limit
-    (IACS UR M68, the engine builder's, the coupling, gear, generator and damper makers'),
-    barred speed ranges and their passage, as a report folder with index.html, report.pdf
-    (headless Chromium, where installed) and summary.json (crankdyn docs tvc)."""
+    (the classification society's rule set, the engine builder's, the coupling, gear,
+    generator and damper makers'), barred speed ranges and their passage, as a report folder
+    with index.html, report.pdf (headless Chromium, where installed) and summary.json
+    (crankdyn docs tvc).
+
+    Every verdict row cites its rule, edition and clause (--rules chooses the rule set).
+    Exit status: 0 when every verdict passed, 1 when one failed (the report is written), 2 on
+    an error; --no-fail gives 0 whatever the verdict."""
     from crankdyn.report.pdf import print_pdf
     from crankdyn.report.tvc import build_tvc_report
     from crankdyn.report.write import write_report
@@ -48,7 +64,7 @@ def tvc_command(
     target = Path(output_dir) if output_dir else Path(f"{stem}-tvc")
     if target.exists() and not force:  # fail before the long work
         raise InputError("already exists; not overwritten without --force", file=str(target))
-    session = model_session(model)
+    session = model_session(model, rules=rules)
     err = console(stderr=True)
     with err.status("Torsional vibration calculation"):
         result = session.tvc(passage=not no_passage)
@@ -65,14 +81,14 @@ def tvc_command(
 
         # the folder written: a numbered sibling when ``target`` appeared meanwhile
         target = write_report(report, target, force=force, finish=finish)
+    # the verdict line (with the input warnings it stands on) is the summary's
     blocks: list = summary_blocks(result, f"{result.model_name}: torsional vibration calculation")
-    blocks.append(f"Verdict: {'passed' if result.passed else 'FAILED'}")
     blocks.extend(pdf_note)
     blocks.append(f"Report: {target / 'index.html'}")
     if not no_pdf and not pdf_note:
         blocks.append(f"PDF: {target / 'report.pdf'}")
-    Output("table").write(blocks=blocks)
-    return 0
+    Output("table").write(blocks=blocks, warnings=result)
+    return verdict_status(result.passed, no_fail)
 
 
 def register(group: click.Group) -> None:

@@ -34,7 +34,7 @@ from crankdyn.errors import InputError
 from crankdyn.io.output import check_writable, write_text
 from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result, jsonable
-from crankdyn.summary import Summary, verdict_cells
+from crankdyn.summary import Summary, verdict_cells, warnings_dict
 
 if TYPE_CHECKING:
     from rich.console import Console
@@ -201,8 +201,10 @@ def summary_blocks(
     limit: int | None = None,
 ) -> list[TextTable | str]:
     """Everything a result's summary holds, as the terminal shows it: the key figures, the
-    verdicts (:func:`crankdyn.summary.verdict_cells`, every column repeated in each part of a
-    wide table's split: component, condition and quantity), the summary's tables and its notes.
+    verdicts (the input warnings they stand on first, then the rows,
+    :func:`crankdyn.summary.verdict_cells`, every column repeated in each part of a wide
+    table's split: component, condition and quantity, then the verdict in words,
+    :attr:`crankdyn.summary.Summary.verdict`), the summary's tables and its notes.
 
     Parameters
     ----------
@@ -225,8 +227,11 @@ def summary_blocks(
     if figures and summary.figures:
         blocks.append(summary_table(summary, title))
     if summary.verdicts:
+        # the input warnings the verdict stands on, first; then the rows and the verdict
+        blocks += [f"Input warning: {w.message}" for w in summary.input_warnings]
         header, rows = verdict_cells(summary.verdicts)
         blocks.append(TextTable("Verdicts", header, rows, text_columns={0, 1, 2, 5, 8, 9}, keys=2))
+        blocks.append(f"Verdict: {summary.verdict}")
     for table in summary.tables:
         table = table.head(limit)
         header, rows = table.cells()
@@ -724,6 +729,26 @@ class Output:
         if self.path is not None:
             check_writable(self.path, force=self.force, option="--force")
 
+    def say_warnings(self, *sources: Any) -> list[PlausibilityWarning]:
+        """Print the plausibility warnings of ``sources`` (:func:`warnings_of`) on standard
+        error, one ``crankdyn: warning: ...`` line each (the writer's own path, also for the
+        outputs written a piece at a time).
+
+        Parameters
+        ----------
+        *sources
+            Results, warnings, or lists of either.
+
+        Returns
+        -------
+        list of PlausibilityWarning
+            The warnings printed, each once.
+        """
+        found = warnings_of(*sources)
+        for w in found:
+            warn(w.message)
+        return found
+
     def write(
         self,
         *,
@@ -738,7 +763,8 @@ class Output:
         ``csv``; to a file atomically, never over one that appeared meanwhile, the path written
         said on stderr (:func:`crankdyn.io.output.write_text`). The plausibility warnings of
         ``json_data`` (a Result) and of ``warnings`` (results or warnings, :func:`warnings_of`)
-        are printed on standard error and listed in the JSON (``warnings``).
+        are printed on standard error and listed in the JSON (``input_warnings`` for the
+        values of the input files, ``warnings`` for the analyses' own).
 
         Parameters
         ----------
@@ -765,17 +791,17 @@ class Output:
         tables = [b for b in blocks if isinstance(b, TextTable)]
         if self.fmt == "csv" and csv_text is None and not tables:
             raise InputError(f"{what} has no CSV output", key="--format", value="csv")
-        found = warnings_of(json_data if isinstance(json_data, Result) else None, warnings)
-        for w in found:  # after the checks: an error stays the one line
-            warn(w.message)
+        # after the checks: an error stays the one line
+        found = self.say_warnings(json_data if isinstance(json_data, Result) else None, warnings)
         blocks = printable_blocks(blocks)  # no control character reaches the terminal
         if self.fmt == "json":
             data = jsonable(json_data)
             if found and isinstance(data, dict):
-                listed = {w.get("message") for w in data.get("warnings", ())}
-                data["warnings"] = list(data.get("warnings", ())) + [
-                    w.to_dict() for w in found if w.message not in listed
-                ]
+                for key, items in warnings_dict(found).items():  # input_warnings, warnings
+                    listed = {w.get("message") for w in data.get(key, ())}
+                    data[key] = list(data.get(key, ())) + [
+                        w for w in items if w["message"] not in listed
+                    ]
             text = json_text(data)
         elif self.fmt == "csv":
             text = csv_text if csv_text is not None else tables[0].csv_text()

@@ -38,7 +38,7 @@ from crankdyn.crankshaft.loads import ThrowLoads, throw_loads
 from crankdyn.crankshaft.result import CrankshaftResult
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
-from crankdyn.plausibility import PlausibilityWarning
+from crankdyn.plausibility import PlausibilityWarning, merge_warnings
 from crankdyn.results import freeze
 
 __all__ = ["TENSILE_STRENGTH_RANGE", "assess", "crankshaft_strength", "crankshaft_warnings"]
@@ -436,7 +436,8 @@ def assess(
         validity=tuple(m53.validity(q, journal=not shaft.semi_built)),
         extrapolated=tuple(extrapolated),
         torsion_given=torque is not None,
-        warnings=tuple(crankshaft_warnings(engine, shaft)),
+        # the engine file's input warnings first: a verdict on them is never a clean pass
+        warnings=merge_warnings(engine.input_warnings, crankshaft_warnings(engine, shaft)),
         max_torque=fit.get("max_torque"),
         max_journal_bore=fit.get("max_journal_bore"),
         min_oversize=fit.get("min_oversize"),

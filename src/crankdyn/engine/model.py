@@ -35,6 +35,9 @@ from crankdyn.engine.force_model import ForceModel
 from crankdyn.errors import InputError
 from crankdyn.torsion.model import TorsionModel
 
+if TYPE_CHECKING:
+    from crankdyn.plausibility import PlausibilityWarning
+
 FUELS = ("petrol", "diesel")
 """Engine types by ignition: spark-ignition (petrol, gas) and compression-ignition (diesel)."""
 ASPIRATIONS = ("natural", "turbocharged")
@@ -548,6 +551,10 @@ class Engine:
     forces : crankdyn.engine.force_model.ForceModel or None
         The optional forces on the crank train (gravity, piston friction; ``[forces]``), or
         None: the gas and inertia forces alone.
+    input_warnings : tuple of crankdyn.plausibility.InputWarning
+        The values of the engine file that lie outside the plausible range of their role
+        (:mod:`crankdyn.io.plausibility`); every result of an analysis session on the engine
+        carries them, and its verdicts cannot read a clean "passed".
 
     Raises
     ------
@@ -588,6 +595,7 @@ class Engine:
     aspiration: str | None = None
     crankshaft: Crankshaft | None = None
     forces: ForceModel | None = None
+    input_warnings: tuple[PlausibilityWarning, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not self.name.strip():

@@ -20,7 +20,7 @@ from numpy.typing import NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_text
-from crankdyn.io.units import KINDS, check_si_range, parse_quantity
+from crankdyn.io.units import BARE_SPEED, KINDS, check_si_range, parse_quantity
 
 __all__ = ["CsvTable", "cell_value", "read_csv_table", "split_header_unit", "unit_factor"]
 
@@ -77,7 +77,8 @@ def unit_factor(
     file
         The file as named in messages.
     missing
-        The message for a column without a unit.
+        The message for a column without a unit (a speed column's names the speed's units,
+        :data:`crankdyn.io.units.BARE_SPEED`).
     unknown
         The message for a unit crankdyn does not know or of the wrong kind; ``{unit}`` is
         replaced by the unit.
@@ -103,6 +104,8 @@ def unit_factor(
     crankdyn.errors.InputError: t.csv: header = "p_kg": unit 'kg'?
     """
     if not unit:
+        if kind == "speed":  # a bare speed: rpm on the command line, so never SI in a file
+            missing = f"{BARE_SPEED}: the column must name its unit, e.g. speed_rpm"
         raise InputError(missing, file=file, key="header", value=cell)
     try:
         return parse_quantity(f"1 {unit}", kind, key="header", file=file)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Iterator, Sequence
 from contextlib import contextmanager
@@ -42,7 +43,11 @@ from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.project_file import with_project
 from crankdyn.io.schema import MISSING, Table
-from crankdyn.io.torsion_file import parse_torsion_section, read_torsion_model
+from crankdyn.io.torsion_file import (
+    parse_torsion_section,
+    read_torsion_model,
+    with_input_warnings,
+)
 from crankdyn.io.traces import read_pressure_trace
 from crankdyn.torsion.model import TorsionModel
 
@@ -135,6 +140,10 @@ def parse_engine(
     forces = _forces(root.table("forces"))
     if forces is not None and forces.active and masses is None:
         raise root.error("forces", "gravity and piston friction act on the masses: give [masses]")
+    warnings = tuple(root.warnings)  # of every section, the shaft lines' among them
+    if warnings and torsion is not None:
+        with root.context():
+            torsion = dataclasses.replace(torsion, input_warnings=warnings)
     with root.context():
         engine = Engine(
             name=name,
@@ -153,6 +162,7 @@ def parse_engine(
             aspiration=aspiration,
             crankshaft=crankshaft,
             forces=forces,
+            input_warnings=warnings,
         )
     root.finish()
     return engine
@@ -638,7 +648,7 @@ def parse_model_file(
     model = join_engines(root, model)
     model = with_project(root, model) or model
     root.finish()
-    return model
+    return with_input_warnings(model, root)
 
 
 def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
@@ -672,8 +682,6 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
     tables = t.tables("engine")
     if not tables:
         return line
-    import dataclasses
-
     from crankdyn.torsion.driveline import join, rename, strip_cylinders
     from crankdyn.torsion.excitation import EngineExcitation
     from crankdyn.torsion.sources import EngineSource
@@ -688,6 +696,7 @@ def join_engines(t: Table, line: TorsionModel) -> TorsionModel:
         if not path.is_file():
             raise et.error("file", f"no such engine file (looked for {path})", et.data["file"])
         engine = load_engine(path)
+        t.warnings.extend(w for w in engine.input_warnings if w not in t.warnings)
         if engine.torsion is None:
             raise et.error("file", "the engine file has no [torsion] section", et.data["file"])
         if not engine.torsion.cylinder_dofs:

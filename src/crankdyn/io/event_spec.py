@@ -30,7 +30,6 @@ from typing import TYPE_CHECKING, Any
 
 from crankdyn.errors import did_you_mean
 from crankdyn.io.schema import Table
-from crankdyn.io.units import parse_quantity
 from crankdyn.torsion.events import (
     SEVERITIES,
     ClutchEngagement,
@@ -194,9 +193,8 @@ def _curve(t: Table) -> tuple[list[float], list[float]] | None:
         return None
     if not isinstance(value, list) or not all(isinstance(p, list) and len(p) == 2 for p in value):
         raise t.error("torque_curve", "expected a list of [speed, torque] pairs", value)
-    label = t.label("torque_curve")
-    speeds = [parse_quantity(p[0], "speed", key=label, file=t.file) for p in value]
-    torques = [parse_quantity(p[1], "torque", key=label, file=t.file) for p in value]
+    speeds = [t.item("torque_curve", p[0], "speed") for p in value]
+    torques = [t.item("torque_curve", p[1], "torque") for p in value]
     return speeds, torques
 
 

@@ -15,7 +15,9 @@ damping, loss factor and diameters), a rigid gear mesh (``gear_ratio`` n_(i+1)/n
 stiffness referred to mass i). The last row has no connection. ``cylinders`` holds the cylinder
 numbers separated by spaces. Written values are the actual (not reflected) ones; a coupling is
 written as a shaft of its model stiffness and loss factor psi / 2 pi (its catalogue data stay in
-the model file).
+the model file). Every number read is held to the plausible range of its column's role
+(:mod:`crankdyn.io.plausibility`): the model carries the warnings as ``input_warnings``, each
+naming the file, the line, the column and the cell.
 """
 
 from __future__ import annotations
@@ -27,6 +29,8 @@ from pathlib import Path
 from crankdyn.display import csv_text, printable
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.csv_tables import cell_value, read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.plausibility import check_input
+from crankdyn.plausibility import InputWarning
 from crankdyn.torsion.elements import GEAR_DIRECTIONS, GROUND, Gear, Mass, Shaft, ShaftGeometry
 from crankdyn.torsion.model import TorsionModel
 
@@ -217,7 +221,7 @@ def read_mass_elastic(
     """
     table = read_csv_table(path, display=display, what="mass-elastic table")
     file = table.name
-    rows = _Cells(table.rows, _header_columns(table.header, file), table.header)
+    rows = _Cells(table.rows, _header_columns(table.header, file), table.header, file)
     if not table.rows:
         raise InputError("the mass-elastic table has no rows", file=file)
     masses: list[Mass] = []
@@ -240,6 +244,7 @@ def read_mass_elastic(
             gears=tuple(gears),
             name=name or Path(file).stem,
             source=file,
+            input_warnings=tuple(rows.warnings),
         )
     except InputError as exc:
         raise exc.within(file=file) from None
@@ -297,10 +302,13 @@ class _Cells:
         rows: Sequence[tuple[int, Sequence[str]]],
         columns: dict[str, tuple[int, float]],
         header: Sequence[str] = (),
+        file: str | None = None,
     ) -> None:
         self.rows = rows
         self.columns = columns
         self.header = header
+        self.file = file
+        self.warnings: list[InputWarning] = []  # cells outside their role's plausible range
 
     def cell(self, r: int, key: str) -> tuple[int, str]:
         """(line number, stripped text) of row ``r``'s cell in column ``key`` ("" if absent)."""
@@ -314,13 +322,25 @@ class _Cells:
         """Row ``r``'s value in column ``key`` in SI, None for an empty cell: finite and within
         the SI range, as every quantity of a TOML file (InputError naming the column and the
         value; the line is added by the caller, with the file)."""
-        _line, text = self.cell(r, key)
+        line, text = self.cell(r, key)
         if not text:
             return None
         i, factor = self.columns[key]
-        return cell_value(
-            text, factor, file=None, key=key, column=self.header[i], kind=_COLUMNS[key][0]
+        kind = _COLUMNS[key][0]
+        value = cell_value(text, factor, file=None, key=key, column=self.header[i], kind=kind)
+        # held to the plausible range of its role, as every quantity of a TOML file
+        unit = split_header_unit(self.header[i])[1] if kind != "ratio" else None
+        found = check_input(
+            value,
+            kind,
+            key,
+            label=f"line {line} {key}",
+            file=self.file,
+            written=f"{text} {unit}" if unit else text,
         )
+        if found is not None:
+            self.warnings.append(found)
+        return value
 
 
 def _read_row(

@@ -4,6 +4,12 @@ A :class:`Table` wraps one TOML table. Each accessor reads one key, converts it 
 :mod:`crankdyn.io.units`), checks it, and records the key as known; :meth:`Table.finish` then
 rejects any key that was never asked for, with a "did you mean" suggestion. Errors name the file,
 the key (with its section, e.g. ``[geometry] bore``) and the value.
+
+Every quantity and number a file gives is also held to the plausible range of its role
+(:mod:`crankdyn.io.plausibility`): outside it the table records an
+:class:`~crankdyn.plausibility.InputWarning` in :attr:`Table.warnings`, a list the table shares
+with its sub-tables, which the file's reader hands to the domain objects it makes
+(``input_warnings``).
 """
 
 from __future__ import annotations
@@ -17,7 +23,9 @@ from pathlib import Path
 from typing import Any, Literal, overload
 
 from crankdyn.errors import InputError, closest, did_you_mean
+from crankdyn.io.plausibility import check_input, check_speed_range, section_of
 from crankdyn.io.units import KINDS, check_si_range, parse_quantity
+from crankdyn.plausibility import PlausibilityWarning
 
 __all__ = ["MISSING", "Table"]
 
@@ -51,10 +59,25 @@ class Table:
         The section as the user wrote it, e.g. ``"[geometry]"``; ``""`` for the top level.
     base_dir
         Directory against which relative paths in the table are resolved.
+    warnings
+        The list the table records its plausibility warnings in (a sub-table shares its
+        parent's); default a new one.
+
+    Attributes
+    ----------
+    warnings : list of crankdyn.plausibility.InputWarning
+        The values read so far that lie outside the plausible range of their role
+        (:func:`crankdyn.io.plausibility.check_input`), of this table and its sub-tables.
     """
 
     def __init__(
-        self, data: Any, *, file: str | None, name: str = "", base_dir: Path | None = None
+        self,
+        data: Any,
+        *,
+        file: str | None,
+        name: str = "",
+        base_dir: Path | None = None,
+        warnings: list[PlausibilityWarning] | None = None,
     ):
         if not isinstance(data, dict):
             raise InputError("expected a table", file=file, key=name or None, value=data)
@@ -62,6 +85,7 @@ class Table:
         self.file = file
         self.name = name
         self.base_dir = base_dir
+        self.warnings: list[PlausibilityWarning] = [] if warnings is None else warnings
         self._known: set[str] = set()
 
     # ---- messages -----------------------------------------------------------------------------
@@ -274,6 +298,7 @@ class Table:
             return value
         number = parse_quantity(value, kind, key=self.label(key), file=self.file)
         self._check(key, value, number, check)
+        self.plausible(key, kind, number, value)
         return number
 
     def quantity_list(
@@ -323,7 +348,96 @@ class Table:
             number = parse_quantity(item, kind, key=self.label(key), file=self.file)
             self._check(key, value, number, check)
             out.append(number)
+        for number, item in zip(out, value, strict=True):  # a warning per implausible item
+            self.plausible(key, kind, number, item)
         return tuple(out)
+
+    def item(self, key: str, value: Any, kind: str) -> float:
+        """One item of a key's value (a row of a table written as a list of lists, e.g.
+        ``stiffness_table``'s torques) in SI, checked against the plausible range of the
+        key's role (:meth:`plausible`) as :meth:`quantity` checks a key.
+
+        Parameters
+        ----------
+        key
+            The key in this table (named in messages).
+        value
+            The item as written (``"25 kN*m"``).
+        kind
+            A key of :data:`crankdyn.io.units.KINDS`.
+
+        Returns
+        -------
+        float
+            The value in the SI unit of ``kind``.
+
+        Raises
+        ------
+        InputError
+            Naming the file, the key (``[section] key``) and the item as written.
+        """
+        number = parse_quantity(value, kind, key=self.label(key), file=self.file)
+        self.plausible(key, kind, number, value)
+        return number
+
+    def plausible(self, key: str, kind: str, value: float, written: Any) -> bool:
+        """Hold a value read from this table to the plausible range of its role
+        (:func:`crankdyn.io.plausibility.check_input`), recording a warning in
+        :attr:`warnings` when it lies outside.
+
+        Parameters
+        ----------
+        key
+            The key in this table.
+        kind
+            Its kind (a key of :data:`crankdyn.io.units.KINDS`, ``"ratio"`` for a number).
+        value
+            The value (SI).
+        written
+            The value as written.
+
+        Returns
+        -------
+        bool
+            True when the value is plausible (no warning).
+        """
+        found = check_input(
+            value,
+            kind,
+            key,
+            section=section_of(self.name),
+            label=self.label(key),
+            file=self.file,
+            written=written,
+        )
+        if found is not None and found not in self.warnings:
+            self.warnings.append(found)
+        return found is None
+
+    def speed_range(self, key: str, pair: Any, rated: float | None, written: Any = MISSING) -> None:
+        """Hold a speed range's upper end to the rated speed
+        (:func:`crankdyn.io.plausibility.check_speed_range`), recording a warning in
+        :attr:`warnings` when it ends far from n_0 (a speed in the wrong unit).
+
+        Parameters
+        ----------
+        key
+            The range's key in this table.
+        pair
+            (low, high) in rad/s, or None (nothing is checked).
+        rated
+            The rated speed n_0 (rad/s), or None (nothing is checked).
+        written
+            The range as written; default the table's value of ``key``.
+        """
+        if pair is None or rated is None:
+            return
+        shown = self.data.get(key) if written is MISSING else written
+        found = check_speed_range(
+            pair[1], rated, label=self.label(key), file=self.file, written=shown
+        )
+        if found is not None and found not in self.warnings:
+            self.warnings.append(found)
 
     def number(
         self,
@@ -380,7 +494,10 @@ class Table:
             raise self.error(key, f"must be at least {minimum:g}", value)
         if maximum is not None and value > maximum:
             raise self.error(key, f"must be at most {maximum:g}", value)
-        return int(value) if integer else float(value)
+        if integer:
+            return int(value)
+        self.plausible(key, "ratio", float(value), value)
+        return float(value)
 
     def integer(
         self,
@@ -663,7 +780,13 @@ class Table:
                 key=key,
                 value=self.data[key],
             )
-        return Table(self.data[key], file=self.file, name=name, base_dir=self.base_dir)
+        return Table(
+            self.data[key],
+            file=self.file,
+            name=name,
+            base_dir=self.base_dir,
+            warnings=self.warnings,
+        )
 
     def tables(self, key: str, *, required: bool = False) -> list[Table]:
         """An array of tables ``[[key]]``; entries are named ``[[key]] #n`` in messages.
@@ -696,7 +819,13 @@ class Table:
                 f"expected [[{self._sub(key)}]] tables", file=self.file, key=key, value=items
             )
         return [
-            Table(item, file=self.file, name=f"[[{self._sub(key)}]] #{n}", base_dir=self.base_dir)
+            Table(
+                item,
+                file=self.file,
+                name=f"[[{self._sub(key)}]] #{n}",
+                base_dir=self.base_dir,
+                warnings=self.warnings,
+            )
             for n, item in enumerate(items, start=1)
         ]
 

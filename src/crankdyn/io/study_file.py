@@ -23,7 +23,7 @@ from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import example_names, example_path
 from crankdyn.io.files import display_name, load_toml
 from crankdyn.io.schema import Table
-from crankdyn.io.units import convert_magnitude, split_quantity
+from crankdyn.io.units import BARE_SPEED, convert_magnitude, split_quantity
 from crankdyn.study.docpath import apply_values, check_path, parse_path, referenced_files
 from crankdyn.study.figures import FIGURES, SETTINGS, AnalysisSettings
 from crankdyn.study.spec import (
@@ -494,9 +494,21 @@ def _best(t: Table | None, figures: tuple[str, ...]) -> tuple[tuple[str, str], .
     return tuple(out)
 
 
+def _refuse_bare_speed(spec: StudySpec, entries: list[Table], exc: InputError) -> None:
+    """A parameter that varies a speed with bare numbers, refused at its values as the base
+    file refuses a bare speed (:data:`crankdyn.io.units.BARE_SPEED`)."""
+    for t, p in zip(entries, spec.parameters, strict=True):
+        for path in p.paths:
+            name = path.parts[-1][0]
+            if exc.key and exc.key.split(" ")[-1].strip('"') == name:
+                which = next((k for k in ("values", "range") if k in t.data), "key")
+                raise t.error(which, BARE_SPEED, t.data[which]) from None
+
+
 def _probe(spec: StudySpec, entries: list[Table]) -> None:
-    """Stop before running when a parameter names a key the base file's reader does not know
-    (tried on the first case: every case would fail the same way)."""
+    """Stop before running when a parameter names a key the base file's reader does not know,
+    or varies a speed with bare numbers (tried on the first case: every case would fail the
+    same way)."""
     first = {
         path: p.values[0]
         if p.values is not None
@@ -509,6 +521,8 @@ def _probe(spec: StudySpec, entries: list[Table]) -> None:
     try:
         parse_base(spec.base.kind, document, file=spec.base.source, base_dir=spec.base.base_dir)
     except InputError as exc:
+        if exc.message == BARE_SPEED:  # a speed varied as bare numbers: every case fails
+            _refuse_bare_speed(spec, entries, exc)
         if not exc.message.startswith("unknown key"):
             return  # a property of that variant, recorded when the case runs
         for t, p in zip(entries, spec.parameters, strict=True):

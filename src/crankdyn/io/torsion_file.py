@@ -8,6 +8,7 @@ See docs/torsion-file.md. A model file holds ``name`` and the arrays of tables `
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -50,6 +51,7 @@ __all__ = [
     "parse_torsion_model",
     "parse_torsion_section",
     "read_torsion_model",
+    "with_input_warnings",
 ]
 
 THROW_MODELS = ("throw", "parts")
@@ -118,7 +120,29 @@ def parse_torsion_model(
             "(crankdyn.io.engine_file.parse_model_file)",
         )
     root.finish()
-    return model
+    return with_input_warnings(model, root)
+
+
+def with_input_warnings(model: TorsionModel, t: Table) -> TorsionModel:
+    """The model carrying the plausibility warnings of the file it was read from (those of
+    table ``t`` and its sub-tables, with the files it names: :attr:`crankdyn.io.schema.Table.
+    warnings`), as ``input_warnings``.
+
+    Parameters
+    ----------
+    model
+        The model read from the file.
+    t
+        The file's top-level table.
+
+    Returns
+    -------
+    TorsionModel
+        ``model`` with ``input_warnings``, or ``model`` itself when the file has none.
+    """
+    if not t.warnings:
+        return model
+    return dataclasses.replace(model, input_warnings=tuple(t.warnings))
 
 
 def read_torsion_model(t: Table, *, default_name: str = "torsional model") -> TorsionModel:
@@ -343,6 +367,7 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
         if prefix_key:
             table.finish()
         line, line_input = load_shaft_line(path, display_path(path))
+        t.warnings.extend(w for w in line.input_warnings if w not in t.warnings)
         with table.context():
             line = rename(line, prefix)
             model = join(model, line, at, f"{prefix}{line_input}", name=base_name)
@@ -588,13 +613,8 @@ def _coupling(t: Table) -> Coupling:
                 '["25 kN*m", "160 kN*m/rad"]]',
                 table,
             )
-        from crankdyn.io.units import parse_quantity
-
-        label = t.label("stiffness_table")
-        torques = [parse_quantity(r[0], "torque", key=label, file=t.file) for r in table]
-        stiffnesses = [
-            parse_quantity(r[1], "torsional_stiffness", key=label, file=t.file) for r in table
-        ]
+        torques = [t.item("stiffness_table", r[0], "torque") for r in table]
+        stiffnesses = [t.item("stiffness_table", r[1], "torsional_stiffness") for r in table]
     elif stiffness is None:
         raise t.error(
             "dynamic_stiffness",

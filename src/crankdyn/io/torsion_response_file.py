@@ -197,6 +197,7 @@ def _operating(t: Table | None) -> OperatingRange | None:
         return None
     pair = t.quantity_list("speed_range", "speed", None, length=2, check="positive")
     rated = t.quantity("rated_speed", "speed", None, check="positive")
+    t.speed_range("speed_range", pair, rated)
     t.finish()
     if pair is None:
         if rated is None:

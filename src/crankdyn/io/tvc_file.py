@@ -7,7 +7,8 @@ import math
 from typing import TYPE_CHECKING
 
 from crankdyn.io.schema import Table
-from crankdyn.tvc.limits import WIDENINGS, CrankshaftLimit
+from crankdyn.tvc.limits import CrankshaftLimit
+from crankdyn.tvc.rulesets import RULESET_KEYS
 from crankdyn.tvc.spec import CONDITION_KINDS, LOADS, TvcSpec
 
 if TYPE_CHECKING:
@@ -22,11 +23,17 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     Keys (docs/tvc.md; quantities are strings with units, e.g. ``"750 rpm"``, converted to SI):
     ``speed_range`` [min, max] and ``speed_ranges.<condition>`` (speeds, rad/s), ``speed_step``
     (rad/s), ``load`` (one of the load laws), ``misfire`` and ``damper_out`` (booleans),
-    ``tachometer_tolerance`` (fraction, 0 to 0.19), ``widening``, ``engine_torque`` (N m) or
+    ``tachometer_tolerance`` (fraction, 0 to 0.19), ``rules`` (the rule set, a key of
+    :data:`crankdyn.tvc.rulesets.RULESETS`; the old ``widening`` is refused, naming the
+    ``rules`` to write instead), ``engine_torque`` (N m) or
     ``engine_torque_curve`` (rows [speed, torque]: rad/s, N m), ``passage_load`` ("law" or
     "none"), ``source`` and the ``[tvc.crankshaft]`` limits: ``permissible_stress`` or
     ``permissible_torque`` (Pa or N m), ``diameter`` (m), ``stress_concentration`` (-, at least
     1), ``transient_stress`` (Pa), ``transient_torque`` (N m), ``source``.
+
+    Every quantity is held to the plausible range of its role, and every speed range's upper
+    end to the rated speed of ``operating`` (:mod:`crankdyn.io.plausibility`; warnings in the
+    table's ``warnings``).
 
     Every condition's speed grid (its range at ``speed_step``) holds at most
     :data:`crankdyn.defaults.MAX_SPEEDS` speeds (100,000, as ``--speeds``), checked here
@@ -51,6 +58,7 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     ------
     InputError
         On an unknown key, a value of the wrong unit, kind or sign, a choice not in the list,
+        the retired key ``widening`` (the rule set's least range replaces it),
         both ``engine_torque`` and ``engine_torque_curve``, a malformed curve, crankshaft
         limits with neither or both of the permissible stress and torque, or a speed grid of
         more than 100,000 speeds (naming ``speed_step``, or the range when the step is the
@@ -59,7 +67,9 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     if t is None:
         return None
     values = {}
+    rated = operating.rated if operating is not None else None
     pair = t.quantity_list("speed_range", "speed", None, length=2, check="positive")
+    t.speed_range("speed_range", pair, rated)
     if pair is not None:
         values["speed_range"] = pair
     rt = t.table("speed_ranges")
@@ -67,6 +77,7 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
         ranges = {}
         for kind in CONDITION_KINDS:
             p = rt.quantity_list(kind, "speed", None, length=2, check="positive")
+            rt.speed_range(kind, p, rated)
             if p is not None:
                 ranges[kind] = p
         rt.finish()
@@ -83,9 +94,17 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     tol = t.number("tachometer_tolerance", None, check="nonnegative", maximum=0.19)
     if tol is not None:
         values["tachometer_tolerance"] = tol
-    widening = t.string("widening", None, choices=WIDENINGS)
-    if widening is not None:
-        values["widening"] = widening
+    if t.has("widening"):
+        raise t.error(
+            "widening",
+            'retired: the barred-range margins come from the rule set; write rules = "lr" '
+            '(Lloyd\'s Register), "kr" (the same least range) or "iacs-m68" (none) '
+            "(crankdyn docs tvc)",
+            t.data["widening"],
+        )
+    rules = t.string("rules", None, choices=RULESET_KEYS)
+    if rules is not None:
+        values["rules"] = rules
     torque = t.quantity("engine_torque", "torque", None, check="positive")
     if torque is not None:
         values["engine_torque"] = torque
@@ -106,11 +125,8 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
                 '"38 kN*m"]]',
                 curve,
             )
-        from crankdyn.io.units import parse_quantity
-
-        label = t.label("engine_torque_curve")
-        speeds = [parse_quantity(r[0], "speed", key=label, file=t.file) for r in curve]
-        torques = [parse_quantity(r[1], "torque", key=label, file=t.file) for r in curve]
+        speeds = [t.item("engine_torque_curve", r[0], "speed") for r in curve]
+        torques = [t.item("engine_torque_curve", r[1], "torque") for r in curve]
         values["engine_torque_curve"] = (speeds, torques)
     passage = t.string("passage_load", None, choices=("law", "none"))
     if passage is not None:

@@ -1,10 +1,12 @@
 """Unit parsing at the boundary (the only module that imports pint).
 
 Files and command-line options accept a quantity as a unit string (``"76 mm"``, ``"4900 rpm"``,
-``"0.167 kg*m^2"``) or as a bare number. A bare number is taken in SI (m, kg, s, rad, rad/s, N,
-Pa...) unless the caller names a different default unit, as the command line does for options
-whose metavar names a unit (``--speed RPM``, ``--step DEG``). Everything below this layer works on
-SI floats.
+``"0.167 kg*m^2"``) or as a bare number. A bare number is taken in SI (m, kg, s, rad, N, Pa...)
+unless the caller names a different default unit, as the command line does for options whose
+metavar names a unit (``--speed RPM``, ``--step DEG``). A bare rotational speed is the exception:
+on the command line it is rpm, so in a file (no default unit) it would mean rad/s silently;
+:func:`parse_quantity` refuses it (:data:`BARE_SPEED`) unless it is 0. Everything below this
+layer works on SI floats.
 
 Notes on angles: pint treats the radian as dimensionless, so a bare 1/time unit cannot tell
 "rad/s" from "rev/s". crankdyn resolves it by kind: for a rotational ``speed`` a pure frequency
@@ -26,6 +28,7 @@ if TYPE_CHECKING:  # pint is imported on first use only (start-up time)
     import pint
 
 __all__ = [
+    "BARE_SPEED",
     "COMMON_UNITS",
     "KINDS",
     "Kind",
@@ -51,12 +54,18 @@ class Kind:
         The SI unit of the values crankdyn works in (``"m"``, ``"rad/s"``, ``"N*m/rad"``).
     example
         A quantity of this kind as a user writes it (``"76 mm"``), quoted in messages.
+    per_angle
+        For the kinds pint cannot tell apart because it counts the radian as dimensionless:
+        True when the unit must be per angle (a torsional stiffness in N*m/rad, a torsional
+        damping in N*m*s/rad), False when it must not be (a torque in N*m, an energy in J);
+        None when the angle is not checked.
     """
 
     name: str  # "a length", used in messages
     dimensionality: str  # pint dimensionality expression, e.g. "[length]"; "" = dimensionless
     si_unit: str  # unit of the SI value crankdyn works in
     example: str  # "76 mm"
+    per_angle: bool | None = None  # the unit per radian (True), without an angle (False)
 
 
 _T = "[time]"
@@ -69,17 +78,17 @@ KINDS: dict[str, Kind] = {
     "time": Kind("a time", _T, "s", "0.1 s"),
     "inertia": Kind("a moment of inertia", "[mass]*[length]**2", "kg*m^2", "0.167 kg*m^2"),
     "torsional_stiffness": Kind(
-        "a torsional stiffness", f"[mass]*[length]**2/{_T}**2", "N*m/rad", "160 kN*m/rad"
+        "a torsional stiffness", f"[mass]*[length]**2/{_T}**2", "N*m/rad", "160 kN*m/rad", True
     ),
     "torsional_damping": Kind(
-        "a torsional damping", f"[mass]*[length]**2/{_T}", "N*m*s/rad", "70 N*m*s/rad"
+        "a torsional damping", f"[mass]*[length]**2/{_T}", "N*m*s/rad", "70 N*m*s/rad", True
     ),
     "stiffness": Kind("a linear stiffness", f"[mass]/{_T}**2", "N/m", "2 MN/m"),
     "damping": Kind("a linear damping", f"[mass]/{_T}", "N*s/m", "100 N*s/m"),
     "pressure": Kind("a pressure", f"[mass]/[length]/{_T}**2", "Pa", "15 MPa"),
     "force": Kind("a force", f"[mass]*[length]/{_T}**2", "N", "1200 N"),
-    "torque": Kind("a torque", f"[mass]*[length]**2/{_T}**2", "N*m", "250 N*m"),
-    "energy": Kind("an energy", f"[mass]*[length]**2/{_T}**2", "J", "1.2 kJ"),
+    "torque": Kind("a torque", f"[mass]*[length]**2/{_T}**2", "N*m", "250 N*m", False),
+    "energy": Kind("an energy", f"[mass]*[length]**2/{_T}**2", "J", "1.2 kJ", False),
     "power": Kind("a power", f"[mass]*[length]**2/{_T}**3", "W", "95 kW"),
     "density": Kind("a density", "[mass]/[length]**3", "kg/m^3", "7850 kg/m^3"),
     "velocity": Kind("a velocity", f"[length]/{_T}", "m/s", "12 m/s"),
@@ -97,6 +106,7 @@ _DESCRIBE_ORDER = (
     "time",
     "inertia",
     "torque",
+    "torsional_stiffness",
     "torsional_damping",
     "stiffness",
     "damping",
@@ -111,6 +121,12 @@ _DESCRIBE_ORDER = (
     "volume",
 )
 
+
+BARE_SPEED = "give rpm or rad/s (a bare speed is rpm on the command line)"
+"""Why a bare number for a rotational speed is refused in a file: the command line reads a bare
+speed as rpm (``--speed 1500``), a file would read it as SI (rad/s), so the same text would
+mean two speeds a factor 9.55 apart. One vocabulary: bare is rpm where a unit is implied
+(options), and a file names its unit."""
 
 SI_RANGE = (1e-12, 1e12)
 """Magnitudes crankdyn accepts for a quantity in SI units (besides exactly 0): from 1e-12 to 1e12
@@ -171,13 +187,26 @@ def _dimensionality(expr: str) -> Any:
     return ureg.get_dimensionality(expr)
 
 
-def _describe_dimension(dim: Any) -> str:
+def _describe_dimension(dim: Any, radians: int = 0) -> str:
+    """The kind a dimension (and a power of the radian in the unit) is, for messages."""
     if not dim:
         return "a dimensionless number"
     for key in _DESCRIBE_ORDER:
-        if _dimensionality(KINDS[key].dimensionality) == dim:
-            return KINDS[key].name
+        kind = KINDS[key]
+        if kind.per_angle is not None and kind.per_angle != (radians == -1):
+            continue
+        if _dimensionality(kind.dimensionality) == dim:
+            return kind.name
     return f"a quantity of dimension {dim}"
+
+
+def _radian_power(units: Any) -> int:
+    """The power of the radian in a pint unit's root units (-1 for N*m/rad and N*m/deg, 0 for
+    N*m, 1 for rpm): pint counts the radian as dimensionless, so the dimension alone cannot tell
+    a torsional stiffness from a torque."""
+    root = registry().get_root_units(units)[1]
+    power: Any = dict(root._units).get("radian", 0)  # a number of pint's UnitsContainer
+    return int(power)
 
 
 def _check_unit_text(text: str) -> bool:
@@ -231,9 +260,9 @@ COMMON_UNITS: dict[str, tuple[float, tuple[str, ...]]] = {
     "N": (1.0, ("force",)),
     "kN": (1000.0, ("force",)),
     "MN": (1000000.0, ("force",)),
-    "N*m": (1.0, ("torsional_stiffness", "torque", "energy")),
-    "kN*m": (1000.0, ("torsional_stiffness", "torque", "energy")),
-    "MN*m": (1000000.0, ("torsional_stiffness", "torque", "energy")),
+    "N*m": (1.0, ("torque", "energy")),
+    "kN*m": (1000.0, ("torque", "energy")),
+    "MN*m": (1000000.0, ("torque", "energy")),
     "Pa": (1.0, ("pressure",)),
     "kPa": (1000.0, ("pressure",)),
     "MPa": (1000000.0, ("pressure",)),
@@ -244,11 +273,11 @@ COMMON_UNITS: dict[str, tuple[float, tuple[str, ...]]] = {
     "kg*cm^2": (0.0001, ("inertia",)),
     "kg*mm^2": (1e-06, ("inertia",)),
     "t*m^2": (1000.0, ("inertia",)),
-    "N*m/rad": (1.0, ("torsional_stiffness", "torque", "energy")),
-    "kN*m/rad": (1000.0, ("torsional_stiffness", "torque", "energy")),
-    "MN*m/rad": (1000000.0, ("torsional_stiffness", "torque", "energy")),
-    "N*m/deg": (57.29577951308232, ("torsional_stiffness", "torque", "energy")),
-    "kN*m/deg": (57295.77951308232, ("torsional_stiffness", "torque", "energy")),
+    "N*m/rad": (1.0, ("torsional_stiffness",)),
+    "kN*m/rad": (1000.0, ("torsional_stiffness",)),
+    "MN*m/rad": (1000000.0, ("torsional_stiffness",)),
+    "N*m/deg": (57.29577951308232, ("torsional_stiffness",)),
+    "kN*m/deg": (57295.77951308232, ("torsional_stiffness",)),
     "N*m*s/rad": (1.0, ("torsional_damping",)),
     "kN*m*s/rad": (1000.0, ("torsional_damping",)),
     "N*m*s/deg": (57.29577951308232, ("torsional_damping",)),
@@ -259,8 +288,8 @@ COMMON_UNITS: dict[str, tuple[float, tuple[str, ...]]] = {
     "kN/mm": (1000000.0, ("stiffness",)),
     "N*s/m": (1.0, ("damping",)),
     "kN*s/m": (1000.0, ("damping",)),
-    "J": (1.0, ("torsional_stiffness", "torque", "energy")),
-    "kJ": (1000.0, ("torsional_stiffness", "torque", "energy")),
+    "J": (1.0, ("torque", "energy")),
+    "kJ": (1000.0, ("torque", "energy")),
     "W": (1.0, ("power",)),
     "kW": (1000.0, ("power",)),
     "MW": (1000000.0, ("power",)),
@@ -317,9 +346,10 @@ def _unit_value(magnitude: float, unit_text: str, kind_key: str) -> float:
         raise ValueError(f"unknown unit {unit_text!r}") from exc
     expected = _dimensionality(kind.dimensionality)
     got = units.dimensionality
-    if got != expected:
+    radians = _radian_power(units) if kind.per_angle is not None or got != expected else 0
+    if got != expected or (kind.per_angle is not None and kind.per_angle != (radians == -1)):
         raise ValueError(
-            f'expected {kind.name} (e.g. "{kind.example}"), got {_describe_dimension(got)}'
+            f'expected {kind.name} (e.g. "{kind.example}"), got {_describe_dimension(got, radians)}'
         )
     angular = "radian" in str(ureg.get_root_units(units)[1])
     quantity = ureg.Quantity(magnitude, units)
@@ -341,8 +371,9 @@ def parse_quantity(
     Parameters
     ----------
     value
-        A number (taken in ``default_unit``, or SI when that is None) or a string such as
-        ``"76 mm"``; a string holding only a number is treated like a number.
+        A number (taken in ``default_unit``, or SI when that is None; a rotational speed has
+        no SI default: a bare speed other than 0 is refused, :data:`BARE_SPEED`) or a string
+        such as ``"76 mm"``; a string holding only a number is treated like a number.
     kind
         A key of :data:`KINDS` (``"length"``, ``"mass"``, ``"angle"``, ``"speed"``...).
     key, file
@@ -358,9 +389,10 @@ def parse_quantity(
     Raises
     ------
     InputError
-        For a value that is not a number or quantity, has an unknown unit, the wrong dimension,
-        or is not finite, or lies outside :data:`SI_RANGE` in SI units; it names ``file``,
-        ``key`` and ``value``.
+        For a value that is not a number or quantity, has an unknown unit, the wrong dimension
+        (a torque for a torsional stiffness among them), is not finite, lies outside
+        :data:`SI_RANGE` in SI units, or is a bare speed without ``default_unit``; it names
+        ``file``, ``key`` and ``value``.
     KeyError
         For a ``kind`` not in :data:`KINDS` (a programming error, not a user's).
 
@@ -376,6 +408,11 @@ def parse_quantity(
     Traceback (most recent call last):
     ...
     crankdyn.errors.InputError: e.toml: bore = "12 kg": expected a length (e.g. "76 mm"), got a mass
+    >>> parse_quantity("350", "speed", key="speed_range", file="m.toml")
+    Traceback (most recent call last):
+    ...
+    crankdyn.errors.InputError: m.toml: speed_range = "350": give rpm or rad/s (a bare speed is \
+rpm on the command line)
     """
     if kind not in KINDS:
         raise KeyError(f"unknown quantity kind {kind!r}")
@@ -402,6 +439,8 @@ def parse_quantity(
         raise fail("the value is not finite")
     if not unit_text:
         if default_unit is None:
+            if kind == "speed" and magnitude != 0.0:
+                raise fail(BARE_SPEED)
             if not check_si_range(magnitude):
                 raise fail(
                     f"{magnitude:.3g} {spec.si_unit} lies outside the range crankdyn computes "

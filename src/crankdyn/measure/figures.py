@@ -12,9 +12,9 @@ import numpy as np
 
 from crankdyn.constants import RPM
 from crankdyn.display import quantity
-from crankdyn.summary import FigureSpec, SummaryTable, derived
+from crankdyn.summary import FigureSpec, SummaryColumn, SummaryTable, derived
 
-__all__ = ["MEASURED_FIGURES", "resonance_table"]
+__all__ = ["MEASURED_FIGURES", "largest_per_order_table", "resonance_table"]
 
 
 def _mrad(value: float) -> str:
@@ -109,3 +109,36 @@ def resonance_table(r: Any) -> list[SummaryTable]:
         return []
     title = "Resonances: measured and model" if compared else "Resonances"
     return [type(items[0]).table_of(items, "measurement_resonances", title)]
+
+
+def largest_per_order_table(r: Any) -> list[SummaryTable]:
+    """The largest speed bin of every analysed order of a run, at its bin's speed, with the
+    model's amplitude at that speed where the run was held against a model.
+
+    Parameters
+    ----------
+    r : crankdyn.measure.orders.OrderTracking
+        The run.
+
+    Returns
+    -------
+    list of crankdyn.summary.SummaryTable
+        One table, a row per order (amplitudes in rad, speeds in rpm); none without bins.
+    """
+    amplitude = np.asarray(r.amplitude)
+    if amplitude.size == 0:
+        return []
+    at = np.argmax(amplitude, axis=0)
+    orders = np.arange(amplitude.shape[1])
+    columns = [
+        SummaryColumn("order", "Order"),
+        SummaryColumn("largest_bin_rad", "Largest bin", "rad"),
+        SummaryColumn("at_rpm", "at", "rpm"),
+    ]
+    cells = [list(r.orders), list(amplitude[at, orders]), list(np.asarray(r.speed)[at] * RPM)]
+    if r.comparison is not None:
+        columns.append(SummaryColumn("model_rad", "Model at that speed", "rad"))
+        cells.append(list(np.asarray(r.comparison.amplitude)[at, orders]))
+    rows = tuple(tuple(float(v) for v in row) for row in zip(*cells, strict=True))
+    caption = "speed bins; resolved resonance peaks below" if r.resonances else "speed bins"
+    return [SummaryTable("largest_per_order", "Largest per order", tuple(columns), rows, caption)]

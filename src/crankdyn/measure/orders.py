@@ -54,7 +54,11 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import CYCLE_ANGLE, DEG, RPM
 from crankdyn.errors import InputError
 from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
-from crankdyn.measure.figures import MEASURED_FIGURES, resonance_table
+from crankdyn.measure.figures import (
+    MEASURED_FIGURES,
+    largest_per_order_table,
+    resonance_table,
+)
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
 from crankdyn.results import Result, array, column, freeze, scalar
@@ -875,15 +879,16 @@ class OrderTracking(Result):
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The fitted resonances, beside the model's peaks where it was held against one
+        """The largest bin per order (:func:`crankdyn.measure.figures.largest_per_order_table`)
+        and the fitted resonances, beside the model's peaks where it was held against one
         (:func:`crankdyn.measure.figures.resonance_table`).
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
-            One table, or none without fitted resonances.
+            The largest bin per order, then the resonances (none without fits).
         """
-        return resonance_table(self)
+        return [*largest_per_order_table(self), *resonance_table(self)]
 
     @property
     def coefficients(self) -> NDArray[np.complex128]:

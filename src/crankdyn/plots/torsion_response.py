@@ -356,8 +356,9 @@ def plot_campbell(
 
 
 def plot_stress_limits(condition: Any, fig: Figure | None = None) -> Figure:
-    """Synthesised shear stress of every shaft checked by IACS UR M68 against tau_C and tau_T,
-    the declared barred speed ranges shaded (red where not permitted) and the ranges as found
+    """Synthesised shear stress of every propulsion shaft checked against the rule set's tau_C
+    and tau_T (the IACS UR M68.4 form; :class:`crankdyn.tvc.checks.M68Shafts`), the declared
+    barred speed ranges shaded (red where not permitted) and the ranges as found
     hatched, drawn on every speed of the resolved response (the peaks included); stress in MPa,
     speed in rpm. The curves and limits are the checks' own (:mod:`crankdyn.tvc.checks`).
 
@@ -430,7 +431,7 @@ def plot_stress_limits(condition: Any, fig: Figure | None = None) -> Figure:
         ax.set_title(f"Shaft {check.component}", fontsize=10)
         ax.legend(loc="upper left", bbox_to_anchor=(1.01, 1.0), fontsize=8)
     axes[-1, 0].set_xlabel("Engine speed (rpm)")
-    fig.suptitle(f"Torsional stress against IACS UR M68: {condition.name}", fontsize=11)
+    fig.suptitle(f"Torsional stress against the rule set's τ_C, τ_T: {condition.name}", fontsize=11)
     return fig
 
 

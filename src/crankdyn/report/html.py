@@ -16,6 +16,7 @@ from crankdyn.display import column_text, unit_label
 from crankdyn.display import html_text as escape  # control characters too
 from crankdyn.report.model import KeyFigure, Report, Section, Table
 from crankdyn.results import Result
+from crankdyn.summary import verdict_status
 
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
@@ -54,6 +55,7 @@ table.figures td:nth-child(2) { width: 34%; }
 .badge.pass { background: var(--pass); } .badge.warn { background: var(--warn); }
 .badge.fail { background: var(--fail); }
 .note { color: var(--muted); font-size: 13px; }
+.input-warnings { color: var(--warn); } p.verdict { font-weight: 600; }
 figure { margin: 12px 0 20px; }
 figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
 figcaption { color: var(--muted); font-size: 13px; margin-top: 4px; }
@@ -190,10 +192,27 @@ def _heading(key: str, title: str, number: str) -> str:
     return f"<section id='{escape(key)}'><h2 id='h-{escape(key)}'>{mark}{escape(title)}</h2>"
 
 
+def _verdict(section: Section) -> str:
+    """The section's verdict in words with its status, the input warnings it stands on
+    listed first (:attr:`crankdyn.report.model.Section.verdict`); ``""`` without verdicts."""
+    if section.verdict is None:
+        return ""
+    items = "".join(f"<li>{escape(w.message)}</li>" for w in section.input_warnings)
+    listed = (
+        f"<p class='note'>Input warnings (values outside the plausible range of their role; "
+        f"check them before the verdict):</p><ul class='input-warnings'>{items}</ul>"
+        if items
+        else ""
+    )
+    badge = _status(verdict_status(section.verdict))
+    return f"{listed}<p class='verdict'>{badge} Verdict: {escape(section.verdict)}</p>"
+
+
 def _section(section: Section, images: dict[str, bytes], number: str = "") -> str:
     parts = [_heading(section.key, section.title, number)]
     if section.intro:
         parts.append(f"<p>{escape(section.intro)}</p>")
+    parts.append(_verdict(section))
     shown = section.figures if section.show_figures else []
     if shown or section.warnings:
         parts.append(_figures_table(shown, section.warnings))

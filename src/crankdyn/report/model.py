@@ -13,7 +13,7 @@ from typing import Any
 
 from crankdyn.results import Result
 from crankdyn.summary import KeyFigure as SummaryFigure
-from crankdyn.summary import Summary, SummaryTable, verdict_cells
+from crankdyn.summary import Summary, SummaryTable, verdict_cells, verdict_text, warnings_dict
 
 __all__ = ["Check", "FrontMatter", "KeyFigure", "Plot", "Report", "Section", "Table"]
 
@@ -273,6 +273,9 @@ class Section:
     show_figures : bool
         Whether the page shows the section's key figures (a document whose summary shows
         them once says False; summary.json has them either way).
+    verdict : str or None
+        The verdict of the rows in words (:func:`crankdyn.summary.verdict_text`: never a
+        clean "passed" while the inputs carry warnings), or None without rows.
     """
 
     key: str  # anchor and ordering name: "kinematics"
@@ -287,6 +290,15 @@ class Section:
     verdicts: list[Any] = field(default_factory=list)  # crankdyn.summary.Verdict rows
     notes: list[str] = field(default_factory=list)  # the results' notes
     show_figures: bool = True  # the page shows the key figures (summary.json has them anyway)
+    verdict: str | None = None  # the rows' verdict in words, with the input warnings' count
+
+    @property
+    def input_warnings(self) -> list[Any]:
+        """The input warnings among :attr:`warnings` (values of the input files outside the
+        plausible range of their role), listed before the verdict."""
+        from crankdyn.plausibility import input_warnings
+
+        return list(input_warnings(self.warnings))
 
     @classmethod
     def of(
@@ -345,11 +357,15 @@ class Section:
             warnings += [w for w in s.warnings if w not in warnings]
             notes += [n for n in s.notes if n not in notes]
             all_tables += [Table.of(t, (limits or {}).get(t.key)) for t in s.tables]
+        verdict = None
         if verdicts:  # the verdict rows as every front end shows them, first
             header, rows = verdict_cells(verdicts)
             all_tables.insert(
                 0, Table(verdicts_name or f"{key}-verdicts", "Verdicts", header=header, rows=rows)
             )
+            given = [w for s in summaries for w in s.input_warnings]
+            count = len([w for w in warnings if w in given])  # each once
+            verdict = verdict_text(all(v.passed for v in verdicts), count)
         return cls(
             key=key,
             title=title,
@@ -362,6 +378,7 @@ class Section:
             warnings=warnings,
             verdicts=verdicts,
             notes=notes,
+            verdict=verdict,
         )
 
 
@@ -542,7 +559,8 @@ class Report:
             "checks": [
                 {"name": c.name, "detail": c.detail, "passed": c.passed} for c in self.checks()
             ],
-            "warnings": [w.to_dict() for w in self.warnings()],
+            "warnings": [],  # the analyses' own; input_warnings (listed first) where any
+            **warnings_dict(self.warnings()),
             "notes": self.notes,
             **self.data,
         }

@@ -16,7 +16,7 @@ from crankdyn.display import mass_elastic_tables, number
 from crankdyn.project import Project
 from crankdyn.report.model import FrontMatter, Plot, Report, Section, Table
 from crankdyn.summary import Verdict, verdict_cells
-from crankdyn.tvc.limits import WIDENING_NAMES
+from crankdyn.tvc.evaluate import margins
 
 if TYPE_CHECKING:
     from crankdyn.tvc.result import TvcResult
@@ -33,10 +33,20 @@ VERDICT_FIELDS = (
     "margin",
     "passed",
     "source",
+    "clause",
 )
-"""The fields of every row of summary.json's ``verdicts`` (SI values, the unit named)."""
+"""The fields of every row of summary.json's ``verdicts`` (SI values, the unit named; the
+rule with its edition and the clause)."""
 
-BARRED_FIELDS = ("component", "condition", "start_rpm", "end_rpm", "permitted")
+BARRED_FIELDS = (
+    "component",
+    "condition",
+    "start_rpm",
+    "end_rpm",
+    "permitted",
+    "source",
+    "clause",
+)
 """The fields of every row of summary.json's ``barred_speed_ranges``."""
 
 
@@ -67,6 +77,7 @@ def summary_lists(result: TvcResult) -> dict[str, list[dict[str, Any]]]:
             "margin": float(v.margin),
             "passed": bool(v.passed),
             "source": v.source,
+            "clause": v.clause,
         }
         for v in result.verdicts
     ]
@@ -77,6 +88,8 @@ def summary_lists(result: TvcResult) -> dict[str, list[dict[str, Any]]]:
             "start_rpm": float(b.start * RPM),
             "end_rpm": float(b.end * RPM),
             "permitted": bool(b.permitted),
+            "source": b.source,
+            "clause": b.clause,
         }
         for b in result.barred_ranges
     ]
@@ -109,14 +122,11 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
                 for c in result.conditions
             ),
         ),
-    ]
-    rules = getattr(spec, "rules", None)
-    if rules:
-        rows.append(("Rule set", str(rules)))
-    rows += [
         ("Tachometer tolerance", f"±{number(100 * result.tachometer_tolerance, 3)} %"),
-        ("Barred-range margins", WIDENING_NAMES.get(result.widening, result.widening)),
+        ("Rule set", result.rule_title),  # in words, no raw key (issue 32)
     ]
+    if spec is not None:
+        rows.append(("Barred-range margins", margins(spec)[0]))
     if spec is not None and spec.source:
         rows.append(("TVC settings from", spec.source))
     return rows

@@ -4,9 +4,10 @@ defaults and the cache (:class:`SessionCore`); the analyses themselves are in
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Hashable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +18,7 @@ from crankdyn.defaults import MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.docs import ref
 from crankdyn.engine.model import Engine
 from crankdyn.errors import InputError
+from crankdyn.plausibility import PlausibilityWarning, merge_warnings
 from crankdyn.results import Result
 from crankdyn.torsion.model import TorsionModel
 
@@ -59,6 +61,10 @@ SESSION_PARAMETERS = """
         :data:`~crankdyn.defaults.DELTA`.
     relative : (str, str) or None
         The two masses of the relative angle; default the model's first and last.
+    rules : str or None
+        The classification society's rule set of the verdicts (a key of
+        :data:`crankdyn.tvc.rulesets.RULESETS`); default the model's ``[tvc] rules``, else
+        :data:`~crankdyn.defaults.RULES`.
 
     Attributes are the analyses: properties for those without options (``torque``,
     ``modes``...), methods with keyword options for the others (``forces(cylinder=2)``,
@@ -67,8 +73,8 @@ SESSION_PARAMETERS = """
     Raises
     ------
     InputError
-        If the subject is neither, the speed or the speeds are not positive, or the step does
-        not divide the engine's working cycle.
+        If the subject is neither, the speed or the speeds are not positive, the step does
+        not divide the engine's working cycle, or the rule set is unknown.
 
 """
 """The parameters of every session class (:class:`crankdyn.session.Analysis` and its parts),
@@ -96,6 +102,7 @@ class SessionCore:
         engine: Engine | None = None,
         delta: float | None = None,
         relative: tuple[str, str] | None = None,
+        rules: str | None = None,
     ) -> None:
         if isinstance(subject, Engine):
             self.engine: Engine | None = subject
@@ -134,6 +141,11 @@ class SessionCore:
             check_step(self.step, self.engine.cycle_angle)
         self.delta = None if delta is None else float(delta)
         self.relative = None if relative is None else (str(relative[0]), str(relative[1]))
+        self.rules: str | None = None
+        if rules is not None:
+            from crankdyn.tvc.rulesets import get
+
+            self.rules = get(rules).key
         self._memo: dict[Any, Any] = {}
 
     def __repr__(self) -> str:
@@ -152,10 +164,41 @@ class SessionCore:
         """
         return [k[0] if isinstance(k, tuple) else k for k in self._memo]
 
+    @property
+    def input_warnings(self) -> tuple[PlausibilityWarning, ...]:
+        """The input warnings of the subject (the engine's and the torsional model's, each
+        once: values of their files outside the plausible range of their role,
+        :mod:`crankdyn.io.plausibility`); every result the session computes carries them."""
+        engine = self.engine.input_warnings if self.engine is not None else ()
+        model = self.model.input_warnings if self.model is not None else ()
+        return merge_warnings(engine, model)
+
     def _cached(self, key: Hashable, compute: Callable[[], _T]) -> _T:
         if key not in self._memo:
-            self._memo[key] = compute()
+            self._memo[key] = self.with_input_warnings(compute())
         return self._memo[key]
+
+    def with_input_warnings(self, value: _T) -> _T:
+        """A result (one with a ``warnings`` field) carrying the subject's input warnings
+        first, then its own, and so the results it holds (a TVC's conditions, their
+        responses, its modes): whatever the inputs' values, a verdict computed from them says
+        so (:func:`crankdyn.summary.verdict_text`). Every analysis of the session goes through
+        it; a front end that computes from the session's model passes its result here.
+
+        Parameters
+        ----------
+        value : object
+            A result (anything else is returned as it is).
+
+        Returns
+        -------
+        object
+            ``value`` with :attr:`input_warnings` added to its ``warnings``.
+        """
+        found = self.input_warnings
+        if not found:
+            return value
+        return cast(_T, _carrying(value, found, {}))
 
     # ---- what the session analyses ----------------------------------------------------------
     def _need_engine(self, what: str) -> Engine:
@@ -282,6 +325,36 @@ class SessionCore:
         return self._cached(
             (key, "rows", float(step)), lambda: compute_rows().with_summary_of(full)
         )
+
+
+def _carrying(value: Any, found: tuple[PlausibilityWarning, ...], done: dict[int, Any]) -> Any:
+    """``value`` with the input warnings ``found`` first in its ``warnings``, and in those of
+    the results it holds (a TVC's conditions, their responses, its modes): the same object
+    held twice stays one object (``done``, by identity)."""
+    if id(value) in done:
+        return done[id(value)]
+    out = value
+    if isinstance(value, tuple) and value and isinstance(value[0], Result):
+        out = tuple(_carrying(v, found, done) for v in value)
+    elif isinstance(value, Result) and dataclasses.is_dataclass(value):
+        names = {f.name for f in dataclasses.fields(value)}
+        changes: dict[str, Any] = {}
+        for name in names - {"warnings"}:
+            held = getattr(value, name)
+            if isinstance(held, Result) or (
+                isinstance(held, tuple) and held and isinstance(held[0], Result)
+            ):
+                new = _carrying(held, found, done)
+                if new is not held:
+                    changes[name] = new
+        if "warnings" in names:
+            merged = merge_warnings(found, value.warnings)
+            if merged != tuple(value.warnings):
+                changes["warnings"] = merged
+        if changes:
+            out = dataclasses.replace(value, **changes)
+    done[id(value)] = out
+    return out
 
 
 def with_parameters(klass: type) -> type:

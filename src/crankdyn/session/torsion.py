@@ -4,6 +4,7 @@ the TVC, the Campbell diagram, dampers, the time domain and measurements held ag
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from typing import TYPE_CHECKING, Any, cast
 
@@ -334,11 +335,15 @@ class TorsionAnalyses(SessionCore):
     # ---- the verdicts: the installation's checks (crankdyn.tvc), evaluated in one place -------
     @property
     def tvc_spec(self) -> TvcSpec:
-        """The settings that shape a verdict: the model's ``[tvc]`` (the tachometer tolerance,
-        the widening of barred ranges, the speed ranges...), else the defaults."""
+        """The settings that shape a verdict: the model's ``[tvc]`` (the rule set, the
+        tachometer tolerance, the speed ranges...), else the defaults; the session's ``rules``
+        (``--rules``) replaces the file's rule set."""
         from crankdyn.tvc import TvcSpec
 
-        return getattr(self._need_model(), "tvc", None) or TvcSpec()
+        spec = getattr(self._need_model(), "tvc", None) or TvcSpec()
+        if self.rules is not None and self.rules != spec.rules:
+            spec = dataclasses.replace(spec, rules=self.rules)
+        return spec
 
     @property
     def loaded_model(self) -> TorsionModel | None:
@@ -376,7 +381,8 @@ class TorsionAnalyses(SessionCore):
         Parameters
         ----------
         spec
-            The TVC settings; None: :attr:`tvc_spec`.
+            The TVC settings; None: :attr:`tvc_spec` (the model's ``[tvc]`` with the
+            session's ``rules``).
         passage
             Whether to run the time-domain passage through the barred ranges.
         conditions
@@ -393,6 +399,7 @@ class TorsionAnalyses(SessionCore):
 
         model = self._need_model()
         kinds = tuple(CONDITION_KINDS if conditions is None else conditions)
+        spec = spec or self.tvc_spec
         return self._cached(
             ("tvc", repr(spec), passage, kinds),
             lambda: tvc(
@@ -450,9 +457,10 @@ class TorsionAnalyses(SessionCore):
             The condition judged; None when the model has no rated speed or no component with
             a limit.
         """
-        from crankdyn.tvc.analysis import rated_speed
+        from crankdyn.tvc.analysis import load_of, rated_speed
         from crankdyn.tvc.checks import model_checks
         from crankdyn.tvc.evaluate import evaluate_condition
+        from crankdyn.tvc.installation import installation_verdicts
         from crankdyn.tvc.result import ConditionResult
 
         self._need_model()
@@ -463,8 +471,9 @@ class TorsionAnalyses(SessionCore):
         except InputError:
             return None
         spec = self.tvc_spec
+        load = load_of(model, spec)
         used = model.dampers if dampers is None else dampers
-        checks, _notes = model_checks(model, spec, rated, used)
+        checks, _notes = model_checks(model, spec, rated, used, engine=self.engine, load=load)
         if not checks:
             return None
         if torque is not None:
@@ -481,6 +490,8 @@ class TorsionAnalyses(SessionCore):
 
         def compute() -> ConditionResult:
             verdicts, barred = evaluate_condition(r, name, checks, spec, rated)
+            if kind == "normal":  # as the TVC's normal-firing condition
+                verdicts += installation_verdicts(model, spec, rated, engine=self.engine, load=load)
             low, high = self.speed_range
             return ConditionResult(
                 name=name,

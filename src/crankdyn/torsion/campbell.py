@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -51,6 +51,8 @@ from crankdyn.torsion.sources import (
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+
+    from crankdyn.plausibility import PlausibilityWarning
 
 __all__ = [
     "CampbellResult",
@@ -172,7 +174,15 @@ def _majors(result: CampbellResult) -> tuple[int | None, str]:
 @dataclass(frozen=True)
 class CampbellResult(Result):
     """Critical speeds in the operating range and the data of the Campbell diagram
-    (:func:`campbell`)."""
+    (:func:`campbell`).
+
+    Parameters
+    ----------
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
+    """
 
     title = "Critical speeds"
     critical_speeds: tuple[CriticalSpeed, ...] = scalar("critical_speeds", "Critical speeds", "")
@@ -189,6 +199,7 @@ class CampbellResult(Result):
     )
     """Per order, ``"engine"`` and/or the sources acting at it (:func:`crankdyn.torsion.
     sources.order_sources`); None without excitation points."""
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
         derived(

@@ -16,6 +16,7 @@ import dataclasses
 from typing import TYPE_CHECKING
 
 from crankdyn.errors import InputError
+from crankdyn.plausibility import merge_warnings
 from crankdyn.torsion.elements import GROUND, Gear
 from crankdyn.torsion.model import TorsionModel
 
@@ -155,7 +156,7 @@ def join(
 ) -> TorsionModel:
     """``first`` and ``second`` joined rigidly at ``at_first`` (a mass of the first) and
     ``at_second`` (a mass of the second); the first model's excitation, operating range and
-    rated speed prevail, the sources, dampers and rule checks of both are kept.
+    rated speed prevail, the sources, dampers, rule checks and input warnings of both are kept.
 
     The joint is a rigid gear of ratio 1 that keeps the sense of rotation (``joint=True``): the
     two masses become one degree of freedom and their inertias add (module docstring).
@@ -232,4 +233,5 @@ def join(
         sources=first.sources + second.sources,
         engine=first.engine,
         tvc=first.tvc if first.tvc is not None else second.tvc,
+        input_warnings=merge_warnings(first.input_warnings, second.input_warnings),
     )

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -18,6 +18,8 @@ from crankdyn.summary import Verdict, derived
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+
+    from crankdyn.plausibility import PlausibilityWarning
 
 __all__ = ["EventResult", "time_above"]
 
@@ -78,6 +80,13 @@ class EventResult(Result):
     what every element is (``"shaft"``, ``"coupling"``, ``"mesh"``, ``"damper"``, ``"gear"``
     for a rigid gear mesh), ``section_modulus`` its W_p where it has a diameter (NaN
     otherwise), ``limit_torque`` a coupling's T_Kmax from the model (NaN otherwise).
+
+    Parameters
+    ----------
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
     """
 
     title = "Transient event"
@@ -124,6 +133,7 @@ class EventResult(Result):
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     model_name: str = scalar("model", "Model", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
         derived(

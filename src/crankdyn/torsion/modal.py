@@ -66,6 +66,8 @@ if TYPE_CHECKING:
 
     from matplotlib.figure import Figure
 
+    from crankdyn.plausibility import PlausibilityWarning
+
 __all__ = [
     "SOLVERS",
     "ModalResult",
@@ -180,6 +182,10 @@ class ModalResult(Result):
     node_source : Nodes or None
         The nodes and round-off regions of every mode in compact form (indices; not exported),
         found when first asked for (:attr:`node_arrays`).
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
 
     Examples
     --------
@@ -221,6 +227,7 @@ class ModalResult(Result):
 
     node_source: Nodes | None = field(default=None, repr=False, compare=False)
     """The nodes and round-off regions of all modes, found when first asked for."""
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     @property
     def node_arrays(self) -> NodeArrays | None:
@@ -752,6 +759,7 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         model=model,
         shapes_dof=shapes,
         node_source=Nodes(inputs=(model, shapes, modal_inertia, tau, free)),
+        warnings=(),
     )
 
 

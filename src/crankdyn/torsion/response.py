@@ -46,6 +46,7 @@ from crankdyn.torsion.sources import synthesis_index, synthesize_at
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
+    from crankdyn.plausibility import PlausibilityWarning
     from crankdyn.torsion.sweep import Sweep
 
 __all__ = [
@@ -357,6 +358,10 @@ class ResponseResult(Result):
     evaluator : crankdyn.torsion.sweep.Sweep or None
         The sweep that evaluates the same response at other speeds (:meth:`at`); None on a
         result read back from a file.
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
 
     Examples
     --------
@@ -432,6 +437,7 @@ class ResponseResult(Result):
     section_modulus: np.ndarray | None = field(default=None, repr=False, compare=False)
     evaluator: Sweep | None = field(default=None, repr=False, compare=False)
     """Evaluates the same response at other speeds (:meth:`at`)."""
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     # ---- access -------------------------------------------------------------------------------
     @cached_property

@@ -38,6 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, freeze, scalar
+from crankdyn.summary import SummaryColumn, SummaryTable
 from crankdyn.torsion.excitation import interp_complex
 from crankdyn.torsion.solvers import LinearSystem, linear_system
 from crankdyn.torsion.sources import assemble_forcing, check_model_orders
@@ -51,7 +52,7 @@ if TYPE_CHECKING:
 
 __all__ = ["TransientResult", "transient_response"]
 
-from crankdyn.constants import DEG, RPM
+from crankdyn.constants import CYCLE_ANGLE, DEG, RPM
 
 
 @dataclass(frozen=True)
@@ -94,6 +95,42 @@ class TransientResult(Result):
     )
     method: str = scalar("method", "Integrator", "")
     model_name: str = scalar("model", "Model", "", summary=False)
+    cycle_angle: float = scalar(
+        "cycle_angle_deg", "Working cycle", "deg", DEG, summary=False, default=4.0 * math.pi
+    )
+
+    def summary_tables(self) -> list[SummaryTable]:
+        """The shaft torques per shaft: the half range (max - min) / 2 over the last working
+        cycle (the vibratory torque amplitude once the start has died out) and the largest
+        |T| over the whole run (the start's transient included).
+
+        Returns
+        -------
+        list of crankdyn.summary.SummaryTable
+            One table, a row per shaft and damper coupling (N m).
+        """
+        last = self.last_cycle(self.cycle_angle)
+        torque = self.shaft_torque
+        half = 0.5 * (np.max(torque[last], axis=0) - np.min(torque[last], axis=0))
+        largest = np.max(np.abs(torque), axis=0)
+        rows = tuple(
+            (f"{a} - {b}", float(half[s]), float(largest[s]))
+            for s, (a, b) in enumerate(self.shafts)
+        )
+        return [
+            SummaryTable(
+                "shaft_torques",
+                f"{self.model_name}: shaft torques, last cycle",
+                (
+                    SummaryColumn("shaft", "Shaft"),
+                    SummaryColumn("half_range_Nm", "Half range", "N·m"),
+                    SummaryColumn("largest_abs_Nm", "Largest |T| over the run", "N·m"),
+                ),
+                rows,
+                caption=f"{self.time.size} samples to {self.time[-1]:.4g} s; loss factors "
+                f"as viscous at {self.hysteretic_frequency / (2 * math.pi):.4g} Hz",
+            )
+        ]
 
     def last_cycle(self, cycle_angle: float) -> np.ndarray:
         """Mask of the samples in the last working cycle.
@@ -312,6 +349,7 @@ def transient_response(
         hysteretic_frequency=float(hysteretic_frequency),
         method=method,
         model_name=model.name,
+        cycle_angle=CYCLE_ANGLE[excitation.cycle],
     )
 
 

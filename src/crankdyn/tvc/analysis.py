@@ -17,13 +17,16 @@ curve, the propeller's mean torque ~ n^2) or constant speed (a generating set: f
 every speed of its range).
 
 Every component with a limit is checked against it (the table of check kinds of
-:mod:`crankdyn.tvc.checks`; the limits and their sources: :mod:`crankdyn.tvc.limits`,
-docs/tvc.md): propulsion shafts against IACS UR M68 (tau_C,
-tau_T, C_K, C_D, the cap on sigma_B), crank spans against the engine builder's permissible
-vibratory stress or torque, elastic couplings against T_KW, T_Kmax, T_KN and P_KV (DIN 740-2,
-the maker's catalogue), gear meshes against gear hammering (the vibratory torque at the mesh
-above the mean transmitted torque reverses the tooth load), generators against the maker's
-vibratory torque, angular acceleration and amplitude, and dampers against the maker's heat load.
+:mod:`crankdyn.tvc.checks`; the rule values and their clauses: the rule set selected by
+``[tvc] rules``, :mod:`crankdyn.tvc.rulesets`, docs/tvc.md): propulsion shafts against the
+society's tau_C and tau_T (the IACS UR M68.4 form; C_K, C_D, the society's cap on sigma_B),
+crank spans against the engine builder's permissible vibratory stress or torque (else the
+society's crankshaft limits where its text states them), a generating set's alternator shaft
+against the society's limit where stated, elastic couplings against T_KW, T_Kmax, T_KN and
+P_KV (DIN 740-2, the maker's catalogue), gear meshes against gear hammering (the vibratory
+torque at the mesh above the mean transmitted torque reverses the tooth load), generators
+against the maker's vibratory torque, angular acceleration and amplitude, and dampers against
+the maker's heat load.
 
 Barred speed ranges and the verdict rows of each condition: :mod:`crankdyn.tvc.evaluate` (the
 one place a check is evaluated; ``crankdyn torsion response`` uses it too). The passage through
@@ -46,6 +49,7 @@ from crankdyn.errors import InputError
 from crankdyn.summary import Verdict
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
 from crankdyn.tvc.evaluate import evaluate_condition
+from crankdyn.tvc.installation import installation_verdicts, rule_notes
 from crankdyn.tvc.passage import passages as passages_of
 from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult
 from crankdyn.tvc.spec import CONDITION_KINDS, TvcSpec
@@ -316,7 +320,9 @@ def judge(
     """A forced response judged by the installation's checks: the verdict rows and the barred
     speed ranges (as found and as declared) of one condition, by the TVC's own evaluation
     (:func:`crankdyn.tvc.checks.model_checks`, :func:`crankdyn.tvc.evaluate.
-    evaluate_condition`).
+    evaluate_condition`); for normal firing with the rows of the installation as a whole
+    (:func:`crankdyn.tvc.installation.installation_verdicts`), as the TVC's normal-firing
+    condition has them.
 
     Parameters
     ----------
@@ -325,8 +331,8 @@ def judge(
     response : ResponseResult
         The condition's resolved forced response.
     spec : TvcSpec or None
-        The settings (tachometer tolerance, widening); None: the model's ``[tvc]`` or the
-        defaults.
+        The settings (the rule set, the tachometer tolerance); None: the model's ``[tvc]`` or
+        the defaults.
     engine : Engine or None
         The engine (for its rated speed where the model gives none).
     condition : str
@@ -348,9 +354,13 @@ def judge(
     """
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
     rated = rated_speed(model, engine)
+    load = load_of(model, spec)
     used = model.dampers if dampers is None else dampers
-    checks, _notes = model_checks(model, spec, rated, used)
-    return evaluate_condition(response, condition, checks, spec, rated)
+    checks, _notes = model_checks(model, spec, rated, used, engine=engine, load=load)
+    verdicts, barred = evaluate_condition(response, condition, checks, spec, rated)
+    if condition == "normal firing":
+        verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
+    return verdicts, barred
 
 
 def _response(
@@ -469,11 +479,14 @@ def tvc(
     """The torsional vibration calculation of an installation (module docstring).
 
     Every running condition's resolved forced response, checked component by component
-    against its limit: propulsion shafts against IACS UR M68.4 (tau_C, tau_T, barred ranges
-    only below 0.8 n_0), elastic couplings against the catalogue's T_KW, T_Kmax, T_KN and P_KV
-    (DIN 740-2), crank spans, gears, machines and dampers against their makers' limits; the
-    barred ranges widened by the chosen rule (Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5,
-    or none) and the tachometer tolerance; the passage through them in the time domain.
+    against its limit, every rule value from the rule set of ``spec.rules`` with its clause:
+    propulsion shafts against tau_C and tau_T (the IACS UR M68.4 form, the society's caps on
+    sigma_B and C_K table; barred ranges only below 0.8 n_0), elastic couplings against the
+    catalogue's T_KW, T_Kmax, T_KN and P_KV (DIN 740-2), crank spans against the builder's or
+    the society's limits, gears, machines and dampers against their makers' limits; the
+    major criticals against the society's window (normal firing); the barred ranges widened by
+    the society's least range (KR 2025 Pt 5 Ch 4 206.1(1), or none) and the tachometer
+    tolerance; the passage through them in the time domain.
 
     Parameters
     ----------
@@ -558,7 +571,9 @@ def tvc(
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes)
     for cond in conds:
         if cond.dampers not in run.checks:
-            checks, check_notes = model_checks(model, spec, rated, cond.dampers)
+            checks, check_notes = model_checks(
+                model, spec, rated, cond.dampers, engine=engine, load=load
+            )
             run.checks[cond.dampers] = checks
             if cond.kind == "normal":
                 notes.extend(check_notes)
@@ -567,6 +582,8 @@ def tvc(
     for cond in conds:
         r = respond(model, cond, speed_grid(cond.low, cond.high, spec.step), run.orders)
         verdicts, barred = evaluate_condition(r, cond.name, run.checks[cond.dampers], spec, rated)
+        if cond.kind == "normal":
+            verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
         results.append((cond, verdicts, barred, r))
     condition_results, verdicts_all, passages_all = [], [], []
     for group in _grouped(results):
@@ -584,6 +601,13 @@ def tvc(
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
     modes = natural_modes(model)
+    notes += rule_notes(
+        spec,
+        rated=rated,
+        high=high,
+        misfire=any(c.kind == "misfire" for c in conds),
+        propeller=any(getattr(s, "kind", None) == "propeller" for s in model.sources),
+    )
     return TvcResult(
         model_name=model.name,
         rated_speed=rated,
@@ -594,8 +618,8 @@ def tvc(
         passages=tuple(passages_all),
         conditions=tuple(condition_results),
         notes=tuple(notes),
-        tachometer_tolerance=spec.tachometer_tolerance,
-        widening=spec.widening,
+        tachometer_tolerance=spec.tolerance,
+        rules=spec.rules,
         model=model,
         engine=engine,
         modes=modes,

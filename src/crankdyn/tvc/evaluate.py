@@ -8,16 +8,21 @@ differently.
 Barred speed ranges. Where a component's synthesised response exceeds its continuous limit the
 range *as found* is bisected to 0.01 rpm on the resolved curve
 (:func:`crankdyn.torsion.rules.exceedances`); the range *as declared* is that range widened to
-the society's least range around the critical speed where the chosen rule says so
-(:func:`crankdyn.tvc.limits.barred_limits`) and by the tachometer tolerance on both sides. A
-range is *permitted* when the rule allows one there: for an M68 shaft only below 0.8 n_0 (the
-declared range, margins included: IACS UR M68.4) and only while the stress stays below tau_T;
-for a coupling while the total torque stays below T_Kmax; for the crankshaft while it stays
-below the builder's transient limit (none given: no barred range permitted); never where it
-holds the rated speed. Continuous limits (heat, gear hammering, generator, damper) are checked
-over the speeds of continuous running: the condition's range less its declared barred ranges
-(their ends, bisected to 0.01 rpm, widened by that accuracy: a range declared as found, with no
-margin, leaves no sample of the crossing itself in continuous running).
+the selected rule set's least range around the critical speed where its text states one (KR
+2025 Pt 5 Ch 4 206.1(1), which bars ranges where the stresses exceed the tau_1 of 201-203:
+applied to the ranges of the rules' limits, not to a maker's limit such as a coupling's;
+:func:`crankdyn.tvc.limits.barred_limits`) and by the tachometer tolerance on both sides (``[tvc]
+tachometer_tolerance``, else the rule set's, else crankdyn's 2 %). A range is *permitted* when
+the rule allows one there: below the highest speed ratio the check's rule gives (a propulsion
+shaft 0.8 n_0: IACS UR M68.4, KR 202.1(2); a generating set's crankshaft and alternator shaft
+0.9 n_0: KR 203; the declared range, margins included) and only while the response stays
+below the transient limit (tau_T, the society's or the builder's transient crankshaft limit;
+for a coupling T_Kmax; none given: no barred range permitted); never where it holds the rated
+speed. Every barred range and every row cites its rule, edition and clause. Continuous limits
+(heat, gear hammering, generator, damper) are checked over the speeds of continuous running:
+the condition's range less its declared barred ranges (their ends, bisected to 0.01 rpm,
+widened by that accuracy: a range declared as found, with no margin, leaves no sample of the
+crossing itself in continuous running).
 """
 
 from __future__ import annotations
@@ -34,8 +39,9 @@ import crankdyn.tvc.curves as cv
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.torsion.rules import SPEED_TOLERANCE, exceedances
-from crankdyn.tvc.limits import M68, WIDENING_SOURCES, barred_limits
+from crankdyn.tvc.limits import barred_limits
 from crankdyn.tvc.result import BarredSpeedRange
+from crankdyn.tvc.rulesets import cite_row
 
 if TYPE_CHECKING:
     from crankdyn.torsion.response import ResponseResult
@@ -43,10 +49,7 @@ if TYPE_CHECKING:
     from crankdyn.tvc.checks import Check
     from crankdyn.tvc.spec import TvcSpec
 
-__all__ = ["M68_LAMBDA", "Found", "evaluate_condition", "merge_intervals"]
-
-M68_LAMBDA = 0.8
-"""The speed ratio n/n_0 above which IACS UR M68.4 permits no barred speed range."""
+__all__ = ["Found", "evaluate_condition", "margins", "merge_intervals"]
 
 
 @dataclass(frozen=True)
@@ -104,16 +107,71 @@ def _column(
     return lambda x: func(x)[:, None]
 
 
+def margins(spec: TvcSpec, rule_limit: bool = True) -> tuple[str, str, str]:
+    """How a declared barred range is widened, in words, with the source and clauses: the rule
+    set's least range around a critical speed (for a rule's limit only: KR 2025 Pt 5 Ch 4 206.1
+    bars ranges where the stresses exceed the tau_1 of 201-203, not a maker's limit) and the
+    tachometer tolerance.
+
+    Parameters
+    ----------
+    spec : TvcSpec
+        The settings (the rule set, the tachometer tolerance).
+    rule_limit : bool
+        Whether the range is a rule limit's (a shaft's, the society's crankshaft or generator
+        shaft limit: the least range applies), or a maker's (a coupling's, the engine
+        builder's: the range where the limit is exceeded).
+
+    Returns
+    -------
+    text, source, clause : str
+        ``"least range: 16 n_c/(18-λ_c) ≤ n ≤ (18-λ_c) n_c/16; tachometer tolerance ±2 %"``,
+        and the rule texts and clauses (:func:`crankdyn.tvc.rulesets.cite_row`).
+
+    Examples
+    --------
+    >>> from crankdyn.tvc.spec import TvcSpec
+    >>> text, source, clause = margins(TvcSpec(rules="kr", tachometer_tolerance=0.01))
+    >>> text
+    'least range 16 n_c/(18-λ_c) ≤ n ≤ (18-λ_c) n_c/16; tachometer tolerance ±1 % (as given)'
+    >>> clause
+    'least range: Pt 5 Ch 4 206.1(1)'
+    """
+    society = spec.ruleset
+    widening = society.widening
+    parts = [("least range", widening.clause)]
+    if not rule_limit:
+        parts = []
+        text = "a maker's limit: the range where it is exceeded (no society's least range)"
+    elif widening.value == "none":
+        text = "no least range around the critical speed (the range where the limit is exceeded)"
+    else:
+        text = "least range 16 n_c/(18-λ_c) ≤ n ≤ (18-λ_c) n_c/16"
+    tol = spec.tolerance
+    if spec.tachometer_tolerance is not None:
+        how = "as given"
+    elif society.tachometer.value is not None:
+        how = "the rule set's"
+        parts.append(("tachometer", society.tachometer.clause))
+    else:
+        how = "crankdyn's default: no text read states one"
+    text += f"; tachometer tolerance ±{tol * 100:g} % ({how})"
+    source, clause = cite_row(parts) if parts else ("", "")
+    return text, source, clause
+
+
 def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float) -> list[Found]:
     """Every exceedance of a check that bars speeds, with its declared range: widened by the
-    rule and by the tachometer tolerance on both sides."""
-    tol = spec.tachometer_tolerance
+    rule set's least range (a rule's limit: the check states its highest barred speed ratio)
+    and by the tachometer tolerance on both sides."""
+    tol = spec.tolerance
     out = []
     for check in checks:
         if not check.barred:
             continue
+        widening = spec.ruleset.widening.value if check.barred_upper is not None else "none"
         for ex in exceedances(r, _column(check.curve), _column(check.limit)):
-            lo, hi = barred_limits(ex.peak_speed, n0, spec.widening)
+            lo, hi = barred_limits(ex.peak_speed, n0, widening)
             start = min(ex.start, lo) * (1.0 - tol)
             end = max(ex.end, hi) * (1.0 + tol)
             out.append(Found(check, ex, start, end))
@@ -124,11 +182,12 @@ def _declared_how(found: Found, spec: TvcSpec) -> str:
     """How the found range became the declared one, in words without its ends (the table's
     columns give them once, from the range itself): ``declared: the range found, widened by the
     2 % tachometer tolerance``."""
+    society = spec.ruleset
     widened = []
-    if spec.widening != "none":
-        widened.append(f"by the {spec.widening.upper()} margins")
-    if spec.tachometer_tolerance:
-        widened.append(f"by the {spec.tachometer_tolerance * 100:g} % tachometer tolerance")
+    if society.widening.value != "none" and found.check.barred_upper is not None:
+        widened.append(f"to {society.title}'s least range ({society.widening.clause.clause})")
+    if spec.tolerance:
+        widened.append(f"by the {spec.tolerance * 100:g} % tachometer tolerance")
     if widened:
         return f"declared: the range found, widened {' and '.join(widened)}"
     return "declared: the range found"
@@ -137,17 +196,20 @@ def _declared_how(found: Found, spec: TvcSpec) -> str:
 def _barred_range(
     r: ResponseResult, found: Found, condition: str, spec: TvcSpec, n0: float
 ) -> BarredSpeedRange:
-    """The barred range of one exceedance: permitted or not, and why in words."""
+    """The barred range of one exceedance: permitted or not, and why in words, with the rule
+    that permits it or not."""
     check, ex = found.check, found.exceedance
     start, end = found.start, found.end
     how = _declared_how(found, spec)
+    text, m_source, m_clause = margins(spec, check.barred_upper is not None)
     reasons = []
     permitted = True
-    if check.m68 and end > M68_LAMBDA * n0:
+    upper = check.barred_upper
+    if upper is not None and end > upper * n0:
         permitted = False
         reasons.append(
-            f"{how}, above {M68_LAMBDA:g} n_0 = {M68_LAMBDA * n0 * RPM:.1f} rpm, where IACS UR "
-            "M68.4 permits no barred range"
+            f"{how}, above {upper:g} n_0 = {upper * n0 * RPM:.1f} rpm, where {check.barred_source}"
+            f" ({check.barred_clause}) permits no barred range"
         )
     if start <= n0 <= end:
         permitted = False
@@ -166,7 +228,12 @@ def _barred_range(
         reasons.append(
             f"{how}; limit exceeded only where a barred range is permitted: pass quickly"
         )
-    tol = spec.tachometer_tolerance
+    sources = (
+        [m_source or check.source.split(":")[0]]
+        if upper is None
+        else [check.barred_source, m_source]
+    )
+    clauses = [m_clause or check.clause] if upper is None else [check.barred_clause, m_clause]
     return BarredSpeedRange(
         component=check.component,
         condition=condition,
@@ -178,8 +245,9 @@ def _barred_range(
         critical_speed=ex.peak_speed,
         worst_ratio=ex.peak_ratio,
         reason="; ".join(reasons),
-        margins=WIDENING_SOURCES[spec.widening]
-        + (f"; tachometer tolerance ±{tol * 100:g} %" if tol else ""),
+        margins=text,
+        source=" / ".join(dict.fromkeys(sources)),
+        clause="; ".join(dict.fromkeys(clauses)),
     )
 
 
@@ -218,26 +286,29 @@ def _continuous_verdicts(
 def _barred_verdicts(
     r: ResponseResult, found: Found, b: BarredSpeedRange, condition: str, n0: float
 ) -> list[Verdict]:
-    """The verdict rows of one barred range: its end against 0.8 n_0 (M68), the rated speed
-    outside it, and the steady state in it against the transient limit."""
+    """The verdict rows of one barred range: its end against the highest speed ratio the rule
+    permits (0.8 n_0 for a propulsion shaft), the rated speed outside it, the steady state in
+    it against the transient limit, and the rows a rule attaches to it."""
     check, ex = found.check, found.exceedance
     label = f"barred range {b.start * RPM:.1f}-{b.end * RPM:.1f} rpm"
     out = []
-    if check.m68:  # M68.4: no barred range above 0.8 n_0 (the declared range, margins included)
+    upper = check.barred_upper
+    if upper is not None:  # no barred range above upper n_0 (the declared range, margins included)
         out.append(
             Verdict(
                 component=check.component,
                 condition=condition,
                 quantity=f"end of the declared {label} (λ = n/n_0)",
                 worst=b.end / n0,
-                limit=M68_LAMBDA,
+                limit=upper,
                 unit="",
-                passed=bool(b.end <= M68_LAMBDA * n0),
-                source=f"{M68}: barred speed ranges only below λ = {M68_LAMBDA:g}; margins: "
+                passed=bool(b.end <= upper * n0),
+                source=f"{b.source}: barred speed ranges only below λ = {upper:g}; margins: "
                 f"{b.margins}",
+                clause=b.clause,
                 speed=b.end,
                 note=b.reason,
-                margin=1.0 - b.end / n0 / M68_LAMBDA,
+                margin=1.0 - b.end / n0 / upper,
                 kind="barred range end",
             )
         )
@@ -251,7 +322,8 @@ def _barred_verdicts(
                 limit=b.start / n0,
                 unit="",
                 passed=False,
-                source="the rated speed cannot lie in a barred range",
+                source=f"{b.source}: the rated speed cannot lie in a barred range",
+                clause=b.clause,
                 speed=n0,
                 margin=1.0 - n0 / b.start,
                 kind="barred range at n_0",
@@ -268,6 +340,7 @@ def _barred_verdicts(
                 unit=check.unit,
                 passed=False,
                 source=check.source,
+                clause=check.clause,
                 speed=ex.peak_speed,
                 note="a barred range needs the component's transient limit",
                 margin=1.0 - ex.peak_ratio,
@@ -287,11 +360,14 @@ def _barred_verdicts(
             unit=check.unit,
             passed=bool(np.isfinite(limit) and value <= limit),
             source=check.transient_source,
+            clause=check.transient_clause,
             speed=speed,
             margin=1.0 - value / limit if np.isfinite(limit) else -math.inf,
             kind="barred range steady state",
         )
     )
+    if check.barred_rows is not None:
+        out += check.barred_rows(b)
     return out
 
 
@@ -310,7 +386,8 @@ def evaluate_condition(
     checks : sequence of Check
         The installation's checks (:func:`crankdyn.tvc.checks.model_checks`).
     spec : TvcSpec
-        The settings: the tachometer tolerance and the widening of barred ranges.
+        The settings: the rule set (the least range around a critical speed) and the
+        tachometer tolerance.
     n0 : float
         The rated speed (rad/s).
 

@@ -26,13 +26,14 @@ strength (N/mm^2), C_K the design-feature factor and C_D = 0.35 + 0.93 d^-0.2 (d
   (M68's limit for shafts in way of the stern tube). Give ``tensile_strength_cap`` where your
   society's rule states another value.
 
-Widening of a barred range (society-specific, :data:`WIDENINGS`): Lloyd's Register (Rules for
-Ships Pt 5 Ch 8 2.5 / Naval Ships Vol 2 Pt 5 Ch 1 3, with r = N_c / N_s) bars at least
+The least barred range around a critical speed n_c (:data:`WIDENINGS`, chosen by the rule set,
+:mod:`crankdyn.tvc.rulesets`): KR 2025 Pt 5 Ch 4 206.1(1) (and, as crankdyn had it, Lloyd's
+Register's Pt 5 Ch 8, not read) bars at least
 
-    16 n_c / (18 - lambda_c) <= n <= (18 - lambda_c) n_c / 16,    lambda_c = n_c / n_0,
+    16 n_c / (18 - lambda_c) <= n <= (18 - lambda_c) n_c / 16,    lambda_c = n_c / n_0;
 
-around a critical speed n_c; IACS M68 itself adds no margin. The tachometer tolerance (an
-input, the accuracy of the speed indication) widens every declared range on both sides.
+IACS M68 as crankdyn reads it adds no margin. The tachometer tolerance (the accuracy of the
+speed indication) widens every declared range on both sides.
 """
 
 from __future__ import annotations
@@ -59,7 +60,6 @@ __all__ = [
     "M68",
     "STRENGTH_CAPS",
     "WIDENINGS",
-    "WIDENING_NAMES",
     "CrankshaftLimit",
     "M68Shaft",
     "barred_limits",
@@ -90,19 +90,10 @@ DESIGN_FACTORS = {
 """C_K of IACS UR M68's table by design feature (module docstring)."""
 
 WIDENINGS = ("none", "lr")
-"""Barred-range widenings: ``"none"`` (IACS UR M68: the range where the stress exceeds tau_C)
-or ``"lr"`` (Lloyd's Register: at least 16 n_c/(18 - lambda_c) to (18 - lambda_c) n_c/16)."""
-
-WIDENING_NAMES = {
-    "none": "none (IACS UR M68: the range found)",
-    "lr": "Lloyd's Register (Pt 5 Ch 8 2.5)",
-}
-"""The widening of barred ranges as people read it (the report's input table)."""
-
-WIDENING_SOURCES = {
-    "none": "IACS UR M68.4 (the range where τ > τ_C; no added margin)",
-    "lr": "Lloyd's Register Rules for Ships Pt 5 Ch 8 2.5: 16 n_c/(18-λ_c) ≤ n ≤ (18-λ_c) n_c/16",
-}
+"""The least barred ranges a rule set may state (:attr:`crankdyn.tvc.rulesets.RuleSet.widening`):
+``"none"`` (the range where the stress exceeds tau_C) or ``"lr"`` (at least
+16 n_c/(18 - lambda_c) to (18 - lambda_c) n_c/16: KR 2025 Pt 5 Ch 4 206.1(1), and Lloyd's
+Register's margin as crankdyn had it)."""
 
 
 def continuous_limit(

@@ -203,6 +203,7 @@ def _cannot_pass(condition: str, label: str, spare: float) -> Verdict:
         margin=-math.inf,
         passed=False,
         source="the engine's torque less the load law: the range cannot be passed",
+        clause="[tvc] engine_torque or engine_torque_curve, the load law",
         kind="acceleration torque",
     )
 
@@ -243,6 +244,7 @@ def _transient_verdicts(
                 margin=1.0 - float(ratio[k]),
                 passed=bool(ratio[k] <= 1.0),
                 source=check.transient_source,
+                clause=check.transient_clause,
                 speed=float(run.speed[inside][k]),
                 kind="transient passage",
             )

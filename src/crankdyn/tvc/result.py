@@ -9,13 +9,22 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from crankdyn.constants import RPM
+from crankdyn.plausibility import input_warnings
 from crankdyn.results import Result, scalar
-from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived
+from crankdyn.summary import (
+    SummaryColumn,
+    SummaryTable,
+    Verdict,
+    derived,
+    verdict_status,
+    verdict_text,
+)
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
     from crankdyn.engine.model import Engine
+    from crankdyn.plausibility import PlausibilityWarning
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.mode_table import ModeTable
@@ -34,9 +43,11 @@ class BarredSpeedRange(Result):
 
     ``exceeds_start``/``exceeds_end`` where the response exceeds the continuous limit (ends
     bisected to 0.01 rpm, :func:`crankdyn.torsion.rules.exceedances`), ``start``/``end`` the
-    declared range after the society's widening (:func:`crankdyn.tvc.limits.barred_limits`)
+    declared range after the rule set's least range (:func:`crankdyn.tvc.limits.barred_limits`)
     and the tachometer tolerance; ``permitted`` whether the rule allows a barred range there
-    (IACS UR M68.4: below 0.8 n_0 and under tau_T; a coupling under T_Kmax, DIN 740-2).
+    (IACS UR M68.4: below 0.8 n_0 and under tau_T; a coupling under T_Kmax, DIN 740-2);
+    ``source`` and ``clause`` the rule text with its edition and the clauses the range's
+    permission and margins come from (:func:`crankdyn.tvc.evaluate.margins`).
 
     Examples
     --------
@@ -59,7 +70,9 @@ class BarredSpeedRange(Result):
     critical_speed: float = scalar("critical_speed_rpm", "Largest response at", "rpm", RPM)
     worst_ratio: float = scalar("worst_to_limit", "Largest value / continuous limit", "")
     reason: str = scalar("reason", "Why", "")
-    margins: str = scalar("margins", "Margins (rule text)", "")
+    margins: str = scalar("margins", "Margins", "")
+    source: str = scalar("source", "Rule", "", default="")
+    clause: str = scalar("clause", "Clause", "", default="")
 
 
 BARRED_COLUMNS = (
@@ -71,6 +84,7 @@ BARRED_COLUMNS = (
     SummaryColumn("end_rpm", "Declared to", "rpm"),
     SummaryColumn("permitted", "Permitted"),
     SummaryColumn("reason", "Why"),
+    SummaryColumn("clause", "Rule clause"),
 )
 """The columns of a barred-range table, in every front end: each range as found (where the
 limit is exceeded) and as declared (widened), permitted or not and why."""
@@ -91,6 +105,7 @@ def barred_table(
             round(b.end * RPM, 1),
             "yes" if b.permitted else "no",
             b.reason,
+            f"{b.source}, {b.clause}" if b.clause else b.source,
         )
         for b in ranges
     )
@@ -162,6 +177,10 @@ class ConditionResult(Result):
     curves : dict
         The checks plotted, {(component, quantity): :class:`crankdyn.tvc.analysis.Check`}; not
         exported.
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
     """
 
     name: str = scalar("condition", "Condition", "")
@@ -176,6 +195,7 @@ class ConditionResult(Result):
     passages: tuple[Passage, ...] = scalar("passages", "Passages", "", summary=False)
     response: ResponseResult | None = field(default=None, repr=False, compare=False)
     curves: dict[tuple[str, str], Check] = field(default_factory=dict, repr=False, compare=False)
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
         derived(
@@ -185,7 +205,7 @@ class ConditionResult(Result):
         ),
         derived(
             "max_stress_ratio", "max_stress_ratio",
-            "Largest shaft stress / permissible τ_C (IACS UR M68)", "",
+            "Largest shaft stress / permissible τ_C (the rule set's)", "",
             _largest_m68_ratio, reduction="max over the M68 shafts and the resolved speeds",
             better="min", unavailable="the torsional model has no [rules] (crankdyn docs "
             "torsion-file): no IACS UR M68 check",
@@ -196,6 +216,12 @@ class ConditionResult(Result):
             lambda c: _worst(c), reduction="min over the verdict rows", better="max",
         ),
     )  # fmt: skip
+
+    @property
+    def passed(self) -> bool:
+        """Whether every verdict row of the condition passed (False without a row: nothing was
+        checked)."""
+        return bool(self.verdicts) and all(v.passed for v in self.verdicts)
 
     def summary_verdicts(self) -> list[Verdict]:
         """The condition's verdict rows.
@@ -298,6 +324,10 @@ class TvcResult(Result):
         The settings the calculation ran with.
     condition_results : tuple of ConditionResult
         Every condition, with its response (the same objects as ``conditions``).
+    warnings : tuple of crankdyn.plausibility.PlausibilityWarning
+        The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
+        the analysis session (not exported as a field: ``to_dict`` lists them under
+        ``input_warnings``).
 
     Examples
     --------
@@ -311,7 +341,7 @@ class TvcResult(Result):
     >>> result = TvcResult(model_name="demo", rated_speed=500 / RPM, load="propeller",
     ...                    passed=False, verdicts=(shaft, coupling), barred_ranges=(),
     ...                    passages=(), conditions=(), notes=(), tachometer_tolerance=0.02,
-    ...                    widening="none")
+    ...                    rules="iacs-m68")
     >>> [v.component for v in result.failed()], result.worst_margin()
     (['coupling C1'], -0.2)
     >>> result.to_dict()["rated_speed_rpm"]
@@ -322,7 +352,7 @@ class TvcResult(Result):
     model_name: str = scalar("model", "Installation", "")
     rated_speed: float = scalar("rated_speed_rpm", "Rated speed n_0", "rpm", RPM)
     load: str = scalar("load", "Load", "")
-    passed: bool = scalar("passed", "Passed", "", headline=True)
+    passed: bool = scalar("passed", "Passed", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     barred_ranges: tuple[BarredSpeedRange, ...] = scalar(
         "barred_speed_ranges", "Barred speed ranges", "", summary=False
@@ -333,7 +363,7 @@ class TvcResult(Result):
     conditions: tuple[ConditionResult, ...] = scalar("conditions", "Conditions", "", summary=False)
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     tachometer_tolerance: float = scalar("tachometer_tolerance", "Tachometer tolerance", "")
-    widening: str = scalar("barred_range_widening", "Barred-range widening", "")
+    rules: str = scalar("rules", "Rule set", "")
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     engine: Engine | None = field(default=None, repr=False, compare=False)
     modes: ModalResult | None = field(default=None, repr=False, compare=False)
@@ -341,6 +371,7 @@ class TvcResult(Result):
     campbell: CampbellResult | None = field(default=None, repr=False, compare=False)
     spec: TvcSpec | None = field(default=None, repr=False, compare=False)
     condition_results: tuple[ConditionResult, ...] = field(default=(), repr=False, compare=False)
+    warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
         """The result as a JSON-ready dict (:meth:`crankdyn.results.Result.to_dict`).
@@ -361,6 +392,10 @@ class TvcResult(Result):
 
     FIGURES = (
         derived(
+            "verdict", "verdict", "Verdict", "", lambda r: r.summary_verdict(),
+            status=verdict_status, headline=True,
+        ),
+        derived(
             "worst_margin", "worst_margin", "Smallest margin of the verdict rows", "",
             lambda r: _worst(r), reduction="min over the verdict rows", better="max",
             headline=True,
@@ -370,6 +405,19 @@ class TvcResult(Result):
             lambda r: len(r.failed()), better="min",
         ),
     )  # fmt: skip
+
+    def summary_verdict(self) -> str | None:
+        """The overall verdict in words (:func:`crankdyn.summary.verdict_text`): ``passed``
+        or ``FAILED``, with the number of input warnings it stands on.
+
+        Returns
+        -------
+        str or None
+            The verdict; None without verdict rows.
+        """
+        if not self.verdicts:
+            return None
+        return verdict_text(self.passed, len(input_warnings(self.warnings)))
 
     def summary_verdicts(self) -> list[Verdict]:
         """Every verdict row (every component x condition).
@@ -417,6 +465,42 @@ class TvcResult(Result):
                 )
             )
         return out
+
+    @property
+    def rule_title(self) -> str:
+        """The rule set's name (:data:`crankdyn.tvc.rulesets.RULESETS`), e.g. ``"Korean
+        Register (KR)"``."""
+        from crankdyn.tvc.rulesets import get
+
+        return get(self.rules).title
+
+    def unverified_table(self) -> SummaryTable | None:
+        """The clauses of the rule set that could not be verified against its text (the rows
+        citing them say "not verified against the text"), or None where every clause was read.
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable or None
+            Columns: the value, the clause cited, where the value is taken from instead.
+        """
+        from crankdyn.tvc.rulesets import get, unverified
+
+        rows = tuple(
+            (name, clause.cite(), clause.value_as or clause.note)
+            for name, clause in unverified(get(self.rules))
+        )
+        if not rows:
+            return None
+        return SummaryTable(
+            "unverified_clauses",
+            f"{self.rule_title}: values not verified against the text",
+            (
+                SummaryColumn("value", "Value"),
+                SummaryColumn("clause", "Clause cited"),
+                SummaryColumn("value_as", "Value taken as"),
+            ),
+            rows,
+        )
 
     def failed(self) -> tuple[Verdict, ...]:
         """The verdict rows that did not pass.

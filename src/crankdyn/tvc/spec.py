@@ -1,6 +1,8 @@
 """The inputs of a torsional vibration calculation besides the model (domain): which running
-conditions, the speed range of each, the load law, the barred-range margins, the crankshaft's
-limit and the data of the passage through barred ranges (docs/tvc.md)."""
+conditions, the speed range of each, the load law, the classification society's rule set (the
+limits, the barred-range rules and margins, each with its clause: :mod:`crankdyn.tvc.rulesets`),
+the tachometer tolerance, the crankshaft's limit and the data of the passage through barred
+ranges (docs/tvc.md)."""
 
 from __future__ import annotations
 
@@ -14,12 +16,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.crank.geometry import check_positive
-from crankdyn.defaults import SPEED_STEP, TACHOMETER_TOLERANCE
+from crankdyn.defaults import RULES, SPEED_STEP
 from crankdyn.errors import InputError
-from crankdyn.tvc.limits import WIDENINGS, CrankshaftLimit
+from crankdyn.tvc.limits import CrankshaftLimit
+from crankdyn.tvc.rulesets import get as get_rules
+from crankdyn.tvc.rulesets import tachometer_tolerance
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
+    from crankdyn.tvc.rulesets import RuleSet
 
 __all__ = ["CONDITION_KINDS", "DEFAULT_STEP", "LOADS", "TvcSpec"]
 
@@ -59,12 +64,17 @@ class TvcSpec:
         pressure is known).
     damper_out : bool
         Whether "damper out of order" is a condition (default True where there is a damper).
-    tachometer_tolerance : float
+    tachometer_tolerance : float or None
         Relative accuracy of the speed indication (dimensionless, 0 <= tolerance < 0.2),
-        widening every barred range on both sides (default
-        :data:`crankdyn.defaults.TACHOMETER_TOLERANCE`, 0.02).
-    widening : str
-        :data:`crankdyn.tvc.limits.WIDENINGS` (default ``"none"``: IACS UR M68 alone).
+        widening every barred range on both sides; None: the rule set's value where its text
+        states one, else :data:`crankdyn.defaults.TACHOMETER_TOLERANCE` (0.02;
+        :attr:`tolerance`).
+    rules : str
+        The classification society's rule set, a key of
+        :data:`crankdyn.tvc.rulesets.RULESETS` (default :data:`crankdyn.defaults.RULES`,
+        ``"iacs-m68"``): the shaft limits and the caps on sigma_B, the C_K table, the barred-range
+        rules and the least range around a critical speed, generating sets, crankshafts, each
+        value with its clause (:attr:`ruleset`).
     crankshaft : CrankshaftLimit or None
         The engine builder's crankshaft limit (:class:`CrankshaftLimit`), or None.
     engine_torque : float or None
@@ -84,7 +94,7 @@ class TvcSpec:
     ------
     InputError
         Naming the key (``speed_range``, ``speed_ranges.<kind>``, ``step``, ``load``,
-        ``tachometer_tolerance``, ``widening``, ``engine_torque``, ``engine_torque_curve``,
+        ``tachometer_tolerance``, ``rules``, ``engine_torque``, ``engine_torque_curve``,
         ``passage_load``) and its value where a setting is unknown, not positive, out of range
         or an empty speed range, or where both ``engine_torque`` and ``engine_torque_curve``
         are given.
@@ -93,8 +103,10 @@ class TvcSpec:
     --------
     >>> from crankdyn.constants import RPM
     >>> spec = TvcSpec(speed_range=(300 / RPM, 600 / RPM))
-    >>> round(spec.step * RPM, 6), spec.tachometer_tolerance, spec.widening
-    (10.0, 0.02, 'none')
+    >>> round(spec.step * RPM, 6), spec.tolerance, spec.rules
+    (10.0, 0.02, 'iacs-m68')
+    >>> TvcSpec(rules="KR").ruleset.title
+    'Korean Register (KR)'
     >>> TvcSpec(load="hybrid")
     Traceback (most recent call last):
     ...
@@ -108,8 +120,8 @@ class TvcSpec:
     load: str | None = None
     misfire: bool = True
     damper_out: bool = True
-    tachometer_tolerance: float = TACHOMETER_TOLERANCE
-    widening: str = "none"
+    tachometer_tolerance: float | None = None
+    rules: str = RULES
     crankshaft: CrankshaftLimit | None = None
     engine_torque: float | None = None
     engine_torque_curve: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
@@ -126,8 +138,8 @@ class TvcSpec:
             load: str | None = None,
             misfire: bool = True,
             damper_out: bool = True,
-            tachometer_tolerance: float = TACHOMETER_TOLERANCE,
-            widening: str = "none",
+            tachometer_tolerance: float | None = None,
+            rules: str = RULES,
             crankshaft: CrankshaftLimit | None = None,
             engine_torque: float | None = None,
             engine_torque_curve: tuple[ArrayLike, ArrayLike] | None = None,
@@ -149,18 +161,16 @@ class TvcSpec:
         object.__setattr__(self, "step", check_positive("step", self.step, "the speed step"))
         if self.load is not None and self.load not in LOADS:
             raise InputError(f"expected one of {', '.join(LOADS)}", key="load", value=self.load)
-        tol = float(self.tachometer_tolerance)
-        if not (math.isfinite(tol) and 0.0 <= tol < 0.2):
-            raise InputError(
-                "the tachometer tolerance is a fraction of the speed, 0 <= tolerance < 0.2",
-                key="tachometer_tolerance",
-                value=self.tachometer_tolerance,
-            )
-        object.__setattr__(self, "tachometer_tolerance", tol)
-        if self.widening not in WIDENINGS:
-            raise InputError(
-                f"expected one of {', '.join(WIDENINGS)}", key="widening", value=self.widening
-            )
+        if self.tachometer_tolerance is not None:
+            tol = float(self.tachometer_tolerance)
+            if not (math.isfinite(tol) and 0.0 <= tol < 0.2):
+                raise InputError(
+                    "the tachometer tolerance is a fraction of the speed, 0 <= tolerance < 0.2",
+                    key="tachometer_tolerance",
+                    value=self.tachometer_tolerance,
+                )
+            object.__setattr__(self, "tachometer_tolerance", tol)
+        object.__setattr__(self, "rules", get_rules(self.rules).key)
         if self.engine_torque is not None:
             object.__setattr__(
                 self,
@@ -196,6 +206,20 @@ class TvcSpec:
             object.__setattr__(self, "engine_torque_curve", (w, q))
         if self.passage_load is not None and self.passage_load not in ("law", "none"):
             raise InputError("expected law or none", key="passage_load", value=self.passage_load)
+
+    @property
+    def ruleset(self) -> RuleSet:
+        """The classification society's rule set (:func:`crankdyn.tvc.rulesets.get` of
+        :attr:`rules`): every value of the verdicts with its clause."""
+        return get_rules(self.rules)
+
+    @property
+    def tolerance(self) -> float:
+        """The tachometer tolerance a declared barred range is widened by (fraction of the
+        speed): ``tachometer_tolerance`` where given, else the rule set's stated value, else
+        :data:`crankdyn.defaults.TACHOMETER_TOLERANCE`
+        (:func:`crankdyn.tvc.rulesets.tachometer_tolerance`)."""
+        return tachometer_tolerance(self.ruleset, self.tachometer_tolerance)
 
     def engine_torque_at(self, speeds: ArrayLike, default: float) -> NDArray[np.float64]:
         """The engine's torque while passing a barred range, at given speeds.

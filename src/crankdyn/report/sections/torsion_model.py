@@ -39,6 +39,7 @@ def build(ctx: Context) -> Section:
     if model is None:
         raise NotApplicable("the engine file has no [torsion] model")
     from crankdyn.plots.schematic import plot_schematic
+
     ratios = np.asarray(model.speed_ratios, dtype=float)
     masses, shafts = model.masses, model.shafts
     geometry = [s.geometry for s in shafts]

@@ -57,6 +57,7 @@ from crankdyn.tvc.rulesets.model import (
     CrankshaftRule,
     GensetRule,
     RuleSet,
+    cite_row,
 )
 from crankdyn.tvc.rulesets.unread import abs_rules, bv, dnv
 
@@ -72,6 +73,7 @@ __all__ = [
     "RuleSet",
     "barred_range_permitted",
     "capped_strength",
+    "cite_row",
     "continuous_limit",
     "cpp_conditions",
     "crankshaft_limits",

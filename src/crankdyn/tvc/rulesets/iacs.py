@@ -17,7 +17,7 @@ from crankdyn.tvc.limits import DESIGN_FACTORS
 from crankdyn.tvc.rulesets.model import Cited, RuleSet
 from crankdyn.tvc.rulesets.model import clause_of as _c
 
-__all__ = ["IACS", "M68_NOT_READ", "iacs_m68", "m68_caps"]
+__all__ = ["IACS", "M68_AS", "M68_NOT_READ", "iacs_m68", "m68_caps"]
 
 IACS = (
     "IACS UR M68",
@@ -31,9 +31,12 @@ M68_NOT_READ = (
 )
 """The note of every M68.3/M68.4 clause."""
 
+M68_AS = "KR 2025 Pt 5 Ch 4 202.1 (the M68 formula as KR prints it)"
+"""Where the unread M68.4 formulas are taken from (:attr:`Clause.value_as`)."""
+
 
 def m68_caps(
-    rule: tuple[str, str], verified: bool, note: str
+    rule: tuple[str, str], verified: bool, note: str, value_as: str = ""
 ) -> dict[tuple[str, str], Cited[float]]:
     """crankdyn's caps on sigma_B (:data:`crankdyn.torsion.rules.STRENGTH_CAPS`: 760 N/mm^2
     carbon and C-Mn, 800 alloy, 600 propeller shafts, in Pa) cited to M68.3 of a rule text.
@@ -46,6 +49,8 @@ def m68_caps(
         Whether the caps were read in it.
     note : str
         Where the values come from.
+    value_as : str
+        Where an unverified value is taken from (:attr:`Clause.value_as`).
 
     Returns
     -------
@@ -53,7 +58,7 @@ def m68_caps(
         (material, kind) -> Cited cap (Pa).
     """
     return {
-        k: Cited(v, _c(rule, "M68.3 (sigma_B limits)", verified, note))
+        k: Cited(v, _c(rule, "M68.3 (sigma_B limits)", verified, note, value_as))
         for k, v in STRENGTH_CAPS.items()
     }
 
@@ -72,11 +77,19 @@ def iacs_m68() -> RuleSet:
     )
     factors = {
         k: Cited(
-            v, _c(IACS, "M68.4 (C_K table)", False, "not read; the values KR Table 5.4.1 prints")
+            v,
+            _c(
+                IACS,
+                "M68.4 (C_K table)",
+                False,
+                "not read; the values KR Table 5.4.1 prints",
+                "KR 2025 Pt 5 Ch 4 Table 5.4.1",
+            ),
         )
         for k, v in DESIGN_FACTORS.items()
     }
     unread = _c(IACS, "M68.4", False, "not stated in the part read")
+    m68 = _c(IACS, "M68.4", False, M68_NOT_READ, M68_AS)
     return RuleSet(
         key="iacs-m68",
         title="IACS UR M68",
@@ -87,15 +100,26 @@ def iacs_m68() -> RuleSet:
             note="intermediate, thrust and propeller shafts of traditional straight forged "
             "design; not crankshafts (M53), generator rotor shafts, gearing shafts",
         ),
-        stress_basis=_c(IACS, "M68.4", False, M68_NOT_READ),
-        shaft_formula=_c(IACS, "M68.4", False, M68_NOT_READ),
-        transient_formula=_c(IACS, "M68.4", False, M68_NOT_READ),
-        size_factor=_c(IACS, "M68.4", False, M68_NOT_READ),
-        overspeed=Cited(1.05, _c(IACS, "M68.4", False, M68_NOT_READ)),
-        barred_upper=Cited(0.8, _c(IACS, "M68.4", False, M68_NOT_READ)),
-        strength_caps=m68_caps(IACS, False, cap_note),
+        stress_basis=m68,
+        shaft_formula=m68,
+        transient_formula=m68,
+        size_factor=m68,
+        overspeed=Cited(1.05, m68),
+        barred_upper=Cited(
+            0.8, _c(IACS, "M68.4", False, M68_NOT_READ, "KR 2025 Pt 5 Ch 4 202.1(2)")
+        ),
+        strength_caps=m68_caps(IACS, False, cap_note, "LR Pt 5 Ch 6 2.1.1, 2.1.4"),
         design_factors=factors,
-        widening=Cited("none", _c(IACS, "M68.4", False, "no margin in crankdyn's M68 reading")),
+        widening=Cited(
+            "none",
+            _c(
+                IACS,
+                "M68.4",
+                False,
+                "no margin in crankdyn's M68 reading",
+                "crankdyn's reading (the range where τ > τ_C, no added margin)",
+            ),
+        ),
         tachometer=Cited(None, unread),
         cpp=Cited((), unread),
         misfire=Cited(None, unread),

@@ -18,7 +18,7 @@ from dataclasses import replace
 
 from crankdyn.torsion.rules import STRENGTH_CAPS
 from crankdyn.tvc.limits import DESIGN_FACTORS
-from crankdyn.tvc.rulesets.iacs import iacs_m68
+from crankdyn.tvc.rulesets.iacs import M68_AS, iacs_m68
 from crankdyn.tvc.rulesets.model import Cited, RuleSet
 from crankdyn.tvc.rulesets.model import clause_of as _c
 
@@ -56,6 +56,7 @@ def lr() -> RuleSet:
                 "Pt 5 Ch 6 3.5.1",
                 False,
                 "the screwshaft limit (2.1.1 refers to 3.5.1) could not be read; M68's 600",
+                "IACS UR M68 as crankdyn reads it (600)",
             )
         else:
             clause = _c(
@@ -72,11 +73,17 @@ def lr() -> RuleSet:
             v,
             _c(LR_NAVAL, "Vol 2 Pt 5 Ch 1 Table 1.3.1")
             if k in read_rows
-            else _c(LR_SHIPS, "Pt 5 Ch 8 2 (C_k table)", False, "row not read; M68's value"),
+            else _c(
+                LR_SHIPS,
+                "Pt 5 Ch 8 2 (C_k table)",
+                False,
+                "row not read; M68's value",
+                "KR 2025 Pt 5 Ch 4 Table 5.4.1",
+            ),
         )
         for k, v in DESIGN_FACTORS.items()
     }
-    ch8 = _c(LR_SHIPS, "Pt 5 Ch 8 2.5", False, LR_CH8_NOT_READ)
+    ch8 = _c(LR_SHIPS, "Pt 5 Ch 8 2.5", False, LR_CH8_NOT_READ, M68_AS)
     unread = _c(LR_SHIPS, "Pt 5 Ch 8 2", False, "could not be read")
     return replace(
         base,
@@ -107,6 +114,7 @@ def lr() -> RuleSet:
                 "Pt 5 Ch 8 2.5",
                 False,
                 "could not be read; crankdyn's LR margin, the formula KR 206.1(1) prints",
+                "KR 2025 Pt 5 Ch 4 206.1(1)",
             ),
         ),
         tachometer=Cited(None, unread),

@@ -6,9 +6,11 @@ data; :mod:`crankdyn.tvc.rulesets` has the registry and the formulas, docs/tvc.m
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field, fields
 from typing import Generic, TypeVar
+
+from crankdyn.defaults import TACHOMETER_TOLERANCE
 
 __all__ = [
     "DEFAULT_TACHOMETER_TOLERANCE",
@@ -18,15 +20,16 @@ __all__ = [
     "CrankshaftRule",
     "GensetRule",
     "RuleSet",
+    "cite_row",
     "clause_of",
 ]
 
 T = TypeVar("T")
 
-DEFAULT_TACHOMETER_TOLERANCE = 0.02
-"""crankdyn's tachometer tolerance (2 %, :class:`crankdyn.tvc.spec.TvcSpec`) where neither the
-user nor the rule set gives one: no text read states a value (KR 206.3 asks for the accuracy to
-be regarded, without a number)."""
+DEFAULT_TACHOMETER_TOLERANCE = TACHOMETER_TOLERANCE
+"""crankdyn's tachometer tolerance (2 %, :data:`crankdyn.defaults.TACHOMETER_TOLERANCE`) where
+neither the user nor the rule set gives one: no text read states a value (KR 206.3 asks for the
+accuracy to be regarded, without a number)."""
 
 ENGINE_GROUPS = {
     "A": "4-stroke in-line engines and 4-stroke vee engines with firing intervals of 45° or 60°",
@@ -53,6 +56,10 @@ class Clause:
         says where the value comes from instead).
     note : str
         What was read or why not, differences, transcription remarks.
+    value_as : str
+        Where an unverified value is taken from instead (``"IACS UR M68"``, ``"KR 2025 Pt 5
+        Ch 4 202.1(1)"``): what a verdict row says in place of the clause's own reading
+        (:meth:`row`); empty for a verified value.
 
     Examples
     --------
@@ -61,6 +68,8 @@ class Clause:
     'KR Rules 2025, Pt 5 Ch 4 202.1(1)'
     >>> Clause("DNV", "2021", "Pt 4 Ch 2", False, "not read").cite()
     'DNV 2021, Pt 4 Ch 2 (not verified: not read)'
+    >>> Clause("IACS UR M68", "", "M68.4", False, "not read", "IACS UR M68").row()
+    'M68.4 (not verified against the text: value as IACS UR M68)'
     """
 
     rule: str
@@ -68,6 +77,33 @@ class Clause:
     clause: str
     verified: bool
     note: str = ""
+    value_as: str = ""
+
+    @property
+    def source(self) -> str:
+        """The rule text with its edition (a verdict row's ``source``).
+
+        Returns
+        -------
+        str
+            ``"KR Rules 2025"``.
+        """
+        return f"{self.rule} {self.edition}" if self.edition else self.rule
+
+    def row(self) -> str:
+        """The clause as a verdict row cites it: the clause, and for a value that could not
+        be verified "not verified against the text" with where the value is taken from.
+
+        Returns
+        -------
+        str
+            One line.
+        """
+        if self.verified:
+            return self.clause
+        where = self.value_as or self.note
+        tail = f": value as {where}" if self.value_as else (f": {where}" if where else "")
+        return f"{self.clause} (not verified against the text{tail})"
 
     def cite(self) -> str:
         """The citation a verdict row prints: rule, edition and clause, and "not verified" with
@@ -78,8 +114,7 @@ class Clause:
         str
             One line.
         """
-        head = f"{self.rule} {self.edition}" if self.edition else self.rule
-        text = f"{head}, {self.clause}"
+        text = f"{self.source}, {self.clause}"
         if not self.verified:
             text += f" (not verified: {self.note})" if self.note else " (not verified)"
         return text
@@ -264,7 +299,13 @@ class RuleSet:
         return tuple(out)
 
 
-def clause_of(rule: tuple[str, str], clause: str, verified: bool = True, note: str = "") -> Clause:
+def clause_of(
+    rule: tuple[str, str],
+    clause: str,
+    verified: bool = True,
+    note: str = "",
+    value_as: str = "",
+) -> Clause:
     """A :class:`Clause` of a rule text given as (rule, edition).
 
     Parameters
@@ -277,6 +318,8 @@ def clause_of(rule: tuple[str, str], clause: str, verified: bool = True, note: s
         Whether the value was read in that text.
     note : str
         What was read or why not.
+    value_as : str
+        Where an unverified value is taken from (:attr:`Clause.value_as`).
 
     Returns
     -------
@@ -287,4 +330,31 @@ def clause_of(rule: tuple[str, str], clause: str, verified: bool = True, note: s
     >>> clause_of(("KR Rules", "2025"), "Pt 5 Ch 4 204").cite()
     'KR Rules 2025, Pt 5 Ch 4 204'
     """
-    return Clause(rule[0], rule[1], clause, verified, note)
+    return Clause(rule[0], rule[1], clause, verified, note, value_as)
+
+
+def cite_row(parts: Sequence[tuple[str, Clause]]) -> tuple[str, str]:
+    """The ``source`` and ``clause`` of a verdict row whose limit several clauses give: each
+    rule text with its edition once, and every clause with what it gives, "not verified
+    against the text: value as ..." where the clause could not be read (:meth:`Clause.row`).
+
+    Parameters
+    ----------
+    parts : sequence of (str, Clause)
+        What each clause gives (``"τ_C"``, ``"σ_B cap"``) and the clause; an empty name cites
+        the clause alone.
+
+    Returns
+    -------
+    source, clause : str
+        The rule texts (``" / "`` between two texts) and the clauses (``"; "`` between them).
+
+    Examples
+    --------
+    >>> kr = ("KR Rules", "2025")
+    >>> cite_row([("τ_1", clause_of(kr, "202.1(1)")), ("C_k", clause_of(kr, "Table 5.4.1"))])
+    ('KR Rules 2025', 'τ_1: 202.1(1); C_k: Table 5.4.1')
+    """
+    sources = list(dict.fromkeys(c.source for _, c in parts))
+    cited = list(dict.fromkeys(f"{name}: {c.row()}" if name else c.row() for name, c in parts))
+    return " / ".join(sources), "; ".join(cited)

@@ -42,7 +42,7 @@ def unread(key: str, title: str, rule: str, seen: str) -> RuleSet:
     base = iacs_m68()
 
     def mark(clause: Clause) -> Clause:
-        return Clause(rule, "", "torsional vibration", False, note)
+        return Clause(rule, "", "torsional vibration", False, note, "IACS UR M68")
 
     def remap(value: Any) -> Any:
         if isinstance(value, Clause):
