@@ -72,7 +72,7 @@ ol.contents { list-style: none; padding-left: 0; max-width: 720px; }
 ol.contents li { display: flex; border-bottom: 1px dotted var(--line); padding: 3px 0; }
 ol.contents a { color: var(--ink); text-decoration: none; flex: 1; }
 ol.contents .toc-page { min-width: 3em; text-align: right; }
-ol.table-notes { font-size: 12px; color: var(--muted); padding-left: 18px; }
+ol.table-notes { font-size: 12px; color: var(--muted); padding-left: 0; list-style: none; }
 table.verdicts { font-size: 12.5px; }
 h2 .number { color: var(--accent); margin-right: 8px; }
 @media print {

@@ -182,15 +182,55 @@ def _front(result: TvcResult, created: str) -> FrontMatter:
     )
 
 
+def short_clause(clause: str) -> str:
+    """A rule clause without its parenthesised remarks (what a value's reading rests on), for
+    the verdict table's rows; the numbered note under the table gives it whole.
+
+    Parameters
+    ----------
+    clause : str
+        The verdict row's clause (:attr:`crankdyn.summary.Verdict.clause`).
+
+    Returns
+    -------
+    str
+        The clause's references alone, ``", partly unverified"`` added where a remark said a
+        value was not verified against the rule text.
+
+    Examples
+    --------
+    >>> short_clause("τ_C: Pt 5 Ch 8 2.5 (not verified against the text: value as KR 2025 "
+    ...              "Pt 5 Ch 4 202.1 (the M68 formula)); C_D: Vol 2 Pt 5 Ch 1 3.1.1")
+    'τ_C: Pt 5 Ch 8 2.5; C_D: Vol 2 Pt 5 Ch 1 3.1.1, partly unverified'
+    >>> short_clause("[shaft] power_loss (P_KV, the catalogue)")
+    '[shaft] power_loss'
+    """
+    out: list[str] = []
+    depth = 0
+    for ch in clause:
+        if ch == "(":
+            depth += 1
+        elif ch == ")" and depth:
+            depth -= 1
+        elif depth == 0:
+            out.append(ch)
+    text = " ".join("".join(out).split()).replace(" ;", ";").replace(" ,", ",").strip(" ;,")
+    return text + (", partly unverified" if "not verified" in clause else "")
+
+
 def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
     """Every verdict row (:func:`crankdyn.summary.verdict_cells`; the CSV holds the whole rule
-    text); the page shows the clause with a numbered reference to its source, listed once
-    under the table."""
+    text); the page shows the clause's references (:func:`short_clause`) with a numbered note,
+    listed once under the table: the whole clause and the source of the limit."""
     header, rows = verdict_cells(verdicts)
-    sources = list(dict.fromkeys(v.source for v in verdicts))
+    cited = list(dict.fromkeys((v.clause, v.source) for v in verdicts))
     page = [
-        [*row[:-1], f"{v.clause} [{sources.index(v.source) + 1}]".strip()]
+        [*row[:-1], f"{short_clause(v.clause)} [{cited.index((v.clause, v.source)) + 1}]".strip()]
         for row, v in zip(rows, verdicts, strict=True)
+    ]
+    notes = [
+        f"[{i + 1}] {clause + ': ' if clause else ''}{source}"
+        for i, (clause, source) in enumerate(cited)
     ]
     return Table(
         "verdicts",
@@ -198,9 +238,9 @@ def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
         header=header,
         rows=rows,
         page_rows=page,
-        notes=[f"[{i + 1}] {text}" for i, text in enumerate(sources)],
-        caption="Rule: the clause and [n], the source of the limit (listed under the table, "
-        "with the values it was evaluated with).",
+        notes=notes,
+        caption="Rule: the clause and [n], the note under the table with the clause whole and "
+        "the source of the limit (with the values it was evaluated with).",
     )
 
 
