@@ -303,7 +303,8 @@ def _model_sections(result: TvcResult) -> list[Section]:
             "modes' relative amplitudes per mass and nodes; per order the relative vector sum "
             "of the cylinders' amplitudes with the firing order's phase angles.",
             plots=[Plot("mode-shapes", "Mode shapes", modes.plot(), "")],
-            limits={"natural_frequencies": 8},
+            # the six elastic modes whose shapes are tabled and drawn (and a rigid-body mode 0)
+            limits={"natural_frequencies": 6 + int(len(modes.mode) > 0 and modes.mode[0] == 0)},
         ),
     ]
     campbell: Any = result.campbell  # a CampbellResult, or None
