@@ -8,6 +8,11 @@ objects or exports. A ratio to one of them says how much crankdyn's own work cos
   in-place Thomas elimination (no pivoting, no fallback) over all frequencies at once: the
   dynamic stiffness D = K - omega^2 M + i omega C of a chain with absolute dampers and shaft
   damping, arrays (rows x frequencies), every row operation into preallocated buffers.
+- :func:`tree_elimination`: the forced response of a branched line without loops, D(omega) X = F
+  for every frequency, by elimination from the leaves inward (every degree of freedom before
+  its parent, no fill-in) over all frequencies at once: the Thomas elimination of a tree, in
+  place, no pivoting check, the order and the rows' constant parts given (made before the
+  clock).
 - :func:`chain_modes`: the natural frequencies and mode shapes of a chain, LAPACK ``dstevd`` on
   the mass-normalised tridiagonal matrix, the shapes scaled back and normalised to a largest
   amplitude of 1 (what a modal result needs at least).
@@ -18,7 +23,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.linalg
 
-__all__ = ["chain_modes", "thomas"]
+__all__ = ["chain_modes", "thomas", "tree_elimination"]
 
 
 def thomas(inertia, stiffness, shaft_damping, ground_damping, omega, forcing) -> np.ndarray:
@@ -61,6 +66,55 @@ def thomas(inertia, stiffness, shaft_damping, ground_damping, omega, forcing) ->
         np.multiply(off[i], x[i + 1], out=t)
         np.add(x[i], t, out=x[i])
         np.divide(x[i], d[i], out=x[i])
+    return x
+
+
+def tree_elimination(parent, inertia, up, diagonal, omega, forcing) -> np.ndarray:
+    """X (n, F) with D(omega) X = F for a tree in elimination order (module docstring).
+
+    Parameters
+    ----------
+    parent
+        (n-1,) position of the parent of position k (above k); the root is position n-1.
+    inertia
+        (n,) kg m^2.
+    up
+        (3, n-1) stiffness, viscous damping and eta k of the link from k to its parent.
+    diagonal
+        (3, n) the same summed over the links of each degree of freedom and to ground.
+    omega
+        (F,) rad/s.
+    forcing
+        (n,) N m, the same at every frequency.
+    """
+    n = inertia.size
+    w = np.asarray(omega, dtype=float)
+    f = w.size
+    off = np.empty((n - 1, f), dtype=complex)  # the negated off-diagonal, k + i (w c + eta k)
+    off.real = up[0][:, None]
+    np.multiply(up[1][:, None], w, out=off.imag)
+    off.imag += up[2][:, None]
+    d = np.empty((n, f), dtype=complex)
+    np.multiply(-inertia[:, None], w * w, out=d.real)
+    d.real += diagonal[0][:, None]
+    np.multiply(diagonal[1][:, None], w, out=d.imag)
+    d.imag += diagonal[2][:, None]
+    x = np.empty((n, f), dtype=complex)
+    x[...] = forcing[:, None]
+    m = np.empty(f, dtype=complex)
+    t = np.empty(f, dtype=complex)
+    for k in range(n - 1):
+        p = parent[k]
+        np.divide(off[k], d[k], out=m)
+        np.multiply(m, off[k], out=t)
+        np.subtract(d[p], t, out=d[p])
+        np.multiply(m, x[k], out=t)
+        np.add(x[p], t, out=x[p])
+    np.divide(x[n - 1], d[n - 1], out=x[n - 1])
+    for k in range(n - 2, -1, -1):
+        np.multiply(off[k], x[parent[k]], out=t)
+        np.add(x[k], t, out=x[k])
+        np.divide(x[k], d[k], out=x[k])
     return x
 
 

@@ -75,6 +75,14 @@ PROBES = {
         "the same by the bare in-place Thomas elimination (bench/bare.py)",
         lambda: _response(True, "chain-200", 5501, 24),
     ),
+    "response-10000x101x12": (
+        "forced response, 10,000 masses x 101 speeds x 12 orders (crankdyn steady_state)",
+        lambda: _response(False, "chain-10000", 101, 12),
+    ),
+    "thomas-10000x101x12": (
+        "the same by the bare in-place Thomas elimination (bench/bare.py)",
+        lambda: _response(True, "chain-10000", 101, 12),
+    ),
     "sixbar-360k": (
         "six-bar (conveyor-seed004) kinematics, 360,000 crank angles",
         lambda: _sixbar(360_000),

@@ -55,6 +55,8 @@ MEMORY_PROBES = (
     ("response-9x20000x48", ("thomas-9x20000x48", 1.5)),
     ("thomas-200x5501x24", None),
     ("response-200x5501x24", ("thomas-200x5501x24", 1.5)),
+    ("thomas-10000x101x12", None),
+    ("response-10000x101x12", ("thomas-10000x101x12", 1.5)),
 )
 """(probe, target): MB, None (a reference, no target) or (reference probe, factor): within
 factor x the reference's peak RSS."""

@@ -10,6 +10,7 @@
   ``from_opentorsion``/``to_opentorsion`` import :mod:`crankdyn.torsion.opentorsion` (and, in
   it, the optional openTorsion), and ``plot`` methods import ``crankdyn.plots``;
 - no module imports another module's private helper (a name starting with ``_``);
+- no module over 1,500 lines, no function over 150;
 - user text is never markup or mathtext: every rich console comes from
   ``crankdyn.cli.common.console()`` (markup off), nothing imports ``rich.markup``, and every
   figure is a ``crankdyn.plots.style.Figure`` (no pyplot, no bare matplotlib ``Figure``).
@@ -52,6 +53,7 @@ DOMAIN = {
     "crankdyn.torsion.model",
     "crankdyn.torsion.topology",
     "crankdyn.crankshaft.geometry",
+    "crankdyn.crankshaft.beam_inputs",
 }
 """The domain objects and what every layer shares (errors, units, the result mixin)."""
 
@@ -82,6 +84,12 @@ ANALYSES = {
     "crankdyn.crankshaft.m53",
     "crankdyn.crankshaft.loads",
     "crankdyn.crankshaft.strength",
+    "crankdyn.crankshaft.span_torques",
+    "crankdyn.crankshaft.beam_engine",
+    "crankdyn.crankshaft.beam_model",
+    "crankdyn.crankshaft.beam_modes",
+    "crankdyn.crankshaft.beam_response",
+    "crankdyn.crankshaft.beam_stiffness",
 }
 
 
@@ -264,3 +272,24 @@ def test_user_text_is_never_markup_or_mathtext():
             if name == "Figure" and "from matplotlib.figure import Figure" in text:
                 offenders.append(f"{rel}:{line}: matplotlib Figure: use crankdyn.plots.style")
     assert not offenders, offenders
+
+
+MAX_MODULE_LINES = 1500
+MAX_FUNCTION_LINES = 150
+
+
+def test_modules_and_functions_stay_small():
+    """No source module over 1,500 lines and no function over 150 (docstrings included): a
+    long function that is a list of checks becomes a table of check objects (issue 31)."""
+    too_long = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        name = path.relative_to(PACKAGE).as_posix()
+        if text.count("\n") > MAX_MODULE_LINES:
+            too_long.append(f"{name}: {text.count(chr(10))} lines")
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                length = (node.end_lineno or node.lineno) - node.lineno + 1
+                if length > MAX_FUNCTION_LINES:
+                    too_long.append(f"{name}: {node.name} {length} lines")
+    assert not too_long, too_long

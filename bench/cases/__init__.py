@@ -9,12 +9,15 @@ MODULES = (
     "chain_modes",
     "damped_modes",
     "forced_response",
+    "branched_response",
     "fourbar",
     "sixbar",
     "engine_cycle",
     "process",
     "baseline",
     "crankshaft_beam",
+    "records",
+    "tvc_scaling",
 )
 
 

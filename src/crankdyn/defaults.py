@@ -113,6 +113,23 @@ DEFAULTS: dict[str, Default] = {
             "IACS UR M68, which every IACS member society implements (crankdyn docs tvc)",
         ),
         Default(
+            "idle_band",
+            0.05,
+            "",
+            "the TVC's idle condition sweeps the idle speed +- this fraction (a governor's band "
+            "around the set speed; a [tvc.speed_ranges] idle overrides it)",
+            "crankdyn convention (an assumption: no rule text read states a band)",
+        ),
+        Default(
+            "event_mode_factor",
+            4.0,
+            "",
+            "the TVC's transient events resolve in time the natural modes up to this factor "
+            "times the highest excitation frequency (the highest order at the top speed; the "
+            "exact integrator carries every mode, the step only samples them)",
+            "crankdyn convention",
+        ),
+        Default(
             "max_speeds",
             100_000,
             "",

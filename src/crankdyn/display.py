@@ -804,6 +804,14 @@ def _couplings_table(model: TorsionModel) -> _Table | None:
             ("Relative damping ψ", "", [x.psi for x in c]),
             ("T_KN", "N·m", [x.nominal_torque for x in c]),
             ("T_Kmax", "N·m", [x.maximum_torque for x in c]),
+            *[
+                (label, "N·m", values)
+                for label, values in (
+                    ("T_Kmax1 (normal transients)", [x.maximum_torque_1 for x in c]),
+                    ("T_Kmax2 (exceptional transients)", [x.maximum_torque_2 for x in c]),
+                )
+                if any(v is not None for v in values)
+            ],
             ("T_KW", "N·m", [x.vibratory_torque for x in c]),
             ("P_KV", "W", [x.power_loss for x in c]),
         ],

@@ -212,3 +212,15 @@ def test_outputs_are_checked_then_released_before_any_timing():
     with pytest.raises(AgreementError):
         harness.run_case(case, repeats=3)
     assert timed == [1]  # the warm-up only
+
+
+def test_tvc_line_generator_scales_the_marine_example(tmp_path):
+    """bench.tvc_line: the marine example as shipped has 38 masses (its shafts subdivided to
+    150 Hz); asked for more, the subdivision frequency rises until the line has at least that
+    many, within a few masses (each shaft gains one element at a time)."""
+    from bench.tvc_line import write_line
+
+    _, base = write_line(tmp_path / "base", 38)
+    assert base == 38
+    _, count = write_line(tmp_path / "more", 80)
+    assert 80 <= count <= 83

@@ -19,8 +19,10 @@ def test_short_circuit_json_holds_the_verdicts(cli):
     assert run.status == 0, run
     data = json.loads(run.out)
     assert data["event"] == "three-phase short circuit" and data["severity"] == "exceptional"
-    rows = {v["component"]: v for v in data["verdicts"]}
-    assert rows["elastic coupling"]["limit"] == 16000.0 and rows["elastic coupling"]["passed"]
+    rows = {v["quantity"].split(" vs ")[-1]: v for v in data["verdicts"]}
+    assert rows["T_Kmax"]["component"] == "elastic coupling"
+    assert rows["T_Kmax"]["limit"] == 16000.0 and rows["T_Kmax"]["passed"]
+    assert rows["T_Kmax2"]["limit"] == 25000.0  # a short circuit is exceptional
     assert data["duration_s"] == 0.1
 
 

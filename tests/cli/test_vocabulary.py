@@ -48,6 +48,8 @@ WITH_FIGURES = {
     "linkage fourbar",
     "linkage forces",
     "measure",
+    "crankshaft modes",
+    "crankshaft response",
 }
 """The analysis commands with a figure (in the report, or of their own)."""
 

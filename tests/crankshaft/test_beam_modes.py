@@ -18,6 +18,7 @@ from crankdyn.crankshaft.beam_model import (
     MainBearings,
     ThrowDimensions,
     ThrowMasses,
+    TorsionalDamper,
     build_beam_model,
 )
 from crankdyn.crankshaft.beam_modes import (
@@ -97,6 +98,24 @@ def test_free_crankshaft_has_six_rigid_modes():
     assert np.all(r.natural_frequency[:6] == 0.0)
 
 
+def test_a_viscous_dampers_free_ring_is_its_own_rigid_mode():
+    # k = 0: undamped, the ring turns alone (a second zero mode), named so and kept out of the
+    # elastic modes; its shape is the ring's unit rotation, the shaft's rigid mode leaves it
+    model = _six(damper=TorsionalDamper(0.4, 0.0, 300.0))
+    r = beam_modes(model, 10)
+    ring = int(model.dof_index[model.extra_nodes[0]].max())
+    labels = [str(m) for m in r.motion]
+    assert labels[:2] == ["rigid torsional", "rigid damper ring"]
+    shape = r.shapes[:, 1]
+    assert abs(abs(shape[ring]) - 1 / math.sqrt(0.4)) < 1e-9
+    assert np.max(np.abs(np.delete(shape, ring))) < 1e-9
+    assert abs(r.shapes[ring, 0]) < 1e-9
+    np.testing.assert_allclose(r.shapes.T @ (model.mass @ r.shapes), np.eye(10), atol=1e-9)
+    # the elastic modes are those of the model without the ring
+    bare = beam_modes(_six(), 9)
+    np.testing.assert_allclose(r.natural_frequency[2:], bare.natural_frequency[1:], rtol=1e-8)
+
+
 def test_mesh_convergence_of_the_lowest_modes():
     f = {n: beam_modes(_six(n), 10).frequencies_hz[1:] for n in (1, 2, 4, 8)}
     # stated mesh error of the default (2 elements per part) against 8: below 2e-4
@@ -109,8 +128,11 @@ def test_result_summary_table_and_json():
     r = beam_modes(_six(), 12)
     summary = r.summary()
     keys = [fig.key for fig in summary.figures]
-    assert "lowest_natural_frequency_hz" in keys and "lowest_torsional_frequency_hz" in keys
-    assert summary.figure("lowest_natural_frequency_hz").value == pytest.approx(r.frequencies_hz[1])
+    assert "beam_lowest_natural_frequency_hz" in keys
+    assert "beam_lowest_torsional_frequency_hz" in keys
+    assert summary.figure("beam_lowest_natural_frequency_hz").value == pytest.approx(
+        r.frequencies_hz[1]
+    )
     table = summary.tables[0]
     assert len(table.rows) == 12 and table.rows[0][2] == "rigid torsional"
     data = json.loads(r.to_json())
@@ -130,6 +152,37 @@ def test_compare_torsional_modes_pairs_in_order():
     # the default counts a mode as torsional from half its kinetic energy
     strict = compare_torsional_modes(r, [0.0, *(1.1 * torsional)])
     assert np.all(r.torsional_fraction[strict.beam_mode - 1] >= 0.5)
+
+
+def test_compare_torsional_modes_pairs_by_shape_whatever_the_order():
+    # lumped modes made from the beam's own torsional shapes at the web centres' theta_z, listed
+    # in reverse with 10 % higher frequencies: the MAC assignment finds every pair (MAC 1),
+    # where the k-th with the k-th pairs them crosswise
+    model = _six()
+    r = beam_modes(model, 12)
+    rows = [model.dof(int(n), 5) for n in model.web_axis_nodes.ravel()]
+    use = np.flatnonzero((r.torsional_fraction >= 0.3) & (r.natural_frequency > 0))
+    assert use.size >= 2
+    at = r.shapes[rows]
+    flipped = use[::-1]
+    lumped = [0.0, *(1.1 * r.natural_frequency[flipped])]
+    shapes = np.column_stack([np.ones(len(rows)), -3.0 * at[:, flipped]])
+    c = compare_torsional_modes(r, lumped, shapes=(at, shapes), minimum=0.3)
+    np.testing.assert_array_equal(c.beam_mode, r.mode[use])
+    np.testing.assert_allclose(c.difference, 0.1, rtol=1e-12)
+    np.testing.assert_allclose(c.mac, 1.0, rtol=1e-12)
+    assert "MAC" in c.pairing
+    (table,) = c.summary().tables
+    assert table.columns[-1].label == "MAC" and table.caption == c.pairing
+    # the lower beam mode's shape at a lumped frequency above the higher one's: order pairs
+    # them crosswise, the shapes do not
+    a, b = r.mode[use[:2]]
+    fb = r.natural_frequency[use[1]]
+    swapped = [fb, 2.0 * fb]
+    c = compare_torsional_modes(r, swapped, shapes=(at, at[:, use[1::-1]]), minimum=0.3)
+    assert dict(zip(c.beam_mode.tolist(), c.lumped_frequency, strict=True)) == {b: fb, a: 2 * fb}
+    crossed = compare_torsional_modes(r, swapped, minimum=0.3)
+    assert crossed.mac is None and crossed.beam_mode[0] == a and crossed.lumped_frequency[0] == fb
 
 
 @pytest.mark.parametrize("kw,key", [({"count": 0}, "count"), ({"threshold": 0.4}, "threshold")])

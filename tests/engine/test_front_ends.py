@@ -35,6 +35,9 @@ COMMANDS = {  # the command that shows each analysis (the engine's name follows)
     "response": ("torsion", "response"),
     "relative_angle": ("torsion", "response"),
     "judged": ("torsion", "response"),
+    "crankshaft": ("crankshaft",),
+    "crankshaft_modes": ("crankshaft", "modes"),
+    "crankshaft_response": ("crankshaft", "response"),
 }
 JSON_PART = {"relative_angle": "relative_angle", "judged": "judged"}  # where the JSON holds it
 

@@ -303,3 +303,73 @@ def test_unknown_model_name():
         resolve_torsion("seed003-v7")
     with pytest.raises(InputError, match="no \\[torsion\\] section"):
         resolve_torsion("v8-crossplane")
+
+
+# ---- plain entries (bare SI numbers) read directly: the same model and the same errors ----------
+PLAIN = """
+[[mass]]
+name = "a"
+inertia = 0.5
+damping = 2
+[[mass]]
+name = "b"
+inertia = 1.25
+[[shaft]]
+between = ["a", "b"]
+stiffness = 2.5e6
+damping = 1.5
+loss_factor = 0.02
+[[shaft]]
+between = ["b", "ground"]
+stiffness = 4e5
+"""
+
+WITH_UNITS = PLAIN.replace("0.5\n", '"0.5 kg*m^2"\n').replace("2.5e6", '"2.5 MN*m/rad"')
+
+
+def test_plain_entries_read_as_the_table_reader_reads_them():
+    plain = parse_torsion_model(tomllib.loads(PLAIN), file="p.toml")
+    units = parse_torsion_model(tomllib.loads(WITH_UNITS), file="u.toml")
+    assert plain.masses == units.masses and plain.shafts == units.shafts
+    assert [m.inertia for m in plain.masses] == [0.5, 1.25]
+    assert plain.masses[0].damping == 2.0 and isinstance(plain.masses[0].damping, float)
+    assert plain.shafts[0].stiffness == 2.5e6 and plain.shafts[0].loss_factor == 0.02
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "message"),
+    [
+        ("inertia = 0.5", "inertia = -0.5", "inertia"),
+        ("inertia = 0.5", "inertia = true", "inertia"),
+        ("inertia = 0.5", "inertia = 1e15", "outside the range"),
+        ("inertia = 0.5", "inertia = nan", "not finite"),
+        ("damping = 2", "damping = -2", "damping"),
+        ("stiffness = 2.5e6", "stiffness = 0", "stiffness"),
+        ("loss_factor = 0.02", "loss_factor = inf", "not finite"),
+        ('between = ["a", "b"]', 'between = ["a", "c"]', "c"),
+        ('between = ["a", "b"]', 'between = ["a", 3]', "between"),
+        ('name = "b"', 'name = "a"', "a"),
+    ],
+)
+def test_plain_entries_refused_with_the_table_readers_message(old, new, message):
+    text = PLAIN.replace(old, new, 1)
+    assert text != PLAIN
+    with pytest.raises(InputError, match=message) as info:
+        parse_torsion_model(tomllib.loads(text), file="p.toml")
+    assert "p.toml" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "key"),
+    [
+        ("inertia = 0.5", "inertia = 5e8", "inertia"),
+        ("stiffness = 2.5e6", "stiffness = 0.5", "stiffness"),
+        ("loss_factor = 0.02", "loss_factor = 0.9", "loss_factor"),
+    ],
+)
+def test_plain_entries_keep_the_table_readers_plausibility_warnings(old, new, key):
+    """An implausible bare number in a plain entry goes through the Table reader: the model
+    carries its warning, as for the same entry with any other key."""
+    assert not parse_torsion_model(tomllib.loads(PLAIN), file="p.toml").input_warnings
+    model = parse_torsion_model(tomllib.loads(PLAIN.replace(old, new, 1)), file="p.toml")
+    assert len(model.input_warnings) == 1 and key in model.input_warnings[0].message

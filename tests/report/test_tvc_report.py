@@ -32,7 +32,9 @@ def _run(*args):
 def marine(tmp_path_factory):
     target = tmp_path_factory.mktemp("tvc") / "marine"
     status, out, err = _run("tvc", "marine-propulsion", "--output", target)
-    assert status == 0, err
+    # one row fails by design: the reduction gear's torque reverses while the line settles
+    # after the clutch-in (docs/events.md): exit status 1, the report written
+    assert status == 1, err
     return target, out, err
 
 
@@ -69,6 +71,8 @@ def test_tvc_folder_and_summary_lists(marine):
     assert len(verdicts) == len(full) == len(rows)
     for v, f in zip(verdicts, full, strict=True):
         assert (v["component"], v["worst"], v["limit"]) == (f["component"], f["worst"], f["limit"])
+    failed = [(v["component"], v["condition"]) for v in verdicts if not v["passed"]]
+    assert failed == [("reduction gear", "clutch-in at 350 rpm")], failed
     conditions = {v["condition"] for v in verdicts}
     assert "normal firing" in conditions and "damper out of order" in conditions
     assert any(c.startswith("misfire cylinder") for c in conditions)
@@ -98,7 +102,9 @@ def _check_pdf(target, out, rows):
     assert pdf.read_bytes()[:5] == b"%PDF-" and "PDF:" in out
     pages = [p.extract_text() for p in PdfReader(pdf).pages]
     total = len(pages)
-    assert total <= 24, f"the marine line's document runs to {total} pages"
+    # 22 pages for normal firing, misfire and damper out; the overspeed condition and the three
+    # transient events (clutch-in, start, ice) add their plots: 27 pages
+    assert total <= 28, f"the marine line's document runs to {total} pages"
     for n, text in enumerate(pages, start=1):
         squeezed = _squeeze(text)
         assert _squeeze(f"Page {n} of {total}") in squeezed, n
@@ -156,10 +162,11 @@ def test_tvc_page_says_each_thing_once(marine):
     barred = list(csv.DictReader((target / "data" / "barred_speed_ranges.csv").open()))
     assert barred and all(not re.search(r"(found|to) \d", r["reason"]) for r in barred)
     # one value per quantity: the conditions' smallest margins are the verdict rows' own
-    worst = json.loads((target / "summary.json").read_text(encoding="utf-8"))["key_figures"]
+    rows = json.loads((target / "summary.json").read_text(encoding="utf-8"))["verdicts"]
     conditions = list(csv.DictReader((target / "data" / "conditions.csv").open()))
-    smallest = min(float(c["smallest_margin"]) for c in conditions)
-    assert smallest == pytest.approx(worst["worst_margin"], rel=1e-9)  # the CSV's ten digits
+    for c in conditions:  # to the CSV's ten digits
+        smallest = float(c["smallest_margin"])
+        assert any(v["margin"] == pytest.approx(smallest, rel=1e-9) for v in rows), c
 
 
 def test_tvc_existing_folder_not_overwritten(hostile, cli):

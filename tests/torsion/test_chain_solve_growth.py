@@ -37,9 +37,8 @@ def _scaled(system, scale):
     return dataclasses.replace(
         system,
         inertia=system.inertia * scale,
-        stiffness=system.stiffness * scale,
-        damping=system.damping * scale,
-        hysteretic=system.hysteretic * scale,
+        link_values=system.link_values * scale,
+        ground_values=system.ground_values * scale,
         chain=tuple(a * scale for a in system.chain),
     )
 

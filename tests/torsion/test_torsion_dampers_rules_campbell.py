@@ -193,9 +193,13 @@ def test_critical_speeds_are_natural_frequency_over_order():
         campbell(model, [3.0])
 
 
-def test_time_domain_steady_state_matches_the_frequency_domain():
+@pytest.mark.parametrize(
+    "settings", [{}, {"method": "DOP853", "rtol": 1e-9, "atol": 1e-13}], ids=["modal", "DOP853"]
+)
+def test_time_domain_steady_state_matches_the_frequency_domain(settings):
     """Two masses with viscous and hysteretic damping at constant speed: after the transient
-    has decayed, the last cycle equals the sum of the orders' steady states."""
+    has decayed, the last cycle equals the sum of the orders' steady states (both integrators:
+    the modal one and solve_ivp's)."""
     from crankdyn.torsion.transient import transient_response
 
     model = TorsionModel(
@@ -205,7 +209,7 @@ def test_time_domain_steady_state_matches_the_frequency_domain():
     ex = UniformExcitation(50.0, [0.0])
     orders = [0.5, 1.0, 3.0, 4.5]
     w = 1500 * math.pi / 30
-    run = transient_response(model, ex, orders, speed=w, cycles=25, rtol=1e-9, atol=1e-13)
+    run = transient_response(model, ex, orders, speed=w, cycles=25, **settings)
     steady = forced_response(model, ex, [w], orders, hysteretic_frequency=run.hysteretic_frequency)
     last = run.last_cycle(4 * math.pi)
     phi = run.crank_angle[last]

@@ -33,6 +33,7 @@ import click
 
 from crankdyn import __version__
 from crankdyn.errors import InputError
+from crankdyn.threads import limit_blas_threads
 
 __all__ = ["COMMAND_MODULES", "COMMAND_SUMMARIES", "LazyGroup", "Terminated", "cli", "main", "run"]
 
@@ -48,6 +49,7 @@ COMMAND_MODULES: dict[str, tuple[str, ...]] = {
     "study": ("study",),
     "measure": ("measure",),
     "tvc": ("tvc",),
+    "crankshaft": ("crankshaft",),
     "docs": ("docs",),
 }
 """The command modules (``crankdyn.cli.<module>``) and the top-level commands each registers;
@@ -65,6 +67,10 @@ COMMAND_SUMMARIES: dict[str, str] = {
         "The seeds' dimensionless tables: A = x/R, B = v/(Rω), C = a/(Rω²) vs crank angle."
     ),
     "demo": "The full report on the built-in inline-6 diesel (crankdyn analyze inline6-diesel).",
+    "crankshaft": (
+        "The crankshaft: its fatigue strength by IACS UR M53 and the coupled vibration of its "
+        "beam model."
+    ),
     "docs": (
         "Read the user documentation offline: without TOPIC, list the topics; with one, show its "
         "page in the terminal (paged when the output is a terminal)."
@@ -383,6 +389,11 @@ def main(argv: list[str] | None = None) -> int:
     2
     """
     args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        limit_blas_threads()  # the processors not already busy (crankdyn.threads)
+    except InputError as exc:
+        _error(str(exc))
+        return 2
     with _terminate_like_interrupt() as received, warnings.catch_warnings():
         # a RuntimeWarning of crankdyn's numerics (an overflow, an invalid value) is a bug, as
         # in the test suite (pyproject's filterwarnings): raised with its traceback, never

@@ -36,7 +36,8 @@ from crankdyn.display import column_text, number
 from crankdyn.errors import InputError
 from crankdyn.measure.figures import largest_per_order_table
 from crankdyn.measure.orders import ANALYSES, WINDOWS, OrderSpectrum, OrderTracking
-from crankdyn.measure.signals import MIN_TEETH, PulseTrain
+from crankdyn.measure.records import PulseRecord
+from crankdyn.measure.signals import MIN_TEETH, PulseTrain, SpeedSignal
 
 if TYPE_CHECKING:
     from crankdyn.measure.compare import ModelComparison
@@ -125,7 +126,7 @@ def load_measurement(
     try:
         data = resolve_signal(signal, teeth)
         source = data.source
-        correction: str | PulseTrain | None = None
+        correction: str | PulseTrain | PulseRecord | None = None
         if tooth_correction not in (None, "none"):
             if tooth_correction == "self":
                 correction = "self"
@@ -133,7 +134,7 @@ def load_measurement(
                 source = tooth_correction
                 wheel = teeth or getattr(data, "teeth", None)
                 calibration = resolve_signal(tooth_correction, wheel)
-                if not isinstance(calibration, PulseTrain):
+                if not isinstance(calibration, (PulseTrain, PulseRecord)):
                     raise InputError(
                         "the calibration record must hold pulse times of the same wheel",
                         key="--tooth-correction",
@@ -151,7 +152,7 @@ def load_measurement(
             bin_width=bin_width,
             reference_angle=reference_angle,
             tooth_correction=correction,
-            resolution=teeth if not isinstance(data, PulseTrain) else None,
+            resolution=teeth if isinstance(data, SpeedSignal) else None,
         )
     except InputError as exc:
         raise _named(exc, source) from None

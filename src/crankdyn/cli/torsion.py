@@ -163,8 +163,8 @@ def _left_out(result: ModalResult, n: int, shown: int) -> list[str]:
     total = result.modes_of_the_model or result.mode.size
     notes = []
     if total > n:
-        if result.all_natural_frequency is not None:
-            top = float(result.all_natural_frequency[-1]) / (2.0 * math.pi)
+        if result.highest_natural_frequency is not None:
+            top = result.highest_natural_frequency / (2.0 * math.pi)
         else:
             top = float(result.frequencies_hz[-1])
         text, unit = column_text([top], "Hz", aligned=False)

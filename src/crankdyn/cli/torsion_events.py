@@ -1,5 +1,6 @@
 """``crankdyn torsion transient MODEL --event KIND -p KEY=VALUE ...``: one transient event
-(:mod:`crankdyn.torsion.event_run`), its key figures, its verdicts and its time histories.
+(:mod:`crankdyn.torsion.event_run`), its key figures, its verdicts (the TVC's checks,
+:func:`crankdyn.tvc.events.judge_event`) and its time histories.
 
 The event's keys are those of a ``[[tvc.event]]`` table (:mod:`crankdyn.io.event_spec`), given
 as ``-p KEY=VALUE``: quantities with their units (``-p "torque=60 kN*m"``), a bare speed in
@@ -81,6 +82,19 @@ def event_params(kind: str, params: tuple[str, ...]) -> dict[str, Any]:
     return out
 
 
+def _judged(session: Analysis, model: Any, result: Any) -> Any:
+    """The run with the verdict rows of the installation's checks (the TVC's one evaluation,
+    :func:`crankdyn.tvc.events.judge_event`); as it is without a rated speed."""
+    from crankdyn.tvc.analysis import rated_speed
+    from crankdyn.tvc.events import judge_event
+
+    try:
+        rated = rated_speed(model, session.engine)
+    except InputError:
+        return result
+    return judge_event(model, result, session.tvc_spec, rated)
+
+
 def run_event(
     session: Analysis,
     kind: str,
@@ -150,6 +164,7 @@ def run_event(
             orders=session.orders if excitation is not None else None,
         )
     )
+    result = _judged(session, model, result)
     out.write(blocks=summary_blocks(result), json_data=result, csv_text=result.to_csv())
     if plot_path:
         save_figure(result.plot(), plot_path, force)

@@ -675,6 +675,43 @@ def _plain_prints(blocks: Iterable[TextTable | str | None], width: int) -> list[
     return out
 
 
+_Part = tuple["TextTable | None", list[int], str]
+"""A print of :func:`render` that needs rich: a table's part (table, columns, title) or a note
+(None, [], the note)."""
+
+
+def _plain_parts(blocks: Iterable[TextTable | str | None], width: int) -> list[str | _Part]:
+    """The prints of :func:`render` on a plain console (:func:`plain_console`) ``width``
+    columns wide, each as its plain text (:func:`_plain_table`) where the layout is the simple
+    one, else as what rich prints (:func:`_render_part`): rich lays out and writes every table
+    part and note on its own, so a large table (a long chain's mode shapes) takes the plain
+    path whatever its neighbours need (a cell that wraps, the width of the console)."""
+    out: list[str | _Part] = []
+    for block in blocks:
+        if isinstance(block, TextTable):
+            for title, cols in _titled_parts(block, width):
+                text = _plain_table(block, cols, title, width)
+                out.append(text if text is not None else (block, cols, title))
+        elif block:
+            note = str(block)
+            if len(note) <= width and _one_cell(note):
+                out.append(note + "\n")
+            else:
+                out.append((None, [], note))
+    return out
+
+
+def _render_part(part: _Part, con: Console) -> None:
+    """Print one part of :func:`_plain_parts` that needs rich, as :func:`render` prints it."""
+    from rich.text import Text
+
+    table, columns, title = part
+    if table is not None:
+        con.print(_rich(table, columns, title))
+    else:  # a note
+        con.print(Text(title), soft_wrap=False)
+
+
 # ---- the output of a command ------------------------------------------------------------------
 class Output:
     """The ``--format``, ``-o/--output`` and ``--force`` of a command.
@@ -807,19 +844,27 @@ class Output:
             text = csv_text if csv_text is not None else tables[0].csv_text()
         elif self.path is None:
             stdout = getattr(sys.stdout, "rich_proxied_file", sys.stdout)
-            prints = _plain_prints(blocks, stdout_width()) if plain_console(stdout) else None
-            if prints is None:
+            if not plain_console(stdout):
                 render(blocks, console())
-            for text in prints or ():  # as rich writes them: each print one write, flushed
-                stdout.write(text)
-                stdout.flush()
+                return
+            for part in _plain_parts(blocks, stdout_width()):  # as rich writes them
+                if isinstance(part, str):  # each print one write, flushed
+                    stdout.write(part)
+                    stdout.flush()
+                else:  # a part that needs rich's layout (a cell that wraps)
+                    _render_part(part, console())
             return
         else:
             buffer = io.StringIO()
-            plain = plain_text(blocks, FILE_WIDTH) if plain_console(buffer) else None
-            if plain is None:  # the shared console's settings
+            if not plain_console(buffer):  # the shared console's settings
                 render(blocks, console(file=buffer, width=FILE_WIDTH))
-            text = buffer.getvalue() if plain is None else plain
+            else:
+                for part in _plain_parts(blocks, FILE_WIDTH):
+                    if isinstance(part, str):
+                        buffer.write(part)
+                    else:
+                        _render_part(part, console(file=buffer, width=FILE_WIDTH))
+            text = buffer.getvalue()
         if self.path is not None:
             written = write_text(self.path, text, force=self.force)
             click.echo(f"wrote {written}", err=True)

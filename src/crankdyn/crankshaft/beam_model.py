@@ -68,6 +68,7 @@ from crankdyn.crankshaft.beam_elements import (
     offset_matrices,
     point_mass_matrix,
 )
+from crankdyn.crankshaft.beam_inputs import THEORIES
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -82,9 +83,6 @@ __all__ = [
     "TorsionalDamper",
     "build_beam_model",
 ]
-
-THEORIES = ("timoshenko", "euler-bernoulli")
-"""Beam theories: Timoshenko (shear deformation and rotary inertia) or Euler-Bernoulli (neither)."""
 
 
 def _nonnegative(name: str, value: object) -> float:

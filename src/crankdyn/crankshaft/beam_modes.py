@@ -24,8 +24,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, field, replace
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import scipy.linalg
@@ -36,6 +36,9 @@ from crankdyn.crankshaft.beam_model import CrankshaftBeamModel
 from crankdyn.errors import InputError
 from crankdyn.results import Result, column, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, derived
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
 __all__ = [
     "MOTIONS",
@@ -85,7 +88,12 @@ def solve_lowest_modes(
         )
     else:
         shift = -((2.0 * math.pi) ** 2) if sigma is None else float(sigma)
-        lam, vec = spla.eigsh(stiffness.tocsc(), k=count, M=mass.tocsc(), sigma=shift, which="LM")
+        # a fixed start vector: ARPACK's default is random, and the same model must give the
+        # same digits in every front end (tests/engine/test_front_ends.py)
+        start = np.random.default_rng(0).standard_normal(n)
+        lam, vec = spla.eigsh(
+            stiffness.tocsc(), k=count, M=mass.tocsc(), sigma=shift, which="LM", v0=start
+        )
         order = np.argsort(lam)
         lam, vec = lam[order], vec[:, order]
     norm = np.sqrt(np.einsum("ij,ij->j", vec, mass @ vec))
@@ -185,6 +193,40 @@ def _labels(
     return out
 
 
+def _decoupled_ring(model: CrankshaftBeamModel, shapes: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Each mode's kinetic-energy fraction in the ring of a viscous damper with no spring
+    (k = 0: in the undamped modes the ring turns freely, one more rigid-body mode; the lumped
+    model leaves such a ring out, :func:`crankdyn.torsion.campbell.with_dampers`); zeros when
+    the damper has a spring or there is none."""
+    damper = model.geometry.damper
+    if damper is None or damper.stiffness > 0.0 or not model.extra_nodes:
+        return np.zeros(shapes.shape[1])
+    dof = int(model.dof_index[model.extra_nodes[0]].max())
+    return np.asarray(damper.ring_inertia * shapes[dof] ** 2, dtype=float)
+
+
+def _separate_ring(
+    model: CrankshaftBeamModel, lam: NDArray[np.float64], shapes: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The rigid-body shapes rotated within their (degenerate) space so that the free ring of a
+    viscous damper is one of them alone, the last (:func:`_decoupled_ring`): Z Q with Q
+    orthogonal, its first column Z^T M r of the ring's unit shape r; the others stay
+    M-orthonormal."""
+    zero = np.flatnonzero(lam == 0.0)
+    damper = model.geometry.damper
+    if zero.size < 2 or damper is None or damper.stiffness > 0.0 or not model.extra_nodes:
+        return shapes
+    dof = int(model.dof_index[model.extra_nodes[0]].max())
+    c = math.sqrt(damper.ring_inertia) * shapes[dof, zero]
+    if np.linalg.norm(c) < 0.99:  # the ring is not in the rigid-body space found
+        return shapes
+    q, _ = np.linalg.qr(np.column_stack([c, np.eye(zero.size)[:, 1:]]))
+    rotated = shapes[:, zero] @ q
+    out = shapes.copy()
+    out[:, zero] = np.column_stack([rotated[:, 1:], rotated[:, 0]])
+    return out
+
+
 def _lowest(motion: str) -> Any:
     """The lowest elastic frequency (Hz) whose mode is ``motion`` (or coupled with it)."""
 
@@ -195,6 +237,15 @@ def _lowest(motion: str) -> Any:
         return None
 
     return value
+
+
+def _largest_difference(r: BeamModesResult) -> tuple[float, str] | None:
+    """max |lumped / beam - 1| over the paired torsional modes, with the mode."""
+    if r.lumped_difference is None or not np.isfinite(r.lumped_difference).any():
+        return None
+    d = np.where(np.isfinite(r.lumped_difference), np.abs(r.lumped_difference), -1.0)
+    i = int(np.argmax(d))
+    return float(d[i]), f"mode {int(r.mode[i])}, {r.natural_frequency[i] * HZ:.4g} Hz"
 
 
 @dataclass(frozen=True)
@@ -221,6 +272,33 @@ class BeamModesResult(Result):
     mesh: str = scalar("mesh", "Mesh", "", summary=False)
     threshold: float = scalar("threshold", "Fraction that names a motion", "", summary=False)
     degrees_of_freedom: int = scalar("degrees_of_freedom", "Degrees of freedom", "", summary=False)
+    lumped_frequency: np.ndarray | None = column(
+        "lumped_frequency_hz", "Lumped model", "Hz", HZ, default=None
+    )
+    lumped_difference: np.ndarray | None = column(
+        "lumped_difference", "Lumped / beam - 1", "", default=None
+    )
+    throw_torsional_stiffness: float | None = scalar(
+        "throw_torsional_stiffness_Nm_per_rad",
+        "Torsional stiffness of a throw (beam model)",
+        "N·m/rad",
+        default=None,
+    )
+    throw_axial_stiffness: float | None = scalar(
+        "throw_axial_stiffness_N_per_m",
+        "Axial stiffness of a throw (beam model)",
+        "N/m",
+        default=None,
+    )
+    lumped_model: str = scalar(
+        "lumped_model", "Lumped model compared", "", default="", summary=False
+    )
+    lumped_mac: np.ndarray | None = column(
+        "lumped_mac", "MAC with the lumped mode", "", default=None
+    )
+    lumped_pairing: str = scalar(
+        "lumped_pairing", "How the modes are paired", "", default="", summary=False
+    )
     notes: tuple[str, ...] = scalar("notes", "Notes", "", default=())
     shapes: NDArray[np.float64] = field(
         default_factory=lambda: np.zeros((0, 0)), repr=False, compare=False
@@ -229,9 +307,9 @@ class BeamModesResult(Result):
 
     FIGURES = (
         derived(
-            "lowest_frequency",
-            "lowest_natural_frequency_hz",
-            "Lowest elastic mode",
+            "beam_lowest_frequency",
+            "beam_lowest_natural_frequency_hz",
+            "Lowest elastic mode of the beam model",
             "Hz",
             lambda r: next(
                 (
@@ -243,25 +321,35 @@ class BeamModesResult(Result):
             ),
         ),
         derived(
-            "lowest_torsional_frequency",
-            "lowest_torsional_frequency_hz",
-            "Lowest torsional mode",
+            "beam_lowest_torsional_frequency",
+            "beam_lowest_torsional_frequency_hz",
+            "Lowest torsional mode of the beam model",
             "Hz",
             _lowest("torsional"),
         ),
         derived(
-            "lowest_axial_frequency",
-            "lowest_axial_frequency_hz",
-            "Lowest axial mode",
+            "beam_lowest_axial_frequency",
+            "beam_lowest_axial_frequency_hz",
+            "Lowest axial mode of the beam model",
             "Hz",
             _lowest("axial"),
         ),
         derived(
-            "lowest_bending_frequency",
-            "lowest_bending_frequency_hz",
-            "Lowest bending mode",
+            "beam_lowest_bending_frequency",
+            "beam_lowest_bending_frequency_hz",
+            "Lowest bending mode of the beam model",
             "Hz",
             _lowest("bending"),
+        ),
+        derived(
+            "beam_lumped_model_error",
+            "lumped_model_largest_difference",
+            "Largest difference of the lumped model's torsional modes",
+            "",
+            lambda r: _largest_difference(r),
+            reduction="max |lumped / beam - 1| over the paired torsional modes",
+            better="min",
+            unavailable="no torsional mode paired with the lumped model",
         ),
     )
 
@@ -271,12 +359,13 @@ class BeamModesResult(Result):
         return self.natural_frequency * HZ
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The modes: frequency, motion and energy fractions.
+        """The modes: frequency, motion and energy fractions, and the lumped model's frequency
+        of the torsional ones (the comparison, :meth:`with_lumped`).
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
-            One table, one row per mode.
+            The modes, one row per mode; the comparison, one row per paired torsional mode.
         """
         cols = (
             SummaryColumn("mode", "Mode"),
@@ -298,7 +387,7 @@ class BeamModesResult(Result):
                 strict=True,
             )
         )
-        return [
+        out = [
             SummaryTable(
                 "beam_modes",
                 "Modes of the crankshaft beam model",
@@ -307,6 +396,97 @@ class BeamModesResult(Result):
                 caption="Kinetic-energy fractions of torsion, axial motion and bending.",
             )
         ]
+        if self.lumped_frequency is not None and self.lumped_difference is not None:
+            out.append(self._lumped_table())
+        return out
+
+    def _lumped_table(self) -> SummaryTable:
+        """The paired torsional modes (:meth:`summary_tables`)."""
+        assert self.lumped_frequency is not None and self.lumped_difference is not None
+        paired = np.isfinite(self.lumped_frequency)
+        cols = [
+            SummaryColumn("mode", "Beam mode"),
+            SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
+            SummaryColumn("lumped_frequency_hz", "Lumped model", "Hz"),
+            SummaryColumn("lumped_difference", "Lumped / beam - 1"),
+            SummaryColumn("torsional_fraction", "Torsional energy"),
+        ]
+        values = [
+            self.mode[paired],
+            self.natural_frequency[paired] * HZ,
+            self.lumped_frequency[paired] * HZ,
+            self.lumped_difference[paired],
+            self.torsional_fraction[paired],
+        ]
+        if self.lumped_mac is not None:
+            cols.append(SummaryColumn("lumped_mac", "MAC"))
+            values.append(self.lumped_mac[paired])
+        rows = tuple(
+            (int(row[0]), *(float(v) for v in row[1:])) for row in zip(*values, strict=True)
+        )
+        pairing = self.lumped_pairing or ORDER_PAIRING
+        return SummaryTable(
+            "lumped_comparison",
+            "Torsional modes: how well the lumped model holds",
+            tuple(cols),
+            rows,
+            caption=f"Against {self.lumped_model}; {pairing}.",
+        )
+
+    def with_lumped(self, comparison: TorsionalComparison, model: str) -> BeamModesResult:
+        """These modes with a lumped model's torsional frequencies beside the paired ones
+        (:func:`compare_torsional_modes`).
+
+        Parameters
+        ----------
+        comparison : TorsionalComparison
+            The pairs.
+        model : str
+            What the lumped model is, for the table's caption.
+
+        Returns
+        -------
+        BeamModesResult
+            A copy with :attr:`lumped_frequency` (rad/s, exported in Hz) and
+            :attr:`lumped_difference` (NaN where a mode is not paired).
+        """
+        lumped = np.full(self.mode.size, np.nan)
+        difference = np.full(self.mode.size, np.nan)
+        index = np.searchsorted(self.mode, comparison.beam_mode)
+        lumped[index] = comparison.lumped_frequency
+        difference[index] = comparison.difference
+        mac = None
+        if comparison.mac is not None:
+            mac = np.full(self.mode.size, np.nan)
+            mac[index] = comparison.mac
+        return replace(
+            self,
+            lumped_frequency=lumped,
+            lumped_difference=difference,
+            lumped_model=model,
+            lumped_mac=mac,
+            lumped_pairing=comparison.pairing,
+        )
+
+    def plot(self, modes: Sequence[int] | None = None, fig: Figure | None = None) -> Figure:
+        """The mode shapes in three projections
+        (:func:`crankdyn.plots.crankshaft.plot_beam_mode_shapes`).
+
+        Parameters
+        ----------
+        modes : sequence of int or None
+            Mode numbers (from 1); None: the first four elastic modes.
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.crankshaft import plot_beam_mode_shapes
+
+        return plot_beam_mode_shapes(self, modes, fig=fig)
 
     def node_displacements(self, mode: int) -> NDArray[np.float64]:
         """The shape of one mode at every node (m, rad per unit modal coordinate).
@@ -385,8 +565,12 @@ def beam_modes(
             "expected a fraction above 0.5, at most 1", key="threshold", value=threshold
         )
     lam, shapes = solve_lowest_modes(model.stiffness, model.mass, int(count), sigma)
+    shapes = _separate_ring(model, lam, shapes)
     fractions = energy_fractions(model, shapes)
     labels = _labels(fractions, lam == 0.0, threshold)
+    ring = _decoupled_ring(model, shapes)
+    for j in np.flatnonzero((lam == 0.0) & (ring > 0.99)):
+        labels[j] = "rigid damper ring"
     return BeamModesResult(
         mode=np.arange(1, lam.size + 1),
         natural_frequency=np.sqrt(lam),
@@ -413,6 +597,10 @@ class TorsionalComparison(Result):
 
     Parameters
     ----------
+    mac : numpy.ndarray or None
+        The modal assurance criterion of each pair (dimensionless) when paired by shape.
+    pairing : str
+        How the modes were paired, for captions.
     beam_mode : numpy.ndarray
         The beam model's mode number of each pair (int).
     """
@@ -422,11 +610,13 @@ class TorsionalComparison(Result):
     lumped_frequency: np.ndarray = column("lumped_frequency_hz", "Lumped chain", "Hz", HZ)
     difference: np.ndarray = column("difference", "Lumped / beam - 1", "")
     motion: np.ndarray = column("motion", "Beam mode's motion", "")
+    mac: np.ndarray | None = column("mac", "MAC", "", default=None)
+    pairing: str = scalar("pairing", "How the modes are paired", "", default="", summary=False)
     beam_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=int))
 
     FIGURES = (
         derived(
-            "lumped_model_error",
+            "beam_lumped_model_error",
             "lumped_model_largest_difference",
             "Largest difference of the lumped chain",
             "",
@@ -449,32 +639,60 @@ class TorsionalComparison(Result):
         list of crankdyn.summary.SummaryTable
             The comparison table.
         """
-        cols = (
+        cols = [
             SummaryColumn("beam_mode", "Beam mode"),
             SummaryColumn("beam_frequency_hz", "Beam model", "Hz"),
             SummaryColumn("lumped_frequency_hz", "Lumped chain", "Hz"),
             SummaryColumn("difference", "Lumped / beam - 1"),
-        )
+        ]
+        values = [self.beam_frequency * HZ, self.lumped_frequency * HZ, self.difference]
+        if self.mac is not None:
+            cols.append(SummaryColumn("mac", "MAC"))
+            values.append(self.mac)
         rows = tuple(
-            (int(m), float(b) * HZ, float(c) * HZ, float(d))
-            for m, b, c, d in zip(
-                self.beam_mode,
-                self.beam_frequency,
-                self.lumped_frequency,
-                self.difference,
-                strict=True,
-            )
+            (int(m), *(float(v) for v in row))
+            for m, *row in zip(self.beam_mode, *values, strict=True)
         )
-        return [SummaryTable("torsional_comparison", "How well the lumped model holds", cols, rows)]
+        return [
+            SummaryTable(
+                "torsional_comparison",
+                "How well the lumped model holds",
+                tuple(cols),
+                rows,
+                caption=self.pairing or ORDER_PAIRING,
+            )
+        ]
+
+
+ORDER_PAIRING = (
+    "the k-th torsional beam mode (torsional energy at least one half) paired with the k-th "
+    "elastic lumped mode"
+)
+SHAPE_PAIRING = (
+    "each torsional beam mode (torsional energy at least one half) paired with the elastic "
+    "lumped mode whose shape it matches (the largest sum of MAC; pairs with MAC at least one half)"
+)
 
 
 def compare_torsional_modes(
-    result: BeamModesResult, lumped: Sequence[float] | NDArray[np.float64], *, minimum: float = 0.5
+    result: BeamModesResult,
+    lumped: Sequence[float] | NDArray[np.float64],
+    *,
+    minimum: float = 0.5,
+    shapes: tuple[ArrayLike, ArrayLike] | None = None,
 ) -> TorsionalComparison:
-    """Pair the beam model's torsional modes with a lumped chain's, in ascending order.
+    """Pair the beam model's torsional modes with a lumped chain's: in ascending order, or by
+    their shapes.
 
     A beam mode counts as torsional when its torsional energy fraction is at least ``minimum``
-    (rigid modes excluded); the k-th such mode is paired with the k-th positive lumped frequency.
+    (rigid modes excluded). Without ``shapes`` the k-th such mode is paired with the k-th
+    positive lumped frequency; this crosses pairs where a mode of one model has no counterpart
+    below the other's next (a crankshaft mode that bending lowers below a shaft-line mode).
+    With ``shapes`` the pairs are those of the largest sum of the modal assurance criterion,
+    MAC = (phi_b . phi_l)^2 / (|phi_b|^2 |phi_l|^2) over the lumped model's degrees of freedom
+    (R. J. Allemang and D. L. Brown, "A correlation coefficient for modal vector analysis",
+    Proc. 1st IMAC, 1982, 110-116), an assignment problem
+    (``scipy.optimize.linear_sum_assignment``), and pairs with MAC below one half are dropped.
 
     Parameters
     ----------
@@ -485,24 +703,44 @@ def compare_torsional_modes(
         skipped), e.g. ``crankdyn.torsion.natural_modes(model).natural_frequency``.
     minimum : float
         Torsional energy fraction that makes a beam mode torsional (dimensionless).
+    shapes : tuple of two arrays, or None
+        The beam modes' rotations theta_z at the lumped model's degrees of freedom (dof x beam
+        mode, every mode of ``result``) and the lumped modes' shapes (dof x lumped mode, in the
+        order of ``lumped``); any normalisation.
 
     Returns
     -------
     TorsionalComparison
-        As many pairs as both have.
+        The pairs, in the beam's order.
     """
     elastic = ~np.char.startswith(result.motion.astype(str), "rigid")
-    use = elastic & (result.torsional_fraction >= minimum)
+    use = np.flatnonzero(elastic & (result.torsional_fraction >= minimum))
+    frequencies = np.asarray(lumped, dtype=float)
+    if shapes is None:
+        order = np.argsort(frequencies)
+        chain = order[frequencies[order] > 0.0]
+        n = min(use.size, chain.size)
+        use, chain, mac, pairing = use[:n], chain[:n], None, ORDER_PAIRING
+    else:
+        from scipy.optimize import linear_sum_assignment
+
+        chain = np.flatnonzero(frequencies > 0.0)
+        b = np.asarray(shapes[0], dtype=float)[:, use]
+        c = np.asarray(shapes[1], dtype=float)[:, chain]
+        b = b / np.maximum(np.linalg.norm(b, axis=0), np.finfo(float).tiny)
+        c = c / np.maximum(np.linalg.norm(c, axis=0), np.finfo(float).tiny)
+        table = (b.T @ c) ** 2
+        rows, cols = linear_sum_assignment(table, maximize=True)
+        keep = table[rows, cols] >= 0.5
+        rows, cols = rows[keep], cols[keep]
+        use, chain, mac, pairing = use[rows], chain[cols], table[rows, cols], SHAPE_PAIRING
     beam = result.natural_frequency[use]
-    modes = result.mode[use]
-    labels = result.motion[use]
-    chain = np.sort(np.asarray(lumped, dtype=float))
-    chain = chain[chain > 0.0]
-    n = min(beam.size, chain.size)
     return TorsionalComparison(
-        beam_frequency=beam[:n],
-        lumped_frequency=chain[:n],
-        difference=chain[:n] / beam[:n] - 1.0,
-        motion=labels[:n],
-        beam_mode=modes[:n],
+        beam_frequency=beam,
+        lumped_frequency=frequencies[chain],
+        difference=frequencies[chain] / beam - 1.0,
+        motion=result.motion[use],
+        mac=mac,
+        pairing=pairing,
+        beam_mode=result.mode[use],
     )

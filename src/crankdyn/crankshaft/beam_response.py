@@ -33,7 +33,15 @@ max over theta of |sum_q Re(Y_q exp(i q theta))| (for a vector, its largest magn
 - the bending moment of every web about its tangential axis (the bending of the throw plane that
   the radial force and the axial vibration cause, the moment of IACS UR M53's nominal web
   bending stress) at its journal and pin ends, the larger of the two, and the nominal stress
-  M / (b h^2 / 6).
+  M / (b h^2 / 6);
+- the web bending stress from vibration: the same moments less their quasi-static part, the
+  static elastic response G_e F to the same forces at every order (for the modal method exactly
+  the sum over the kept modes of phi_r phi_r^T F (1 / (omega_r^2 - omega^2 + i omega c_r) -
+  1 / omega_r^2), the residual cancelling), synthesised and over b h^2 / 6: the bending that
+  the throws' axial and bending vibration add to the quasi-static bending of the throws, the
+  part of IACS UR M53.4's additional bending stress that comes from vibration (its 4(3): "where
+  axial vibration calculation results of the complete dynamic system are available, the
+  calculated figures may be used instead"; KR Rules 2025 Pt 5 Annex 5-3 4(3)).
 """
 
 from __future__ import annotations
@@ -41,6 +49,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from typing import TYPE_CHECKING
 
 import numpy as np
 import scipy.sparse as sp
@@ -54,9 +63,53 @@ from crankdyn.errors import InputError
 from crankdyn.results import Result, array, column, scalar
 from crankdyn.summary import derived
 
-__all__ = ["BeamResponseResult", "beam_response", "load_matrix", "recovery_matrices"]
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "BeamResponseResult",
+    "beam_response",
+    "critical_speeds",
+    "load_matrix",
+    "recovery_matrices",
+]
 
 METHODS = ("modal", "direct")
+RIGID_MODES = 12
+"""The direct method looks for the model's rigid-body modes among this many lowest modes."""
+
+
+def critical_speeds(
+    natural: ArrayLike, orders: ArrayLike, low: float, high: float
+) -> NDArray[np.float64]:
+    """The speeds at which an order meets a natural frequency, Omega = omega_r / q, within
+    [low, high]: added to a sweep's grid, they resolve the resonance peaks (the peak of a mode
+    with damping ratio zeta lies at omega_r sqrt(1 - 2 zeta^2), within zeta^2 of it).
+
+    Parameters
+    ----------
+    natural : array_like
+        Natural frequencies omega_r (rad/s); zeros (rigid-body modes) are skipped.
+    orders : array_like
+        Orders q (> 0).
+    low, high : float
+        The speed range (rad/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        The critical speeds (rad/s), sorted, each once.
+
+    Examples
+    --------
+    >>> critical_speeds([0.0, 100.0, 300.0], [1.0, 2.0], 40.0, 160.0).tolist()
+    [50.0, 100.0, 150.0]
+    """
+    w = np.asarray(natural, dtype=float)
+    w = w[w > 0.0]
+    q = np.asarray(orders, dtype=float)
+    speeds = (w[:, None] / q[None, :]).ravel()
+    return np.unique(speeds[(speeds >= low) & (speeds <= high)])
 
 
 def load_matrix(model: CrankshaftBeamModel) -> sp.csr_matrix:
@@ -170,6 +223,9 @@ class BeamResponseResult(Result):
     )
     web_moment: np.ndarray = array("web_moment_Nm", "Bending moment of the webs", "N·m")
     web_stress: np.ndarray = array("web_stress_Pa", "Nominal bending stress of the webs", "Pa")
+    web_vibration_stress: np.ndarray = array(
+        "web_vibration_stress_Pa", "Web bending stress from vibration (speed x web)", "Pa"
+    )
     method: str = scalar("method", "Method", "", summary=False)
     damping_ratio: float = scalar("damping_ratio", "Modal damping ratio", "", summary=False)
     modes_used: int = scalar("modes_used", "Modes used", "", summary=False)
@@ -210,7 +266,34 @@ class BeamResponseResult(Result):
             lambda r: _peak(r, r.web_stress, "web"),
             better="min",
         ),
+        derived(
+            "max_web_vibration_stress",
+            "max_web_vibration_stress_Pa",
+            "Largest web bending stress from vibration",
+            "Pa",
+            lambda r: _peak(r, r.web_vibration_stress, "web"),
+            reduction="max over speeds and webs",
+            better="min",
+        ),
     )
+
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """The free end's axial vibration and the webs' bending stress against speed
+        (:func:`crankdyn.plots.crankshaft.plot_axial_response`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.crankshaft import plot_axial_response
+
+        return plot_axial_response(self, fig=fig)
 
 
 def _peak(
@@ -245,9 +328,11 @@ def _synthesise(
     cycle = _cycle(orders)
     n = max(64, int(16 * np.max(np.abs(orders)) * cycle / (2 * math.pi)))
     theta = np.linspace(0.0, cycle, n, endpoint=False)
-    basis = np.exp(1j * orders[:, None] * theta[None, :])  # (Q, N)
-    signal = np.real(np.swapaxes(y, 1, 2) @ basis)
-    s, o, _ = signal.shape
+    phase = orders[:, None] * theta[None, :]  # (Q, N)
+    s, q, o = y.shape
+    flat = np.ascontiguousarray(np.swapaxes(y, 1, 2)).reshape(s * o, q)
+    # Re(y e^{i q theta}) = Re(y) cos - Im(y) sin: two real products, no complex batch
+    signal = (flat.real @ np.cos(phase) - flat.imag @ np.sin(phase)).reshape(s, o, n)
     mag = np.sqrt(np.sum(signal.reshape(s, o // components, components, n) ** 2, axis=2))
     return mag.max(axis=-1)
 
@@ -265,13 +350,14 @@ def _modes_for(
         count = min(size, 2 * count)
 
 
-def _residual(
+def _elastic_static(
     model: CrankshaftBeamModel,
     lam: NDArray[np.float64],
     phi: NDArray[np.float64],
     loads: sp.csr_matrix,
 ) -> NDArray[np.float64]:
-    """Static residual of the modes left out, G_e B - sum phi phi^T B / lambda (size x loads)."""
+    """G_e B: the static deflection of the elastic subspace under the loads, the rigid-body
+    modes (lam = 0 among ``phi``) removed by inertia relief (module docstring; size x loads)."""
     rigid = lam == 0.0
     b = loads.toarray()
     p0 = phi[:, rigid]
@@ -286,8 +372,19 @@ def _residual(
     lu = spla.splu(model.stiffness[free][:, free].tocsc())
     u[free] = lu.solve(fe[free])
     u -= p0 @ (p0.T @ (m @ u))
+    return u
+
+
+def _residual(
+    static: NDArray[np.float64],
+    lam: NDArray[np.float64],
+    phi: NDArray[np.float64],
+    loads: sp.csr_matrix,
+) -> NDArray[np.float64]:
+    """Static residual of the modes left out, G_e B - sum phi phi^T B / lambda (size x loads)."""
+    rigid = lam == 0.0
     el = phi[:, ~rigid]
-    return u - el @ ((el.T @ b) / lam[~rigid][:, None])
+    return static - el @ ((el.T @ loads.toarray()) / lam[~rigid][:, None])
 
 
 def _modal(
@@ -297,8 +394,9 @@ def _modal(
     recover: sp.csr_matrix,
     zeta: float,
     modes: int | None,
-) -> tuple[NDArray[np.complex128], int]:
-    """Outputs (speeds, orders, outputs) by modal superposition with the residual."""
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128], int]:
+    """Outputs (speeds, orders, outputs) by modal superposition with the residual, and their
+    quasi-static part (the static elastic response to the same forces)."""
     loads = load_matrix(model)
     lam, phi = _modes_for(model, float(np.max(np.abs(omega))), modes)
     wr = np.sqrt(lam)
@@ -322,9 +420,10 @@ def _modal(
             h = np.diag(lam)[None] - (w**2)[:, None, None] * np.eye(lam.size)[None]
             h = h + 1j * w[:, None, None] * c_modal[None]
             out[lo : lo + 256] = np.linalg.solve(h, flat_p[lo : lo + 256][..., None])[..., 0]
-    residual = np.asarray(recover @ _residual(model, lam, phi, loads))  # (outputs, 2n)
+    static = _elastic_static(model, lam, phi, loads)
+    residual = np.asarray(recover @ _residual(static, lam, phi, loads))  # (outputs, 2n)
     y = eta @ out_phi.T + forces @ residual.T
-    return y, lam.size
+    return y, forces @ np.asarray(recover @ static).T, lam.size
 
 
 def _direct(
@@ -332,8 +431,8 @@ def _direct(
     omega: NDArray[np.float64],
     forces: NDArray[np.complex128],
     recover: sp.csr_matrix,
-) -> NDArray[np.complex128]:
-    """Outputs by one sparse LU per frequency (the reference)."""
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    """Outputs by one sparse LU per frequency (the reference), and their quasi-static part."""
     loads = load_matrix(model)
     k, m = model.stiffness.tocsc(), model.mass.tocsc()
     c = model.damping.tocsc() if model.damping is not None else None
@@ -347,7 +446,9 @@ def _direct(
                 a = a + 1j * w * c
             u = spla.splu(a.tocsc()).solve(loads @ forces[i, j])
             y[i, j] = recover @ u
-    return y
+    lam, phi = solve_lowest_modes(model.stiffness, model.mass, min(model.size, RIGID_MODES))
+    static = np.asarray(recover @ _elastic_static(model, lam, phi, loads))
+    return y, forces @ static.T
 
 
 def beam_response(
@@ -434,14 +535,16 @@ def beam_response(
     )
     recover = sp.vstack([points, bearings, webs]).tocsr()
     if method == "modal":
-        y, used = _modal(model, omega, forces, recover, damping_ratio, modes)
+        y, y_static, used = _modal(model, omega, forces, recover, damping_ratio, modes)
     else:
-        y, used = _direct(model, omega, forces, recover), 0
+        (y, y_static), used = _direct(model, omega, forces, recover), 0
     nb = bearings.shape[0]
     scalars = _synthesise(y[..., :3], order, 1)
     bearing = _synthesise(y[..., 3 : 3 + nb], order, 2)
     web_ends = _synthesise(y[..., 3 + nb :], order, 1)
     web = web_ends.reshape(speed.size, -1, 2).max(axis=-1)
+    vibration_ends = _synthesise((y - y_static)[..., 3 + nb :], order, 1)
+    vibration = vibration_ends.reshape(speed.size, -1, 2).max(axis=-1)
     g = model.geometry.throw
     modulus = g.web_width * g.web_thickness**2 / 6.0
     return BeamResponseResult(
@@ -454,6 +557,7 @@ def beam_response(
         bearing_moment=bearing,
         web_moment=web,
         web_stress=web / modulus,
+        web_vibration_stress=vibration / modulus,
         method=method,
         damping_ratio=float(damping_ratio),
         modes_used=used,

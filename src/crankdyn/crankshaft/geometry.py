@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from crankdyn.crank.geometry import check_finite, check_length, check_positive
+from crankdyn.crankshaft.beam_inputs import ADDITIONAL_STRESS_SOURCES, BeamInputs
 from crankdyn.errors import InputError
 
 __all__ = [
@@ -492,12 +493,20 @@ class Crankshaft:
         Crosshead engines: the additional bending stress from axial vibration (Pa) where the
         axial vibration calculation of the whole system gives it; None: the rule's 20 MPa
         (M53.4).
+    beam : BeamInputs or None
+        The ``[crankshaft.beam]`` table: the beam model's own inputs
+        (:mod:`crankdyn.crankshaft.beam_inputs`); None: its defaults.
+    additional_stress : str or None
+        Where M53.4's additional bending stress from vibration comes from: ``"rule"`` (its
+        values) or ``"beam"`` (the beam model's forced response, M53.4(3)); None: ``"beam"``
+        when the ``[crankshaft.beam]`` table is given, else ``"rule"``.
 
     Raises
     ------
     InputError
         If a choice is unknown, a semi-built crankshaft has no shrink fit (or a solid one has
-        one), or the axial vibration stress is given for a trunk-piston engine or negative.
+        one), the axial vibration stress is given for a trunk-piston engine, negative or
+        together with ``additional_stress = "beam"``.
     """
 
     geometry: CrankshaftGeometry
@@ -507,8 +516,24 @@ class Crankshaft:
     shrink_fit: ShrinkFit | None = None
     factors: StressFactors | None = None
     axial_vibration_stress: float | None = None
+    beam: BeamInputs | None = None
+    additional_stress: str | None = None
 
     def __post_init__(self) -> None:
+        if self.additional_stress is not None:
+            if self.additional_stress not in ADDITIONAL_STRESS_SOURCES:
+                raise InputError(
+                    f"expected one of {', '.join(ADDITIONAL_STRESS_SOURCES)}",
+                    key="additional_stress",
+                    value=self.additional_stress,
+                )
+            if self.additional_stress == "beam" and self.axial_vibration_stress is not None:
+                raise InputError(
+                    "give the axial vibration stress or take it from the beam model "
+                    '(additional_stress = "beam"), not both',
+                    key="axial_vibration_stress",
+                    value=self.axial_vibration_stress,
+                )
         if self.engine_type not in ENGINE_TYPES:
             raise InputError(
                 f"expected one of {', '.join(ENGINE_TYPES)}",
@@ -554,3 +579,18 @@ class Crankshaft:
     def semi_built(self) -> bool:
         """Whether the crankshaft is semi-built."""
         return self.construction == "semi-built"
+
+    @property
+    def additional_stress_source(self) -> str:
+        """``"beam"`` or ``"rule"``: :attr:`additional_stress`, else ``"beam"`` when the
+        ``[crankshaft.beam]`` table is given and no axial vibration stress, else ``"rule"``."""
+        if self.additional_stress is not None:
+            return self.additional_stress
+        if self.beam is not None and self.axial_vibration_stress is None:
+            return "beam"
+        return "rule"
+
+    @property
+    def beam_inputs(self) -> BeamInputs:
+        """The beam model's inputs: :attr:`beam`, else the defaults."""
+        return self.beam if self.beam is not None else BeamInputs()

@@ -25,7 +25,7 @@ from crankdyn.plausibility import PlausibilityWarning
 from crankdyn.results import Result, array, column, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable, Verdict, derived, reduced
 
-__all__ = ["LOCATIONS", "CrankshaftResult"]
+__all__ = ["LOCATIONS", "QUANTITIES", "CrankshaftResult"]
 
 LOCATIONS = ("crankpin fillet", "journal fillet", "oil bore")
 """The locations UR M53 checks in every throw (M53.1.3)."""
@@ -54,6 +54,8 @@ class CrankshaftResult(Result):
         outside (their verdicts fail: the rule's formulas do not apply there).
     torsion_given : bool
         Whether a torsional stress was given (else Q is that of bending alone).
+    torsion_where : tuple of str or None
+        Where each throw's M_TN comes from (the crank span and the speed), or None.
     warnings : tuple of crankdyn.plausibility.PlausibilityWarning
         Legal but unlikely inputs.
     """
@@ -112,38 +114,83 @@ class CrankshaftResult(Result):
         "q_journal_fillet", "Acceptability factor Q, journal fillet", ""
     )
     q_oil: NDArray[np.float64] = array("q_oil_bore", "Acceptability factor Q, oil bore", "")
-    alpha_b: float = scalar("alpha_b", "α_B, crankpin fillet bending SCF", "", fmt=".4f")
-    alpha_t: float = scalar("alpha_t", "α_T, crankpin fillet torsion SCF", "", fmt=".4f")
-    beta_b: float | None = scalar("beta_b", "β_B, journal fillet bending SCF", "", fmt=".4f")
-    beta_q: float | None = scalar("beta_q", "β_Q, journal fillet shear SCF", "", fmt=".4f")
-    beta_t: float | None = scalar("beta_t", "β_T, journal fillet torsion SCF", "", fmt=".4f")
-    gamma_b: float | None = scalar("gamma_b", "γ_B, oil bore bending SCF", "", fmt=".4f")
-    gamma_t: float | None = scalar("gamma_t", "γ_T, oil bore torsion SCF", "", fmt=".4f")
-    additional: float = scalar("sigma_add_Pa", "σ_add, additional bending stress", "Pa")
+    alpha_b: float = scalar(
+        "alpha_b", "α_B, crankpin fillet bending SCF", "", fmt=".4f", name="scf_alpha_b"
+    )
+    alpha_t: float = scalar(
+        "alpha_t", "α_T, crankpin fillet torsion SCF", "", fmt=".4f", name="scf_alpha_t"
+    )
+    beta_b: float | None = scalar(
+        "beta_b", "β_B, journal fillet bending SCF", "", fmt=".4f", name="scf_beta_b"
+    )
+    beta_q: float | None = scalar(
+        "beta_q", "β_Q, journal fillet shear SCF", "", fmt=".4f", name="scf_beta_q"
+    )
+    beta_t: float | None = scalar(
+        "beta_t", "β_T, journal fillet torsion SCF", "", fmt=".4f", name="scf_beta_t"
+    )
+    gamma_b: float | None = scalar(
+        "gamma_b", "γ_B, oil bore bending SCF", "", fmt=".4f", name="scf_gamma_b"
+    )
+    gamma_t: float | None = scalar(
+        "gamma_t", "γ_T, oil bore torsion SCF", "", fmt=".4f", name="scf_gamma_t"
+    )
+    additional: float = scalar(
+        "sigma_add_Pa", "σ_add, additional bending stress", "Pa", name="additional_bending_stress"
+    )
     strength_pin: float = scalar(
-        "sigma_dw_crankpin_fillet_Pa", "σ_DW, fatigue strength, crankpin fillet", "Pa"
+        "sigma_dw_crankpin_fillet_Pa",
+        "σ_DW, fatigue strength, crankpin fillet",
+        "Pa",
+        name="fatigue_strength_crankpin_fillet",
     )
     strength_journal: float | None = scalar(
-        "sigma_dw_journal_fillet_Pa", "σ_DW, fatigue strength, journal fillet", "Pa"
+        "sigma_dw_journal_fillet_Pa",
+        "σ_DW, fatigue strength, journal fillet",
+        "Pa",
+        name="fatigue_strength_journal_fillet",
     )
     strength_oil: float | None = scalar(
-        "sigma_dw_oil_bore_Pa", "σ_DW, fatigue strength, oil bore", "Pa"
+        "sigma_dw_oil_bore_Pa",
+        "σ_DW, fatigue strength, oil bore",
+        "Pa",
+        name="fatigue_strength_oil_bore",
     )
-    factor_k: float = scalar("factor_k", "K, manufacture factor", "", fmt=".3g")
-    ke: float = scalar("factor_ke", "K_e, web restraint factor", "", fmt=".3g")
+    factor_k: float = scalar(
+        "factor_k", "K, manufacture factor", "", fmt=".3g", name="manufacture_factor_k"
+    )
+    ke: float = scalar(
+        "factor_ke", "K_e, web restraint factor", "", fmt=".3g", name="web_restraint_factor_ke"
+    )
     speed: float = scalar("speed_rpm", "Speed", "rpm", RPM)
     q_required: float = scalar("q_required", "Smallest acceptable Q", "", fmt=".3g", summary=False)
     max_torque: float | None = scalar(
-        "shrink_fit_torque_Nm", "M_max, largest torque of a crank span", "N·m", default=None
+        "shrink_fit_torque_Nm",
+        "M_max, largest torque of a crank span",
+        "N·m",
+        default=None,
+        name="shrink_fit_torque",
     )
     max_journal_bore: float | None = scalar(
-        "max_journal_bore_m", "Largest journal bore D_BG (shrink fit)", "m", default=None
+        "max_journal_bore_m",
+        "Largest journal bore D_BG (shrink fit)",
+        "m",
+        default=None,
+        name="shrink_fit_max_journal_bore",
     )
     min_oversize: float | None = scalar(
-        "min_oversize_m", "Z_min, smallest oversize of the shrink fit", "m", default=None
+        "min_oversize_m",
+        "Z_min, smallest oversize of the shrink fit",
+        "m",
+        default=None,
+        name="shrink_fit_min_oversize",
     )
     max_oversize: float | None = scalar(
-        "max_oversize_m", "Z_max, largest oversize of the shrink fit", "m", default=None
+        "max_oversize_m",
+        "Z_max, largest oversize of the shrink fit",
+        "m",
+        default=None,
+        name="shrink_fit_max_oversize",
     )
     oversize: float | None = scalar(
         "oversize_m", "Z, oversize of the shrink fit", "m", default=None, summary=False
@@ -151,11 +198,22 @@ class CrankshaftResult(Result):
     journal_bore: float | None = scalar(
         "journal_bore_m", "D_BG, journal bore", "m", default=None, summary=False
     )
+    additional_source: str = scalar(
+        "sigma_add_source", "σ_add from", "", default="rule M53.4", summary=False
+    )
+    vibration_stress: float | None = scalar(
+        "sigma_vibration_Pa",
+        "σ_vib, web bending from vibration (beam model)",
+        "Pa",
+        default=None,
+        name="m53_vibration_stress",
+    )
     rule: str = scalar("rule", "Rule", "", default=RULE)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "", default=None)
     validity: tuple[ValidityRange, ...] = field(default=(), repr=False, compare=False)
     extrapolated: tuple[tuple[str, str], ...] = field(default=(), repr=False, compare=False)
     torsion_given: bool = field(default=True, repr=False, compare=False)
+    torsion_where: tuple[str, ...] | None = field(default=None, repr=False, compare=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
@@ -256,7 +314,7 @@ class CrankshaftResult(Result):
         return [self._nominal_table(), self._locations_table(), self._validity_table()]
 
     def _nominal_table(self) -> SummaryTable:
-        cols = (
+        cols: tuple[SummaryColumn, ...] = (
             SummaryColumn("throw", "Throw"),
             SummaryColumn("nominal_web_moment_Nm", "M_BN (2.1.2.1)", "N·m"),
             SummaryColumn("nominal_web_force_N", "Q_N (2.1.2.1)", "N"),
@@ -268,6 +326,9 @@ class CrankshaftResult(Result):
             SummaryColumn("tau_n_crankpin_Pa", "τ_N crankpin (2.2.2)", "Pa"),
             SummaryColumn("tau_n_journal_Pa", "τ_N journal (2.2.2)", "Pa"),
         )
+        where = self.torsion_where
+        if where is not None:
+            cols = (*cols, SummaryColumn("torque_from", "M_TN from (2.2.2)"))
         rows = tuple(
             (
                 t + 1,
@@ -285,6 +346,7 @@ class CrankshaftResult(Result):
                         self.tau_journal,
                     )
                 ),
+                *(() if where is None else (where[t],)),
             )
             for t in range(self.throw_count)
         )
@@ -337,7 +399,8 @@ class CrankshaftResult(Result):
             "Fillets and oil bores (UR M53.3 to M53.7)",
             cols,
             tuple(rows),
-            caption=f"Q = σ_DW / σ_V, at least {self.q_required:g} (M53.7).",
+            caption=f"Q = σ_DW / σ_V, at least {self.q_required:g} (M53.7); σ_add from "
+            f"{self.additional_source}.",
         )
 
     def _validity_table(self) -> SummaryTable:
@@ -395,6 +458,8 @@ class CrankshaftResult(Result):
                 reason = dict(self.extrapolated).get(location)
                 limit = strengths[j] / self.q_required
                 note = f"Q = {q:.4g}"
+                if location != "oil bore":
+                    note += f"; σ_add {self.additional / 1e6:.4g} MPa: {self.additional_source}"
                 if reason is not None:
                     note += (
                         f"; the empirical factors do not apply ({reason}): give FE factors "
@@ -472,9 +537,54 @@ class CrankshaftResult(Result):
             )
         return out
 
+    def quantities_table(self) -> SummaryTable:
+        """Every quantity of the check, one row each: per throw its nominal loads, per throw and
+        location the nominal stresses, the stress concentration factors, the stresses, the
+        additional and equivalent stresses, the fatigue strength and Q, each with its unit and
+        clause (:data:`QUANTITIES`; the JSON's ``quantities``, the command line's CSV).
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable
+            ``m53_quantities``: throw, location, quantity, symbol, value (SI), unit, clause.
+        """
+        rows = []
+        strengths = self.strengths()
+        for t in range(self.throw_count):
+            for j, location in enumerate(("throw", *LOCATIONS)):
+                if j and not math.isfinite(float(self.q_table()[t, j - 1])):
+                    continue
+                for symbol, words, unit, clause, value in _quantities(self, t, location):
+                    rows.append((t + 1, location, words, symbol, _cell(value), unit, clause))
+                if j:
+                    rows.append(
+                        (t + 1, location, "fatigue strength", "σ_DW", strengths[j - 1], "Pa",
+                         "M53.6")
+                    )  # fmt: skip
+                    rows.append(
+                        (t + 1, location, "acceptability factor", "Q",
+                         float(self.q_table()[t, j - 1]), "", "M53.7")
+                    )  # fmt: skip
+        return SummaryTable(
+            "m53_quantities",
+            "Every quantity of the check (UR M53)",
+            (
+                SummaryColumn("throw", "Throw"),
+                SummaryColumn("location", "Location"),
+                SummaryColumn("quantity", "Quantity"),
+                SummaryColumn("symbol", "Symbol"),
+                SummaryColumn("value", "Value (SI)"),
+                SummaryColumn("unit", "Unit"),
+                SummaryColumn("clause", "Clause"),
+            ),
+            tuple(rows),
+            caption=f"{self.rule}; values in SI units.",
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """The result as JSON data (:meth:`crankdyn.results.Result.to_dict`) with the validity
-        of the empirical factors.
+        of the empirical factors, every quantity with its unit and clause
+        (:meth:`quantities_table`), where each throw's M_TN comes from, and the verdict rows.
 
         Returns
         -------
@@ -483,7 +593,78 @@ class CrankshaftResult(Result):
         """
         out = super().to_dict()
         out["validity"] = [v.to_dict() for v in self.validity]
+        out["quantities"] = self.quantities_table().to_dict()["rows"]
+        if self.torsion_where is not None:
+            out["nominal_torque_from"] = list(self.torsion_where)
+        out["verdicts"] = [v.to_dict() for v in self.summary_verdicts()]
         return out
+
+
+QUANTITIES = {
+    "throw": (
+        ("M_BN", "web bending moment half-range", "N·m", "M53.2.1.2.1", "moment_half_range"),
+        ("Q_N", "web radial force half-range", "N", "M53.2.1.2.1", "force_half_range"),
+        ("M_TN", "alternating torque half-range", "N·m", "M53.2.2.2", "torsion_torque"),
+    ),
+    "crankpin fillet": (
+        ("σ_BFN", "nominal web bending stress", "Pa", "M53.2.1.2.1", "sigma_bfn"),
+        ("α_B", "bending stress concentration factor", "", "M53.3.2", "alpha_b"),
+        ("σ_BH", "bending stress in the fillet", "Pa", "M53.2.1.3", "bending"),
+        ("τ_N", "nominal torsional stress (crankpin)", "Pa", "M53.2.2.2", "tau_pin"),
+        ("α_T", "torsion stress concentration factor", "", "M53.3.2", "alpha_t"),
+        ("τ_H", "torsional stress in the fillet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_add", "additional bending stress", "Pa", "M53.4", "additional"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+    "journal fillet": (
+        ("σ_BFN", "nominal web bending stress", "Pa", "M53.2.1.2.1", "sigma_bfn"),
+        ("σ_QFN", "nominal web compressive stress", "Pa", "M53.2.1.2.1", "sigma_qfn"),
+        ("β_B", "bending stress concentration factor", "", "M53.3.3", "beta_b"),
+        ("β_Q", "compression stress concentration factor", "", "M53.3.3", "beta_q"),
+        ("σ_BG", "bending stress in the fillet", "Pa", "M53.2.1.3", "bending"),
+        ("τ_N", "nominal torsional stress (journal)", "Pa", "M53.2.2.2", "tau_journal"),
+        ("β_T", "torsion stress concentration factor", "", "M53.3.3", "beta_t"),
+        ("τ_G", "torsional stress in the fillet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_add", "additional bending stress", "Pa", "M53.4", "additional"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+    "oil bore": (
+        ("M_BON", "oil bore bending moment half-range", "N·m", "M53.2.1.2.2",
+         "oil_bore_half_range"),
+        ("σ_BON", "nominal oil bore bending stress", "Pa", "M53.2.1.2.2", "sigma_bon"),
+        ("γ_B", "bending stress concentration factor", "", "M53.3.4", "gamma_b"),
+        ("σ_BO", "bending stress at the outlet", "Pa", "M53.2.1.4", "bending"),
+        ("τ_N", "nominal torsional stress (crankpin)", "Pa", "M53.2.2.2", "tau_pin"),
+        ("γ_T", "torsion stress concentration factor", "", "M53.3.4", "gamma_t"),
+        ("σ_TO", "torsional stress at the outlet", "Pa", "M53.2.2.3", "torsion"),
+        ("σ_V", "equivalent alternating stress", "Pa", "M53.5", "equivalent"),
+    ),
+}  # fmt: skip
+"""The rows of :meth:`CrankshaftResult.quantities_table` by location: symbol, words, unit,
+clause and the field holding the value (per throw, per throw and location, or one for all)."""
+
+_BY_LOCATION = {"bending", "torsion", "equivalent"}
+
+
+def _quantities(
+    r: CrankshaftResult, throw: int, location: str
+) -> list[tuple[str, str, str, str, float]]:
+    """(symbol, words, unit, clause, value) of one throw's location."""
+    out = []
+    j = LOCATIONS.index(location) if location in LOCATIONS else -1
+    for symbol, words, unit, clause, name in QUANTITIES[location]:
+        raw = getattr(r, name)
+        if raw is None:
+            continue
+        data = np.asarray(raw, dtype=float)
+        if name in _BY_LOCATION:
+            value = float(data[throw, j])
+        elif data.ndim == 1:
+            value = float(data[throw])
+        else:
+            value = float(data)
+        out.append((symbol, words, unit, clause, value))
+    return out
 
 
 def _cell(value: float) -> float | None:

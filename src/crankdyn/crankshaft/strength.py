@@ -27,6 +27,7 @@ here, each throw is checked with its own span's, so the smallest Q over the thro
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -41,7 +42,13 @@ from crankdyn.errors import InputError
 from crankdyn.plausibility import PlausibilityWarning, merge_warnings
 from crankdyn.results import freeze
 
-__all__ = ["TENSILE_STRENGTH_RANGE", "assess", "crankshaft_strength", "crankshaft_warnings"]
+__all__ = [
+    "TENSILE_STRENGTH_RANGE",
+    "additional_stress_of",
+    "assess",
+    "crankshaft_strength",
+    "crankshaft_warnings",
+]
 
 TENSILE_STRENGTH_RANGE = (400e6, 1000e6)
 """(low, high) of the specified minimum tensile strength of crankshaft steels (Pa): carbon and
@@ -155,6 +162,10 @@ def crankshaft_strength(
     torsion_stress: ArrayLike | None = None,
     crankshaft: Crankshaft | None = None,
     pressure: PressureTrace | None = None,
+    vibration_stress: float | None = None,
+    vibration_where: str = "",
+    torsion_where: Sequence[str] | None = None,
+    notes: Sequence[str] = (),
 ) -> CrankshaftResult:
     """The fatigue check of the engine's crankshaft by IACS UR M53 (module docstring).
 
@@ -176,6 +187,18 @@ def crankshaft_strength(
         The crankshaft; default the engine's.
     pressure : PressureTrace or None
         The cylinder pressure at that speed; default the engine's trace or synthetic model.
+    vibration_stress : float or None
+        The web bending stress from axial and bending vibration of a calculation of the whole
+        system (Pa; e.g. the beam model's,
+        :attr:`crankdyn.crankshaft.beam_response.BeamResponseResult.web_vibration_stress`), in
+        place of the rule's allowance for it (M53.4(3); :func:`additional_stress_of`); None:
+        the rule's values.
+    vibration_where : str
+        Where it comes from, for the result's source of sigma_add.
+    torsion_where : sequence of str or None
+        Where each throw's M_TN comes from (shaft and speed), for the nominal stresses' table.
+    notes : sequence of str
+        Notes of the caller (e.g. how M_TN was found), added to the result's.
 
     Returns
     -------
@@ -230,6 +253,10 @@ def crankshaft_strength(
         torsion_torque=torsion_torque,
         torsion_stress=torsion_stress,
         crankshaft=shaft,
+        vibration_stress=vibration_stress,
+        vibration_where=vibration_where,
+        torsion_where=torsion_where,
+        notes=notes,
     )
 
 
@@ -320,6 +347,10 @@ def assess(
     torsion_torque: ArrayLike | None = None,
     torsion_stress: ArrayLike | None = None,
     crankshaft: Crankshaft | None = None,
+    vibration_stress: float | None = None,
+    vibration_where: str = "",
+    torsion_where: Sequence[str] | None = None,
+    notes: Sequence[str] = (),
 ) -> CrankshaftResult:
     """Steps 2 to 5 of the check (module docstring) on throw loads already found, e.g. by
     :func:`crankdyn.crankshaft.loads.throw_loads` (as :func:`crankshaft_strength` does) or
@@ -338,6 +369,8 @@ def assess(
         As :func:`crankshaft_strength` (N m, or Pa referred to the crankpin).
     crankshaft : Crankshaft or None
         The crankshaft; default the engine's.
+    vibration_stress, vibration_where, torsion_where, notes
+        As :func:`crankshaft_strength` (Pa, text).
 
     Returns
     -------
@@ -353,7 +386,8 @@ def assess(
     shaft = _shaft(engine, crankshaft)
     torque = _torque_input(engine, shaft, torsion_torque, torsion_stress)
     g, mat = shaft.geometry, shaft.material
-    notes: list[str] = []
+    given_notes = tuple(notes)
+    notes = list(given_notes)
     web, web_note = _web_thickness(engine, shaft)
     if web_note:
         notes.append(web_note)
@@ -378,7 +412,8 @@ def assess(
     if torque is None:
         notes.append("no torsional stress given: Q of bending alone (not the complete check)")
     ke = m53.ke_factor(engine.cycle)
-    stresses = _stresses(shaft, web, ke, factors, loads, m_tn)
+    add, add_source = additional_stress_of(shaft, vibration_stress, vibration_where)
+    stresses = _stresses(shaft, web, ke, factors, loads, m_tn, add)
     strengths = _strengths(shaft)
     if mat.surface_factor > 1.0:
         notes.append(
@@ -424,7 +459,10 @@ def assess(
         beta_t=factors["beta_t"],
         gamma_b=factors["gamma_b"],
         gamma_t=factors["gamma_t"],
-        additional=m53.additional_stress(shaft.engine_type, shaft.axial_vibration_stress),
+        additional=add,
+        additional_source=add_source,
+        vibration_stress=vibration_stress,
+        torsion_where=None if torsion_where is None else tuple(torsion_where),
         strength_pin=float(strengths[0] or math.nan),
         strength_journal=strengths[1],
         strength_oil=strengths[2],
@@ -454,9 +492,11 @@ def _stresses(
     factors: dict[str, float | None],
     loads: ThrowLoads,
     m_tn: NDArray[np.float64],
+    add: float,
 ) -> dict[str, NDArray[np.float64]]:
     """The nominal stresses (2.1.2, 2.2.2), the stresses in the fillets and at the oil bore
-    (2.1.3, 2.1.4, 2.2.3; throw x location) and the equivalent stresses (M53.4, M53.5)."""
+    (2.1.3, 2.1.4, 2.2.3; throw x location) and the equivalent stresses (M53.4 sigma_add
+    ``add``, M53.5)."""
     g = shaft.geometry
     s_bfn, s_qfn = m53.nominal_web_stresses(
         loads.moment_half_range, loads.force_half_range, g.web_width, web, ke
@@ -480,7 +520,6 @@ def _stresses(
     torsion = np.column_stack(
         [times("alpha_t", tau_pin), times("beta_t", tau_journal), times("gamma_t", tau_pin)]
     )
-    add = m53.additional_stress(shaft.engine_type, shaft.axial_vibration_stress)
     equivalent = np.column_stack(
         [
             m53.equivalent_fillet_stress(bending[:, 0], add, torsion[:, 0]),
@@ -498,6 +537,76 @@ def _stresses(
         "torsion": torsion,
         "equivalent": equivalent,
     }
+
+
+def additional_stress_of(
+    shaft: Crankshaft, vibration_stress: float | None = None, where: str = ""
+) -> tuple[float, str]:
+    """sigma_add (M53.4) and where it comes from.
+
+    Without a calculated vibration stress, the rule's: +-10 N/mm^2 for trunk-piston engines,
+    +-30 N/mm^2 for crosshead engines of which 20 from axial vibration, replaced by the
+    crankshaft's ``axial_vibration_stress`` where given (M53.4 [Annex 5-3 4(1)-(3)],
+    :func:`crankdyn.crankshaft.m53.additional_stress`). With the web bending stress from
+    vibration sigma_vib of a calculation of the whole system (the beam model's):
+
+    - crosshead engines: sigma_vib + 10 N/mm^2, the calculated figure in place of the 20 of
+      axial vibration (4(3): "where axial vibration calculation results of the complete dynamic
+      system are available, the calculated figures may be used instead"), the 10 of
+      misalignment and bedplate deformation kept (4(1), notes);
+    - trunk-piston engines: max(10 N/mm^2, sigma_vib). The rule's +-10 covers misalignment,
+      bedplate deformation and axial and bending vibration together and splits off no axial
+      part (4(1)); crankdyn keeps it unless the calculated vibration alone exceeds it
+      (crankdyn's choice, not a formula of the rule: it never lowers the rule's value).
+
+    Parameters
+    ----------
+    shaft : Crankshaft
+        The crankshaft (its engine type and axial vibration stress).
+    vibration_stress : float or None
+        sigma_vib (Pa), or None.
+    where : str
+        Where sigma_vib comes from (e.g. ``"beam model, web 3 at 727 rpm"``).
+
+    Returns
+    -------
+    value : float
+        sigma_add (Pa).
+    source : str
+        Which value was used and its clause, for the result's rows.
+
+    Examples
+    --------
+    >>> from crankdyn.crankshaft.geometry import CrankshaftGeometry, CrankshaftMaterial
+    >>> g = CrankshaftGeometry(0.26, 0.30, 0.115, 0.48, 0.013, 0.015, 0.135)
+    >>> shaft = Crankshaft(g, CrankshaftMaterial(850e6), engine_type="crosshead")
+    >>> additional_stress_of(shaft)[0] / 1e6, additional_stress_of(shaft, 4e6)[0] / 1e6
+    (30.0, 14.0)
+    """
+    rule = m53.additional_stress(shaft.engine_type, shaft.axial_vibration_stress)
+    at = f", {where}" if where else ""
+    if vibration_stress is None:
+        if shaft.axial_vibration_stress is not None:
+            return rule, (
+                f"M53.4(3): {shaft.axial_vibration_stress / 1e6:.4g} MPa axial vibration "
+                "given + 10 MPa misalignment"
+            )
+        return rule, f"rule M53.4: ±{rule / 1e6:.4g} MPa ({shaft.engine_type})"
+    vib = float(vibration_stress)
+    if shaft.engine_type == "crosshead":
+        value = vib + m53.additional_stress("crosshead", 0.0)
+        return value, (
+            f"M53.4(3): {vib / 1e6:.4g} MPa from vibration (beam model{at}) + 10 MPa misalignment"
+        )
+    if vib > rule:
+        return vib, (
+            f"beam model: {vib / 1e6:.4g} MPa from vibration{at}, above the rule's "
+            f"±{rule / 1e6:.4g} MPa (M53.4; crankdyn takes the larger)"
+        )
+    return rule, (
+        f"rule M53.4: ±{rule / 1e6:.4g} MPa (trunk piston), above the beam model's "
+        f"{vib / 1e6:.4g} MPa from vibration{at}"
+    )
 
 
 def _strengths(shaft: Crankshaft) -> list[float | None]:

@@ -22,7 +22,15 @@ from crankdyn.errors import InputError
 from crankdyn.io.files import MAX_CSV_BYTES, display_name, read_text
 from crankdyn.io.units import BARE_SPEED, KINDS, check_si_range, parse_quantity
 
-__all__ = ["CsvTable", "cell_value", "read_csv_table", "split_header_unit", "unit_factor"]
+__all__ = [
+    "CsvTable",
+    "cell_value",
+    "check_row_widths",
+    "csv_rows",
+    "read_csv_table",
+    "split_header_unit",
+    "unit_factor",
+]
 
 _BRACKETED = re.compile(r"^(.*?)\s*[\[(]\s*([^\])]+?)\s*[\])]\s*$")
 _DEGREES = ("deg", "degree", "degrees")
@@ -194,7 +202,19 @@ def cell_value(
     return si
 
 
-def _is_number(text: str) -> bool:
+def is_number(text: str) -> bool:
+    """Whether a cell reads as a number (:class:`float` accepts it).
+
+    Parameters
+    ----------
+    text
+        The cell.
+
+    Returns
+    -------
+    bool
+        True for a number.
+    """
     try:
         float(text)
     except ValueError:
@@ -226,7 +246,7 @@ class CsvTable:
     @property
     def header_is_numeric(self) -> bool:
         """Whether the first line holds numbers (a table without a header)."""
-        return bool(self.header) and _is_number(self.header[0])
+        return bool(self.header) and is_number(self.header[0])
 
     def column(
         self, index: int, factor: float = 1.0, *, kind: str | None = None
@@ -327,23 +347,68 @@ def read_csv_table(
         text = read_text(path, limit=MAX_CSV_BYTES, what=what)
     except InputError as exc:
         raise InputError(exc.message, file=name) from None
+    rows = csv_rows(text)
+    if not rows:
+        raise InputError(empty or f"the {what} is empty", file=name)
+    (header_line, header), data = rows[0], rows[1:]
+    check_row_widths(data, header, name)
+    return CsvTable(name, header_line, header, data)
+
+
+def csv_rows(text: str, first_line: int = 1) -> list[tuple[int, list[str]]]:
+    """The rows of CSV text with their line numbers: comments (lines starting with ``#``),
+    blank lines and rows of blank cells left out, cells stripped, trailing empty cells dropped.
+
+    Parameters
+    ----------
+    text
+        Whole lines of a CSV file (as :meth:`str.splitlines` splits them).
+    first_line
+        The line number of the text's first line (1-based).
+
+    Returns
+    -------
+    list of (int, list of str)
+        (line number, cells) per row.
+
+    Examples
+    --------
+    >>> csv_rows("# c\\ntime [s],reference [s]\\n0.1,0.05\\n\\n0.2,\\n", first_line=3)
+    [(4, ['time [s]', 'reference [s]']), (5, ['0.1', '0.05']), (7, ['0.2'])]
+    """
     # a comment is a line that starts with # as written (a quoted "#1" is a cell)
     lines = [
         (number, line)
-        for number, line in enumerate(text.splitlines(), start=1)
+        for number, line in enumerate(text.splitlines(), start=first_line)
         if line.strip() and not line.lstrip().startswith("#")
     ]
     parsed = ((number, next(csv.reader([line]), [])) for number, line in lines)  # a row a line
     rows = [
         (number, [c.strip() for c in row]) for number, row in parsed if any(map(str.strip, row))
     ]
-    if not rows:
-        raise InputError(empty or f"the {what} is empty", file=name)
-    rows = [(number, _trim(cells)) for number, cells in rows]
-    (header_line, header), data = rows[0], rows[1:]
-    for number, cells in data:
+    return [(number, _trim(cells)) for number, cells in rows]
+
+
+def check_row_widths(rows: list[tuple[int, list[str]]], header: list[str], name: str) -> None:
+    """Refuse a data row with more cells than the header names (a decimal comma?).
+
+    Parameters
+    ----------
+    rows
+        (line number, cells) per data row (:func:`csv_rows`).
+    header
+        The header's cells.
+    name
+        The file as named in messages.
+
+    Raises
+    ------
+    InputError
+        Naming the file, the line and the row.
+    """
+    for number, cells in rows:
         if len(cells) > len(header):
-            named = "the header names" if not _is_number(header[0]) else "the first row has"
+            named = "the header names" if not is_number(header[0]) else "the first row has"
             raise InputError(
                 f"{len(cells)} cells, but {named} {len(header)} columns: column "
                 f"{len(header) + 1} has no name (a decimal comma? write 30.1, not 30,1)",
@@ -351,7 +416,6 @@ def read_csv_table(
                 key=f"line {number}",
                 value=",".join(cells),
             )
-    return CsvTable(name, header_line, header, data)
 
 
 def _trim(cells: list[str]) -> list[str]:

@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
+from functools import partial
 from pathlib import Path
 from typing import Any
 
@@ -13,6 +14,7 @@ from crankdyn.crank.geometry import CrankGeometry
 from crankdyn.crank.masses import ROD_SPLITS, Masses, crank_unbalance_from_parts
 from crankdyn.crank.pressure import ATMOSPHERE, PressureTrace
 from crankdyn.crank.pressure_model import LOAD_KEYS, WiebePressureModel
+from crankdyn.crankshaft.beam_inputs import ADDITIONAL_STRESS_SOURCES, THEORIES, BeamInputs
 from crankdyn.crankshaft.geometry import (
     CONSTRUCTIONS,
     ENGINE_TYPES,
@@ -133,10 +135,15 @@ def parse_engine(
     masses = _masses(root.table("masses"), geometry)
     pressure, crankcase = _pressure(root.table("pressure"), cycle, geometry)
     speed, efficiency = _operating(root.table("operating"))
-    torsion = with_project(root, _torsion(root.table("torsion"), name, geometry, cylinders, masses))
+    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
+    beam = None
+    if crankshaft is not None:
+        beam = partial(_beam_stiffness, crankshaft, geometry.crank_radius, cylinders.pitch, file)
+    torsion = with_project(
+        root, _torsion(root.table("torsion"), name, geometry, cylinders, masses, beam)
+    )
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
-    crankshaft = _crankshaft(root.table("crankshaft"), cylinders.pitch)
     forces = _forces(root.table("forces"))
     if forces is not None and forces.active and masses is None:
         raise root.error("forces", "gravity and piston friction act on the masses: give [masses]")
@@ -387,18 +394,35 @@ _MODEL_KEYS = {
 """Keys of the synthetic pressure model in [pressure] and their kinds (docs/forces.md)."""
 
 
+def _beam_stiffness(
+    crankshaft: Crankshaft, crank_radius: float, pitch: float | None, file: str | None
+) -> float:
+    """The crank span's torsional stiffness (N m/rad) from the beam model of the [crankshaft]
+    throw (:func:`crankdyn.crankshaft.beam_engine.beam_throw_stiffness`), built when asked."""
+    from crankdyn.crankshaft.beam_engine import beam_throw_stiffness
+
+    return beam_throw_stiffness(crankshaft, crank_radius, pitch, file)
+
+
 def _torsion(
     t: Table | None,
     name: str,
     geometry: CrankGeometry,
     cylinders: Cylinders,
     masses: Masses | None,
+    beam: Callable[[], float] | None = None,
 ) -> TorsionModel | None:
-    """The [torsion] section: the lumped torsional model (docs/torsion-file.md)."""
+    """The [torsion] section: the lumped torsional model (docs/torsion-file.md); ``beam``, the
+    crank span's stiffness from the [crankshaft] beam model (N m/rad), when there is one."""
     if t is None:
         return None
     return parse_torsion_section(
-        t, engine_name=name, geometry=geometry, cylinders=cylinders, masses=masses
+        t,
+        engine_name=name,
+        geometry=geometry,
+        cylinders=cylinders,
+        masses=masses,
+        beam_stiffness=beam,
     )
 
 
@@ -547,8 +571,10 @@ def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
     engine_type = t.string("engine_type", "trunk-piston", choices=ENGINE_TYPES)
     construction = t.string("construction", "solid", choices=CONSTRUCTIONS)
     axial = t.quantity("axial_vibration_stress", "pressure", None, check="nonnegative")
+    source = t.string("additional_stress", None, choices=ADDITIONAL_STRESS_SOURCES)
     fit = _shrink_fit(t.table("shrink_fit"))
     factors = _stress_factors(t.table("factors"))
+    beam = _crankshaft_beam(t.table("beam"))
     with _as_written(t):
         geometry = CrankshaftGeometry(**lengths, oil_bore_angle=angle)
         if geometry.bearing_span is None and pitch is not None:
@@ -561,9 +587,50 @@ def _crankshaft(t: Table | None, pitch: float | None) -> Crankshaft | None:
             shrink_fit=fit,
             factors=factors,
             axial_vibration_stress=axial,
+            beam=beam,
+            additional_stress=source,
         )
     t.finish()
     return crankshaft
+
+
+def _crankshaft_beam(t: Table | None) -> BeamInputs | None:
+    """[crankshaft.beam]: the beam model's own inputs (docs/engine-file.md), every key
+    optional."""
+    if t is None:
+        return None
+    values: dict[str, Any] = {
+        "poisson_ratio": t.number("poisson_ratio", 0.3, check="nonnegative", maximum=0.4999),
+        "density": t.quantity("density", "density", 7850.0, check="positive"),
+        "bearing_radial_stiffness": t.quantity(
+            "bearing_radial_stiffness", "stiffness", None, check="nonnegative"
+        ),
+        "bearing_tilting_stiffness": t.quantity(
+            "bearing_tilting_stiffness", "torsional_stiffness", 0.0, check="nonnegative"
+        ),
+        "thrust_axial_stiffness": t.quantity(
+            "thrust_axial_stiffness", "stiffness", None, check="nonnegative"
+        ),
+        "thrust_journal": t.integer("thrust_journal", None, minimum=1),
+        "counterweight_mass": t.quantity("counterweight_mass", "mass", 0.0, check="nonnegative"),
+        "counterweight_radius": t.quantity(
+            "counterweight_radius", "length", None, check="nonnegative"
+        ),
+        "free_end_mass": t.quantity("free_end_mass", "mass", None, check="nonnegative"),
+        "flywheel_mass": t.quantity("flywheel_mass", "mass", None, check="nonnegative"),
+        "free_end_distance": t.quantity("free_end_distance", "length", None, check="nonnegative"),
+        "flywheel_distance": t.quantity("flywheel_distance", "length", None, check="nonnegative"),
+        "axial_damping": t.quantity("axial_damping", "damping", 0.0, check="nonnegative"),
+        "elements": t.integer("elements", 2, minimum=1, maximum=64),
+        "theory": t.string("theory", "timoshenko", choices=THEORIES),
+        "web_rigid_fraction": t.number("web_rigid_fraction", 0.0, check="nonnegative"),
+        "modes": t.integer("modes", 24, minimum=1, maximum=500),
+        "damping_ratio": t.number("damping_ratio", 0.02, check="nonnegative", maximum=1.0),
+    }
+    with _as_written(t):
+        beam = BeamInputs(**values)
+    t.finish()
+    return beam
 
 
 def _shrink_fit(t: Table | None) -> ShrinkFit | None:

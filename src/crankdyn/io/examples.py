@@ -137,7 +137,8 @@ def example_path(name: str, kind: str | None = None) -> Path:
 
 def example_files(name: str, kind: str | None = None) -> list[Path]:
     """The files of a built-in example: its TOML file first, then the files it names (the
-    pressure trace; the excitation's load curve, harmonic table, traces and source tables; the
+    pressure trace; the excitation's load curve, harmonic tables, traces and source tables; the
+    transient events' torque histories; the
     shaft lines joined to an engine and the engine files joined to a line, with the files those
     name in turn), each once.
 
@@ -189,6 +190,9 @@ def _named_files(path: Path, data: dict[str, Any], files: list[Path]) -> None:
     excitation = table(torsion.get("excitation"))
     add(excitation.get("load_curve"))
     add(excitation.get("harmonics"))
+    add(excitation.get("cylinder_harmonics"))
+    for t in entries(table(torsion.get("tvc")).get("event")):
+        add(t.get("file"))
     for t in entries(excitation.get("trace")):
         add(t.get("file"))
     for t in entries(excitation.get("source")):

@@ -9,13 +9,14 @@ uncompressed size of every array checked against :data:`MAX_ARRAY_VALUES` and
 
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import stat
 import tomllib
-from collections.abc import Iterable
+from collections.abc import Iterable, Iterator
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import IO, TYPE_CHECKING
 
 from crankdyn.errors import InputError
 
@@ -28,9 +29,14 @@ __all__ = [
     "MAX_CSV_BYTES",
     "MAX_TOML_BYTES",
     "MAX_TOML_DEPTH",
+    "NPY_HEADER",
+    "check_npy_data",
     "check_regular",
     "display_name",
     "load_toml",
+    "npy_array",
+    "npy_header",
+    "open_regular",
     "parse_toml",
     "read_bytes",
     "read_numpy",
@@ -46,7 +52,8 @@ would let a compressed ``.npz`` of 1 MB unpack to gigabytes)."""
 MAX_ARRAY_VALUES = MAX_ARRAY_BYTES // 8
 """Most values in the arrays of one NumPy file: 4,194,304 (32 MiB of float64; about the
 numbers a 32 MiB CSV table holds)."""
-_NPY_HEADER = 1 << 16  # room for a .npy file's magic and header (numpy caps it at 10,000 bytes)
+NPY_HEADER = 1 << 16
+"""Room for a .npy file's magic and header (bytes; numpy caps it at 10,000)."""
 
 
 def display_name(path: str | Path) -> str:
@@ -117,6 +124,52 @@ def check_regular(path: str | Path, *, what: str = "file") -> None:
         reason = getattr(exc, "strerror", None) or exc
         raise InputError(f"cannot read the {what}: {reason}", file=name) from None
     _refuse_special(mode, name, what)
+
+
+@contextlib.contextmanager
+def open_regular(path: str | Path, *, what: str = "file") -> Iterator[IO[bytes]]:
+    """Open a regular file for reading in binary, checked as :func:`read_bytes` checks it (a
+    FIFO, a device, a socket or a folder refused before it is opened, and again on the open
+    file), for a file read in pieces of bounded size.
+
+    Parameters
+    ----------
+    path
+        The input file.
+    what
+        What the file is, in words, for the message.
+
+    Yields
+    ------
+    typing.IO of bytes
+        The open file; an OS error while it is read becomes an InputError naming the file.
+
+    Raises
+    ------
+    InputError
+        If the file is missing, a directory, not a regular file or unreadable.
+    """
+    name = display_name(path)
+    try:
+        check_regular(path, what=what)
+        fd = os.open(path, os.O_RDONLY | _NONBLOCK | getattr(os, "O_CLOEXEC", 0))
+        handle = os.fdopen(fd, "rb")
+    except InputError:
+        raise
+    except FileNotFoundError:
+        raise InputError(f"no such {what}", file=name) from None
+    except IsADirectoryError:
+        raise InputError(f"is a directory, not a {what}", file=name) from None
+    except (OSError, ValueError) as exc:
+        reason = getattr(exc, "strerror", None) or exc
+        raise InputError(f"cannot read the {what}: {reason}", file=name) from None
+    with handle:
+        try:
+            _refuse_special(os.fstat(handle.fileno()).st_mode, name, what)
+            yield handle
+        except OSError as exc:  # a read failing (the consumer's own errors pass through)
+            reason = getattr(exc, "strerror", None) or exc
+            raise InputError(f"cannot read the {what}: {reason}", file=name) from None
 
 
 def read_bytes(path: str | Path, *, limit: int, what: str = "file") -> bytes:
@@ -300,17 +353,31 @@ def _depth(value: object) -> int:
 # ---- NumPy files ---------------------------------------------------------------------------------
 
 
-def _npy_array(data: bytes, name: str, key: str) -> np.ndarray:
-    """The array of a ``.npy`` file's bytes, its header checked before anything is allocated:
-    a version numpy writes, numbers (no objects, no pickles), at most
-    :data:`MAX_ARRAY_VALUES` values and :data:`MAX_ARRAY_BYTES` bytes, and the data the header
-    claims present in full. The array is a read-only view of ``data`` (no copy)."""
-    import io
+def npy_header(handle: IO[bytes], name: str, key: str) -> tuple[tuple[int, ...], bool, np.dtype]:
+    """The header of a ``.npy`` file (or archive member) read from ``handle``, checked: a
+    version numpy writes, numbers (no objects, no pickles). The handle is left at the data.
 
-    import numpy as np
+    Parameters
+    ----------
+    handle
+        The open file, at its start.
+    name
+        The file as named in messages.
+    key
+        The array, for messages (``"array"``, or an archive member's name).
+
+    Returns
+    -------
+    tuple
+        (shape, Fortran order, dtype) as the header claims them.
+
+    Raises
+    ------
+    InputError
+        For a header numpy cannot read, or an array that is not numbers.
+    """
     from numpy.lib import format as npy
 
-    handle = io.BytesIO(data)
     try:
         version = npy.read_magic(handle)
         if version == (1, 0):
@@ -324,9 +391,77 @@ def _npy_array(data: bytes, name: str, key: str) -> np.ndarray:
         raise InputError(f"not a readable NumPy .npy file ({detail})", file=name, key=key) from None
     if dtype.hasobject or dtype.kind not in "fiu":
         raise InputError("expected numbers", file=name, key=key, value=str(dtype))
-    count = math.prod(int(n) for n in shape)  # Python integers: no overflow
+    return tuple(int(n) for n in shape), bool(fortran), dtype
+
+
+def check_npy_data(shape: tuple[int, ...], dtype: np.dtype, held: int, name: str, key: str) -> int:
+    """The data bytes a header claims, checked against the ``held`` bytes after it (a
+    truncated file refused before anything is read).
+
+    Parameters
+    ----------
+    shape, dtype
+        As the header claims them.
+    held
+        The bytes the file (or member) holds after its header.
+    name, key
+        The file and the array, for messages.
+
+    Returns
+    -------
+    int
+        The values the header claims.
+
+    Raises
+    ------
+    InputError
+        When the file holds less data than the header claims.
+    """
+    count = math.prod(shape)  # Python integers: no overflow
     size = count * dtype.itemsize
-    widest = max((int(n) for n in shape), default=0)  # (0, 10**18): empty, yet unshapeable
+    if held < size:
+        raise InputError(
+            f"the header claims shape {tuple(shape)} ({size:,} bytes of data) and the file "
+            f"holds {held:,} (truncated?)",
+            file=name,
+            key=key,
+        )
+    return count
+
+
+def npy_array(data: bytes, name: str, key: str) -> np.ndarray:
+    """The array of a ``.npy`` file's bytes, its header checked before anything is allocated:
+    a version numpy writes, numbers (no objects, no pickles), at most
+    :data:`MAX_ARRAY_VALUES` values and :data:`MAX_ARRAY_BYTES` bytes, and the data the header
+    claims present in full.
+
+    Parameters
+    ----------
+    data
+        The file's (or archive member's) bytes.
+    name, key
+        The file and the array, for messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        A read-only view of ``data`` (no copy), of the header's shape and type.
+
+    Raises
+    ------
+    InputError
+        For an unreadable header, an array that is not numbers, a claim beyond the bounds or
+        more data than the bytes hold.
+    """
+    import io
+
+    import numpy as np
+
+    handle = io.BytesIO(data)
+    shape, fortran, dtype = npy_header(handle, name, key)
+    count = math.prod(shape)  # Python integers: no overflow
+    size = count * dtype.itemsize
+    widest = max(shape, default=0)  # (0, 10**18): empty, yet unshapeable
     if count > MAX_ARRAY_VALUES or size > MAX_ARRAY_BYTES or widest > MAX_ARRAY_VALUES:
         raise InputError(
             f"the header claims shape {tuple(shape)}: {count:,} values ({size:,} bytes); "
@@ -336,13 +471,7 @@ def _npy_array(data: bytes, name: str, key: str) -> np.ndarray:
             key=key,
         )
     start = handle.tell()
-    if len(data) - start < size:
-        raise InputError(
-            f"the header claims shape {tuple(shape)} ({size:,} bytes of data) and the file "
-            f"holds {len(data) - start:,} (truncated?)",
-            file=name,
-            key=key,
-        )
+    check_npy_data(shape, dtype, len(data) - start, name, key)
     flat = np.frombuffer(data, dtype=dtype, count=count, offset=start)
     return flat.reshape(shape, order="F" if fortran else "C")
 
@@ -385,8 +514,8 @@ def read_numpy(
 
     name = display_name(path)
     if Path(path).suffix.lower() != ".npz":
-        data = read_bytes(path, limit=MAX_ARRAY_BYTES + _NPY_HEADER, what=what)
-        return _npy_array(data, name, "array")
+        data = read_bytes(path, limit=MAX_ARRAY_BYTES + NPY_HEADER, what=what)
+        return npy_array(data, name, "array")
     data = read_bytes(path, limit=MAX_CSV_BYTES, what=what)
     allowed = None if names is None else list(names)
     arrays: dict[str, np.ndarray] = {}
@@ -401,7 +530,7 @@ def read_numpy(
                         file=name,
                     )
             declared = sum(info.file_size for info in members)
-            if declared > MAX_ARRAY_BYTES + len(members) * _NPY_HEADER:
+            if declared > MAX_ARRAY_BYTES + len(members) * NPY_HEADER:
                 raise InputError(
                     f"the archive unpacks to {declared:,} bytes; crankdyn reads at most "
                     f"{MAX_ARRAY_BYTES >> 20} MiB of arrays from a NumPy file",
@@ -411,8 +540,8 @@ def read_numpy(
             for info in members:
                 key = info.filename.removesuffix(".npy")
                 with archive.open(info) as member:  # stops at the declared size
-                    raw = member.read(MAX_ARRAY_BYTES + _NPY_HEADER + 1)
-                array = _npy_array(raw, name, key)
+                    raw = member.read(MAX_ARRAY_BYTES + NPY_HEADER + 1)
+                array = npy_array(raw, name, key)
                 total += array.size
                 if total > MAX_ARRAY_VALUES:
                     raise InputError(

@@ -10,31 +10,66 @@ or once-per-cycle mark; it is shorter than the others, its cells blank after the
 NumPy (SI, no units to name): ``.npy`` with one column of pulse times (s), or two columns of
 sample times (s) and speeds (rad/s); ``.npz`` with arrays ``time`` (s), optionally ``speed``
 (rad/s) and ``reference`` (s).
+
+Pulse records of any length are read in chunks (:func:`open_signal`: a
+:class:`~crankdyn.measure.records.PulseRecord`; CSV by :mod:`crankdyn.io.csv_chunks`, NumPy
+files :data:`CHUNK_VALUES` values at a time, their headers checked before anything is read);
+a sampled speed signal is read whole, at most :data:`MAX_SPEED_SAMPLES` samples.
 """
 
 from __future__ import annotations
 
-import math
+import contextlib
+import os
+import zipfile
+from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
+from typing import IO, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.io.csv_tables import CsvTable, read_csv_table, split_header_unit, unit_factor
-from crankdyn.io.files import display_name, read_numpy
-from crankdyn.io.units import SI_RANGE, check_si_range
+from crankdyn.io.csv_chunks import CsvBlock, CsvHeader, csv_blocks, csv_header, sparse_column
+from crankdyn.io.csv_tables import is_number, read_csv_table, split_header_unit, unit_factor
+from crankdyn.io.files import (
+    MAX_ARRAY_BYTES,
+    MAX_ARRAY_VALUES,
+    NPY_HEADER,
+    check_npy_data,
+    display_name,
+    npy_array,
+    npy_header,
+    open_regular,
+    read_numpy,
+)
+from crankdyn.io.units import SI_RANGE
+from crankdyn.measure.records import PulseChunk, PulseRecord
 from crankdyn.measure.signals import PulseTrain, SpeedSignal
 from crankdyn.measure.torque import TorqueRecord
 
-__all__ = ["COLUMNS", "TORQUE_COLUMNS", "read_signal", "read_torque_record", "resolve_signal"]
+__all__ = [
+    "CHUNK_VALUES",
+    "COLUMNS",
+    "MAX_SPEED_SAMPLES",
+    "TORQUE_COLUMNS",
+    "open_signal",
+    "read_signal",
+    "read_torque_record",
+    "resolve_signal",
+]
+
+CHUNK_VALUES = 1 << 18
+"""Values read at a time from a NumPy signal file (2 MiB of float64)."""
+MAX_SPEED_SAMPLES = MAX_ARRAY_VALUES
+"""The most samples of a sampled speed signal (4,194,304), which is read and resampled whole
+(:meth:`crankdyn.measure.signals.SpeedSignal.to_pulses`)."""
 
 COLUMNS = {"time": "time", "speed": "speed", "reference": "time"}
 """The columns a signal file may hold, with the kind of quantity of each."""
 
 
-def resolve_signal(spec: str, teeth: int | None) -> PulseTrain | SpeedSignal:
+def resolve_signal(spec: str, teeth: int | None) -> PulseTrain | PulseRecord | SpeedSignal:
     """A SIGNAL argument: a CSV/NumPy file, or the name of a built-in example signal.
 
     Parameters
@@ -47,15 +82,16 @@ def resolve_signal(spec: str, teeth: int | None) -> PulseTrain | SpeedSignal:
 
     Returns
     -------
-    PulseTrain or SpeedSignal
-        The pulse times (s) of a toothed wheel, or sampled speeds (rad/s) at sample times (s).
+    PulseTrain, PulseRecord or SpeedSignal
+        The pulse times (s) of a toothed wheel (a built-in signal's in memory, a file's read in
+        chunks: :func:`open_signal`), or sampled speeds (rad/s) at sample times (s).
 
     Raises
     ------
     InputError
         For a name that is neither a file nor a built-in signal (``key="SIGNAL"``), a
         ``teeth`` other than the built-in signal's (``key="--teeth"``), or any error of
-        :func:`read_signal`.
+        :func:`open_signal`.
     """
     from crankdyn.measure.examples import EXAMPLES, TEETH, example_signal
 
@@ -73,12 +109,47 @@ def resolve_signal(spec: str, teeth: int | None) -> PulseTrain | SpeedSignal:
             key="SIGNAL",
             value=spec,
         )
-    return read_signal(path, teeth)
+    return open_signal(path, teeth)
+
+
+def open_signal(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
+    """Open a signal file (module docstring): pulse times as a record read in chunks (needs
+    ``teeth``; any length, never held whole), a sampled speed signal read whole.
+
+    Parameters
+    ----------
+    path
+        A CSV file (unit-annotated header), a ``.npy`` or a ``.npz`` file (SI).
+    teeth
+        Pulses per revolution of the wheel (needed for pulse times; for a speed signal the
+        angle samples per revolution of the resampling, or None for the default).
+
+    Returns
+    -------
+    PulseRecord or SpeedSignal
+        The pulse times (s) with their reference marks (s), read as the record is read; or
+        sampled speeds (rad/s) at their sample times (s).
+
+    Raises
+    ------
+    InputError
+        On an unreadable or malformed file or header, an unknown column or array, a missing
+        unit, pulse times without ``teeth`` or a speed signal of more than
+        :data:`MAX_SPEED_SAMPLES` samples (here); on non-numeric or out-of-range values and
+        times that do not increase when the record is read; naming the file, the line or
+        array (``key``) and the value.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix == ".npy":
+        return _open_npy(path, teeth)
+    if suffix == ".npz":
+        return _open_npz(path, teeth)
+    return _open_csv(path, teeth)
 
 
 def read_signal(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
-    """Read a signal file (module docstring) as a PulseTrain (needs ``teeth``) or a
-    SpeedSignal.
+    """Read a signal file (module docstring) whole, as a PulseTrain (needs ``teeth``) or a
+    SpeedSignal (:func:`open_signal` reads a long record in chunks instead).
 
     Parameters
     ----------
@@ -101,39 +172,40 @@ def read_signal(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal
         non-numeric or out-of-range values, or pulse times without ``teeth``; naming the file,
         the line or array (``key``) and the value.
     """
-    suffix = Path(path).suffix.lower()
-    if suffix == ".npy":
-        return _read_npy(path, teeth)
-    if suffix == ".npz":
-        return _read_npz(path, teeth)
-    return _read_csv(path, teeth)
+    signal = open_signal(path, teeth)
+    return signal.train() if isinstance(signal, PulseRecord) else signal
 
 
-def _pulses(name: str, times: NDArray[np.float64], teeth: int | None, **kw: Any) -> PulseTrain:
+def _need_teeth(name: str, teeth: int | None) -> int:
     if teeth is None:
         raise InputError(
             "pulse times need --teeth N, the pulses per revolution of the wheel", file=name
         )
-    return PulseTrain(times, teeth, source=name, **kw)
+    return teeth
 
 
-def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
-    name = display_name(path)
-    table = read_csv_table(path, what="signal file")
-    if table.header_is_numeric:
+def _pulses(name: str, times: NDArray[np.float64], teeth: int | None, **kw: Any) -> PulseTrain:
+    return PulseTrain(times, _need_teeth(name, teeth), source=name, **kw)
+
+
+# ---- CSV ----------------------------------------------------------------------------------------
+
+
+def _csv_columns(header: CsvHeader) -> dict[str, tuple[int, float]]:
+    """{column: (index, SI factor)} of a signal file's header, each column checked."""
+    name = header.name
+    if is_number(header.cells[0]):
         raise InputError(
             "the first line must name the columns with their units, e.g. time [s] (pulse "
             "times) or time [s],speed [rpm] (a speed signal)",
             file=name,
-            key=f"line {table.header_line}",
+            key=f"line {header.line}",
         )
     index: dict[str, tuple[int, float]] = {}
-    for i, cell in enumerate(table.header):
+    for i, cell in enumerate(header.cells):
         label, unit = split_header_unit(cell)
         key = label.strip().lower()
         if key not in COLUMNS:
-            from crankdyn.errors import did_you_mean
-
             raise InputError(
                 f"unknown column {label!r}{did_you_mean(key, COLUMNS)} (a signal file has "
                 f"{', '.join(COLUMNS)})",
@@ -145,12 +217,7 @@ def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
             raise InputError(f"the column {key} appears twice", file=name, key="header", value=cell)
         kind = COLUMNS[key]
         example, quantity = (
-            ("time [s]", "a time")
-            if kind == "time"
-            else (
-                "speed [rpm]",
-                "a rotational speed",
-            )
+            ("time [s]", "a time") if kind == "time" else ("speed [rpm]", "a rotational speed")
         )
         factor = unit_factor(
             cell,
@@ -165,63 +232,78 @@ def _read_csv(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:
         raise InputError(
             "the signal file needs a time column, e.g. time [s]", file=name, key="header"
         )
-    if not table.rows:
-        raise InputError("the signal file holds no data", file=name)
-    lines = np.array([number for number, _ in table.rows])
-    col, factor = index["time"]
-    times = table.column(col, factor, kind="time")
-    reference = reference_lines = None
-    if "reference" in index:
-        reference, reference_lines = _reference_column(table, *index["reference"])
+    return index
+
+
+def _open_csv(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
+    name = display_name(path)
+    header = csv_header(path, name, "signal file")
+    if header is None:
+        raise InputError("the signal file is empty", file=name)
+    index = _csv_columns(header)
+    dense = {index["time"][0]: (index["time"][1], "time")}
     if "speed" in index:
-        col_s, factor_s = index["speed"]
-        speed = table.column(col_s, factor_s, kind="speed")
-        return SpeedSignal(
-            times,
-            speed,
-            reference=reference,
-            source=name,
-            lines=lines,
-            reference_lines=reference_lines,
-        )
-    return _pulses(
-        name, times, teeth, reference=reference, lines=lines, reference_lines=reference_lines
+        dense[index["speed"][0]] = (index["speed"][1], "speed")
+    sparse = {index["reference"][0]: index["reference"][1]} if "reference" in index else {}
+
+    def blocks() -> Iterator[CsvBlock]:
+        rows = 0
+        for block in csv_blocks(path, header, dense, sparse, "signal file"):
+            rows += block.lines.size
+            yield block
+        if not rows:
+            raise InputError("the signal file holds no data", file=name)
+
+    if "speed" in index:
+        return _speed_csv(name, blocks(), index)
+    time_col = index["time"][0]
+    ref_col = index["reference"][0] if "reference" in index else None
+
+    def read() -> Iterator[PulseChunk]:
+        for block in blocks():
+            marks = mark_lines = None
+            if ref_col is not None and block.sparse[ref_col][0].size:
+                marks, mark_lines = block.sparse[ref_col]
+            if block.lines.size or marks is not None:
+                yield PulseChunk(block.values[time_col], block.lines, marks, mark_lines)
+
+    return PulseRecord(read, _need_teeth(name, teeth), name)
+
+
+def _speed_csv(
+    name: str, blocks: Iterator[CsvBlock], index: dict[str, tuple[int, float]]
+) -> SpeedSignal:
+    """A sampled speed signal read whole (at most :data:`MAX_SPEED_SAMPLES` samples)."""
+    t_col, s_col = index["time"][0], index["speed"][0]
+    ref_col = index["reference"][0] if "reference" in index else None
+    times, speed, lines, marks, mark_lines = [], [], [], [], []
+    count = 0
+    for block in blocks:
+        count += block.lines.size
+        if count > MAX_SPEED_SAMPLES:
+            raise _too_many_samples(name)
+        times.append(block.values[t_col])
+        speed.append(block.values[s_col])
+        lines.append(block.lines)
+        if ref_col is not None:
+            marks.append(block.sparse[ref_col][0])
+            mark_lines.append(block.sparse[ref_col][1])
+    return SpeedSignal(
+        np.concatenate(times),
+        np.concatenate(speed),
+        reference=np.concatenate(marks) if ref_col is not None else None,
+        source=name,
+        lines=np.concatenate(lines),
+        reference_lines=np.concatenate(mark_lines) if ref_col is not None else None,
     )
 
 
-def _reference_column(
-    table: CsvTable, col: int, factor: float
-) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
-    """The mark times of a reference column (s), shorter than the others (blank cells after
-    the last mark), with their lines."""
-    name = table.name
-    values, lines = [], []
-    for number, row in table.rows:
-        cell = row[col].strip() if col < len(row) else ""
-        if not cell:
-            continue
-        try:
-            value = float(cell)
-        except ValueError:
-            value = math.nan
-        if not math.isfinite(value):
-            raise InputError(
-                "not a finite number in column 'reference'",
-                file=name,
-                key=f"line {number}",
-                value=cell,
-            )
-        if not check_si_range(value * factor):
-            raise InputError(
-                f"{value * factor:.3g} s in column 'reference' lies outside the range "
-                "crankdyn computes with (1e-12 to 1e12 in SI units, or 0); check the unit",
-                file=name,
-                key=f"line {number}",
-                value=cell,
-            )
-        values.append(value * factor)
-        lines.append(number)
-    return np.array(values), np.array(lines, dtype=np.int64)
+def _too_many_samples(name: str) -> InputError:
+    return InputError(
+        f"a sampled speed signal holds at most {MAX_SPEED_SAMPLES:,} samples (crankdyn "
+        "resamples it whole; a pulse record may be of any length)",
+        file=name,
+    )
 
 
 TORQUE_COLUMNS = {"torque": "torque", "time": "time", "crank_angle": "angle", "reference": "time"}
@@ -323,7 +405,7 @@ def _torque_csv(path: str | Path, name: str) -> dict[str, NDArray[np.float64]]:
     out = {}
     for key, (col, factor) in index.items():
         if key == "reference":
-            out[key] = _reference_column(table, col, factor)[0]
+            out[key] = sparse_column(table, col, factor)[0]
         else:
             out[key] = table.column(col, factor, kind=TORQUE_COLUMNS[key])
     return out
@@ -350,6 +432,134 @@ def _float_array(name: str, key: str, value: Any) -> NDArray[np.float64]:
             value=float(arr.ravel()[k]),
         )
     return arr
+
+
+def _checked(name: str, key: str, raw: NDArray[Any], offset: int) -> NDArray[np.float64]:
+    """Values read from a NumPy file as numbers in SI units (:func:`_float_array`); ``offset``
+    is the array's index of ``raw[0]``, for the message."""
+    arr = raw.astype(float)
+    magnitude = np.abs(arr)
+    bad = ~np.isfinite(arr) | (
+        (magnitude != 0.0) & ((magnitude < SI_RANGE[0]) | (magnitude > SI_RANGE[1]))
+    )
+    if np.any(bad):
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(
+            "not a finite number within the range crankdyn computes with (1e-12 to 1e12 in SI "
+            f"units, or 0) at index {offset + k}",
+            file=name,
+            key=key,
+            value=float(arr[k]),
+        )
+    return arr
+
+
+def _values(
+    handle: IO[bytes], dtype: np.dtype, count: int, name: str, key: str
+) -> Iterator[NDArray[np.float64]]:
+    """The ``count`` values after a NumPy header, :data:`CHUNK_VALUES` at a time, checked."""
+    done = 0
+    while done < count:
+        n = min(CHUNK_VALUES, count - done)
+        data = handle.read(n * dtype.itemsize)
+        if len(data) < n * dtype.itemsize:
+            raise InputError(
+                f"the file ends after {done + len(data) // dtype.itemsize:,} of the {count:,} "
+                "values its header claims (truncated?)",
+                file=name,
+                key=key,
+            )
+        yield _checked(name, key, np.frombuffer(data, dtype=dtype), done)
+        done += n
+
+
+def _open_npy(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
+    name = display_name(path)
+    with open_regular(path, what="signal file") as handle:
+        shape, _, dtype = npy_header(handle, name, "array")
+        start = handle.tell()
+        held = os.fstat(handle.fileno()).st_size - start
+    if len(shape) != 1:  # a speed signal (or a wrong shape): read whole, bounded
+        return _whole(_read_npy(path, teeth))
+    count = check_npy_data(shape, dtype, held, name, "array")
+
+    def read() -> Iterator[PulseChunk]:
+        with open_regular(path, what="signal file") as handle:
+            handle.seek(start)
+            for times in _values(handle, dtype, count, name, "array"):
+                yield PulseChunk(times)
+
+    return PulseRecord(read, _need_teeth(name, teeth), name)
+
+
+def _open_npz(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
+    """A ``.npz`` of pulse times: its ``time`` array read in chunks, its ``reference`` whole
+    (each header checked before anything is read); a speed signal read whole."""
+    name = display_name(path)
+    with _archive(path, name) as archive:
+        members = {info.filename.removesuffix(".npy"): info for info in archive.infolist()}
+        for key in members:
+            if key not in COLUMNS:
+                raise InputError(
+                    f"unknown array {key!r} (the archive may hold {', '.join(COLUMNS)})",
+                    file=name,
+                )
+        if "time" not in members:
+            raise InputError("the archive needs an array named time (s)", file=name)
+        if "speed" in members:
+            return _whole(_read_npz(path, teeth))
+        with archive.open(members["time"]) as member:
+            shape, _, dtype = npy_header(member, name, "time")
+            held = members["time"].file_size - member.tell()
+        if len(shape) != 1:
+            return _whole(_read_npz(path, teeth))  # (its message)
+        count = check_npy_data(shape, dtype, held, name, "time")
+        reference = None
+        if "reference" in members:
+            info = members["reference"]
+            if info.file_size > MAX_ARRAY_BYTES + NPY_HEADER:
+                raise InputError(
+                    f"the reference array unpacks to {info.file_size:,} bytes; crankdyn reads "
+                    f"at most {MAX_ARRAY_BYTES >> 20} MiB of it",
+                    file=name,
+                    key="reference",
+                )
+            with archive.open(info) as member:
+                raw = member.read(MAX_ARRAY_BYTES + NPY_HEADER + 1)
+            reference = _float_array(name, "reference", npy_array(raw, name, "reference"))
+    teeth = _need_teeth(name, teeth)
+
+    def read() -> Iterator[PulseChunk]:
+        with _archive(path, name) as archive, archive.open("time.npy") as member:
+            npy_header(member, name, "time")
+            marks = reference
+            for times in _values(member, dtype, count, name, "time"):
+                yield PulseChunk(times, reference=marks)
+                marks = None
+
+    return PulseRecord(read, teeth, name)
+
+
+def _whole(signal: PulseTrain | SpeedSignal) -> PulseRecord | SpeedSignal:
+    """A signal read whole, pulse times as a record (of one chunk)."""
+    return PulseRecord.from_train(signal) if isinstance(signal, PulseTrain) else signal
+
+
+@contextlib.contextmanager
+def _archive(path: str | Path, name: str) -> Iterator[zipfile.ZipFile]:
+    """An ``.npz`` archive open for reading; its errors one line naming the file."""
+    import zlib
+
+    with open_regular(path, what="signal file") as handle:
+        try:
+            with zipfile.ZipFile(handle) as archive:
+                yield archive
+        except InputError:
+            raise
+        except (zipfile.BadZipFile, zlib.error, OSError, EOFError, ValueError, KeyError,
+                NotImplementedError, RuntimeError) as exc:  # fmt: skip
+            detail = " ".join(str(exc).split())[:80]
+            raise InputError(f"not a readable NumPy .npz file ({detail})", file=name) from None
 
 
 def _read_npy(path: str | Path, teeth: int | None) -> PulseTrain | SpeedSignal:

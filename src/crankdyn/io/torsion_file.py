@@ -10,15 +10,17 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import load_toml
+from crankdyn.io.plausibility import role_of, section_of
 from crankdyn.io.project_file import with_project
 from crankdyn.io.schema import MISSING, Table
+from crankdyn.io.units import check_si_range
 from crankdyn.torsion.coupling import Coupling
 from crankdyn.torsion.elements import (
     GEAR_DIRECTIONS,
@@ -176,6 +178,7 @@ def parse_torsion_section(
     geometry: CrankGeometry,
     cylinders: Cylinders,
     masses: Masses | None,
+    beam_stiffness: Callable[[], float] | None = None,
 ) -> TorsionModel:
     """The engine file's [torsion] section (explicit masses, and/or [torsion.throws]).
 
@@ -191,6 +194,10 @@ def parse_torsion_section(
         The engine's cylinders (count, cycle, firing), for the excitation.
     masses
         The engine's reciprocating and rotating masses (kg), or None.
+    beam_stiffness
+        The crank span's torsional stiffness (N m/rad) from the beam model of the engine's
+        ``[crankshaft]`` (:func:`crankdyn.crankshaft.beam_engine.beam_throw_stiffness`), for
+        ``[torsion.throws] stiffness = "beam"``; None without a ``[crankshaft]``.
 
     Returns
     -------
@@ -203,15 +210,23 @@ def parse_torsion_section(
         As :func:`parse_torsion_model`, and for cylinders that do not exist or share a throw
         but not a mass; naming the file, the key and the value.
     """
-    model = _read(t, default_name=engine_name, engine=(geometry, cylinders, masses))
+    model = _read(
+        t, default_name=engine_name, engine=(geometry, cylinders, masses), beam=beam_stiffness
+    )
     t.finish()
     return model
 
 
-def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> TorsionModel:
+def _read(
+    t: Table,
+    *,
+    default_name: str,
+    engine: EngineParts | None,
+    beam: Callable[[], float] | None = None,
+) -> TorsionModel:
     name = t.string("name", default_name)
     mass_tables = t.tables("mass")
-    masses = [_mass(mt) for mt in mass_tables]
+    masses = [_plain_mass(mt) or _mass(mt) for mt in mass_tables]
     throws_table = t.table("throws")
     if throws_table is not None and engine is None:
         raise t.error(
@@ -230,7 +245,7 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
             raise throws_table.error(
                 None, "the crank throws need the engine's [masses] (reciprocating and rotating)"
             )
-        spec = _throws(throws_table)
+        spec = _throws(throws_table, beam)
         throw_names = [throw_name(i) for i in range(1, cylinders.throw_count + 1)]
 
     # names: unique, and known to the shafts and gears
@@ -241,6 +256,7 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
             raise mt.error("name", f"{what} has this name already", m.name)
         seen[m.name] = mt
     known = [*seen, *throw_names]
+    names = frozenset(known)
     if engine is not None:
         _check_cylinders(mass_tables, masses, engine[1], bool(throw_names))
     else:
@@ -248,13 +264,13 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
 
     shafts = []
     for st in t.tables("shaft"):
-        shaft = _shaft(st)
-        _check_ends(st, shaft.between, known)
+        shaft = _plain_shaft(st) or _shaft(st)
+        _check_ends(st, shaft.between, known, names)
         shafts.append(shaft)
     gears = []
     for gt in t.tables("gear"):
         gear = _gear(gt)
-        _check_ends(gt, gear.between, known)
+        _check_ends(gt, gear.between, known, names)
         gears.append(gear)
 
     with t.context():
@@ -288,14 +304,26 @@ def _read(t: Table, *, default_name: str, engine: EngineParts | None) -> Torsion
     model = read_response_sections(t, model, engine)
     # drivelines: shaft lines joined to an engine, engines joined to a line
     if engine is not None:
-        return _join_lines(t, model)
+        return _tvc_events(t, _join_lines(t, model))
     if t.has("input"):
         line_input = t.string("input")
         if line_input not in model.mass_names:
             raise t.error(
                 "input", f'no mass named "{line_input}"{did_you_mean(line_input, model.mass_names)}'
             )
-    return model
+    return _tvc_events(t, model)
+
+
+def _tvc_events(t: Table, model: TorsionModel) -> TorsionModel:
+    """The model with the ``[[tvc.event]]`` events of its ``[tvc]``, read with the whole model
+    (:func:`crankdyn.io.tvc_file.read_tvc_events`)."""
+    tt = t.table("tvc")
+    if tt is None or "event" not in tt.data or model.tvc is None:
+        return model
+    from crankdyn.io.tvc_file import read_tvc_events
+
+    events = read_tvc_events(tt, model)
+    return dataclasses.replace(model, tvc=dataclasses.replace(model.tvc, events=events))
 
 
 # ---- drivelines ---------------------------------------------------------------------------------
@@ -374,9 +402,14 @@ def _join_lines(t: Table, model: TorsionModel) -> TorsionModel:
     return model
 
 
-def _check_ends(t: Table, ends: tuple[str, str], known: list[str]) -> None:
+def _check_ends(
+    t: Table, ends: tuple[str, str], known: list[str], names: set[str] | frozenset[str]
+) -> None:
+    """Both ends of a shaft or gear are masses (``names``, a set: a look-up per end, so that a
+    model file is read in time linear in its size) or ground; ``known`` in order, for the
+    did-you-mean."""
     for end in ends:
-        if end != GROUND and end not in known:
+        if end != GROUND and end not in names:
             raise t.error("between", f'no mass named "{end}"{did_you_mean(end, known)}', list(ends))
 
 
@@ -439,6 +472,85 @@ def _check_firing_count(t: Table, tables: Sequence[Table], masses: Sequence[Mass
             )
 
 
+# ---- the plain entries of a long model: read directly ---------------------------------------
+# A long model (a subdivided shaft line, a detailed crank model) is thousands of entries like
+# {name = "m12", inertia = 0.5} and {between = ["m12", "m13"], stiffness = 2.1e6}: numbers in
+# SI. Such an entry is read directly, with the checks the Table reader makes (a plain number,
+# finite, in the SI range, of the right sign, plausible for its role); any other entry, and any
+# entry the checks or the element refuse, goes through the Table reader (_mass, _shaft), which
+# reads it the same way, records its plausibility warnings or names the file, the entry and the
+# key in its error.
+_PLAIN_MASS_KEYS = frozenset({"name", "inertia", "damping"})
+_PLAIN_SHAFT_KEYS = frozenset({"between", "stiffness", "damping", "loss_factor"})
+_KINDS = {
+    "inertia": "inertia",
+    "stiffness": "torsional_stiffness",
+    "damping": "torsional_damping",
+    "loss_factor": "ratio",
+}
+"""The kind of each plain key, as the Table reader reads it (``loss_factor`` a plain number)."""
+
+
+def _plain(t: Table, key: str, positive: bool) -> float | None:
+    """The value of ``key`` in ``t`` as the Table reader takes a bare number
+    (:meth:`Table.quantity` of an SI number, :meth:`Table.number`): not a bool, finite, 0 or
+    in the SI range, > 0 when ``positive`` else >= 0, plausible for its role
+    (:func:`crankdyn.io.plausibility.role_of`); 0.0 when absent (the readers' default); None
+    otherwise (the Table reader then reads it, warns or refuses)."""
+    if key not in t.data:
+        return 0.0
+    value = t.data[key]
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return None
+    number = float(value)
+    if not math.isfinite(number) or not check_si_range(number):
+        return None
+    if not (number > 0.0 or (number == 0.0 and not positive)):
+        return None
+    role = role_of(_KINDS[key], key, section_of(t.name))
+    return number if role is None or role.holds(number) else None
+
+
+def _plain_mass(t: Table) -> Mass | None:
+    """A ``[[mass]]`` entry of a name, a bare inertia and damping, read directly (above); None
+    for any other, or one the checks or :class:`Mass` refuse."""
+    if not _PLAIN_MASS_KEYS.issuperset(t.data) or "inertia" not in t.data:
+        return None
+    name = t.data.get("name")
+    inertia = _plain(t, "inertia", True)
+    damping = _plain(t, "damping", False)
+    if not isinstance(name, str) or inertia is None or damping is None:
+        return None
+    try:
+        return Mass(name=name, inertia=inertia, damping=damping)
+    except InputError:
+        return None
+
+
+def _plain_shaft(t: Table) -> Shaft | None:
+    """A ``[[shaft]]`` entry of two ends, a bare stiffness, damping and loss factor, read
+    directly (above); None for any other, or one the checks or :class:`Shaft` refuse."""
+    if not _PLAIN_SHAFT_KEYS.issuperset(t.data) or "stiffness" not in t.data:
+        return None
+    between = t.data.get("between")
+    stiffness = _plain(t, "stiffness", True)
+    damping = _plain(t, "damping", False)
+    loss = _plain(t, "loss_factor", False)
+    if (
+        not isinstance(between, list)
+        or len(between) != 2
+        or not all(isinstance(end, str) for end in between)
+        or stiffness is None
+        or damping is None
+        or loss is None
+    ):
+        return None
+    try:
+        return Shaft(between=tuple(between), stiffness=stiffness, damping=damping, loss_factor=loss)
+    except InputError:
+        return None
+
+
 def _mass(t: Table) -> Mass:
     name = t.string("name")
     role = t.string("role", None, choices=MASS_ROLES)
@@ -490,6 +602,8 @@ _COUPLING_KEYS = (
     "nominal_torque",
     "maximum_torque",
     "vibratory_torque",
+    "maximum_torque_1",
+    "maximum_torque_2",
     "power_loss",
     "designation",
 )
@@ -624,7 +738,13 @@ def _coupling(t: Table) -> Coupling:
     zeta = t.number("damping_ratio", None, check="positive")
     values = {
         key: t.quantity(key, "torque", None, check="positive")
-        for key in ("nominal_torque", "maximum_torque", "vibratory_torque")
+        for key in (
+            "nominal_torque",
+            "maximum_torque",
+            "vibratory_torque",
+            "maximum_torque_1",
+            "maximum_torque_2",
+        )
     }
     reference = t.quantity("reference_torque", "torque", None, check="nonnegative")
     power = t.quantity("power_loss", "power", None, check="positive")
@@ -694,7 +814,23 @@ def _gear(t: Table) -> Gear:
     return gear
 
 
-def _throws(t: Table) -> ThrowSpec:
+def _span_stiffness(t: Table, beam: Callable[[], float] | None) -> float | None:
+    """[torsion.throws] stiffness (N m/rad): a quantity, or "beam", the beam model's."""
+    value = t.data.get("stiffness")
+    if not (isinstance(value, str) and value.strip().lower() == "beam"):
+        return t.quantity("stiffness", "torsional_stiffness", None, check="positive")
+    t.string("stiffness")
+    if beam is None:
+        raise t.error(
+            "stiffness",
+            "\"beam\" takes the crank span's stiffness from the beam model of the engine file's "
+            "[crankshaft] section, which this file does not have",
+            value,
+        )
+    return beam()
+
+
+def _throws(t: Table, beam: Callable[[], float] | None = None) -> ThrowSpec:
     inertia = t.quantity("inertia", "inertia", check="nonnegative")
     model = t.string("model", "throw", choices=THROW_MODELS)
     parts = None
@@ -716,7 +852,7 @@ def _throws(t: Table) -> ThrowSpec:
         for key in _PART_KEYS:
             if t.has(key):
                 raise t.error(key, 'applies with model = "parts"', t.data[key])
-    stiffness = t.quantity("stiffness", "torsional_stiffness", None, check="positive")
+    stiffness = _span_stiffness(t, beam)
     given = [k for k in (*_CARTER_KEYS, "journal_bore", "pin_bore") if t.has(k)]
     geometry = None
     if stiffness is not None and given:

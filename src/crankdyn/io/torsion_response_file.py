@@ -30,7 +30,7 @@ if TYPE_CHECKING:
 __all__ = ["read_response_sections"]
 
 _ENGINE_ONLY = ("load_curve", "harmonics", "imep", "misfire", "trace")
-_MODEL_ONLY = ("cycle", "firing_order", "firing_angles", "torque")
+_MODEL_ONLY = ("cycle", "firing_order", "firing_angles", "torque", "cylinder_harmonics")
 
 
 def read_response_sections(
@@ -40,8 +40,9 @@ def read_response_sections(
     range read from table ``t`` (a model file's top level or an engine's [torsion] section).
 
     Tables (docs/torsion-file.md, ``crankdyn docs torsion-file``): ``[excitation]`` (a model's
-    cycle, firing and torque in N m, or an engine's load curve, harmonic table, imep in Pa,
-    misfiring cylinders and ``[[excitation.trace]]`` pressure traces at speeds in rad/s; the
+    cycle, firing and torque in N m or the cylinders' harmonic table, ``cylinder_harmonics``;
+    or an engine's load curve, harmonic table, imep in Pa, misfiring cylinders and
+    ``[[excitation.trace]]`` pressure traces at speeds in rad/s; the
     ``[[excitation.propeller]]``, ``machine`` and ``source`` entries with torques in N m and
     powers in W), ``[[damper]]``, ``[rules]`` with ``[[rules.shaft]]`` limits, ``[operating]``
     (speed range and rated speed, rad/s) and ``[tvc]`` (:func:`crankdyn.io.tvc_file.read_tvc`).
@@ -78,15 +79,20 @@ def read_response_sections(
     from crankdyn.io.tvc_file import read_tvc
 
     tvc = read_tvc(t.table("tvc"), operating)
-    with t.context():
-        model = dataclasses.replace(
-            model,
-            excitation=excitation,
-            rules=rules,
-            operating=operating,
-            sources=model.sources + sources,
-            tvc=tvc if tvc is not None else model.tvc,
-        )
+    # a model file without these sections keeps the model as built: rebuilding it would check
+    # every mass and shaft and walk its topology again
+    found = (excitation, rules, operating, model.tvc if tvc is None else tvc)
+    old = (model.excitation, model.rules, model.operating, model.tvc)
+    if sources or any(a is not b for a, b in zip(found, old, strict=True)):
+        with t.context():
+            model = dataclasses.replace(
+                model,
+                excitation=excitation,
+                rules=rules,
+                operating=operating,
+                sources=model.sources + sources,
+                tvc=tvc if tvc is not None else model.tvc,
+            )
     dampers = tuple(_damper(dt, model) for dt in t.tables("damper"))
     if dampers:
         with t.context():
@@ -119,13 +125,19 @@ def _excitation(
                 t.data["firing_angles"],
             )
         torque = t.quantity("torque", "torque", None, check="positive")
+        cylinder_table = None
+        if t.has("cylinder_harmonics"):
+            from crankdyn.io.torsion_tables import read_cylinder_harmonics
+
+            path = t.input_file("cylinder_harmonics", "cylinder harmonics")
+            cylinder_table = read_cylinder_harmonics(path, display_path(path))
         count = max(model.cylinder_dofs, default=0)
         if count == 0 and not has_sources:
             raise t.error(
                 None,
                 "the model has no excitation point: no [[mass]] carries cylinders = [...]",
             )
-        for key in ("firing_order", "firing_angles", "torque"):
+        for key in ("firing_order", "firing_angles", "torque", "cylinder_harmonics"):
             if count == 0 and key in t.data:
                 raise t.error(
                     key, "applies to cylinders on the masses, and the model has none", t.data[key]
@@ -144,10 +156,13 @@ def _excitation(
         t.finish()
         with t.context():
             return ExcitationSpec(
-                cycle=cycle, firing_angles=angles, firing_order=order, torque=torque
+                cycle=cycle,
+                firing_angles=angles,
+                firing_order=order,
+                torque=torque,
+                cylinder_harmonics=cylinder_table,
             )
     _geometry, cylinders, _masses = engine
-    from crankdyn.io.examples import display_path
     from crankdyn.io.torsion_tables import read_harmonic_table, read_load_curve
     from crankdyn.io.traces import read_pressure_trace
 

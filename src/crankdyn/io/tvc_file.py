@@ -1,5 +1,6 @@
 """The ``[tvc]`` table of a torsional model file or an engine's [torsion] section: the settings
-of the torsional vibration calculation (docs/tvc.md)."""
+of the torsional vibration calculation, and its ``[[tvc.event]]`` transient events
+(docs/tvc.md)."""
 
 from __future__ import annotations
 
@@ -9,12 +10,17 @@ from typing import TYPE_CHECKING
 from crankdyn.io.schema import Table
 from crankdyn.tvc.limits import CrankshaftLimit
 from crankdyn.tvc.rulesets import RULESET_KEYS
-from crankdyn.tvc.spec import CONDITION_KINDS, LOADS, TvcSpec
+from crankdyn.tvc.spec import CONDITION_KINDS, LOADS, PASSAGE_TORQUES, TvcEvent, TvcSpec
 
 if TYPE_CHECKING:
     from crankdyn.torsion.campbell import OperatingRange
+    from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["read_tvc"]
+__all__ = ["EVENT_RUN_KEYS", "read_tvc", "read_tvc_events"]
+
+EVENT_RUN_KEYS = ("speed", "duration", "harmonics")
+"""The keys of a ``[[tvc.event]]`` table that say how the line runs into the event (the others
+are the event's own, :mod:`crankdyn.io.event_spec`)."""
 
 
 def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpec | None:
@@ -131,6 +137,7 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
     passage = t.string("passage_load", None, choices=("law", "none"))
     if passage is not None:
         values["passage_load"] = passage
+    _read_conditions(t, values)
     values["source"] = t.string("source", None)
     ct = t.table("crankshaft")
     if ct is not None:
@@ -150,11 +157,83 @@ def read_tvc(t: Table | None, operating: OperatingRange | None = None) -> TvcSpe
         ct.finish()
         with ct.context():
             values["crankshaft"] = CrankshaftLimit(**crank)
+    t.tables("event")  # read with the whole model: read_tvc_events
     t.finish()
     with t.context():
         spec = TvcSpec(**values)
     _check_grids(t, spec, operating)
     return spec
+
+
+def _read_conditions(t: Table, values: dict) -> None:
+    """The keys of the passage torque, the overspeed, declutched and idle conditions."""
+    torque = t.string("passage_torque", None, choices=PASSAGE_TORQUES)
+    if torque is not None:
+        values["passage_torque"] = torque
+    for key in ("overspeed", "declutched", "idle"):
+        if t.has(key):
+            values[key] = t.boolean(key)
+    limit = t.number("overspeed_limit", None, check="positive")
+    if limit is not None:
+        values["overspeed_limit"] = limit
+    if t.has("clutch"):
+        values["clutch"] = tuple(t.string_list("clutch", length=2))
+    idle = t.quantity("idle_speed", "speed", None, check="positive")
+    if idle is not None:
+        values["idle_speed"] = idle
+
+
+def read_tvc_events(t: Table, model: TorsionModel) -> tuple[TvcEvent, ...]:
+    """The ``[[tvc.event]]`` tables of a ``[tvc]`` table, read with the whole model (its
+    masses checked, its defaults read: the only propeller or alternator, the propeller's
+    blades, a machine's rated torque; :func:`crankdyn.io.event_spec.event_from_table`), and
+    the keys of the run: ``speed`` (the reference speed before the event, default n_0),
+    ``duration`` (default the event's) and ``harmonics`` (whether the engine's and the sources'
+    harmonic torques act, default true except for a clutch).
+
+    Parameters
+    ----------
+    t
+        The ``[tvc]`` table.
+    model
+        The whole model (an engine's line joined).
+
+    Returns
+    -------
+    tuple of TvcEvent
+        The events, in the file's order.
+
+    Raises
+    ------
+    InputError
+        As :func:`crankdyn.io.event_spec.event_from_table`, and for a speed or duration that
+        is not positive; naming the file, the ``[[tvc.event]] #n`` entry, the key and the value.
+    """
+    from crankdyn.io.event_spec import event_from_table
+
+    out = []
+    for et in t.tables("event"):
+        data = dict(et.data)
+        run = Table(
+            {k: data.pop(k) for k in EVENT_RUN_KEYS if k in data},
+            file=et.file,
+            name=et.name,
+            base_dir=et.base_dir,
+        )
+        event = event_from_table(
+            data, model=model, file=et.file, section=et.name, base_dir=et.base_dir
+        )
+        speed = run.quantity("speed", "speed", None, check="positive")
+        duration = run.quantity("duration", "time", None, check="positive")
+        harmonics = run.boolean("harmonics", data.get("kind") != "clutch")
+        run.finish()
+        with run.context():
+            out.append(TvcEvent(event, speed, duration, harmonics))
+    names = [e.name for e in out]
+    for n, name in enumerate(names):
+        if name in names[:n]:
+            raise t.error("event", f"two events are named {name!r}: give each its own name", name)
+    return tuple(out)
 
 
 def _check_grids(t: Table, spec: TvcSpec, operating: OperatingRange | None) -> None:

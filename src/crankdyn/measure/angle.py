@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -253,7 +254,28 @@ class AngleDomain:
         return self.angle.size // self.samples_per_cycle
 
 
-def tooth_numbering(prep: PreparedPulses) -> tuple[float, int, float]:
+class Marks(Protocol):
+    """Where a record's reference marks sit (:class:`~crankdyn.measure.signals.PreparedPulses`,
+    or :class:`~crankdyn.measure.scan.ScannedRecord` for a record read in chunks)."""
+
+    @property
+    def teeth(self) -> int:
+        """Tooth positions per revolution N."""
+
+    @property
+    def reference_index(self) -> NDArray[np.float64] | None:
+        """The fractional tooth position of every mark, or None."""
+
+    @property
+    def reference_times(self) -> NDArray[np.float64] | None:
+        """The marks' times (s), or None (a missing-tooth wheel's gaps)."""
+
+    @property
+    def reference_period(self) -> int | None:
+        """Tooth positions between marks, or None."""
+
+
+def tooth_numbering(prep: Marks) -> tuple[float, int, float]:
     """Where the reference mark sits among the tooth positions of a prepared pulse train.
 
     Returns (kappa_0, tooth_origin, fraction): the fractional tooth position of the first mark
@@ -262,10 +284,40 @@ def tooth_numbering(prep: PreparedPulses) -> tuple[float, int, float]:
     it), and the fraction of a pitch from the mark to tooth 0. Without a mark: (0, 0, 0)."""
     if prep.reference_index is None or prep.reference_period is None:
         return 0.0, 0, 0.0
-    m = np.arange(prep.reference_index.size)
-    kappa = float(np.mean(prep.reference_index - prep.reference_period * m))
+    return mark_numbering(prep.reference_index, prep.reference_period, prep.teeth)
+
+
+def mark_numbering(positions: np.ndarray, period: int, teeth: int) -> tuple[float, int, float]:
+    """(kappa_0, tooth_origin, fraction) of marks at tooth ``positions`` every ``period``
+    positions (:func:`tooth_numbering`)."""
+    m = np.arange(positions.size)
+    kappa = float(np.mean(positions - period * m))
     first = math.ceil(kappa - 1e-6)
-    return kappa, (-first) % prep.teeth, first - kappa
+    return kappa, (-first) % teeth, first - kappa
+
+
+def actual_positions(
+    k: np.ndarray, errors: np.ndarray, tooth_origin: int, teeth: int
+) -> NDArray[np.float64]:
+    """The teeth's actual angles in tooth pitches: k + e_j N / (2 pi), j = (k + origin) mod N.
+
+    Parameters
+    ----------
+    k : numpy.ndarray
+        Tooth positions (int).
+    errors : numpy.ndarray
+        Tooth errors e_j (rad, N values numbered from the mark).
+    tooth_origin : int
+        The tooth number of position 0.
+    teeth : int
+        N.
+
+    Returns
+    -------
+    numpy.ndarray
+        The actual angles (tooth pitches).
+    """
+    return k + np.asarray(errors)[(k + tooth_origin) % teeth] * (teeth / (2.0 * math.pi))
 
 
 def _mark_position(prep: PreparedPulses, errors: np.ndarray, tooth_origin: int) -> float:
@@ -273,7 +325,7 @@ def _mark_position(prep: PreparedPulses, errors: np.ndarray, tooth_origin: int) 
     teeth's actual angles (cubic in time), not their nominal ones."""
     n = prep.teeth
     k = np.arange(prep.times.size)
-    actual = k + np.asarray(errors)[(k + tooth_origin) % n] * (n / (2.0 * math.pi))
+    actual = actual_positions(k, errors, tooth_origin, n)
     if prep.reference_index is None or prep.reference_period is None:
         raise ValueError("no reference mark")  # the caller checks
     if prep.reference_times is None:  # a missing-tooth gap: the mark is a tooth
@@ -285,6 +337,186 @@ def _mark_position(prep: PreparedPulses, errors: np.ndarray, tooth_origin: int) 
         positions = CubicSpline(prep.times, actual)(prep.reference_times)
     m = np.arange(positions.size)
     return float(np.mean(positions - prep.reference_period * m))
+
+
+def cycle_length(cycle_angle: float, teeth: int) -> int:
+    """Tooth positions per working cycle L (a whole number).
+
+    Parameters
+    ----------
+    cycle_angle : float
+        Crank angle of one working cycle (rad).
+    teeth : int
+        Teeth N.
+
+    Returns
+    -------
+    int
+        L = N cycle_angle / (2 pi).
+    """
+    per_cycle = cycle_angle * teeth / (2.0 * math.pi)
+    length = round(per_cycle)
+    if abs(per_cycle - length) > 1e-9 * length:  # pragma: no cover - N per revolution is whole
+        raise InputError("the cycle is not a whole number of tooth pitches")
+    return length
+
+
+def too_short(positions: int, length: int) -> InputError | None:
+    """The error of a record of ``positions`` tooth positions shorter than six working cycles
+    of ``length`` positions, or None.
+
+    Parameters
+    ----------
+    positions, length
+        Tooth positions of the record and of a cycle.
+
+    Returns
+    -------
+    InputError or None
+        The error (``key="time"``).
+    """
+    if positions >= 6 * length:
+        return None
+    return InputError(
+        f"the record holds {positions / length:.1f} working cycles; at least 6 are needed (the "
+        "first and the last two are used up by the mean-rotation filter)",
+        key="time",
+    )
+
+
+@dataclass(frozen=True)
+class Positions:
+    """The mean rotation and the crank-angle position of consecutive tooth positions
+    (:func:`positions`; module docstring, steps 1 and 2).
+
+    Parameters
+    ----------
+    index : numpy.ndarray
+        The tooth positions k of the times (float).
+    smooth : numpy.ndarray
+        t_bar, the mean rotation's time at positions ``index[s:-s]`` (s).
+    s : int
+        The filter's offset: the first ``s`` and the last ``s`` positions have no t_bar.
+    position : numpy.ndarray
+        P(t_k) in tooth positions at ``index[s:-s]``: where the mean rotation is at each pulse.
+    """
+
+    index: NDArray[np.float64]
+    smooth: NDArray[np.float64]
+    s: int
+    position: NDArray[np.float64]
+
+    @property
+    def keep(self) -> slice:
+        """The positions with a mean rotation: ``s`` to ``size - s``."""
+        return slice(self.s, self.index.size - self.s)
+
+    def vibration(self, pitch: float) -> NDArray[np.float64]:
+        """v_k = (k - P(t_k)) 2 pi / N at the kept positions (rad), before tooth errors.
+
+        Parameters
+        ----------
+        pitch : float
+            The tooth pitch 2 pi / N (rad).
+
+        Returns
+        -------
+        numpy.ndarray
+            v at ``index[keep]`` (rad).
+        """
+        return (self.index[self.keep] - self.position) * pitch
+
+
+def positions(times: np.ndarray, first: int, length: int) -> Positions:
+    """The mean rotation of consecutive tooth positions and where it is at each pulse.
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        The times of tooth positions ``first``, ``first + 1``, ... (s), gaps filled.
+    first : int
+        The tooth position of ``times[0]``.
+    length : int
+        Tooth positions per working cycle L.
+
+    Returns
+    -------
+    Positions
+        t_bar (s) and P(t_k) (tooth positions), module docstring steps 1 and 2.
+
+    Raises
+    ------
+    InputError
+        If the mean rotation does not advance (a stop or a reversal).
+    """
+    smooth, s = mean_rotation_times(times, length)
+    if np.any(np.diff(smooth) <= 0.0):
+        raise InputError(
+            "the mean rotation does not advance steadily (a stop or a reversal in the record)",
+            key="time",
+        )
+    index = np.arange(first, first + times.size, dtype=float)
+    keep = slice(s, times.size - s)
+    # psi = P(t) in tooth positions: the inverse of the smooth time-of-arrival
+    from scipy.interpolate import CubicSpline  # imported here: keeps the start-up light
+
+    position = CubicSpline(smooth, index[keep])(times[keep])
+    return Positions(index, smooth, s, position)
+
+
+def grid_start(theta: np.ndarray, psi0: float, cycle_angle: float, pitch: float) -> int:
+    """The first tooth at or after a cycle boundary that the record reaches.
+
+    Parameters
+    ----------
+    theta : numpy.ndarray
+        The tooth angles from position 0 (rad).
+    psi0 : float
+        The crank angle of the first analysed pulse (rad).
+    cycle_angle, pitch : float
+        The cycle's and a tooth's angle (rad).
+
+    Returns
+    -------
+    int
+        Its tooth position.
+    """
+    first = math.ceil(psi0 / cycle_angle - 1e-9)
+    start = int(np.searchsorted(theta, first * cycle_angle - 1e-9 * pitch))
+    while theta[start] < psi0:
+        start += 1
+    return start
+
+
+def pulse_speed(
+    times: np.ndarray, first: int, pitch: float, errors: np.ndarray | None, tooth_origin: int
+) -> NDArray[np.float64]:
+    """The instantaneous speed over every pulse interval (rad/s), module docstring step 5.
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        Times of consecutive tooth positions from ``first`` (s).
+    first : int
+        The tooth position of ``times[0]``.
+    pitch : float
+        2 pi / N (rad).
+    errors : numpy.ndarray or None
+        The tooth errors (rad, N values numbered from the mark), or None.
+    tooth_origin : int
+        The tooth number of position 0.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``times.size - 1`` speeds (rad/s).
+    """
+    dtheta = np.full(times.size - 1, pitch)
+    if errors is not None:
+        n = errors.size
+        e = errors[(np.arange(first, first + times.size) + tooth_origin) % n]
+        dtheta = dtheta + np.diff(e)
+    return dtheta / np.diff(times)
 
 
 def angle_domain(
@@ -327,33 +559,17 @@ def angle_domain(
         reverses, or no whole cycle is left after filtering.
     """
     n = prep.teeth
-    per_cycle = cycle_angle * n / (2.0 * math.pi)
-    length = round(per_cycle)
-    if abs(per_cycle - length) > 1e-9 * length:  # pragma: no cover - N per revolution is whole
-        raise InputError("the cycle is not a whole number of tooth pitches")
+    length = cycle_length(cycle_angle, n)
     t = np.asarray(prep.times, dtype=float)
     pitch = 2.0 * math.pi / n
-    if t.size < 6 * length:
-        raise InputError(
-            f"the record holds {t.size / length:.1f} working cycles; at least 6 are needed (the "
-            "first and the last two are used up by the mean-rotation filter)",
-            key="time",
-        )
+    short = too_short(t.size, length)
+    if short is not None:
+        raise short
     kappa, tooth_origin, _ = tooth_numbering(prep)
     tooth_origin = (tooth_origin + tooth_shift) % n
-    smooth, s = mean_rotation_times(t, length)
-    if np.any(np.diff(smooth) <= 0.0):
-        raise InputError(
-            "the mean rotation does not advance steadily (a stop or a reversal in the record)",
-            key="time",
-        )
-    index = np.arange(t.size, dtype=float)
-    keep = slice(s, t.size - s)
-    # psi = P(t) in tooth positions: the inverse of the smooth time-of-arrival
-    from scipy.interpolate import CubicSpline  # imported here: keeps the start-up light
-
-    position = CubicSpline(smooth, index[keep])(t[keep])
-    v = (index[keep] - position) * pitch  # nominal tooth angles, before the tooth errors
+    pos = positions(t, 0, length)
+    keep, index, smooth, position = pos.keep, pos.index, pos.smooth, pos.position
+    v = pos.vibration(pitch)  # nominal tooth angles, before the tooth errors
     tooth = (np.arange(t.size)[keep] + tooth_origin) % n
     estimated = None
     errors = tooth_errors
@@ -370,26 +586,18 @@ def angle_domain(
     # the tooth angles over whole cycles: the grid starts at the first tooth at or after a
     # cycle boundary (the samples sit close to the teeth: the resampling shifts them by v only)
     theta = origin + pitch * index
-    first = math.ceil(psi[0] / cycle_angle - 1e-9)
-    start = int(np.searchsorted(theta, first * cycle_angle - 1e-9 * pitch))
-    while theta[start] < psi[0]:
-        start += 1
+    start = grid_start(theta, float(psi[0]), cycle_angle, pitch)
     cycles = int((np.searchsorted(theta, psi[-1], side="right") - start) // length)
     if cycles < 1:
         raise InputError("the record holds no whole working cycle after filtering", key="time")
     grid = theta[start : start + cycles * length]
-    from scipy.interpolate import make_interp_spline  # imported here: keeps the start-up light
+    from scipy.interpolate import CubicSpline, make_interp_spline  # keeps the start-up light
 
     vibration = make_interp_spline(psi, v, k=5)(grid)
     arrival = CubicSpline(origin + index[keep] * pitch, smooth)  # mean rotation's time at an angle
     grid_times = arrival(grid)
     boundary_times = arrival(grid[0] + cycle_angle * np.arange(cycles + 1))
-    # instantaneous speed per pulse interval (with the tooth errors, if known)
-    dtheta = np.full(t.size - 1, pitch)
-    if errors is not None:
-        e = errors[(np.arange(t.size) + tooth_origin) % n]
-        dtheta = dtheta + np.diff(e)
-    speed = dtheta / np.diff(t)
+    speed = pulse_speed(t, 0, pitch, errors, tooth_origin)
     domain = AngleDomain(
         angle=grid,
         vibration=vibration,

@@ -53,14 +53,31 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import CYCLE_ANGLE, DEG, RPM
 from crankdyn.errors import InputError
-from crankdyn.measure.angle import AngleDomain, angle_domain, tooth_numbering
+from crankdyn.measure.angle import (
+    AngleDomain,
+    angle_domain,
+    cycle_length,
+    too_short,
+    tooth_numbering,
+)
+from crankdyn.measure.blocks import (
+    BLOCK,
+    Envelope,
+    blocked_analysis,
+    blocked_pattern,
+    corrected_marks,
+    gathered,
+)
 from crankdyn.measure.figures import (
     MEASURED_FIGURES,
     largest_per_order_table,
     resonance_table,
 )
+from crankdyn.measure.records import PulseRecord
 from crankdyn.measure.resonance import ResonanceFit, fit_resonance
+from crankdyn.measure.scan import SEGMENT, ScannedRecord, scan_record
 from crankdyn.measure.signals import PreparedPulses, PulseTrain, SpeedSignal, prepare_pulses
+from crankdyn.measure.windows import Windows, window_coefficients
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.summary import SummaryTable
 from crankdyn.torsion.orders import check_orders, fundamental_order, harmonic_index
@@ -74,6 +91,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "ANALYSES",
+    "CACHE",
     "DEFAULT_BIN",
     "STEADY_LIMIT",
     "WINDOWS",
@@ -88,6 +106,9 @@ ANALYSES = ("auto", "steady", "tracking")
 """The analyses :func:`order_analysis` runs."""
 WINDOWS = ("hann", "uniform")
 """The windows of order tracking."""
+CACHE = 1 << 22
+"""A record analysed block by block is read again for each pass, unless it holds at most this
+many pulses (4,194,304: 32 MiB of times), which the first reading keeps."""
 DEFAULT_BIN = 10.0 / RPM
 """Default speed bin of order tracking (rad/s): 10 rpm."""
 STEADY_LIMIT = 0.02
@@ -144,7 +165,7 @@ def _check_orders(orders: ArrayLike | None, cycle: str, teeth: int) -> np.ndarra
 
 
 def _reference_text(
-    prep: PreparedPulses, cycle: str, reference_angle: float
+    prep: PreparedPulses | ScannedRecord, cycle: str, reference_angle: float
 ) -> tuple[str, list[str]]:
     notes: list[str] = []
     if prep.reference_index is None:
@@ -163,10 +184,20 @@ def _reference_text(
     return text, notes
 
 
-def _calibration_errors(calibration: PulseTrain, cycle: str, fraction: float) -> np.ndarray:
+def _calibration_errors(
+    calibration: PulseTrain | PulseRecord, cycle: str, fraction: float, block: int = BLOCK
+) -> np.ndarray:
     """Tooth errors (rad) from a calibration record of the same wheel (its mean over
     revolutions), numbered from its reference mark and aligned with the measurement's."""
-    prep = prepare_pulses(calibration)
+    if isinstance(calibration, PulseTrain) and calibration.times.size > block:
+        calibration = PulseRecord.from_train(calibration, chunk=SEGMENT)
+    if isinstance(calibration, PulseRecord):
+        calibration = gathered(calibration, block) or calibration
+    prep: PreparedPulses | ScannedRecord = (
+        scan_record(calibration)
+        if isinstance(calibration, PulseRecord)
+        else prepare_pulses(calibration)
+    )
     if prep.reference_index is None:
         raise InputError(
             "the calibration record needs the reference mark (or a missing-tooth gap) to number "
@@ -188,73 +219,76 @@ def _calibration_errors(calibration: PulseTrain, cycle: str, fraction: float) ->
             file=calibration.source,
             key="reference",
         )
+    if isinstance(prep, ScannedRecord):  # a long record, block by block
+        length = cycle_length(CYCLE_ANGLE[cycle], prep.teeth)
+        short = too_short(prep.positions, length)
+        if short is not None:
+            raise short.within(file=calibration.source)
+        _, origin, _ = tooth_numbering(prep)
+        return -blocked_pattern(prep, length, (origin + shift) % prep.teeth, block)
     _, errors = angle_domain(prep, CYCLE_ANGLE[cycle], estimate_teeth=True, tooth_shift=shift)
     if errors is None:  # estimate_teeth returns them
         raise ValueError("no tooth errors estimated")
     return errors
 
 
-def _to_pulses(signal: PulseTrain | SpeedSignal, resolution: int | None) -> PulseTrain:
+def _to_pulses(
+    signal: PulseTrain | SpeedSignal | PulseRecord, resolution: int | None, block: int = BLOCK
+) -> PulseTrain | PulseRecord:
     """The pulses to analyse, the wheel's size checked against the record for every kind of
     signal: a speed signal's resampling is bounded (:meth:`SpeedSignal.to_pulses`), a pulse
-    record must hold one revolution of its wheel at least."""
+    record must hold one revolution of its wheel at least (a record read in chunks: gathered
+    into a pulse train when it is short, :func:`crankdyn.measure.blocks.gathered`)."""
     if isinstance(signal, SpeedSignal):
         return signal.to_pulses(resolution)
+    if isinstance(signal, PulseRecord):
+        train = gathered(signal, block)
+        if train is None:
+            return signal
+        signal = train
     if isinstance(signal, PulseTrain):
-        if signal.teeth > signal.times.size:
-            raise InputError(
-                f"the record holds {signal.times.size:,} pulses, less than one revolution of a "
-                f"wheel with {signal.teeth:,} pulses per revolution",
-                file=signal.source,
-                key="teeth",
-                value=signal.teeth,
-            )
+        _check_wheel(signal, signal.times.size)
         return signal
     raise TypeError(f"expected a PulseTrain or a SpeedSignal, got {type(signal).__name__}")
 
 
-@dataclass(frozen=True)
-class _Windows:
-    coefficients: np.ndarray  # (W, Q) complex
-    speed: np.ndarray  # (W,) rad/s
-    start_angle: np.ndarray  # (W,) rad
+def _check_wheel(signal: PulseTrain | PulseRecord, pulses: int) -> None:
+    """A pulse record must hold one revolution of its wheel at least."""
+    if signal.teeth > pulses:
+        raise InputError(
+            f"the record holds {pulses:,} pulses, less than one revolution of a "
+            f"wheel with {signal.teeth:,} pulses per revolution",
+            file=signal.source,
+            key="teeth",
+            value=signal.teeth,
+        )
 
 
 def _windows(
     domain: AngleDomain, orders: ArrayLike, cycle_angle: float, cycles: int, shape: str = "uniform"
-) -> _Windows:
+) -> Windows:
+    """The windows of ``cycles`` cycles over a record's angle domain
+    (:func:`crankdyn.measure.windows.window_coefficients`)."""
     length = domain.samples_per_cycle
-    count = domain.cycles - cycles + 1
-    if count < 1:
-        raise InputError(
-            f"the record holds {domain.cycles} whole cycles after filtering, fewer than the "
-            f"{cycles} of one window",
-            key="window",
-        )
+    if domain.cycles < cycles:
+        raise _too_few_cycles(domain.cycles, cycles)
     per = domain.vibration[: domain.cycles * length].reshape(domain.cycles, length)
-    if cycles == 1:
-        data = per
-    else:
-        view = np.lib.stride_tricks.sliding_window_view(per, cycles, axis=0)  # (W, L, c)
-        data = np.moveaxis(view, -1, 1).reshape(count, cycles * length)
-    n = data.shape[1]
-    if shape == "hann":
-        w = 0.5 - 0.5 * np.cos(2.0 * math.pi * np.arange(n) / n)  # periodic Hann
-        spectrum = np.fft.rfft(data * w, axis=1) * (2.0 / np.sum(w))
-    else:
-        spectrum = np.fft.rfft(data, axis=1) * (2.0 / n)
-    q = np.asarray(orders, dtype=float)
-    bins = np.round(q * cycles * cycle_angle / (2.0 * math.pi)).astype(int)
-    start = domain.angle[0] + cycle_angle * np.arange(count)
-    # the window starts at the crank angle psi_s: V_q = (2 / n) sum v_j exp(-i q (psi_s + ...))
-    coefficients = spectrum[:, bins] * np.exp(-1j * start[:, None] * q[None, :])
-    times = domain.boundary_times
-    speed = cycles * cycle_angle / (times[cycles:] - times[:count])
-    return _Windows(coefficients, speed, start)
+    return window_coefficients(
+        per, 0, float(domain.angle[0]), domain.boundary_times, orders, cycle_angle, cycles, shape
+    )
+
+
+def _too_few_cycles(have: int, cycles: int) -> InputError:
+    """The error of a record with fewer whole cycles than one window's."""
+    return InputError(
+        f"the record holds {have} whole cycles after filtering, fewer than the "
+        f"{cycles} of one window",
+        key="window",
+    )
 
 
 def order_analysis(
-    signal: PulseTrain | SpeedSignal,
+    signal: PulseTrain | SpeedSignal | PulseRecord,
     *,
     cycle: str = "four-stroke",
     orders: ArrayLike | None = None,
@@ -262,16 +296,22 @@ def order_analysis(
     window_cycles: int = 4,
     bin_width: float | None = None,
     reference_angle: float = 0.0,
-    tooth_correction: str | PulseTrain | ArrayLike | None = None,
+    tooth_correction: str | PulseTrain | PulseRecord | ArrayLike | None = None,
     resolution: int | None = None,
     window: str = "hann",
+    block: int = BLOCK,
 ) -> OrderSpectrum | OrderTracking:
     """Orders of the angular vibration at the measured point (module docstring).
 
     Parameters
     ----------
-    signal : PulseTrain or SpeedSignal
-        The record (times in s, speeds in rad/s).
+    signal : PulseTrain, SpeedSignal or PulseRecord
+        The record (times in s, speeds in rad/s). A record of more than
+        :data:`~crankdyn.measure.blocks.BLOCK` pulses (a pulse train, or a
+        :class:`~crankdyn.measure.records.PulseRecord` read in chunks, of any length) is
+        analysed block by block in bounded memory (:mod:`crankdyn.measure.blocks`; the same
+        numbers to rounding, without the ``domain`` of the result, which holds the
+        per-cycle ``envelope`` instead).
     cycle : str
         ``"four-stroke"`` (orders 0.5, 1, 1.5, ...) or ``"two-stroke"``.
     orders : array_like or None
@@ -291,13 +331,17 @@ def order_analysis(
     reference_angle : float
         Crank angle at the reference mark (rad), e.g. the angle of cylinder 1's firing TDC
         as seen from the mark; for a missing-tooth wheel, at the first tooth after the gap.
-    tooth_correction : str, PulseTrain, array_like or None
+    tooth_correction : str, PulseTrain, PulseRecord, array_like or None
         None; ``"self"`` (this record's mean over revolutions, :mod:`crankdyn.measure.angle`);
-        a calibration :class:`PulseTrain` of the same wheel and mark; or the tooth errors
-        (rad, N values numbered from the mark).
+        a calibration :class:`PulseTrain` (or record) of the same wheel and mark; or the tooth
+        errors (rad, N values numbered from the mark).
     resolution : int or None
         Angle samples per revolution when ``signal`` is a speed signal (default
         :meth:`SpeedSignal.default_teeth`).
+    block : int
+        Records of more pulses than this are analysed block by block, in blocks of this many
+        tooth positions (default :data:`~crankdyn.measure.blocks.BLOCK`, 262,144: the working
+        memory of a block is about 240 bytes per tooth position).
 
     Returns
     -------
@@ -339,10 +383,33 @@ def order_analysis(
     }
     for check in _OPTION_CHECKS:
         check.apply(options)
-    window_cycles = int(window_cycles)
-    width = _bin_width(options)
-    pulses = _to_pulses(signal, resolution)
-    q = _check_orders(orders, cycle, pulses.teeth)
+    settings = _Settings(
+        cycle, analysis, int(window_cycles), window, _bin_width(options), reference_angle
+    )
+    if isinstance(block, bool) or not isinstance(block, (int, np.integer)) or block < 1:
+        raise InputError(
+            "expected a whole number of tooth positions, >= 1", key="block", value=block
+        )
+    pulses = _to_pulses(signal, resolution, int(block))
+    if isinstance(pulses, PulseTrain) and pulses.times.size > block:
+        pulses = PulseRecord.from_train(pulses, chunk=SEGMENT)
+    if isinstance(pulses, PulseRecord):
+        record = pulses.cached(CACHE)  # read once when it is short enough
+        return _blocked(record, orders, settings, tooth_correction, int(block))
+    return _whole_record(pulses, signal, orders, settings, tooth_correction)
+
+
+def _whole_record(
+    pulses: PulseTrain,
+    signal: PulseTrain | SpeedSignal | PulseRecord,
+    orders: ArrayLike | None,
+    settings: _Settings,
+    tooth_correction: str | PulseTrain | PulseRecord | ArrayLike | None,
+) -> OrderSpectrum | OrderTracking:
+    """The analysis of a record held whole (:func:`order_analysis`, up to ``block`` pulses):
+    the angle domain of every pulse, the per-cycle orders, then the steady spectrum or the
+    tracking windows."""
+    q = _check_orders(orders, settings.cycle, pulses.teeth)
     prep = prepare_pulses(pulses)
     notes = list(prep.notes)
     if isinstance(signal, SpeedSignal):
@@ -351,15 +418,17 @@ def order_analysis(
             f"speed signal integrated to the shaft angle and resampled at {pulses.teeth} "
             "angles per revolution",
         )
-    reference, more = _reference_text(prep, cycle, reference_angle)
+    reference, more = _reference_text(prep, settings.cycle, settings.reference_angle)
     notes.extend(more)
     _, _, fraction = tooth_numbering(prep)
-    cycle_angle = CYCLE_ANGLE[cycle]
-    errors, estimate, correction = _tooth_correction(tooth_correction, prep, cycle, fraction)
+    cycle_angle = CYCLE_ANGLE[settings.cycle]
+    errors, estimate, correction = _tooth_correction(
+        tooth_correction, prep, settings.cycle, fraction
+    )
     domain, estimated = angle_domain(
         prep,
         cycle_angle,
-        reference_angle=reference_angle,
+        reference_angle=settings.reference_angle,
         tooth_errors=errors,
         estimate_teeth=estimate,
     )
@@ -367,36 +436,163 @@ def order_analysis(
     if estimated is not None:
         notes.append(_estimated_teeth_note(estimated, q))
     per_cycle = _windows(domain, q, cycle_angle, 1)
-    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
-    kind = analysis
-    if kind == "auto":
-        kind = "tracking" if spread > STEADY_LIMIT else "steady"
-    common: dict[str, Any] = {
+    length = domain.samples_per_cycle
+    # the averaged cycle, its crank angles from the cycle's boundary and the mean speed
+    average = np.mean(domain.vibration[: domain.cycles * length].reshape(domain.cycles, -1), axis=0)
+    start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
+    angle_span = cycle_angle * domain.cycles
+    cycles = _Cycles(
+        per_cycle,
+        domain.cycles,
+        length,
+        float(angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])),
+        average,
+        domain.angle[:length] - start,
+    )
+    common = _common(q, prep.teeth, settings, reference, correction, tooth_errors, pulses.source)
+    common["domain"] = domain
+    kind = _kind(settings, per_cycle, notes)
+    if kind == "steady":
+        return _steady_spectrum(cycles, q, notes, common, settings)
+    win = (
+        per_cycle
+        if settings.window_cycles == 1 and settings.window == "uniform"
+        else _windows(domain, q, cycle_angle, settings.window_cycles, settings.window)
+    )
+    return _order_tracking(win, q, settings, notes, common)
+
+
+@dataclass(frozen=True)
+class _Settings:
+    """The options of :func:`order_analysis` (checked)."""
+
+    cycle: str
+    analysis: str
+    window_cycles: int
+    window: str
+    bin_width: float
+    reference_angle: float
+
+    @property
+    def cycle_angle(self) -> float:
+        """The crank angle of a working cycle (rad)."""
+        return CYCLE_ANGLE[self.cycle]
+
+
+@dataclass(frozen=True)
+class _Cycles:
+    """What the steady-speed analysis takes from the whole cycles of a record."""
+
+    per_cycle: Windows
+    count: int
+    length: int
+    speed: float  # rad/s
+    average: np.ndarray  # rad
+    angle: np.ndarray  # rad from the cycle's boundary
+
+
+def _common(
+    q: np.ndarray,
+    teeth: int,
+    settings: _Settings,
+    reference: str,
+    correction: str,
+    tooth_errors: np.ndarray | None,
+    source: str,
+) -> dict[str, Any]:
+    """The fields both results share."""
+    return {
         "orders": freeze(q),
-        "teeth": prep.teeth,
-        "cycle": cycle,
+        "teeth": teeth,
+        "cycle": settings.cycle,
         "reference": reference,
         "tooth_correction": correction,
         "tooth_errors": None if tooth_errors is None else freeze(tooth_errors),
-        "source": pulses.source,
-        "domain": domain,
+        "source": source,
     }
-    harmonic = harmonic_index(q, cycle)
-    if kind == "steady":
-        if spread > STEADY_LIMIT:
-            notes.append(
-                f"the cycle speeds spread by {spread:.1%} of their mean: a steady-speed average "
-                "blurs orders that change with speed (try --analysis tracking)"
-            )
-        return _steady_spectrum(domain, per_cycle, harmonic, cycle_angle, notes, common)
-    win = (
-        per_cycle
-        if window_cycles == 1 and window == "uniform"
-        else _windows(domain, q, cycle_angle, window_cycles, window)
+
+
+def _kind(settings: _Settings, per_cycle: Windows, notes: list[str]) -> str:
+    """``steady`` or ``tracking`` (``auto``: by the spread of the cycles' speeds); a note when
+    a steady analysis blurs a spread."""
+    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
+    kind = settings.analysis
+    if kind == "auto":
+        kind = "tracking" if spread > STEADY_LIMIT else "steady"
+    if kind == "steady" and spread > STEADY_LIMIT:
+        notes.append(
+            f"the cycle speeds spread by {spread:.1%} of their mean: a steady-speed average "
+            "blurs orders that change with speed (try --analysis tracking)"
+        )
+    return kind
+
+
+def _blocked(
+    record: PulseRecord,
+    orders: ArrayLike | None,
+    settings: _Settings,
+    tooth_correction: str | PulseTrain | PulseRecord | ArrayLike | None,
+    block: int,
+) -> OrderSpectrum | OrderTracking:
+    """:func:`order_analysis` of a record longer than :data:`~crankdyn.measure.blocks.BLOCK`
+    pulses, block by block (:mod:`crankdyn.measure.blocks`): the same checks in the same order,
+    the same numbers to rounding, in bounded memory."""
+    found: list[np.ndarray] = []
+
+    def before_repairs(pulses: int) -> None:  # as the whole record's: its size, the orders
+        _check_wheel(record, pulses)
+        found.append(_check_orders(orders, settings.cycle, record.teeth))
+
+    scan = scan_record(record, before_repairs)
+    q = found[0]
+    notes = list(scan.notes)
+    reference, more = _reference_text(scan, settings.cycle, settings.reference_angle)
+    notes.extend(more)
+    _, tooth_origin, fraction = tooth_numbering(scan)
+    errors, estimate, correction = _tooth_correction(
+        tooth_correction, scan, settings.cycle, fraction, block
     )
-    return _order_tracking(
-        win, q, harmonic, cycle_angle, window_cycles, window, width, notes, common
+    length = cycle_length(settings.cycle_angle, scan.teeth)
+    short = too_short(scan.positions, length)
+    if short is not None:
+        raise short
+    estimated = kappa = None
+    if estimate:
+        estimated = errors = -blocked_pattern(scan, length, tooth_origin, block)
+        notes.append(_estimated_teeth_note(estimated, q))
+    if errors is not None and scan.reference_index is not None:
+        kappa = corrected_marks(scan, errors, tooth_origin)
+    blocks = blocked_analysis(
+        scan,
+        q,
+        settings.cycle_angle,
+        reference_angle=settings.reference_angle,
+        tooth_errors=errors,
+        kappa=kappa,
+        window_cycles=settings.window_cycles,
+        window=settings.window,
+        tracking=settings.analysis != "steady",
+        block=block,
     )
+    common = _common(q, scan.teeth, settings, reference, correction, errors, record.source)
+    common["envelope"] = blocks.envelope
+    cycles = _Cycles(
+        blocks.per_cycle,
+        blocks.cycles,
+        blocks.length,
+        blocks.speed,
+        blocks.average,
+        blocks.cycle_angle,
+    )
+    if _kind(settings, blocks.per_cycle, notes) == "steady":
+        return _steady_spectrum(cycles, q, notes, common, settings)
+    if settings.window_cycles == 1 and settings.window == "uniform":
+        win = blocks.per_cycle
+    elif blocks.windows is None or blocks.cycles < settings.window_cycles:
+        raise _too_few_cycles(blocks.cycles, settings.window_cycles)
+    else:
+        win = blocks.windows
+    return _order_tracking(win, q, settings, notes, common)
 
 
 def _bin_width(options: dict[str, Any]) -> float:
@@ -477,10 +673,11 @@ _OPTION_CHECKS = (
 
 
 def _tooth_correction(
-    tooth_correction: str | PulseTrain | ArrayLike | None,
-    prep: PreparedPulses,
+    tooth_correction: str | PulseTrain | PulseRecord | ArrayLike | None,
+    prep: PreparedPulses | ScannedRecord,
     cycle: str,
     fraction: Any,
+    block: int = BLOCK,
 ) -> tuple[np.ndarray | None, bool, str]:
     """(tooth errors (rad) or None, whether to estimate them from the record, the correction in
     words) of :func:`order_analysis`'s ``tooth_correction``; InputError when it does not fit
@@ -497,7 +694,7 @@ def _tooth_correction(
             )
         estimate = True
         correction = "mean of this record over its revolutions"
-    elif isinstance(tooth_correction, PulseTrain):
+    elif isinstance(tooth_correction, (PulseTrain, PulseRecord)):
         if prep.reference_index is None:
             raise InputError(
                 "a calibration record needs the reference mark (or a missing-tooth gap) in the "
@@ -510,7 +707,7 @@ def _tooth_correction(
                 f"{prep.teeth}",
                 key="tooth_correction",
             )
-        errors = _calibration_errors(tooth_correction, cycle, fraction)
+        errors = _calibration_errors(tooth_correction, cycle, fraction, block)
         correction = f"from the calibration record {tooth_correction.source}"
     elif tooth_correction is not None:
         errors = np.asarray(tooth_correction, dtype=float)
@@ -537,27 +734,20 @@ def _estimated_teeth_note(estimated: np.ndarray, q: np.ndarray) -> str:
 
 
 def _steady_spectrum(
-    domain: AngleDomain,
-    per_cycle: _Windows,
-    harmonic: Any,
-    cycle_angle: float,
+    cycles: _Cycles,
+    q: np.ndarray,
     notes: list[str],
     common: dict[str, Any],
+    settings: _Settings,
 ) -> OrderSpectrum:
     """The steady-speed analysis (module docstring): the complex (synchronous) average of the
     one-cycle windows, its synthesis and the averaged cycle's angle and speed."""
+    per_cycle, cycle_angle = cycles.per_cycle, settings.cycle_angle
     mean = np.mean(per_cycle.coefficients, axis=0)
     scatter = np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0))
-    angle_span = cycle_angle * domain.cycles
-    speed = angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])
-    top, low = half_range(mean, harmonic)
-    avg = np.mean(
-        domain.vibration[: domain.cycles * domain.samples_per_cycle].reshape(domain.cycles, -1),
-        axis=0,
-    )
-    # crank angle within the cycle (the grid starts at the first tooth after a boundary)
-    start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
-    cyc_angle = domain.angle[: domain.samples_per_cycle] - start
+    speed = cycles.speed
+    top, low = half_range(mean, harmonic_index(q, settings.cycle))
+    avg = cycles.average
     # instantaneous speed of the averaged cycle: Omega (1 + dv/dpsi), dv/dpsi spectrally
     spec = np.fft.rfft(avg)
     k = np.arange(spec.size)
@@ -568,13 +758,13 @@ def _steady_spectrum(
         phase=freeze(np.angle(mean)),
         scatter=freeze(scatter),
         synthesized=float(0.5 * (top - low)),
-        cycles=int(domain.cycles),
+        cycles=int(cycles.count),
         speed_min=float(np.min(per_cycle.speed)),
         speed_max=float(np.max(per_cycle.speed)),
         window=f"uniform (rectangular) over 1 cycle ({cycle_angle * DEG:g} deg), "
-        f"synchronous: {domain.samples_per_cycle} samples per cycle",
-        averaging=f"complex (synchronous) average of {domain.cycles} cycles",
-        cycle_angle=freeze(cyc_angle),
+        f"synchronous: {cycles.length} samples per cycle",
+        averaging=f"complex (synchronous) average of {cycles.count} cycles",
+        cycle_angle=freeze(cycles.angle),
         cycle_vibration=freeze(avg),
         cycle_speed=freeze(speed * (1.0 + dv)),
         notes=tuple(notes),
@@ -584,18 +774,17 @@ def _steady_spectrum(
 
 
 def _order_tracking(
-    win: _Windows,
+    win: Windows,
     q: np.ndarray,
-    harmonic: Any,
-    cycle_angle: float,
-    window_cycles: int,
-    window: str,
-    width: float,
+    settings: _Settings,
     notes: list[str],
     common: dict[str, Any],
 ) -> OrderTracking:
     """Order tracking over the windows ``win`` (module docstring): their complex average in
-    speed bins of ``width`` (rad/s), the synthesis and the resonances."""
+    speed bins of the settings' width (rad/s), the synthesis and the resonances."""
+    harmonic = harmonic_index(q, settings.cycle)
+    cycle_angle, window_cycles = settings.cycle_angle, settings.window_cycles
+    window, width = settings.window, settings.bin_width
     trend = np.polyfit(np.arange(win.speed.size), win.speed, 1)[0] if win.speed.size > 1 else 0
     label = "run-up" if trend >= 0 else "run-down"
     cell = np.floor(win.speed / width).astype(np.int64)
@@ -701,7 +890,10 @@ class OrderSpectrum(Result):
     cycle_coefficients : numpy.ndarray or None
         (cycles, Q) complex V_q of every single cycle (rad), for plots and checks.
     domain : crankdyn.measure.angle.AngleDomain or None
-        The resampled angular vibration the orders come from (not exported).
+        The resampled angular vibration the orders come from (not exported); None for a
+        record analysed block by block.
+    envelope : crankdyn.measure.blocks.Envelope or None
+        The trace per cycle of a record analysed block by block (not exported), else None.
     """
 
     title = "Measured orders (steady speed)"
@@ -739,6 +931,7 @@ class OrderSpectrum(Result):
     comparison: Result | None = scalar("model", "Model", "", default=None)
     cycle_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
+    envelope: Envelope | None = field(default=None, repr=False, compare=False)
 
     kind = "steady"
     FIGURES = MEASURED_FIGURES
@@ -836,7 +1029,10 @@ class OrderTracking(Result):
     window_coefficients : numpy.ndarray or None
         (W, Q) complex V_q of every window (rad), for the resonance fits and plots.
     domain : crankdyn.measure.angle.AngleDomain or None
-        The resampled angular vibration the orders come from (not exported).
+        The resampled angular vibration the orders come from (not exported); None for a
+        record analysed block by block.
+    envelope : crankdyn.measure.blocks.Envelope or None
+        The trace per cycle of a record analysed block by block (not exported), else None.
     """
 
     title = "Measured orders (order tracking)"
@@ -877,6 +1073,7 @@ class OrderTracking(Result):
     comparison: Result | None = scalar("model", "Model", "", default=None)
     window_coefficients: np.ndarray | None = field(default=None, repr=False, compare=False)
     domain: AngleDomain | None = field(default=None, repr=False, compare=False)
+    envelope: Envelope | None = field(default=None, repr=False, compare=False)
 
     def summary_tables(self) -> list[SummaryTable]:
         """The largest bin per order (:func:`crankdyn.measure.figures.largest_per_order_table`)

@@ -68,11 +68,56 @@ def _times(name: str, values: ArrayLike, what: str) -> np.ndarray:
     return arr
 
 
-def _where(lines: ArrayLike | None, index: int) -> str:
-    """'line L' when the file's line numbers are known, else 'pulse i' (1-based)."""
+def check_teeth(teeth: object) -> int:
+    """The pulses per revolution of a wheel, checked: a whole number >= :data:`MIN_TEETH`.
+
+    Parameters
+    ----------
+    teeth : object
+        The value given (int or numpy integer).
+
+    Returns
+    -------
+    int
+        ``teeth`` as an int.
+
+    Raises
+    ------
+    InputError
+        For anything else (``key="teeth"``).
+    """
+    if isinstance(teeth, bool) or not isinstance(teeth, (int, np.integer)):
+        raise InputError(
+            "expected a whole number of pulses per revolution", key="teeth", value=teeth
+        )
+    if teeth < MIN_TEETH:
+        raise InputError(
+            f"at least {MIN_TEETH} pulses per revolution are needed", key="teeth", value=int(teeth)
+        )
+    return int(teeth)
+
+
+def sample_place(lines: ArrayLike | None, index: int, offset: int = 0) -> str:
+    """Where a sample of a record is, for messages.
+
+    Parameters
+    ----------
+    lines : array_like or None
+        The file line of every sample of this part of the record, or None.
+    index : int
+        The sample, counted from this part's start.
+    offset : int
+        The record's index of this part's first sample.
+
+    Returns
+    -------
+    str
+        ``"line L"`` when the file's line numbers are known, else ``"sample i"`` (1-based,
+        counted from the record's start).
+    """
     if lines is not None and 0 <= index < np.size(lines):
         return f"line {int(np.asarray(lines)[index])}"
-    return f"sample {index + 1}"
+    return f"sample {offset + index + 1}"
 
 
 def check_increasing(
@@ -81,6 +126,7 @@ def check_increasing(
     *,
     key: str = "time",
     file: str | None = None,
+    offset: int = 0,
 ) -> None:
     """Raise one line naming the first time that does not increase.
 
@@ -94,6 +140,9 @@ def check_increasing(
         The column the times come from, for the message; default ``"time"``.
     file : str or None
         The file (or source) for the message.
+    offset : int
+        The record's index of ``times[0]`` (a part of a record read in chunks), for the
+        sample counted in the message; default 0.
 
     Raises
     ------
@@ -105,7 +154,7 @@ def check_increasing(
     if bad.size:
         i = int(bad[0]) + 1
         raise InputError(
-            f"times must increase: {_where(lines, i)} has {times[i]:.9g} s after "
+            f"times must increase: {sample_place(lines, i, offset)} has {times[i]:.9g} s after "
             f"{times[i - 1]:.9g} s",
             file=file,
             key=key,
@@ -156,17 +205,7 @@ class PulseTrain:
     reference_lines: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
-        if isinstance(self.teeth, bool) or not isinstance(self.teeth, (int, np.integer)):
-            raise InputError(
-                "expected a whole number of pulses per revolution", key="teeth", value=self.teeth
-            )
-        if self.teeth < MIN_TEETH:
-            raise InputError(
-                f"at least {MIN_TEETH} pulses per revolution are needed",
-                key="teeth",
-                value=int(self.teeth),
-            )
-        object.__setattr__(self, "teeth", int(self.teeth))
+        object.__setattr__(self, "teeth", check_teeth(self.teeth))
         times = _times("time", self.times, "pulse times")
         if times.size < 2:
             raise InputError("the signal holds fewer than two pulses", file=self.source)
@@ -236,7 +275,7 @@ class SpeedSignal:
         bad = np.flatnonzero(~(speed > 0.0))
         if bad.size:
             raise InputError(
-                f"the speed must be positive: {_where(self.lines, int(bad[0]))}",
+                f"the speed must be positive: {sample_place(self.lines, int(bad[0]))}",
                 file=self.source,
                 key="speed",
                 value=float(speed[bad[0]]),
@@ -381,6 +420,259 @@ def _local_intervals(d: np.ndarray) -> np.ndarray:
     return median_filter(d, size=9, mode="nearest")
 
 
+def interval_ratios(times: np.ndarray) -> np.ndarray:
+    """Every pulse interval over the running median of its neighbours' (dimensionless): 1 for a
+    regular pulse, about m + 1 after m dropped pulses, below 1 before a spurious one.
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        Pulse times (s), increasing.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``times.size - 1`` ratios. Each depends on the four intervals either side only (the
+        record's ends repeat their interval), so a part of a record with four intervals of
+        context on either side gives the ratios of the whole.
+    """
+    d = np.diff(times)
+    return d / _local_intervals(d)
+
+
+@dataclass(frozen=True)
+class IntervalFaults:
+    """The intervals of a pulse record that are not one pitch (:func:`interval_faults`).
+
+    Parameters
+    ----------
+    short : numpy.ndarray
+        Indices of the intervals shorter than :data:`SHORT_RATIO` of their neighbours'.
+    gaps : numpy.ndarray
+        Indices of the intervals longer than :data:`GAP_RATIO` of their neighbours'.
+    missing : numpy.ndarray
+        The pulses missing in each gap (int).
+    off : numpy.ndarray
+        Per gap: its length is not within a tolerance of a whole number of pitches (bool).
+    """
+
+    short: NDArray[np.intp]
+    gaps: NDArray[np.intp]
+    missing: NDArray[np.int_]
+    off: NDArray[np.bool_]
+
+
+def interval_faults(ratio: np.ndarray) -> IntervalFaults:
+    """The short intervals and the gaps among interval ratios (:func:`interval_ratios`).
+
+    Parameters
+    ----------
+    ratio : numpy.ndarray
+        Pulse intervals over their neighbours' (dimensionless).
+
+    Returns
+    -------
+    IntervalFaults
+        Indices into ``ratio`` and the pulses missing in each gap.
+    """
+    short = np.flatnonzero(ratio < SHORT_RATIO)
+    gaps = np.flatnonzero(ratio > GAP_RATIO)
+    missing = np.round(ratio[gaps]).astype(int) - 1
+    off = np.abs(ratio[gaps] - np.round(ratio[gaps])) > _WHOLE_TOLERANCE
+    return IntervalFaults(short, gaps, missing, off)
+
+
+def spurious_pulse(where: str, ratio: float, time: float, name: str) -> InputError:
+    """The error of a spurious pulse: the interval ending at ``where`` (``"line 12"``) is
+    ``ratio`` of its neighbours'; ``time`` (s) is the pulse's.
+
+    Parameters
+    ----------
+    where, ratio, time, name
+        The place, the interval ratio (dimensionless), the pulse time (s), the file.
+
+    Returns
+    -------
+    InputError
+        The one-line error.
+    """
+    return InputError(
+        f"a spurious pulse: the interval ending at {where} is {ratio:.2f} "
+        "of its neighbours' (a double trigger or noise); clean the signal",
+        file=name,
+        key="time",
+        value=time,
+    )
+
+
+def odd_interval(where: str, ratio: float, time: float, name: str) -> InputError:
+    """The error of an interval neither one pitch nor a whole number of them.
+
+    Parameters
+    ----------
+    where, ratio, time, name
+        The place of the pulse ending it, the interval ratio (dimensionless), the pulse time
+        (s), the file.
+
+    Returns
+    -------
+    InputError
+        The one-line error.
+    """
+    return InputError(
+        f"the interval ending at {where} is {ratio:.2f} times its "
+        "neighbours': neither one pulse pitch nor a whole number of them (is the speed "
+        "steady enough for this wheel?)",
+        file=name,
+        key="time",
+        value=time,
+    )
+
+
+def long_run(count: int, where: str, time: float, name: str) -> InputError:
+    """The error of ``count`` > :data:`MAX_DROPPED_RUN` pulses missing in a row before
+    ``where`` (the pulse at ``time``, s).
+
+    Parameters
+    ----------
+    count, where, time, name
+        The pulses missing, the place, the time (s) and the file.
+
+    Returns
+    -------
+    InputError
+        The one-line error.
+    """
+    return InputError(
+        f"{count} pulses are missing before {where}: too many in a row to interpolate safely",
+        file=name,
+        key="time",
+        value=time,
+    )
+
+
+def too_many_dropped(total: int, where: str, name: str) -> InputError:
+    """The error of ``total`` dropped pulses, more than :data:`MAX_DROPPED_FRACTION` of the
+    record (the first before ``where``).
+
+    Parameters
+    ----------
+    total, where, name
+        The pulses missing, the place of the first gap, the file.
+
+    Returns
+    -------
+    InputError
+        The one-line error.
+    """
+    return InputError(
+        f"{total} pulses are missing (first before {where}):"
+        f" more than {MAX_DROPPED_FRACTION:.1%} of the record, too many to "
+        "interpolate safely",
+        file=name,
+        key="time",
+    )
+
+
+def missing_tooth_note(missing: int, teeth: int) -> str:
+    """The note on a wheel with ``missing`` teeth of ``teeth`` (a 60-2 wheel).
+
+    Parameters
+    ----------
+    missing, teeth
+        The teeth missing in the gap and the wheel's tooth positions.
+
+    Returns
+    -------
+    str
+        The note.
+    """
+    return (
+        f"a gap of {missing} pulse{'s' if missing > 1 else ''} every revolution: "
+        f"a {teeth}-{missing} wheel; the gap marks the revolution and the missing "
+        "pulses are interpolated"
+    )
+
+
+def dropped_note(total: int, places: list[str], gaps: int) -> str:
+    """The note on ``total`` dropped pulses interpolated, in ``gaps`` gaps, the first five
+    before ``places``.
+
+    Parameters
+    ----------
+    total, places, gaps
+        The pulses, the places of the first (up to five) gaps, the gaps.
+
+    Returns
+    -------
+    str
+        The note.
+    """
+    more = f" and {gaps - 5} more" if gaps > 5 else ""
+    return (
+        f"{total} dropped pulse{'s' if total > 1 else ''} (before {', '.join(places)}{more}) "
+        "interpolated"
+    )
+
+
+def regular_gaps(missing: np.ndarray, start: np.ndarray, teeth: int) -> bool:
+    """Whether gaps make a missing-tooth wheel: at least two, all of the same number of pulses
+    (fewer than a quarter of the wheel), one revolution apart.
+
+    Parameters
+    ----------
+    missing : numpy.ndarray
+        The pulses missing in each gap.
+    start : numpy.ndarray
+        The tooth position of the pulse before each gap.
+    teeth : int
+        Tooth positions per revolution.
+
+    Returns
+    -------
+    bool
+        True for a missing-tooth wheel.
+    """
+    return bool(
+        missing.size >= 2
+        and np.all(missing == missing[0])
+        and np.all(np.diff(start) == teeth)
+        and missing[0] < teeth // 4
+    )
+
+
+def fill_gaps(index: np.ndarray, times: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The time of every tooth position from the recorded pulses' (module docstring): a
+    quintic spline through (tooth position, time) at the positions without a pulse.
+
+    Parameters
+    ----------
+    index : numpy.ndarray
+        The tooth position of every recorded pulse (int, increasing; the first is the origin).
+    times : numpy.ndarray
+        Their times (s).
+
+    Returns
+    -------
+    times : numpy.ndarray
+        The time (s) of tooth positions ``index[0]`` .. ``index[-1]``.
+    filled : numpy.ndarray
+        Bool per tooth position: interpolated.
+    """
+    full = np.arange(index[0], index[-1] + 1)
+    filled = np.ones(full.size, dtype=bool)
+    filled[index - index[0]] = False
+    if np.any(filled):
+        out = np.empty(full.size)
+        out[index - index[0]] = times
+        from scipy.interpolate import make_interp_spline  # imported here: keeps the start-up light
+
+        out[filled] = make_interp_spline(index, times, k=5)(full[filled])
+    else:
+        out = times.copy()
+    return out, filled
+
+
 def prepare_pulses(train: PulseTrain) -> PreparedPulses:
     """Check a pulse train for gaps and spurious pulses, repair what is safe (module docstring),
     and locate the reference marks among the tooth positions.
@@ -419,31 +711,15 @@ def prepare_pulses(train: PulseTrain) -> PreparedPulses:
     [60.0, 120.0, 180.0]
     """
     t, n, lines, name = train.times, train.teeth, train.lines, train.source
-    d = np.diff(t)
-    ratio = d / _local_intervals(d)
-    short = np.flatnonzero(ratio < SHORT_RATIO)
-    if short.size:
-        i = int(short[0]) + 1
-        raise InputError(
-            f"a spurious pulse: the interval ending at {_where(lines, i)} is {ratio[i - 1]:.2f} "
-            "of its neighbours' (a double trigger or noise); clean the signal",
-            file=name,
-            key="time",
-            value=float(t[i]),
-        )
-    gaps = np.flatnonzero(ratio > GAP_RATIO)
-    missing = np.round(ratio[gaps]).astype(int) - 1
-    off = np.abs(ratio[gaps] - np.round(ratio[gaps])) > _WHOLE_TOLERANCE
-    if np.any(off):
-        j = int(gaps[np.argmax(off)])
-        raise InputError(
-            f"the interval ending at {_where(lines, j + 1)} is {ratio[j]:.2f} times its "
-            "neighbours': neither one pulse pitch nor a whole number of them (is the speed "
-            "steady enough for this wheel?)",
-            file=name,
-            key="time",
-            value=float(t[j + 1]),
-        )
+    ratio = interval_ratios(t)
+    faults = interval_faults(ratio)
+    if faults.short.size:
+        i = int(faults.short[0]) + 1
+        raise spurious_pulse(sample_place(lines, i), ratio[i - 1], float(t[i]), name)
+    gaps, missing = faults.gaps, faults.missing
+    if np.any(faults.off):
+        j = int(gaps[np.argmax(faults.off)])
+        raise odd_interval(sample_place(lines, j + 1), ratio[j], float(t[j + 1]), name)
     # tooth position of every recorded pulse
     step = np.ones(t.size - 1, dtype=int)
     step[gaps] += missing
@@ -451,56 +727,20 @@ def prepare_pulses(train: PulseTrain) -> PreparedPulses:
     notes: list[str] = []
     missing_tooth = False
     if gaps.size:
-        start = index[gaps]  # tooth position of the pulse before each gap
-        regular = (
-            gaps.size >= 2
-            and np.all(missing == missing[0])
-            and np.all(np.diff(start) == n)
-            and missing[0] < n // 4
-        )
-        if regular:
+        if regular_gaps(missing, index[gaps], n):
             missing_tooth = True
-            notes.append(
-                f"a gap of {missing[0]} pulse{'s' if missing[0] > 1 else ''} every revolution: "
-                f"a {n}-{missing[0]} wheel; the gap marks the revolution and the missing "
-                "pulses are interpolated"
-            )
+            notes.append(missing_tooth_note(int(missing[0]), n))
         else:
             if np.any(missing > MAX_DROPPED_RUN):
                 j = int(gaps[np.argmax(missing > MAX_DROPPED_RUN)])
-                raise InputError(
-                    f"{int(missing[np.argmax(missing > MAX_DROPPED_RUN)])} pulses are missing "
-                    f"before {_where(lines, j + 1)}: too many in a row to interpolate safely",
-                    file=name,
-                    key="time",
-                    value=float(t[j + 1]),
-                )
+                count = int(missing[np.argmax(missing > MAX_DROPPED_RUN)])
+                raise long_run(count, sample_place(lines, j + 1), float(t[j + 1]), name)
             total = int(np.sum(missing))
             if total > max(1.0, MAX_DROPPED_FRACTION * t.size):
-                raise InputError(
-                    f"{total} pulses are missing (first before {_where(lines, int(gaps[0]) + 1)}):"
-                    f" more than {MAX_DROPPED_FRACTION:.1%} of the record, too many to "
-                    "interpolate safely",
-                    file=name,
-                    key="time",
-                )
-            where = ", ".join(_where(lines, int(g) + 1) for g in gaps[:5])
-            more = f" and {gaps.size - 5} more" if gaps.size > 5 else ""
-            notes.append(
-                f"{total} dropped pulse{'s' if total > 1 else ''} (before {where}{more}) "
-                "interpolated"
-            )
-    full = np.arange(index[-1] + 1)
-    filled = np.ones(full.size, dtype=bool)
-    filled[index] = False
-    if np.any(filled):
-        times = np.empty(full.size)
-        times[index] = t
-        from scipy.interpolate import make_interp_spline  # imported here: keeps the start-up light
-
-        times[filled] = make_interp_spline(index, t, k=5)(full[filled])
-    else:
-        times = t.copy()
+                raise too_many_dropped(total, sample_place(lines, int(gaps[0]) + 1), name)
+            places = [sample_place(lines, int(g) + 1) for g in gaps[:5]]
+            notes.append(dropped_note(total, places, int(gaps.size)))
+    times, filled = fill_gaps(index, t)
     ref_index, ref_times, period = _reference(
         train, times, index, gaps, missing, missing_tooth, notes
     )
@@ -536,11 +776,65 @@ def _reference(
         raise InputError(
             "no reference time falls within the pulse record", file=name, key="reference"
         )
-    # cubic in time: linear interpolation would err by theta'' dt^2 / 8 (1 mrad for 20 mrad of
-    # order 6 on a 60-tooth wheel)
+    kappa = reference_positions(times, 0, kept)
+    return check_marks(kappa, kept, lines, n, name)
+
+
+def reference_positions(times: np.ndarray, first: int, marks: np.ndarray) -> np.ndarray:
+    """The fractional tooth positions of reference marks: a cubic spline of the tooth position
+    through the times of the tooth positions, at the marks' times (linear interpolation would
+    err by theta'' dt^2 / 8: 1 mrad for 20 mrad of order 6 on a 60-tooth wheel).
+
+    Parameters
+    ----------
+    times : numpy.ndarray
+        The times (s) of consecutive tooth positions ``first``, ``first + 1``, ...
+    first : int
+        The tooth position of ``times[0]``.
+    marks : numpy.ndarray
+        The marks' times (s), within ``times``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Their tooth positions (fractional). The spline's dependence on a tooth's time decays by
+        2 - sqrt(3) = 0.27 per position, so a part of the record reaching 64 positions beyond
+        the marks either way gives the positions of the whole to rounding.
+    """
     from scipy.interpolate import CubicSpline  # imported here: keeps the start-up light
 
-    kappa = CubicSpline(times, np.arange(times.size, dtype=float))(kept)
+    position = np.arange(first, first + times.size, dtype=float)
+    return np.asarray(CubicSpline(times, position)(marks))
+
+
+def check_marks(
+    kappa: np.ndarray, kept: np.ndarray, lines: np.ndarray | None, n: int, name: str
+) -> tuple[np.ndarray, np.ndarray, int]:
+    """The reference marks' tooth positions checked to fall every N or 2N positions.
+
+    Parameters
+    ----------
+    kappa : numpy.ndarray
+        The marks' tooth positions (fractional, :func:`reference_positions`).
+    kept : numpy.ndarray
+        Their times (s).
+    lines : numpy.ndarray or None
+        Their file lines, for the messages.
+    n : int
+        Tooth positions per revolution.
+    name : str
+        The file, for the messages.
+
+    Returns
+    -------
+    tuple of (numpy.ndarray, numpy.ndarray, int)
+        ``kappa``, ``kept`` and the tooth positions between marks (N or 2N).
+
+    Raises
+    ------
+    InputError
+        When the marks are not N or 2N positions apart (naming the lines).
+    """
     if kept.size == 1:
         return kappa, kept, n
     spacing = np.diff(kappa)

@@ -20,15 +20,16 @@ counter clock (rounding to whole ticks) are added last, as a torsiograph's count
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from crankdyn.measure.records import PulseChunk, PulseRecord
 from crankdyn.measure.signals import PulseTrain
 
-__all__ = ["PrescribedMotion", "synthetic_pulses"]
+__all__ = ["PrescribedMotion", "synthetic_pulses", "synthetic_record"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -253,3 +254,85 @@ def synthetic_pulses(
         if reference is not None:
             reference = np.round(reference / clock) * clock
     return PulseTrain(times, teeth, reference=reference, source=source)
+
+
+def synthetic_record(
+    motion: PrescribedMotion,
+    teeth: int,
+    duration: float,
+    *,
+    reference_every: int | None = None,
+    reference_angle: float = 0.0,
+    tooth_offset: float = 0.3,
+    jitter: float = 0.0,
+    seed: int = 0,
+    chunk: int = 1 << 18,
+    source: str = "synthetic",
+) -> PulseRecord:
+    """The pulses of :func:`synthetic_pulses` as a record read in chunks, made as it is read:
+    a record of any length (10^7 pulses and more) in memory bounded by a chunk.
+
+    Every chunk solves its own teeth (:meth:`PrescribedMotion.solve`), so the pulse times are
+    those of :func:`synthetic_pulses` without jitter and clock; the jitter of chunk m comes
+    from the generator seeded with (``seed``, m), the same at every reading. The reference marks
+    come with the first chunk.
+
+    Parameters
+    ----------
+    motion : PrescribedMotion
+        The prescribed motion.
+    teeth : int
+        Teeth N (pulses per revolution).
+    duration : float
+        Length of the record (s).
+    reference_every : int or None
+        1 or 2 (as :func:`synthetic_pulses`), or None: no reference.
+    reference_angle, tooth_offset : float
+        As :func:`synthetic_pulses` (rad; tooth pitches).
+    jitter : float
+        Standard deviation of the timing noise (s); default 0.
+    seed : int
+        Seed of the noise generator.
+    chunk : int
+        Pulses per chunk.
+    source : str
+        Where the record comes from, for messages; default ``"synthetic"``.
+
+    Returns
+    -------
+    crankdyn.measure.records.PulseRecord
+        The record.
+
+    Examples
+    --------
+    >>> m = PrescribedMotion(20 * math.pi, 0.0, np.array([1.0]), np.array([1e-3]))
+    >>> record = synthetic_record(m, 60, 1.0, chunk=250)
+    >>> whole = synthetic_pulses(m, 60, 1.0)
+    >>> bool(np.array_equal(record.train().times, whole.times))
+    True
+    """
+    psi_end = motion.speed * duration + 0.5 * motion.acceleration * duration**2
+    pitch = 2.0 * math.pi / teeth
+    start = reference_angle + tooth_offset * pitch
+    first = math.ceil(-start / pitch) - 2
+    last = math.floor((psi_end - start) / pitch) + 2
+    reference = None
+    if reference_every is not None:
+        span = 2.0 * math.pi * reference_every
+        m = np.arange(math.ceil(-reference_angle / span), math.floor(psi_end / span) + 1)
+        ref_psi = motion.solve(reference_angle + span * m)
+        reference = motion.time_at(ref_psi[(ref_psi >= 0.0) & (ref_psi <= psi_end)])
+
+    def read() -> Iterator[PulseChunk]:
+        marks = reference
+        for index, k0 in enumerate(range(first, last + 1, chunk)):
+            k = np.arange(k0, min(last + 1, k0 + chunk))
+            psi = motion.solve(start + pitch * k)
+            times = motion.time_at(psi[(psi >= 0.0) & (psi <= psi_end)])
+            if jitter:
+                times = times + np.random.default_rng([seed, index]).normal(0, jitter, times.size)
+            if times.size or marks is not None:
+                yield PulseChunk(times, reference=marks)
+                marks = None
+
+    return PulseRecord(read, teeth, source)

@@ -303,6 +303,9 @@ def _tracking_trace(result, fig):
     fig, axes = new_figure(2, 1, width=9.5, height=6.2, fig=fig)
     d = result.domain
     ax = axes[0, 0]
+    ax2 = axes[1, 0]
+    if d is None:  # a record analysed block by block: the band of each cycle
+        return _envelope_trace(result, fig, ax, ax2)
     ax.plot(
         d.pulse_speed_angle / (2 * math.pi),
         d.pulse_speed * RPM,
@@ -312,10 +315,41 @@ def _tracking_trace(result, fig):
     )
     ax.set_ylabel("Instantaneous speed (rpm)")
     ax.set_title(_plain(f"{result.source}: {result.kind}"), fontsize=10)
-    ax2 = axes[1, 0]
     ax2.plot(d.angle / (2 * math.pi), d.vibration * 1e3, color=COLORS[1], linewidth=0.5)
     ax2.set_ylabel("Angular vibration (mrad)")
     ax2.set_xlabel("Crank revolutions from the reference")
     ax.set_xlim(float(d.angle[0] / (2 * math.pi)), float(d.angle[-1] / (2 * math.pi)))
+    ax2.set_xlim(*ax.get_xlim())
+    return fig
+
+
+def _envelope_trace(result, fig, ax, ax2):
+    """The trace of a long record: per working cycle, the band from the least to the largest
+    instantaneous speed and angular vibration (:class:`crankdyn.measure.blocks.Envelope`)."""
+    e = result.envelope
+    revolutions = e.angle / (2 * math.pi)
+    ax.fill_between(
+        revolutions,
+        e.speed_low * RPM,
+        e.speed_high * RPM,
+        color=COLORS[0],
+        step="post",
+        linewidth=0,
+        label="least to largest in each cycle",
+    )
+    ax.set_ylabel("Instantaneous speed (rpm)")
+    ax.set_title(_plain(f"{result.source}: {result.kind}, per cycle"), fontsize=10)
+    ax.legend(fontsize=8, loc="upper left")
+    ax2.fill_between(
+        revolutions,
+        e.vibration_low * 1e3,
+        e.vibration_high * 1e3,
+        color=COLORS[1],
+        step="post",
+        linewidth=0,
+    )
+    ax2.set_ylabel("Angular vibration (mrad)")
+    ax2.set_xlabel("Crank revolutions from the reference")
+    ax.set_xlim(float(revolutions[0]), float(revolutions[-1]))
     ax2.set_xlim(*ax.get_xlim())
     return fig

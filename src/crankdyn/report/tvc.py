@@ -2,8 +2,9 @@
 ``summary.json`` with the ``verdicts`` and ``barred_speed_ranges`` lists, ``data/*.csv``,
 ``plots/``) with
 the installation data, the mass-elastic system, natural frequencies and mode shapes, the
-Campbell diagram, every condition's components against their limits, the barred speed ranges,
-the passages through them and the verdict table (docs/tvc.md)."""
+Campbell diagram, every condition's components against their limits, every transient event's
+time history against its limits, the barred speed ranges, the passages through them and the
+verdict table (docs/tvc.md)."""
 
 from __future__ import annotations
 
@@ -364,6 +365,35 @@ def _condition_sections(result: TvcResult) -> list[Section]:
     return out
 
 
+def _event_sections(result: TvcResult) -> list[Section]:
+    """Every transient event (``[[tvc.event]]``): its time history with the limits (plot); its
+    verdict rows are the verdict table's, its key figures the events' table's (each once)."""
+    out = []
+    for k, event in enumerate(result.events):
+        section = Section.of(
+            f"event-{k + 1}",
+            f"Transient event: {event.name}",
+            [event],
+            intro=f"{event.description}. Its verdict rows are in the verdict table.",
+            plots=[
+                Plot(
+                    f"event-{k + 1}",
+                    f"{event.name}: time history against the limits",
+                    event.plot(),
+                    "Every checked quantity as a fraction of its limit (the line 1), the "
+                    "couplings' torques with their maximum torques, and the speeds, over the "
+                    "run; the peaks of the verdict rows are refined between the integration "
+                    "steps.",
+                )
+            ],
+        )
+        section.tables, section.show_figures = [], False
+        for figure in section.figures:  # the verdict table and the events' table show them
+            figure.headline = False
+        out.append(section)
+    return out
+
+
 def _passage_section(result: TvcResult) -> Section:
     """The passages through the barred ranges: the runs' plots (the table is the verdict
     section's)."""
@@ -373,10 +403,9 @@ def _passage_section(result: TvcResult) -> Section:
             plots.append(
                 Plot(
                     f"passage-{k + 1}",
-                    f"Passage {p.start * RPM:.1f}-{p.end * RPM:.1f} rpm ({p.condition})",
-                    p.transient.plot(
-                        shaft=p.transient.shafts[p.elements[0]] if p.elements else None
-                    ),
+                    f"Passage {number(p.start * RPM, 5)}-{number(p.end * RPM, 5)} rpm "
+                    f"({p.condition})",
+                    p.transient.plot(),
                     "Run-up through the barred range in the time domain.",
                 )
             )
@@ -420,6 +449,7 @@ def build_tvc_report(result: TvcResult) -> Report:
         *_model_sections(result),
         _verdict_section(result),
         *_condition_sections(result),
+        *_event_sections(result),
         _passage_section(result),
     ]
     front = _front(result, created)

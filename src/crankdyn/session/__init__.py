@@ -18,7 +18,8 @@ declare their summaries (:mod:`crankdyn.summary`) and front ends render them.
 
 Modules: :mod:`crankdyn.defaults` (the registry and the speed grid, at the package's top),
 :mod:`~crankdyn.session.core` (subject, speeds, orders, cache), :mod:`~crankdyn.session.engine`
-(the cycle analyses) and :mod:`~crankdyn.session.torsion` (the torsional analyses).
+(the cycle analyses), :mod:`~crankdyn.session.torsion` (the torsional analyses) and
+:mod:`~crankdyn.session.crankshaft` (UR M53 and the crankshaft's beam model).
 """
 
 from __future__ import annotations
@@ -30,8 +31,8 @@ from typing import Any
 from crankdyn.crank.kinematics import SERIES_ORDER
 from crankdyn.defaults import DEFAULTS, DELTA, MAX_ORDER, SPEED_STEP, STEP, speed_grid
 from crankdyn.session.core import with_parameters
+from crankdyn.session.crankshaft import CrankshaftAnalyses
 from crankdyn.session.engine import EngineAnalyses
-from crankdyn.session.torsion import TorsionAnalyses
 
 __all__ = [
     "ANALYSES",
@@ -48,7 +49,7 @@ __all__ = [
 
 
 @with_parameters
-class Analysis(EngineAnalyses, TorsionAnalyses):
+class Analysis(EngineAnalyses, CrankshaftAnalyses):
     """The analyses of an engine, or of a torsional model without an engine, computed once.
 
     Attributes are the analyses: properties for those without options (``torque``,
@@ -125,6 +126,9 @@ ANALYSES: tuple[Analysed, ...] = (
     Analysed("response", "crankdyn.torsion.response.ResponseResult", ("engine", "model")),
     Analysed("relative_angle", "crankdyn.torsion.response.RelativeAngle", ("engine", "model")),
     Analysed("judged", "crankdyn.tvc.result.ConditionResult", ("engine", "model")),
+    Analysed("crankshaft", "crankdyn.crankshaft.result.CrankshaftResult"),
+    Analysed("crankshaft_modes", "crankdyn.crankshaft.beam_modes.BeamModesResult"),
+    Analysed("crankshaft_response", "crankdyn.crankshaft.beam_response.BeamResponseResult"),
 )
 """The analyses whose key figures every front end (the study among them) takes, in report
 order."""

@@ -373,10 +373,11 @@ class TorsionAnalyses(SessionCore):
         conditions: Sequence[str] | None = None,
     ) -> TvcResult:
         """The torsional vibration calculation of the installation (:func:`crankdyn.tvc.tvc`):
-        every running condition (normal, each misfire, damper out of order) against every
-        component's limit, the barred speed ranges and their passage, with the session's
-        orders; each condition's response is the session's own where its speeds are the
-        session's (:meth:`response`), so its verdicts are :meth:`judged`'s.
+        every running condition (normal, each misfire, damper out of order, overspeed,
+        declutched and idle where a clutch is modelled) and every transient event of its
+        ``[tvc]`` against every component's limit, the barred speed ranges and their passage,
+        with the session's orders; each condition's response is the session's own where its
+        speeds are the session's (:meth:`response`), so its verdicts are :meth:`judged`'s.
 
         Parameters
         ----------

@@ -26,8 +26,12 @@ between its primary and secondary inertias (:class:`crankdyn.torsion.elements.Sh
 - the **permissible torques** for the rule checks (DIN 740-2): the nominal torque T_KN (mean
   torque carried continuously), the maximum torque T_Kmax (transient, e.g. passing a resonance),
   the permissible continuous vibratory torque T_KW (amplitude) and the permissible power loss
-  P_KV (the heat the element can dissipate continuously, W). They are kept here, unchecked by
-  the vibration analysis itself.
+  P_KV (the heat the element can dissipate continuously, W); where the maker's catalogue
+  gives them, the maximum torques T_Kmax1 for normal transient conditions (starts, stops,
+  clutch engagements, passing resonances: many times in the coupling's life) and T_Kmax2 for
+  exceptional ones (a generator's short circuit, an emergency stop: a few times), as the
+  marine coupling catalogues print them beside T_Kmax (e.g. Vulkan's and Centa's data sheets;
+  T_Kmax2 >= T_Kmax1). They are kept here, unchecked by the vibration analysis itself.
 
 Temperature. The catalogues give factors for the stiffness and the relative damping at the
 rubber's operating temperature (e.g. C_T(theta) = C_T,ref S_t in Renold's and Poona's tables;
@@ -142,6 +146,9 @@ class Coupling:
         response); default the nominal torque T_KN, else the table's largest torque.
     nominal_torque, maximum_torque, vibratory_torque : float or None
         T_KN, T_Kmax, T_KW (N m), for the rule checks; each > 0, T_Kmax >= T_KN >= T_KW.
+    maximum_torque_1, maximum_torque_2 : float or None
+        T_Kmax1 and T_Kmax2 (N m): the maximum torques for normal and for exceptional
+        transient conditions, where the catalogue gives them; each > 0, T_Kmax2 >= T_Kmax1.
     power_loss : float or None
         P_KV, the permissible power loss (W), for the rule checks.
     designation : str or None
@@ -178,6 +185,8 @@ class Coupling:
     vibratory_torque: float | None = None
     power_loss: float | None = None
     designation: str | None = None
+    maximum_torque_1: float | None = None
+    maximum_torque_2: float | None = None
 
     def __post_init__(self) -> None:
         table = self.table_torque is not None or self.table_stiffness is not None
@@ -198,6 +207,8 @@ class Coupling:
             ("maximum_torque", "the maximum torque T_Kmax"),
             ("vibratory_torque", "the permissible vibratory torque T_KW"),
             ("power_loss", "the permissible power loss P_KV"),
+            ("maximum_torque_1", "the maximum torque T_Kmax1"),
+            ("maximum_torque_2", "the maximum torque T_Kmax2"),
         ):
             object.__setattr__(self, name, _optional_positive(name, getattr(self, name), what))
         t_kn, t_max, t_kw = self.nominal_torque, self.maximum_torque, self.vibratory_torque
@@ -207,6 +218,14 @@ class Coupling:
                 "no catalogue rates a coupling so",
                 key="maximum_torque",
                 value=t_max,
+            )
+        t1, t2 = self.maximum_torque_1, self.maximum_torque_2
+        if t1 is not None and t2 is not None and t2 < t1:
+            raise InputError(
+                f"T_Kmax2 (exceptional transient conditions) lies below T_Kmax1 ({t1:.6g} N·m, "
+                "normal ones); no catalogue rates a coupling so",
+                key="maximum_torque_2",
+                value=t2,
             )
         if t_kn is not None and t_kw is not None and t_kw > t_kn:
             raise InputError(
@@ -334,6 +353,8 @@ class Coupling:
             self.vibratory_torque,
             self.power_loss,
             self.designation,
+            self.maximum_torque_1,
+            self.maximum_torque_2,
         )
 
     # ---- derived values -----------------------------------------------------------------------
@@ -447,19 +468,22 @@ class Coupling:
         Returns
         -------
         dict of str to float or None
-            ``nominal_torque_Nm``, ``maximum_torque_Nm``, ``vibratory_torque_Nm`` (N m) and
-            ``power_loss_W`` (W); None where not given.
+            ``nominal_torque_Nm``, ``maximum_torque_Nm``, ``vibratory_torque_Nm``,
+            ``maximum_torque_1_Nm``, ``maximum_torque_2_Nm`` (N m) and ``power_loss_W`` (W);
+            None where not given.
 
         Examples
         --------
         >>> c = Coupling(stiffness=1e4, relative_damping=1.0, nominal_torque=800.0, power_loss=90.0)
         >>> c.limits()
         {'nominal_torque_Nm': 800.0, 'maximum_torque_Nm': None, 'vibratory_torque_Nm': None,
-         'power_loss_W': 90.0}
+         'maximum_torque_1_Nm': None, 'maximum_torque_2_Nm': None, 'power_loss_W': 90.0}
         """
         return {
             "nominal_torque_Nm": self.nominal_torque,
             "maximum_torque_Nm": self.maximum_torque,
             "vibratory_torque_Nm": self.vibratory_torque,
+            "maximum_torque_1_Nm": self.maximum_torque_1,
+            "maximum_torque_2_Nm": self.maximum_torque_2,
             "power_loss_W": self.power_loss,
         }

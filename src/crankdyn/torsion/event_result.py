@@ -81,8 +81,13 @@ class EventResult(Result):
     for a rigid gear mesh), ``section_modulus`` its W_p where it has a diameter (NaN
     otherwise), ``limit_torque`` a coupling's T_Kmax from the model (NaN otherwise).
 
+    The verdicts are not the run's own: the TVC's checks judge it
+    (:func:`crankdyn.tvc.events.judge_event`, the one evaluation of every check).
+
     Parameters
     ----------
+    vibratory_torque : numpy.ndarray or None
+        (time, element) the vibratory torque at the kept samples (N m; not exported).
     warnings : tuple of crankdyn.plausibility.PlausibilityWarning
         The input warnings of the model's file(s) (:mod:`crankdyn.io.plausibility`), given by
         the analysis session (not exported as a field: ``to_dict`` lists them under
@@ -133,6 +138,7 @@ class EventResult(Result):
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     model_name: str = scalar("model", "Model", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
+    vibratory_torque: np.ndarray | None = field(default=None, repr=False, compare=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
@@ -309,6 +315,86 @@ class EventResult(Result):
         """
         return time_above(self.time, np.abs(self.torque[:, e]), level)
 
+    @property
+    def shaft_torque(self) -> NDArray[np.float64]:
+        """(time, element) the vibratory torque of every element at the kept samples (N m):
+        the model's shafts first, in their order (the reading of the TVC's passage checks, as
+        :attr:`crankdyn.torsion.transient.TransientResult.shaft_torque`)."""
+        if self.vibratory_torque is None:
+            raise ValueError("this run kept no vibratory torques")
+        return np.asarray(self.vibratory_torque)
+
+    def samples(self, e: int, *, vibratory: bool = False) -> NDArray[np.float64]:
+        """Element e's |torque| (or |vibratory torque|) at the kept samples (N m).
+
+        Parameters
+        ----------
+        e : int
+            The element.
+        vibratory : bool
+            The vibratory torque instead of the torque.
+
+        Returns
+        -------
+        numpy.ndarray
+            (time,) (N m).
+        """
+        values = self.vibratory_torque if vibratory else self.torque
+        if values is None:
+            raise ValueError("this run kept no vibratory torques")
+        return np.abs(np.asarray(values)[:, e])
+
+    def time_mean(self, e: int) -> float:
+        """Element e's torque averaged over the run (N m; trapezoidal rule on the kept
+        samples).
+
+        Parameters
+        ----------
+        e : int
+            The element.
+
+        Returns
+        -------
+        float
+            (N m).
+        """
+        t, y = self.time, self.torque[:, e]
+        span = float(t[-1] - t[0])
+        if span <= 0.0:
+            return float(y[0])
+        return float(np.sum(0.5 * (y[1:] + y[:-1]) * np.diff(t)) / span)
+
+    def reversal(self, e: int) -> tuple[float, float, float, float, int]:
+        """A gear mesh's torque reversal: its largest drop below its mean over the run (the
+        tooth load reverses where the drop exceeds the mean: gear hammering).
+
+        Parameters
+        ----------
+        e : int
+            The mesh (an elastic mesh's element or a rigid gear's).
+
+        Returns
+        -------
+        drop : float
+            T_mean - min(T) in the mean's direction (N m; the extreme refined between steps).
+        mean : float
+            The mean over the run (N m).
+        when : float
+            The time of the lowest torque (s).
+        reversed_time : float
+            Seconds the torque is reversed (from the kept samples).
+        count : int
+            Times the torque falls through zero.
+        """
+        mean = self.time_mean(e)
+        sign = 1.0 if mean >= 0.0 else -1.0
+        low = self.min_torque[e] if sign > 0 else -self.max_torque[e]
+        when = self.min_time[e] if sign > 0 else self.max_time[e]
+        along = sign * self.torque[:, e]
+        reversed_time = time_above(self.time, -along, 0.0)
+        crossings = int(np.count_nonzero(np.diff(np.signbit(along).astype(int)) == 1))
+        return sign * mean - float(low), mean, float(when), reversed_time, crossings
+
     def largest(
         self, kinds: Sequence[str], *, stress: bool = False, vibratory: bool = False
     ) -> tuple[float, str] | None:
@@ -366,8 +452,8 @@ class EventResult(Result):
         return best[0], self.element_names[best[1]]
 
     def summary_verdicts(self) -> list[Verdict]:
-        """The verdicts of the limits the model holds
-        (:func:`crankdyn.torsion.event_checks.model_verdicts`).
+        """The verdicts of the installation's checks, where the run was judged
+        (:func:`crankdyn.tvc.events.judge_event`).
 
         Returns
         -------

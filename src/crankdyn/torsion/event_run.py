@@ -43,7 +43,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -314,6 +314,7 @@ class _Recorder:
     times: list[NDArray[np.float64]] = field(default_factory=list)
     speeds: list[NDArray[np.float64]] = field(default_factory=list)
     torques: list[NDArray[np.float64]] = field(default_factory=list)
+    vibratory: list[NDArray[np.float64]] = field(default_factory=list)
     mean: list[NDArray[np.float64]] = field(default_factory=list)
     high: NDArray[np.float64] | None = None
     low: NDArray[np.float64] | None = None
@@ -345,6 +346,7 @@ class _Recorder:
             self.times.append(t[keep])
             self.speeds.append(vk * line.mass_ratio[None, :])
             self.torques.append(torque[keep][:, : torque.shape[1] // 2])
+            self.vibratory.append(torque[keep][:, torque.shape[1] // 2 :])
             total = float(np.sum(line.inertia))
             self.mean.append(v[keep] @ line.inertia / total + frame)
         for sign, attr in ((1.0, "high"), (-1.0, "low")):
@@ -370,22 +372,28 @@ class _Recorder:
 
 def _refine(line: Line, rec: _Recorder) -> None:
     """Every element's extremes on the exact solution within the steps around them (module
-    docstring)."""
+    docstring); a window shared by several extremes (an impact loads many elements at once)
+    is evaluated once."""
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
+    evaluated: dict[tuple[int, float, float], tuple[Any, Any]] = {}
     for (e, which), w in rec.windows.items():
         sign = 1.0 if which == 0 else -1.0
-        taus = np.linspace(0.0, w.step, REFINE_POINTS)
-        ts, vals = [], []
-        for s in range(len(w.states) - 1):
-            st = w.mode.system.within(
-                w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
-            )
-            x, v = w.mode.system.to_physical(st)
-            t = w.t0 + s * w.step + taus
-            ts.append(t)
-            vals.append(sign * w.series(t, x, v)[:, e])
-        t_all, v_all = np.concatenate(ts), np.concatenate(vals)
+        key = (id(w.mode), w.t0, w.step)
+        if key not in evaluated:
+            taus = np.linspace(0.0, w.step, REFINE_POINTS)
+            ts, vals = [], []
+            for s in range(len(w.states) - 1):
+                st = w.mode.system.within(
+                    w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
+                )
+                x, v = w.mode.system.to_physical(st)
+                t = w.t0 + s * w.step + taus
+                ts.append(t)
+                vals.append(w.series(t, x, v))
+            evaluated[key] = (np.concatenate(ts), np.concatenate(vals))
+        t_all, series_all = evaluated[key]
+        v_all = sign * series_all[:, e]
         k = int(np.argmax(v_all))
         best, at = float(v_all[k]), float(t_all[k])
         if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
@@ -768,9 +776,7 @@ def event_response(
         EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
         float(kept + block * per_step),
     )  # fmt: skip
-    from crankdyn.torsion.event_checks import model_verdicts
-
-    return replace(result, verdicts=tuple(model_verdicts(result, model)))
+    return result
 
 
 def _setup(
@@ -885,6 +891,7 @@ def _result(
         speed=freeze(np.concatenate(rec.mean)),
         mass_speed=freeze(np.concatenate(rec.speeds)),
         torque=freeze(np.concatenate(rec.torques)),
+        vibratory_torque=freeze(np.concatenate(rec.vibratory)),
         max_torque=freeze(rec.high[:half]),
         min_torque=freeze(rec.low[:half]),
         max_time=freeze(rec.high_at[:half]),

@@ -22,7 +22,7 @@ event_response` integrates the line's response (:mod:`crankdyn.torsion.integrato
 Every event has a ``severity``: ``"normal"`` for the transient conditions of service (a start,
 a stop, a clutch engagement, ice impacts) and ``"exceptional"`` for the rare ones (a short
 circuit, an emergency stop): a coupling maker's catalogue gives T_Kmax1 for the first and
-T_Kmax2 for the second (:mod:`crankdyn.torsion.event_checks`).
+T_Kmax2 for the second (the TVC's checks, :mod:`crankdyn.tvc.checks`).
 """
 
 from __future__ import annotations
@@ -426,8 +426,9 @@ class ShortCircuit:
     name: str = ""
     severity: str = "exceptional"
     source: str = field(
-        default="IEC 60034-4-1:2018 short-circuit current components; air-gap torque of the "
-        "constant-flux-linkage analysis (crankdyn.torsion.short_circuit)",
+        default="air-gap torque of the constant-flux-linkage analysis from the machine's "
+        "IEC 60034-4-1:2018 quantities (X''d, X'd, Xd, T''d, T'd, Ta; the standard not read: "
+        "crankdyn.torsion.short_circuit)",
         repr=False,
     )
 
@@ -581,7 +582,8 @@ class IceImpact:
     severity: str = "normal"
     source: str = field(
         default="Finnish-Swedish Ice Class Rules 2017 (TRAFI/494131/03.04.01.00/2016) ch. 6 and "
-        "IACS UR I3: torque excitation for shaft line dynamic analysis",
+        "IACS UR I3 Rev.1 2007: torque excitation for shaft line dynamic analysis (not verified "
+        "against the texts: crankdyn.torsion.ice)",
         repr=False,
     )
 

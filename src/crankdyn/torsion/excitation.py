@@ -52,7 +52,7 @@ from crankdyn.constants import RPM
 from crankdyn.engine.firing import CYCLE_ANGLE, even_firing_interval
 from crankdyn.errors import InputError
 from crankdyn.results import freeze
-from crankdyn.torsion.excitation_spec import ExcitationSpec
+from crankdyn.torsion.excitation_spec import CylinderHarmonics, ExcitationSpec
 from crankdyn.torsion.orders import (
     Complex,
     check_orders,
@@ -72,6 +72,7 @@ __all__ = [
     "SAMPLES",
     "EngineExcitation",
     "SourceExcitation",
+    "TabulatedExcitation",
     "UniformExcitation",
     "excitation_for",
     "interp_complex",
@@ -644,6 +645,170 @@ def interp_complex(x: ArrayLike, xp: NDArray[np.float64], fp: Complex) -> Comple
     return (1.0 - t) * fp[i] + t * fp[i + 1]
 
 
+@dataclass(frozen=True, eq=False)
+class TabulatedExcitation:
+    """The cylinders' harmonic torques from the engine builder's table of one cylinder's
+    coefficients per order, firing and misfiring (a model file without an engine:
+    :class:`~crankdyn.torsion.excitation_spec.CylinderHarmonics`), phased by the firing angles:
+    c_q,i = c_q exp(-i q Phi_i) (the phase-vector rule of seed 003 section 4.2), the misfiring
+    cylinders' from the table's misfire coefficients. The table holds each cylinder's whole
+    torque (gas and inertia) at its speeds; :meth:`parts` returns it as the gas part, the
+    inertia part zero.
+
+    Parameters
+    ----------
+    table : CylinderHarmonics
+        The coefficients of one cylinder.
+    firing_angles : array_like
+        Firing angle of every cylinder (rad), cylinder 1 first.
+    cycle : str
+        ``"four-stroke"`` or ``"two-stroke"``.
+    misfire : tuple of int
+        The misfiring cylinders (1-based).
+    note : str
+        Text for reports (how the firing angles were found).
+    phases_known : bool
+        Whether the firing angles are the engine's (False: an assumption).
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        A misfiring cylinder the model does not have (key ``misfire``) or a table without
+        misfire coefficients (key ``misfire``, naming the file), an order of the table that the
+        cycle has not (key ``order``, naming the file).
+
+    Examples
+    --------
+    Two cylinders 360 deg apart, an order-0.5 torque of 100 sin(theta/2) N m each (c = -100 i),
+    40 sin(theta/2) N m misfiring: the second cylinder's phase vector exp(-i pi) = -1.
+
+    >>> from crankdyn.torsion.excitation_spec import CylinderHarmonics
+    >>> table = CylinderHarmonics(order=[0.5], normal=[-100j], misfire=[-40j])
+    >>> exc = TabulatedExcitation(table, np.radians([0.0, 360.0]))
+    >>> np.round(exc.harmonics([50.0], [0.5]).imag, 9).tolist()
+    [[[-100.0, 100.0]]]
+    >>> off = TabulatedExcitation(table, np.radians([0.0, 360.0]), misfire=(2,))
+    >>> np.round(off.harmonics([50.0], [0.5]).imag, 9).tolist()
+    [[[-100.0, 40.0]]]
+    """
+
+    table: CylinderHarmonics
+    firing_angles: NDArray[np.float64]
+    cycle: str = "four-stroke"
+    misfire: tuple[int, ...] = ()
+    note: str = ""
+    phases_known: bool = True
+
+    def __post_init__(self) -> None:
+        angles = freeze(np.atleast_1d(np.asarray(self.firing_angles, dtype=float)))
+        object.__setattr__(self, "firing_angles", angles)
+        misfire = _check_cylinder_list(self.misfire, angles.size, "misfire")
+        object.__setattr__(self, "misfire", tuple(sorted(set(misfire))))
+        if self.misfire:
+            self.table.at([1.0], self.table.order[:1], misfiring=True)  # raises without them
+        try:
+            check_orders(self.table.order, self.cycle)
+        except InputError as exc:
+            raise InputError(
+                f"the table's orders do not fit the {self.cycle} cycle ({exc.message})",
+                file=self.table.source,
+                key="order",
+            ) from None
+
+    @property
+    def cylinder_count(self) -> int:
+        """Number of cylinders (one per firing angle)."""
+        return int(self.firing_angles.size)
+
+    @property
+    def description(self) -> str:
+        """One line describing the excitation, for reports."""
+        text = f"the cylinders' harmonic torques from the table {self.table.source or ''}"
+        text = text.rstrip()
+        if self.misfire:
+            text += f"; cylinder(s) {', '.join(map(str, self.misfire))} misfiring (the table's)"
+        return text
+
+    def breakpoints(self) -> NDArray[np.float64]:
+        """The table's speeds (rad/s): the coefficients are linear between them, so a resolved
+        response samples them.
+
+        Returns
+        -------
+        numpy.ndarray
+            The speeds (rad/s); empty for a table without speeds.
+        """
+        return np.zeros(0) if self.table.speed is None else np.array(self.table.speed)
+
+    def notes(self, speeds: ArrayLike) -> tuple[str, ...]:
+        """Notes for reports: how the firing angles were found, and speeds outside the table's
+        (the coefficients held at its ends).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s).
+
+        Returns
+        -------
+        tuple of str
+            The notes.
+        """
+        out = [self.note] if self.note else []
+        w = np.atleast_1d(np.asarray(speeds, dtype=float))
+        s = self.table.speed
+        if s is not None and s.size and w.size and (w.min() < s[0] or w.max() > s[-1]):
+            out.append(
+                f"speeds outside the harmonic table's {s[0] * RPM:.6g}-{s[-1] * RPM:.6g} rpm: its "
+                "coefficients held at its ends"
+            )
+        return tuple(out)
+
+    def parts(self, speeds: ArrayLike, orders: ArrayLike) -> tuple[Complex, Complex]:
+        """(gas, inertia) harmonic torques: the table's (the whole cylinder torque) as gas, the
+        inertia part zero (class docstring).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+        orders : array_like
+            Orders (dimensionless), shape (orders,), valid for the cycle; an order the table
+            does not hold is 0.
+
+        Returns
+        -------
+        gas, inertia : numpy.ndarray
+            Complex harmonic torques (N m), each of shape (speeds, orders, cylinders).
+        """
+        speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
+        orders = check_orders(orders, self.cycle)
+        phase = phase_vectors(self.firing_angles, orders)[None]  # (1, Q, Z)
+        gas = self.table.at(speeds, orders)[:, :, None] * phase
+        if self.misfire:
+            idx = np.asarray(self.misfire) - 1
+            off = self.table.at(speeds, orders, misfiring=True)[:, :, None] * phase[:, :, idx]
+            gas[:, :, idx] = off
+        return gas, np.zeros_like(gas)
+
+    def harmonics(self, speeds: ArrayLike, orders: ArrayLike) -> Complex:
+        """Harmonic torque of every cylinder, c_q exp(-i q Phi_i) (:meth:`parts`).
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,).
+        orders : array_like
+            Orders (dimensionless), shape (orders,).
+
+        Returns
+        -------
+        numpy.ndarray
+            Complex harmonic torques (N m), shape (speeds, orders, cylinders).
+        """
+        return self.parts(speeds, orders)[0]
+
+
 # ---- engine-less excitation ----------------------------------------------------------------------
 @dataclass(frozen=True, eq=False)
 class SourceExcitation:
@@ -731,7 +896,9 @@ class SourceExcitation:
         return self.parts(speeds, orders)[0]
 
 
-Excitation: TypeAlias = UniformExcitation | EngineExcitation | SourceExcitation
+Excitation: TypeAlias = (
+    UniformExcitation | EngineExcitation | SourceExcitation | TabulatedExcitation
+)
 """The excitation of a torsional model (:func:`excitation_for`): every kind has ``cycle``,
 ``firing_angles``, ``cylinder_count``, ``description``, ``notes``, ``parts`` and ``harmonics``."""
 
@@ -754,7 +921,8 @@ def excitation_for(
         The engine whose cylinder torques excite the model; None for the model's own engine
         (``[[engine]]``, the first) or, without one, its ``[excitation]`` table.
     misfire : sequence of int
-        Misfiring cylinders (1-based); needs an engine.
+        Misfiring cylinders (1-based); needs an engine, or a harmonic table with misfire
+        coefficients.
     torque : float or None
         Forces a uniform excitation of that amplitude (N m) even with an engine (its firing
         angles are kept).
@@ -762,7 +930,9 @@ def excitation_for(
     Returns
     -------
     Excitation
-        An :class:`EngineExcitation`, a :class:`UniformExcitation`, or for a model with
+        An :class:`EngineExcitation`, for a model without an engine whose ``[excitation]``
+        gives the cylinders' harmonic table a :class:`TabulatedExcitation` (misfire from its
+        misfire coefficients), a :class:`UniformExcitation`, or for a model with
         excitation sources but no cylinders a :class:`SourceExcitation` (its sources act,
         :mod:`crankdyn.torsion.sources`).
 
@@ -770,7 +940,8 @@ def excitation_for(
     ------
     crankdyn.errors.InputError
         A model with no cylinder and no source (naming the model file), a misfire without an
-        engine (key ``misfire``), firing angles not one per cylinder (key ``firing_angles``).
+        engine or a harmonic table with misfire coefficients (key ``misfire``), firing angles
+        not one per cylinder (key ``firing_angles``).
     """
     spec = getattr(model, "excitation", None)
     cylinders = sorted(model.cylinder_dofs)
@@ -790,6 +961,11 @@ def excitation_for(
         )
     if engine is not None and torque is None:
         return EngineExcitation(engine, spec, tuple(misfire))
+    table = spec.cylinder_harmonics if spec is not None and engine is None else None
+    if table is not None and torque is None:
+        cycle = spec.cycle if spec is not None else "four-stroke"
+        angles, note = _model_firing_angles(spec, max(cylinders), cycle)
+        return TabulatedExcitation(table, angles, cycle, tuple(misfire), note, not note)
     if misfire:
         raise InputError(
             "a misfire needs the engine's pressure (an engine file with a [torsion] section)",

@@ -23,6 +23,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "LOAD_KINDS",
+    "CylinderHarmonics",
     "ExcitationSpec",
     "HarmonicTable",
     "LoadCurve",
@@ -277,6 +278,187 @@ class HarmonicTable:
         return out
 
 
+@dataclass(frozen=True, eq=False)
+class CylinderHarmonics:
+    """An engine builder's table of one cylinder's harmonic torques per order, firing and
+    misfiring, for a model file without an engine (:class:`crankdyn.torsion.excitation.
+    TabulatedExcitation`; the CSV: :func:`crankdyn.io.torsion_tables.read_cylinder_harmonics`).
+
+    The torque of one cylinder over its cycle is the Fourier series in its own crank angle
+    theta from its firing TDC (seed 003, 第4章: the cylinder's tangential torque as a sum of
+    orders),
+
+        T(theta) = sum_q [a_q sin(q theta) + b_q cos(q theta)] = sum_q T_q sin(q theta + psi_q),
+
+    held here as the complex coefficient c_q = b_q - i a_q = T_q exp(i (psi_q - pi/2)), so that
+    T(theta) = Re(sum_q c_q exp(i q theta)) (the convention of :class:`HarmonicTable` and
+    :mod:`crankdyn.torsion.excitation`); every cylinder has the same coefficients, phased by its
+    firing angle. The table may give the coefficients at several speeds (an engine builder's
+    table along the propeller law, say): they are interpolated linearly in speed (real and
+    imaginary parts), held at the table's ends; a table without speeds holds at every speed.
+
+    Parameters
+    ----------
+    order : array_like
+        The orders q (of the crankshaft speed), shape (orders,), > 0, distinct.
+    normal : array_like
+        c_q of a firing cylinder (N m, complex), shape (speeds, orders) (or (orders,) without
+        speeds).
+    misfire : array_like or None
+        c_q of a misfiring cylinder (N m, complex), the shape of ``normal``; None: the table
+        gives no misfire.
+    speed : array_like or None
+        The speeds of the rows (rad/s), shape (speeds,), > 0, increasing; None: one set of
+        coefficients at every speed.
+    source : str or None
+        The file, for reports.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        Shapes that do not match, values that are not finite, orders not positive or repeated
+        (key ``order``), speeds not positive or not increasing (key ``speed``).
+
+    Examples
+    --------
+    A cylinder whose order-1 torque is 100 sin(theta) N m at every speed:
+
+    >>> table = CylinderHarmonics(order=[1.0], normal=[-100j])
+    >>> table.at([50.0, 80.0], [1.0, 2.0]).imag.tolist()  # order 2 is not in the table: 0
+    [[-100.0, 0.0], [-100.0, 0.0]]
+    """
+
+    order: NDArray[np.float64]
+    normal: NDArray[np.complex128]
+    misfire: NDArray[np.complex128] | None = None
+    speed: NDArray[np.float64] | None = None
+    source: str | None = None
+
+    if TYPE_CHECKING:  # what the constructor accepts; the fields hold read-only arrays
+
+        def __init__(
+            self,
+            order: ArrayLike,
+            normal: ArrayLike,
+            misfire: ArrayLike | None = None,
+            speed: ArrayLike | None = None,
+            source: str | None = None,
+        ) -> None: ...
+
+    def __post_init__(self) -> None:
+        q = np.atleast_1d(np.asarray(self.order, dtype=float))
+        if q.ndim != 1 or q.size == 0 or not np.all(np.isfinite(q)):
+            raise InputError("expected finite orders", key="order")
+        if np.any(q <= 0.0):
+            raise InputError("orders must be positive", key="order", value=float(q[q <= 0][0]))
+        if np.unique(np.round(q * 1e9)).size != q.size:
+            raise InputError("an order appears twice at one speed", key="order")
+        speeds = None
+        if self.speed is not None:
+            speeds = np.atleast_1d(np.asarray(self.speed, dtype=float))
+            if speeds.ndim != 1 or not np.all(np.isfinite(speeds)) or np.any(speeds <= 0.0):
+                raise InputError("the speeds must be positive", key="speed")
+            if np.any(np.diff(speeds) <= 0.0):
+                raise InputError("the speeds must increase strictly", key="speed")
+        rows = 1 if speeds is None else speeds.size
+        out = {}
+        for key in ("normal", "misfire"):
+            value = getattr(self, key)
+            if value is None:
+                continue
+            c = np.asarray(value, dtype=complex).reshape(rows, q.size)
+            if not np.all(np.isfinite(c)):
+                raise InputError("the coefficients must be finite numbers", key=key)
+            out[key] = freeze(c, complex)
+        object.__setattr__(self, "order", freeze(q))
+        object.__setattr__(self, "speed", None if speeds is None else freeze(speeds))
+        for key, value in out.items():
+            object.__setattr__(self, key, value)
+
+    def __eq__(self, other: object) -> bool:
+        if not isinstance(other, CylinderHarmonics):
+            return NotImplemented
+        return all(
+            (a is None and b is None)
+            or (a is not None and b is not None and a.shape == b.shape and np.array_equal(a, b))
+            for a, b in (
+                (self.order, other.order),
+                (self.normal, other.normal),
+                (self.misfire, other.misfire),
+                (self.speed, other.speed),
+            )
+        )
+
+    __hash__: ClassVar[None] = None  # type: ignore[assignment]  # arrays inside: not hashable
+
+    def at(self, speeds: ArrayLike, orders: ArrayLike, *, misfiring: bool = False) -> Complex:
+        """The coefficients c_q (N m, complex) of one cylinder at speeds and orders (class
+        docstring): interpolated linearly in speed, held at the table's ends; 0 for an order
+        the table does not hold.
+
+        Parameters
+        ----------
+        speeds : array_like
+            Crankshaft speeds (rad/s), shape (speeds,) or a scalar.
+        orders : array_like
+            Orders (dimensionless), shape (orders,).
+        misfiring : bool
+            The misfiring cylinder's coefficients instead of the firing one's.
+
+        Returns
+        -------
+        numpy.ndarray
+            (speeds, orders) complex torques (N m).
+
+        Raises
+        ------
+        crankdyn.errors.InputError
+            A misfiring cylinder's coefficients asked of a table without them (key
+            ``misfire``, naming the file).
+        """
+        table = self.misfire if misfiring else self.normal
+        if table is None:
+            raise InputError(
+                "the harmonic table gives no misfiring cylinder's coefficients (columns "
+                "misfire_sin and misfire_cos, or misfire_amplitude and misfire_phase)",
+                file=self.source,
+                key="misfire",
+            )
+        w = np.atleast_1d(np.asarray(speeds, dtype=float))
+        q = np.atleast_1d(np.asarray(orders, dtype=float))
+        if self.speed is None or self.speed.size == 1:
+            rows = np.broadcast_to(table[0], (w.size, self.order.size))
+        else:
+            pos = np.interp(w, self.speed, np.arange(self.speed.size, dtype=float))
+            cell = np.minimum(pos.astype(int), self.speed.size - 2)
+            frac = (pos - cell)[:, None]
+            rows = table[cell] * (1.0 - frac) + table[cell + 1] * frac
+        out = np.zeros((w.size, q.size), dtype=complex)
+        for j, order in enumerate(q):  # the requested orders: a few dozen at most
+            k = np.flatnonzero(np.abs(self.order - order) <= 1e-9 * max(order, 1.0))
+            if k.size:
+                out[:, j] = rows[:, int(k[0])]
+        return out
+
+    def missing(self, orders: ArrayLike) -> NDArray[np.float64]:
+        """The orders the table does not hold (their coefficients are taken as 0).
+
+        Parameters
+        ----------
+        orders : array_like
+            Orders (dimensionless).
+
+        Returns
+        -------
+        numpy.ndarray
+            The orders of ``orders`` not in the table.
+        """
+        q = np.atleast_1d(np.asarray(orders, dtype=float))
+        gap = np.abs(q[:, None] - self.order[None, :])
+        held = np.any(gap <= 1e-9 * np.maximum(q, 1.0)[:, None], axis=1)
+        return q[~held]
+
+
 @dataclass(frozen=True)
 class SpeedTrace:
     """A cylinder-pressure trace measured at one speed.
@@ -325,6 +507,9 @@ class ExcitationSpec:
         Pressure traces at several speeds (engines), speeds increasing.
     harmonics : HarmonicTable or None
         Gas harmonic-coefficient table (engines).
+    cylinder_harmonics : CylinderHarmonics or None
+        The engine builder's harmonic torques of one cylinder, firing and misfiring, per order
+        (a model without an engine: :class:`CylinderHarmonics`).
     imep : float or None
         Mean indicated pressure (Pa) for the table when no load curve gives it.
     misfire : tuple of int
@@ -345,6 +530,7 @@ class ExcitationSpec:
     load_curve: LoadCurve | None = None
     traces: tuple[SpeedTrace, ...] = ()
     harmonics: HarmonicTable | None = None
+    cylinder_harmonics: CylinderHarmonics | None = None
     imep: float | None = None
     misfire: tuple[int, ...] = ()
 
@@ -357,6 +543,11 @@ class ExcitationSpec:
             raise InputError(
                 "give traces at several speeds or a load curve that scales one trace, not both",
                 key="load_curve",
+            )
+        if self.cylinder_harmonics is not None and self.torque is not None:
+            raise InputError(
+                "give a uniform torque or the cylinders' harmonic table, not both",
+                key="cylinder_harmonics",
             )
         if self.traces and self.harmonics is not None:
             raise InputError(

@@ -6,11 +6,21 @@ Regulations and the Application Thereof", TRAFI/494131/03.04.01.00/2016, in forc
 to the propeller", and the design of the shaft line, "torque excitation for shaft line dynamic
 analysis") and IACS UR I3 "Machinery requirements for Polar Class ships" (Rev.1 2007, Corr.1
 2007; the same design ice torque and torque excitation, with the Polar classes' ice
-thicknesses; Rev.2 2023 is a complete revision). The rule texts could not be read through the
-reference search here; the formulas and the table are transcribed as the rules state them and
-as the shaft-line software that implements them applies them (Batrak, Serdjuchenko and
-Tarasenko, "Calculation of propulsion shafting transient torsional vibration induced by ice
-impacts on the propeller blades", ShaftDesigner, 2017): check the clause numbers against the
+thicknesses). Rev.2 of UR I3 (January 2023) is a complete revision, applied to ships contracted
+for construction on or after 1 July 2024 (its first page, read in a public copy): check its
+torque excitation against what follows before applying it to such a ship.
+
+Verification (issue 36): the texts were sought in the stored public pages and repositories --
+the regulation TRAFI/494131/03.04.01.00/2016 (a public copy: its table of contents only), the
+Guidelines for the application of the 2017 FSICR (TRAFI/708629/03.04.01.01/2018: their
+opening only), PRS Publication 122/P (2021, which transposes the 2017 FSICR: its contents
+only), UR I3 Rev.2 (2023: its first pages only) and the ShaftDesigner paper below (its
+abstract only). None of the readable parts holds chapter 6's formulas or the table of cases,
+so the formulas, the table of H_ice and the four excitation cases below are transcribed as the
+rules state them and as the shaft-line software that implements them applies them (Batrak,
+Serdjuchenko and Tarasenko, "Calculation of propulsion shafting transient torsional vibration
+induced by ice impacts on the propeller blades", ShaftDesigner, 2017), and are NOT verified
+against the texts: their clause numbers are not cited for that reason; check them against the
 edition the ship is built to.
 
 Design ice torque Q_max (kN m, the rule's units: D, d, P_0.7, t_0.7 in m, n in rev/s), for an

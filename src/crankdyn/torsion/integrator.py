@@ -343,8 +343,11 @@ class ModalSystem:
             Angles (rad) and angular speeds (rad/s).
         """
         ww = state.w * self.weight
-        q = (ww @ self.position.T).real
-        qd = (ww @ self.velocity.T).real
+        # Re(w P^T) as two real products: a complex product of a few rows runs far slower in
+        # threaded BLAS on a busy machine (thread start-up), the same numbers to rounding
+        wr, wi = np.ascontiguousarray(ww.real), np.ascontiguousarray(ww.imag)
+        q = wr @ self.position.real.T - wi @ self.position.imag.T
+        qd = wr @ self.velocity.real.T - wi @ self.velocity.imag.T
         x = q @ self.modes.T + state.r @ self.bodies.T
         v = qd @ self.modes.T + state.rd @ self.bodies.T
         return x, v

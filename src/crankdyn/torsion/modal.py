@@ -173,7 +173,10 @@ class ModalResult(Result):
     ----------
     all_natural_frequency : numpy.ndarray or None
         Every natural frequency of the model (rad/s, ascending; not exported) when only the
-        lowest modes were computed, else None.
+        lowest modes were computed and the whole spectrum was, else None.
+    highest_natural_frequency : float or None
+        The model's highest natural frequency (rad/s; not exported) when only the lowest modes
+        were computed, else None.
     model : TorsionModel or None
         The model (not exported): names the shafts and masses of the nodes.
     shapes_dof : numpy.ndarray or None
@@ -220,7 +223,11 @@ class ModalResult(Result):
     )
     """Set when only the lowest modes were computed (``natural_modes(..., count=)``)."""
     all_natural_frequency: np.ndarray | None = field(default=None, repr=False, compare=False)
-    """Every natural frequency of the model (rad/s) when only the lowest modes were computed."""
+    """Every natural frequency of the model (rad/s) when only the lowest modes were computed
+    and the whole spectrum was (a branched model's, the block-wise writer's); None for a
+    chain's lowest modes, whose thresholds need only the spectrum's edges."""
+    highest_natural_frequency: float | None = field(default=None, repr=False, compare=False)
+    """The model's highest natural frequency (rad/s) when only the lowest modes are listed."""
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     shapes_dof: np.ndarray | None = field(default=None, repr=False, compare=False)
     """Normalised mode shapes by degree of freedom (mode x dof), for locating nodes."""
@@ -668,12 +675,47 @@ def _modes(
         omega[0] = 0.0
     if solver != "eigen" or not phi.flags.writeable:
         phi = phi.copy()  # normalised in place below: only the eigen solver's own array
-    all_omega = chain_frequencies(model) if partial else None
-    spectrum = omega if all_omega is None else all_omega
+    all_omega = None
+    spectrum = omega
+    highest = None
+    if partial and solver == "eigen" and model.chain is not None:
+        spectrum = np.concatenate([omega, _spectrum_edges(model, omega.size)])
+        highest = float(spectrum[-1])
+    elif partial:
+        all_omega = spectrum = chain_frequencies(model)
+        highest = float(all_omega[-1])
     tau = roundoff_thresholds(spectrum * spectrum)[: omega.size]
     rows = mode_rows(model, phi.T, tau, free, lazy=True)
     del phi
-    return modal_result(model, solver, omega, rows, 0, total if partial else None, all_omega, free)
+    total_or_none = total if partial else None
+    return modal_result(model, solver, omega, rows, 0, total_or_none, all_omega, free, highest)
+
+
+def _spectrum_edges(model: TorsionModel, count: int) -> NDArray[np.float64]:
+    """omega (rad/s) of the first mode not listed (index ``count``) and, when it is not the
+    last, of the highest: with the lowest ``count`` they give every round-off threshold of
+    those modes (:func:`~crankdyn.torsion.nodes.roundoff_thresholds`: a mode's gap needs only
+    its neighbours, ||A||_2 only the largest eigenvalue), each by bisection (LAPACK
+    ``dstebz``: O(n) per eigenvalue) instead of the whole spectrum (``dsterf``, O(n^2))."""
+    import scipy.linalg  # imported here: keeps the start-up light
+
+    chain = model.chain
+    assert chain is not None  # called for a chain only
+    a = chain.normalised
+    n = a.diagonal.size
+    wanted = [count] if count + 1 >= n else [count, n - 1]
+    lam = [
+        scipy.linalg.eigvalsh_tridiagonal(
+            a.diagonal,
+            a.off_diagonal,
+            select="i",
+            select_range=(i, i),
+            lapack_driver="stebz",
+            tol=BISECTION_TOL,
+        )[0]
+        for i in wanted
+    ]
+    return np.sqrt(np.maximum(np.array(lam, dtype=float), 0.0))
 
 
 def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalResult:
@@ -756,6 +798,7 @@ def _chain_modes(model: TorsionModel, chain: ChainArrays, free: bool) -> ModalRe
         model_name=model.name,
         modes_of_the_model=None,
         all_natural_frequency=None,
+        highest_natural_frequency=None,
         model=model,
         shapes_dof=shapes,
         node_source=Nodes(inputs=(model, shapes, modal_inertia, tau, free)),
@@ -779,9 +822,14 @@ def modal_result(
     total: int | None,
     all_omega: NDArray[np.float64] | None = None,
     free: bool | None = None,
+    highest: float | None = None,
 ) -> ModalResult:
     """The ModalResult of the modes ``start``, ``start + 1``, ... (indices into the model's
-    ascending modes) held by ``rows``; ``free``: ``model.is_free`` when the caller has it."""
+    ascending modes) held by ``rows``; ``free``: ``model.is_free`` when the caller has it;
+    ``highest``: the model's highest natural frequency (rad/s; default the last of
+    ``all_omega``) when only the lowest modes are listed."""
+    if highest is None and all_omega is not None and total is not None:
+        highest = float(all_omega[-1])
     free = model.is_free if free is None else free
     first = (0 if free else 1) + start  # mode numbers: docs/conventions.md
     inertia = rows.modal_inertia
@@ -802,6 +850,7 @@ def modal_result(
         model_name=model.name,
         modes_of_the_model=total,
         all_natural_frequency=None if all_omega is None else freeze(all_omega),
+        highest_natural_frequency=highest,
         model=model,
         shapes_dof=_readonly(rows.shapes_dof),
         node_source=rows.found,

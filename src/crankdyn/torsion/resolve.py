@@ -41,12 +41,14 @@ __all__ = [
     "MAX_ROUNDS",
     "SEED_OFFSETS",
     "TOLERANCE",
+    "Refiner",
     "bisect_crossings",
     "crossing_brackets",
     "damped_frequencies",
     "damped_frequency_rows",
     "local_maxima",
     "merge_speeds",
+    "modal_pole_rows",
     "refinement_speeds",
     "seed_speeds",
 ]
@@ -171,6 +173,91 @@ def _damped_frequency_rows(
     w = np.where(np.isfinite(w) & (w.real > 1e-9 * scale), w, np.nan)
     order = np.argsort(np.where(np.isnan(w), np.inf, w.real), axis=-1, kind="stable")
     return np.take_along_axis(w, order, axis=-1)
+
+
+def modal_pole_rows(
+    inertia: NDArray[np.float64],
+    links: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    ground: tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]],
+    rigid: int,
+    top: float,
+) -> NDArray[np.complex128]:
+    """Damped natural frequencies a + i b (rad/s) of chains approximated by their undamped modes
+    with the damping of their shapes, b_r = phi_r^T (H + omega_r C) phi_r / (2 omega_r) for
+    M-normalised phi_r (first-order perturbation of a lightly damped mode: Ewins 2000, ch. 2;
+    the large systems' branch of :meth:`crankdyn.torsion.sweep.Sweep.poles`), the modes up to
+    ``top`` only, for a batch of chains: each one's modes by bisection and inverse iteration on
+    its mass-normalised tridiagonal matrix (LAPACK ``dstebz``/``dstein``, O(n p) for p modes),
+    the modal damping by the chain's three-term products.
+
+    Parameters
+    ----------
+    inertia : numpy.ndarray
+        (n,) the inertias (kg m^2).
+    links : (numpy.ndarray, numpy.ndarray, numpy.ndarray)
+        (k, c, h) of the elements between neighbours, each (..., n - 1) (N m/rad, N m s/rad,
+        N m/rad), broadcast together: one chain per leading index.
+    ground : (numpy.ndarray, numpy.ndarray, numpy.ndarray)
+        (k, c, h) of the elements to ground at every degree of freedom, each (n,).
+    rigid : int
+        The number of zero frequencies (rigid motions) left out, the lowest modes.
+    top : float
+        The highest undamped natural frequency kept (rad/s).
+
+    Returns
+    -------
+    numpy.ndarray
+        (..., P) complex frequencies a + i |b| (rad/s), ascending, NaN-padded.
+
+    Examples
+    --------
+    One mass on a grounded shaft, J = 1 kg m^2, k = 1e6 N m/rad, c = 20 N m s/rad:
+    omega = sqrt(k / J), b = c / (2 J).
+
+    >>> rows = modal_pole_rows(
+    ...     np.array([1.0]), (np.zeros(0), np.zeros(0), np.zeros(0)),
+    ...     (np.array([1e6]), np.array([20.0]), np.array([0.0])), 0, 2e3,
+    ... )
+    >>> round(float(rows[0].real), 6), round(float(rows[0].imag), 9)
+    (1000.0, 10.0)
+    """
+    import scipy.linalg
+
+    kb, cb, hb = (np.asarray(x, dtype=float) for x in links)
+    lead = np.broadcast_shapes(kb.shape[:-1], cb.shape[:-1], hb.shape[:-1])
+    n = inertia.size
+    batch = math.prod(lead)
+    kb, cb, hb = (np.broadcast_to(x, (*lead, n - 1)).reshape(batch, n - 1) for x in (kb, cb, hb))
+    kg, cg, hg = (np.asarray(x, dtype=float) for x in ground)
+    scale = 1.0 / np.sqrt(inertia)
+    found = []
+    for k_link, c_link, h_link in zip(kb, cb, hb, strict=True):  # the chains (a few speeds)
+        diag = kg.copy()
+        diag[:-1] += k_link
+        diag[1:] += k_link
+        d = diag * scale * scale
+        e = -k_link * scale[:-1] * scale[1:]
+        bound = float(np.max(np.abs(d)) + 2.0 * np.max(np.abs(e), initial=0.0))
+        if n == 1:
+            keep = d <= top * top
+            lam, psi = d[keep], np.ones((1, 1))[:, keep]
+        else:
+            lam, psi = scipy.linalg.eigh_tridiagonal(
+                d, e, select="v", select_range=(-bound - 1.0, top * top)
+            )
+        lam, phi = lam[rigid:], psi[:, rigid:] * scale[:, None]
+        omega = np.sqrt(np.maximum(lam, 0.0))
+        dphi = np.diff(phi, axis=0)
+        modal_h = h_link @ (dphi * dphi) + hg @ (phi * phi)
+        modal_c = c_link @ (dphi * dphi) + cg @ (phi * phi)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            b = (modal_h + omega * modal_c) / (2.0 * np.maximum(omega, 1e-300))
+        found.append(np.where(omega > 0.0, omega + 1j * np.abs(b), np.nan))
+    width = max((f.size for f in found), default=0)
+    out = np.full((len(found), width), np.nan, dtype=complex)
+    for i, f in enumerate(found):
+        out[i, : f.size] = f
+    return out.reshape(*lead, width)
 
 
 def seed_speeds(
@@ -323,24 +410,34 @@ def refinement_speeds(
         i, c = i[keep], c[keep]
     if i.size == 0:
         return np.zeros(0), np.zeros(0, dtype=int)
-    x0, x1, x2 = s[i - 1], s[i], s[i + 1]
-    y0, y1, y2 = y[i - 1, c], y[i, c], y[i + 1, c]
+    return _requests(s, s[i - 1], s[i], s[i + 1], y[i - 1, c], y[i, c], y[i + 1, c], c,
+                     np.asarray(scale), tolerance, exclude)  # fmt: skip
+
+
+def _requests(
+    s: NDArray[np.float64],
+    x0: NDArray[np.float64],
+    x1: NDArray[np.float64],
+    x2: NDArray[np.float64],
+    y0: NDArray[np.float64],
+    y1: NDArray[np.float64],
+    y2: NDArray[np.float64],
+    c: NDArray[np.intp],
+    scale: NDArray[np.float64],
+    tolerance: float,
+    exclude: ArrayLike,
+) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+    """The new speeds of :func:`refinement_speeds` from its local maxima (x1, y1) of the curves
+    c (row-major order) and their neighbours (x0, y0), (x2, y2), the sampled speeds s."""
     skip = np.asarray(exclude, dtype=float)
     if skip.size:
         clear = ~np.any((skip[None, :] >= x0[:, None]) & (skip[None, :] <= x2[:, None]), axis=1)
-        x0, x1, x2, y0, y1, y2, c = (
-            x0[clear],
-            x1[clear],
-            x2[clear],
-            y0[clear],
-            y1[clear],
-            y2[clear],
-            c[clear],
-        )
+        x0, x1, x2 = x0[clear], x1[clear], x2[clear]
+        y0, y1, y2, c = y0[clear], y1[clear], y2[clear], c[clear]
     vertex, top = _peak_estimate(x0, x1, x2, y0, y1, y2)
     gain = np.maximum(top - y1, 0.0)
     narrow = (x2 - x0) <= _SPACING * 100.0 * x1
-    todo = (gain > 0.5 * tolerance * np.asarray(scale)[c]) & ~narrow
+    todo = (gain > 0.5 * tolerance * scale[c]) & ~narrow
     if not np.any(todo):
         return np.zeros(0), np.zeros(0, dtype=int)
     x0, x1, x2, vertex, c = x0[todo], x1[todo], x2[todo], vertex[todo], c[todo]
@@ -358,6 +455,162 @@ def refinement_speeds(
     points, column, width = points[far], column[far], width[far]
     keep = _thin(points, 0.25 * width)
     return points[keep], column[keep]
+
+
+class Refiner:
+    """:func:`refinement_speeds` over a response evaluated in rounds, each round's speeds
+    added to the last (the same requests, round by round, as :func:`refinement_speeds` of all
+    speeds and curves so far in ascending speed): the curves are held in the order the rows
+    were added, and every round re-examines only the rows next to the new ones, where a local
+    maximum can appear or vanish, so a round costs the new rows, not the whole table.
+
+    Parameters
+    ----------
+    speeds : array_like
+        (S,) the first rows' speeds (rad/s), distinct.
+    values : array_like
+        (S, C) their curves.
+    scale_of : callable
+        ``scale_of(top)`` -> (C,) the values the tolerance is relative to, from every curve's
+        largest value so far (:func:`refinement_speeds`'s ``scale``).
+    tolerance : float
+        As :func:`refinement_speeds`.
+    exclude : array_like
+        As :func:`refinement_speeds`.
+
+    Examples
+    --------
+    >>> s = np.arange(8.0, 13.0)
+    >>> def curve(x):
+    ...     return (1.0 / np.sqrt((x - 10.3) ** 2 + 0.01))[:, None]
+    >>> r = Refiner(s, curve(s), lambda top: top)
+    >>> new, _ = r.request()
+    >>> np.round(new, 12).tolist()
+    [10.3]
+    >>> r.add(new, curve(new))
+    >>> r.request()[0].size  # the peak is sampled
+    0
+    """
+
+    def __init__(
+        self,
+        speeds: ArrayLike,
+        values: ArrayLike,
+        scale_of: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+        tolerance: float = TOLERANCE,
+        exclude: ArrayLike = (),
+    ) -> None:
+        s = np.asarray(speeds, dtype=float)
+        y = np.asarray(values, dtype=float).reshape(s.size, -1)
+        self.scale_of = scale_of
+        self.tolerance = tolerance
+        self.exclude = exclude
+        self.count = s.size
+        self.speeds = np.empty(max(2 * s.size, 16))
+        self.speeds[: s.size] = s
+        self.values = np.empty((self.speeds.size, y.shape[1]))
+        self.values[: s.size] = y
+        self.top = np.max(y, axis=0) if s.size else np.zeros(y.shape[1])
+        self.order = np.argsort(s, kind="stable")  # ascending speed -> row
+        self.rows = np.zeros(0, dtype=np.intp)  # the local maxima: row and curve
+        self.cols = np.zeros(0, dtype=np.intp)
+        self._examine(np.arange(s.size))
+
+    def _examine(self, rows: NDArray[np.intp]) -> None:
+        """Re-examine ``rows`` (row indices): drop their maxima, find them again."""
+        if self.rows.size:
+            stale = np.isin(self.rows, rows)
+            self.rows, self.cols = self.rows[~stale], self.cols[~stale]
+        n = self.count
+        position = np.empty(n, dtype=np.intp)
+        position[self.order] = np.arange(n)
+        p = position[rows]
+        p = np.sort(p[(p >= 1) & (p <= n - 2)])  # the ends are never maxima
+        if p.size == 0:
+            return
+        y = self.values
+        mid = y[self.order[p]]
+        before, after = y[self.order[p - 1]], y[self.order[p + 1]]
+        peak = (mid >= before) & (mid >= after) & ((mid > before) | (mid > after))
+        r, c = np.nonzero(peak)
+        self.rows = np.concatenate([self.rows, self.order[p[r]]])
+        self.cols = np.concatenate([self.cols, c])
+
+    def add(self, speeds: ArrayLike, values: ArrayLike) -> None:
+        """Add rows (new distinct speeds (rad/s) and their curves).
+
+        Parameters
+        ----------
+        speeds : array_like
+            (K,) the new speeds (rad/s).
+        values : array_like
+            (K, C) their curves.
+        """
+        s = np.asarray(speeds, dtype=float)
+        y = np.asarray(values, dtype=float).reshape(s.size, -1)
+        if s.size == 0:
+            return
+        n = self.count
+        if n + s.size > self.speeds.size:  # grow by half at least (amortised copies)
+            size = max(n + s.size, self.speeds.size * 3 // 2)
+            speeds_new = np.empty(size)
+            speeds_new[:n] = self.speeds[:n]
+            values_new = np.empty((size, self.values.shape[1]))
+            values_new[:n] = self.values[:n]
+            self.speeds, self.values = speeds_new, values_new
+        self.speeds[n : n + s.size] = s
+        self.values[n : n + s.size] = y
+        self.count = n + s.size
+        self.top = np.maximum(self.top, np.max(y, axis=0))
+        self.order = np.argsort(self.speeds[: self.count], kind="stable")
+        position = np.empty(self.count, dtype=np.intp)
+        position[self.order] = np.arange(self.count)
+        p = position[np.arange(n, self.count)]
+        near = np.unique(np.clip(np.concatenate([p - 1, p, p + 1]), 0, self.count - 1))
+        self._examine(self.order[near])
+
+    def request(self) -> tuple[NDArray[np.float64], NDArray[np.intp]]:
+        """The speeds that refine the peaks not yet resolved (:func:`refinement_speeds` of all
+        rows so far).
+
+        Returns
+        -------
+        speeds : numpy.ndarray
+            New speeds (rad/s, ascending); empty when every peak is resolved.
+        column : numpy.ndarray
+            The curve that asked for each (int).
+        """
+        n = self.count
+        if n < 3 or self.rows.size == 0:
+            return np.zeros(0), np.zeros(0, dtype=int)
+        y = self.values
+        top = self.top
+        r, c = self.rows, self.cols
+        value = y[r, c]
+        keep = (value >= _FLOOR * top[c]) & (top[c] > 0.0)
+        r, c = r[keep], c[keep]
+        if r.size == 0:
+            return np.zeros(0), np.zeros(0, dtype=int)
+        position = np.empty(n, dtype=np.intp)
+        position[self.order] = np.arange(n)
+        p = position[r]
+        first = np.lexsort((c, p))  # row-major in ascending speed, as local_maxima
+        p, c = p[first], c[first]
+        s = self.speeds[:n]
+        sorted_s = s[self.order]
+        r0, r1, r2 = self.order[p - 1], self.order[p], self.order[p + 1]
+        return _requests(sorted_s, s[r0], s[r1], s[r2], y[r0, c], y[r1, c], y[r2, c], c,
+                         np.asarray(self.scale_of(top)), self.tolerance, self.exclude)  # fmt: skip
+
+    def table(self) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """All rows so far in ascending speed.
+
+        Returns
+        -------
+        speeds, values : numpy.ndarray
+            (S,) and (S, C).
+        """
+        return self.speeds[: self.count][self.order], self.values[: self.count][self.order]
 
 
 def _peak_estimate(

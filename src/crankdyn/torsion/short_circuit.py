@@ -45,6 +45,22 @@ derivation below is complete):
   largest for alpha = 0: max of sin x - (1/2) sin 2x = 3 sqrt(3) / 4 = 1.299 at x = 2 pi / 3,
   the classic "1.3 times the three-phase peak" (without the decays).
 
+Verification (issue 36): IEC 60034-4-1:2018 and IEC 60909-0:2016 are not public; neither
+they nor a transcription could be found in the stored pages and repositories, so their clause
+numbers are not cited and the current components above are the textbook form of the sudden
+three-phase short-circuit current the standard's test evaluates (its definitions of X''_d, X'_d,
+X_d, T''_d, T'_d and T_a), not read in the standard. What the derivation leaves out, and the
+literature on air-gap torques names (the torque holds unidirectional, fundamental-frequency
+and second-harmonic components, all decaying: the abstract of the AIEE paper on the shaft
+stresses of turbine generators during short circuits, read in a public index): the
+unidirectional torque of the armature resistance's losses (small: the resistance is left out)
+and, in the three-phase fault, the second harmonic of subtransient saliency (X''_q differing
+from X''_d: taken equal here); the two-phase fault's decays are taken as the three-phase ones
+(its negative-sequence reactance X_2 = X''_d). The formulas below are checked against their
+own derivation worked by hand (tests/validation/test_events_rule_formulas.py) and against the
+phase power of the currents integrated numerically from the circuit equation v = L di/dt
+(tests/validation/test_short_circuit_phase_power.py), not against a standard.
+
 T_b = S_r / Omega_m = T_r / cos(phi_r) is the torque base (rated apparent power over the
 mechanical synchronous speed: the rated torque over the rated power factor) and E the internal
 EMF before the fault in per unit (1 at no load and rated voltage; IEC 60909-0's voltage factor

@@ -32,8 +32,15 @@ and right-hand side, the Python loop running over the chain's length only. The f
 blocks whose buffers are allocated once; each row of the dynamic stiffness is built when the
 elimination reaches it, the small-pivot test is made exactly only on the systems a cheap filter
 inside the loop picks (the same systems flagged as by the test on all of them) and the solved
-rows go to the result in tiles while in cache (:class:`_ChainBlocks`). Branched models use
-numpy's batched dense solve. No loop over speeds or orders.
+rows go to the result in tiles while in cache (:class:`_ChainBlocks`). A branched model
+without closed loops (a gearbox with a power take-off, a damper ring on an inner mass) is a tree
+and is solved the same way, by elimination from the leaves inward, batched over the frequencies
+(:mod:`crankdyn.torsion.tree`: no fill-in, O(n) per frequency, small pivots re-solved with
+partial pivoting). Only a system with loops (a closed gear train) or with modal damping, which
+couples every mass, takes the general dense solve (LU with partial pivoting, LAPACK ``zgesv``),
+a block of frequencies at a time. The system is held in sparse form (links and terms to
+ground); the dense K, C and H are assembled only when asked for. No loop over speeds or
+orders.
 
 A change of the stiffness at each speed (the load-dependent couplings,
 :func:`crankdyn.torsion.loaded.load_change`) is added to D before the same batched solves
@@ -44,9 +51,11 @@ A change of the stiffness at each speed (the load-dependent couplings,
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, cast
 
 import numpy as np
@@ -55,6 +64,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.errors import InputError
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.model import TorsionModel
+from crankdyn.torsion.tree import DENSE_FALLBACK, EliminationTree, TreeSolver, elimination_tree
 from crankdyn.torsion.tridiagonal import solve_tridiagonal
 
 __all__ = [
@@ -67,6 +77,15 @@ __all__ = [
 _FREQUENCY_BLOCK = 1 << 13
 """Frequencies per block of the chain solve: a block's rows (16 bytes x block each) stay in the
 processor's cache through the elimination."""
+
+_BLOCK_ELEMENTS = 1 << 23
+"""At most this many elements (128 MB of complex numbers) per buffer of the chain solve, down
+to :data:`_MIN_BLOCK` frequencies: a long chain's blocks hold fewer frequencies, and its
+buffers, reused by every block, stay a fraction of the result's size."""
+
+_MIN_BLOCK = 512
+"""The fewest frequencies per block of the chain solve (fewer: a numpy call's fixed cost would
+outweigh its work)."""
 
 
 def _abs2(z: NDArray[np.complex128]) -> NDArray[np.float64]:
@@ -81,25 +100,39 @@ def _abs2(z: NDArray[np.complex128]) -> NDArray[np.float64]:
 class LinearSystem:
     """The reflected equations of motion of a model with its dampers, ready for harmonic solves.
 
-    ``chain`` holds the tridiagonal arrays in chain order (None for a branched system, which
-    uses the dense matrices). Degrees of freedom: the model's, with each damper ring added.
-    Everything is reflected to the reference (crankshaft) speed: inertias and stiffnesses times
-    the squared speed ratio (:mod:`crankdyn.torsion.model`). Built by :func:`linear_system`.
+    Held in sparse form, O(n) for a chain or a tree: the inertias, the links between degrees
+    of freedom (shafts and damper couplings, parallel ones added together) with their
+    stiffness, damping and hysteretic terms, and the same to ground; the dense matrices
+    K, C and H are assembled only when asked for (:attr:`stiffness`, :attr:`damping`,
+    :attr:`hysteretic`: the time-domain solvers and the small systems' eigenproblems).
+    ``chain`` holds the tridiagonal arrays in chain order, ``tree`` the elimination order of a
+    branched system without loops (:mod:`crankdyn.torsion.tree`); a system with loops (closed
+    gear trains) or modal damping has neither and is solved by the general dense solver.
+    Degrees of freedom: the model's, with each damper ring added. Everything is reflected to the
+    reference (crankshaft) speed: inertias and stiffnesses times the squared speed ratio
+    (:mod:`crankdyn.torsion.model`). Built by :func:`linear_system`.
 
     Parameters
     ----------
     inertia : numpy.ndarray
         (n,) inertia of every degree of freedom (kg m^2).
-    stiffness : numpy.ndarray
-        (n, n) stiffness matrix K (N m/rad).
-    damping : numpy.ndarray
-        (n, n) viscous damping matrix C (N m s/rad).
-    hysteretic : numpy.ndarray
-        (n, n) hysteretic matrix H = sum eta_s K_s (N m/rad).
+    links : numpy.ndarray
+        (L, 2) the two degrees of freedom of every link, distinct pairs (int).
+    link_values : numpy.ndarray
+        (3, L) every link's stiffness (N m/rad), viscous damping (N m s/rad) and hysteretic
+        term eta k (N m/rad).
+    ground_values : numpy.ndarray
+        (3, n) the same to ground at every degree of freedom: grounded shafts, and the
+        absolute dampers in the viscous row.
+    modal_damping : numpy.ndarray or None
+        (n, n) the modal damping matrix C_modal added to C (N m s/rad), or None.
     chain : tuple of numpy.ndarray or None
         (k_between, c_between, h_between, k_g, c_g, h_g) in dof order: the (n-1,) couplings
-        between neighbours and the (n,) row sums (N m/rad, N m s/rad, N m/rad); None for a
-        branched system.
+        between neighbours and the (n,) terms to ground (N m/rad, N m s/rad, N m/rad); None
+        for a branched system.
+    tree : EliminationTree or None
+        The elimination order of a branched system without loops (no modal damping); None
+        otherwise.
     mass_dof : numpy.ndarray
         (N,) dof of every listed mass (the model's masses, then the damper rings), int.
     mass_ratio : numpy.ndarray
@@ -128,10 +161,12 @@ class LinearSystem:
     """
 
     inertia: np.ndarray  # (n,) kg m^2
-    stiffness: np.ndarray  # (n, n) N m/rad
-    damping: np.ndarray  # (n, n) N m s/rad
-    hysteretic: np.ndarray  # (n, n) N m/rad
+    links: np.ndarray  # (L, 2) dof pairs
+    link_values: np.ndarray  # (3, L) k, c, eta k
+    ground_values: np.ndarray  # (3, n) k, c, eta k to ground
+    modal_damping: np.ndarray | None  # (n, n) C_modal
     chain: tuple[np.ndarray, ...] | None  # (k_between, c_between, h_between, k_g, c_g, h_g)
+    tree: EliminationTree | None
     mass_dof: np.ndarray  # dof of every listed mass (model masses, then damper rings)
     mass_ratio: np.ndarray  # speed ratio of every listed mass
     mass_names: tuple[str, ...]
@@ -145,6 +180,41 @@ class LinearSystem:
     def size(self) -> int:
         """Number of degrees of freedom n (the model's and the damper rings)."""
         return int(self.inertia.size)
+
+    def _dense(self, row: int) -> NDArray[np.float64]:
+        """The (n, n) matrix of row ``row`` of the link and ground values (0: K, 1: C, 2: H),
+        each link v [[1, -1], [-1, 1]] at its two degrees of freedom."""
+        n = self.size
+        out = np.zeros((n, n))
+        out[np.diag_indices(n)] = self.ground_values[row]
+        if self.links.size:
+            a, b = self.links[:, 0], self.links[:, 1]
+            v = self.link_values[row]
+            np.add.at(out, (a, a), v)
+            np.add.at(out, (b, b), v)
+            np.add.at(out, (a, b), -v)
+            np.add.at(out, (b, a), -v)
+        return out
+
+    @cached_property
+    def stiffness(self) -> NDArray[np.float64]:
+        """The dense stiffness matrix K (N m/rad), (n, n), assembled when first asked for."""
+        return self._dense(0)
+
+    @cached_property
+    def damping(self) -> NDArray[np.float64]:
+        """The dense viscous damping matrix C (N m s/rad), (n, n), with the modal damping,
+        assembled when first asked for."""
+        out = self._dense(1)
+        if self.modal_damping is not None:
+            out += self.modal_damping
+        return out
+
+    @cached_property
+    def hysteretic(self) -> NDArray[np.float64]:
+        """The dense hysteretic matrix H = sum eta_s K_s (N m/rad), (n, n), assembled when
+        first asked for."""
+        return self._dense(2)
 
     def _chain(self) -> tuple[np.ndarray, ...]:
         """The chain arrays; a branched system has none (ValueError)."""
@@ -275,16 +345,122 @@ class LinearSystem:
         omega = np.asarray(omega, dtype=float)
         if self.chain is not None:  # the forcing read block by block, as it is (no copy)
             return self._solve_chain(omega, np.asarray(forcing), hysteretic_frequency)
-        f = np.asarray(forcing, dtype=complex)
-        a = self.matrix(omega, hysteretic_frequency)
+        return self._solve_branched(omega, np.asarray(forcing), hysteretic_frequency)
+
+    def _solve_branched(
+        self,
+        omega: NDArray[np.float64],
+        f: np.ndarray,
+        hysteretic_frequency: float | None,
+        change: tuple[NDArray[np.int_], np.ndarray] | None = None,
+    ) -> NDArray[np.complexfloating]:
+        """:meth:`solve` (and :meth:`solve_with_change`: ``change`` the (count, 2) ends and
+        the (..., count) changes) of a branched system: a tree by elimination from the leaves
+        inward (:class:`~crankdyn.torsion.tree.TreeSolver`), any other by the dense solve, a
+        block of frequencies at a time (never a (frequencies, n, n) array of them all)."""
+        n = self.size
         vector = f.ndim == omega.ndim + 1
-        b = f[..., None] if vector else f
-        with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-            try:
-                x = np.linalg.solve(a, b)
-            except np.linalg.LinAlgError:  # an undamped system exactly at resonance
-                x = np.full(np.broadcast_shapes(a.shape[:-2], b.shape[:-2]) + b.shape[-2:], np.nan)
+        fb = f[..., None] if vector else f
+        r = fb.shape[-1]
+        batch = np.broadcast_shapes(omega.shape, fb.shape[:-2])
+        if change is not None:
+            batch = np.broadcast_shapes(batch, np.shape(change[1])[:-1])
+        w = np.broadcast_to(omega, batch).reshape(-1)
+        rhs = np.broadcast_to(fb, (*batch, n, r)).reshape(-1, n, r)
+        delta = None
+        if change is not None:
+            values = np.asarray(change[1])
+            delta = np.broadcast_to(values, (*batch, values.shape[-1])).reshape(w.size, -1)
+        if self.tree is not None:
+            solver = self._tree_solver
+            where = None if change is None else solver.change_positions(change[0])
+            x, bad = solver.solve(
+                w,
+                rhs,
+                hysteretic_frequency,
+                None if where is None or delta is None else (where, delta),
+            )
+            if bad.size:  # rare: a part of the tree at its resonance
+                ends = None if change is None else np.asarray(change[0])
+                some = None if delta is None else delta[bad]
+                x[bad] = self._pivoting(w[bad], rhs[bad], hysteretic_frequency, ends, some)
+        else:
+            ends = None if change is None else np.asarray(change[0])
+            x = self._pivoting(w, rhs, hysteretic_frequency, ends, delta)
+        x = x.reshape(*batch, n, r)
         return x[..., 0] if vector else x
+
+    @cached_property
+    def _tree_solver(self) -> TreeSolver:
+        """The tree's batched solver (:mod:`crankdyn.torsion.tree`), made once."""
+        assert self.tree is not None  # called for a tree only
+        return TreeSolver(self.tree, self.inertia, self.links, self.link_values, self.ground_values)
+
+    def _pivoting(
+        self,
+        w: NDArray[np.float64],
+        rhs: np.ndarray,
+        hysteretic_frequency: float | None,
+        ends: NDArray[np.int_] | None = None,
+        delta: np.ndarray | None = None,
+    ) -> NDArray[np.complex128]:
+        """LU decomposition with partial pivoting for frequencies w (F,) rad/s, rhs (F, n, r)
+        N m, the changes ``delta`` (F, count) N m/rad of the links ``ends`` added: the dense
+        matrices a block of frequencies at a time (LAPACK ``zgesv``), or, for a large tree
+        (above :data:`~crankdyn.torsion.tree.DENSE_FALLBACK` degrees of freedom: its few
+        flagged systems), the sparse matrix of each (SuperLU). NaN for a singular system (an
+        undamped system exactly at a resonance)."""
+        n = self.size
+        out = np.empty(rhs.shape, dtype=complex)
+        if self.tree is not None and n > DENSE_FALLBACK and self.modal_damping is None:
+            for i in range(w.size):  # the few flagged systems of a large tree
+                one = None if delta is None else delta[i]
+                out[i] = self._sparse_solve(float(w[i]), rhs[i], hysteretic_frequency, ends, one)
+            return out
+        step = max(1, min(_FREQUENCY_BLOCK, (1 << 22) // max(n * n, 1)))
+        for a in range(0, w.size, step):
+            b = min(w.size, a + step)
+            matrix = self.matrix(w[a:b], hysteretic_frequency)
+            if ends is not None and delta is not None:
+                matrix = matrix + change_matrix(ends, delta[a:b], n)
+            out[a:b] = _dense_solve(matrix, rhs[a:b])
+        return out
+
+    def _sparse_solve(
+        self,
+        w: float,
+        rhs: np.ndarray,
+        hysteretic_frequency: float | None,
+        ends: NDArray[np.int_] | None,
+        delta: np.ndarray | None,
+    ) -> NDArray[np.complex128]:
+        """D(w) X = rhs (n, r) by sparse LU with partial pivoting (SuperLU), the changes of the
+        links ``ends`` added; NaN when D is singular."""
+        import scipy.sparse
+        import scipy.sparse.linalg
+
+        n = self.size
+        f = 1.0 if hysteretic_frequency is None else w / hysteretic_frequency
+        k, c, h = self.link_values
+        kg, cg, hg = self.ground_values
+        link = k + 1j * (w * c + h * f)
+        a, b = self.links[:, 0], self.links[:, 1]
+        rows = [np.arange(n), a, b, a, b]
+        cols = [np.arange(n), a, b, b, a]
+        vals = [kg - w * w * self.inertia + 1j * (w * cg + hg * f), link, link, -link, -link]
+        if ends is not None and delta is not None:
+            e = np.asarray(ends)
+            rows += [e[:, 0], e[:, 1], e[:, 0], e[:, 1]]
+            cols += [e[:, 0], e[:, 1], e[:, 1], e[:, 0]]
+            vals += [delta, delta, -delta, -delta]
+        matrix = scipy.sparse.csc_matrix(
+            (np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)
+        )
+        try:
+            lu = scipy.sparse.linalg.splu(matrix, permc_spec="NATURAL", diag_pivot_thresh=1.0)
+        except RuntimeError:  # exactly singular
+            return np.full(rhs.shape, np.nan + 0j)
+        return np.asarray(lu.solve(np.asarray(rhs, dtype=complex)), dtype=complex)
 
     def solve_with_change(
         self,
@@ -301,8 +477,10 @@ class LinearSystem:
         Each element is a spring between its two ends, assembled like a shaft
         (:func:`change_matrix`); a chain keeps its tridiagonal form (the elements are its
         links) and is solved with partial pivoting
-        (:func:`~crankdyn.torsion.tridiagonal.solve_tridiagonal`), a branched system by numpy's
-        batched dense solve (module docstring).
+        (:func:`~crankdyn.torsion.tridiagonal.solve_tridiagonal`), a tree keeps its tree (the
+        elements are its links: elimination from the leaves inward,
+        :mod:`crankdyn.torsion.tree`), any other system is solved densely (module
+        docstring).
 
         Parameters
         ----------
@@ -353,9 +531,7 @@ class LinearSystem:
                 upper[..., lo] -= change[..., j]
             x = solve_tridiagonal(lower, diag, upper, f)
         else:
-            d = self.matrix(w, hysteretic_frequency) + change_matrix(ends, change, self.size)
-            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-                x = np.linalg.solve(d, f[..., None])[..., 0]
+            x = self._solve_branched(w, f, hysteretic_frequency, (np.asarray(ends), change))
         return cast("NDArray[np.complexfloating]", x)
 
     def _solve_chain(
@@ -379,7 +555,9 @@ class LinearSystem:
         fb = np.broadcast_to(fb, (*batch, n, r))
         out = np.empty((*batch, n, r), dtype=complex)
         inner = math.prod(batch[1:])
-        rows = max(1, _FREQUENCY_BLOCK // max(inner, 1))
+        per_block = max(_MIN_BLOCK, min(_FREQUENCY_BLOCK, _BLOCK_ELEMENTS // max(n * r, 1)))
+        rows = max(1, per_block // max(inner, 1))
+        rows = -(-batch[0] // -(-batch[0] // rows))  # blocks of even size
         flat_omega = omega.reshape(-1)
         flat_out = out.reshape(-1, n, r)
         blocks = _ChainBlocks(self, min(batch[0], rows) * inner, r, hysteretic_frequency)
@@ -420,6 +598,12 @@ candidate for the exact growth test (:class:`_ChainBlocks`)."""
 _TINY, _HUGE = 1e-140, 1e140
 """The range of |off| in which the candidate filter's argument holds (:class:`_ChainBlocks`)."""
 
+_CHUNK_ELEMENTS = 1 << 13
+"""Rows of the chain solve built at a time: about this many elements (128 KB of complex numbers)
+of each of ``off``, ``diag`` and ``x``, still in cache when the elimination reaches them; one
+row at a time for a block of 8192 frequencies, several for a long chain's small blocks (fewer
+numpy calls per row)."""
+
 _TILE = 8
 """Chain rows copied to the result at a time (a cache-friendly transposition)."""
 
@@ -430,7 +614,8 @@ class _ChainBlocks:
 
     Elimination without interchanges (the Thomas algorithm) with the chain along the rows:
     the negated off-diagonal ``off`` and the diagonal of every row are built inside the forward
-    loop, when the row is reached (the same operations in the same order as
+    loop, a few rows (:data:`_CHUNK_ELEMENTS`) just before the elimination reaches them
+    (:meth:`_rows`: the same operations in the same order as
     :meth:`LinearSystem._diagonals_of`, so the same numbers), the right-hand side copied in at
     the same time; the back substitution divides by the stored pivots and copies the solved
     rows to the result :data:`_TILE` rows at a time while they are in cache.
@@ -460,15 +645,9 @@ class _ChainBlocks:
         self.system = system
         self.n = n
         self.hysteretic_frequency = hysteretic_frequency
-        self.values = (
-            kb.tolist(),
-            cb.tolist(),
-            hb.tolist(),
-            kg.tolist(),
-            cg.tolist(),
-            hg.tolist(),
-            system.inertia.tolist(),
-        )
+        self.arrays = (kb, cb, hb, kg, cg, hg, system.inertia)
+        # rows built at a time (_CHUNK_ELEMENTS), in cache when the elimination reaches them
+        self.chunk = max(1, min(64, _CHUNK_ELEMENTS // max(block * r, 1)))
         self.magnitudes = (np.abs(kb), np.abs(cb), np.abs(hb))  # |off| >= |kb| (class docstring)
         # the loss factors' terms: hb * factor, added unless they are zero (factor 1.0)
         self.hysteretic = hysteretic_frequency is not None or bool(np.any(hb) or np.any(hg))
@@ -480,7 +659,7 @@ class _ChainBlocks:
         self.tmp_b = np.empty((r, block), dtype=complex)
         self.w2 = np.empty(block)
         self.factor = np.empty(block)
-        self.term = np.empty(block)
+        self.term = np.empty((self.chunk, block))
         self.high = np.empty(2 * block)
         self.low = np.empty(2 * block)
 
@@ -488,15 +667,13 @@ class _ChainBlocks:
         """Solve one block into ``out``: w (F,) rad/s, rhs (F, n, r) N m, out (F, n, r)."""
         n = self.n
         count = w.size
-        kb, cb, hb, kg, cg, hg, inertia = self.values
         off, d = self.off[:, :count], self.diag[:, :count]
         x = self.x[:, :, :count]
         mult, tmp, tmp_b = self.mult[:count], self.tmp[:count], self.tmp_b[:, :count]
-        w2, factor, term = self.w2[:count], self.factor[:count], self.term[:count]
+        w2, factor = self.w2[:count], self.factor[:count]
         high, low = self.high[: 2 * count], self.low[: 2 * count]
         np.multiply(w, w, out=w2)
-        hysteretic = self.hysteretic
-        if hysteretic:
+        if self.hysteretic:
             if self.hysteretic_frequency is None:
                 factor.fill(1.0)
             else:
@@ -504,29 +681,14 @@ class _ChainBlocks:
         high.fill(0.0)
         low.fill(0.0)
         parts = mult.view(float)  # the multipliers' real and imaginary parts
+        chunk = self.chunk
         with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
             for i in range(n):  # forward elimination: D[i, i-1] = D[i-1, i] = -off[i-1]
-                di = d[i]
-                if i < n - 1:  # off = k + i (w c + h factor)
-                    oi = off[i]
-                    oi.real = kb[i]
-                    np.multiply(w, cb[i], out=oi.imag)
-                    if hysteretic:
-                        np.multiply(factor, hb[i], out=term)
-                        np.add(oi.imag, term, out=oi.imag)
-                np.multiply(w2, inertia[i], out=di.real)  # k_g - w^2 J + i (w c_g + h_g)
-                np.subtract(kg[i], di.real, out=di.real)
-                np.multiply(w, cg[i], out=di.imag)
-                if hysteretic:
-                    np.multiply(factor, hg[i], out=term)
-                    np.add(di.imag, term, out=di.imag)
-                if i < n - 1:
-                    np.add(di, off[i], out=di)
-                x[i] = rhs[:, i, :].T
+                if i % chunk == 0:  # the next rows, built while the elimination reaches them
+                    self._rows(i, min(n, i + chunk), w, w2, factor, rhs, count)
                 if i == 0:
                     continue
-                prev = off[i - 1]
-                np.add(di, prev, out=di)
+                prev, di = off[i - 1], d[i]
                 np.divide(prev, d[i - 1], out=mult)
                 np.maximum(high, parts, out=high)
                 np.minimum(low, parts, out=low)
@@ -542,14 +704,51 @@ class _ChainBlocks:
                 np.add(x[i], tmp_b, out=x[i])
                 np.divide(x[i], d[i], out=x[i])
                 if i % _TILE == 0:  # rows i..top-1 solved, still in cache
-                    out[:, i:top] = np.moveaxis(x[i:top], 2, 0)
+                    out[:, i:top] = x[i:top].transpose(2, 0, 1)
                     top = i
             if top > 0:  # n == 1
-                out[:, :top] = np.moveaxis(x[:top], 2, 0)
+                out[:, :top] = x[:top].transpose(2, 0, 1)
         if flagged.size:  # rare: part of the chain at its resonance
             off_k, diag_k = self.system._diagonals_of(w[flagged], self.hysteretic_frequency)
             lower = -off_k.T
             out[flagged] = solve_tridiagonal(lower, diag_k.T, lower, rhs[flagged])
+
+    def _rows(
+        self,
+        a: int,
+        b: int,
+        w: NDArray[np.float64],
+        w2: NDArray[np.float64],
+        factor: NDArray[np.float64],
+        rhs: np.ndarray,
+        count: int,
+    ) -> None:
+        """Rows a..b-1 of the block's ``off`` (the links a..min(b, n-1)-1: k + i (w c + h
+        factor)), ``diag`` (k_g - w^2 J + i (w c_g + h_g factor) + off[i] + off[i-1]) and
+        right-hand sides ``x``: the operations of :meth:`LinearSystem._diagonals_of` in the
+        same order on every element (the same numbers), a few numpy calls for the rows
+        together (class docstring)."""
+        kb, cb, hb, kg, cg, hg, inertia = self.arrays
+        col = np.newaxis
+        e = min(b, self.n - 1)
+        off, rows = self.off[a:e, :count], self.diag[a:b, :count]
+        term = self.term[: b - a, :count]
+        off.real = kb[a:e, col]
+        np.multiply(w, cb[a:e, col], out=off.imag)
+        np.multiply(w2, inertia[a:b, col], out=rows.real)
+        np.subtract(kg[a:b, col], rows.real, out=rows.real)
+        np.multiply(w, cg[a:b, col], out=rows.imag)
+        if self.hysteretic:
+            np.multiply(factor, hb[a:e, col], out=term[: e - a])
+            np.add(off.imag, term[: e - a], out=off.imag)
+            np.multiply(factor, hg[a:b, col], out=term)
+            np.add(rows.imag, term, out=rows.imag)
+        np.add(rows[: e - a], off, out=rows[: e - a])
+        lo = max(a, 1)
+        np.add(
+            self.diag[lo:b, :count], self.off[lo - 1 : b - 1, :count], out=self.diag[lo:b, :count]
+        )
+        np.copyto(self.x[a:b, :, :count], rhs[:, a:b, :].transpose(1, 2, 0))
 
     def _flagged(
         self,
@@ -585,6 +784,20 @@ def _growth(off: NDArray[np.complex128], pivot: NDArray[np.complex128]) -> NDArr
     small pivot, elimination may have lost accuracy) or not a number: not
     |off|^2 <= 1e16 |pivot|^2 (arrays (rows, F))."""
     return ~np.all(_abs2(off) <= 1e16 * _abs2(pivot), axis=0)
+
+
+def _dense_solve(matrix: np.ndarray, rhs: np.ndarray) -> NDArray[np.complex128]:
+    """X with matrix X = rhs for a batch (F, n, n) and (F, n, r) by LU decomposition with
+    partial pivoting (LAPACK ``zgesv``); NaN for a singular system (the others solved)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        try:
+            return np.asarray(np.linalg.solve(matrix, rhs), dtype=complex)
+        except np.linalg.LinAlgError:  # an undamped system exactly at a resonance
+            out = np.full(rhs.shape, np.nan + 0j)
+            for i in range(matrix.shape[0]):  # the block's systems one by one
+                with contextlib.suppress(np.linalg.LinAlgError):
+                    out[i] = np.linalg.solve(matrix[i], rhs[i])
+            return out
 
 
 def _hyst(h: np.ndarray, w: np.ndarray, hysteretic_frequency: float | None) -> np.ndarray:
@@ -684,7 +897,7 @@ def linear_system(
     mass_dof = np.array(model.mass_dof)
     chain = model.chain
     shaft_dofs = np.array(model.shaft_dofs)
-    k_s, _c_s, _h_s = model._shaft_values()
+    k_s, c_s, h_s = model._shaft_values()
     elem_ratio = [
         float(ratio[model.index(s.between[0] if s.between[0] != "ground" else s.between[1])])
         for s in model.shafts
@@ -695,47 +908,79 @@ def linear_system(
     )
     dof_of_model = np.arange(n0) + shift
     n = n0 + len(dampers)
-    order = list(dampers)
-    inertia, stiffness, damping, hysteretic = _model_matrices(model, dof_of_model, n, modal_damping)
-    element_dofs = [
-        [int(dof_of_model[a]) if a >= 0 else -1, int(dof_of_model[b]) if b >= 0 else -1]
-        for a, b in shaft_dofs
-    ]
+    inertia = np.zeros(n)
+    inertia[dof_of_model] = model.dof_inertia
+    ends = np.where(shaft_dofs >= 0, dof_of_model[np.maximum(shaft_dofs, 0)], -1)
+    values = np.array([k_s, c_s, h_s], dtype=float).reshape(3, -1)  # (3, shafts)
+    grounded = np.any(ends < 0, axis=1)
+    ground = np.zeros((3, n))
+    np.add.at(ground.T, np.max(ends[grounded], axis=1), values[:, grounded].T)
+    ground[1, dof_of_model] += model._absolute_damping
+    pairs = [ends[~grounded]]
+    pair_values = [values[:, ~grounded]]
     element_k = list(k_s)
     ring_mass_dof: list[int] = []
     ring_ratio: list[float] = []
-    for d in order:
+    for d in dampers:
         r = int(ring_dof[id(d)])
         hub_mass = model.index(d.at)
         hub = int(dof_of_model[mass_dof[hub_mass]])
         r2 = float(ratio[hub_mass]) ** 2
         inertia[r] = d.inertia * r2
-        _couple(stiffness, hub, r, d.stiffness * r2)
-        _couple(damping, hub, r, d.damping * r2)
-        _couple(hysteretic, hub, r, d.loss_factor * d.stiffness * r2)
-        element_dofs.append([hub, r])
+        pairs.append(np.array([[hub, r]]))
+        pair_values.append(
+            np.array([[d.stiffness], [d.damping], [d.loss_factor * d.stiffness]]) * r2
+        )
         element_k.append(d.stiffness * r2)
         elem_ratio.append(float(ratio[hub_mass]))
         labels.append((d.at, d.name))
         ring_mass_dof.append(r)
         ring_ratio.append(float(ratio[hub_mass]))
+    links, link_values = _merged_links(np.concatenate(pairs), np.concatenate(pair_values, axis=1))
+    modal = None
+    if modal_damping is not None:
+        from crankdyn.torsion.damped import modal_damping_matrix
+
+        modal = np.zeros((n, n))
+        modal[np.ix_(dof_of_model, dof_of_model)] = modal_damping_matrix(model, modal_damping)
+    element_dofs = np.concatenate([ends, np.array(pairs[1:], dtype=int).reshape(-1, 2)])
     masses_dof = np.concatenate([dof_of_model[mass_dof], np.array(ring_mass_dof, dtype=int)])
     masses_ratio = np.concatenate([ratio, np.array(ring_ratio)])
+    chain_arrays = _chain_arrays(n, links, link_values, ground) if chained else None
+    tree = None
+    if chain_arrays is None and modal is None:
+        tree = elimination_tree(n, links)
     return LinearSystem(
         inertia=inertia,
-        stiffness=stiffness,
-        damping=damping,
-        hysteretic=hysteretic,
-        chain=_chain_arrays(stiffness, damping, hysteretic) if chained else None,
+        links=links,
+        link_values=link_values,
+        ground_values=ground,
+        modal_damping=modal,
+        chain=chain_arrays,
+        tree=tree,
         mass_dof=masses_dof.astype(int),
         mass_ratio=masses_ratio,
         mass_names=tuple(names),
-        element_dofs=np.array(element_dofs, dtype=int).reshape(-1, 2),
+        element_dofs=element_dofs.astype(int).reshape(-1, 2),
         element_stiffness=np.array(element_k, dtype=float),
         element_ratio=np.array(elem_ratio, dtype=float),
         element_labels=tuple(labels),
-        dampers=tuple(order),
+        dampers=dampers,
     )
+
+
+def _merged_links(
+    pairs: NDArray[np.int_], values: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.float64]]:
+    """(links (L, 2), values (3, L)): the pairs of degrees of freedom (each as (lower,
+    higher)) once, in ascending order, the values of parallel ones added."""
+    if pairs.size == 0:
+        return np.zeros((0, 2), dtype=np.intp), np.zeros((3, 0))
+    ordered = np.sort(pairs, axis=1)
+    links, index = np.unique(ordered, axis=0, return_inverse=True)
+    merged = np.zeros((3, links.shape[0]))
+    np.add.at(merged.T, index.reshape(-1), values.T)
+    return links.astype(np.intp), merged
 
 
 def _ring_names(model: TorsionModel, dampers: Sequence[Damper]) -> list[str]:
@@ -787,55 +1032,17 @@ def _ring_dofs(
     return chained, shift, ring_dof
 
 
-def _model_matrices(
-    model: TorsionModel, dof_of_model: NDArray[np.int_], n: int, modal_damping: ArrayLike | None
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-    """(inertia (n,), K, C, H (n, n)): the model's reflected matrices at its dofs
-    ``dof_of_model`` among n, the modal damping's C_modal added to C."""
-    inertia = np.zeros(n)
-    inertia[dof_of_model] = model.dof_inertia
-    stiffness = np.zeros((n, n))
-    damping = np.zeros((n, n))
-    hysteretic = np.zeros((n, n))
-    idx = np.ix_(dof_of_model, dof_of_model)
-    stiffness[idx] = model.stiffness_matrix()
-    damping[idx] = model.damping_matrix()
-    if modal_damping is not None:
-        from crankdyn.torsion.damped import modal_damping_matrix
-
-        damping[idx] += modal_damping_matrix(model, modal_damping)
-    hysteretic[idx] = model.hysteretic_matrix()
-    return inertia, stiffness, damping, hysteretic
-
-
-def _couple(matrix: NDArray[np.float64], hub: int, ring: int, value: float) -> None:
-    """Add a spring (or dashpot) ``value`` between dofs ``hub`` and ``ring`` to ``matrix``."""
-    matrix[ring, ring] += value
-    matrix[hub, hub] += value
-    matrix[ring, hub] -= value
-    matrix[hub, ring] -= value
-
-
 def _chain_arrays(
-    stiffness: NDArray[np.float64], damping: NDArray[np.float64], hysteretic: NDArray[np.float64]
+    n: int, links: NDArray[np.intp], values: NDArray[np.float64], ground: NDArray[np.float64]
 ) -> tuple[np.ndarray, ...] | None:
     """(k_between, c_between, h_between, k_g, c_g, h_g) of a chain in dof order (the
-    :class:`LinearSystem` field ``chain``), None when it has other couplings."""
-    sub = np.diagonal(stiffness, 1)
-    chain_arrays = (
-        -sub.copy(),
-        -np.diagonal(damping, 1).copy(),
-        -np.diagonal(hysteretic, 1).copy(),
-        np.sum(stiffness, axis=1),
-        np.sum(damping, axis=1),
-        np.sum(hysteretic, axis=1),
-    )
-    # a chain in dof order must have no other couplings
-    off = stiffness - np.diag(np.diagonal(stiffness))
-    off -= np.diag(np.diagonal(stiffness, 1), 1) + np.diag(np.diagonal(stiffness, -1), -1)
-    if np.any(off != 0.0):  # pragma: no cover - guarded by the placement above
-        return None
-    return chain_arrays
+    :class:`LinearSystem` field ``chain``) from its links (lower, higher) and its terms to
+    ground, None when the links are not those of neighbours."""
+    if links.shape[0] != max(n - 1, 0) or np.any(links[:, 1] != links[:, 0] + 1):
+        return None  # pragma: no cover - guarded by the placement of the rings
+    between = np.zeros((3, max(n - 1, 0)))
+    between[:, links[:, 0]] = values
+    return (between[0], between[1], between[2], ground[0], ground[1], ground[2])
 
 
 def steady_state(

@@ -49,9 +49,10 @@ from crankdyn.torsion.model import TorsionModel
 from crankdyn.torsion.resolve import (
     MAX_ROUNDS,
     TOLERANCE,
+    Refiner,
     damped_frequency_rows,
     merge_speeds,
-    refinement_speeds,
+    modal_pole_rows,
     seed_speeds,
 )
 from crankdyn.torsion.response import ResponseResult
@@ -94,24 +95,27 @@ class _Block:
     top: np.ndarray  # (S, N + E + P) largest value over the cycle: masses, elements, pairs
     low: np.ndarray  # (S, N + E + P) smallest
 
-    def merged(self, other: _Block) -> tuple[_Block, np.ndarray]:
-        """Both blocks' rows in ascending speed (a speed in both once) and the row of the
-        concatenation each row came from."""
-        speed, first = merge_speeds(self.speed, other.speed)
+    @staticmethod
+    def joined(blocks: Sequence[_Block]) -> tuple[_Block, np.ndarray]:
+        """The blocks' rows in ascending speed (a speed in several once: the first block's)
+        and the row of the concatenation each row came from: one copy of every array, however
+        many blocks (the rounds of a resolution)."""
+        speed, first = merge_speeds(*(b.speed for b in blocks))
 
-        def cat(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-            return np.concatenate([a, b])[first]
+        def cat(arrays: list[np.ndarray]) -> np.ndarray:
+            return np.concatenate(arrays)[first] if len(arrays) > 1 else arrays[0][first]
 
+        powers = [b.power for b in blocks]
         return (
             _Block(
                 speed=speed,
-                x=cat(self.x, other.x),
-                torque=cat(self.torque, other.torque),
+                x=cat([b.x for b in blocks]),
+                torque=cat([b.torque for b in blocks]),
                 power=None
-                if self.power is None or other.power is None
-                else cat(self.power, other.power),
-                top=cat(self.top, other.top),
-                low=cat(self.low, other.low),
+                if any(p is None for p in powers)
+                else cat([p for p in powers if p is not None]),
+                top=cat([b.top for b in blocks]),
+                low=cat([b.low for b in blocks]),
             ),
             first,
         )
@@ -207,7 +211,10 @@ class Sweep:
         if found is None:
             return system.solve(omega, forcing, self.hysteretic_frequency), base_k
         ends, change, k = found
-        x = system.solve_with_change(omega, forcing, ends, change, self.hysteretic_frequency)
+        if system.chain is None:
+            x = system.solve_with_change(omega, forcing, ends, change, self.hysteretic_frequency)
+        else:
+            x = low_rank_solve(system, omega, forcing, ends, change, self.hysteretic_frequency)
         return x, k
 
     def at(self, speeds: ArrayLike) -> ResponseResult:
@@ -229,6 +236,11 @@ class Sweep:
         """Per curve its largest value, at least 1e-9 of its family's largest (columns
         ``bounds[k]:bounds[k+1]``), so that curves at round-off level ask for no refinement."""
         top = np.max(values, axis=0) if values.shape[0] else np.zeros(values.shape[1])
+        return Sweep.scale_of(top, bounds)
+
+    @staticmethod
+    def scale_of(top: np.ndarray, bounds: np.ndarray) -> np.ndarray:
+        """:meth:`scale` from every curve's largest value ``top`` (C,)."""
         family = np.maximum.reduceat(top, bounds[:-1]) if top.size else top
         floor = np.repeat(1e-9 * family, np.diff(bounds))
         return np.maximum(top, floor)
@@ -329,29 +341,92 @@ class Sweep:
         """Damped natural frequencies a + i b (rad/s) with a <= top (module
         :mod:`crankdyn.torsion.resolve`), with the model's stiffness (load-dependent couplings
         at their reference torque): the quadratic eigenproblem for systems of up to
-        :data:`POLE_LIMIT` degrees of freedom, else the undamped modes with the modal damping
-        of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M phi))."""
-        w = self._pole_rows(self.system.stiffness, *self._damping())
+        :data:`POLE_LIMIT` degrees of freedom, else the undamped modes up to ``top`` with the
+        modal damping of their shapes (b_r = phi^T (H + omega_r C) phi / (2 omega_r phi^T M
+        phi); :func:`crankdyn.torsion.resolve.modal_pole_rows` for a chain)."""
+        w = self._pole_rows(None, top)
         w = w[np.isfinite(w)]
         return np.sort_complex(w[w.real <= top])
 
-    def _pole_rows(self, stiffness: np.ndarray, c: np.ndarray, h: np.ndarray) -> np.ndarray:
-        """Damped natural frequencies of systems with the stiffness matrices (..., n, n) (the
-        system's mass and damping c, h, broadcast): (..., P) complex, ascending in the real
-        part, NaN-padded (:meth:`poles`)."""
+    def _pole_rows(
+        self, change: tuple[np.ndarray, np.ndarray, np.ndarray] | None, top: float
+    ) -> np.ndarray:
+        """Damped natural frequencies of the system with the stiffness changes ``change`` =
+        (ends, delta (S, count), eta (count,)) of the load-dependent couplings at S speeds
+        (:meth:`loaded_poles`), or of the model's own (None): (S or 1, P) complex, ascending in
+        the real part, NaN-padded (:meth:`poles`); above :data:`POLE_LIMIT` degrees of freedom
+        (:data:`TRACK_POLE_LIMIT` with changes) the undamped modes with their modal damping, a
+        chain's up to ``top`` (rad/s) only."""
         system = self.system
-        if system.size <= POLE_LIMIT:
-            return damped_frequency_rows(system.inertia, stiffness, c, h)
+        size = system.size
+        limit = POLE_LIMIT if change is None else TRACK_POLE_LIMIT
+        if system.chain is not None and size > limit:
+            return self._chain_pole_rows(change, top)
+        c0, h0 = self._damping()
+        if change is None:
+            return self._dense_pole_rows(system.stiffness, c0, h0, size <= limit)
+        ends, delta, eta = change
+        delta = np.asarray(delta, dtype=float)
+        rows = max(1, POLE_BLOCK // (size * size))  # speeds per block: bounded memory
+        parts = []
+        for s0 in range(0, delta.shape[0], rows):
+            d = delta[s0 : s0 + rows]
+            k = system.stiffness + change_matrix(ends, d, size)
+            c, h = c0, h0
+            if self.hysteretic_frequency is None:
+                h = h0 + change_matrix(ends, d * eta, size)
+            else:
+                c = c0 + change_matrix(ends, d * eta / self.hysteretic_frequency, size)
+            parts.append(self._dense_pole_rows(k, c, h, size <= limit))
+        width = max(p.shape[-1] for p in parts)
+        out = np.full((delta.shape[0], width), np.nan, dtype=complex)
+        for s0, part in zip(range(0, delta.shape[0], rows), parts, strict=True):
+            out[s0 : s0 + part.shape[0], : part.shape[-1]] = part
+        return out
+
+    def _dense_pole_rows(
+        self, k: np.ndarray, c: np.ndarray, h: np.ndarray, exact: bool
+    ) -> np.ndarray:
+        """:meth:`_pole_rows` of dense matrices (..., n, n): the quadratic eigenproblem
+        (``exact``) or the undamped modes with their modal damping."""
+        system = self.system
+        if exact:
+            return damped_frequency_rows(system.inertia, k, c, h)
         j = np.sqrt(system.inertia)
-        lam, psi = np.linalg.eigh(stiffness / j[:, None] / j[None, :])
+        lam, psi = np.linalg.eigh(k / j[:, None] / j[None, :])
         lam, psi = lam[..., self._rigid_count() :], psi[..., self._rigid_count() :]
         phi = psi / j[:, None]  # mass-normalised mode shapes
         omega = np.sqrt(np.maximum(lam, 0.0))
-        modal_h = np.einsum("...ir,...ij,...jr->...r", phi, h, phi)
-        modal_c = np.einsum("...ir,...ij,...jr->...r", phi, c, phi)
+        modal_h = np.sum(phi * (h @ phi), axis=-2)
+        modal_c = np.sum(phi * (c @ phi), axis=-2)
         with np.errstate(divide="ignore", invalid="ignore"):
             b = (modal_h + omega * modal_c) / (2.0 * np.maximum(omega, 1e-300))
         return np.where(omega > 0.0, omega + 1j * np.abs(b), np.nan)
+
+    def _chain_pole_rows(
+        self, change: tuple[np.ndarray, np.ndarray, np.ndarray] | None, top: float
+    ) -> np.ndarray:
+        """:meth:`_pole_rows` of a large chain (:func:`crankdyn.torsion.resolve.
+        modal_pole_rows`): the changed couplings are links of the chain."""
+        chain = self.system.chain
+        assert chain is not None  # called for chains only
+        kb, cb, hb, kg, cg, hg = chain
+        k_link, c_link, h_link = kb[None, :], cb[None, :], hb[None, :]
+        if change is not None:
+            ends, delta, eta = change
+            rows = np.asarray(delta).shape[0]
+            k_link = np.repeat(k_link, rows, axis=0)
+            h_link = np.repeat(h_link, rows, axis=0)
+            for j, (a, b) in enumerate(np.asarray(ends).tolist()):  # the couplings (a few)
+                k_link[:, min(a, b)] += delta[:, j]
+                h_link[:, min(a, b)] += delta[:, j] * eta[j]
+        if self.hysteretic_frequency is not None:  # the loss factors as viscous damping
+            c_link = c_link + h_link / self.hysteretic_frequency
+            cg = cg + hg / self.hysteretic_frequency
+            h_link, hg = np.zeros_like(h_link), np.zeros_like(hg)
+        return modal_pole_rows(
+            self.system.inertia, (k_link, c_link, h_link), (kg, cg, hg), self._rigid_count(), top
+        )
 
     def _loaded_change(self, speeds: ArrayLike) -> tuple[np.ndarray, np.ndarray, np.ndarray] | None:
         """(ends, delta, eta) of the load-dependent couplings at reference speeds (rad/s)
@@ -359,23 +434,16 @@ class Sweep:
         found = stiffness_change(self.model, self.system, speeds)
         return None if found is None else found[:3]
 
-    def loaded_poles(self, speeds: ArrayLike) -> np.ndarray:
+    def loaded_poles(self, speeds: ArrayLike, top: float = math.inf) -> np.ndarray:
         """Damped natural frequencies (rad/s) with the load-dependent couplings' stiffness at
         the mean torque of every speed (rad/s): (S, P), NaN-padded, ascending (:meth:`poles`;
-        the forced response takes the same stiffness at that speed)."""
+        the forced response takes the same stiffness at that speed); above
+        :data:`POLE_LIMIT` degrees of freedom those up to ``top`` (rad/s) only."""
         speeds = np.asarray(speeds, dtype=float)
         found = self._loaded_change(speeds)
         if found is None:  # pragma: no cover - called only with load-dependent couplings
             raise ValueError("no coupling of the model depends on the load")
-        ends, delta, eta = found
-        size = self.system.size
-        c, h = self._damping()
-        k = self.system.stiffness + change_matrix(ends, delta, size)
-        if self.hysteretic_frequency is None:
-            h = h + change_matrix(ends, delta * eta, size)
-        else:
-            c = c + change_matrix(ends, delta * eta / self.hysteretic_frequency, size)
-        return self._pole_rows(k, c, h)
+        return self._pole_rows(found, top)
 
     def _tracked_resonances(
         self, poles: np.ndarray, orders: np.ndarray, low: float, high: float
@@ -388,7 +456,8 @@ class Sweep:
         batched eigenproblem; the pole followed from speed to speed as the one nearest in
         frequency. Returns (centre (rad/s), half width (rad/s), pole frequency (rad/s), order
         index) of the pairs whose resonance lies within two half widths of the range."""
-        rows = self.loaded_poles([low, high])  # (2, P)
+        top = 2.0 * float(np.max(orders)) * high * 1.5  # beyond the poles that matter (seeds)
+        rows = self.loaded_poles([low, high], top)  # (2, P)
 
         def follow(rows_at: np.ndarray, previous: np.ndarray) -> np.ndarray:
             gap = np.abs(rows_at.real - previous[:, None])
@@ -420,7 +489,7 @@ class Sweep:
         ) -> tuple[np.ndarray, np.ndarray]:
             """The followed poles and g = Re a - q n at speeds n of the pairs ``which``."""
             at = np.clip(np.where(np.isfinite(n), n, low), low, high)
-            a = follow(self.loaded_poles(at), track)
+            a = follow(self.loaded_poles(at, top), track)
             return a, a.real - q_sel[which] * n
 
         every = np.arange(q_sel.size)
@@ -550,6 +619,62 @@ class Sweep:
         )
 
 
+def low_rank_solve(
+    system: Any,
+    omega: NDArray[np.float64],
+    forcing: NDArray[np.complexfloating],
+    ends: NDArray[np.int_],
+    change: NDArray[np.complexfloating],
+    hysteretic_frequency: float | None,
+) -> NDArray[np.complexfloating]:
+    """X with (D(omega) + sum_j c_j u_j u_j^T) X = F, u_j = e_a - e_b the ends of the changed
+    elements (the load-dependent couplings at each speed), by the Sherman-Morrison-Woodbury
+    identity (G. H. Golub and C. F. Van Loan, *Matrix Computations*, 4th ed., 2013, sec.
+    2.1.4): one elimination of the model's own D(omega) per frequency with the forcing and the
+    u_j as right-hand sides (:meth:`crankdyn.torsion.solvers.LinearSystem.solve`, the chain's
+    fast path), then X = X_0 - Z (C^-1 + U^T Z)^-1 U^T X_0 with D Z = U, a (count x count)
+    system per frequency.
+
+    Parameters
+    ----------
+    system : crankdyn.torsion.solvers.LinearSystem
+        The model's linear system.
+    omega : numpy.ndarray
+        (S, Q) frequencies (rad/s).
+    forcing : numpy.ndarray
+        (S, Q, n) harmonic torques (N m).
+    ends : numpy.ndarray
+        (count, 2) the changed elements' degrees of freedom.
+    change : numpy.ndarray
+        (S, Q, count) their dynamic stiffness changes (N m/rad).
+    hysteretic_frequency : float or None
+        As :meth:`~crankdyn.torsion.solvers.LinearSystem.solve`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (S, Q, n) complex angles (rad).
+    """
+    n = system.size
+    count = len(ends)
+    rhs = np.zeros((*forcing.shape[:-1], n, 1 + count), dtype=complex)
+    rhs[..., 0] = forcing
+    u = np.zeros((n, count))
+    for j, (a, b) in enumerate(np.asarray(ends).tolist()):  # the couplings (a few)
+        u[a, j] += 1.0
+        u[b, j] -= 1.0
+    rhs[..., 1:] = u
+    solved = system.solve(omega, rhs, hysteretic_frequency)  # (S, Q, n, 1 + count)
+    x0, z = solved[..., 0], solved[..., 1:]
+    del solved
+    ux = np.einsum("nj,sqn->sqj", u, x0)
+    uz = np.einsum("nj,sqnk->sqjk", u, z)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        small = np.eye(count) + change[..., :, None] * uz  # C (U^T Z) + I, times C^-1 of Woodbury
+        y = np.linalg.solve(small, (change * ux)[..., None])[..., 0]
+    return x0 - np.einsum("sqnj,sqj->sqn", z, y)
+
+
 TRACK_ITERATIONS = 30
 """Secant iterations at most when following a resonance to its load-dependent coupling
 stiffness (each one batched eigenproblem; they converge superlinearly, in a few)."""
@@ -557,6 +682,18 @@ stiffness (each one batched eigenproblem; they converge superlinearly, in a few)
 POLE_LIMIT = 200
 """Largest system (degrees of freedom) whose damped natural frequencies are found by the
 quadratic eigenproblem; above it the undamped modes with modal damping are used."""
+
+POLE_BLOCK = 1 << 22
+"""Elements of the (speeds, n, n) matrices of :meth:`Sweep.loaded_poles` per block of speeds
+(32 MiB of each): the memory of following the poles is bounded by a block, not by the number
+of speeds (at least one speed per block)."""
+
+TRACK_POLE_LIMIT = 64
+"""The same limit for the poles followed to the load-dependent couplings' stiffness
+(:meth:`Sweep.loaded_poles`: one eigenproblem per resonance and secant iteration): the
+quadratic eigenproblem's (2n)^3 work there took 91 % of a whole TVC of a 200-mass line
+(sampled profile, bench/tvc_line.py), the undamped modes' n^3 a sixtieth of it; the poles only
+place the seed speeds, the forced response and its peaks are exact either way."""
 
 
 def _per_order(k: int, count: int, names: Sequence[str], orders: np.ndarray) -> str:
@@ -718,24 +855,32 @@ def _resolved(
             f"undamped resonances (no damping acts on the mode: the steady response is unbounded "
             f"there; the peaks next to them are not refined): {listed}"
         )
+    refiner = Refiner(
+        block.speed,
+        values,
+        lambda top: sweep.scale_of(top, bounds),
+        tolerance,
+        exclude=[w for _, _, w in unbounded],
+    )
+    del values
+    blocks = [block]
+    reasons = list(reason)
     for _ in range(MAX_ROUNDS):
-        scale = sweep.scale(values, bounds)
-        new, column = refinement_speeds(
-            block.speed, values, scale, tolerance, exclude=[w for _, _, w in unbounded]
-        )
+        new, column = refiner.request()
         if new.size == 0:
             break
-        labels = [f"refinement: peak of {sweep.describe(int(c), block)}" for c in column]
+        reasons += [f"refinement: peak of {sweep.describe(int(c), block)}" for c in column]
         more = sweep.evaluate(new)
-        block, first = block.merged(more)
-        values = np.concatenate([values, sweep._values(more)[0]])[first]
-        combined = reason + labels
-        reason = [combined[k] for k in first]
+        refiner.add(more.speed, sweep._values(more)[0])
+        blocks.append(more)
     else:
         notes.append(
             f"the peaks were refined {MAX_ROUNDS} times and some are still not resolved to "
             f"{tolerance * 100:g} %"
         )
+    del refiner
+    block, first = _Block.joined(blocks)
+    reason = [reasons[k] for k in first]
     on_grid = np.isin(block.speed, grid)
     added = np.flatnonzero(~on_grid)
     if added.size:

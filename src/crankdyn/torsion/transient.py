@@ -1,9 +1,8 @@
 """Time-domain torsional vibration driven by the engine torque (analysis).
 
 The lumped model's equations of motion (:mod:`crankdyn.torsion.response`) are integrated in
-time with scipy's ``solve_ivp`` (explicit Runge-Kutta of order 8, Dormand-Prince, by default) as
-the first-order system y' = A y + B T(t) for y = (theta, theta'), the angles being the vibratory
-angles relative to the crankshaft's mean rotation phi(t) (reflected, rad):
+time for the vibratory angles theta relative to the crankshaft's mean rotation phi(t)
+(reflected, rad):
 
     M theta'' + (C + H / omega_h) theta' + K theta = T(t),
     T(t) = sum_q Re( F_q(Omega(t)) exp(i q phi(t)) ),
@@ -24,6 +23,18 @@ system.
 Speed: constant Omega, or a linear run-up Omega(t) = Omega_0 + (Omega_1 - Omega_0) t / t_end with
 phi(t) = Omega_0 t + (Omega_1 - Omega_0) t^2 / (2 t_end); the harmonic torques at Omega(t) are
 interpolated from a grid of speeds.
+
+Integration (``method``): by default ``"modal"``, the undamped modes up to a cut-off frequency
+omega_c (8 times the highest excitation frequency unless given) integrated exactly between
+samples of a cubic hold of the torque, the modes above omega_c taken quasi-steadily
+(:mod:`crankdyn.torsion.modal_run`): the work grows linearly with the number of masses, with no
+Python call per step, and the result states omega_c and the estimate of the truncation error
+(the change of the shaft torques when omega_c is halved, relative to the largest). At constant
+speed the quasi-steady part is exact, so a run started in the steady state stays there. The
+name of a ``scipy.integrate.solve_ivp`` method (``"DOP853"``, Dormand-Prince of order 8, after
+Hairer, Norsett and Wanner 1993; ``"Radau"``...) integrates the first-order system
+y' = A y + B T(t) of every degree of freedom instead (the reference: a Python call per step,
+the step limited by the highest natural frequency).
 """
 
 from __future__ import annotations
@@ -36,7 +47,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from crankdyn.errors import InputError
+from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import Result, array, column, freeze, scalar
 from crankdyn.summary import SummaryColumn, SummaryTable
 from crankdyn.torsion.excitation import interp_complex
@@ -95,6 +106,25 @@ class TransientResult(Result):
     )
     method: str = scalar("method", "Integrator", "")
     model_name: str = scalar("model", "Model", "", summary=False)
+    modal_cutoff: float | None = scalar(
+        "modal_cutoff_hz",
+        "Modes integrated in time up to",
+        "Hz",
+        1.0 / (2.0 * math.pi),
+        default=None,
+    )
+    modes_integrated: int | None = scalar(
+        "modes_integrated", "Modes integrated in time", "", default=None
+    )
+    truncation_error: float | None = scalar(
+        "truncation_error",
+        "Modal truncation error (estimate, of the largest torque)",
+        "",
+        better="min",
+        description="the largest change of a shaft torque when the cut-off frequency is halved, "
+        "relative to the largest shaft torque of the run",
+        default=None,
+    )
     cycle_angle: float = scalar(
         "cycle_angle_deg", "Working cycle", "deg", DEG, summary=False, default=4.0 * math.pi
     )
@@ -227,16 +257,17 @@ def transient_response(
     samples_per_cycle: int = 720,
     dampers: Sequence[Damper] | None = None,
     hysteretic_frequency: float | None = None,
-    method: str = "DOP853",
+    method: str = "modal",
     rtol: float = 1e-8,
-    atol: float = 1e-12,
+    atol: float | None = None,
     start: str = "rest",
+    max_frequency: float | None = None,
 ) -> TransientResult:
     """Integrate the model's response to the engine torque in time.
 
     The equations and the forcing are those of the module docstring: seed 003 (the V6 paper's
-    eq. 1), the first-order form y' = A y + B T(t) integrated by ``scipy.integrate.solve_ivp``
-    (Dormand-Prince of order 8 by default, scipy's DOP853 after Hairer, Norsett and Wanner 1993).
+    eq. 1), integrated in truncated modal coordinates (:mod:`crankdyn.torsion.modal_run`) or by
+    ``scipy.integrate.solve_ivp`` (module docstring).
 
     Parameters
     ----------
@@ -266,20 +297,30 @@ def transient_response(
         omega_h (rad/s) for the loss factors as viscous damping eta k / omega_h; default the
         lowest elastic natural frequency (1 rad/s when there is none).
     method : str
-        The ``solve_ivp`` integrator (default ``"DOP853"``).
-    rtol, atol : float
-        ``solve_ivp``'s relative and absolute tolerances (atol in rad and rad/s).
+        ``"modal"`` (default: module docstring) or a ``solve_ivp`` method (``"DOP853"``,
+        ``"RK45"``, ``"Radau"``, ...).
+    rtol : float
+        The relative accuracy (dimensionless, 0 < rtol < 1; default 1e-8): the modal method's
+        cubic hold at the highest excitation frequency, or ``solve_ivp``'s rtol.
+    atol : float or None
+        ``solve_ivp``'s absolute tolerance (rad and rad/s; default 1e-12); the modal method
+        has none.
     start : str
         ``"rest"`` (default): no vibration at t = 0; ``"steady"``: the steady state at the
         starting speed, theta(0) = Re sum_q X_q and theta'(0) = Re sum_q i q Omega_0 X_q with
         X_q the frequency-domain solution of the same equations (the loss factors as viscous
         damping at omega_h), so that a run-up starts without a start-up transient.
+    max_frequency : float or None
+        omega_c (rad/s) of the modal method, > 0: the modes up to it are integrated in time,
+        the rest taken quasi-steadily; default 8 times the highest excitation frequency
+        (:data:`crankdyn.torsion.modal_run.CUTOFF_FACTOR`).
 
     Returns
     -------
     TransientResult
         Time (s), speed (rad/s), crank angle (rad), the masses' vibratory angles (rad) and the
-        shafts' torques (N m) at the output samples.
+        shafts' torques (N m) at the output samples; for the modal method omega_c, the number
+        of modes integrated in time and the estimate of the truncation error.
 
     Raises
     ------
@@ -287,8 +328,8 @@ def transient_response(
         Naming the key and value: neither or both of ``speed`` and ``run_up``, a speed that is
         not positive and finite, neither ``duration`` nor ``cycles`` at constant speed, a run-up
         without a duration, a duration that is not positive, a ``start`` other than ``rest``
-        or ``steady``, or orders the model cannot take
-        (:func:`crankdyn.torsion.sources.check_model_orders`).
+        or ``steady``, an unknown method, rtol outside (0, 1), atol given to the modal method,
+        a cut-off that is not positive, or orders the model cannot take (``check_model_orders``).
 
     Examples
     --------
@@ -312,31 +353,31 @@ def transient_response(
     1.0
     """
     w0, w1, duration, cycle_angle = _run_speeds(excitation, speed, run_up, duration, cycles)
-    if start not in ("rest", "steady"):
-        raise InputError("expected rest or steady", key="start", value=start)
+    _check_method(method, rtol, atol, max_frequency, start)
     orders = check_model_orders(model, excitation, orders)
     system = linear_system(model, model.dampers if dampers is None else dampers)
     if hysteretic_frequency is None:
-        from crankdyn.torsion.modal import natural_modes
-
-        modes = natural_modes(model)
-        elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
-        hysteretic_frequency = float(elastic[0]) if elastic.size else 1.0
+        hysteretic_frequency = _lowest_elastic(model)
     grid = np.array([w0]) if w0 == w1 else np.linspace(min(w0, w1), max(w0, w1), 201)
     # the cylinders' and the sources' harmonic torques, as in the forced response
     forcing, _notes = assemble_forcing(model, system, excitation, grid, orders)  # (G, Q, n)
     mean = 0.5 * (w0 + w1)
     count = max(math.ceil(duration * mean / cycle_angle * samples_per_cycle), 2)
-    t, theta = _integrate(
-        system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
-        np.linspace(0.0, duration, count + 1), method, rtol, atol,
-    )  # fmt: skip
+    t = np.linspace(0.0, duration, count + 1)
+    extra: dict[str, float | int] = {}
+    if method == "modal":
+        theta, torque, extra = _modal(
+            system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
+            count, max_frequency, rtol,
+        )  # fmt: skip
+    else:
+        t, theta = _integrate(
+            system, forcing, grid, orders, (w0, w1), duration, hysteretic_frequency, start,
+            t, method, rtol, 1e-12 if atol is None else atol,
+        )  # fmt: skip
+        torque = _element_torques(system, theta)
     rate = (w1 - w0) / duration
     angles = theta[:, system.mass_dof] * system.mass_ratio[None, :]
-    ends = system.element_dofs
-    ta = np.where(ends[:, 0] >= 0, theta[:, np.maximum(ends[:, 0], 0)], 0.0)
-    tb = np.where(ends[:, 1] >= 0, theta[:, np.maximum(ends[:, 1], 0)], 0.0)
-    torque = (system.element_stiffness / system.element_ratio) * (tb - ta)
     return TransientResult(
         time=freeze(t),
         speed=freeze(w0 + rate * t),
@@ -350,7 +391,98 @@ def transient_response(
         method=method,
         model_name=model.name,
         cycle_angle=CYCLE_ANGLE[excitation.cycle],
+        **extra,  # type: ignore[arg-type]  # the modal method's fields, each of its own type
     )
+
+
+METHODS = ("modal", "DOP853", "RK45", "RK23", "Radau", "BDF", "LSODA")
+"""The integration methods: the modal one and ``scipy.integrate.solve_ivp``'s."""
+
+
+def _check_method(
+    method: str, rtol: float, atol: float | None, cutoff: float | None, start: str
+) -> None:
+    """One-line errors for the integration settings (:func:`transient_response`)."""
+    if start not in ("rest", "steady"):
+        raise InputError("expected rest or steady", key="start", value=start)
+    if method not in METHODS:
+        raise InputError(
+            f"unknown integration method{did_you_mean(method, METHODS)}",
+            key="method",
+            value=method,
+        )
+    if not (math.isfinite(rtol) and 0.0 < rtol < 1.0):
+        raise InputError("the relative tolerance must lie between 0 and 1", key="rtol", value=rtol)
+    if method == "modal" and atol is not None:
+        raise InputError(
+            "the modal method has no absolute tolerance (give rtol, or a solve_ivp method)",
+            key="atol",
+            value=atol,
+        )
+    if cutoff is not None and not (math.isfinite(cutoff) and cutoff > 0.0):
+        raise InputError(
+            "the cut-off frequency must be positive", key="max_frequency", value=cutoff
+        )
+    if method != "modal" and cutoff is not None:
+        raise InputError(
+            "the cut-off frequency applies to the modal method only",
+            key="max_frequency",
+            value=cutoff,
+        )
+
+
+def _modal(
+    system: LinearSystem,
+    forcing: NDArray[np.complex128],
+    grid: NDArray[np.float64],
+    orders: NDArray[np.float64],
+    speeds: tuple[float, float],
+    duration: float,
+    hysteretic_frequency: float,
+    start: str,
+    count: int,
+    cutoff: float | None,
+    rtol: float,
+) -> tuple[NDArray[np.float64], NDArray[np.float64], dict[str, float | int]]:
+    """The modal method's angles (T, n) (rad), element torques (T, E) (N m) and the result's
+    fields omega_c, modes integrated and the truncation error estimate
+    (:func:`crankdyn.torsion.modal_run.harmonic_run`; the estimate relative to the largest
+    element torque)."""
+    from crankdyn.torsion.modal_run import harmonic_run
+
+    run = harmonic_run(
+        system, forcing, grid, orders, speeds, duration, hysteretic_frequency, start, count,
+        cutoff=cutoff, rtol=rtol,
+    )  # fmt: skip
+    change = _element_torques(system, run.change)
+    torque = _element_torques(system, run.angles)
+    top = float(np.max(np.abs(torque), initial=0.0))
+    error = float(np.max(np.abs(change), initial=0.0)) / top if top else 0.0
+    return (
+        run.angles,
+        torque,
+        {"modal_cutoff": run.cutoff, "modes_integrated": run.modes, "truncation_error": error},
+    )
+
+
+def _lowest_elastic(model: TorsionModel) -> float:
+    """The lowest elastic natural frequency of ``model`` (rad/s), 1 rad/s when there is none
+    (the default omega_h of :func:`transient_response`)."""
+    from crankdyn.torsion.modal import natural_modes
+
+    modes = natural_modes(model)
+    elastic = modes.natural_frequency[modes.natural_frequency > 0.0]
+    return float(elastic[0]) if elastic.size else 1.0
+
+
+def _element_torques(system: LinearSystem, theta: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The elastic torque k (theta_b - theta_a) of every shaft and damper coupling (actual
+    stiffness and angles, N m) at every sample, from the reflected angles (T, n) (rad)."""
+    ends = system.element_dofs
+    ta = np.where(ends[:, 0] >= 0, theta[:, np.maximum(ends[:, 0], 0)], 0.0)
+    tb = np.where(ends[:, 1] >= 0, theta[:, np.maximum(ends[:, 1], 0)], 0.0)
+    out: NDArray[np.float64] = (system.element_stiffness / system.element_ratio) * (tb - ta)
+    return out
 
 
 def _run_speeds(

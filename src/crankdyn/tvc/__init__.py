@@ -1,5 +1,6 @@
 """The torsional vibration calculation (TVC) a classification society accepts: running
-conditions, per-component limits, barred speed ranges and their passage (docs/tvc.md).
+conditions (:mod:`crankdyn.tvc.conditions`), per-component limits, barred speed ranges and
+their passage, transient events (:mod:`crankdyn.tvc.events`) (docs/tvc.md).
 
 :func:`tvc` runs it (:mod:`crankdyn.tvc.analysis`) with the settings of a :class:`TvcSpec`
 (:mod:`crankdyn.tvc.spec`) against the rule set it names (:mod:`crankdyn.tvc.rulesets`: IACS UR
@@ -19,15 +20,24 @@ whatever the step), a 2 % tachometer tolerance, IACS UR M68 (no added margin):
 
 from crankdyn.tvc.analysis import Check, tvc
 from crankdyn.tvc.limits import CrankshaftLimit
-from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult, Verdict
-from crankdyn.tvc.spec import TvcSpec
+from crankdyn.tvc.result import (
+    BarredSpeedRange,
+    ConditionResult,
+    EventCondition,
+    Passage,
+    TvcResult,
+    Verdict,
+)
+from crankdyn.tvc.spec import TvcEvent, TvcSpec
 
 __all__ = [
     "BarredSpeedRange",
     "Check",
     "ConditionResult",
     "CrankshaftLimit",
+    "EventCondition",
     "Passage",
+    "TvcEvent",
     "TvcResult",
     "TvcSpec",
     "Verdict",

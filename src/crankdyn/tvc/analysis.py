@@ -3,18 +3,22 @@
 For an installation (a torsional model with its engine, couplings, gears, dampers, propeller or
 generator) the calculation runs every *running condition* over its speed range, each a resolved
 forced response (:func:`crankdyn.torsion.sweep.forced_response`: every resonance peak refined
-to 0.1 %):
+to 0.1 %; the conditions: :mod:`crankdyn.tvc.conditions`):
 
 - normal firing;
 - each single cylinder misfiring (no ignition: the motored pressure,
-  :class:`crankdyn.torsion.excitation.EngineExcitation`), the worst cylinder reported for every
+  :class:`crankdyn.torsion.excitation.EngineExcitation`, or the misfire coefficients of the
+  engine builder's table of a model without an engine), the worst cylinder reported for every
   check;
 - the damper out of order, where the model has one (the damper left out: a viscous damper
   whose fluid is lost leaves its ring free, which no longer acts on the line);
+- overspeed, normal firing to the rule's top speed (1.05 n_0 in IACS UR M68.4);
+- declutched and idle running, where a clutch is modelled;
 
 under the installation's load law: the propeller law (the gas load following the model's load
 curve, the propeller's mean torque ~ n^2) or constant speed (a generating set: full load at
-every speed of its range).
+every speed of its range); and every transient event of the settings (``[[tvc.event]]``:
+:mod:`crankdyn.tvc.events`).
 
 Every component with a limit is checked against it (the table of check kinds of
 :mod:`crankdyn.tvc.checks`; the rule values and their clauses: the rule set selected by
@@ -29,8 +33,9 @@ against the maker's vibratory torque, angular acceleration and amplitude, and da
 the maker's heat load.
 
 Barred speed ranges and the verdict rows of each condition: :mod:`crankdyn.tvc.evaluate` (the
-one place a check is evaluated; ``crankdyn torsion response`` uses it too). The passage through
-the barred ranges in the time domain: :mod:`crankdyn.tvc.passage`.
+one place a check is evaluated; ``crankdyn torsion response`` uses it too, and the events'
+rows come from it). The passage through the barred ranges in the time domain:
+:mod:`crankdyn.tvc.passage`.
 """
 
 from __future__ import annotations
@@ -48,6 +53,8 @@ from crankdyn.defaults import speed_grid
 from crankdyn.errors import InputError
 from crankdyn.summary import Verdict
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
+from crankdyn.tvc.conditions import Condition
+from crankdyn.tvc.conditions import conditions as conditions_of
 from crankdyn.tvc.evaluate import evaluate_condition
 from crankdyn.tvc.installation import installation_verdicts, rule_notes
 from crankdyn.tvc.passage import passages as passages_of
@@ -67,9 +74,7 @@ if TYPE_CHECKING:
 
     Excitation: TypeAlias = EngineExcitation | UniformExcitation | SourceExcitation
     # one condition's (condition, verdicts, barred ranges, response)
-    Evaluated: TypeAlias = tuple[
-        "_Condition", list[Verdict], list[BarredSpeedRange], ResponseResult
-    ]
+    Evaluated: TypeAlias = tuple[Condition, list[Verdict], list[BarredSpeedRange], ResponseResult]
 
 __all__ = ["Check", "ResponseOf", "judge", "rated_speed", "tvc", "tvc_model"]
 
@@ -78,18 +83,6 @@ ResponseOf: TypeAlias = (
 )
 """``response_of(model, condition, speeds, orders)``: a condition's resolved forced response
 (the session passes its cached one)."""
-
-
-@dataclass(frozen=True, eq=False)
-class _Condition:
-    name: str
-    kind: str
-    excitation: Excitation
-    dampers: tuple[Damper, ...]
-    low: float
-    high: float
-    description: str
-    misfire: int | None = None
 
 
 def load_of(model: TorsionModel, spec: TvcSpec) -> str:
@@ -126,63 +119,9 @@ def with_load(model: TorsionModel, engine: Engine | None, load: str, rated: floa
     return model
 
 
-def _conditions(
-    model: TorsionModel,
-    engine: Engine | None,
-    spec: TvcSpec,
-    notes: list[str],
-    kinds: Sequence[str] = CONDITION_KINDS,
-) -> list[_Condition]:
-    from crankdyn.torsion.excitation import EngineExcitation, excitation_for
-
-    base = excitation_for(model, engine)
-    dampers = tuple(model.dampers)
-    low, high = spec.range_of("normal", model)
-    out = [_Condition("normal firing", "normal", base, dampers, low, high, "all cylinders firing")]
-    if "misfire" not in kinds:
-        pass
-    elif spec.misfire and isinstance(base, EngineExcitation):
-        try:
-            base.__class__(base.engine, base.spec, (1,))._motored_trace  # noqa: B018
-        except InputError as exc:
-            notes.append(f"misfire not calculated: {exc.message}")
-        else:
-            low, high = spec.range_of("misfire", model)
-            for c in range(1, base.cylinder_count + 1):
-                out.append(
-                    _Condition(
-                        f"misfire cylinder {c}",
-                        "misfire",
-                        excitation_for(model, engine, misfire=(c,)),
-                        dampers,
-                        low,
-                        high,
-                        f"cylinder {c} not firing (motored pressure), the others normal",
-                        misfire=c,
-                    )
-                )
-    elif spec.misfire:
-        notes.append("misfire not calculated: the excitation is not an engine's pressure")
-    if "damper-out" in kinds and spec.damper_out and dampers:
-        low, high = spec.range_of("damper-out", model)
-        names = ", ".join(d.name for d in dampers)
-        out.append(
-            _Condition(
-                "damper out of order",
-                "damper-out",
-                base,
-                (),
-                low,
-                high,
-                f"without the damper(s) {names} (a viscous damper's ring runs free)",
-            )
-        )
-    return out
-
-
 def _passage_cases(
     group: Sequence[Evaluated], barred: Sequence[BarredSpeedRange]
-) -> list[tuple[_Condition, list[BarredSpeedRange]]]:
+) -> list[tuple[Condition, list[BarredSpeedRange]]]:
     """(condition, permitted barred ranges) to pass in the time domain: a single condition's
     own; for the misfiring cylinders every united range once, with the cylinder whose own
     range there responds most."""
@@ -364,7 +303,7 @@ def judge(
 
 
 def _response(
-    model: TorsionModel, cond: _Condition, speeds: NDArray[np.float64], orders: NDArray[np.float64]
+    model: TorsionModel, cond: Condition, speeds: NDArray[np.float64], orders: NDArray[np.float64]
 ) -> ResponseResult:
     """A condition's resolved forced response (:func:`crankdyn.torsion.response.
     forced_response`)."""
@@ -381,8 +320,7 @@ def _grouped(results: Sequence[Evaluated]) -> list[list[Evaluated]]:
     groups = [[x] for x in kept]
     if misfires:
         groups.append(misfires)
-    order_of = {"normal": 0, "misfire": 1, "damper-out": 2}
-    groups.sort(key=lambda g: order_of[g[0][0].kind])
+    groups.sort(key=lambda g: CONDITION_KINDS.index(g[0][0].kind))
     return groups
 
 
@@ -402,8 +340,9 @@ def _group_rows(
             if row not in worst_of or v.margin < worst_of[row].margin:
                 worst_of[row] = v
     overall = min(group, key=lambda x: min((v.margin for v in x[1]), default=math.inf))
+    how = cond0.description.partition("(")[2].partition(")")[0] or "not firing"
     description = (
-        f"each of the {len(group)} cylinders not firing in turn (motored pressure); every "
+        f"each of the {len(group)} cylinders not firing in turn ({how}); every "
         "check reports its worst cylinder (named in its condition); the plots show "
         f"{overall[0].name}, the worst overall"
     )
@@ -429,8 +368,46 @@ class _Run:
     orders: NDArray[np.float64]
     rated: float
     load: str
-    checks: dict[tuple[Damper, ...], list[Check]]
+    checks: dict[tuple[int, tuple[Damper, ...]], list[Check]]
     notes: list[str]
+    engine: Engine | None = None
+
+    def line(self, cond: Condition) -> TorsionModel:
+        """The line a condition runs on: its own (declutched, unloaded) or the installation."""
+        return cond.model if cond.model is not None else self.model
+
+    def orders_of(self, cond: Condition) -> NDArray[np.float64]:
+        """The orders of a condition: the calculation's, less those its own line has no
+        source for (a line without its propeller has no blade orders)."""
+        if cond.model is None:
+            return self.orders
+        from crankdyn.torsion.sources import check_model_orders
+
+        kept = []
+        for q in self.orders:  # a few dozen orders, once per condition
+            try:
+                check_model_orders(cond.model, cond.excitation, [q])
+            except InputError:
+                continue
+            kept.append(q)
+        return np.array(kept, dtype=float)
+
+    def checks_of(self, cond: Condition) -> list[Check]:
+        """The checks of a condition's line and dampers (made once per line and dampers)."""
+        key = (id(self.line(cond)), cond.dampers)
+        if key not in self.checks:
+            checks, notes = model_checks(
+                self.line(cond),
+                self.spec,
+                self.rated,
+                cond.dampers,
+                engine=self.engine,
+                load=self.load,
+            )
+            self.checks[key] = checks
+            if cond.kind == "normal":
+                self.notes.extend(notes)
+        return self.checks[key]
 
 
 def _condition_result(
@@ -439,14 +416,15 @@ def _condition_result(
     """One row group of the verdict table: its verdicts, barred ranges and, with ``passage``,
     the passages through them (and their verdicts)."""
     cond0 = group[0][0]
-    checks = run.checks[cond0.dampers]
+    checks = run.checks_of(cond0)
     name, description, verdicts, response, barred = _group_rows(group, run.notes)
     found: list[Passage] = []
     if passage:
-        mean = mean_torque_function(run.model)
+        line = run.line(cond0)
+        mean = mean_torque_function(line)
         for cond, bs in _passage_cases(group, barred):
             more, rows, pnotes = passages_of(
-                run.model, cond, run.orders, checks, bs, run.spec, run.rated, run.load, mean
+                line, cond, run.orders_of(cond), checks, bs, run.spec, run.rated, run.load, mean
             )
             found.extend(more)
             verdicts.extend(rows)
@@ -466,6 +444,67 @@ def _condition_result(
     return result, found, verdicts
 
 
+def _run_conditions(
+    run: _Run, conds: Sequence[Condition], respond: ResponseOf, passage: bool
+) -> tuple[list[Any], list[Any], list[Any]]:
+    """Every condition's resolved forced response judged by its checks (normal firing also by
+    the installation's own rows), grouped into condition results with their passages.
+
+    Returns
+    -------
+    condition_results, verdicts, passages : list
+        The condition results, every verdict row and every passage, in condition order.
+    """
+    model, spec, rated = run.model, run.spec, run.rated
+    results = []
+    for cond in conds:
+        checks = run.checks_of(cond)
+        grid = speed_grid(cond.low, cond.high, spec.step)
+        r = respond(run.line(cond), cond, grid, run.orders_of(cond))
+        verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
+        if cond.kind == "normal":
+            verdicts += installation_verdicts(model, spec, rated, engine=run.engine, load=run.load)
+        results.append((cond, verdicts, barred, r))
+    condition_results: list[Any] = []
+    verdicts_all: list[Any] = []
+    passages_all: list[Any] = []
+    for group in _grouped(results):
+        result, found, verdicts = _condition_result(run, group, passage)
+        condition_results.append(result)
+        passages_all.extend(found)
+        verdicts_all.extend(verdicts)
+    return condition_results, verdicts_all, passages_all
+
+
+def _campbell(
+    model: TorsionModel,
+    orders: NDArray[np.float64],
+    speeds: tuple[float, float],
+    excitation: Any,
+    notes: list[str],
+) -> Any:
+    """The Campbell diagram of the calculation over the conditions' speeds (rad/s), or None
+    with a note where it cannot be drawn."""
+    from crankdyn.torsion.campbell import campbell
+
+    try:
+        return campbell(model, orders, speeds, excitation=excitation)
+    except InputError as exc:  # pragma: no cover - the same inputs ran the responses
+        notes.append(f"Campbell diagram not drawn: {exc.message}")
+        return None
+
+
+def _modes(model: TorsionModel, base: Any, orders: np.ndarray) -> dict[str, Any]:
+    """The natural modes of ``model`` and their mode-shape table with the relative vector sums
+    of the excitation ``base``'s firing order (:mod:`crankdyn.torsion.mode_table`), as the
+    result's fields ``modes`` and ``mode_table``."""
+    from crankdyn.torsion.modal import natural_modes
+    from crankdyn.torsion.mode_table import excited_mode_table
+
+    modes = natural_modes(model)
+    return {"modes": modes, "mode_table": excited_mode_table(modes, model, base, orders)}
+
+
 def tvc(
     model: TorsionModel,
     engine: Engine | None = None,
@@ -475,6 +514,7 @@ def tvc(
     orders: ArrayLike | None = None,
     conditions: Sequence[str] = CONDITION_KINDS,
     response_of: ResponseOf | None = None,
+    events: bool = True,
 ) -> TvcResult:
     """The torsional vibration calculation of an installation (module docstring).
 
@@ -509,6 +549,9 @@ def tvc(
         ``response_of(model, condition, speeds, orders)`` -> the condition's resolved forced
         response; default :func:`crankdyn.torsion.sweep.forced_response` (the analysis
         session passes its own, cached).
+    events : bool
+        Whether to run the transient events of the settings (``[[tvc.event]]``,
+        :mod:`crankdyn.tvc.events`; default True).
 
     Returns
     -------
@@ -543,7 +586,7 @@ def tvc(
     ...     operating=OperatingRange(100.0, 400.0, rated=400.0),
     ...     rules=RuleSet(None, (ShaftLimit(("crank", "propeller"), 600e6),)),
     ... )
-    >>> result = tvc(model, orders=[1.0, 2.0])
+    >>> result = tvc(model, spec=TvcSpec(overspeed=False), orders=[1.0, 2.0])
     >>> result.passed, [c.name for c in result.conditions]
     (True, ['normal firing'])
 
@@ -555,52 +598,33 @@ def tvc(
     >>> f"{row.worst / 1e6:.3f} MPa <= {row.limit / 1e6:.3f} MPa at {row.speed:.3f} rad/s"
     '30.558 MPa <= 45.174 MPa at 365.148 rad/s'
     """
-    from crankdyn.torsion.campbell import campbell
-    from crankdyn.torsion.modal import natural_modes
-    from crankdyn.torsion.mode_table import excited_mode_table
     from crankdyn.torsion.sources import default_orders
 
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
     engine = engine or getattr(model, "engine", None)
     notes: list[str] = []
     model, load, rated = tvc_model(model, engine, spec)
-    conds = _conditions(model, engine, spec, notes, conditions)
+    conds = conditions_of(model, engine, spec, rated, notes, conditions)
     base = conds[0].excitation
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
-    run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes)
-    for cond in conds:
-        if cond.dampers not in run.checks:
-            checks, check_notes = model_checks(
-                model, spec, rated, cond.dampers, engine=engine, load=load
-            )
-            run.checks[cond.dampers] = checks
-            if cond.kind == "normal":
-                notes.extend(check_notes)
-    respond = response_of or _response
-    results = []
-    for cond in conds:
-        r = respond(model, cond, speed_grid(cond.low, cond.high, spec.step), run.orders)
-        verdicts, barred = evaluate_condition(r, cond.name, run.checks[cond.dampers], spec, rated)
-        if cond.kind == "normal":
-            verdicts += installation_verdicts(model, spec, rated, engine=engine, load=load)
-        results.append((cond, verdicts, barred, r))
-    condition_results, verdicts_all, passages_all = [], [], []
-    for group in _grouped(results):
-        result, found, verdicts = _condition_result(run, group, passage)
-        condition_results.append(result)
-        passages_all.extend(found)
-        verdicts_all.extend(verdicts)
+    run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
+    condition_results, verdicts_all, passages_all = _run_conditions(
+        run, conds, response_of or _response, passage
+    )
+    found_events = []
+    if events and spec.events:
+        from crankdyn.tvc.events import event_conditions
+
+        found_events = event_conditions(
+            model, spec, rated, base, run.orders, run.checks_of(conds[0])
+        )
+        verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)
-    try:
-        diagram = campbell(model, run.orders, (low, high), excitation=base)
-    except InputError as exc:  # pragma: no cover - the same inputs ran the responses
-        diagram = None
-        notes.append(f"Campbell diagram not drawn: {exc.message}")
+    diagram = _campbell(model, run.orders, (low, high), base, notes)
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
-    modes = natural_modes(model)
     notes += rule_notes(
         spec,
         rated=rated,
@@ -620,10 +644,10 @@ def tvc(
         notes=tuple(notes),
         tachometer_tolerance=spec.tolerance,
         rules=spec.rules,
+        events=tuple(found_events),
         model=model,
         engine=engine,
-        modes=modes,
-        mode_table=excited_mode_table(modes, model, base, run.orders),
+        **_modes(model, base, run.orders),
         campbell=diagram,
         spec=spec,
         condition_results=tuple(condition_results),

@@ -29,6 +29,14 @@ where the clause could not be read; :func:`crankdyn.tvc.rulesets.cite_row`). Eve
 (``crankdyn torsion response``, ``crankdyn tvc``, the report) judges a response with these checks
 through :func:`crankdyn.tvc.evaluate.evaluate_condition`: one rule, one place. A new kind of
 check is one class here, added to :data:`CHECK_KINDS`.
+
+Transient events (:mod:`crankdyn.tvc.events`) are judged by the same checks: a check that
+applies to a transient carries an :class:`EventReading` (which elements of the run it reads,
+how, and its limits at the speed of the peak and the event's severity), which
+:func:`crankdyn.tvc.evaluate.evaluate_event` evaluates: the shafts' vibratory stress against
+tau_T, the crank spans' against the builder's transient limit, the couplings' torque against
+T_Kmax and T_Kmax1 (normal events) or T_Kmax2 (exceptional ones), the gear meshes' torque
+reversals.
 """
 
 from __future__ import annotations
@@ -71,6 +79,8 @@ __all__ = [
     "Couplings",
     "CrankSpans",
     "DamperHeat",
+    "EventLimit",
+    "EventReading",
     "GearHammering",
     "GeneratorShafts",
     "M68Shafts",
@@ -78,6 +88,64 @@ __all__ = [
     "mean_torque_function",
     "model_checks",
 ]
+
+
+@dataclass(frozen=True)
+class EventLimit:
+    """One limit of a check in a transient event.
+
+    Parameters
+    ----------
+    name : str
+        Its name in the row (``"tau_T"``, ``"T_Kmax"``, ``"T_Kmax1"``).
+    value : float
+        The limit (the check's unit).
+    source : str
+        The rule or maker's document.
+    clause : str
+        Its clause, or ``""``.
+    note : str
+        Added to the row's note (e.g. how the speed ratio was taken).
+    """
+
+    name: str
+    value: float
+    source: str
+    clause: str = ""
+    note: str = ""
+
+
+@dataclass(frozen=True)
+class EventReading:
+    """How a check reads the run of a transient event (:func:`crankdyn.tvc.evaluate.
+    evaluate_event`).
+
+    Parameters
+    ----------
+    elements : tuple
+        The run's elements it reads: a model shaft's index (the run's element of the same
+        index), or a rigid gear's (pinion, wheel).
+    factors : tuple of float
+        The factor on each element's torque (1/W_p for a nominal stress, K/W_p, or 1).
+    vibratory : bool
+        Whether the quantity is the vibratory torque (less the quasi-static torque of the mean
+        torques: the rules' vibratory stress) instead of the whole torque.
+    limits : callable or None
+        ``limits(speed, severity)`` -> the limits (:class:`EventLimit`) at the reference speed
+        of the peak (rad/s) for an event of ``severity`` (``"normal"``/``"exceptional"``).
+    what : str
+        The quantity in the row (``"vibratory shear stress |T - T_mean| / W_p"``).
+    reversal : bool
+        A gear mesh's torque reversal instead of a peak (its drop below the run's mean torque
+        against that mean).
+    """
+
+    elements: tuple[int | tuple[str, str], ...]
+    factors: tuple[float, ...] = ()
+    vibratory: bool = False
+    limits: Callable[[float, str], list[EventLimit]] | None = None
+    what: str = "torque"
+    reversal: bool = False
 
 
 @dataclass(frozen=True, eq=False)
@@ -133,6 +201,11 @@ class Check:
     barred_rows : callable or None
         ``barred_rows(b)`` -> the further rows a rule attaches to a declared barred range ``b``
         of this check (LR Pt 5 Ch 6 2.1.3's least tensile strength, KR's keyway note); None.
+    event : EventReading or None
+        How the check reads a transient event's run; None: it does not apply to events.
+    steady : bool
+        Whether the check applies to the steady forced response (False: an event-only check,
+        e.g. a coupling with T_Kmax but no T_KW).
     """
 
     component: str
@@ -153,6 +226,8 @@ class Check:
     barred_source: str = ""
     barred_clause: str = ""
     barred_rows: BarredRows | None = None
+    event: EventReading | None = None
+    steady: bool = True
 
 
 @dataclass
@@ -357,6 +432,17 @@ class M68Shafts(CheckKind):
         def m68_transient(run: Any, _mean: Any) -> NDArray[np.float64]:
             return np.max(np.abs(run.shaft_torque[:, idx]) / moduli[None, :], axis=1)
 
+        def event_limits(speed: float, _severity: str) -> list[EventLimit]:
+            lam = speed / n0
+            used = min(lam, barred_top)
+            note = (
+                ""
+                if lam <= barred_top
+                else f"λ = {lam:.3g} > {barred_top:g}: τ_T of λ = {barred_top:g}"
+            )
+            value = float(tau_t(np.array([used * n0]))[0])
+            return [EventLimit("τ_T", value, f"{t_source}: τ_T = 1.7 τ_C / √C_K", t_clause, note)]
+
         return Check(
             component=label,
             quantity="synthesised vibratory shear stress (half range)",
@@ -377,6 +463,13 @@ class M68Shafts(CheckKind):
             barred_source=b_source,
             barred_clause=b_clause,
             barred_rows=_shaft_barred_rows(ctx, label, m),
+            event=EventReading(
+                tuple(int(i) for i in idx),
+                tuple(float(1.0 / w) for w in moduli),
+                vibratory=True,
+                limits=event_limits,
+                what="vibratory shear stress |T - T_mean| / W_p",
+            ),
         )
 
 
@@ -492,12 +585,26 @@ class CrankSpans(CheckKind):
 
         transient_limit: Limit | None = None
         transient: TransientCurve | None = None
+        event: EventReading | None = None
         if transient_value is not None:
 
             def span_transient(run: Any, _mean: Any) -> NDArray[np.float64]:
                 return np.abs(run.shaft_torque[:, s]) * factor
 
             transient_limit, transient = _constant(transient_value), span_transient
+            limit = EventLimit(
+                f"the builder's transient {what}",
+                transient_value,
+                source,
+                f"[tvc.crankshaft] transient_{what}",
+            )
+            event = EventReading(
+                (s,),
+                (factor,),
+                vibratory=True,
+                limits=lambda _w, _sev: [limit],
+                what=f"vibratory {'nominal stress' if crank.by_stress else 'torque'}",
+            )
 
         assert value is not None  # a CrankshaftLimit holds a stress or a torque
         return Check(
@@ -518,6 +625,7 @@ class CrankSpans(CheckKind):
             elements=(s,),
             clause=data,
             transient_clause=f"[tvc.crankshaft] transient_{what}",
+            event=event,
         )
 
 
@@ -725,6 +833,14 @@ def _society_span_check(
     def span_transient(run: Any, _mean: Any) -> NDArray[np.float64]:
         return np.abs(run.shaft_torque[:, s]) / modulus
 
+    def event_limits(speed: float, _severity: str) -> list[EventLimit]:
+        lam, top = speed / n0, limits.barred_upper
+        value = float(limits.transient(np.array([min(lam, top)]))[0])
+        if not np.isfinite(value):
+            return []
+        note = "" if lam <= top else f"λ = {lam:.3g} > {top:g}: the transient limit of λ = {top:g}"
+        return [EventLimit("τ_2", value, f"{t_source}: {limits.text}", t_clause, note)]
+
     return Check(
         component=f"crank span {shaft.label}",
         quantity="synthesised nominal shear stress (T / W_p)",
@@ -742,6 +858,13 @@ def _society_span_check(
         barred_upper=limits.barred_upper,
         barred_source=b_source,
         barred_clause=b_clause,
+        event=EventReading(
+            (s,),
+            (1.0 / modulus,),
+            vibratory=True,
+            limits=event_limits,
+            what="vibratory nominal shear stress |T - T_mean| / W_p",
+        ),
     )
 
 
@@ -811,7 +934,8 @@ class GeneratorShafts(CheckKind):
 
 class Couplings(CheckKind):
     """Elastic couplings against the catalogue's T_KW (barred ranges, T_Kmax less the mean
-    torque while passing them), P_KV and T_KN (DIN 740-2)."""
+    torque while passing them), P_KV and T_KN (DIN 740-2); in transient events their torque
+    against T_Kmax and T_Kmax1 or T_Kmax2."""
 
     def checks(self, ctx: CheckContext) -> list[Check]:
         out: list[Check] = []
@@ -825,6 +949,21 @@ class Couplings(CheckKind):
                 ctx.notes.append(f"{label}: no T_KW or P_KV given, not checked")
             if c.vibratory_torque is not None:
                 out.append(self._torque(ctx, s, label, maker))
+            elif _coupling_event(c, maker) is not None:  # T_Kmax but no T_KW: events only
+                out.append(
+                    Check(
+                        label,
+                        "torque in transient events",
+                        "N·m",
+                        maker,
+                        lambda r: np.zeros(np.size(r.speed)),
+                        _constant(math.nan),
+                        elements=(s,),
+                        clause="[[shaft]] maximum_torque (T_Kmax, the catalogue)",
+                        event=_coupling_event(c, maker, s),
+                        steady=False,
+                    )
+                )
             if c.power_loss is not None:
                 out.append(self._heat(ctx, s, label, maker))
             if c.nominal_torque is not None:
@@ -875,6 +1014,7 @@ class Couplings(CheckKind):
             ),
             transient_clause="[[shaft]] maximum_torque (T_Kmax, the catalogue)",
             elements=(s,),
+            event=_coupling_event(c, maker, s),
         )
 
     @staticmethod
@@ -919,6 +1059,31 @@ class Couplings(CheckKind):
         )
 
 
+def _coupling_event(c: Any, maker: str, s: int = -1) -> EventReading | None:
+    """A coupling's reading of an event: its whole torque against T_Kmax and, where the
+    catalogue gives them, T_Kmax1 (a normal event) or T_Kmax2 (an exceptional one); None
+    without any of them."""
+    if c.maximum_torque is None and c.maximum_torque_1 is None and c.maximum_torque_2 is None:
+        return None
+
+    def limits(_speed: float, severity: str) -> list[EventLimit]:
+        out = []
+        if c.maximum_torque is not None:
+            clause = "[[shaft]] maximum_torque (T_Kmax, the catalogue)"
+            out.append(EventLimit("T_Kmax", c.maximum_torque, maker, clause))
+        if severity == "exceptional" and c.maximum_torque_2 is not None:
+            note = "T_Kmax2: exceptional transient conditions"
+            clause = "[[shaft]] maximum_torque_2 (T_Kmax2, the catalogue)"
+            out.append(EventLimit("T_Kmax2", c.maximum_torque_2, maker, clause, note))
+        if severity != "exceptional" and c.maximum_torque_1 is not None:
+            note = "T_Kmax1: normal transient conditions"
+            clause = "[[shaft]] maximum_torque_1 (T_Kmax1, the catalogue)"
+            out.append(EventLimit("T_Kmax1", c.maximum_torque_1, maker, clause, note))
+        return out
+
+    return EventReading((s,), (1.0,), vibratory=False, limits=limits, what="torque")
+
+
 class GearHammering(CheckKind):
     """Gear meshes (rigid gear pairs and elastic mesh shafts) against gear hammering: the tooth
     load reverses where the vibratory torque at the mesh exceeds the mean transmitted torque
@@ -928,7 +1093,12 @@ class GearHammering(CheckKind):
         out = [c for g in ctx.model.gears if (c := self._gear(ctx, g)) is not None]
         mean = ctx.mean
         for s, shaft in enumerate(ctx.model.shafts):
-            if shaft.kind != "mesh" or mean is None:
+            if shaft.kind != "mesh":
+                continue
+            label = labelled("gear mesh", shaft.name or shaft.label)
+            reading = EventReading((s,), (1.0,), reversal=True, what="mesh torque")
+            if mean is None:
+                out.append(_event_only(label, reading))
                 continue
 
             def mesh_curve(r: Any, s: int = s) -> NDArray[np.float64]:
@@ -940,13 +1110,14 @@ class GearHammering(CheckKind):
 
             out.append(
                 Check(
-                    component=labelled("gear mesh", shaft.name or shaft.label),
+                    component=label,
                     quantity="synthesised vibratory torque vs the mean torque (hammering)",
                     unit="N·m",
                     source="gear hammering (mean torque from the load law)",
                     clause=HAMMERING,
                     curve=mesh_curve,
                     limit=mesh_limit,
+                    event=reading,
                 )
             )
         return out
@@ -957,9 +1128,14 @@ class GearHammering(CheckKind):
             return None
         model, mean = ctx.model, ctx.mean
         label = labelled("gear", g.name or g.between[0] + " - " + g.between[1])
+        reading = (
+            EventReading((tuple(g.between),), (1.0,), reversal=True, what="mesh torque")
+            if g.stiffness is None
+            else None
+        )
         if mean is None:
             ctx.notes.append(f"{label}: no load law, so gear hammering is not checked")
-            return None
+            return _event_only(label, reading) if reading is not None else None
         names = list(model.mass_names)
         shafts = model.shafts
         wheel = g.between[1]
@@ -1005,7 +1181,23 @@ class GearHammering(CheckKind):
             clause=HAMMERING,
             curve=mesh,
             limit=mesh_mean,
+            event=reading,
         )
+
+
+def _event_only(label: str, reading: EventReading) -> Check:
+    """A gear mesh's check in transient events only (no load law for the steady one)."""
+    return Check(
+        label,
+        "torque reversal in transient events",
+        "N·m",
+        "gear hammering: the tooth load reverses where the torque falls through zero",
+        lambda r: np.zeros(np.size(r.speed)),
+        _constant(math.nan),
+        clause=HAMMERING,
+        event=reading,
+        steady=False,
+    )
 
 
 class MachineLimits(CheckKind):

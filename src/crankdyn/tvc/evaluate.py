@@ -2,7 +2,8 @@
 speed ranges (as found and as declared) and the verdict rows (analysis).
 
 This is the one place a check is evaluated: ``crankdyn torsion response`` judges its response
-here, ``crankdyn tvc`` every condition's, so two commands never answer the same question
+here, ``crankdyn tvc`` every condition's and every transient event's (:func:`evaluate_event`),
+``crankdyn torsion transient`` its event's, so two commands never answer the same question
 differently.
 
 Barred speed ranges. Where a component's synthesised response exceeds its continuous limit the
@@ -38,18 +39,20 @@ from numpy.typing import NDArray
 import crankdyn.tvc.curves as cv
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
+from crankdyn.torsion.event_result import time_above
 from crankdyn.torsion.rules import SPEED_TOLERANCE, exceedances
 from crankdyn.tvc.limits import barred_limits
 from crankdyn.tvc.result import BarredSpeedRange
 from crankdyn.tvc.rulesets import cite_row
 
 if TYPE_CHECKING:
+    from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.torsion.rules import Exceedance
     from crankdyn.tvc.checks import Check
     from crankdyn.tvc.spec import TvcSpec
 
-__all__ = ["Found", "evaluate_condition", "margins", "merge_intervals"]
+__all__ = ["Found", "evaluate_condition", "evaluate_event", "margins", "merge_intervals"]
 
 
 @dataclass(frozen=True)
@@ -167,7 +170,7 @@ def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float)
     tol = spec.tolerance
     out = []
     for check in checks:
-        if not check.barred:
+        if not check.barred or not check.steady:
             continue
         widening = spec.ruleset.widening.value if check.barred_upper is not None else "none"
         for ex in exceedances(r, _column(check.curve), _column(check.limit)):
@@ -260,6 +263,8 @@ def _continuous_verdicts(
     """Every check's worst value over the speeds of continuous running against its limit."""
     out = []
     for check in checks:
+        if not check.steady:
+            continue
         worst = cv.resolved_worst(r, check.curve, check.limit, excluded)
         if worst is None:
             continue
@@ -408,3 +413,97 @@ def evaluate_condition(
     for f, b in zip(found, barred, strict=True):
         verdicts += _barred_verdicts(r, f, b, condition, n0)
     return verdicts, barred
+
+
+def _element(run: EventResult, key: int | tuple[str, str]) -> int:
+    """The run's element of a check's key: a model shaft's index, or a rigid gear's ends."""
+    return key if isinstance(key, int) else run.element_index(tuple(key))
+
+
+def _event_reversal(run: EventResult, check: Check, condition: str, e: int) -> Verdict:
+    """A gear mesh's torque reversal in an event: its largest drop below the run's mean
+    against that mean (:meth:`crankdyn.torsion.event_result.EventResult.reversal`)."""
+    drop, mean, when, reversed_time, count = run.reversal(e)
+    return Verdict(
+        component=check.component,
+        condition=condition,
+        quantity="largest drop of the mesh torque below its mean vs the mean (torque reversal)",
+        worst=drop,
+        limit=abs(mean),
+        unit="N·m",
+        passed=bool(drop < abs(mean)),
+        source=check.source,
+        speed=float(np.interp(when, run.time, run.speed)),
+        note=(
+            f"lowest at t = {when:.4g} s; reversed {reversed_time:.3g} s in all, {count} "
+            f"reversal(s); mean over the run {mean / 1e3:.6g} kN·m"
+        ),
+        margin=1.0 - drop / abs(mean) if mean != 0.0 else -math.inf,
+        kind="event torque reversal",
+    )
+
+
+def evaluate_event(run: EventResult, condition: str, checks: Sequence[Check]) -> list[Verdict]:
+    """The verdict rows of a transient event's run: every check with an event reading
+    (:class:`crankdyn.tvc.checks.EventReading`) against its limits at the speed of its peak
+    and the event's severity; the time above each limit in the row's note.
+
+    The peak is the run's extreme of the check's elements (refined between the integration
+    steps, :mod:`crankdyn.torsion.event_run`) times the check's factor (1/W_p for a stress);
+    the time above a limit comes from the kept samples (resolution: the kept interval).
+
+    Parameters
+    ----------
+    run : crankdyn.torsion.event_result.EventResult
+        The event's run on the checks' line.
+    condition : str
+        The event's name, for the rows.
+    checks : sequence of Check
+        The line's checks (:func:`crankdyn.tvc.checks.model_checks`).
+
+    Returns
+    -------
+    list of crankdyn.summary.Verdict
+        One row per check and limit (a reversal row per gear mesh), in the checks' order.
+    """
+    out = []
+    for check in checks:
+        reading = check.event
+        if reading is None:
+            continue
+        idx = [_element(run, key) for key in reading.elements]
+        if reading.reversal:
+            out.append(_event_reversal(run, check, condition, idx[0]))
+            continue
+        if reading.limits is None:
+            continue
+        factors = reading.factors or (1.0,) * len(idx)
+        peak = run.vibratory_peak if reading.vibratory else run.peak
+        values = [f * peak(e) for e, f in zip(idx, factors, strict=True)]
+        k = int(np.argmax(values))
+        e, worst = idx[k], float(values[k])
+        when = run.vibratory_peak_time(e) if reading.vibratory else run.peak_time(e)
+        speed = float(np.interp(when, run.time, run.speed))
+        samples = [run.samples(i, vibratory=reading.vibratory) for i in idx]
+        series = np.max([f * x for x, f in zip(samples, factors, strict=True)], axis=0)
+        for limit in reading.limits(speed, run.severity):
+            above = time_above(run.time, series, limit.value) if limit.value > 0 else 0.0
+            note = f"peak at t = {when:.4g} s ({run.element_names[e]}); {above:.3g} s above"
+            out.append(
+                Verdict(
+                    component=check.component,
+                    condition=condition,
+                    quantity=f"largest {reading.what} in the event vs {limit.name}",
+                    worst=worst,
+                    limit=float(limit.value),
+                    unit=check.unit,
+                    passed=bool(worst <= limit.value),
+                    source=limit.source,
+                    clause=limit.clause,
+                    speed=speed,
+                    note="; ".join(x for x in (note, limit.note) if x),
+                    margin=1.0 - worst / limit.value,
+                    kind=f"event peak vs {limit.name}",
+                )
+            )
+    return out

@@ -1,19 +1,34 @@
 """The passage through barred speed ranges in the time domain (analysis).
 
-A time-domain run-up (:func:`crankdyn.torsion.transient.transient_response`, starting in the
-steady state of its first speed) from :data:`LEAD_IN` below to :data:`RUN_OUT` above the declared
-range at the acceleration the engine's torque leaves over the load, J_total dOmega/dt =
-T_engine - T_load(Omega): the time in the range is the integral of J dOmega / (T_engine -
-T_load) over it (trapezoidal rule, 400 points), the run is linear in time with the same duration
-(the acceleration torque varies little across a barred range); the largest transient stress
-(torque) of every component during the run is checked against its transient limit (tau_T,
-T_Kmax) by the component's own check (:mod:`crankdyn.tvc.checks`).
+A time-domain run-up (:func:`crankdyn.torsion.event_run.event_response`, the exact integrator
+of the transient events, starting in the steady state of its first speed; the speed a ramp,
+:class:`crankdyn.torsion.events.SpeedChange`) from :data:`LEAD_IN` below to :data:`RUN_OUT`
+above the declared range at the acceleration the engine's torque leaves over the load,
+J_total dOmega/dt = T_engine - T_load(Omega) (Newton's second law of the whole line,
+reflected to the reference shaft): the time in the range is the integral of
+J dOmega / (T_engine - T_load) over it (trapezoidal rule, 400 points), the run is linear in
+time with the same duration (the acceleration torque varies little across a barred range);
+the largest transient stress (torque) of every component during the run, its vibratory part
+(less the quasi-static torque of the mean torques), is checked against its transient limit
+(tau_T, T_Kmax less the mean torque) by the component's own check
+(:mod:`crankdyn.tvc.checks`). The run resolves the modes up to
+:data:`crankdyn.tvc.events.EVENT_MODE_FACTOR` times the highest order's frequency at its top
+speed.
+
+The engine's torque (:func:`engine_torque`) is its torque-speed curve (``[tvc]
+engine_torque_curve``: the torque limit of the engine builder's load diagram), else a given
+constant (``engine_torque``), else, asked for by ``passage_torque = "rated"``, the rated torque
+(the load law's at n_0) at every speed. Full rated torque is never assumed at low speed unless
+asked: a turbocharged engine's torque limit falls with the charge air at low speed, so without
+the curve the passage is not calculated and a note names the keys. The load is the load law
+(the propeller law of a propulsion line), or none for a generating set that runs up unloaded
+(``passage_load``). Every passage row says which torque and load were used.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -22,6 +37,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.tvc.evaluate import merge_intervals
+from crankdyn.tvc.events import EVENT_MODE_FACTOR
 from crankdyn.tvc.result import BarredSpeedRange, Passage
 
 if TYPE_CHECKING:
@@ -29,7 +45,7 @@ if TYPE_CHECKING:
     from crankdyn.tvc.checks import Check, MeanTorque
     from crankdyn.tvc.spec import TvcSpec
 
-__all__ = ["LEAD_IN", "RUN_OUT", "load_torque", "passages"]
+__all__ = ["LEAD_IN", "RUN_OUT", "engine_torque", "load_torque", "passages"]
 
 LEAD_IN = 0.05
 """The passage run starts this fraction below the barred range (the start-up transient of the
@@ -64,6 +80,66 @@ def load_torque(model: TorsionModel, speeds: ArrayLike) -> NDArray[np.float64]:
         r = abs(float(ratios[model.index(source.at)]))
         total = total + r * source.load.at(r * n)
     return total
+
+
+def engine_torque(
+    spec: TvcSpec, model: TorsionModel, n0: float
+) -> tuple[Callable[[ArrayLike], NDArray[np.float64]] | None, str]:
+    """The engine's torque while passing a barred range, and what it is, in words (module
+    docstring).
+
+    Parameters
+    ----------
+    spec : TvcSpec
+        The settings (``engine_torque_curve``, ``engine_torque``, ``passage_torque``).
+    model : TorsionModel
+        The installation (its load law gives the rated torque).
+    n0 : float
+        The rated speed (rad/s).
+
+    Returns
+    -------
+    torque : callable or None
+        ``torque(speeds)`` (N m at the reference shaft, speeds in rad/s); None where no torque
+        is known (no curve, no constant, not asked for the rated torque).
+    words : str
+        What the torque is (for the rows), or why there is none.
+
+    Examples
+    --------
+    >>> from crankdyn.tvc.spec import TvcSpec
+    >>> torque, words = engine_torque(TvcSpec(engine_torque=2e4), None, 50.0)
+    >>> torque([30.0, 40.0]).tolist(), words
+    ([20000.0, 20000.0], 'T_engine = 20 kN·m ([tvc] engine_torque)')
+    """
+    if spec.engine_torque_curve is not None:
+        w, q = spec.engine_torque_curve
+        span = f"{q.min() / 1e3:.4g}-{q.max() / 1e3:.4g} kN·m over {w[0] * RPM:.4g}-"
+        span += f"{w[-1] * RPM:.4g} rpm"
+        return (
+            lambda x: spec.engine_torque_at(x, math.nan),
+            f"T_engine from the engine's torque-speed curve ([tvc] engine_torque_curve, {span})",
+        )
+    if spec.engine_torque is not None:
+        value = spec.engine_torque
+        return (
+            lambda x: np.full(np.size(x), value),
+            f"T_engine = {value / 1e3:.6g} kN·m ([tvc] engine_torque)",
+        )
+    if spec.passage_torque == "rated":
+        rated = float(load_torque(model, [n0])[0])
+        if not rated > 0.0:
+            return None, "the rated torque is not known: no load law gives the torque at n_0"
+        return (
+            lambda x: np.full(np.size(x), rated),
+            f"T_engine = {rated / 1e3:.6g} kN·m, the rated torque at every speed, as asked "
+            '([tvc] passage_torque = "rated")',
+        )
+    return None, (
+        "the engine's torque-speed curve is not given: give [tvc] engine_torque_curve (the "
+        'engine builder\'s torque limit), engine_torque, or passage_torque = "rated" to pass '
+        "with the rated torque at every speed"
+    )
 
 
 def passages(
@@ -109,8 +185,9 @@ def passages(
     notes : list of str
         Why a passage was not calculated.
     """
+    from crankdyn.torsion.event_run import event_response
+    from crankdyn.torsion.events import SpeedChange
     from crankdyn.torsion.solvers import linear_system
-    from crankdyn.torsion.transient import transient_response
 
     passages: list[Passage] = []
     verdicts: list[Verdict] = []
@@ -123,37 +200,35 @@ def passages(
     def load_at(w: ArrayLike) -> NDArray[np.float64]:
         return load_torque(model, w) if passage_load == "law" else np.zeros(np.size(w))
 
-    rated_torque = float(load_torque(model, [n0])[0])
-
-    def engine_at(w: ArrayLike) -> NDArray[np.float64]:
-        return spec.engine_torque_at(w, rated_torque)
-
-    if spec.engine_torque_curve is None and not float(engine_at([n0])[0]) > 0.0:
+    engine_at, words = engine_torque(spec, model, n0)
+    if engine_at is None:
         notes.append(
-            f"{cond.name}: the passage through the barred ranges is not calculated: give "
-            "[tvc] engine_torque (no load law gives the rated torque)"
+            f"{cond.name}: the passage through the barred ranges is not calculated: {words}"
         )
         return passages, verdicts, notes
+    load_words = "load: the load law" if passage_load == "law" else "load: none (run up unloaded)"
     for a, b in merge_intervals([(x.start, x.end) for x in barred]):
         w = np.linspace(a, b, 401)
         spare = engine_at(w) - load_at(w)
         label = f"{a * RPM:.1f}-{b * RPM:.1f} rpm"
         if np.min(spare) <= 0.0:
-            verdicts.append(_cannot_pass(cond.name, label, float(np.min(spare))))
+            verdicts.append(_cannot_pass(cond.name, label, float(np.min(spare)), words))
             continue
         t_in = float(np.trapezoid(inertia / spare, w))
         w0, w1 = a * (1.0 - LEAD_IN), b * (1.0 + RUN_OUT)
         ww = np.linspace(w0, w1, 801)
         duration = float(np.trapezoid(inertia / np.maximum(engine_at(ww) - load_at(ww), 1e-9), ww))
-        run = transient_response(
+        ramp = SpeedChange(
+            "ramp", w0, w1, ramp_time=duration, load=passage_load == "law", name=f"pass {label}"
+        )
+        run = event_response(
             model,
-            cond.excitation,
-            orders,
-            run_up=(w0, w1),
+            ramp,
             duration=duration,
+            excitation=cond.excitation,
+            orders=orders,
             dampers=cond.dampers,
-            samples_per_cycle=360,
-            start="steady",
+            max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
         )
         passages.append(
             Passage(
@@ -174,24 +249,19 @@ def passages(
                     (),
                 ),
                 note=(
-                    f"run-up at J dΩ/dt = T_engine - T_load, J = {inertia:.6g} kg·m², T_engine "
-                    + (
-                        "from the engine's torque-speed curve"
-                        if spec.engine_torque_curve is not None
-                        else f"= {float(engine_at([a])[0]) / 1e3:.6g} kN·m"
-                    )
-                    + ", load: "
-                    f"{'the load law' if passage_load == 'law' else 'none (run up unloaded)'}"
+                    f"run-up at J dΩ/dt = T_engine - T_load, J = {inertia:.6g} kg·m², "
+                    f"{words}, {load_words}"
                 ),
                 transient=run,
             )
         )
         title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
-        verdicts += _transient_verdicts(run, a, cond.name, title, checks, barred, mean)
+        how = f"{words}; {load_words}"
+        verdicts += _transient_verdicts(run, a, cond.name, title, checks, barred, mean, how)
     return passages, verdicts, notes
 
 
-def _cannot_pass(condition: str, label: str, spare: float) -> Verdict:
+def _cannot_pass(condition: str, label: str, spare: float, words: str) -> Verdict:
     """The verdict on a barred range the engine's torque cannot accelerate through."""
     return Verdict(
         component="installation",
@@ -203,7 +273,8 @@ def _cannot_pass(condition: str, label: str, spare: float) -> Verdict:
         margin=-math.inf,
         passed=False,
         source="the engine's torque less the load law: the range cannot be passed",
-        clause="[tvc] engine_torque or engine_torque_curve, the load law",
+        clause="[tvc] engine_torque_curve, engine_torque or passage_torque, the load law",
+        note=words,
         kind="acceleration torque",
     )
 
@@ -216,9 +287,11 @@ def _transient_verdicts(
     checks: Sequence[Check],
     barred: Sequence[BarredSpeedRange],
     mean: MeanTorque | None,
+    how: str,
 ) -> list[Verdict]:
     """The largest transient value of every barred component inside the range (from
-    ``start``, rad/s) against its transient limit, by the component's own check."""
+    ``start``, rad/s) against its transient limit, by the component's own check; ``how``
+    (the torque and load of the run) goes into each row's note."""
     out: list[Verdict] = []
     inside = run.speed >= start
     for check in checks:
@@ -246,6 +319,7 @@ def _transient_verdicts(
                 source=check.transient_source,
                 clause=check.transient_clause,
                 speed=float(run.speed[inside][k]),
+                note=how,
                 kind="transient passage",
             )
         )

@@ -1,5 +1,6 @@
 """Result objects of a torsional vibration calculation (analysis): verdict rows, barred speed
-ranges, passages through them, one result per running condition and the whole TVC."""
+ranges, passages through them, one result per running condition, one per transient event and
+the whole TVC."""
 
 from __future__ import annotations
 
@@ -26,15 +27,23 @@ if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
     from crankdyn.plausibility import PlausibilityWarning
     from crankdyn.torsion.campbell import CampbellResult
+    from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.modal import ModalResult
     from crankdyn.torsion.mode_table import ModeTable
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
-    from crankdyn.torsion.transient import TransientResult
     from crankdyn.tvc.checks import Check
     from crankdyn.tvc.spec import TvcSpec
 
-__all__ = ["BarredSpeedRange", "ConditionResult", "Passage", "TvcResult", "Verdict"]
+__all__ = [
+    "BarredSpeedRange",
+    "ConditionResult",
+    "EventCondition",
+    "EventCurve",
+    "Passage",
+    "TvcResult",
+    "Verdict",
+]
 
 
 @dataclass(frozen=True)
@@ -122,9 +131,9 @@ class Passage(Result):
 
     Parameters
     ----------
-    transient : TransientResult or None
-        The time-domain run (:func:`crankdyn.torsion.transient.transient_response`; not
-        exported).
+    transient : EventResult or None
+        The time-domain run (:func:`crankdyn.torsion.event_run.event_response`, a speed ramp;
+        not exported).
     elements : tuple of int
         The model's shaft indices of the component whose barred range this is (for plots).
     """
@@ -140,7 +149,7 @@ class Passage(Result):
     run_to: float = scalar("run_to_rpm", "Run to", "rpm", RPM)
     duration: float = scalar("duration_s", "Duration of the run", "s")
     note: str = scalar("note", "How", "")
-    transient: TransientResult | None = field(default=None, repr=False, compare=False)
+    transient: EventResult | None = field(default=None, repr=False, compare=False)
     elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
 
 
@@ -299,6 +308,107 @@ class ConditionResult(Result):
 
 
 @dataclass(frozen=True)
+class EventCurve:
+    """One check's quantity over a transient event's kept samples, and its limit there (for the
+    event's plot; :mod:`crankdyn.tvc.events`).
+
+    Parameters
+    ----------
+    component : str
+        The component.
+    quantity : str
+        What is drawn (``"vibratory shear stress"``, ``"torque"``, ``"drop below the mean"``).
+    unit : str
+        The unit of ``value`` and ``limit`` (SI).
+    value : numpy.ndarray
+        (time,) the quantity at the run's kept samples.
+    limit : numpy.ndarray
+        (time,) the governing (smallest) limit at each sample's speed.
+    limit_name : str
+        The limit's name (``"τ_T"``, ``"T_Kmax"``).
+    torque : bool
+        Whether ``value`` is an element's torque (drawn in the torque panel with its limit).
+    """
+
+    component: str
+    quantity: str
+    unit: str
+    value: np.ndarray
+    limit: np.ndarray
+    limit_name: str
+    torque: bool = False
+
+
+@dataclass(frozen=True)
+class EventCondition(Result):
+    """A transient event of the TVC (``[[tvc.event]]``): its run through the line and its
+    verdict rows, every check with an event reading against its limits
+    (:func:`crankdyn.tvc.evaluate.evaluate_event`; speeds in rad/s, exported in rpm).
+
+    Parameters
+    ----------
+    run : EventResult or None
+        The run (:func:`crankdyn.torsion.event_run.event_response`; not exported).
+    curves : tuple of EventCurve
+        Every checked quantity over the run, with its limit (for the plot; not exported).
+    """
+
+    title = "Transient event"
+    name: str = scalar("condition", "Condition", "")
+    kind: str = scalar("event_kind", "Kind of event", "")
+    severity: str = scalar("severity", "Severity", "")
+    description: str = scalar("description", "Description", "")
+    speed: float = scalar("speed_before_rpm", "Speed before the event", "rpm", RPM, summary=False)
+    duration: float = scalar("duration_s", "Duration of the run", "s", summary=False)
+    source: str = scalar("source", "Source of the event", "", summary=False)
+    verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
+    run: EventResult | None = field(default=None, repr=False, compare=False)
+    curves: tuple[EventCurve, ...] = field(default=(), repr=False, compare=False)
+
+    FIGURES = (
+        derived(
+            "condition_passed", "condition_passed", "Every check passed", "",
+            lambda c: all(v.passed for v in c.verdicts) if c.verdicts else None,
+            status=lambda passed: "pass" if passed else "fail", headline=True,
+        ),
+        derived(
+            "condition_worst_margin", "condition_worst_margin",
+            "Smallest margin of the event's verdict rows", "",
+            lambda c: _worst(c), reduction="min over the verdict rows", better="max",
+        ),
+    )  # fmt: skip
+
+    def summary_verdicts(self) -> list[Verdict]:
+        """The event's verdict rows.
+
+        Returns
+        -------
+        list of crankdyn.summary.Verdict
+            The rows.
+        """
+        return list(self.verdicts)
+
+    def plot(self, fig: Figure | None = None) -> Figure:
+        """The event's time history with its limits: every checked quantity as a fraction of
+        its limit, the couplings' and gear meshes' torques with their limits, and the speeds
+        (:func:`crankdyn.plots.events.plot_event_checks`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.events import plot_event_checks
+
+        return plot_event_checks(self, fig=fig)
+
+
+@dataclass(frozen=True)
 class TvcResult(Result):
     """A torsional vibration calculation (:func:`crankdyn.tvc.tvc`): the installation, modes,
     every condition's verdicts and barred ranges, and the overall verdict.
@@ -364,6 +474,9 @@ class TvcResult(Result):
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     tachometer_tolerance: float = scalar("tachometer_tolerance", "Tachometer tolerance", "")
     rules: str = scalar("rules", "Rule set", "")
+    events: tuple[EventCondition, ...] = scalar(
+        "events", "Transient events", "", summary=False, default=()
+    )
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     engine: Engine | None = field(default=None, repr=False, compare=False)
     modes: ModalResult | None = field(default=None, repr=False, compare=False)
@@ -381,13 +494,14 @@ class TvcResult(Result):
         dict
             Every exported field (speeds in rpm, the unit in the key); the verdict rows and
             barred ranges once, in ``verdicts`` and ``barred_speed_ranges``, not again under
-            each of ``conditions``.
+            each of ``conditions`` and ``events``.
         """
         out = super().to_dict()
-        out["conditions"] = [
-            {k: v for k, v in c.items() if k not in ("verdicts", "barred_speed_ranges")}
-            for c in out.get("conditions", [])
-        ]
+        for key in ("conditions", "events"):
+            out[key] = [
+                {k: v for k, v in c.items() if k not in ("verdicts", "barred_speed_ranges")}
+                for c in out.get(key, [])
+            ]
         return out
 
     FIGURES = (
@@ -431,7 +545,8 @@ class TvcResult(Result):
 
     def summary_tables(self) -> list[SummaryTable]:
         """The conditions (speed range, verdict rows, failed, smallest margin and where, barred
-        ranges), the barred speed ranges (as found and as declared, and why) and the passages.
+        ranges), the barred speed ranges (as found and as declared, and why), the transient
+        events and the passages.
 
         Returns
         -------
@@ -440,6 +555,9 @@ class TvcResult(Result):
         """
         out = [_conditions_table(self.conditions)] if self.conditions else []
         out += [barred_table(self.barred_ranges)] if self.barred_ranges else []
+        events = self.event_table()
+        if events is not None:
+            out.append(events)
         if self.passages:
             out.append(
                 SummaryTable(
@@ -465,6 +583,69 @@ class TvcResult(Result):
                 )
             )
         return out
+
+    def event_table(self) -> SummaryTable | None:
+        """The transient events: each one's kind, severity, the speed before it, the run's
+        duration and the smallest margin of its rows (None without events).
+
+        Returns
+        -------
+        crankdyn.summary.SummaryTable or None
+            The table.
+        """
+        if not self.events:
+            return None
+        return SummaryTable(
+            "events",
+            "Transient events",
+            (
+                SummaryColumn("condition", "Event"),
+                SummaryColumn("event_kind", "Kind"),
+                SummaryColumn("severity", "Severity"),
+                SummaryColumn("speed_before_rpm", "Speed before", "rpm"),
+                SummaryColumn("duration_s", "Run", "s"),
+                SummaryColumn("worst_margin", "Smallest margin"),
+                SummaryColumn("passed", "Passed"),
+            ),
+            tuple(
+                (
+                    e.name,
+                    e.kind,
+                    e.severity,
+                    round(e.speed * RPM, 1),
+                    e.duration,
+                    w[0] if (w := _worst(e)) is not None else None,
+                    "yes" if all(v.passed for v in e.verdicts) else "no",
+                )
+                for e in self.events
+            ),
+        )
+
+    def with_verdicts(self, rows: tuple[Verdict, ...], notes: tuple[str, ...] = ()) -> TvcResult:
+        """This calculation with further verdict rows made elsewhere (the crankshaft's check by
+        UR M53, :meth:`crankdyn.session.Analysis.tvc`): rendered with the others, never
+        recomputed here.
+
+        Parameters
+        ----------
+        rows : tuple of Verdict
+            The rows, appended.
+        notes : tuple of str
+            Notes, appended.
+
+        Returns
+        -------
+        TvcResult
+            A copy; passed only if it passed and every row added passes.
+        """
+        from dataclasses import replace
+
+        return replace(
+            self,
+            verdicts=(*self.verdicts, *rows),
+            passed=bool(self.passed and all(v.passed for v in rows)),
+            notes=(*self.notes, *notes),
+        )
 
     @property
     def rule_title(self) -> str:
@@ -561,7 +742,7 @@ def _conditions_table(conditions: tuple[ConditionResult, ...]) -> SummaryTable:
     )
 
 
-def _worst(result: TvcResult | ConditionResult) -> tuple[float, str] | None:
+def _worst(result: TvcResult | ConditionResult | EventCondition) -> tuple[float, str] | None:
     """The smallest finite margin of the verdict rows, with the row's component and condition."""
     rows = [v for v in result.verdicts if np.isfinite(v.margin)]
     if not rows:

@@ -1,8 +1,9 @@
 """The inputs of a torsional vibration calculation besides the model (domain): which running
 conditions, the speed range of each, the load law, the classification society's rule set (the
 limits, the barred-range rules and margins, each with its clause: :mod:`crankdyn.tvc.rulesets`),
-the tachometer tolerance, the crankshaft's limit and the data of the passage through barred
-ranges (docs/tvc.md)."""
+the tachometer tolerance, the crankshaft's limit, the data of the passage through barred ranges,
+the clutch and idle speed of the declutched and idle conditions, and the transient events
+(docs/tvc.md)."""
 
 from __future__ import annotations
 
@@ -23,24 +24,79 @@ from crankdyn.tvc.rulesets import get as get_rules
 from crankdyn.tvc.rulesets import tachometer_tolerance
 
 if TYPE_CHECKING:
+    from crankdyn.torsion.events import Event
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.tvc.rulesets import RuleSet
 
-__all__ = ["CONDITION_KINDS", "DEFAULT_STEP", "LOADS", "TvcSpec"]
+__all__ = ["CONDITION_KINDS", "DEFAULT_STEP", "LOADS", "PASSAGE_TORQUES", "TvcEvent", "TvcSpec"]
 
 LOADS = ("propeller", "constant-speed")
 """Load laws of a TVC: ``"propeller"`` (mean torque ~ n^2: the model's load curve and
 propeller law) or ``"constant-speed"`` (a generating set: full load at every speed of the range,
 run up without load)."""
 
-CONDITION_KINDS = ("normal", "misfire", "damper-out")
+CONDITION_KINDS = ("normal", "misfire", "damper-out", "overspeed", "declutched", "idle")
 """Kinds of running condition: ``"normal"`` firing, ``"misfire"`` (each cylinder not firing in
-turn) and ``"damper-out"`` (the damper out of order); the keys of :attr:`TvcSpec.ranges`."""
+turn), ``"damper-out"`` (the damper out of order), ``"overspeed"`` (normal firing above the
+normal range to the rule's top speed), ``"declutched"`` and ``"idle"`` (where a clutch is
+modelled: :mod:`crankdyn.tvc.conditions`); the keys of :attr:`TvcSpec.ranges`."""
+
+PASSAGE_TORQUES = ("curve", "rated")
+"""What drives the passage through a barred range where neither ``engine_torque_curve`` nor
+``engine_torque`` is given: ``"curve"`` (the default: the engine's torque-speed curve, so none
+given means no passage is calculated) or ``"rated"`` (asked for: the load law's torque at n_0,
+the rated torque, at every speed)."""
 
 DEFAULT_STEP = SPEED_STEP
 """Speed step of the user grid of every condition's sweep (rad/s, 10 rpm: the analyses' default,
 :data:`crankdyn.defaults.SPEED_STEP`); the peaks, barred ranges and verdicts come from the
 resolved curves, whatever the step."""
+
+
+@dataclass(frozen=True)
+class TvcEvent:
+    """A transient event of the TVC (a ``[[tvc.event]]`` table): the event and how the line
+    runs into it (:mod:`crankdyn.tvc.events`).
+
+    Parameters
+    ----------
+    event : Event
+        The event (:mod:`crankdyn.torsion.events`).
+    speed : float or None
+        The reference speed before the event (rad/s); None: the rated speed n_0 (a clutch, a
+        start, a stop have their own speeds).
+    duration : float or None
+        The run's duration (s); None: the event's own.
+    harmonics : bool
+        Whether the engine's and the sources' harmonic torques act during the run (default
+        True; a clutch engagement runs without them).
+
+    Raises
+    ------
+    InputError
+        Naming ``speed`` or ``duration`` where it is not positive.
+
+    Examples
+    --------
+    >>> from crankdyn.torsion.events import StepTorque
+    >>> TvcEvent(StepTorque("propeller", -1e4), duration=0.5).duration
+    0.5
+    """
+
+    event: Event
+    speed: float | None = None
+    duration: float | None = None
+    harmonics: bool = True
+
+    def __post_init__(self) -> None:
+        for key in ("speed", "duration"):
+            if getattr(self, key) is not None:
+                check_positive(key, getattr(self, key), f"the event's {key}")
+
+    @property
+    def name(self) -> str:
+        """The event's name (the verdict rows' condition)."""
+        return str(self.event.name)
 
 
 @dataclass(frozen=True)
@@ -87,6 +143,27 @@ class TvcSpec:
     passage_load : str or None
         ``"law"``: the load follows its law while passing; ``"none"``: no load (a generating set
         runs up before it is loaded). Default from ``load``.
+    passage_torque : str
+        :data:`PASSAGE_TORQUES`: where neither ``engine_torque_curve`` nor ``engine_torque``
+        is given, ``"curve"`` (default) calculates no passage (the engine's curve is needed),
+        ``"rated"`` passes with the rated torque at every speed.
+    overspeed : bool
+        Whether "overspeed" is a condition (default True: to the rule's top speed where the
+        normal range stops below it).
+    overspeed_limit : float or None
+        The overspeed condition's top, n/n_0 (dimensionless, 1 < ratio <= 1.5); None: the rule
+        set's (IACS UR M68.4: 1.05).
+    clutch : tuple of str or None
+        The clutch's element, (the engine's half, the other half): two masses of the model;
+        None: no clutch (no declutched or idle condition).
+    declutched, idle : bool
+        Whether declutched and idle running are conditions where a clutch is given (default
+        True).
+    idle_speed : float or None
+        The engine's idle speed (rad/s, reference shaft); None: the lowest speed of the normal
+        range.
+    events : tuple of TvcEvent
+        The transient events (``[[tvc.event]]``).
     source : str or None
         Where these settings come from, for reports.
 
@@ -95,9 +172,10 @@ class TvcSpec:
     InputError
         Naming the key (``speed_range``, ``speed_ranges.<kind>``, ``step``, ``load``,
         ``tachometer_tolerance``, ``rules``, ``engine_torque``, ``engine_torque_curve``,
-        ``passage_load``) and its value where a setting is unknown, not positive, out of range
-        or an empty speed range, or where both ``engine_torque`` and ``engine_torque_curve``
-        are given.
+        ``passage_load``, ``passage_torque``, ``overspeed_limit``, ``clutch``, ``idle_speed``)
+        and its value where a setting is unknown, not positive, out of range or an empty speed
+        range, or where two of ``engine_torque``, ``engine_torque_curve`` and
+        ``passage_torque = "rated"`` are given.
 
     Examples
     --------
@@ -126,6 +204,14 @@ class TvcSpec:
     engine_torque: float | None = None
     engine_torque_curve: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
     passage_load: str | None = None
+    passage_torque: str = "curve"
+    overspeed: bool = True
+    overspeed_limit: float | None = None
+    clutch: tuple[str, str] | None = None
+    declutched: bool = True
+    idle: bool = True
+    idle_speed: float | None = None
+    events: tuple[TvcEvent, ...] = ()
     source: str | None = None
 
     if TYPE_CHECKING:  # what the constructor accepts; the fields hold the normalised values
@@ -144,6 +230,14 @@ class TvcSpec:
             engine_torque: float | None = None,
             engine_torque_curve: tuple[ArrayLike, ArrayLike] | None = None,
             passage_load: str | None = None,
+            passage_torque: str = "curve",
+            overspeed: bool = True,
+            overspeed_limit: float | None = None,
+            clutch: Sequence[str] | None = None,
+            declutched: bool = True,
+            idle: bool = True,
+            idle_speed: float | None = None,
+            events: Sequence[TvcEvent] = (),
             source: str | None = None,
         ) -> None: ...
 
@@ -206,6 +300,52 @@ class TvcSpec:
             object.__setattr__(self, "engine_torque_curve", (w, q))
         if self.passage_load is not None and self.passage_load not in ("law", "none"):
             raise InputError("expected law or none", key="passage_load", value=self.passage_load)
+        self._check_conditions()
+
+    def _check_conditions(self) -> None:
+        """The passage torque, the overspeed limit, the clutch, the idle speed, the events."""
+        if self.passage_torque not in PASSAGE_TORQUES:
+            raise InputError(
+                f"expected one of {', '.join(PASSAGE_TORQUES)}",
+                key="passage_torque",
+                value=self.passage_torque,
+            )
+        given = self.engine_torque is not None or self.engine_torque_curve is not None
+        if self.passage_torque == "rated" and given:
+            raise InputError(
+                'give engine_torque, engine_torque_curve or passage_torque = "rated", not two',
+                key="passage_torque",
+                value=self.passage_torque,
+            )
+        if self.overspeed_limit is not None:
+            ratio = float(self.overspeed_limit)
+            if not (math.isfinite(ratio) and 1.0 < ratio <= 1.5):
+                raise InputError(
+                    "the overspeed limit is a speed ratio n/n_0 above 1 (at most 1.5)",
+                    key="overspeed_limit",
+                    value=self.overspeed_limit,
+                )
+            object.__setattr__(self, "overspeed_limit", ratio)
+        if self.clutch is not None:
+            pair = tuple(self.clutch)
+            if (
+                len(pair) != 2
+                or not all(isinstance(v, str) and v for v in pair)
+                or (pair[0] == pair[1])
+            ):
+                raise InputError("expected two mass names", key="clutch", value=self.clutch)
+            object.__setattr__(self, "clutch", (pair[0], pair[1]))
+        if self.idle_speed is not None:
+            object.__setattr__(
+                self, "idle_speed", check_positive("idle_speed", self.idle_speed, "the idle speed")
+            )
+        object.__setattr__(self, "events", tuple(self.events))
+        names = [e.name for e in self.events]
+        if len(set(names)) != len(names):
+            twice = next(n for n in names if names.count(n) > 1)
+            raise InputError(
+                "two events have this name: give each its own name", key="event", value=twice
+            )
 
     @property
     def ruleset(self) -> RuleSet:

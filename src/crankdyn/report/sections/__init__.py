@@ -32,6 +32,8 @@ BUILDERS = (
     "torsion_model",
     "torsion_modes",
     "torsion_response",
+    "crankshaft",
+    "crankshaft_beam",
     "measurement",
 )
 

@@ -1,0 +1,259 @@
+"""Transient events in the torsional vibration calculation (analysis): every ``[[tvc.event]]``
+run through the line (:func:`crankdyn.torsion.event_run.event_response`) and judged by the
+installation's own checks (:func:`crankdyn.tvc.checks.model_checks`, evaluated by
+:func:`crankdyn.tvc.evaluate.evaluate_event`): the shafts' vibratory stress against tau_T, the
+crank spans' against the builder's transient limit, the couplings' torque against T_Kmax and
+T_Kmax1 or T_Kmax2 by the event's severity, the gear meshes' torque reversals, each row with
+the time spent above its limit (docs/events.md).
+
+How a run is set up: the line runs at ``speed`` (default the rated speed n_0) before the event
+(a clutch, a start or a stop have their own speeds), under its load laws, with the engine's and
+the sources' harmonic torques at the TVC's orders (``harmonics``, default true; a clutch
+engagement without them), for ``duration`` (default the event's own). The integration resolves
+in time the natural modes up to :data:`EVENT_MODE_FACTOR` times the highest excitation
+frequency (the highest order at the run's top speed, or the event's own frequency); the exact
+integrator carries every mode, the step only samples them
+(:mod:`crankdyn.torsion.event_run`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from crankdyn.constants import RPM
+from crankdyn.defaults import DEFAULTS
+from crankdyn.errors import InputError
+from crankdyn.tvc.checks import Check, model_checks
+from crankdyn.tvc.evaluate import evaluate_event
+from crankdyn.tvc.result import EventCondition, EventCurve
+
+if TYPE_CHECKING:
+    from crankdyn.torsion.event_result import EventResult
+    from crankdyn.torsion.excitation import Excitation
+    from crankdyn.torsion.model import TorsionModel
+    from crankdyn.tvc.spec import TvcEvent, TvcSpec
+
+__all__ = ["EVENT_MODE_FACTOR", "event_conditions", "event_curves", "judge_event"]
+
+EVENT_MODE_FACTOR = float(DEFAULTS["event_mode_factor"].value)
+"""The natural modes an event's run resolves in time: up to this factor times the highest
+excitation frequency."""
+
+
+def judge_event(
+    model: TorsionModel,
+    run: EventResult,
+    spec: TvcSpec,
+    rated: float,
+    *,
+    checks: Sequence[Check] | None = None,
+) -> EventResult:
+    """An event's run with its verdict rows: the installation's checks evaluated on it
+    (module docstring).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The line the run is of (its limits: ``[rules]``, couplings, gears).
+    run : crankdyn.torsion.event_result.EventResult
+        The run.
+    spec : TvcSpec
+        The TVC settings (the crankshaft's limit).
+    rated : float
+        The rated speed n_0 (rad/s), for the shafts' speed ratio.
+    checks : sequence of Check or None
+        The checks; None: :func:`crankdyn.tvc.checks.model_checks` of the model.
+
+    Returns
+    -------
+    crankdyn.torsion.event_result.EventResult
+        The run with ``verdicts``.
+    """
+    if checks is None:
+        checks = model_checks(model, spec, rated, model.dampers)[0]
+    rows = evaluate_event(run, run.event, checks)
+    return dataclasses.replace(run, verdicts=tuple(rows))
+
+
+def event_curves(run: EventResult, checks: Sequence[Check]) -> tuple[EventCurve, ...]:
+    """Every checked quantity over the run's kept samples, with its governing (smallest) limit
+    at each sample's speed (the limits evaluated on 41 speeds across the run and interpolated),
+    for the event's plot.
+
+    Parameters
+    ----------
+    run : crankdyn.torsion.event_result.EventResult
+        The run.
+    checks : sequence of Check
+        The line's checks.
+
+    Returns
+    -------
+    tuple of EventCurve
+        One per check with an event reading.
+    """
+    out = []
+    grid = np.linspace(float(np.min(run.speed)), float(np.max(run.speed)), 41)
+    for check in checks:
+        reading = check.event
+        if reading is None:
+            continue
+        idx = [k if isinstance(k, int) else run.element_index(tuple(k)) for k in reading.elements]
+        if reading.reversal:
+            _drop, mean, _w, _t, _n = run.reversal(idx[0])
+            sign = 1.0 if mean >= 0.0 else -1.0
+            value = sign * (mean - np.asarray(run.torque)[:, idx[0]])
+            out.append(
+                EventCurve(
+                    check.component,
+                    "drop of the mesh torque below its mean",
+                    "N·m",
+                    value,
+                    np.full(value.size, abs(mean)),
+                    "|mean torque|",
+                )
+            )
+            continue
+        if reading.limits is None:
+            continue
+        factors = reading.factors or (1.0,) * len(idx)
+        samples = [run.samples(i, vibratory=reading.vibratory) for i in idx]
+        value = np.max([f * x for x, f in zip(samples, factors, strict=True)], axis=0)
+        levels = np.array(
+            [min((lim.value for lim in reading.limits(w, run.severity)), default=math.nan)
+             for w in grid]
+        )  # fmt: skip
+        names = [lim.name for lim in reading.limits(float(grid[-1]), run.severity)]
+        if not names:
+            continue
+        limit = np.interp(run.speed, grid, levels) if grid[-1] > grid[0] else levels[0]
+        out.append(
+            EventCurve(
+                check.component,
+                reading.what,
+                check.unit,
+                value,
+                np.broadcast_to(limit, value.shape).copy(),
+                "/".join(names),
+                torque=not reading.vibratory and check.unit == "N·m",
+            )
+        )
+    return tuple(out)
+
+
+def _top_speed(te: TvcEvent, speed: float | None) -> float:
+    """The highest reference speed of an event's run (rad/s): a start's or stop's larger end,
+    a clutch's faster half, else the speed before the event."""
+    event: Any = te.event
+    if hasattr(event, "start_speed"):
+        return max(float(event.start_speed), float(event.end_speed))
+    if hasattr(event, "speeds"):
+        return max(abs(float(v)) for v in event.speeds)
+    return float(speed or 0.0)
+
+
+def _run(
+    model: TorsionModel,
+    te: TvcEvent,
+    rated: float,
+    excitation: Excitation | None,
+    orders: NDArray[np.float64],
+) -> EventResult:
+    """One event's run (module docstring)."""
+    from crankdyn.torsion.event_run import event_response
+    from crankdyn.torsion.events import ClutchEngagement, SpeedChange
+
+    event = te.event
+    own = isinstance(event, (ClutchEngagement, SpeedChange))
+    speed = te.speed if te.speed is not None else (None if own else rated)
+    harmonic = te.harmonics and excitation is not None and not isinstance(event, ClutchEngagement)
+    top = _top_speed(te, speed)
+    highest = float(np.max(orders)) * top if harmonic and orders.size else 0.0
+    try:
+        own_frequency = float(getattr(event, "frequency", lambda: 0.0)())
+    except InputError:  # an ice sequence laid out on the run's speed: below the orders'
+        own_frequency = 0.0
+    max_frequency = EVENT_MODE_FACTOR * max(highest, own_frequency, 2.0 * math.pi * 50.0)
+    return event_response(
+        model,
+        event,
+        speed=speed,
+        duration=te.duration,
+        excitation=excitation if harmonic else None,
+        orders=orders if harmonic else None,
+        max_frequency=max_frequency,
+    )
+
+
+def event_conditions(
+    model: TorsionModel,
+    spec: TvcSpec,
+    rated: float,
+    excitation: Excitation | None,
+    orders: NDArray[np.float64],
+    checks: Sequence[Check],
+) -> list[EventCondition]:
+    """Every ``[[tvc.event]]`` of the settings, run and judged (module docstring).
+
+    Parameters
+    ----------
+    model : TorsionModel
+        The installation (with its load law's excitation).
+    spec : TvcSpec
+        The settings (``events``).
+    rated : float
+        The rated speed n_0 (rad/s).
+    excitation : Excitation or None
+        The normal-firing excitation (the harmonic torques of the runs), or None.
+    orders : numpy.ndarray
+        The TVC's orders.
+    checks : sequence of Check
+        The installation's checks (with its own dampers).
+
+    Returns
+    -------
+    list of EventCondition
+        In the order of the settings.
+
+    Raises
+    ------
+    InputError
+        As :func:`crankdyn.torsion.event_run.event_response` (an unknown mass, a clutch
+        between masses no element joins, orders the model cannot take).
+    """
+    out = []
+    for te in spec.events:
+        run = judge_event(model, _run(model, te, rated, excitation, orders), spec, rated,
+                          checks=checks)  # fmt: skip
+        event: Any = te.event
+        if hasattr(event, "speeds"):  # a clutch: the engine's half
+            speed = float(event.speeds[0])
+        elif hasattr(event, "start_speed"):
+            speed = float(event.start_speed)
+        else:
+            speed = te.speed or rated
+        out.append(
+            EventCondition(
+                name=te.name,
+                kind=run.kind,
+                severity=run.severity,
+                description=(
+                    f"{run.kind} ({run.severity} transient condition) from "
+                    f"{speed * RPM:.6g} rpm, {run.duration:.4g} s run; "
+                    f"{run.source}"
+                ),
+                speed=speed,
+                duration=run.duration,
+                source=run.source,
+                verdicts=run.verdicts,
+                run=run,
+                curves=event_curves(run, checks),
+            )
+        )
+    return out
