@@ -4,11 +4,24 @@ from __future__ import annotations
 
 import os
 
-import matplotlib
-import pytest
-from hypothesis import HealthCheck, settings
+# One linear-algebra thread per test process: `make test` runs two xdist workers on two cores,
+# and a threaded OpenBLAS in each (its threads spinning while they wait) oversubscribes them:
+# the damped-mode tests of 400-mass chains took 30-60 s of CPU instead of 3 s. Set before numpy
+# loads OpenBLAS; crankdyn's own rule (crankdyn.threads) leaves a set variable alone.
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+
+import matplotlib  # noqa: E402
+import pytest  # noqa: E402
+from hypothesis import HealthCheck, settings  # noqa: E402
 
 matplotlib.use("Agg")
+try:  # numpy and scipy loaded before this file (by a plugin) follow through threadpoolctl
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(1)
+except ImportError:  # pragma: no cover - threadpoolctl is a dependency
+    pass
 os.environ.setdefault("COLUMNS", "160")
 
 # Hypothesis profiles: "ci" (default) keeps the normal suite bounded; "fuzz" is the long campaign

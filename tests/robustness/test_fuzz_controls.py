@@ -79,7 +79,7 @@ def test_report_folder_holds_no_control_character(cli, tmp_path):
     name = 'Line \x1b[31mRED\x07\x08\r\nX, "quoted"'
     path = model_file(tmp_path, name, mass='front, "end" #1')
     run = cli("tvc", path, "-o", tmp_path / "rep", "--no-pdf")  # the PDF prints this HTML
-    assert run.status == 0, run
+    assert run.status in (0, 1), run  # the verdict's exit status; the report is written either way
     assert not controls_in(run.out) and not controls_in(run.err)  # the verdict table's title
     for file in (tmp_path / "rep").rglob("*"):
         if file.suffix in (".html", ".svg", ".json", ".csv"):

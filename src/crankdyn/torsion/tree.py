@@ -188,8 +188,23 @@ class TreeSolver:
         self.links = links
 
     def change_positions(self, ends: NDArray[np.int_]) -> NDArray[np.intp]:
-        """Position (in elimination order) of the child end of every link ``ends`` (count, 2),
-        ValueError for a pair that is no link of the tree."""
+        """Position (in elimination order) of the child end of every link.
+
+        Parameters
+        ----------
+        ends : numpy.ndarray
+            (count, 2) the degrees of freedom at the two ends of each link.
+
+        Returns
+        -------
+        numpy.ndarray
+            (count,) the position of each link's child end.
+
+        Raises
+        ------
+        ValueError
+            For a pair that is no link of the tree.
+        """
         pos = self.position
         out = np.empty(len(ends), dtype=np.intp)
         for j, (a, b) in enumerate(np.asarray(ends).tolist()):
@@ -207,11 +222,29 @@ class TreeSolver:
         hysteretic_frequency: float | None,
         change: tuple[NDArray[np.intp], np.ndarray] | None = None,
     ) -> tuple[NDArray[np.complex128], NDArray[np.intp]]:
-        """X for every frequency: w (F,) rad/s, rhs (F, n, r) N m (read block by block, not
-        copied whole), ``change`` (positions from :meth:`change_positions`, (F, c) complex
-        N m/rad added to those links' dynamic stiffness) or None. Returns X (F, n, r) rad and
-        the indices of the flagged systems, whose rows the caller solves again with pivoting
-        (module docstring)."""
+        """X for every frequency, eliminated from the leaves inward (module docstring).
+
+        Parameters
+        ----------
+        w : numpy.ndarray
+            (F,) frequencies (rad/s).
+        rhs : numpy.ndarray
+            (F, n, r) right-hand sides (N m), read block by block, not copied whole.
+        hysteretic_frequency : float or None
+            The frequency (rad/s) at which loss factors are frozen as viscous terms, or None
+            for loss factors at every frequency.
+        change : (numpy.ndarray, numpy.ndarray) or None
+            Positions from :meth:`change_positions` and (F, c) complex stiffness (N m/rad)
+            added to those links' dynamic stiffness; or None.
+
+        Returns
+        -------
+        x : numpy.ndarray
+            (F, n, r) the solutions (rad).
+        flagged : numpy.ndarray
+            The indices of the flagged systems (small pivots), whose rows the caller solves
+            again with pivoting.
+        """
         count = w.size
         r = rhs.shape[-1]
         n = self.n
