@@ -107,3 +107,20 @@ def test_the_notebook_shows_the_reports_mass_elastic_tables():
     for _name, _title, header, rows, _caption in tables:
         for cell in [*header, *(c for r in rows for c in r)]:
             assert cell.replace("&", "&amp;") in html or cell in html
+
+
+def test_mass_elastic_tables_use_the_class_forms_units():
+    """Issue 32: one unit per column, the class forms' (kg·m², MN·m/rad, mm), whatever the
+    magnitudes: a row never mixes mm and m."""
+    model = Engine.example("marine-propulsion").torsion
+    tables = {t[0]: t for t in mass_elastic_tables(model)}
+    header, rows = tables["torsion_shafts"][2], tables["torsion_shafts"][3]
+    assert "Stiffness k (MN·m/rad)" in header
+    assert "Outer diameter (mm)" in header and "Length (mm)" in header
+    d = header.index("Outer diameter (mm)")
+    k = header.index("Stiffness k (MN·m/rad)")
+    shaft = next(s for s in model.shafts if s.geometry is not None)
+    row = rows[list(model.shafts).index(shaft)]
+    assert float(row[d]) == pytest.approx(shaft.geometry.outer_diameter * 1e3, rel=5e-5)
+    assert float(row[k]) == pytest.approx(shaft.stiffness / 1e6, rel=5e-5)
+    assert "Moment of inertia J (kg·m²)" in tables["torsion_masses"][2]

@@ -44,6 +44,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
 
 __all__ = [
+    "CLASS_UNITS",
     "ROUNDOFF",
     "SIGNIFICANT",
     "clean",
@@ -557,13 +558,26 @@ def html_table(
     return f"<div>{title_html}<table><tr>{head}</tr>{body}</table>{cap}</div>"
 
 
+CLASS_UNITS = {
+    "kg·m²": "kg·m²",
+    "N·m/rad": "MN·m/rad",
+    "N·m·s/rad": "kN·m·s/rad",
+    "m": "mm",
+    "Pa": "GPa",
+    "N·m": "kN·m",
+    "W": "kW",
+}
+"""The units of a mass-elastic table, as class societies' forms give them (one unit per
+column, whatever the magnitudes: inertia kg·m², stiffness MN·m/rad, lengths mm)."""
+
+
 def _elastic_table(
     name: str, title: str, columns: Iterable[tuple[str, str | None, Sequence[Any]]], caption: str
 ) -> tuple[str, str, list[str], list[list[str]], str]:
-    """(name, title, header, rows, caption) from (label, SI unit, values) columns: numbers in one
-    engineering unit per column with five significant digits in each cell (the values of a
-    model span decades), None as '-'; text columns have unit None; a column given for no row
-    is left out."""
+    """(name, title, header, rows, caption) from (label, SI unit, values) columns: numbers in
+    the column's class-form unit (:data:`CLASS_UNITS`, else one engineering unit per column)
+    with five significant digits in each cell (the values of a model span decades), None as
+    '-'; text columns have unit None; a column given for no row is left out."""
     header: list[str] = []
     cells: list[list[str]] = []
     for label, unit, values in columns:
@@ -573,7 +587,15 @@ def _elastic_table(
             header.append(label)
             cells.append(["-" if v is None else str(v) for v in values])
             continue
-        texts, shown = column_text(values, unit, aligned=False)
+        shown = CLASS_UNITS.get(unit)
+        if shown is None:
+            texts, shown = column_text(values, unit, aligned=False)
+        else:
+            factor = dict(_LADDERS.get(unit, ((unit, 1.0),)))[shown]
+            texts = [
+                "-" if v is None or not math.isfinite(float(v)) else _figure(float(v) * factor, 5)
+                for v in values
+            ]
         header.append(unit_label(label, shown))
         cells.append(texts)
     rows = [list(r) for r in zip(*cells, strict=True)]
@@ -606,7 +628,7 @@ def shaft_kind(s: Any) -> str:
 
 
 def mass_elastic_tables(
-    model: TorsionModel,
+    model: TorsionModel, *, elements: bool = True
 ) -> list[tuple[str, str, list[str], list[list[str]], str]]:
     """The mass-elastic system of a torsional model as the report and the notebook view show it.
 
@@ -614,6 +636,10 @@ def mass_elastic_tables(
     ----------
     model : crankdyn.torsion.model.TorsionModel
         The lumped torsional model.
+    elements : bool
+        Whether a distributed shaft's elements are listed one by one (True) or as one row of
+        the whole shaft (False: its stiffness 1 / sum(1 / k_i), its length the sum; the
+        interior element masses left out, their count and inertia in the caption).
 
     Returns
     -------
@@ -625,10 +651,59 @@ def mass_elastic_tables(
         rigid gear meshes (ratio, teeth, sense of rotation), the dampers and the excitation
         sources; numbers in engineering units, the unit in the header.
     """
-    return [table for build in _ELASTIC_TABLES if (table := build(model)) is not None]
+    tables = [table for build in _ELASTIC_TABLES if (table := build(model)) is not None]
+    return tables if elements else [_whole_shafts(model, t) for t in tables]
 
 
 _Table = tuple[str, str, list[str], list[list[str]], str]
+
+
+def _whole_shafts(model: TorsionModel, table: _Table) -> _Table:
+    """A masses or shafts table with every distributed shaft as one row (see
+    :func:`mass_elastic_tables`); other tables as they are."""
+    name, title, header, rows, caption = table
+    groups: dict[tuple[str, str], list[int]] = {}
+    for i, sh in enumerate(model.shafts):
+        segment = getattr(sh, "segment_of", None)
+        if segment is not None:
+            groups.setdefault(tuple(segment), []).append(i)
+    if not groups:
+        return table
+    inner = {n for idx in groups.values() for i in idx for n in model.shafts[i].between}
+    inner -= {n for pair in groups for n in pair}
+    if name == "torsion_masses":
+        kept = [r for r, m in zip(rows, model.masses, strict=True) if m.name not in inner]
+        total = sum(m.inertia for m in model.masses if m.name in inner)
+        note = (
+            f" The {len(inner)} interior element masses of the distributed shafts (together "
+            f"{_figure(total, 5)} kg·m²) are not listed."
+        )
+        return name, title, header, kept, caption + note
+    if name != "torsion_shafts":
+        return table
+    col = {h.split(" (")[0]: k for k, h in enumerate(header)}
+    out: list[list[str]] = []
+    for i, row in enumerate(rows):
+        sh = model.shafts[i]
+        segment = getattr(sh, "segment_of", None)
+        if segment is None:
+            out.append(row)
+            continue
+        idx = groups[tuple(segment)]
+        if i != idx[0]:
+            continue
+        merged = list(row)
+        merged[col["Between"]] = f"{segment[0]} - {segment[1]}"
+        if "Kind" in col:
+            merged[col["Kind"]] = f"distributed shaft, {len(idx)} elements"
+        k = 1.0 / sum(1.0 / model.shafts[j].stiffness for j in idx)
+        merged[col["Stiffness k"]] = _figure(k * 1e-6, 5)
+        lengths = [getattr(model.shafts[j].geometry, "length", None) for j in idx]
+        if "Length" in col and all(x is not None for x in lengths):
+            merged[col["Length"]] = _figure(sum(lengths) * 1e3, 5)  # type: ignore[arg-type]
+        out.append(merged)
+    note = " Every distributed shaft in one row: its stiffness 1/Σ(1/k_i), its whole length."
+    return name, title, header, out, caption + note
 
 
 def _masses_table(model: TorsionModel) -> _Table:

@@ -115,6 +115,19 @@ def test_modes_writes_files(tmp_path, capsys):
     assert "already exists" in line
 
 
+def test_modes_schematic_svg(capsys, tmp_path):
+    """--schematic: the mass-elastic system drawn from the model, every mass named in it."""
+    fig = tmp_path / "system.svg"
+    status, _out, err = run(
+        capsys, "torsion", "modes", "marine-propulsion", "--schematic", str(fig)
+    )
+    assert status == 0 and f"wrote {fig}" in err
+    svg = fig.read_text(encoding="utf-8")
+    assert svg.startswith("<?xml") and "propeller" in svg and "flywheel" in svg
+    line = one_line_error(capsys, "torsion", "modes", "seed003-v6", "--schematic", str(fig))
+    assert "already exists" in line
+
+
 def test_holzer_table_json(capsys):
     status, out, _ = run(
         capsys,
@@ -171,6 +184,7 @@ def test_examples_list(capsys):
         (("torsion", "holzer", "seed003-v6", "--frequency", "5 kg"), "expected a frequency"),
         (("torsion", "holzer", "seed003-v6"), "Missing option '--frequency'"),
         (("torsion", "modes", "seed003-v6", "--plot", "x.gif"), "must end in .png, .svg, .pdf"),
+        (("torsion", "modes", "seed003-v6", "--schematic", "x.gif"), '--schematic = "x.gif"'),
         (("torsion", "modes", "seed003-v6", "--plot-modes", "2,x"), "mode numbers"),
         (("torsion", "modes", "seed003-v6", "--plot-modes", "12"), "modes 1 to 8 and the rigid"),
     ],

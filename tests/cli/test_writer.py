@@ -267,3 +267,20 @@ def test_the_table_output_is_the_same_with_rich(monkeypatch, capsys, tmp_path, o
         return capsys.readouterr().out
 
     assert written(True) == written(False)
+
+
+def test_a_split_verdict_table_repeats_component_and_condition():
+    """Issue 32: every part of a verdict table split to fit the console names the component
+    and the condition, so its rows can be matched."""
+    from crankdyn.cli.writer import _titled_parts, summary_blocks
+    from crankdyn.summary import Summary, Verdict
+
+    v = Verdict("intermediate shaft (thrust collar - stern tube flange)", "misfire cylinder 3",
+                "synthesised vibratory shear stress (half range)", 30e6, 40e6, "Pa", True,
+                "IACS UR M68 (Corr.2 Nov 2012, Aug 2014 text)", "M68.4", speed=70.0)  # fmt: skip
+    table, verdict = summary_blocks(Summary("tvc", verdicts=(v,)))
+    assert verdict == "Verdict: passed"
+    parts = _titled_parts(table, 80)
+    assert len(parts) > 1
+    for _title, columns in parts:
+        assert columns[:2] == [0, 1]

@@ -193,6 +193,26 @@ def test_cut_tables_say_where_the_rest_is(tmp_path):
     assert "\n".join(table.csv_text().splitlines()[1:]).count("\n") == 29  # the CSV has all
 
 
+def test_cut_tables_take_their_units_from_the_shown_rows():
+    from crankdyn.report.model import Table
+    from crankdyn.summary import SummaryColumn, SummaryTable
+
+    # 36 modes up to 12 kHz: the eight the page shows (4-230 Hz) read in Hz, not 0.004 kHz
+    hz = [4.0597, 15.718, 84.666, 98.848, 136.49, 228.43, 230.67, 231.0, *[12000.0] * 28]
+    columns = (SummaryColumn("mode", "Mode"), SummaryColumn("f_Hz", "Natural frequency", "Hz"))
+    source = SummaryTable(
+        "natural_frequencies",
+        "Natural frequencies",
+        columns,
+        tuple((i, f) for i, f in enumerate(hz)),
+    )
+    table = Table.of(source, 8)
+    assert table.header == ["Mode", "Natural frequency (Hz)"]
+    assert table.rows[0] == ["0", "4.0597"] and len(table.rows) == 36
+    assert "12000" in table.csv_text()  # the CSV keeps every row in SI
+    assert Table.of(source).header[1] == "Natural frequency (kHz)"  # uncut: one unit for all
+
+
 def _fast(name="vaz2108", rpm=11000.0):
     """A plausible engine driven too fast: mean piston speed 26 m/s, 2700 g."""
     return dataclasses.replace(load_example(name), speed=rpm * math.pi / 30.0)

@@ -89,8 +89,10 @@ def test_tvc_folder_and_summary_lists(marine):
 
 
 def _check_pdf(target, out, rows):
-    """The PDF printed by headless Chromium holds every verdict row; without a Chromium the
-    command says why there is none."""
+    """The PDF printed by headless Chromium (issue 32): page numbers and the running header on
+    every page, the title block from the file's [project], a contents list with page numbers,
+    the schematic, the mode tables with the vector sums, every verdict row; without a Chromium
+    the command says why there is none."""
     if shutil.which("chromium") is None and shutil.which("chromium-browser") is None:
         assert "no PDF" in out and not (target / "report.pdf").exists()
         return
@@ -98,9 +100,73 @@ def _check_pdf(target, out, rows):
 
     pdf = target / "report.pdf"
     assert pdf.read_bytes()[:5] == b"%PDF-" and "PDF:" in out
-    printed = _squeeze("\n".join(p.extract_text() for p in PdfReader(pdf).pages))
+    pages = [p.extract_text() for p in PdfReader(pdf).pages]
+    total = len(pages)
+    # 22 pages for normal firing, misfire and damper out; the overspeed condition and the three
+    # transient events (clutch-in, start, ice) add their plots: 27 pages
+    assert total <= 28, f"the marine line's document runs to {total} pages"
+    for n, text in enumerate(pages, start=1):
+        squeezed = _squeeze(text)
+        assert _squeeze(f"Page {n} of {total}") in squeezed, n
+        assert _squeeze("TVC · TVC-EX-001") in squeezed, n  # the running header
+        assert _squeeze("Rev. A · 2026-01-15") in squeezed, n
+    title = _squeeze(pages[0])
+    for words in (
+        "Torsional vibration calculation",
+        "Illustrative 6-cylinder propulsion line (crankdyn example)",
+        "Example Shipyard / hull EX-1",
+        "3000 kW at 750 rpm",
+        "Revision",
+        "First issue (illustrative example)",
+        "Prepared",
+        "Checked",
+        "Approved",
+        "Verdict:",
+    ):
+        assert _squeeze(words) in title, words
+    contents = pages[1]
+    assert "Contents" in contents
+    entries = re.findall(r"^(\d+) (.+?) (\d+)$", contents, flags=re.M)
+    assert len(entries) >= 9, contents
+    numbers = [int(page) for _n, _title, page in entries]
+    assert numbers == sorted(numbers) and numbers[-1] <= total, numbers
+    for number, heading, page in entries:  # each heading is on the page the contents name
+        assert _squeeze(f"{number} {heading}") in _squeeze(pages[int(page) - 1]), heading
+    printed = _squeeze("\n".join(pages))
+    for words in (
+        "Schematic of the mass-elastic system",
+        "Mode shapes",
+        "Relative vector sums",
+        "Campbell diagram",
+        "forced response per order and synthesised",
+        "Stiffness k (MN·m/rad)",
+    ):
+        assert _squeeze(words) in printed, words
     missing = [r for r in rows if _squeeze(r[0] + r[1]) not in printed]
     assert not missing, missing[:3]
+
+
+def test_tvc_page_says_each_thing_once(marine):
+    """Issue 32: the summary's table once (the verdict section repeats no key figures), no
+    raw keys in the input, the misfire note under "Notes" (not "Not analysed"), a range's
+    ends once (the barred-range table's columns; its "why" repeats no speeds)."""
+    target, _out, _err = marine
+    page = (target / "index.html").read_text(encoding="utf-8")
+    assert page.count("<h3>Conditions</h3>") == 1
+    assert page.count("Smallest margin of the verdict rows") == 1
+    assert "Every check passed" not in page
+    assert "Not analysed" not in page and "<h3>Notes</h3>" in page
+    assert "Barred-range widening" not in page and "rules = " not in page
+    assert "<th>Rule set</th><td class='text'>Lloyd&#x27;s Register</td>" in page
+    assert "<th>Barred-range margins</th><td class='text'>least range 16 n_c/(18-λ_c)" in page
+    barred = list(csv.DictReader((target / "data" / "barred_speed_ranges.csv").open()))
+    assert barred and all(not re.search(r"(found|to) \d", r["reason"]) for r in barred)
+    # one value per quantity: the conditions' smallest margins are the verdict rows' own
+    rows = json.loads((target / "summary.json").read_text(encoding="utf-8"))["verdicts"]
+    conditions = list(csv.DictReader((target / "data" / "conditions.csv").open()))
+    for c in conditions:  # to the CSV's ten digits
+        smallest = float(c["smallest_margin"])
+        assert any(v["margin"] == pytest.approx(smallest, rel=1e-9) for v in rows), c
 
 
 def test_tvc_existing_folder_not_overwritten(hostile, cli):
@@ -150,6 +216,31 @@ def test_tvc_report_in_browser(browser, hostile):
     summary = json.loads((target / "summary.json").read_text(encoding="utf-8"))
     assert len(rows) == len(summary["verdicts"])
     assert not [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+
+
+@pytest.mark.browser
+def test_tvc_pdf_pages_in_browser(browser, marine, tmp_path):
+    """Every page of the marine line's PDF shown by Chromium's PDF viewer and kept as a PNG
+    (look at them: tmp_path/page-N.png): each holds ink, the viewer counts the same pages."""
+    import time
+
+    from pypdf import PdfReader
+
+    target, _out, _err = marine
+    pdf = target / "report.pdf"
+    if not pdf.exists():
+        pytest.skip("no PDF (no Chromium)")
+    total = len(PdfReader(pdf).pages)
+    for n in range(1, total + 1):
+        browser.get(f"{pdf.as_uri()}#page={n}")
+        png = tmp_path / f"page-{n}.png"
+        for _ in range(15):  # the viewer draws the page after the load (slower on a busy machine)
+            time.sleep(1.0)
+            assert browser.save_screenshot(str(png)), n
+            image = png.read_bytes()
+            if len(image) > 20_000:
+                break
+        assert image[:8] == b"\x89PNG\r\n\x1a\n" and len(image) > 20_000, n
 
 
 @pytest.mark.browser

@@ -227,6 +227,12 @@ def _ratio(value: float) -> str:
     "forms (one grounded mass, two or three free masses).",
 )
 @plot_option("Also write the mode-shape figure (.png, .svg or .pdf).")
+@plot_option(
+    "Also write the schematic of the mass-elastic system (.png, .svg or .pdf): masses as blocks "
+    "by inertia, shafts, couplings, gear meshes and branches.",
+    param="schematic_path",
+    name="--schematic",
+)
 @click.option(
     "--plot-modes",
     default=None,
@@ -261,6 +267,7 @@ def modes_command(
     model: str,
     solver: str,
     plot_path: str | None,
+    schematic_path: str | None,
     plot_modes: str | None,
     tabled: int | None,
     damped: bool,
@@ -299,6 +306,11 @@ def modes_command(
         )
         raise InputError("does not apply to the damped modes", key=key, value=value)
     session = model_session(model)
+    if schematic_path:
+        from crankdyn.plots.schematic import plot_schematic
+
+        assert session.model is not None  # resolve_model_and_engine always gives a model
+        save_figure(plot_schematic(session.model), schematic_path, force, option="--schematic")
     if damped:
         _check_damped_json(out, session.model)
         try:

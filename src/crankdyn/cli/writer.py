@@ -82,6 +82,9 @@ class TextTable:
         The indices of the columns that hold text.
     caption : str
         A line printed below the table.
+    keys : int
+        How many leading columns name a row (repeated in every part of a table split to fit
+        the console: a verdict row's component and condition).
 
     Examples
     --------
@@ -96,6 +99,7 @@ class TextTable:
     rows: list[list[str]]
     text_columns: set[int] = field(default_factory=set)
     caption: str = ""
+    keys: int = 1
 
     def csv_text(self) -> str:
         """The header and rows as CSV text (the cells as shown, so in the header's units).
@@ -226,12 +230,15 @@ def summary_blocks(
         # the input warnings the verdict stands on, first; then the rows and the verdict
         blocks += [f"Input warning: {w.message}" for w in summary.input_warnings]
         header, rows = verdict_cells(summary.verdicts)
-        blocks.append(TextTable("Verdicts", header, rows, text_columns={0, 1, 2, 5, 8, 9}))
+        blocks.append(TextTable("Verdicts", header, rows, text_columns={0, 1, 2, 5, 8, 9}, keys=2))
         blocks.append(f"Verdict: {summary.verdict}")
     for table in summary.tables:
         table = table.head(limit)
         header, rows = table.cells()
-        blocks.append(TextTable(table.title, header, rows, table.text_columns(), table.caption))
+        keys = 2 if [c.key for c in table.columns[:2]] == ["component", "condition"] else 1
+        blocks.append(
+            TextTable(table.title, header, rows, table.text_columns(), table.caption, keys=keys)
+        )
     blocks += [f"Note: {_sentence(n)}" for n in summary.notes]
     return blocks
 
@@ -426,25 +433,27 @@ def _wrap(text: str, width: int) -> str:
 
 
 def _parts(table: TextTable, width: int) -> list[list[int]]:
-    """Column groups that fit ``width`` (each after the first repeats column 0)."""
+    """Column groups that fit ``width`` (each after the first repeats the key columns)."""
     widths = _widths(table)
-    if sum(w + 3 for w in widths) + 1 <= width or len(widths) <= 2:
+    keys = list(range(max(1, min(table.keys, len(widths) - 1))))
+    if sum(w + 3 for w in widths) + 1 <= width or len(widths) <= len(keys) + 1:
         return [list(range(len(widths)))]
-    parts, current = [], [0]
-    used = widths[0] + 4
-    for c in range(1, len(widths)):
+    key_width = sum(widths[c] + 3 for c in keys) + 1
+    parts, current = [], list(keys)
+    used = key_width
+    for c in range(len(keys), len(widths)):
         need = widths[c] + 3
-        if used + need > width and len(current) > 1:
+        if used + need > width and len(current) > len(keys):
             parts.append(current)
-            current, used = [0], widths[0] + 4
+            current, used = list(keys), key_width
         current.append(c)
         used += need
     parts.append(current)
     # the same number of parts, the columns shared out evenly (no last part of one column)
-    rest = list(range(1, len(widths)))
+    rest = list(range(len(keys), len(widths)))
     k = len(parts)
     size = -(-len(rest) // k)
-    even = [[0, *rest[i : i + size]] for i in range(0, len(rest), size)]
+    even = [[*keys, *rest[i : i + size]] for i in range(0, len(rest), size)]
     if all(sum(widths[c] + 3 for c in part) + 1 <= width for part in even):
         return even
     return parts

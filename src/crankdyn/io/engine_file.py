@@ -43,6 +43,7 @@ from crankdyn.engine.model import (
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import display_name, load_toml
+from crankdyn.io.project_file import with_project
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.io.torsion_file import (
     parse_torsion_section,
@@ -138,7 +139,9 @@ def parse_engine(
     beam = None
     if crankshaft is not None:
         beam = partial(_beam_stiffness, crankshaft, geometry.crank_radius, cylinders.pitch, file)
-    torsion = _torsion(root.table("torsion"), name, geometry, cylinders, masses, beam)
+    torsion = with_project(
+        root, _torsion(root.table("torsion"), name, geometry, cylinders, masses, beam)
+    )
     balance = _balance(root.table("balance"))
     flywheel = _flywheel(root.table("flywheel"))
     forces = _forces(root.table("forces"))
@@ -710,6 +713,7 @@ def parse_model_file(
     root = Table(data, file=file, base_dir=base_dir)
     model = read_torsion_model(root, default_name=default_name)
     model = join_engines(root, model)
+    model = with_project(root, model) or model
     root.finish()
     return with_input_warnings(model, root)
 

@@ -18,6 +18,7 @@ from crankdyn.errors import InputError, did_you_mean
 from crankdyn.io.examples import display_path
 from crankdyn.io.files import load_toml
 from crankdyn.io.plausibility import role_of, section_of
+from crankdyn.io.project_file import with_project
 from crankdyn.io.schema import MISSING, Table
 from crankdyn.io.units import check_si_range
 from crankdyn.torsion.coupling import Coupling
@@ -113,6 +114,7 @@ def parse_torsion_model(
     """
     root = Table(data, file=file, base_dir=base_dir)
     model = read_torsion_model(root, default_name=default_name)
+    model = with_project(root, model) or model
     if root.has("engine"):
         raise root.error(
             "engine",

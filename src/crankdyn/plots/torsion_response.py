@@ -235,11 +235,13 @@ def plot_damper_comparison(
 def plot_campbell(
     result: CampbellResult, fig: Figure | None = None, max_speed: float | None = None
 ) -> Figure:
-    """Campbell diagram: excitation frequency of every order against speed (major orders solid),
-    natural frequencies as horizontal lines, the operating range shaded and the critical speeds
-    inside it marked (filled: major orders; diamonds when the major orders are undetermined).
-    An order q crosses a natural frequency f at the critical speed n = 60 f / q (f in Hz, n in
-    rpm; :mod:`crankdyn.torsion.campbell`). Speed drawn in rpm, frequency in Hz.
+    """Campbell diagram: excitation frequency of every order against speed, every order
+    labelled at its end (half orders included; the engine's orders grey, its major orders dark
+    and thick, the orders of other sources such as a propeller's blade orders orange and
+    dashed), natural frequencies as horizontal lines, the operating range shaded and the
+    critical speeds inside it marked (filled: major orders; diamonds when the major orders are
+    undetermined). An order q crosses a natural frequency f at the critical speed n = 60 f / q
+    (f in Hz, n in rpm; :mod:`crankdyn.torsion.campbell`). Speed drawn in rpm, frequency in Hz.
 
     Parameters
     ----------
@@ -255,7 +257,7 @@ def plot_campbell(
     matplotlib.figure.Figure
         The figure.
     """
-    fig, axes = new_figure(1, 1, width=9.5, height=6.0, fig=fig)
+    fig, axes = new_figure(1, 1, width=9.5, height=6.4, fig=fig)
     ax = axes[0, 0]
     top_speed = (max_speed or result.high * 1.15) * RPM
     f_nat = np.asarray(result.natural_frequency) / (2.0 * math.pi)
@@ -264,26 +266,37 @@ def plot_campbell(
         float(shown.max()) if shown.size else 0.0, float(np.min(result.orders)) * top_speed / 60.0
     )
     n = np.array([0.0, top_speed])
+    sources = result.order_sources or ("engine",) * len(result.orders)
+    drawn: set[str] = set()
+    style: Any
     for j, q in enumerate(result.orders):
         major = result.major is not None and bool(result.major[j])
-        ax.plot(
-            n,
-            q * n / 60.0,
-            color="#404040" if major else "#a0a0a0",
-            linewidth=1.1 if major else 0.6,
-            zorder=1,
-        )
+        engine = "engine" in sources[j].split(", ") if sources[j] else True
+        if engine:  # the engine's orders grey (major dark and thick), the sources' coloured
+            color, style, kind = ("#303030" if major else "#8a8a8a"), "-", "engine order"
+            if major:
+                kind = "engine order, major"
+        else:
+            color, style, kind = COLORS[4], (0, (6, 2)), f"{sources[j] or 'source'} order"
+        label = None if kind in drawn else kind
+        drawn.add(kind)
+        ax.plot(n, q * n / 60.0, color=color, linestyle=style,
+                linewidth=1.3 if major else 0.8, zorder=1, label=label)  # fmt: skip
         end = min(top_speed, f_top * 60.0 / q)
-        if (major or float(q).is_integer()) and end > 0.2 * top_speed:
-            ax.annotate(
-                f"{q:g}",
-                (end, q * end / 60.0),
-                fontsize=7,
-                color="#404040",
-                xytext=(-3, -10),
-                textcoords="offset points",
-                ha="right",
-            )
+        # every order labelled at its end (the top or the right edge of the plot)
+        at_top = end < top_speed
+        ax.annotate(
+            f"{q:g}",
+            (end, q * end / 60.0),
+            fontsize=6.5,
+            color=color,
+            xytext=(0, 2) if at_top else (2, 0),
+            textcoords="offset points",
+            ha="center" if at_top else "left",
+            va="bottom" if at_top else "center",
+            fontweight="bold" if major else "normal",
+            annotation_clip=False,
+        )
     for k, (mode, f) in enumerate(zip(result.modes, f_nat, strict=True)):
         if f > f_top:
             continue
@@ -337,8 +350,8 @@ def plot_campbell(
     ax.set_ylim(0.0, f_top)
     ax.set_xlabel("Engine speed (rpm)")
     ax.set_ylabel("Frequency (Hz)")
-    ax.set_title(f"Campbell diagram: {result.model_name}", fontsize=10)
-    ax.legend(loc="upper left", fontsize=8, framealpha=0.95)
+    ax.set_title(f"Campbell diagram: {result.model_name}", fontsize=10, pad=14)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.06, 1.0), fontsize=7, frameon=False)
     return fig
 
 

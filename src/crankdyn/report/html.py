@@ -61,8 +61,27 @@ figure img { max-width: 100%; height: auto; border: 1px solid var(--line); }
 figcaption { color: var(--muted); font-size: 13px; margin-top: 4px; }
 ul.checks { padding-left: 20px; }
 footer { color: var(--muted); font-size: 12px; text-align: center; padding: 24px; }
+.title-page { padding: 24px 0; }
+.title-page h1 { font-size: 28px; color: var(--accent); margin: 8px 0 4px; }
+.title-page .subtitle { font-size: 18px; margin: 0 0 18px; }
+.title-page .verdict { font-size: 18px; font-weight: 700; margin: 12px 0 18px; }
+.title-page table { width: 100%; }
+.title-page th { width: 32%; }
+.signatures td { height: 34px; }
+ol.contents { list-style: none; padding-left: 0; max-width: 720px; }
+ol.contents li { display: flex; border-bottom: 1px dotted var(--line); padding: 3px 0; }
+ol.contents a { color: var(--ink); text-decoration: none; flex: 1; }
+ol.contents .toc-page { min-width: 3em; text-align: right; }
+ol.table-notes { font-size: 12px; color: var(--muted); padding-left: 0; list-style: none; }
+table.verdicts { font-size: 12.5px; }
+h2 .number { color: var(--accent); margin-right: 8px; }
 @media print {
-  @page { size: A4; margin: 12mm; }
+  @page { size: A4; margin: 16mm 12mm; }
+  .title-page, .contents-page { break-after: page; page-break-after: always; }
+  .title-page { padding: 0; }
+  body.document > header { display: none; }
+  table.verdicts { font-size: 7.5pt; }
+  ol.table-notes { font-size: 7.5pt; }
   body { font-size: 10pt; }
   * { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
   header { padding: 8px 12px; }
@@ -146,7 +165,7 @@ def _data_table(table: Table) -> str:
     if table.result is not None:
         header, body = _result_rows(table.result)
     else:
-        header, body = table.header, table.rows
+        header, body = table.header, table.page_rows if table.page_rows is not None else table.rows
     head = "".join(f"<th>{escape(str(h))}</th>" for h in header)
     shown = body if table.limit is None else body[: table.limit]
     rows = "".join("<tr>" + "".join(_cell(v) for v in row) + "</tr>" for row in shown)
@@ -156,10 +175,21 @@ def _data_table(table: Table) -> str:
             f"<p class='note'>The first {len(shown)} of {len(body)} rows; all {len(body)} in "
             f"<a href='data/{escape(table.name)}.csv'>data/{escape(table.name)}.csv</a>.</p>"
         )
+    notes = ""
+    if table.notes:
+        items = "".join(f"<li>{escape(n)}</li>" for n in table.notes)
+        notes = f"<ol class='table-notes'>{items}</ol>"
+    kind = "data verdicts" if table.page_rows is not None else "data"
     return (
-        f"<table class='data' id='table-{escape(table.name)}'><thead><tr>{head}</tr></thead>"
-        f"<tbody>{rows}</tbody></table>{more}"
+        f"<table class='{kind}' id='table-{escape(table.name)}'><thead><tr>{head}</tr></thead>"
+        f"<tbody>{rows}</tbody></table>{notes}{more}"
     )
+
+
+def _heading(key: str, title: str, number: str) -> str:
+    """A section's opening: its anchor and its heading, numbered in a document with contents."""
+    mark = f"<span class='number'>{escape(number)}</span>" if number else ""
+    return f"<section id='{escape(key)}'><h2 id='h-{escape(key)}'>{mark}{escape(title)}</h2>"
 
 
 def _verdict(section: Section) -> str:
@@ -178,13 +208,14 @@ def _verdict(section: Section) -> str:
     return f"{listed}<p class='verdict'>{badge} Verdict: {escape(section.verdict)}</p>"
 
 
-def _section(section: Section, images: dict[str, bytes]) -> str:
-    parts = [f"<section id='{escape(section.key)}'><h2>{escape(section.title)}</h2>"]
+def _section(section: Section, images: dict[str, bytes], number: str = "") -> str:
+    parts = [_heading(section.key, section.title, number)]
     if section.intro:
         parts.append(f"<p>{escape(section.intro)}</p>")
     parts.append(_verdict(section))
-    if section.figures or section.warnings:
-        parts.append(_figures_table(section.figures, section.warnings))
+    shown = section.figures if section.show_figures else []
+    if shown or section.warnings:
+        parts.append(_figures_table(shown, section.warnings))
     if section.notes:
         items = "".join(f"<li>{escape(n)}</li>" for n in section.notes)
         parts.append(f"<ul class='note'>{items}</ul>")
@@ -215,12 +246,72 @@ def _section(section: Section, images: dict[str, bytes]) -> str:
     return "".join(parts)
 
 
+def _front(report: Report) -> str:
+    """The title page: what the document is, its verdict, the installation, the document
+    control (number, revision, date), the revision table and the signatures."""
+    f = report.front
+    if f is None:
+        return ""
+
+    def rows(items: list[tuple[str, str]]) -> str:
+        return "".join(
+            f"<tr><th>{escape(a)}</th><td class='text'>{escape(b)}</td></tr>" for a, b in items
+        )
+
+    parts = [
+        "<section class='title-page' id='title-page'>",
+        f"<h1>{escape(f.title)}</h1><p class='subtitle'>{escape(f.subtitle)}</p>",
+    ]
+    if f.verdict:
+        parts.append(f"<p class='verdict'>Verdict: {_status(f.status)} {escape(f.verdict)}</p>")
+    if f.rows:
+        parts.append(f"<h3>Installation</h3><table class='title-block'>{rows(f.rows)}</table>")
+    if f.document:
+        parts.append(f"<h3>Document</h3><table class='title-block'>{rows(f.document)}</table>")
+    if f.revisions:
+        body = "".join(
+            "<tr>" + "".join(f"<td class='text'>{escape(c)}</td>" for c in r) + "</tr>"
+            for r in f.revisions
+        )
+        parts.append(
+            "<h3>Revisions</h3><table class='revisions'><thead><tr><th>Revision</th>"
+            f"<th>Date</th><th>Description</th><th>By</th></tr></thead><tbody>{body}</tbody>"
+            "</table>"
+        )
+    if f.signatures:
+        body = "".join(
+            f"<tr><th>{escape(role)}</th><td class='text'>{escape(name)}</td><td></td></tr>"
+            for role, name in f.signatures
+        )
+        parts.append(
+            "<h3>Signatures</h3><table class='signatures'><thead><tr><th></th><th>Name</th>"
+            f"<th>Signature and date</th></tr></thead><tbody>{body}</tbody></table>"
+        )
+    if f.note:
+        parts.append(f"<p class='note'>{escape(f.note)}</p>")
+    parts.append("</section>")
+    return "".join(parts)
+
+
+def _contents(entries: list[tuple[str, str, str]]) -> str:
+    """The numbered contents list; the PDF printer fills in the pages (``.toc-page``)."""
+    items = "".join(
+        f"<li><a href='#{escape(key)}'>{escape(number)} {escape(title)}</a>"
+        f"<span class='toc-page' data-for='h-{escape(key)}'></span></li>"
+        for key, number, title in entries
+    )
+    return (
+        "<section class='contents-page' id='contents'><h2>Contents</h2>"
+        f"<ol class='contents'>{items}</ol></section>"
+    )
+
+
 def render_html(report: Report, images: dict[str, bytes]) -> str:
-    """The report as one self-contained HTML page: summary (key figures, plausibility
-    warnings, cross-checks, analyses not run), input, then every section with its figures,
-    plots (embedded PNG, links to the SVG and PNG files) and tables (links to their CSV
-    files). Values are shown as the sections formatted them, with their units; all text is
-    escaped and the page has no scripts.
+    """The report as one self-contained HTML page: a title page and a numbered contents list
+    where the report has them, the summary (key figures, plausibility warnings, cross-checks,
+    notes), the input, then every section with its figures, plots (embedded PNG, links to the
+    SVG and PNG files) and tables (links to their CSV files). Values are shown as the sections
+    formatted them, with their units; all text is escaped and the page has no scripts.
 
     Parameters
     ----------
@@ -240,7 +331,11 @@ def render_html(report: Report, images: dict[str, bytes]) -> str:
     >>> "<h1>&lt;V8&gt;</h1>" in page and "<script" not in page
     True
     """
-    nav = "".join(f"<a href='#{escape(s.key)}'>{escape(s.title)}</a>" for s in [*report.sections])
+    numbered = report.contents
+    keys = [("summary", "Summary"), ("inputs", report.inputs_title)]
+    keys += [(s.key, s.title) for s in report.sections]
+    numbers = {key: (f"{i + 1}" if numbered else "") for i, (key, _t) in enumerate(keys)}
+    nav = "".join(f"<a href='#{escape(k)}'>{escape(t)}</a>" for k, t in keys)
     inputs = "".join(
         f"<tr><th>{escape(label)}</th><td class='text'>{escape(value)}</td></tr>"
         for label, value in report.inputs
@@ -252,25 +347,42 @@ def render_html(report: Report, images: dict[str, bytes]) -> str:
     )
     notes = "".join(f"<li>{escape(n)}</li>" for n in report.notes)
     summary = [
-        "<section id='summary'><h2>Summary</h2>",
+        _heading("summary", "Summary", numbers["summary"]),
         _figures_table([f for f in report.key_figures() if f.headline], report.warnings()),
     ]
+    for table in report.summary_tables:
+        summary.append(f"<h3>{escape(table.title)}</h3>")
+        if table.caption:
+            summary.append(f"<p class='note'>{escape(table.caption)}</p>")
+        summary.append(_data_table(table))
     if checks:
         summary.append(f"<h3>Cross-checks run</h3><ul class='checks'>{check_items}</ul>")
     if notes:
-        summary.append(f"<h3>Not analysed</h3><ul class='note'>{notes}</ul>")
+        summary.append(f"<h3>{escape(report.notes_title)}</h3><ul class='note'>{notes}</ul>")
     summary.append("</section>")
-    body = "".join(_section(s, images) for s in report.sections)
+    body = "".join(_section(s, images, numbers[s.key]) for s in report.sections)
     title = escape(report.title)
+    left, right = report.header
+    meta = (
+        f"<meta name='crankdyn-running-header' content='{escape(left)}'>"
+        f"<meta name='crankdyn-running-header-right' content='{escape(right)}'>"
+        if left or right
+        else ""
+    )
+    contents = _contents([(k, numbers[k], t) for k, t in keys]) if numbered else ""
     return (
         "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
-        f"<title>crankdyn report: {title}</title><style>{_CSS}</style></head><body>"
+        f"{meta}<title>crankdyn report: {title}</title><style>{_CSS}</style></head>"
+        f"<body class='{'document' if report.front is not None else 'report'}'>"
         f"<header><h1>{title}</h1><p>crankdyn {escape(report.version)} report · "
         f"{escape(report.created)} · source: {escape(report.source or '-')}</p></header>"
-        f"<nav><a href='#summary'>Summary</a><a href='#inputs'>Input</a>{nav}</nav><main>"
+        f"<nav>{nav}</nav><main>"
+        + _front(report)
+        + contents
         + "".join(summary)
-        + f"<section id='inputs'><h2>Input</h2><table>{inputs}</table></section>"
+        + _heading("inputs", report.inputs_title, numbers["inputs"])
+        + f"<table>{inputs}</table></section>"
         + body
         + "</main><footer>Generated by crankdyn. Formulas and sources: "
         "<code>crankdyn docs</code> (theory and file-format pages).</footer></body></html>"

@@ -8,14 +8,14 @@ the units people read (``15.2 MPa``).
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from crankdyn.results import Result
 from crankdyn.summary import KeyFigure as SummaryFigure
 from crankdyn.summary import Summary, SummaryTable, verdict_cells, verdict_text, warnings_dict
 
-__all__ = ["Check", "KeyFigure", "Plot", "Report", "Section", "Table"]
+__all__ = ["Check", "FrontMatter", "KeyFigure", "Plot", "Report", "Section", "Table"]
 
 STATUSES = ("pass", "warn", "fail")
 
@@ -166,6 +166,11 @@ class Table:
     source : crankdyn.summary.SummaryTable or None
         The result's summary table the rows show (its CSV holds the values with the columns'
         keys), or None.
+    page_rows : list of list of str or None
+        Rows the page shows instead of ``rows`` (e.g. a long source text replaced by a
+        reference to :attr:`notes`); the CSV keeps ``rows``.
+    notes : list of str
+        Numbered notes under the table (``[1] ...``).
     """
 
     name: str
@@ -177,6 +182,8 @@ class Table:
     limit: int | None = None  # rows shown in the page (the page says how many more the CSV has)
     caption: str = ""  # a sentence under the title: what the rows are, how they are ordered
     source: SummaryTable | None = None  # a result's summary table (its CSV has the SI values)
+    page_rows: list[list[str]] | None = None  # what the page shows instead of rows
+    notes: list[str] = field(default_factory=list)  # numbered notes under the table
 
     @classmethod
     def of(cls, table: SummaryTable, limit: int | None = None) -> Table:
@@ -196,6 +203,11 @@ class Table:
             The same table for the report.
         """
         header, rows = table.cells(aligned=False)
+        if limit is not None and len(table.rows) > limit:
+            # the page's units from the rows it shows (36 modes' frequencies would put the
+            # first eight, 4-230 Hz, in kHz); the others are only counted on the page
+            header, shown = replace(table, rows=table.rows[:limit]).cells(aligned=False)
+            rows = shown + rows[limit:]
         return cls(
             table.key,
             table.title,
@@ -258,6 +270,9 @@ class Section:
         :class:`crankdyn.summary.Verdict` rows of the section's results.
     notes : list of str
         The results' notes.
+    show_figures : bool
+        Whether the page shows the section's key figures (a document whose summary shows
+        them once says False; summary.json has them either way).
     verdict : str or None
         The verdict of the rows in words (:func:`crankdyn.summary.verdict_text`: never a
         clean "passed" while the inputs carry warnings), or None without rows.
@@ -274,6 +289,7 @@ class Section:
     warnings: list[Any] = field(default_factory=list)  # crankdyn.plausibility.Warning objects
     verdicts: list[Any] = field(default_factory=list)  # crankdyn.summary.Verdict rows
     notes: list[str] = field(default_factory=list)  # the results' notes
+    show_figures: bool = True  # the page shows the key figures (summary.json has them anyway)
     verdict: str | None = None  # the rows' verdict in words, with the input warnings' count
 
     @property
@@ -367,6 +383,43 @@ class Section:
 
 
 @dataclass
+class FrontMatter:
+    """The title page of a document: what it is about, its verdict, its document control.
+
+    Parameters
+    ----------
+    title : str
+        What the document is (``"Torsional vibration calculation"``).
+    subtitle : str
+        Its subject (the project or installation).
+    verdict : str
+        The overall verdict in words (``"passed"``, ``"FAILED: 2 rows"``), or ``""``.
+    status : {"pass", "warn", "fail"} or None
+        The verdict's status.
+    rows : list of (str, str)
+        The installation's data (label, text).
+    document : list of (str, str)
+        Document number, revision, date, rule set (label, text).
+    revisions : list of tuple of str
+        The revision table: (revision, date, description, by) per row.
+    signatures : list of (str, str)
+        (role, name) of who prepared, checked and approved it.
+    note : str
+        A remark (e.g. where the document control would come from).
+    """
+
+    title: str
+    subtitle: str = ""
+    verdict: str = ""
+    status: str | None = None
+    rows: list[tuple[str, str]] = field(default_factory=list)
+    document: list[tuple[str, str]] = field(default_factory=list)
+    revisions: list[tuple[str, str, str, str]] = field(default_factory=list)
+    signatures: list[tuple[str, str]] = field(default_factory=list)
+    note: str = ""
+
+
+@dataclass
 class Report:
     """A whole report.
 
@@ -390,6 +443,16 @@ class Report:
         Further top-level summary.json lists.
     subject : str
         What the report is about: the summary's key for its title.
+    front : FrontMatter or None
+        A title page (printed on a page of its own), or None.
+    contents : bool
+        Whether the page has a numbered contents list (in the PDF with page numbers).
+    header : (str, str)
+        The running header of the printed pages: left and right text.
+    inputs_title, notes_title : str
+        The headings of the input table and of the notes.
+    summary_tables : list of Table
+        Tables the summary shows under its key figures.
     """
 
     title: str
@@ -401,6 +464,12 @@ class Report:
     notes: list[str] = field(default_factory=list)  # analyses that did not apply, and why
     data: dict[str, Any] = field(default_factory=dict)  # further top-level summary.json lists
     subject: str = "engine"  # what the report is about (the summary's key for its title)
+    front: FrontMatter | None = None  # a title page
+    contents: bool = False  # a numbered contents list
+    header: tuple[str, str] = ("", "")  # the running header of the printed pages
+    inputs_title: str = "Input"
+    notes_title: str = "Not analysed"
+    summary_tables: list[Table] = field(default_factory=list)
 
     def key_figures(self) -> list[KeyFigure]:
         """The headline numbers of every section, in section order.

@@ -14,7 +14,9 @@ from typing import TYPE_CHECKING, Any
 from crankdyn import __version__
 from crankdyn.constants import RPM
 from crankdyn.display import mass_elastic_tables, number
-from crankdyn.report.model import Plot, Report, Section, Table
+from crankdyn.project import Project
+from crankdyn.report.model import FrontMatter, Plot, Report, Section, Table
+from crankdyn.summary import Verdict, verdict_cells
 from crankdyn.tvc.evaluate import margins
 
 if TYPE_CHECKING:
@@ -122,7 +124,7 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
             ),
         ),
         ("Tachometer tolerance", f"±{number(100 * result.tachometer_tolerance, 3)} %"),
-        ("Rule set", f"{result.rule_title} (rules = {result.rules})"),
+        ("Rule set", result.rule_title),  # in words, no raw key (issue 32)
     ]
     if spec is not None:
         rows.append(("Barred-range margins", margins(spec)[0]))
@@ -131,14 +133,125 @@ def _inputs(result: TvcResult) -> list[tuple[str, str]]:
     return rows
 
 
+def _front(result: TvcResult, created: str) -> FrontMatter:
+    """The title page: the project's document control (``[project]``), the installation and
+    the overall verdict."""
+    model: Any = result.model
+    engine: Any = result.engine
+    project: Project | None = getattr(model, "project", None)
+    p = project or Project()
+    rows = list(p.rows())
+    rows.append(("Installation (model)", model.name))
+    if engine is not None:
+        c = engine.cylinders
+        firing = "-".join(map(str, c.firing_order))
+        rows.append(("Engine (model)", f"{engine.name}: {c.count} {c.layout}, firing {firing}"))
+    rows.append(("Rated speed n_0", f"{number(result.rated_speed * RPM, 6)} rpm"))
+    warnings = tuple(getattr(result, "warnings", ()) or ())
+    failed = len(result.failed())
+    if not result.verdicts:
+        verdict, status = "nothing checked (no component has a limit)", "warn"
+    elif failed:
+        verdict, status = f"FAILED: {failed} of {len(result.verdicts)} verdict rows", "fail"
+    elif warnings:
+        verdict, status = f"passed, with {len(warnings)} input warnings", "warn"
+    else:
+        verdict, status = f"passed: all {len(result.verdicts)} verdict rows", "pass"
+    document = [
+        ("Document", p.document or "-"),
+        ("Revision", p.revision or "-"),
+        ("Date", p.date or created),
+    ]
+    rules = getattr(result.spec, "rules", None)
+    if rules:
+        document.append(("Rule set", str(rules)))
+    return FrontMatter(
+        title="Torsional vibration calculation",
+        subtitle=p.project or model.name,
+        verdict=verdict,
+        status=status,
+        rows=rows,
+        document=document,
+        revisions=[(r.revision, r.date, r.description, r.by) for r in p.revisions],
+        signatures=p.signatures(),
+        note=(
+            ""
+            if project is not None and project.given
+            else "No [project] section: the document control (project, engine type, MCR, "
+            "revisions, signatures) is not given (crankdyn docs tvc)."
+        ),
+    )
+
+
+def short_clause(clause: str) -> str:
+    """A rule clause without its parenthesised remarks (what a value's reading rests on), for
+    the verdict table's rows; the numbered note under the table gives it whole.
+
+    Parameters
+    ----------
+    clause : str
+        The verdict row's clause (:attr:`crankdyn.summary.Verdict.clause`).
+
+    Returns
+    -------
+    str
+        The clause's references alone, ``", partly unverified"`` added where a remark said a
+        value was not verified against the rule text.
+
+    Examples
+    --------
+    >>> short_clause("τ_C: Pt 5 Ch 8 2.5 (not verified against the text: value as KR 2025 "
+    ...              "Pt 5 Ch 4 202.1 (the M68 formula)); C_D: Vol 2 Pt 5 Ch 1 3.1.1")
+    'τ_C: Pt 5 Ch 8 2.5; C_D: Vol 2 Pt 5 Ch 1 3.1.1, partly unverified'
+    >>> short_clause("[shaft] power_loss (P_KV, the catalogue)")
+    '[shaft] power_loss'
+    """
+    out: list[str] = []
+    depth = 0
+    for ch in clause:
+        if ch == "(":
+            depth += 1
+        elif ch == ")" and depth:
+            depth -= 1
+        elif depth == 0:
+            out.append(ch)
+    text = " ".join("".join(out).split()).replace(" ;", ";").replace(" ,", ",").strip(" ;,")
+    return text + (", partly unverified" if "not verified" in clause else "")
+
+
+def _verdict_table(verdicts: tuple[Verdict, ...]) -> Table:
+    """Every verdict row (:func:`crankdyn.summary.verdict_cells`; the CSV holds the whole rule
+    text); the page shows the clause's references (:func:`short_clause`) with a numbered note,
+    listed once under the table: the whole clause and the source of the limit."""
+    header, rows = verdict_cells(verdicts)
+    cited = list(dict.fromkeys((v.clause, v.source) for v in verdicts))
+    page = [
+        [*row[:-1], f"{short_clause(v.clause)} [{cited.index((v.clause, v.source)) + 1}]".strip()]
+        for row, v in zip(rows, verdicts, strict=True)
+    ]
+    notes = [
+        f"[{i + 1}] {clause + ': ' if clause else ''}{source}"
+        for i, (clause, source) in enumerate(cited)
+    ]
+    return Table(
+        "verdicts",
+        "Verdicts",
+        header=header,
+        rows=rows,
+        page_rows=page,
+        notes=notes,
+        caption="Rule: the clause and [n], the note under the table with the clause whole and "
+        "the source of the limit (with the values it was evaluated with).",
+    )
+
+
 def _verdict_section(result: TvcResult) -> Section:
-    """The verdict table: the calculation's key figures, every verdict row, the barred ranges
-    as found and as declared with why, the passages (the result's summary)."""
-    return Section.of(
+    """The verdict table: every verdict row, the barred ranges as found and as declared with
+    why, the passages (the result's summary; its key figures are the document's summary)."""
+    section = Section.of(
         "verdicts",
         "Verdict table",
         [result],
-        verdicts_name="verdicts",
         intro=(
             "Every component in every condition: its worst value on the resolved response "
             "(the resonance peaks refined to 0.1 %, the worst value to 1e-6), the limit and "
@@ -147,31 +260,52 @@ def _verdict_section(result: TvcResult) -> Section:
             "and the tachometer tolerance added), permitted or not and why."
         ),
     )
+    tables = [t for t in section.tables if t.name not in ("verdicts-verdicts", "conditions")]
+    section.tables = [_verdict_table(result.verdicts), *tables] if result.verdicts else tables
+    section.show_figures, section.notes = False, []  # the summary shows both once
+    return section
 
 
 def _model_sections(result: TvcResult) -> list[Section]:
-    """The mass-elastic system, the natural frequencies and mode shapes, the Campbell diagram."""
+    """The mass-elastic system (schematic and tables), the natural frequencies with the mode
+    shapes and relative vector sums, the Campbell diagram."""
     model: Any = result.model  # a TorsionModel
     modes: Any = result.modes  # a ModalResult
+    from crankdyn.plots.schematic import plot_schematic
+
     sections = [
         Section(
             key="mass-elastic",
             title="Mass-elastic system",
             intro=(
                 f"{model.name}: {len(model.masses)} masses, {len(model.shafts)} shaft(s), "
-                f"{len(model.gears)} gear mesh(es), {len(model.dampers)} damper(s)."
+                f"{len(model.gears)} gear mesh(es), {len(model.dampers)} damper(s). Units as "
+                "the class forms give them: inertia kg·m², stiffness MN·m/rad, lengths mm."
             ),
+            plots=[
+                Plot(
+                    "schematic",
+                    "Schematic of the mass-elastic system",
+                    plot_schematic(model),
+                    "Drawn from the model: block heights grow with log10 of the inertia; "
+                    "distributed shafts as one double line.",
+                )
+            ],
             tables=[
                 Table(name, title, header=header, rows=rows, caption=caption)
-                for name, title, header, rows, caption in mass_elastic_tables(model)
+                for name, title, header, rows, caption in mass_elastic_tables(model, elements=False)
             ],
         ),
         Section.of(
             "modes",
-            "Natural frequencies and mode shapes",
-            [modes],
-            intro="Undamped natural frequencies (elastic modes numbered from 1).",
+            "Natural frequencies, mode shapes and relative vector sums",
+            [modes] + ([result.mode_table] if result.mode_table is not None else []),
+            intro="Undamped natural frequencies (elastic modes numbered from 1); the lowest "
+            "modes' relative amplitudes per mass and nodes; per order the relative vector sum "
+            "of the cylinders' amplitudes with the firing order's phase angles.",
             plots=[Plot("mode-shapes", "Mode shapes", modes.plot(), "")],
+            # the six elastic modes whose shapes are tabled and drawn (and a rigid-body mode 0)
+            limits={"natural_frequencies": 6 + int(len(modes.mode) > 0 and modes.mode[0] == 0)},
         ),
     ]
     campbell: Any = result.campbell  # a CampbellResult, or None
@@ -181,47 +315,66 @@ def _model_sections(result: TvcResult) -> list[Section]:
                 "campbell",
                 "Campbell diagram",
                 [campbell],
-                intro="Engine orders and the orders of the excitation sources (propeller blade "
-                "orders, machine harmonics) against the natural frequencies.",
+                intro="Engine orders (half orders included) and the orders of the excitation "
+                "sources (propeller blade orders, machine harmonics) against the natural "
+                "frequencies; every order labelled at its end.",
                 plots=[Plot("campbell", "Campbell diagram", campbell.plot(), "")],
             )
         )
+    for s in sections:
+        s.show_figures = False  # the headline figures are the summary's
     return sections
 
 
 def _condition_sections(result: TvcResult) -> list[Section]:
-    """Every condition: its components against their limits (plot), verdicts, barred ranges."""
-    return [
-        Section.of(
+    """Every condition: every component against its limit, and per component the forced
+    response per order and synthesised against its limits (the rows and barred ranges are the
+    verdict table's)."""
+    out = []
+    for k, cond in enumerate(result.condition_results):
+        section = Section.of(
             f"condition-{k + 1}",
             f"Condition: {cond.name}",
             [cond],
             intro=(
-                f"{cond.description}; {number(cond.low * RPM, 6)}-{number(cond.high * RPM, 6)} rpm."
+                f"{cond.description}; {number(cond.low * RPM, 6)}-"
+                f"{number(cond.high * RPM, 6)} rpm. Its verdict rows and barred ranges are in "
+                "the verdict table."
             ),
             plots=[
                 Plot(
                     f"condition-{k + 1}",
-                    f"{cond.name}: components against their limits",
+                    f"{cond.name}: every component against its limit",
                     cond.plot(),
                     "Value / limit of every check on the resolved response; barred ranges "
-                    "shaded (red: not permitted).",
-                )
+                    "shaded (red: not permitted, amber: permitted).",
+                ),
+                Plot(
+                    f"condition-{k + 1}-orders",
+                    f"{cond.name}: forced response per order and synthesised",
+                    cond.plot_orders(),
+                    "Every component that bars speeds: the largest orders (major solid), the "
+                    "synthesised value (black) and its limits (red; transient dashed).",
+                ),
             ],
         )
-        for k, cond in enumerate(result.condition_results)
-    ]
+        section.tables, section.show_figures = [], False
+        for figure in section.figures:  # the conditions' table of the summary shows them
+            figure.headline = False
+        out.append(section)
+    return out
 
 
 def _event_sections(result: TvcResult) -> list[Section]:
-    """Every transient event (``[[tvc.event]]``): its time history with the limits (plot) and
-    its verdict rows."""
-    return [
-        Section.of(
+    """Every transient event (``[[tvc.event]]``): its time history with the limits (plot); its
+    verdict rows are the verdict table's, its key figures the events' table's (each once)."""
+    out = []
+    for k, event in enumerate(result.events):
+        section = Section.of(
             f"event-{k + 1}",
             f"Transient event: {event.name}",
             [event],
-            intro=f"{event.description}.",
+            intro=f"{event.description}. Its verdict rows are in the verdict table.",
             plots=[
                 Plot(
                     f"event-{k + 1}",
@@ -234,8 +387,11 @@ def _event_sections(result: TvcResult) -> list[Section]:
                 )
             ],
         )
-        for k, event in enumerate(result.events)
-    ]
+        section.tables, section.show_figures = [], False
+        for figure in section.figures:  # the verdict table and the events' table show them
+            figure.headline = False
+        out.append(section)
+    return out
 
 
 def _passage_section(result: TvcResult) -> Section:
@@ -266,9 +422,14 @@ def _passage_section(result: TvcResult) -> Section:
 
 
 def build_tvc_report(result: TvcResult) -> Report:
-    """The report of a :class:`~crankdyn.tvc.TvcResult` (module docstring): every section
-    renders a result's summary (the verdict rows, barred ranges, modes and critical speeds
-    are those the result declares, the same as the command line's).
+    """The report of a :class:`~crankdyn.tvc.TvcResult` (module docstring): a title page with
+    the document control of the model's ``[project]``, a numbered contents list, the summary
+    (the key figures and the conditions' table, once), the installation data, the
+    mass-elastic system (schematic, tables in the class forms' units), the natural frequencies
+    with mode-shape tables and relative vector sums, the Campbell diagram, the verdict table,
+    every condition's plots and the passages. Every section renders a result's summary (the
+    verdict rows, barred ranges, modes and critical speeds are those the result declares, the
+    same as the command line's).
 
     Parameters
     ----------
@@ -283,21 +444,35 @@ def build_tvc_report(result: TvcResult) -> Report:
         (:func:`summary_lists`); write it with :func:`crankdyn.report.write.write_report`.
     """
     model: Any = result.model  # a TorsionModel
+    created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
     sections = [
-        _verdict_section(result),
         *_model_sections(result),
+        _verdict_section(result),
         *_condition_sections(result),
         *_event_sections(result),
         _passage_section(result),
     ]
+    front = _front(result, created)
+    project: Project = getattr(model, "project", None) or Project()
+    left = " · ".join(x for x in ("TVC", project.document, project.project or model.name) if x)
+    right = " · ".join(
+        x for x in (f"Rev. {project.revision}" if project.revision else "", project.date) if x
+    )
+    tables = [Table.of(t) for t in result.summary().tables if t.key == "conditions"]
     return Report(
         title=f"Torsional vibration calculation: {model.name}",
         inputs=_inputs(result),
         sections=sections,
         source=model.source,
         version=__version__,
-        created=_dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC"),
+        created=created,
         notes=list(result.notes),
         data=summary_lists(result),
         subject="installation",
+        front=front,
+        contents=True,
+        header=(left, right),
+        inputs_title="Installation data and settings",
+        notes_title="Notes",
+        summary_tables=tables,
     )

@@ -62,7 +62,7 @@ def write_report(
     """
     from crankdyn.plots.render import render_figures
 
-    taken: set[str] = set()
+    taken: set[str] = {t.name for t in report.summary_tables}
     for section in report.sections:  # one CSV per table: a name taken before gets its section's
         for table in section.tables:
             if table.name in taken:
@@ -82,9 +82,8 @@ def write_report(
             renderer=renderer,
         )
         images: dict[str, bytes] = {p.name: png for p, png in zip(plots, pngs, strict=True)}
-        for section in report.sections:
-            for table in section.tables:
-                (tmp / "data" / f"{table.name}.csv").write_text(table.csv_text(), encoding="utf-8")
+        for table in [*report.summary_tables, *(t for s in report.sections for t in s.tables)]:
+            (tmp / "data" / f"{table.name}.csv").write_text(table.csv_text(), encoding="utf-8")
         (tmp / "data" / "key_figures.csv").write_text(report.key_figures_csv(), encoding="utf-8")
         summary = report.summary()
         summary["sections"] = {s.key: s.json for s in report.sections if s.json}

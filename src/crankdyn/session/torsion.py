@@ -24,6 +24,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.harmonics import HarmonicResult
     from crankdyn.torsion.holzer import HolzerTable, ResidualCurve
     from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.mode_table import ModeTable
     from crankdyn.torsion.response import RelativeAngle, ResponseResult
     from crankdyn.torsion.transient import TransientResult
     from crankdyn.tvc import ConditionResult, TvcResult, TvcSpec
@@ -507,6 +508,29 @@ class TorsionAnalyses(SessionCore):
             )
 
         return self._cached(key, compute)
+
+    def mode_table(self) -> ModeTable:
+        """The lowest elastic modes' relative amplitudes per mass and nodes, and the relative
+        vector sums of the engine's orders with its firing order
+        (:func:`crankdyn.torsion.mode_table.excited_mode_table`; Ker Wilson vol. 2, Nestorides
+        1958 ch. 7): the tables of a TVC's modes section.
+
+        Returns
+        -------
+        crankdyn.torsion.mode_table.ModeTable
+            The tables (no vector sums where the model has no cylinders or their firing
+            angles are unknown).
+        """
+        from crankdyn.torsion.mode_table import excited_mode_table, mode_table
+
+        model = self._need_model()
+
+        def compute() -> ModeTable:
+            if not model.cylinder_dofs:
+                return mode_table(self.modes, model, self.orders)
+            return excited_mode_table(self.modes, model, self.excitation(), self.orders)
+
+        return self._cached("mode_table", compute)
 
     def campbell(self) -> CampbellResult:
         """Critical speeds in the speed range with the major orders marked (undetermined

@@ -194,6 +194,11 @@ class CampbellResult(Result):
     high: float = scalar("speed_max_rpm", "Operating range to", "rpm", RPM)
     model_name: str = scalar("model", "Model", "", summary=False)
     notes: tuple[str, ...] | None = scalar("notes", "Notes", "")
+    order_sources: tuple[str, ...] | None = scalar(
+        "order_sources", "What excites each order", "", default=None, summary=False
+    )
+    """Per order, ``"engine"`` and/or the sources acting at it (:func:`crankdyn.torsion.
+    sources.order_sources`); None without excitation points."""
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
     FIGURES = (
@@ -415,6 +420,7 @@ def campbell(
         high=rng.high,
         model_name=model.name,
         notes=tuple(notes) or None,
+        order_sources=None if sources is None else tuple(sources),
     )
 
 

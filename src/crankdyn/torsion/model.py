@@ -50,6 +50,7 @@ from crankdyn.torsion.topology import Structure, model_structure, reference_mass
 if TYPE_CHECKING:
     from crankdyn.engine.model import Engine
     from crankdyn.plausibility import PlausibilityWarning
+    from crankdyn.project import Project
     from crankdyn.torsion.campbell import OperatingRange
     from crankdyn.torsion.dampers import Damper
     from crankdyn.torsion.excitation_spec import ExcitationSpec
@@ -259,6 +260,9 @@ class TorsionModel:
     tvc : crankdyn.tvc.TvcSpec or None
         The settings of a torsional vibration calculation (:class:`crankdyn.tvc.TvcSpec`,
         ``[tvc]``), or None (the defaults).
+    project : crankdyn.project.Project or None
+        The document control of the installation (``[project]``: project, yard, engine type,
+        revisions, signatures) for the TVC's title page, or None; no calculation reads it.
     input_warnings : tuple of crankdyn.plausibility.InputWarning
         The values of the file(s) the model was read from that lie outside the plausible
         range of their role (:mod:`crankdyn.io.plausibility`); every result of an analysis
@@ -308,6 +312,7 @@ class TorsionModel:
     sources: tuple[HarmonicSource | EngineSource, ...] = ()
     engine: Engine | None = field(default=None, compare=False, repr=False)
     tvc: TvcSpec | None = field(default=None, compare=False, repr=False)
+    project: Project | None = field(default=None, compare=False, repr=False)
     input_warnings: tuple[PlausibilityWarning, ...] = field(default=(), compare=False, repr=False)
 
     def __post_init__(self) -> None:

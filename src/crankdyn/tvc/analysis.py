@@ -494,6 +494,17 @@ def _campbell(
         return None
 
 
+def _modes(model: TorsionModel, base: Any, orders: np.ndarray) -> dict[str, Any]:
+    """The natural modes of ``model`` and their mode-shape table with the relative vector sums
+    of the excitation ``base``'s firing order (:mod:`crankdyn.torsion.mode_table`), as the
+    result's fields ``modes`` and ``mode_table``."""
+    from crankdyn.torsion.modal import natural_modes
+    from crankdyn.torsion.mode_table import excited_mode_table
+
+    modes = natural_modes(model)
+    return {"modes": modes, "mode_table": excited_mode_table(modes, model, base, orders)}
+
+
 def tvc(
     model: TorsionModel,
     engine: Engine | None = None,
@@ -587,7 +598,6 @@ def tvc(
     >>> f"{row.worst / 1e6:.3f} MPa <= {row.limit / 1e6:.3f} MPa at {row.speed:.3f} rad/s"
     '30.558 MPa <= 45.174 MPa at 365.148 rad/s'
     """
-    from crankdyn.torsion.modal import natural_modes
     from crankdyn.torsion.sources import default_orders
 
     spec = spec or getattr(model, "tvc", None) or TvcSpec()
@@ -637,7 +647,7 @@ def tvc(
         events=tuple(found_events),
         model=model,
         engine=engine,
-        modes=natural_modes(model),
+        **_modes(model, base, run.orders),
         campbell=diagram,
         spec=spec,
         condition_results=tuple(condition_results),

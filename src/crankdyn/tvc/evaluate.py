@@ -182,21 +182,18 @@ def _found(r: ResponseResult, checks: Sequence[Check], spec: TvcSpec, n0: float)
 
 
 def _declared_how(found: Found, spec: TvcSpec) -> str:
-    """How the found range became the declared one: ``found 789.4-790.3 rpm, widened by the
-    2 % tachometer tolerance to 773.6-806.1 rpm``."""
-    ex = found.exceedance
+    """How the found range became the declared one, in words without its ends (the table's
+    columns give them once, from the range itself): ``declared: the range found, widened by the
+    2 % tachometer tolerance``."""
     society = spec.ruleset
-    words = [f"found {ex.start * RPM:.1f}-{ex.end * RPM:.1f} rpm"]
     widened = []
     if society.widening.value != "none" and found.check.barred_upper is not None:
         widened.append(f"to {society.title}'s least range ({society.widening.clause.clause})")
     if spec.tolerance:
         widened.append(f"by the {spec.tolerance * 100:g} % tachometer tolerance")
     if widened:
-        words.append(
-            f"widened {' and '.join(widened)} to {found.start * RPM:.1f}-{found.end * RPM:.1f} rpm"
-        )
-    return ", ".join(words)
+        return f"declared: the range found, widened {' and '.join(widened)}"
+    return "declared: the range found"
 
 
 def _barred_range(

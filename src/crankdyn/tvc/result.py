@@ -29,6 +29,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.campbell import CampbellResult
     from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.modal import ModalResult
+    from crankdyn.torsion.mode_table import ModeTable
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.tvc.checks import Check
@@ -269,6 +270,24 @@ class ConditionResult(Result):
 
         return plot_condition(self, fig=fig)
 
+    def plot_orders(self, fig: Figure | None = None) -> Figure:
+        """Every component that bars speeds: its quantity per order and synthesised against
+        its limits (:func:`crankdyn.plots.tvc.plot_condition_orders`).
+
+        Parameters
+        ----------
+        fig : matplotlib.figure.Figure or None
+            A figure to draw into; None makes a new one.
+
+        Returns
+        -------
+        matplotlib.figure.Figure
+            The figure.
+        """
+        from crankdyn.plots.tvc import plot_condition_orders
+
+        return plot_condition_orders(self, fig=fig)
+
     def plot_stress_limits(self, fig: Figure | None = None) -> Figure:
         """The shafts checked by IACS UR M68: stress against tau_C and tau_T with the barred
         ranges (:func:`crankdyn.plots.torsion_response.plot_stress_limits`).
@@ -405,6 +424,9 @@ class TvcResult(Result):
         The engine whose cylinders excite it, or None.
     modes : ModalResult or None
         The model's natural modes (:func:`crankdyn.torsion.modal.natural_modes`).
+    mode_table : ModeTable or None
+        The lowest modes' relative amplitudes and the relative vector sums per order
+        (:func:`crankdyn.torsion.mode_table.excited_mode_table`).
     campbell : CampbellResult or None
         The Campbell diagram over the conditions' speeds
         (:func:`crankdyn.torsion.campbell.campbell`), None where it could not be drawn.
@@ -458,6 +480,7 @@ class TvcResult(Result):
     model: TorsionModel | None = field(default=None, repr=False, compare=False)
     engine: Engine | None = field(default=None, repr=False, compare=False)
     modes: ModalResult | None = field(default=None, repr=False, compare=False)
+    mode_table: ModeTable | None = field(default=None, repr=False, compare=False)
     campbell: CampbellResult | None = field(default=None, repr=False, compare=False)
     spec: TvcSpec | None = field(default=None, repr=False, compare=False)
     condition_results: tuple[ConditionResult, ...] = field(default=(), repr=False, compare=False)
@@ -521,15 +544,17 @@ class TvcResult(Result):
         return list(self.verdicts)
 
     def summary_tables(self) -> list[SummaryTable]:
-        """The barred speed ranges (as found and as declared, and why), the transient events
-        and the passages.
+        """The conditions (speed range, verdict rows, failed, smallest margin and where, barred
+        ranges), the barred speed ranges (as found and as declared, and why), the transient
+        events and the passages.
 
         Returns
         -------
         list of crankdyn.summary.SummaryTable
             The tables.
         """
-        out = [barred_table(self.barred_ranges)] if self.barred_ranges else []
+        out = [_conditions_table(self.conditions)] if self.conditions else []
+        out += [barred_table(self.barred_ranges)] if self.barred_ranges else []
         events = self.event_table()
         if events is not None:
             out.append(events)
@@ -679,6 +704,42 @@ class TvcResult(Result):
         """
         margins = [v.margin for v in self.verdicts if np.isfinite(v.margin)]
         return min(margins) if margins else float("nan")
+
+
+def _conditions_table(conditions: tuple[ConditionResult, ...]) -> SummaryTable:
+    """One row per condition: its speed range (rpm), verdict rows, rows failed, smallest
+    margin and its component, barred ranges declared."""
+    rows = []
+    for c in conditions:
+        worst = _worst(c)
+        rows.append(
+            (
+                c.name,
+                round(c.low * RPM, 1),
+                round(c.high * RPM, 1),
+                len(c.verdicts),
+                sum(1 for v in c.verdicts if not v.passed),
+                None if worst is None else worst[0],
+                "-" if worst is None else worst[1].rsplit(", ", 1)[0],
+                len(c.barred_ranges),
+            )
+        )
+    return SummaryTable(
+        "conditions",
+        "Conditions",
+        (
+            SummaryColumn("condition", "Condition"),
+            SummaryColumn("from_rpm", "From", "rpm"),
+            SummaryColumn("to_rpm", "To", "rpm"),
+            SummaryColumn("rows", "Verdict rows"),
+            SummaryColumn("failed", "Failed"),
+            SummaryColumn("smallest_margin", "Smallest margin"),
+            SummaryColumn("where", "Smallest margin at"),
+            SummaryColumn("barred_ranges", "Barred ranges"),
+        ),
+        tuple(rows),
+        "Every running condition: its rows of the verdict table; margin = 1 - worst / limit.",
+    )
 
 
 def _worst(result: TvcResult | ConditionResult | EventCondition) -> tuple[float, str] | None:

@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from crankdyn.display import mass_elastic_tables, number, shaft_kind
-from crankdyn.report.model import Section, Table
+from crankdyn.report.model import Plot, Section, Table
 from crankdyn.report.sections import Context, NotApplicable
 
 
@@ -38,6 +38,8 @@ def build(ctx: Context) -> Section:
     model = ctx.engine.torsion
     if model is None:
         raise NotApplicable("the engine file has no [torsion] model")
+    from crankdyn.plots.schematic import plot_schematic
+
     ratios = np.asarray(model.speed_ratios, dtype=float)
     masses, shafts = model.masses, model.shafts
     geometry = [s.geometry for s in shafts]
@@ -60,6 +62,14 @@ def build(ctx: Context) -> Section:
             f"{number(total)} kg·m² (reflected to the reference speed)."
         ),
         tables=tables,
+        plots=[
+            Plot(
+                "torsion-schematic",
+                "Schematic of the mass-elastic system",
+                plot_schematic(model),
+                "Drawn from the model: block heights grow with log10 of the inertia.",
+            )
+        ],
         json={
             "torsion_model": {
                 "name": model.name,
