@@ -2,13 +2,15 @@
 writes that a person and crankdyn read again (the design search's chosen design, ``best.toml``).
 
 The writer covers what crankdyn's files hold: tables, arrays of tables, strings, integers,
-floats (finite; written in their shortest round-trip form), booleans and arrays of these. A
+floats (finite; written in their shortest round-trip form), booleans, dates and times (a
+project's date) and arrays of these. A
 table's plain keys come first, then its sub-tables (``[a.b]``) and arrays of tables
 (``[[a.c]]``), so that ``tomllib.loads(dumps(d)) == d`` (TOML 1.0, https://toml.io/en/v1.0.0).
 """
 
 from __future__ import annotations
 
+import datetime as _dt
 import json
 import math
 import re
@@ -34,6 +36,8 @@ def _value(value: Any) -> str:
         return repr(value)
     if isinstance(value, str):
         return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, _dt.date | _dt.time):  # TOML's dates and times (RFC 3339), bare
+        return value.isoformat()
     if isinstance(value, list):
         return "[" + ", ".join(_value(v) for v in value) + "]"
     if isinstance(value, dict):
@@ -81,7 +85,9 @@ def dumps(document: dict[str, Any]) -> str:
     Examples
     --------
     >>> import tomllib
-    >>> doc = {"name": "x", "a": {"b": [1, 2.5]}, "m": [{"n": "p"}, {"n": "q"}]}
+    >>> import datetime
+    >>> doc = {"name": "x", "a": {"b": [1, 2.5]}, "m": [{"n": "p"}, {"n": "q"}],
+    ...        "d": datetime.date(2026, 11, 29)}
     >>> tomllib.loads(dumps(doc)) == doc
     True
     """
