@@ -78,6 +78,9 @@ def test_the_examples_give_speeds_and_lengths():
 @pytest.mark.parametrize("kind, name, path", SPEEDS)
 def test_a_bare_speed_is_refused(kind, name, path):
     document, number = _with(load_toml(example_path(name, kind)), path)
+    if number == 0.0:  # a bare 0 is the same speed in every unit: read as it is
+        _parse(kind, name, document)
+        return
     with pytest.raises(InputError) as exc:
         _parse(kind, name, document)
     text = str(exc.value)

@@ -78,6 +78,8 @@ def test_stiffness_table_temperature_factor_and_model_torque():
         "nominal_torque_Nm": 20e3,
         "maximum_torque_Nm": 50e3,
         "vibratory_torque_Nm": 5e3,
+        "maximum_torque_1_Nm": None,
+        "maximum_torque_2_Nm": None,
         "power_loss_W": 800.0,
     }
     with pytest.raises(InputError, match="outside the coupling's stiffness table"):
