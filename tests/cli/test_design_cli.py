@@ -34,6 +34,9 @@ def test_design_writes_the_table_the_chosen_design_and_its_tvc_report(tmp_path, 
     assert rows[0].startswith("candidate,case_id,status,coupling,firing_order,")
     assert len(rows) == 13  # 12 candidates and the header
     assert (out / "tvc" / "index.html").is_file()
+    page = (out / "summary" / "index.html").read_text(encoding="utf-8")
+    assert "Best designs" in page and "Margin of every verdict row" in page
+    assert (out / "summary" / "plots" / "candidates.png").is_file()
     # the chosen design is a model file crankdyn reads (its TVC passes: it was feasible)
     tvc = cli("tvc", out / "best.toml", "-o", tmp_path / "tvc", "--no-pdf", "--no-passage")
     assert tvc.status == 0, tvc

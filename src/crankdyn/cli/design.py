@@ -114,8 +114,8 @@ def design_command(
     by default every verdict row must pass and the worst margin is maximised. Every candidate
     is a case of the study runner (a local pool, or a Dask cluster with --scheduler),
     journalled in DIR, so a rerun resumes. Writes DIR/results.csv (every candidate),
-    DIR/best.toml (the chosen design, which crankdyn tvc reads), DIR/tvc/ (its TVC report) and
-    DIR/pareto.png (several objectives).
+    DIR/summary/index.html, DIR/best.toml (the chosen design, which crankdyn tvc reads),
+    DIR/tvc/ (its TVC report) and DIR/pareto.png (several objectives).
 
     Exit status: 0 when a feasible design was found, 1 when none was, 2 on an error."""
     if list_:
@@ -159,7 +159,8 @@ def design_command(
     if kept and not result.computed:
         click.echo(f"{kept} candidates evaluated in an earlier run are kept", err=True)
     blocks: list[Any] = summary_blocks(result, f"Design search: {spec.study.name}")
-    written = [folder / "results.csv", *([folder / "best.toml"] if result.found else [])]
+    written = [folder / "results.csv", folder / "summary" / "index.html"]
+    written += [folder / "best.toml"] if result.found else []
     if result.found and not no_report:
         written.append(_report(folder, result.tvc))
     Output("table").write(blocks=blocks)

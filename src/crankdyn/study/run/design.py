@@ -14,6 +14,9 @@ outputs, in the folder ``out``::
     best.toml                   the chosen design as a file ``crankdyn tvc`` reads (with the
                                 files the base names, beside it)
     pareto.png                  the candidates and the Pareto front (several objectives)
+    summary/index.html          the search's summary as a crankdyn report: key figures, the
+                                chosen design's verdict rows, the best designs with their margin
+                                per verdict row, the Pareto front, the sensitivities, the plot
 """
 
 from __future__ import annotations
@@ -35,7 +38,7 @@ from crankdyn.study.docpath import apply_values, referenced_files
 from crankdyn.study.figures import FIGURES, CaseContext
 from crankdyn.study.run.runner import CaseRunner, Progress
 
-__all__ = ["BEST_DESIGNS", "candidate_document", "run_design", "write_design"]
+__all__ = ["BEST_DESIGNS", "candidate_document", "run_design", "write_design", "write_summary"]
 
 BEST_DESIGNS = 3
 """The best designs whose verdict rows are tabled (each one analysed again in this process)."""
@@ -317,8 +320,80 @@ def write_design(result: DesignResult, out: Path) -> list[Path]:
             f"# {_text(space, best)}\n# base: {base.source}\n"
         )
         written.append(write_text(out / "best.toml", header + dumps(document), force=True))
+    written.append(write_summary(result, out))
     if len(space.objectives) > 1:
         image = io.BytesIO()
         result.plot().savefig(image, format="png", dpi=120)
         written.append(write_bytes(out / "pareto.png", image.getvalue(), force=True))
     return written
+
+
+def write_summary(result: DesignResult, out: Path) -> Path:
+    """The search's summary as a crankdyn report (``summary/index.html``): one section that
+    renders the result's summary (its key figures, verdict rows, tables, notes) and the plot of
+    the candidates (with the Pareto front of several objectives).
+
+    Parameters
+    ----------
+    result : crankdyn.design.result.DesignResult
+        The search's result.
+    out : pathlib.Path
+        The output folder.
+
+    Returns
+    -------
+    pathlib.Path
+        The summary's index.html.
+    """
+    import datetime as _dt
+
+    from crankdyn import __version__
+    from crankdyn.plots.render import collector_paused
+    from crankdyn.report.model import Plot, Report, Section
+    from crankdyn.report.write import write_report
+
+    space = result.space
+    assert space is not None  # a search's result
+    several = len(space.objectives) > 1
+    with collector_paused():  # the figure lives to the end of the writing
+        plot = Plot(
+            "candidates",
+            "Candidates and Pareto front" if several else "Objective of every candidate",
+            result.plot(),
+            caption="feasible and infeasible candidates"
+            + (", the Pareto front joined" if several else ", in the order evaluated"),
+        )
+        section = Section.of(
+            "design",
+            "Design search",
+            [result],
+            intro=(
+                f"{result.evaluated} candidates of the design space evaluated on the study "
+                f"runner ({result.method}); the chosen design is written to best.toml, its "
+                "full TVC report to tvc/index.html."
+            ),
+            plots=[plot],
+            json=result.to_dict(),
+        )
+        report = Report(
+            title=f"Design search: {space.study.name}",
+            inputs=[
+                ("Base", space.study.base.source),
+                *((space.name_of(p.key), _described(space, p.key)) for p in space.parameters),
+            ],
+            sections=[section],
+            source=space.source,
+            version=__version__,
+            created=_dt.datetime.now().strftime("%Y-%m-%d %H:%M"),
+        )
+        return write_report(report, out / "summary", force=True) / "index.html"
+
+
+def _described(space: DesignSpace, key: str) -> str:
+    """A choice's values or a range's bounds, for the summary's inputs."""
+    p = space.parameter(key)
+    if p.distribution is not None:
+        low, high = p.distribution.args
+        return f"{low:g} to {high:g} {p.unit or ''}".rstrip()
+    names = p.names or tuple(str(v) for v in p.values or ())
+    return ", ".join(names)
