@@ -118,3 +118,17 @@ def test_the_lanchester_formulas_against_the_closed_form_receptance():
     zeta = r.x / (2.0 * j * OMEGA_N)
     assert zeta == pytest.approx(1.0 / math.sqrt(2.0 * (1.0 + mu) * (2.0 + mu)), rel=1e-3)
     assert r.fun * big_k == pytest.approx(1.0 + 2.0 / mu, rel=1e-6)
+
+
+def test_a_second_run_of_the_same_seeded_search_reads_every_candidate_back(tmp_path):
+    """Seeded differential evolution proposes the same candidates again, which the journal
+    holds: the rerun computes none and finds the same best (resumable)."""
+    space = load_design(DATA / "lanchester_design.toml")
+    ran, best = [], []
+    for _ in range(2):
+        with CaseRunner(space.study, tmp_path / "search", workers=1) as runner:
+            _, candidates, _ = run_search(space, runner.run)
+            ran.append(runner.ran)
+        best.append((candidates[0].case.case_id, candidates[0].objectives))
+    assert ran[0] == len(candidates) and ran[1] == 0
+    assert best[0] == best[1]
