@@ -323,3 +323,28 @@ def test_passage_with_the_engines_torque_speed_curve(geared):
         TvcSpec(engine_torque=1.0, engine_torque_curve=(speeds, torques))
     with pytest.raises(InputError, match="increasing positive speeds"):
         TvcSpec(engine_torque_curve=(speeds[::-1], torques))
+
+
+def test_resolved_worst_takes_a_constant_limit():
+    """A limit that gives one number for every speed (a maker's constant torque): the same
+    worst as the limit given per speed (a constant limit failed in the refinement)."""
+    from crankdyn.torsion.excitation import UniformExcitation
+    from crankdyn.torsion.model import Mass, Shaft, TorsionModel
+    from crankdyn.torsion.sweep import forced_response
+    from crankdyn.tvc.curves import resolved_worst
+
+    model = TorsionModel(
+        (Mass("a", 1.0, cylinders=(1,)), Mass("b", 3.0)),
+        (Shaft(("a", "b"), stiffness=1e5, loss_factor=0.1),),
+    )
+    r = forced_response(
+        model, UniformExcitation(100.0, [0.0]), np.linspace(100, 400, 31), [1.0, 2.0]
+    )
+
+    def torque(x):
+        return x.synthesized_shaft_torque[:, 0]
+
+    per_speed = resolved_worst(r, torque, lambda w: np.full(np.size(w), 1000.0), [(170.0, 200.0)])
+    constant = resolved_worst(r, torque, lambda w: 1000.0, [(170.0, 200.0)])
+    assert per_speed is not None and constant == per_speed
+    assert per_speed[0] == pytest.approx(750.0, abs=0.01)  # T J_2 / (J_1 + J_2) / eta

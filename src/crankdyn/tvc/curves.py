@@ -369,7 +369,7 @@ def resolved_worst(
         values = np.concatenate([values, np.asarray(curve(result.at(extra)), dtype=float)])[first]
     inside = (speed >= low * (1 - 1e-12)) & (speed <= high * (1 + 1e-12))
     speed, values = speed[inside], values[inside]
-    limits = np.asarray(limit(speed), dtype=float)
+    limits = _limit_at(limit, speed)
     if result.evaluator is not None and speed.size >= 3:
         for _ in range(_ROUNDS):
             with np.errstate(divide="ignore", invalid="ignore"):
@@ -379,7 +379,7 @@ def resolved_worst(
                 break
             speed, first = merge_speeds(speed, new)
             values = np.concatenate([values, np.asarray(curve(result.at(new)), dtype=float)])[first]
-            limits = np.concatenate([limits, np.asarray(limit(new), dtype=float)])[first]
+            limits = np.concatenate([limits, _limit_at(limit, new)])[first]
     keep = np.isfinite(limits) & (limits > 0.0)
     for a, b in excluded:
         keep &= ~((speed > a) & (speed < b))
@@ -389,3 +389,11 @@ def resolved_worst(
         ratio = np.where(keep, values / np.where(keep, limits, 1.0), -np.inf)
     k = int(np.argmax(ratio))
     return float(values[k]), float(limits[k]), float(speed[k])
+
+
+def _limit_at(
+    limit: Callable[[NDArray[np.float64]], ArrayLike], speed: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """A limit's values at the speeds (rad/s), one per speed: a constant limit (a maker's
+    torque, a rule value above 0.8 n_0) may give one number for every speed."""
+    return np.broadcast_to(np.asarray(limit(speed), dtype=float), speed.shape).copy()
