@@ -5,12 +5,16 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+from numpy.typing import NDArray
+
 from crankdyn.errors import InputError
 
 __all__ = [
     "SEVERITIES",
     "SPEED_KINDS",
     "finite",
+    "linear_rise",
     "mass_name",
     "nonnegative",
     "positive",
@@ -122,3 +126,33 @@ def mass_name(value: object) -> str:
     if not isinstance(value, str) or not value.strip():
         raise InputError("expected a mass name", key="at", value=value)
     return value
+
+
+def linear_rise(t: NDArray[np.float64], start: float, rise_time: float) -> NDArray[np.float64]:
+    """The fraction of a torque that rises linearly from ``start`` over ``rise_time``.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Times (s).
+    start : float
+        The start of the rise (s).
+    rise_time : float
+        Its length (s), >= 0 (0: a step at ``start``).
+
+    Returns
+    -------
+    numpy.ndarray
+        0 before ``start``, 1 after ``start + rise_time``, linear between.
+
+    Examples
+    --------
+    >>> linear_rise(np.array([0.0, 1.5, 2.0, 3.0]), 1.0, 1.0).tolist()
+    [0.0, 0.5, 1.0, 1.0]
+    >>> linear_rise(np.array([0.5, 1.0]), 1.0, 0.0).tolist()
+    [0.0, 1.0]
+    """
+    t = np.asarray(t, dtype=float)
+    if rise_time == 0.0:
+        return np.where(t >= start, 1.0, 0.0)
+    return np.clip((t - start) / rise_time, 0.0, 1.0)

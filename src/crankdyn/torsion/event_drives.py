@@ -14,6 +14,7 @@ from crankdyn.errors import InputError
 from crankdyn.torsion.event_base import (
     SPEED_KINDS,
     finite,
+    linear_rise,
     nonnegative,
     positive,
     severity_of,
@@ -117,10 +118,7 @@ class ClutchEngagement:
         numpy.ndarray
             0 before ``start``, ``max_torque`` after the rise, linear between.
         """
-        t = np.asarray(t, dtype=float)
-        if self.rise_time == 0.0:
-            return np.where(t >= self.start, self.max_torque, 0.0)
-        return self.max_torque * np.clip((t - self.start) / self.rise_time, 0.0, 1.0)
+        return self.max_torque * linear_rise(t, self.start, self.rise_time)
 
     def breakpoints(self) -> tuple[float, ...]:
         """The start and the end of the rise (s).

@@ -40,6 +40,7 @@ from crankdyn.torsion.event_base import (
     SEVERITIES,
     SPEED_KINDS,
     finite,
+    linear_rise,
     mass_name,
     nonnegative,
     positive,
@@ -142,10 +143,7 @@ class StepTorque:
         numpy.ndarray
             0 before ``start``, the torque after ``start + rise_time``, linear between.
         """
-        t = np.asarray(t, dtype=float)
-        if self.rise_time == 0.0:
-            return np.where(t >= self.start, self.value, 0.0)
-        return self.value * np.clip((t - self.start) / self.rise_time, 0.0, 1.0)
+        return self.value * linear_rise(t, self.start, self.rise_time)
 
     def breakpoints(self) -> tuple[float, ...]:
         """The start and the end of the rise (s).
