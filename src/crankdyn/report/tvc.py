@@ -16,7 +16,7 @@ from crankdyn.constants import RPM
 from crankdyn.display import mass_elastic_tables, number
 from crankdyn.project import Project
 from crankdyn.report.model import FrontMatter, Plot, Report, Section, Table
-from crankdyn.summary import Verdict, verdict_cells
+from crankdyn.summary import Verdict, verdict_cells, verdict_status
 from crankdyn.tvc.evaluate import margins
 
 if TYPE_CHECKING:
@@ -147,24 +147,20 @@ def _front(result: TvcResult, created: str) -> FrontMatter:
         firing = "-".join(map(str, c.firing_order))
         rows.append(("Engine (model)", f"{engine.name}: {c.count} {c.layout}, firing {firing}"))
     rows.append(("Rated speed n_0", f"{number(result.rated_speed * RPM, 6)} rpm"))
-    warnings = tuple(getattr(result, "warnings", ()) or ())
-    failed = len(result.failed())
-    if not result.verdicts:
+    failed, count = len(result.failed()), len(result.verdicts)
+    said = result.summary().verdict  # the verdict's words are the summary's (crankdyn.summary)
+    if not result.verdicts or said is None:
         verdict, status = "nothing checked (no component has a limit)", "warn"
-    elif failed:
-        verdict, status = f"FAILED: {failed} of {len(result.verdicts)} verdict rows", "fail"
-    elif warnings:
-        verdict, status = f"passed, with {len(warnings)} input warnings", "warn"
     else:
-        verdict, status = f"passed: all {len(result.verdicts)} verdict rows", "pass"
+        tally = f"{failed} of {count} rows failed" if failed else f"all {count} rows"
+        verdict, status = f"{said}: {tally}", verdict_status(said) or "warn"
     document = [
         ("Document", p.document or "-"),
         ("Revision", p.revision or "-"),
         ("Date", p.date or created),
     ]
-    rules = getattr(result.spec, "rules", None)
-    if rules:
-        document.append(("Rule set", str(rules)))
+    if getattr(result.spec, "rules", None):
+        document.append(("Rule set", result.rule_title))  # in words, no raw key
     return FrontMatter(
         title="Torsional vibration calculation",
         subtitle=p.project or model.name,
