@@ -66,8 +66,8 @@ def reference(t_end: float):
         while t < stop - 1e-15:
             if locked:
 
-                def rhs(s, z, T=held):
-                    m = K * (z[0] - z[1] - delta)
+                def rhs(s, z, T=held, d=delta):
+                    m = K * (z[0] - z[1] - d)
                     return [z[2], z[3], (T - m) / J1, m / J2]
 
                 sol = solve_ivp(rhs, (t, stop), y, rtol=1e-11, atol=1e-11, dense_output=True)
@@ -148,9 +148,7 @@ def test_the_governed_torque_never_exceeds_the_torque_curve(governed):
 def test_a_droop_governor_settles_droop_times_load_below_its_set_speed():
     load, droop = 500.0, 0.05  # N m at the load mass, 5 % droop
     curve = ([0.0, 200.0], [2000.0, 2000.0])  # w_ref = 200 rad/s, T_ref = 2000 N m
-    source = HarmonicSource(
-        "load", [1.0], amplitude=[0.0], load=LoadLaw(load, 50.0, exponent=0.0)
-    )
+    source = HarmonicSource("load", [1.0], amplitude=[0.0], load=LoadLaw(load, 50.0, exponent=0.0))
     model = TorsionModel(
         masses=(Mass("engine", J1), Mass("load", J2)),
         shafts=(Shaft(("engine", "load"), K, damping=200.0),),
