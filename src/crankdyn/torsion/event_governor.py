@@ -85,6 +85,8 @@ class Governor:
         delta (dimensionless, 0 <= delta < 0.2); default :data:`GOVERNOR_DROOP` (isochronous).
     sample_time : float
         Delta (s), > 0; default :data:`GOVERNOR_SAMPLE_TIME`.
+    source : str
+        The model's source, for reports.
 
     Raises
     ------
@@ -219,6 +221,12 @@ class GovernorRun:
         w_s (rad/s).
     initial_torque : float
         The torque held before the first sample (N m).
+    times : list of float
+        The sample instants so far (s).
+    held : list of float
+        The torque held from each (N m).
+    integral : float
+        The integral part I_k (N m); NaN before the first sample.
     """
 
     governor: Governor
