@@ -5,7 +5,7 @@ torque at the sensed speed (domain object and numeric core of
 
 The law, at every sample instant t_k = k Delta (Delta the governor's sample time), from the
 sensed engine speed w_k (the speed of the engine's masses weighted as they share its torque,
-at the reference shaft):
+at the reference shaft)::
 
     e_k = w_s - w_k - delta w_ref T_(k-1) / T_ref            (speed error with droop)
     I_k = I_(k-1) + (K_p / T_i) e_k Delta                    (integral, frozen while the
