@@ -72,7 +72,7 @@ EVENT_KINDS = (
 )
 """The kinds of events a table may name."""
 
-SPEED_KEYS = ("speeds", "start_speed", "end_speed", "bollard_speed")
+SPEED_KEYS = ("speeds", "start_speed", "end_speed", "bollard_speed", "set_speed")
 """The keys that hold speeds (the command line reads a bare number there in rpm)."""
 
 
