@@ -25,6 +25,13 @@ slip speed (or of |T| - T_friction) between two samples is bracketed and its ins
 1e-12 s by Brent's method on the exact solution within the step; the run continues from there
 in the other system.
 
+A clutch engagement's mean torques are taken from the run itself (:class:`_Sampled`): the
+engine on its speed governor (:mod:`crankdyn.torsion.event_governor`) and the load laws at
+every loaded mass's own speed, sampled every governor sample time and held between samples; the
+samples are cuts of the run, so the forcing stays piecewise linear and the integration exact.
+The halves' first lock is kept (``loaded_from`` of the result: gear reversals are judged from
+it, :meth:`crankdyn.torsion.event_result.EventResult.reversal`).
+
 Step rule (module constants): the step h is the smallest of a tenth of the period of the
 highest natural frequency of interest (default every mode of the model: the integration is
 exact for any step, the step is what resolves the response in time) and a fortieth of the
