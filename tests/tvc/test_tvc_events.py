@@ -235,3 +235,22 @@ def test_genset_short_circuit_in_the_tvc():
     assert 0.0 < rows["T_Kmax"].worst < 37.5e3 and rows["T_Kmax"].passed
     assert event.plot().axes
     assert np.isfinite(event.duration) and event.speed == pytest.approx(1500 / RPM)
+
+
+def test_a_governed_clutch_says_so_in_its_description():
+    """The report's description of a clutch event names the engine's governor and its settings
+    when the engine is governed (a [tvc] engine_torque_curve turns it on), and says nothing of
+    one when it is not (MODEL above: no torque curve)."""
+    governed = MODEL.replace(
+        "misfire = false",
+        'misfire = false\nengine_torque_curve = [["300 rpm", "4 kN*m"], ["1000 rpm", "6 kN*m"]]',
+    )
+    descriptions = []
+    for text in (MODEL, governed):
+        model = parse_torsion_model(tomllib.loads(text), file="line.toml")
+        res = tvc(model, passage=False, conditions=("normal",))
+        (clutch,) = [e for e in res.events if e.name == "clutch engagement"]
+        descriptions.append(clutch.description)
+    assert "governor" not in descriptions[0]
+    assert "the engine on its governor: sampled PI speed governor" in descriptions[1]
+    assert "(k_p = 10, T_i = 1 s, droop 0)" in descriptions[1]  # crankdyn.defaults' values

@@ -246,7 +246,7 @@ def event_conditions(
                 description=(
                     f"{run.kind} ({run.severity} transient condition) from "
                     f"{speed * RPM:.6g} rpm, {run.duration:.4g} s run; "
-                    f"{run.source}"
+                    f"{run.source}" + _governed(event)
                 ),
                 speed=speed,
                 duration=run.duration,
@@ -257,3 +257,14 @@ def event_conditions(
             )
         )
     return out
+
+
+def _governed(event: object) -> str:
+    """The engine's governor of a clutch event, in words for its description ("" without)."""
+    governor = getattr(event, "governor", None)
+    if governor is None:
+        return ""
+    return (
+        f"; the engine on its governor: {governor.source} (k_p = {governor.gain:.4g}, "
+        f"T_i = {governor.integral_time:.4g} s, droop {governor.droop:.4g})"
+    )
