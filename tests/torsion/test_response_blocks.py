@@ -37,7 +37,7 @@ def _arrays(r: ResponseResult) -> dict[str, np.ndarray]:
 
 
 def test_block_size_changes_no_number():
-    model, engine = resolve_model_and_engine("marine-propulsion")
+    _model, engine = resolve_model_and_engine("marine-propulsion")
     session = Analysis(engine)
     line, excitation = session.loaded_model, session.excitation()
     whole = forced_response(line, excitation, session.speeds, session.orders, block_memory=1e12)
