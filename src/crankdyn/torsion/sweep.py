@@ -698,7 +698,7 @@ def low_rank_solve(
     """
     n = system.size
     count = len(ends)
-    rhs = np.zeros((*forcing.shape[:-1], n, 1 + count), dtype=complex)
+    rhs = np.empty((*forcing.shape[:-1], n, 1 + count), dtype=complex)
     rhs[..., 0] = forcing
     u = np.zeros((n, count))
     for j, (a, b) in enumerate(np.asarray(ends).tolist()):  # the couplings (a few)
@@ -706,14 +706,20 @@ def low_rank_solve(
         u[b, j] -= 1.0
     rhs[..., 1:] = u
     solved = system.solve(omega, rhs, hysteretic_frequency)  # (S, Q, n, 1 + count)
+    del rhs
     x0, z = solved[..., 0], solved[..., 1:]
-    del solved
-    ux = np.einsum("nj,sqn->sqj", u, x0)
-    uz = np.einsum("nj,sqnk->sqjk", u, z)
+    # U^T X: each column of U is e_a - e_b (a coupling's two ends), so U^T X is X_a - X_b,
+    # read at the ends instead of a product over every degree of freedom
+    a, b = np.asarray(ends)[:, 0], np.asarray(ends)[:, 1]
+    ux = x0[..., a] - x0[..., b]  # (S, Q, count)
+    uz = z[..., a, :] - z[..., b, :]  # (S, Q, count, count)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         small = np.eye(count) + change[..., :, None] * uz  # C (U^T Z) + I, times C^-1 of Woodbury
         y = np.linalg.solve(small, (change * ux)[..., None])[..., 0]
-    return x0 - np.einsum("sqnj,sqj->sqn", z, y)
+    out = x0.copy()
+    for j in range(count):  # the couplings (a few): X_0 - Z y, a column at a time
+        out -= z[..., j] * y[..., None, j]
+    return out
 
 
 WORKING_BYTES = 160
