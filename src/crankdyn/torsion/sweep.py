@@ -102,9 +102,19 @@ class _Block:
         and the row of the concatenation each row came from: one copy of every array, however
         many blocks (the rounds of a resolution)."""
         speed, first = merge_speeds(*(b.speed for b in blocks))
+        # every row of the result: which block it comes from and its row there
+        offsets = np.cumsum([0] + [b.speed.size for b in blocks])
+        which = np.searchsorted(offsets, first, side="right") - 1
+        rows = [(k, np.flatnonzero(which == k)) for k in range(len(blocks))]
 
         def cat(arrays: list[np.ndarray]) -> np.ndarray:
-            return np.concatenate(arrays)[first] if len(arrays) > 1 else arrays[0][first]
+            """The rows ``first`` of the concatenation, filled block by block (one copy of
+            the result, not the concatenation and then its rows)."""
+            out = np.empty((first.size, *arrays[0].shape[1:]), dtype=arrays[0].dtype)
+            for k, at in rows:  # the rounds (a few dozen at most), not the speeds
+                if at.size:
+                    out[at] = arrays[k][first[at] - offsets[k]]
+            return out
 
         powers = [b.power for b in blocks]
         return (
