@@ -23,13 +23,15 @@ def half_range(
     """(max, min) over one cycle of x(phi) = sum_k Re(c_k exp(i m_k phi)), phi in [0, 2 pi),
     for complex coefficients (..., K) at integer harmonic indices m_k (module docstring).
 
-    x is sampled by an inverse FFT at N >= 8 points per period of the highest harmonic. A
+    x is sampled at N >= 8 points per period of the highest harmonic (the inverse discrete
+    Fourier transform as one matrix product with the grid's cosines and sines). A
     grid value lies within B = (1/2) (pi/N)^2 sum_k m_k^2 |c_k| of the nearest crest, so every
     grid crest within B of the grid's extreme is refined (not only the grid's extreme: two
     crests of nearly equal height are otherwise confused, by up to B): from the vertex of the
     parabola through its three grid points, by Newton's method on x'(phi) = 0 (three steps,
     each kept within one grid step; the fourth taken in the Taylor expansion of x). The
-    harmonics exp(i m phi) are products of exp(i phi) where the indices are small. Vectorised
+    harmonics exp(i m phi) are products of exp(i phi) where the indices are small (each the last
+    times the power of the step between them). Vectorised
     over the leading axes and the crests, in blocks to bound memory. The bound B is the Taylor
     remainder of x about a crest, |x''| <= sum_k m_k^2 |c_k|, over half a grid step.
 
@@ -130,6 +132,27 @@ def _crests(
     return row[first], pos, y1[first], top[first]
 
 
+def _powers(z: NDArray[np.complex128], m: NDArray[np.int_]) -> NDArray[np.complex128]:
+    """z^m_k for every z (C,) and harmonic index m_k >= 1 (K,): (C, K), each power the last
+    times z to the step between them (the steps' powers by a product over the largest step),
+    one product per harmonic, not per index up to the largest."""
+    order = np.argsort(m, kind="stable")
+    ms = m[order]
+    steps = np.diff(np.concatenate([[0], ms]))
+    table = np.cumprod(np.broadcast_to(z[:, None], (z.size, int(steps.max()))), axis=1)
+    out = np.empty((m.size, z.size), dtype=complex)
+    previous = -1
+    for j, step in zip(order.tolist(), steps.tolist(), strict=True):  # the K harmonics
+        if previous < 0:
+            out[j] = table[:, step - 1]
+        elif step == 0:  # pragma: no cover - the indices are distinct (half_range)
+            out[j] = out[previous]
+        else:
+            np.multiply(out[previous], table[:, step - 1], out=out[j])
+        previous = j
+    return out.T
+
+
 def _extremes(
     block: NDArray[np.complex128], m: NDArray[np.int_], samples: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -145,18 +168,14 @@ def _extremes(
     coef[~is_max] *= -1.0  # the minima as maxima of -x
     top = int(m.max())
     powers = top <= 4 * m.size and bool(np.all(m >= 1))
-    weights = np.stack([np.ones_like(mf), m2], axis=1)  # sum and sum m^2 in one product
+    weights = np.stack([np.ones_like(mf), mf, m2], axis=1).astype(complex)  # sums of m^0, m, m^2
     for k in range(NEWTON):  # Newton on x'(phi) = 0, all crests at once
-        if powers:  # exp(i m phi) as powers of exp(i phi)
-            z = np.exp(1j * phi)
-            e = np.cumprod(np.broadcast_to(z[:, None], (z.size, top)), axis=1)[:, m - 1]
-        else:
-            e = np.exp(1j * phi[:, None] * mf)
-        p = coef * e
-        both = p.real @ weights
-        value = both[:, 0]
-        d1 = -(p.imag @ mf)
-        d2 = -both[:, 1]
+        # exp(i m phi) as powers of exp(i phi) where the indices are small
+        e = _powers(np.exp(1j * phi), m) if powers else np.exp(1j * phi[:, None] * mf)
+        sums = (coef * e) @ weights  # sum_k c_k e_k m_k^p, p = 0, 1, 2: one product
+        value = sums[:, 0].real
+        d1 = -sums[:, 1].imag
+        d2 = -sums[:, 2].real
         with np.errstate(divide="ignore", invalid="ignore"):
             move = np.clip(np.where(d2 < 0.0, -d1 / d2, 0.0), -step, step)
         if k < NEWTON - 1:
