@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import matplotlib
+from sphinx import addnodes
 from sphinx.util import inspect as _sphinx_inspect
 
 DOCS = Path(__file__).resolve().parent
@@ -51,6 +52,8 @@ autosummary_imported_members = False
 autodoc_member_order = "bysource"
 autodoc_typehints = "signature"
 autodoc_preserve_defaults = True
+# no type comments in this code base: skip re-tokenising every function's source for them
+autodoc_use_type_comments = False
 # array annotations as written (numpy.typing), not expanded into numpy's internal unions
 autodoc_type_aliases = {
     "ArrayLike": "numpy.typing.ArrayLike",
@@ -73,6 +76,9 @@ numpydoc_xref_param_type = False
 # keeps them as strings, and Sphinx then looks a short name such as "Table" up anywhere: two
 # classes of that name make an ambiguity warning, whatever the link. Not a docs error.
 suppress_warnings = ["ref.python"]
+# straight quotes as typed: the docs quote keys, units and code, and the curly-quote pass
+# (docutils SmartQuotes) was the largest single cost of the build on the API pages
+smartquotes = False
 
 # Docstrings are numpydoc (reStructuredText) read as plain text too: |x| is a magnitude there, not
 # a substitution, and *args a star argument, not emphasis; both are escaped before rendering.
@@ -157,7 +163,38 @@ def _result_fields(app, what, name, obj, options, lines):
         ]
 
 
+def _hide_module_toctree(app, doctree):
+    """Mark autosummary's toctree of the API's per-module pages hidden (see the sidebar below)."""
+    from sphinx.ext.autosummary import autosummary_toc
+
+    for table in doctree.findall(autosummary_toc):
+        for toctree in table.findall(addnodes.toctree):
+            toctree["hidden"] = True
+
+
+def _sidebar_without_module_pages(app, pagename, templatename, context, doctree):
+    """Leave the API's per-module pages out of the sidebar.
+
+    The theme draws the sidebar from the whole site's toctree on every page, so its cost grows
+    with the square of the page count; with the 200-odd module pages in it, it was the larger
+    half of the build (and a sidebar of 250 entries). The sidebar links "API reference", whose
+    table links every module page.
+    """
+    toctree = context.get("toctree")
+    if toctree is None:
+        return
+
+    def visible_toctree(**kwargs):
+        kwargs["includehidden"] = False
+        return toctree(**kwargs)
+
+    context["toctree"] = visible_toctree
+
+
 def setup(app):
+    # before the theme's own handler (priority 500), which draws the sidebar from "toctree"
+    app.connect("doctree-read", _hide_module_toctree, priority=400)
+    app.connect("html-page-context", _sidebar_without_module_pages, priority=400)
     app.connect("autodoc-process-docstring", _escape_plain_text_math, priority=900)
     app.connect("autodoc-skip-member", _skip_foreign_members)
     app.connect("autodoc-process-docstring", _result_fields, priority=950)

@@ -141,6 +141,41 @@ DEFAULTS: dict[str, Default] = {
             "crankdyn convention (crankdyn docs benchmarks: the bound it gives)",
         ),
         Default(
+            "governor_gain",
+            10.0,
+            "",
+            "proportional gain k_p of the engine's speed governor in a transient event (per "
+            "unit: the fraction of the rated torque per fraction of the rated speed of speed "
+            "error; crankdyn.torsion.event_governor)",
+            "crankdyn convention: an assumed setting of the usual order (a 1 % speed error "
+            "asks for 10 % of the rated torque), to be replaced by the governor maker's",
+        ),
+        Default(
+            "governor_integral_time",
+            1.0,
+            "s",
+            "integral time T_i of the engine's speed governor in a transient event",
+            "crankdyn convention: an assumed setting of the usual order, to be replaced by the "
+            "governor maker's",
+        ),
+        Default(
+            "governor_droop",
+            0.0,
+            "",
+            "speed droop of the engine's speed governor in a transient event (fraction of the "
+            "rated speed at rated torque; 0: isochronous)",
+            "ISO 3046-4:2009 (speed droop); isochronous: a propulsion engine alone on its shaft",
+        ),
+        Default(
+            "governor_sample_time",
+            0.01,
+            "s",
+            "sample time of the engine's (digital) speed governor in a transient event: its "
+            "torque is held between samples",
+            "crankdyn convention: the update cycle of an electronic governor (milliseconds to "
+            "tens of milliseconds)",
+        ),
+        Default(
             "max_speeds",
             100_000,
             "",

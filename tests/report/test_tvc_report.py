@@ -32,8 +32,9 @@ def _run(*args):
 def marine(tmp_path_factory):
     target = tmp_path_factory.mktemp("tvc") / "marine"
     status, out, err = _run("tvc", "marine-propulsion", "--output", target)
-    # one row fails by design: the reduction gear's torque reverses while the line settles
-    # after the clutch-in (docs/events.md): exit status 1, the report written
+    # one row fails by design: the reduction gear's torque reverses after the clutch-in's lock
+    # (the engine on its governor; the clutch's torque rising in 0.5 s: docs/events.md): exit
+    # status 1, the report written
     assert status == 1, err
     return target, out, err
 

@@ -6,7 +6,12 @@ condition) and ``severity`` (``normal`` or ``exceptional``), and the keys of its
 (quantities with their units, as everywhere: ``torque = "60 kN*m"``, ``rise_time = "0.5 s"``):
 
 - ``clutch``: ``between`` (the clutch element's two masses), ``torque``, ``rise_time``,
-  ``speeds`` (the halves' speeds), ``start``, ``drive_torque``, ``drive_at``;
+  ``speeds`` (the halves' speeds), ``start``, ``drive_torque``, ``drive_at``; the engine's
+  speed governor (:class:`crankdyn.torsion.event_governor.Governor`): ``governor`` (true or
+  false; default true where a torque curve is known), ``torque_curve`` (a list of [speed,
+  torque] pairs; default the model's ``[tvc] engine_torque_curve``), ``set_speed`` (default
+  the engine's speed before the event), ``governor_gain``, ``governor_integral_time``,
+  ``governor_droop``, ``governor_sample_time`` (defaults: :mod:`crankdyn.defaults`);
 - ``short-circuit``: ``at`` (default the model's only alternator or motor), ``phases`` (2 or 3),
   ``rated_torque`` (default the load law's torque at the machine), ``line_frequency``, ``xd2``,
   ``xd1``, ``xd`` (per unit), ``td2``, ``td1``, ``ta``, ``power_factor``, ``voltage``,
@@ -30,6 +35,13 @@ from typing import TYPE_CHECKING, Any
 
 from crankdyn.errors import did_you_mean
 from crankdyn.io.schema import Table
+from crankdyn.torsion.event_governor import (
+    GOVERNOR_DROOP,
+    GOVERNOR_GAIN,
+    GOVERNOR_INTEGRAL_TIME,
+    GOVERNOR_SAMPLE_TIME,
+    Governor,
+)
 from crankdyn.torsion.events import (
     SEVERITIES,
     ClutchEngagement,
@@ -60,7 +72,7 @@ EVENT_KINDS = (
 )
 """The kinds of events a table may name."""
 
-SPEED_KEYS = ("speeds", "start_speed", "end_speed", "bollard_speed")
+SPEED_KEYS = ("speeds", "start_speed", "end_speed", "bollard_speed", "set_speed")
 """The keys that hold speeds (the command line reads a bare number there in rpm)."""
 
 
@@ -100,6 +112,39 @@ def _common(t: Table) -> dict[str, Any]:
     return out
 
 
+def _governor(t: Table, model: TorsionModel | None) -> Governor | None:
+    """The clutch's engine governor (module docstring), or None."""
+    curve: Any = _curve(t)
+    if curve is None and model is not None and model.tvc is not None:
+        curve = model.tvc.engine_torque_curve
+    on = t.boolean("governor", curve is not None)
+    keys = ("set_speed", "governor_gain", "governor_integral_time", "governor_droop",
+            "governor_sample_time")  # fmt: skip
+    if not on:
+        given = [k for k in keys if t.has(k)]
+        if given:
+            raise t.error(given[0], "a governor setting without a governor (governor = false)")
+        return None
+    if curve is None:
+        raise t.error(
+            "torque_curve",
+            "missing: the governed engine's torque-speed curve (or the model's [tvc] "
+            "engine_torque_curve); a governor is never unlimited",
+        )
+    return Governor(
+        curve,
+        set_speed=t.quantity("set_speed", "speed", None, check="positive"),
+        gain=t.number("governor_gain", GOVERNOR_GAIN, check="positive"),
+        integral_time=t.quantity(
+            "governor_integral_time", "time", GOVERNOR_INTEGRAL_TIME, check="positive"
+        ),
+        droop=t.number("governor_droop", GOVERNOR_DROOP, check="nonnegative"),
+        sample_time=t.quantity(
+            "governor_sample_time", "time", GOVERNOR_SAMPLE_TIME, check="positive"
+        ),
+    )
+
+
 def _clutch(t: Table, model: TorsionModel | None) -> Event:
     return ClutchEngagement(
         _pair(t, "between"),
@@ -109,6 +154,7 @@ def _clutch(t: Table, model: TorsionModel | None) -> Event:
         start=t.quantity("start", "time", 0.0, check="nonnegative"),
         drive_torque=t.quantity("drive_torque", "torque", 0.0),
         drive_at=t.string("drive_at", None),
+        governor=_governor(t, model),
         **_common(t),
     )
 

@@ -65,6 +65,9 @@ SESSION_PARAMETERS = """
         The classification society's rule set of the verdicts (a key of
         :data:`crankdyn.tvc.rulesets.RULESETS`); default the model's ``[tvc] rules``, else
         :data:`~crankdyn.defaults.RULES`.
+    barred_band : (float, float) or None
+        A speed band (rad/s) where no barred range is wanted: the TVC's key figure
+        ``barred_width_in_band`` (its settings' ``barred_band``); default none.
 
     Attributes are the analyses: properties for those without options (``torque``,
     ``modes``...), methods with keyword options for the others (``forces(cylinder=2)``,
@@ -103,6 +106,7 @@ class SessionCore:
         delta: float | None = None,
         relative: tuple[str, str] | None = None,
         rules: str | None = None,
+        barred_band: tuple[float, float] | None = None,
     ) -> None:
         if isinstance(subject, Engine):
             self.engine: Engine | None = subject
@@ -141,6 +145,7 @@ class SessionCore:
             check_step(self.step, self.engine.cycle_angle)
         self.delta = None if delta is None else float(delta)
         self.relative = None if relative is None else (str(relative[0]), str(relative[1]))
+        self.barred_band = None if barred_band is None else tuple(barred_band)
         self.rules: str | None = None
         if rules is not None:
             from crankdyn.tvc.rulesets import get

@@ -343,6 +343,8 @@ class TorsionAnalyses(SessionCore):
         spec = getattr(self._need_model(), "tvc", None) or TvcSpec()
         if self.rules is not None and self.rules != spec.rules:
             spec = dataclasses.replace(spec, rules=self.rules)
+        if self.barred_band is not None:
+            spec = dataclasses.replace(spec, barred_band=self.barred_band)
         return spec
 
     @property

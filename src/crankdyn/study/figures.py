@@ -34,7 +34,6 @@ if TYPE_CHECKING:
     from crankdyn.summary import FigureSpec
 
 __all__ = [
-    "COMBINED",
     "FIGURES",
     "SETTINGS",
     "TVC",
@@ -233,6 +232,7 @@ def _session(ctx: CaseContext) -> Analysis:
             step=s["step"],
             delta=s["delta"],
             relative=s["relative"],
+            barred_band=s["barred_band"],
         )
     except InputError as exc:
         if exc.key in ("speed_range", "speed_step", "speed"):
@@ -504,12 +504,10 @@ TVC = Analysed("tvc", "crankdyn.tvc.result.TvcResult", ("engine", "model"))
 """The session's whole TVC (:meth:`crankdyn.session.Analysis.tvc`: every running condition and
 the passages through the barred ranges, as ``crankdyn tvc`` writes it); its declared figures
 :data:`TVC_FIGURES` are study figures."""
-TVC_FIGURES = ("worst_margin", "failed_rows")
-"""The TVC's key figures kept as study figures (declared by :class:`crankdyn.tvc.TvcResult`)."""
-COMBINED = ("barred_width_in_band", "installation_inertia")
-"""The figures that are no key figure of a result: the TVC's barred ranges inside a speed band
-of the study's settings, and the torsional model's masses' and dampers' inertias as written
-(the design search's constraints on a barred band and on added inertia)."""
+TVC_FIGURES = ("worst_margin", "failed_rows", "barred_width_in_band")
+"""The TVC's key figures kept as study figures (declared by :class:`crankdyn.tvc.TvcResult`;
+``barred_width_in_band`` with the setting ``barred_band``, which the session hands to the TVC's
+settings)."""
 
 register_setting(
     Setting(
@@ -523,47 +521,8 @@ register_setting(
 )
 
 
-def band_overlap(ranges: Any, low: float, high: float) -> float:
-    """The total width of the parts of speed ranges inside a band.
-
-    Parameters
-    ----------
-    ranges : iterable of (float, float)
-        (start, end) of each range (rad/s).
-    low, high : float
-        The band (rad/s).
-
-    Returns
-    -------
-    float
-        Sum over the ranges of max(0, min(end, high) - max(start, low)) (rad/s).
-
-    Examples
-    --------
-    >>> band_overlap([(10.0, 20.0), (30.0, 50.0)], 15.0, 40.0)
-    15.0
-    """
-    return float(sum(max(0.0, min(e, high) - max(s, low)) for s, e in ranges))
-
-
-def _barred_in_band(ctx: CaseContext) -> float:
-    band = ctx.settings["barred_band"]
-    if band is None:
-        raise InputError("the figure needs [analysis] barred_band", key="barred_width_in_band")
-    result = TVC.of(ctx.analysis)
-    return band_overlap(((b.start, b.end) for b in result.barred_ranges), band[0], band[1])
-
-
-def _installation_inertia(ctx: CaseContext) -> float:
-    model = ctx.analysis.model
-    if model is None:
-        return math.nan
-    masses = sum(float(m.inertia) for m in model.masses)
-    return masses + sum(float(getattr(d, "inertia", 0.0) or 0.0) for d in model.dampers)
-
-
 def _register_tvc() -> None:
-    """:data:`TVC_FIGURES`, the barred width in a band and the installation's inertia."""
+    """:data:`TVC_FIGURES`."""
     for spec in TVC.result_class().figure_specs():
         if spec.name in TVC_FIGURES:
             register_figure(
@@ -575,34 +534,12 @@ def _register_tvc() -> None:
                     function=_reader(TVC, spec),
                     better=spec.better,
                     subjects=TVC.subjects,
-                    description="over every condition of crankdyn tvc (normal firing, each "
-                    "misfire, damper out of order, the passages)",
+                    description=spec.description
+                    if spec.description not in ("", spec.label)
+                    else "over every condition of crankdyn tvc (normal firing, each misfire, "
+                    "damper out of order, the passages)",
                 )
             )
-    register_figure(
-        Figure(
-            "barred_width_in_band",
-            "barred_width_in_band_rad_s",
-            "Width of the TVC's barred speed ranges inside [analysis] barred_band",
-            "rad/s",
-            _barred_in_band,
-            better="min",
-            subjects=TVC.subjects,
-        )
-    )
-    register_figure(
-        Figure(
-            "installation_inertia",
-            "installation_inertia_kgm2",
-            "Inertia of the torsional model's masses and dampers",
-            "kg·m²",
-            _installation_inertia,
-            better="min",
-            subjects=TVC.subjects,
-            description="Sum of the mass and damper inertias as written (each at its own "
-            "shaft's speed)",
-        )
-    )
 
 
 _register_tvc()

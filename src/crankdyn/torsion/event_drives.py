@@ -19,6 +19,7 @@ from crankdyn.torsion.event_base import (
     positive,
     severity_of,
 )
+from crankdyn.torsion.event_governor import Governor
 
 __all__ = ["ClutchEngagement", "SpeedChange"]
 
@@ -39,6 +40,13 @@ class ClutchEngagement:
     torque). Locked, the halves slip again when the torque the element carries exceeds the
     friction torque (event detection both ways, :mod:`crankdyn.torsion.event_run`).
 
+    The engine: with a ``governor`` (:class:`crankdyn.torsion.event_governor.Governor`) it is
+    on its speed governor, as a real engine is during clutch-in: its torque, shared by its
+    cylinders as the mean torques are (:mod:`crankdyn.torsion.event_line`), follows the
+    governor from ``drive_torque`` and never exceeds the engine's torque-speed curve. Without
+    one, ``drive_torque`` is held at ``drive_at`` whatever the speed (an engine off its
+    governor: the clutch drags it down).
+
     Parameters
     ----------
     between : (str, str)
@@ -57,7 +65,10 @@ class ClutchEngagement:
         A torque held at ``drive_at`` during the run (N m, own sense), e.g. the engine's at
         idle; default 0.
     drive_at : str or None
-        Its mass; default the model's first crank throw, or its first mass.
+        Its mass without a governor; default the model's first crank throw, or its first mass.
+    governor : crankdyn.torsion.event_governor.Governor or None
+        The engine's speed governor (its set speed defaults to the engine's speed when the
+        clutch starts to close); None: none.
     name : str
         The event's name.
     severity : str
@@ -79,6 +90,7 @@ class ClutchEngagement:
     start: float = 0.0
     drive_torque: float = 0.0
     drive_at: str | None = None
+    governor: Governor | None = None
     name: str = "clutch engagement"
     severity: str = "normal"
     source: str = field(
@@ -103,6 +115,8 @@ class ClutchEngagement:
         object.__setattr__(self, "speeds", w)
         object.__setattr__(self, "start", nonnegative("start", self.start))
         object.__setattr__(self, "drive_torque", finite("drive_torque", self.drive_torque))
+        if self.governor is not None and not isinstance(self.governor, Governor):
+            raise InputError("expected a Governor", key="governor", value=self.governor)
         severity_of(self.severity)
 
     def friction(self, t: NDArray[np.float64]) -> NDArray[np.float64]:

@@ -246,6 +246,26 @@ class Line:
             out[:, int(self.mass_dof[i])] -= r * _load_at(law, r * np.asarray(speed))
         return out
 
+    def load_torques(self, rates: NDArray[np.float64]) -> NDArray[np.float64]:
+        """Generalised load torques (n,) with every loaded mass at its own speed.
+
+        Parameters
+        ----------
+        rates : numpy.ndarray
+            (n,) the degrees of freedom's absolute reflected rates (rad/s).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n,): -|r| Q(|r| v) at every loaded mass's dof (N m), the mass's speed held at 0
+            or above.
+        """
+        out = np.zeros(self.size)
+        for i, law in self.loads:
+            r, d = float(self.mass_ratio[i]), int(self.mass_dof[i])
+            out[d] -= r * float(_load_at(law, np.array([r * max(float(rates[d]), 0.0)]))[0])
+        return out
+
 
 def _load_at(law: LoadLaw, speed: NDArray[np.float64]) -> NDArray[np.float64]:
     """Q at the mass's speeds, which are held above 1e-6 rad/s (a constant-power law is

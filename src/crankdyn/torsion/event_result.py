@@ -138,6 +138,13 @@ class EventResult(Result):
     notes: tuple[str, ...] = scalar("notes", "Notes", "")
     model_name: str = scalar("model", "Model", "", summary=False)
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
+    loaded_from: float = scalar(
+        "loaded_from_s", "Gear reversals judged from", "s", summary=False, default=0.0
+    )
+    engine_torque: np.ndarray | None = array(
+        "engine_torque_Nm", "Engine torque on its governor (at the kept samples)", "N·m",
+        default=None,
+    )  # fmt: skip
     vibratory_torque: np.ndarray | None = field(default=None, repr=False, compare=False)
     warnings: tuple[PlausibilityWarning, ...] = field(default=(), repr=False, compare=False)
 
@@ -344,21 +351,26 @@ class EventResult(Result):
             raise ValueError("this run kept no vibratory torques")
         return np.abs(np.asarray(values)[:, e])
 
-    def time_mean(self, e: int) -> float:
-        """Element e's torque averaged over the run (N m; trapezoidal rule on the kept
-        samples).
+    def time_mean(self, e: int, start: float = 0.0) -> float:
+        """Element e's torque averaged over the run from ``start`` (N m; trapezoidal rule on
+        the kept samples).
 
         Parameters
         ----------
         e : int
             The element.
+        start : float
+            From when (s); default the run's start.
 
         Returns
         -------
         float
             (N m).
         """
-        t, y = self.time, self.torque[:, e]
+        keep = np.asarray(self.time) >= start
+        if not np.any(keep):
+            keep[-1] = True
+        t, y = np.asarray(self.time)[keep], np.asarray(self.torque)[keep, e]
         span = float(t[-1] - t[0])
         if span <= 0.0:
             return float(y[0])
@@ -367,6 +379,13 @@ class EventResult(Result):
     def reversal(self, e: int) -> tuple[float, float, float, float, int]:
         """A gear mesh's torque reversal: its largest drop below its mean over the run (the
         tooth load reverses where the drop exceeds the mean: gear hammering).
+
+        From ``loaded_from`` (a clutch engagement's first lock; 0 otherwise): before it the
+        mesh is being loaded from rest through the slipping clutch (its tooth load builds up
+        from zero, no reversal), so the mean and the drop are taken from then on, and the time
+        before counts only where the torque fell below zero (a reversal while slipping). The
+        drop after ``loaded_from`` is the refined extreme where it lies there, else the kept
+        samples' (every ``stride``-th step).
 
         Parameters
         ----------
@@ -386,11 +405,16 @@ class EventResult(Result):
         count : int
             Times the torque falls through zero.
         """
-        mean = self.time_mean(e)
+        start = float(self.loaded_from)
+        mean = self.time_mean(e, start)
         sign = 1.0 if mean >= 0.0 else -1.0
-        low = self.min_torque[e] if sign > 0 else -self.max_torque[e]
-        when = self.min_time[e] if sign > 0 else self.max_time[e]
-        along = sign * self.torque[:, e]
+        low = float(self.min_torque[e] if sign > 0 else -self.max_torque[e])
+        when = float(self.min_time[e] if sign > 0 else self.max_time[e])
+        along = sign * np.asarray(self.torque)[:, e]
+        if start > 0.0 and when < start and low >= 0.0:  # the unloaded start: from the lock
+            after = np.asarray(self.time) >= start
+            k = int(np.argmin(np.where(after, along, np.inf)))
+            low, when = float(along[k]), float(self.time[k])
         reversed_time = time_above(self.time, -along, 0.0)
         crossings = int(np.count_nonzero(np.diff(np.signbit(along).astype(int)) == 1))
         return sign * mean - float(low), mean, float(when), reversed_time, crossings

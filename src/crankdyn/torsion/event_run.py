@@ -25,6 +25,13 @@ slip speed (or of |T| - T_friction) between two samples is bracketed and its ins
 1e-12 s by Brent's method on the exact solution within the step; the run continues from there
 in the other system.
 
+A clutch engagement's mean torques are taken from the run itself (:class:`_Sampled`): the
+engine on its speed governor (:mod:`crankdyn.torsion.event_governor`) and the load laws at
+every loaded mass's own speed, sampled every governor sample time and held between samples; the
+samples are cuts of the run, so the forcing stays piecewise linear and the integration exact.
+The halves' first lock is kept (``loaded_from`` of the result: gear reversals are judged from
+it, :meth:`crankdyn.torsion.event_result.EventResult.reversal`).
+
 Step rule (module constants): the step h is the smallest of a tenth of the period of the
 highest natural frequency of interest (default every mode of the model: the integration is
 exact for any step, the step is what resolves the response in time) and a fortieth of the
@@ -57,6 +64,7 @@ from crankdyn.torsion.integrator import ModalState, ModalSystem, modal_system
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.event_governor import GovernorRun
     from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.events import Event, TorqueEvent
     from crankdyn.torsion.excitation import Excitation
@@ -201,8 +209,11 @@ def _forcing(
     harmonics: _Harmonics | None,
     *,
     mean: bool,
+    engine: Forcing | None = None,
 ) -> tuple[Forcing, Forcing]:
-    """(f, f_mean): the generalised torques (L, n) at times (L,), and their mean part."""
+    """(f, f_mean): the generalised torques (L, n) at times (L,), and their mean part;
+    ``engine`` further mean torques (L, n) sampled from the run (a clutch's governed engine
+    and loads, :class:`_Sampled`)."""
 
     def mean_part(t: NDArray[np.float64]) -> NDArray[np.float64]:
         f = np.zeros((t.size, line.size))
@@ -210,6 +221,8 @@ def _forcing(
             f += (profile.drive(t) - profile.brake(t))[:, None] * line.drive[None, :]
             if profile.loads:
                 f += line.load_forcing(profile.speed(t))
+        if engine is not None:
+            f += engine(t)
         return f
 
     def total(t: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -435,6 +448,8 @@ class _Run:
     block: int
     recorder: _Recorder
     switches: list[str] = field(default_factory=list)
+    sampled: _Sampled | None = None
+    locked_at: float | None = None
 
 
 def _mode_forcing(run: _Run, mode: _Mode) -> Forcing:
@@ -555,6 +570,8 @@ def _segment(
         assert mode.switch is not None
         new = mode.switch(ts, xs, vs)
         run.switches.append(f"{mode.key} -> {new.key} at {ts:.6g} s")
+        if new.key == "locked" and run.locked_at is None:
+            run.locked_at = ts
         return ts, new, new.system.to_modal(xs, vs)
     return t, mode, state
 
@@ -567,6 +584,9 @@ def _march(run: _Run, mode: _Mode, x0: NDArray[np.float64], v0: NDArray[np.float
     first = _series(run.line, mode, t0, x0[None], v0[None], _mode_forcing(run, mode), run.mean)
     run.recorder.add(np.array([0.0]), x0[None], v0[None], first, lambda _k: None)
     while t < run.end * (1.0 - 1e-12):
+        if run.sampled is not None and run.sampled.due(t):
+            _x, v = mode.system.to_physical(state)
+            run.sampled.sample(t, v + run.recorder.frame(np.array([t]))[0])
         later = run.cuts[run.cuts > t + 1e-9 * run.step]
         stop = float(later[0]) if later.size else run.end
         t, mode, state = _segment(run, mode, t, stop, state, final=stop >= run.end)
@@ -738,7 +758,8 @@ def event_response(
     if isinstance(event, SpeedChange):
         profile = speed_profile(line, event, duration)
     else:
-        profile = constant_profile(line, w0, loads=mean_torques)
+        clutch = isinstance(event, ClutchEngagement)  # its loads: sampled at its masses' speeds
+        profile = constant_profile(line, w0, loads=mean_torques and not clutch)
     mode, systems, torque_events, body_speed = _setup(
         model, line, event, w0, profile, absolute_damping
     )
@@ -747,19 +768,26 @@ def event_response(
         if excitation is not None
         else None
     )
-    forcing, mean_part = _forcing(line, profile, torque_events, harmonics, mean=mean_torques)
+    sampled = _sampled(line, event, mean_torques)
+    forcing, mean_part = _forcing(
+        line, profile, torque_events, harmonics, mean=mean_torques, engine=sampled
+    )
     main = event if isinstance(event, (ClutchEngagement, SpeedChange)) else torque_events[0][1]
     t_end = _duration(mode, main, duration, profile)
     frequency = max((ev.frequency() for _i, ev in torque_events), default=0.0)
     if harmonics is not None:
         frequency = max(frequency, float(np.max(np.abs(harmonics.orders))) * profile.high)
     step, top, rule = _step(systems, frequency, max_frequency, t_end, force_points)
-    cuts = _cuts(event, torque_events, profile, t_end, step)
+    cuts = _cuts(event, torque_events, profile, t_end, step, sampled)
     static = mean_part(np.array([0.0]))[0]
     for index, ev in torque_events:  # a torque held from the start is in the static twist
         static += line.at_mass(index, ev.torque(np.array([np.nextafter(0.0, -np.inf)])))[0]
     x0, v0, absolute = _initial(line, mode, static, body_speed, harmonics, profile)
     frame = (lambda t: np.zeros(np.shape(t))) if absolute else profile.speed
+    if sampled is not None and isinstance(event, ClutchEngagement) and event.governor:
+        # the governor starts from the engine's speed and torque
+        sensed = float(line.drive @ v0 + frame(np.array([0.0]))[0])
+        sampled.governor = event.governor.start(sensed, event.drive_torque)
     n_steps = t_end / step + cuts.size + 1
     stride = max(1, math.ceil(n_steps / (int(max_samples) - 1)))
     n_el = line.element_stiffness.size
@@ -768,6 +796,7 @@ def event_response(
     block = int(np.clip(BLOCK_BYTES // max(per_step, 1), 64, 16384))
     recorder = _Recorder(line, stride, frame)
     run = _Run(line, forcing, mean_part, t_end, step, cuts, block, recorder)
+    run.sampled = sampled
     _march(run, mode, x0, v0)
     _refine(line, recorder)
     rows = int(max_samples) + cuts.size + len(run.switches) + 2
@@ -777,6 +806,59 @@ def event_response(
         float(kept + block * per_step),
     )  # fmt: skip
     return result
+
+
+@dataclass(eq=False)
+class _Sampled:
+    """The mean torques a clutch engagement takes from the run itself, held between samples
+    every ``period`` (module docstring): the governed engine's torque, shared as the mean
+    torques are, and the load laws with every loaded mass at its own speed (the halves turn at
+    their own speeds: the load laws cannot be taken at one mean speed)."""
+
+    line: Line
+    period: float
+    before: NDArray[np.float64]  # (n,) held before the first sample
+    loads: bool
+    governor: GovernorRun | None = None
+    times: list[float] = field(default_factory=list)
+    held: list[NDArray[np.float64]] = field(default_factory=list)
+    next_time: float = 0.0
+
+    def due(self, t: float) -> bool:
+        """Whether a sample falls at t (s)."""
+        return t >= self.next_time - 1e-9 * self.period
+
+    def sample(self, t: float, rates: NDArray[np.float64]) -> None:
+        """Sample at t (s) the dofs' absolute rates (n,) (rad/s) and hold the torques."""
+        line = self.line
+        f = np.zeros(line.size)
+        if self.governor is not None:
+            f += self.governor.sample(t, float(line.drive @ rates)) * line.drive
+        if self.loads:
+            f += line.load_torques(rates)
+        self.times.append(float(t))
+        self.held.append(f)
+        self.next_time = self.period * (round(t / self.period) + 1)
+
+    def __call__(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(L, n) the held generalised torques at times (L,) (N m)."""
+        values = np.array([self.before, *self.held])
+        return values[np.searchsorted(np.array(self.times), np.asarray(t), side="right")]
+
+
+def _sampled(line: Line, event: Any, mean: bool) -> _Sampled | None:
+    """The sampled mean torques of a clutch engagement (its governor's sample time, or the
+    default's without one), or None for other events."""
+    from crankdyn.torsion.event_governor import GOVERNOR_SAMPLE_TIME
+
+    if not isinstance(event, ClutchEngagement):
+        return None
+    governed = event.governor is not None
+    if not (governed or (mean and line.loads)):
+        return None
+    period = event.governor.sample_time if event.governor is not None else GOVERNOR_SAMPLE_TIME
+    before = (event.drive_torque if governed else 0.0) * line.drive
+    return _Sampled(line, period, before, bool(mean and line.loads))
 
 
 def _setup(
@@ -807,7 +889,7 @@ def _setup(
                 return event.speeds[1] / r
             return w0
 
-        if event.drive_torque != 0.0:
+        if event.drive_torque != 0.0 and event.governor is None:
             from crankdyn.torsion.events import StepTorque
 
             at = event.drive_at or next(
@@ -825,12 +907,20 @@ def _setup(
 
 
 def _cuts(
-    event: Any, torque_events: Sequence[tuple[int, Any]], profile: Profile, end: float, step: float
+    event: Any,
+    torque_events: Sequence[tuple[int, Any]],
+    profile: Profile,
+    end: float,
+    step: float,
+    sampled: _Sampled | None = None,
 ) -> NDArray[np.float64]:
     """The segments' ends: the forcing's breakpoints inside the run, a quarter step apart."""
     points: list[float] = list(profile.breakpoints)
     if isinstance(event, ClutchEngagement):
         points += list(event.breakpoints())
+        if sampled is not None:  # the samples of its mean torques: they jump there
+            dt = sampled.period
+            points += list(dt * np.arange(1, math.floor(end / dt * (1 + 1e-12)) + 1))
     for _i, ev in torque_events:
         points += list(ev.breakpoints())
     out: list[float] = []
@@ -885,9 +975,26 @@ def _result(
         )
     if isinstance(event, SpeedChange) and event.fuel_cut is not None:
         notes.append("after the fuel cut the cylinders' harmonic torques are left out")
+    times = np.concatenate(rec.times)
+    engine_torque = None
+    governor = run.sampled.governor if run.sampled is not None else None
+    if run.sampled is not None and run.sampled.loads:
+        notes.append(
+            f"the load laws at every loaded mass's own speed, sampled every "
+            f"{run.sampled.period:.4g} s"
+        )
+    if governor is not None:
+        g = governor.governor
+        engine_torque = freeze(governor.torque(times))
+        notes.append(
+            f"the engine on its speed governor: sampled PI, k_p = {g.gain:.4g} per unit, "
+            f"T_i = {g.integral_time:.4g} s, droop {g.droop:.4g}, sample time "
+            f"{g.sample_time:.4g} s, set speed {governor.set_speed:.6g} rad/s, its torque "
+            "limited by the engine's torque-speed curve"
+        )
     kind = event.kind if isinstance(event, SpeedChange) else _KINDS[type(event).__name__]
     return cls(
-        time=freeze(np.concatenate(rec.times)),
+        time=freeze(times),
         speed=freeze(np.concatenate(rec.mean)),
         mass_speed=freeze(np.concatenate(rec.speeds)),
         torque=freeze(np.concatenate(rec.torques)),
@@ -922,4 +1029,6 @@ def _result(
             np.concatenate([line.section_modulus, np.full(len(line.gears), np.nan)])
         ),
         limit_torque=freeze(limits),
+        engine_torque=engine_torque,
+        loaded_from=float(run.locked_at or 0.0),
     )

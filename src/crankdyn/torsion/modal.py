@@ -164,6 +164,26 @@ def _frequency_of(n: int) -> Callable[[ModalResult], float | None]:
     return lambda modes: natural_frequency(modes, n)
 
 
+def installation_inertia(model: TorsionModel | None) -> float | None:
+    """The inertia of a model's masses and dampers as written, each at its own shaft's speed
+    (the design search's added-inertia constraint).
+
+    Parameters
+    ----------
+    model : TorsionModel or None
+        The model.
+
+    Returns
+    -------
+    float or None
+        sum J_i + sum J_damper (kg m^2); None without a model.
+    """
+    if model is None:
+        return None
+    masses = sum(float(m.inertia) for m in model.masses)
+    return masses + sum(float(getattr(d, "inertia", 0.0) or 0.0) for d in model.dampers)
+
+
 @dataclass(frozen=True)
 class ModalResult(Result):
     """Natural frequencies, mode shapes, nodes and modal inertias of a torsional model
@@ -343,18 +363,30 @@ class ModalResult(Result):
         out["roundoff_regions"] = [[list(r) for r in mode] for mode in self.roundoff_regions]
         return out
 
-    FIGURES = tuple(
+    FIGURES = (
+        *(
+            derived(
+                f"natural_frequency_{n}",
+                f"natural_frequency_{n}_hz",
+                f"Natural frequency of elastic mode {n}",
+                "Hz",
+                _frequency_of(n),
+                headline=n == 1,
+                description=f"Torsional natural frequency of the {n}. elastic mode (an engine: its "
+                "[torsion] model)",
+            )
+            for n in NATURAL_FREQUENCY_MODES
+        ),
         derived(
-            f"natural_frequency_{n}",
-            f"natural_frequency_{n}_hz",
-            f"Natural frequency of elastic mode {n}",
-            "Hz",
-            _frequency_of(n),
-            headline=n == 1,
-            description=f"Torsional natural frequency of the {n}. elastic mode (an engine: its "
-            "[torsion] model)",
-        )
-        for n in NATURAL_FREQUENCY_MODES
+            "installation_inertia",
+            "installation_inertia_kgm2",
+            "Inertia of the torsional model's masses and dampers",
+            "kg·m²",
+            lambda r: installation_inertia(r.model),
+            better="min",
+            description="Sum of the mass and damper inertias as written (each at its own "
+            "shaft's speed)",
+        ),
     )
 
     def summary_tables(self) -> list[SummaryTable]:

@@ -436,7 +436,8 @@ def _event_reversal(run: EventResult, check: Check, condition: str, e: int) -> V
         speed=float(np.interp(when, run.time, run.speed)),
         note=(
             f"lowest at t = {when:.4g} s; reversed {reversed_time:.3g} s in all, {count} "
-            f"reversal(s); mean over the run {mean / 1e3:.6g} kN·m"
+            f"reversal(s); mean {mean / 1e3:.6g} kN·m over the run"
+            + (f" from the lock at {run.loaded_from:.4g} s" if run.loaded_from > 0.0 else "")
         ),
         margin=1.0 - drop / abs(mean) if mean != 0.0 else -math.inf,
         kind="event torque reversal",

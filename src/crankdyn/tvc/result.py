@@ -518,6 +518,15 @@ class TvcResult(Result):
             "failed_rows", "failed_rows", "Verdict rows failed", "",
             lambda r: len(r.failed()), better="min",
         ),
+        derived(
+            "barred_width_in_band", "barred_width_in_band_rad_s",
+            "Width of the TVC's barred speed ranges inside [analysis] barred_band", "rad/s",
+            lambda r: _in_band(r), better="min",
+            reduction="sum over the barred ranges of their part inside the band",
+            description="the barred speed ranges of every condition of crankdyn tvc, the part "
+            "of each inside [analysis] barred_band",
+            unavailable="the figure needs [analysis] barred_band",
+        ),
     )  # fmt: skip
 
     def summary_verdict(self) -> str | None:
@@ -740,6 +749,38 @@ def _conditions_table(conditions: tuple[ConditionResult, ...]) -> SummaryTable:
         tuple(rows),
         "Every running condition: its rows of the verdict table; margin = 1 - worst / limit.",
     )
+
+
+def band_overlap(ranges: Any, low: float, high: float) -> float:
+    """The total width of the parts of speed ranges inside a band.
+
+    Parameters
+    ----------
+    ranges : iterable of (float, float)
+        (start, end) of each range (rad/s).
+    low, high : float
+        The band (rad/s).
+
+    Returns
+    -------
+    float
+        Sum over the ranges of max(0, min(end, high) - max(start, low)) (rad/s).
+
+    Examples
+    --------
+    >>> band_overlap([(10.0, 20.0), (30.0, 50.0)], 15.0, 40.0)
+    15.0
+    """
+    return float(sum(max(0.0, min(e, high) - max(s, low)) for s, e in ranges))
+
+
+def _in_band(result: TvcResult) -> float | None:
+    """The width of the result's barred ranges inside its settings' ``barred_band`` (rad/s),
+    None without a band."""
+    band = None if result.spec is None else result.spec.barred_band
+    if band is None:
+        return None
+    return band_overlap(((b.start, b.end) for b in result.barred_ranges), band[0], band[1])
 
 
 def _worst(result: TvcResult | ConditionResult | EventCondition) -> tuple[float, str] | None:

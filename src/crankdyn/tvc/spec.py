@@ -166,6 +166,9 @@ class TvcSpec:
         The transient events (``[[tvc.event]]``).
     source : str or None
         Where these settings come from, for reports.
+    barred_band : (float, float) or None
+        A speed band (rad/s, low < high) where no barred range is wanted (the design search's
+        constraint): the TVC's key figure ``barred_width_in_band``; None: none.
 
     Raises
     ------
@@ -213,6 +216,7 @@ class TvcSpec:
     idle_speed: float | None = None
     events: tuple[TvcEvent, ...] = ()
     source: str | None = None
+    barred_band: tuple[float, float] | None = None
 
     if TYPE_CHECKING:  # what the constructor accepts; the fields hold the normalised values
 
@@ -239,11 +243,14 @@ class TvcSpec:
             idle_speed: float | None = None,
             events: Sequence[TvcEvent] = (),
             source: str | None = None,
+            barred_band: Sequence[float] | None = None,
         ) -> None: ...
 
     def __post_init__(self) -> None:
         if self.speed_range is not None:
             object.__setattr__(self, "speed_range", _range(self.speed_range, "speed_range"))
+        if self.barred_band is not None:
+            object.__setattr__(self, "barred_band", _range(self.barred_band, "barred_band"))
         ranges = dict(self.ranges or {})
         for kind, pair in ranges.items():
             if kind not in CONDITION_KINDS:

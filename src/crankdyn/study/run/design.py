@@ -77,18 +77,19 @@ def candidate_document(space: DesignSpace, case: Case) -> dict[str, Any]:
     return apply_values(space.study.base.document, values, space.study.remove)
 
 
-def _verdicts(space: DesignSpace, case: Case) -> tuple[Any, ...]:
+def _verdicts(space: DesignSpace, case: Case) -> tuple[tuple[Any, ...], Any]:
     """The verdict rows a candidate's constraints and objective read, analysed again here: the
-    normal-firing condition's (``judged``), or every condition's (the whole TVC)."""
+    normal-firing condition's (``judged``), or every condition's (the whole TVC), with the whole
+    TVC when it was computed (None otherwise), so that its report need not compute it again."""
+    if "worst_margin" in space.study.figures or "failed_rows" in space.study.figures:
+        tvc = _whole_tvc(space, case)
+        return tuple(tvc.verdicts), tvc
     base = space.study.base
     subject = parse_base(
         base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
     )
-    ctx = CaseContext(subject, space.study.settings, base.kind)
-    if "worst_margin" in space.study.figures or "failed_rows" in space.study.figures:
-        return tuple(ctx.analysis.tvc().verdicts)
-    judged = ctx.analysis.judged()
-    return () if judged is None else tuple(judged.verdicts)
+    judged = CaseContext(subject, space.study.settings, base.kind).analysis.judged()
+    return ((), None) if judged is None else (tuple(judged.verdicts), None)
 
 
 def _whole_tvc(space: DesignSpace, case: Case) -> Any:
@@ -190,7 +191,10 @@ def run_design(
             )
         if chosen_number is not None:
             feasible = [best, *(c for c in feasible if c is not best)]
-    best_verdicts = tuple(_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS])
+    analysed = [_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS]]
+    best_verdicts = tuple(rows for rows, _ in analysed)
+    if tvc is None and analysed and analysed[0][1] is not None and not notes:
+        tvc = analysed[0][1]  # the chosen design's whole TVC, for its report: computed once
     front: tuple[int, ...] = ()
     if len(space.objectives) > 1:
         front = tuple(pareto_front(candidates, [o.sense for o in space.objectives]))
@@ -215,7 +219,7 @@ def run_design(
         chosen=_text(space, best) if best is not None else "none feasible",
         chosen_number=chosen_number,
         tvc=tvc,
-        tvc_passed=None if tvc is None and not notes else tvc is not None,
+        tvc_passed=None if tvc is None and not notes else tvc is not None and bool(tvc.passed),
         notes=tuple(notes),
         space=space,
         candidates=tuple(candidates),
