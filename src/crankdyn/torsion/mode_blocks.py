@@ -431,6 +431,7 @@ def _header(
         free=model.is_free,
         model_name=model.name,
         modes_of_the_model=total,
+        model=model,  # the figures derived from the model (the installation's inertia)
     )
 
 
