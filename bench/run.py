@@ -174,7 +174,9 @@ def rows(results: list[CaseResult]) -> list[list[str]]:
             out.append(
                 [
                     case.title if i == 0 else "",
-                    case.size if i == 0 else "",
+                    (case.size + (f" ({r.extra['note']})" if "note" in r.extra else ""))
+                    if i == 0
+                    else "",
                     _seconds(mine.median) if i == 0 else "",
                     peer or "—",
                     _seconds(timing.median) if timing else "—",

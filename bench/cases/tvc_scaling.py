@@ -2,10 +2,13 @@
 
 ``crankdyn tvc FILE --no-pdf`` in a fresh process (:func:`bench.cases.process.run_process`: wall
 time and peak resident set size) on the marine example (38 masses) and on the same line with its
-two distributed shafts subdivided further (:mod:`bench.tvc_line`: 200 and 1000 masses), timed in
-turn (interleaved: both under the same load). Targets: the time grows no faster than N^1.2 from
-38 to N masses (crankdyn at N within (N / 38)^1.2 times the 38-mass run), 1000 masses under 60 s;
-the peak memory is reported beside it (linear in N: within N / 38 times the 38-mass run's).
+two distributed shafts subdivided further (:mod:`bench.tvc_line`: 100, 300 and 1000 masses), each
+timed in turn with the 38-mass line (interleaved: both under the same load). Targets: the time
+grows no faster than N^1.2 from 38 to N masses (crankdyn at N within (N / 38)^1.2 times the
+38-mass run), 1000 masses under 60 s; the peak memory is reported beside it (linear in N: within
+N / 38 times the 38-mass run's). Each row notes the exponent of its pair, ln(t_N / t_38) /
+ln(N / 38), and the exponent fitted by least squares to ln t against ln N over every size timed
+so far (the last row: 38 to 1000 masses).
 
 Agreement: every run exits 0 and writes summary.json with a verdict; the finer line's
 natural frequencies converge to the coarse line's (the subdivision refines the shafts' own
@@ -19,9 +22,12 @@ from __future__ import annotations
 
 import atexit
 import json
+import math
 import shutil
 import tempfile
 from pathlib import Path
+
+import numpy as np
 
 from bench.cases.process import run_process
 from bench.harness import CRANKDYN, AgreementError, Case, Contender, Deviation, Target
@@ -29,7 +35,7 @@ from bench.tvc_line import write_line
 
 KEY = "tvc_scaling"
 TITLE = "TVC (crankdyn tvc --no-pdf) against the number of masses"
-SIZES: dict[str, tuple[int, ...]] = {"full": (200, 1000), "tiny": ()}  # tiny: none (two TVCs)
+SIZES: dict[str, tuple[int, ...]] = {"full": (100, 300, 1000), "tiny": ()}  # tiny: none
 BASE = 38
 EXPONENT = 1.2
 
@@ -44,10 +50,22 @@ def _runs_ok(runs: list[dict], folders: list[Path]) -> None:
             raise AgreementError(f"{folder}: summary.json has no status")
 
 
+def exponents(times: dict[int, list[float]], base: int, big: int) -> tuple[float, float]:
+    """(exponent of the pair base-big, exponent fitted to every size) of the median wall times
+    ``times`` {masses: [s, ...]}: ln(t_big / t_base) / ln(big / base), and the slope of the
+    least-squares line through (ln N, ln median t)."""
+    median = {n: float(np.median(t)) for n, t in times.items() if t}
+    pair = math.log(median[big] / median[base]) / math.log(big / base)
+    sizes = sorted(median)
+    slope = float(np.polyfit(np.log(sizes), np.log([median[n] for n in sizes]), 1)[0])
+    return pair, slope
+
+
 def cases(size: str = "full") -> list[Case]:
     scratch = Path(tempfile.mkdtemp(prefix="crankdyn-bench-tvc-"))
     atexit.register(shutil.rmtree, scratch, True)
     base_file, base_n = write_line(scratch / "base", BASE)
+    times: dict[int, list[float]] = {}  # masses -> wall times of every run (the exponent fit)
     out = []
     for n in SIZES[size]:
         big_file, big_n = write_line(scratch / f"n{n}", n)
@@ -56,9 +74,11 @@ def cases(size: str = "full") -> list[Case]:
         base: list[dict] = []
         folders = [scratch / f"out{n}", scratch / f"out{n}-base"]
 
-        def run(file: Path, folder: Path, runs: list[dict]) -> dict:
+        def run(file: Path, folder: Path, runs: list[dict], masses: int) -> dict:
             args = ["crankdyn", "tvc", str(file), "--no-pdf", "-o", str(folder), "--force"]
-            return run_process(args, runs)
+            found = run_process(args, runs)
+            times.setdefault(masses, []).append(found["wall"])
+            return found
 
         def check(
             _outputs, mine=mine, base=base, folders=folders, label=base_label
@@ -69,7 +89,17 @@ def cases(size: str = "full") -> list[Case]:
         def memory(_output, mine=mine, base=base, big_n=big_n) -> dict:
             peak, peak_base = max(r["rss_mb"] for r in mine), max(r["rss_mb"] for r in base)
             limit = peak_base * big_n / base_n
-            return {"peak_rss_mb": peak, "memory_target_mb": limit, "memory_ok": peak < limit}
+            pair, fitted = exponents(times, base_n, big_n)
+            sizes = sorted(times)
+            note = f"exponent {pair:.2f}; fitted {sizes[0]}-{sizes[-1]}: {fitted:.2f}"
+            return {
+                "peak_rss_mb": peak,
+                "memory_target_mb": limit,
+                "memory_ok": peak < limit,
+                "exponent": pair,
+                "fitted_exponent": fitted,
+                "note": note,
+            }
 
         targets = [
             Target(base_label, (base_n / big_n) ** EXPONENT, f"time within (N/{base_n})^1.2")
@@ -82,8 +112,13 @@ def cases(size: str = "full") -> list[Case]:
                 title=TITLE,
                 size=f"{big_n} masses against {base_n}",
                 contenders=(
-                    Contender(CRANKDYN, lambda f=big_file, o=folders[0], r=mine: run(f, o, r)),
-                    Contender(base_label, lambda o=folders[1], r=base: run(base_file, o, r)),
+                    Contender(
+                        CRANKDYN,
+                        lambda f=big_file, o=folders[0], r=mine, k=big_n: run(f, o, r, k),
+                    ),
+                    Contender(
+                        base_label, lambda o=folders[1], r=base: run(base_file, o, r, base_n)
+                    ),
                 ),
                 check=check,
                 targets=tuple(targets),

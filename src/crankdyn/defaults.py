@@ -29,6 +29,7 @@ __all__ = [
     "DELTA",
     "MAX_ORDER",
     "MAX_SPEEDS",
+    "RESPONSE_BLOCK_MEMORY",
     "RULES",
     "SPEED_STEP",
     "STEP",
@@ -130,6 +131,16 @@ DEFAULTS: dict[str, Default] = {
             "crankdyn convention",
         ),
         Default(
+            "response_block_memory",
+            256.0 * 2**20,
+            "B",
+            "memory budget of the working arrays of one block of speeds of a forced response "
+            "(the solve and the synthesis of every speed x order x degree of freedom): the "
+            "speeds are evaluated in blocks that fit it, so the working memory of a sweep does "
+            "not grow with its number of speeds; the block size never changes a number",
+            "crankdyn convention (crankdyn docs benchmarks: the bound it gives)",
+        ),
+        Default(
             "governor_gain",
             10.0,
             "",
@@ -188,6 +199,8 @@ TACHOMETER_TOLERANCE = float(DEFAULTS["tachometer_tolerance"].value)
 """The tachometer's tolerance (fraction of the speed) a barred range is widened by."""
 MAX_SPEEDS = int(DEFAULTS["max_speeds"].value)
 """The largest number of speeds of a sweep."""
+RESPONSE_BLOCK_MEMORY = float(DEFAULTS["response_block_memory"].value)
+"""Memory budget (bytes) of one block of speeds of a forced response's evaluation."""
 RULES = str(DEFAULTS["rules"].value)
 """The rule set of the verdicts (:data:`crankdyn.tvc.rulesets.RULESETS`)."""
 

@@ -224,3 +224,14 @@ def test_tvc_line_generator_scales_the_marine_example(tmp_path):
     assert base == 38
     _, count = write_line(tmp_path / "more", 80)
     assert 80 <= count <= 83
+
+
+def test_tvc_scaling_exponents_of_a_power_law():
+    """bench.cases.tvc_scaling.exponents: times that grow exactly as N^1.5 give 1.5 for the
+    pair and for the least-squares fit (the median of each size's runs)."""
+    from bench.cases.tvc_scaling import exponents
+
+    times = {n: [2.0 * n**1.5, 2.0 * n**1.5 * 1.1, 2.0 * n**1.5 * 0.9] for n in (38, 100, 1000)}
+    pair, fitted = exponents(times, 38, 1000)
+    assert pair == pytest.approx(1.5, rel=1e-12)
+    assert fitted == pytest.approx(1.5, rel=1e-12)

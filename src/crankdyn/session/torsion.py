@@ -431,7 +431,11 @@ class TorsionAnalyses(SessionCore):
         if same and cond.kind == "normal":
             return self.response()
         if same and cond.kind == "misfire" and cond.misfire is not None:
-            return self.response(misfire=(cond.misfire,))
+            # :meth:`response`'s computation, not kept in the cache: the TVC keeps only the
+            # worst cylinder's response (issue 33: one misfire response held, not one per
+            # cylinder); the same numbers as ``response(misfire=...)``
+            misfired = self.excitation(misfire=(cond.misfire,))
+            return forced_response(model, misfired, self.speeds, self.orders, dampers=None)
         if same and cond.kind == "damper-out":
             return self.response(dampers=())
         return forced_response(model, cond.excitation, speeds, orders, dampers=cond.dampers)

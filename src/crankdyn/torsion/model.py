@@ -34,6 +34,7 @@ Conventions (docs/conventions.md): masses are listed from the free end; SI units
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -719,6 +720,27 @@ class TorsionModel:
         [[10.0, -10.0], [-10.0, 10.0]]
         """
         return self._assemble(self._shaft_values()[2])
+
+    @cached_property
+    def static_factor(self) -> tuple[NDArray[np.bool_], Any] | None:
+        """The stiffness matrix K factorised once for the static equilibrium K X = F of the mean
+        torques (:func:`crankdyn.torsion.sources.mean_torques`): a free model held at its
+        reference mass's degree of freedom. (kept degrees of freedom, the LU factors of K on
+        them: :func:`scipy.linalg.lu_factor`, LAPACK getrf, the factorisation
+        ``numpy.linalg.solve`` makes at every call), or None when no degree of freedom is kept.
+        Every speed and every evaluation of a sweep then costs a triangular solve, not a new
+        factorisation (O(n^2) against O(n^3))."""
+        import scipy.linalg  # here: not on the command line's start-up path
+
+        keep = np.ones(self.dof_count, dtype=bool)
+        if self.is_free:
+            keep[int(self.mass_dof[self.reference_mass])] = False
+        if not np.any(keep):
+            return None
+        k = self.stiffness_matrix()[np.ix_(keep, keep)]
+        with warnings.catch_warnings():  # a singular K: refused where it is solved
+            warnings.simplefilter("ignore", scipy.linalg.LinAlgWarning)
+            return keep, scipy.linalg.lu_factor(k, check_finite=False)
 
     @cached_property
     def chain(self) -> ChainArrays | None:

@@ -1369,13 +1369,15 @@ def mean_torques(model: TorsionModel, speeds: ArrayLike) -> MeanTorqueResult:
     # static equilibrium of the reflected model: K X = F, held at the reference dof
     forcing = np.zeros((speeds.size, model.dof_count))
     np.add.at(forcing.T, model.mass_dof, (external * ratios[None, :]).T)
-    k = model.stiffness_matrix()
-    keep = np.ones(model.dof_count, dtype=bool)
-    if model.is_free:
-        keep[int(model.mass_dof[model.reference_mass])] = False
     x = np.zeros_like(forcing)
-    if np.any(keep):
-        x[:, keep] = np.linalg.solve(k[np.ix_(keep, keep)], forcing[:, keep].T).T
+    factor = model.static_factor  # K factorised once per model (every speed, every call)
+    if factor is not None:
+        import scipy.linalg
+
+        keep, lu = factor
+        if np.any(np.diag(lu[0]) == 0.0):
+            raise np.linalg.LinAlgError("Singular matrix")  # as numpy.linalg.solve
+        x[:, keep] = scipy.linalg.lu_solve(lu, forcing[:, keep].T, check_finite=False).T
     ends = model.shaft_dofs
     xa = np.where(ends[:, 0] >= 0, x[:, np.maximum(ends[:, 0], 0)], 0.0)
     xb = np.where(ends[:, 1] >= 0, x[:, np.maximum(ends[:, 1], 0)], 0.0)

@@ -41,6 +41,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
+from crankdyn.defaults import RESPONSE_BLOCK_MEMORY
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.results import freeze
 from crankdyn.torsion.dampers import Damper
@@ -101,9 +102,19 @@ class _Block:
         and the row of the concatenation each row came from: one copy of every array, however
         many blocks (the rounds of a resolution)."""
         speed, first = merge_speeds(*(b.speed for b in blocks))
+        # every row of the result: which block it comes from and its row there
+        offsets = np.cumsum([0] + [b.speed.size for b in blocks])
+        which = np.searchsorted(offsets, first, side="right") - 1
+        rows = [(k, np.flatnonzero(which == k)) for k in range(len(blocks))]
 
         def cat(arrays: list[np.ndarray]) -> np.ndarray:
-            return np.concatenate(arrays)[first] if len(arrays) > 1 else arrays[0][first]
+            """The rows ``first`` of the concatenation, filled block by block (one copy of
+            the result, not the concatenation and then its rows)."""
+            out = np.empty((first.size, *arrays[0].shape[1:]), dtype=arrays[0].dtype)
+            for k, at in rows:  # the rounds (a few dozen at most), not the speeds
+                if at.size:
+                    out[at] = arrays[k][first[at] - offsets[k]]
+            return out
 
         powers = [b.power for b in blocks]
         return (
@@ -135,8 +146,10 @@ class Sweep:
         hysteretic_frequency: float | None,
         pairs: Iterable[tuple[int, int]],
         modal_damping: ArrayLike | None = None,
+        block_memory: float = RESPONSE_BLOCK_MEMORY,
     ) -> None:
         self.model = model
+        self.block_memory = float(block_memory)
         self.excitation = excitation
         self.orders = orders
         self.hysteretic_frequency = hysteretic_frequency
@@ -156,9 +169,47 @@ class Sweep:
         self.unbounded: list[tuple[int, float, float]] = []
 
     # ---- evaluation ---------------------------------------------------------------------------
+    def block_size(self) -> int:
+        """Speeds per block of :meth:`evaluate`: as many as the memory budget
+        ``block_memory`` (bytes; :data:`crankdyn.defaults.RESPONSE_BLOCK_MEMORY`) holds at
+        :data:`WORKING_BYTES` per speed, order and item (degree of freedom, listed mass,
+        element, tracked pair), at least one."""
+        system = self.system
+        items = system.size + system.mass_dof.size + len(system.element_labels) + len(self.pairs)
+        per_speed = WORKING_BYTES * max(self.orders.size, 1) * max(items, 1)
+        return max(1, int(self.block_memory // per_speed))
+
     def evaluate(self, speeds: ArrayLike) -> _Block:
-        """The response at ``speeds`` (rad/s): one batched solve over speeds x orders."""
+        """The response at ``speeds`` (rad/s): batched solves over speeds x orders, in blocks of
+        :meth:`block_size` speeds written into arrays of all of them (the working arrays of one
+        block at a time; every speed is solved and synthesised on its own, so the block size
+        changes no number)."""
         speeds = np.asarray(speeds, dtype=float)
+        rows = self.block_size()
+        if speeds.size <= rows:
+            return self._evaluate(speeds)
+        first = self._evaluate(speeds[:rows])
+
+        def room(a: np.ndarray) -> np.ndarray:
+            out = np.empty((speeds.size, *a.shape[1:]), dtype=a.dtype)
+            out[:rows] = a
+            return out
+
+        x, torque, top, low = room(first.x), room(first.torque), room(first.top), room(first.low)
+        power = None if first.power is None else room(first.power)
+        del first
+        for start in range(rows, speeds.size, rows):  # blocks of speeds, not a loop per speed
+            part = self._evaluate(speeds[start : start + rows])
+            end = start + part.speed.size
+            x[start:end], torque[start:end] = part.x, part.torque
+            top[start:end], low[start:end] = part.top, part.low
+            if power is not None and part.power is not None:
+                power[start:end] = part.power
+        return _Block(speed=speeds, x=x, torque=torque, power=power, top=top, low=low)
+
+    def _evaluate(self, speeds: NDArray[np.float64]) -> _Block:
+        """The response at one block of speeds (rad/s): one batched solve over speeds x
+        orders."""
         system = self.system
         orders = self.orders
         # harmonic torques of the cylinders and of the model's sources (crankdyn.torsion.sources)
@@ -657,7 +708,7 @@ def low_rank_solve(
     """
     n = system.size
     count = len(ends)
-    rhs = np.zeros((*forcing.shape[:-1], n, 1 + count), dtype=complex)
+    rhs = np.empty((*forcing.shape[:-1], n, 1 + count), dtype=complex)
     rhs[..., 0] = forcing
     u = np.zeros((n, count))
     for j, (a, b) in enumerate(np.asarray(ends).tolist()):  # the couplings (a few)
@@ -665,15 +716,36 @@ def low_rank_solve(
         u[b, j] -= 1.0
     rhs[..., 1:] = u
     solved = system.solve(omega, rhs, hysteretic_frequency)  # (S, Q, n, 1 + count)
+    del rhs
     x0, z = solved[..., 0], solved[..., 1:]
-    del solved
-    ux = np.einsum("nj,sqn->sqj", u, x0)
-    uz = np.einsum("nj,sqnk->sqjk", u, z)
+    # U^T X: each column of U is e_a - e_b (a coupling's two ends), so U^T X is X_a - X_b,
+    # read at the ends instead of a product over every degree of freedom
+    a, b = np.asarray(ends)[:, 0], np.asarray(ends)[:, 1]
+    ux = x0[..., a] - x0[..., b]  # (S, Q, count)
+    uz = z[..., a, :] - z[..., b, :]  # (S, Q, count, count)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         small = np.eye(count) + change[..., :, None] * uz  # C (U^T Z) + I, times C^-1 of Woodbury
         y = np.linalg.solve(small, (change * ux)[..., None])[..., 0]
-    return x0 - np.einsum("sqnj,sqj->sqn", z, y)
+    out = x0.copy()
+    for j in range(count):  # the couplings (a few): X_0 - Z y, a column at a time
+        out -= z[..., j] * y[..., None, j]
+    return out
 
+
+WORKING_BYTES = 160
+"""Bytes of working arrays per speed, order and item (degree of freedom, listed mass, element,
+tracked pair) of one block of an evaluation (:meth:`Sweep.evaluate`: the forcing, the solve
+with the load-dependent couplings' right-hand sides, the angles, twists and torques, the
+coefficients of the synthesis): tracemalloc's peak less the kept arrays measured 59 for blocks
+of many speeds and 138-147 for blocks of a few (the chain solve's and the synthesis's own
+buffers), on chains of 150 and 600 masses and the marine example's line subdivided to 100 and
+300 masses, with margin. Beyond the budget an evaluation holds the synthesis's block buffers
+(:data:`SYNTHESIS_BUFFERS`)."""
+
+SYNTHESIS_BUFFERS = 2 * 2**20
+"""Bytes of the synthesis's own buffers (a block of 256 rows of the cycle's grid,
+:mod:`crankdyn.torsion.synthesis`) and of the bookkeeping of one evaluation, whatever its
+size: part of the stated bound (docs/benchmarks.md), not of the budget."""
 
 TRACK_ITERATIONS = 30
 """Secant iterations at most when following a resonance to its load-dependent coupling
@@ -712,6 +784,7 @@ def forced_response(
     tolerance: float = TOLERANCE,
     relative: Iterable[tuple[str, str]] | None = None,
     modal_damping: ArrayLike | None = None,
+    block_memory: float | None = None,
 ) -> ResponseResult:
     """Steady-state forced response of ``model`` to ``excitation`` over a speed range.
 
@@ -756,6 +829,11 @@ def forced_response(
         Damping ratios of the elastic modes (one for all, or one per mode) added to the model's
         damping as C_modal (:mod:`crankdyn.torsion.damped`, as openTorsion's ``C_modal``), or
         None. The damped-resonance sampling of a resolved sweep includes it.
+    block_memory : float or None
+        Memory budget (bytes) of the working arrays of one block of speeds
+        (:meth:`Sweep.block_size`); None: :data:`crankdyn.defaults.RESPONSE_BLOCK_MEMORY`
+        (256 MiB). The speeds are solved and synthesised block by block; the block size
+        changes no number.
 
     Returns
     -------
@@ -770,8 +848,9 @@ def forced_response(
     InputError
         Naming the key and value: an empty speed range or a speed that is not positive
         (``speeds``), orders the model cannot take (``orders``), a tolerance outside (0, 1),
-        an unknown mass in ``relative``, excitation points the model lacks, dampers and modal
-        damping as :func:`~crankdyn.torsion.solvers.linear_system`.
+        an unknown mass in ``relative``, a ``block_memory`` that is not positive, excitation
+        points the model lacks, dampers and modal damping as
+        :func:`~crankdyn.torsion.solvers.linear_system`.
 
     Examples
     --------
@@ -818,7 +897,12 @@ def forced_response(
             pairs.append((system_names.index(a), system_names.index(b)))
     # the excitation points are checked (cylinders on the masses, sources) before any solve
     forcing_notes(model, excitation, speeds[:1], orders)
-    sweep = Sweep(model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping)
+    budget = RESPONSE_BLOCK_MEMORY if block_memory is None else block_memory
+    if not (math.isfinite(budget) and budget > 0.0):
+        raise InputError("the memory budget must be positive", key="block_memory", value=budget)
+    sweep = Sweep(
+        model, excitation, orders, dampers, hysteretic_frequency, pairs, modal_damping, budget
+    )
     extra: dict[str, Any]
     notes: list[str]
     if not resolve:

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["NEWTON", "half_range"]
 
-_BLOCK = 1 << 19  # elements per block of the time-domain synthesis (2048 rows: in cache)
+_BLOCK = 1 << 17  # grid values per block of the synthesis (256 rows of 512: in cache)
 NEWTON = 4  # evaluations per crest in the time-domain synthesis (the last step by Taylor)
 
 
@@ -23,13 +23,15 @@ def half_range(
     """(max, min) over one cycle of x(phi) = sum_k Re(c_k exp(i m_k phi)), phi in [0, 2 pi),
     for complex coefficients (..., K) at integer harmonic indices m_k (module docstring).
 
-    x is sampled by an inverse FFT at N >= 8 points per period of the highest harmonic. A
+    x is sampled at N >= 8 points per period of the highest harmonic (the inverse discrete
+    Fourier transform as one matrix product with the grid's cosines and sines). A
     grid value lies within B = (1/2) (pi/N)^2 sum_k m_k^2 |c_k| of the nearest crest, so every
     grid crest within B of the grid's extreme is refined (not only the grid's extreme: two
     crests of nearly equal height are otherwise confused, by up to B): from the vertex of the
     parabola through its three grid points, by Newton's method on x'(phi) = 0 (three steps,
     each kept within one grid step; the fourth taken in the Taylor expansion of x). The
-    harmonics exp(i m phi) are products of exp(i phi) where the indices are small. Vectorised
+    harmonics exp(i m phi) are products of exp(i phi) where the indices are small (each the last
+    times the power of the step between them). Vectorised
     over the leading axes and the crests, in blocks to bound memory. The bound B is the Taylor
     remainder of x about a crest, |x''| <= sum_k m_k^2 |c_k|, over half a grid step.
 
@@ -75,62 +77,114 @@ def half_range(
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
+def _grid(m: NDArray[np.int_], samples: int) -> NDArray[np.float64]:
+    """(2K, samples) the basis [cos(m_k phi_j); -sin(m_k phi_j)] of the grid phi_j = 2 pi j /
+    samples: x(phi_j) = [Re c, Im c] @ basis, the inverse FFT's values as one matrix product
+    (K harmonics of a few dozen: cheaper than a transform of every row)."""
+    key = (m.tobytes(), samples)
+    found = _BASES.get(key)
+    if found is None:
+        phi = (2.0 * math.pi / samples) * np.arange(samples)
+        angle = np.outer(m.astype(float), phi)
+        found = np.concatenate([np.cos(angle), -np.sin(angle)])
+        if len(_BASES) >= 8:
+            _BASES.clear()
+        _BASES[key] = found
+    return found
+
+
+_BASES: dict[tuple[bytes, int], NDArray[np.float64]] = {}
+
+
 def _crests(
-    sx: NDArray[np.float64], bound: NDArray[np.float64]
-) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64]]:
-    """(row, position in grid steps, grid value) of every crest of the rows of ``sx`` within
-    ``bound`` of the row's largest value, the position from the parabola through the crest's
-    three grid points."""
-    samples = sx.shape[1]
-    best = np.max(sx, axis=1)
-    row, j = np.nonzero(sx >= (best - bound)[:, None])
-    y0, y1, y2 = sx[row, (j - 1) % samples], sx[row, j], sx[row, (j + 1) % samples]
+    x: NDArray[np.float64], bound: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
+    """(row, position in grid steps, grid value of the crest of x or of -x, which: True for a
+    maximum) of every crest of the rows of ``x`` within ``bound`` of the row's largest value
+    (maxima) or of its smallest (minima, as maxima of -x), the position from the parabola
+    through the crest's three grid points; the maxima of each row before its minima."""
+    samples = x.shape[1]
+    best = np.max(x, axis=1)
+    worst = np.min(x, axis=1)
+    near = (x >= (best - bound)[:, None]) | (x <= (worst + bound)[:, None])
+    flat = np.flatnonzero(near)
+    row, j = np.divmod(flat, samples)
+    y1 = x.ravel()[flat]
+    top = y1 >= (best - bound)[row]
+    # a value near both extremes (a row of round-off) is a candidate of both
+    both = top & (y1 <= (worst + bound)[row])
+    if np.any(both):
+        row = np.concatenate([row, row[both]])
+        j = np.concatenate([j, j[both]])
+        y1 = np.concatenate([y1, y1[both]])
+        top = np.concatenate([top, np.zeros(int(np.count_nonzero(both)), dtype=bool)])
+    sign = np.where(top, 1.0, -1.0)
+    y0 = x[row, (j - 1) % samples] * sign
+    y2 = x[row, (j + 1) % samples] * sign
+    y1 = y1 * sign
     crest = (y1 >= y0) & (y1 >= y2)
-    row, j, y0, y1, y2 = row[crest], j[crest], y0[crest], y1[crest], y2[crest]
+    row, j, y0, y1, y2, top = row[crest], j[crest], y0[crest], y1[crest], y2[crest], top[crest]
     den = y0 - 2.0 * y1 + y2
     with np.errstate(divide="ignore", invalid="ignore"):
         shift = np.where(den < 0.0, 0.5 * (y0 - y2) / den, 0.0)
-    return row, j + np.clip(shift, -0.5, 0.5), y1
+    first = np.lexsort((~top, row))  # by row, the maxima first
+    pos = (j + np.clip(shift, -0.5, 0.5))[first]
+    return row[first], pos, y1[first], top[first]
+
+
+def _powers(z: NDArray[np.complex128], m: NDArray[np.int_]) -> NDArray[np.complex128]:
+    """z^m_k for every z (C,) and harmonic index m_k >= 1 (K,): (C, K), each power the last
+    times z to the step between them (the steps' powers by a product over the largest step),
+    one product per harmonic, not per index up to the largest."""
+    order = np.argsort(m, kind="stable")
+    ms = m[order]
+    steps = np.diff(np.concatenate([[0], ms]))
+    table = np.cumprod(np.broadcast_to(z[:, None], (z.size, int(steps.max()))), axis=1)
+    out = np.empty((m.size, z.size), dtype=complex)
+    previous = -1
+    for j, step in zip(order.tolist(), steps.tolist(), strict=True):  # the K harmonics
+        if previous < 0:
+            out[j] = table[:, step - 1]
+        elif step == 0:  # pragma: no cover - the indices are distinct (half_range)
+            out[j] = out[previous]
+        else:
+            np.multiply(out[previous], table[:, step - 1], out=out[j])
+        previous = j
+    return out.T
 
 
 def _extremes(
     block: NDArray[np.complex128], m: NDArray[np.int_], samples: int
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Largest and smallest value over the cycle of every row of ``block`` (:func:`half_range`)."""
-    count = block.shape[0]
-    spectrum = np.zeros((count, samples // 2 + 1), dtype=complex)
-    spectrum[:, m] = block * (samples / 2.0)
-    x = np.fft.irfft(spectrum, n=samples, axis=-1)
+    x = np.concatenate([block.real, block.imag], axis=1) @ _grid(m, samples)
     mf = m.astype(float)
     m2 = mf * mf
     step = 2.0 * math.pi / samples
     bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ m2)
-    r1, p1, y1 = _crests(x, bound)
-    r2, p2, y2 = _crests(-x, bound)
-    row = np.concatenate([r1, r2])
-    phi = np.concatenate([p1, p2]) * step
+    row, pos, grid_value, is_max = _crests(x, bound)
+    phi = pos * step
     coef = block[row]
-    coef[r1.size :] *= -1.0  # the minima as maxima of -x
+    coef[~is_max] *= -1.0  # the minima as maxima of -x
     top = int(m.max())
     powers = top <= 4 * m.size and bool(np.all(m >= 1))
+    weights = np.stack([np.ones_like(mf), mf, m2], axis=1).astype(complex)  # sums of m^0, m, m^2
     for k in range(NEWTON):  # Newton on x'(phi) = 0, all crests at once
-        if powers:  # exp(i m phi) as powers of exp(i phi)
-            z = np.exp(1j * phi)
-            e = np.cumprod(np.broadcast_to(z[:, None], (z.size, top)), axis=1)[:, m - 1]
-        else:
-            e = np.exp(1j * phi[:, None] * mf)
-        p = coef * e
-        value = p.real.sum(axis=1)
-        d1 = -(p.imag @ mf)
-        d2 = -(p.real @ m2)
+        # exp(i m phi) as powers of exp(i phi) where the indices are small
+        e = _powers(np.exp(1j * phi), m) if powers else np.exp(1j * phi[:, None] * mf)
+        sums = (coef * e) @ weights  # sum_k c_k e_k m_k^p, p = 0, 1, 2: one product
+        value = sums[:, 0].real
+        d1 = -sums[:, 1].imag
+        d2 = -sums[:, 2].real
         with np.errstate(divide="ignore", invalid="ignore"):
             move = np.clip(np.where(d2 < 0.0, -d1 / d2, 0.0), -step, step)
         if k < NEWTON - 1:
             phi = phi + move
     value = value + d1 * move + 0.5 * d2 * move * move  # the last step, by Taylor
-    value = np.maximum(value, np.concatenate([y1, y2]))
-    out = []
-    for rows, values in ((r1, value[: r1.size]), (r2, value[r1.size :])):
-        starts = np.flatnonzero(np.concatenate([[True], rows[1:] != rows[:-1]]))
-        out.append(np.maximum.reduceat(values, starts))
-    return out[0], -out[1]
+    value = np.maximum(value, grid_value)
+    # per row: the largest refined maximum, the largest refined maximum of -x
+    key = row * 2 + (~is_max)
+    starts = np.flatnonzero(np.concatenate([[True], key[1:] != key[:-1]]))
+    best = np.maximum.reduceat(value, starts)
+    kind = is_max[starts]
+    return best[kind], -best[~kind]

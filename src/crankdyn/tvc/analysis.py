@@ -456,14 +456,27 @@ def _run_conditions(
         The condition results, every verdict row and every passage, in condition order.
     """
     model, spec, rated = run.model, run.spec, run.rated
-    results = []
+    results: list[Any] = []
+    worst: dict[str, tuple[float, int]] = {}  # per kind of a group: (smallest margin, row)
     for cond in conds:
         checks = run.checks_of(cond)
         grid = speed_grid(cond.low, cond.high, spec.step)
-        r = respond(run.line(cond), cond, grid, run.orders_of(cond))
+        r: Any = respond(run.line(cond), cond, grid, run.orders_of(cond))
         verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
         if cond.kind == "normal":
             verdicts += installation_verdicts(model, spec, rated, engine=run.engine, load=run.load)
+        if cond.kind == "misfire":
+            # the group shows its worst cylinder's response only (_group_rows: the first of
+            # the smallest margin): the others' are let go as soon as they are judged, so the
+            # calculation holds one misfire response, not one per cylinder (issue 33)
+            margin = min((v.margin for v in verdicts), default=math.inf)
+            best = worst.get(cond.kind)
+            if best is None or margin < best[0]:
+                if best is not None:
+                    results[best[1]] = (*results[best[1]][:3], None)
+                worst[cond.kind] = (margin, len(results))
+            else:
+                r = None
         results.append((cond, verdicts, barred, r))
     condition_results: list[Any] = []
     verdicts_all: list[Any] = []
