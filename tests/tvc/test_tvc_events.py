@@ -244,7 +244,7 @@ def test_a_governed_clutch_says_so_in_its_description():
     governed = MODEL.replace(
         "misfire = false",
         'misfire = false\nengine_torque_curve = [["300 rpm", "4 kN*m"], ["1000 rpm", "6 kN*m"]]',
-    )
+    ).replace('speeds = ["600 rpm", "0 rpm"]', 'speeds = ["600 rpm", "0 rpm"]\nduration = "0.5 s"')
     descriptions = []
     for text in (MODEL, governed):
         model = parse_torsion_model(tomllib.loads(text), file="line.toml")
