@@ -254,3 +254,16 @@ def test_a_governed_clutch_says_so_in_its_description():
     assert "governor" not in descriptions[0]
     assert "the engine on its governor: sampled PI speed governor" in descriptions[1]
     assert "(k_p = 10, T_i = 1 s, droop 0)" in descriptions[1]  # crankdyn.defaults' values
+
+
+def test_a_clutch_run_lasts_forty_periods_of_the_locked_line():
+    """A clutch whose halves are free while it slips (MODEL: the clutch and the coupling both
+    between a and b) has no elastic mode until it locks: its default run is the clutch's rise
+    (0.1 s) and 40 periods of the locked line's mode, omega = sqrt(k (1/J_a + 1/J_b)) =
+    sqrt(50e3 x 1.5) = 273.86 rad/s (hand-worked), not 40 periods of 1 rad/s (251 s: with the
+    engine governed, 25,000 governor samples)."""
+    model = parse_torsion_model(tomllib.loads(MODEL), file="line.toml")
+    res = tvc(model, passage=False, conditions=("normal",))
+    (clutch,) = [e for e in res.events if e.name == "clutch engagement"]
+    omega = math.sqrt(50e3 * (1.0 / 1.0 + 1.0 / 2.0))
+    assert clutch.duration == pytest.approx(0.1 + 40 * 2 * math.pi / omega, rel=1e-9)

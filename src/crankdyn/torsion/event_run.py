@@ -624,9 +624,17 @@ def _initial(
     return x0, v0, bool(bodies)
 
 
-def _duration(mode: _Mode, event: Any, given: float | None, profile: Profile) -> float:
+def _duration(
+    mode: _Mode,
+    event: Any,
+    given: float | None,
+    profile: Profile,
+    systems: Sequence[ModalSystem] = (),
+) -> float:
     """The run's duration (s): the given one, the event's, or the event's last breakpoint and
-    20 periods of the line's lowest elastic mode (a clutch: 40)."""
+    20 periods of the line's lowest elastic mode (a clutch: 40). A line with no elastic mode in
+    the state it starts in (a clutch's two halves free while it slips) takes the lowest of the
+    run's other systems (the locked line), and 1 rad/s only when none has one."""
     if given is not None:
         if not (math.isfinite(given) and given > 0.0):
             raise InputError("the duration must be positive", key="duration", value=given)
@@ -639,7 +647,9 @@ def _duration(mode: _Mode, event: Any, given: float | None, profile: Profile) ->
     if own is not None:
         return float(own)
     freq = mode.system.natural_frequency
-    lowest = float(freq[freq > 0.0][0]) if np.any(freq > 0.0) else 1.0
+    if not np.any(freq > 0.0):
+        freq = np.concatenate([np.asarray(s.natural_frequency) for s in systems] or [freq])
+    lowest = float(np.min(freq[freq > 0.0])) if np.any(freq > 0.0) else 1.0
     periods = 40.0 if isinstance(event, ClutchEngagement) else 20.0
     return max(event.breakpoints(), default=0.0) + periods * 2.0 * math.pi / lowest
 
@@ -773,7 +783,7 @@ def event_response(
         line, profile, torque_events, harmonics, mean=mean_torques, engine=sampled
     )
     main = event if isinstance(event, (ClutchEngagement, SpeedChange)) else torque_events[0][1]
-    t_end = _duration(mode, main, duration, profile)
+    t_end = _duration(mode, main, duration, profile, systems)
     frequency = max((ev.frequency() for _i, ev in torque_events), default=0.0)
     if harmonics is not None:
         frequency = max(frequency, float(np.max(np.abs(harmonics.orders))) * profile.high)
