@@ -989,6 +989,47 @@ def rules_option(help: str | None = None) -> Decorator:
     return click.option("--rules", default=None, metavar="KEY", callback=check, help=text)
 
 
+def pool_options(verb: str = "Run") -> Decorator:
+    """``--workers N`` (the local pool's processes, >= 1, checked as it is read) and
+    ``--scheduler ADDRESS`` (a Dask cluster), as ``study`` and ``design`` take them.
+
+    Parameters
+    ----------
+    verb
+        The help's first word for the scheduler ("Run", "Evaluate").
+
+    Returns
+    -------
+    callable
+        The decorator adding both options (parameters ``workers`` and ``scheduler``).
+    """
+
+    def check(_ctx: click.Context, _param: click.Parameter, value: int | None) -> int | None:
+        if value is not None and value < 1:
+            raise InputError("expected a number of processes >= 1", key="--workers", value=value)
+        return value
+
+    workers = click.option(
+        "--workers",
+        type=int,
+        default=None,
+        metavar="N",
+        callback=check,
+        help="Processes of the local pool (default: all cores; 1 runs in this process).",
+    )
+    scheduler = click.option(
+        "--scheduler",
+        default=None,
+        metavar="ADDRESS",
+        help=f"{verb} on the Dask distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786).",
+    )
+
+    def decorate(f: F) -> F:
+        return workers(scheduler(f))
+
+    return decorate
+
+
 def no_fail_option(f: F) -> F:
     """``--no-fail``: exit with status 0 even when a verdict fails (:func:`verdict_status`).
 

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from crankdyn.cli.common import console
+from crankdyn.cli.common import console, pool_options
 from crankdyn.cli.writer import Output, summary_blocks
 from crankdyn.errors import InputError
 
@@ -74,19 +74,7 @@ class _Progress:
     metavar="DIR",
     help="Output folder (default: SPACE-design); a rerun into it resumes the search.",
 )
-@click.option(
-    "--workers",
-    type=int,
-    default=None,
-    metavar="N",
-    help="Processes of the local pool (default: all cores; 1 runs in this process).",
-)
-@click.option(
-    "--scheduler",
-    default=None,
-    metavar="ADDRESS",
-    help="Evaluate on the Dask distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786).",
-)
+@pool_options("Evaluate")
 @click.option("--seed", type=int, default=None, help="Seed of the search (the file's [search]).")
 @click.option(
     "--max-candidates",
@@ -125,8 +113,6 @@ def design_command(
         return 0
     if space is None:
         raise click.UsageError("missing argument SPACE (or give --list)")
-    if workers is not None and workers < 1:
-        raise InputError("expected a number of processes >= 1", key="--workers", value=workers)
     if max_candidates is not None and max_candidates < 1:
         raise InputError("expected at least 1", key="--max-candidates", value=max_candidates)
     if seed is not None and seed < 0:

@@ -8,9 +8,8 @@ from typing import TYPE_CHECKING, Any
 
 import click
 
-from crankdyn.cli.common import console, deprecated_alias, merge_alias
+from crankdyn.cli.common import console, deprecated_alias, merge_alias, pool_options
 from crankdyn.cli.writer import Output, TextTable, summary_table
-from crankdyn.errors import InputError
 
 if TYPE_CHECKING:
     from rich.progress import Progress, TaskID
@@ -153,19 +152,7 @@ class _Bar:
 
 @click.command("study")
 @click.argument("study", metavar="STUDY", required=False)
-@click.option(
-    "--workers",
-    type=int,
-    default=None,
-    metavar="N",
-    help="Processes of the local pool (default: all cores; 1 runs in this process).",
-)
-@click.option(
-    "--scheduler",
-    default=None,
-    metavar="ADDRESS",
-    help="Run on the Dask distributed cluster at ADDRESS (e.g. tcp://10.0.0.5:8786).",
-)
+@pool_options("Run")
 @click.option(
     "-o",
     "--output",
@@ -221,8 +208,6 @@ def study_command(
     if dry_run:
         _dry_run(spec)
         return 0
-    if workers is not None and workers < 1:
-        raise InputError("expected a number of processes >= 1", key="--workers", value=workers)
     out = merge_alias(output_dir, out, "--output", "--out")
     folder = Path(out) if out else _default_out(study)
     from crankdyn.study.run.runner import run_study
