@@ -454,6 +454,20 @@ def register_figure(figure: Figure) -> Figure:
     return figure
 
 
+def _figure(analysed: Analysed, spec: FigureSpec, description: str) -> Figure:
+    """The study figure of a result's declared figure (its name, key, label, unit and sense)."""
+    return Figure(
+        name=spec.name,
+        key=spec.key,
+        label=spec.label,
+        unit=spec.unit,
+        function=_reader(analysed, spec),
+        better=spec.better,
+        subjects=analysed.subjects,
+        description=description,
+    )
+
+
 def _reader(analysed: Analysed, spec: FigureSpec) -> Callable[[CaseContext], float]:
     """``f(ctx)``: the key figure ``spec`` of the case's analysis, NaN where it does not
     apply."""
@@ -481,18 +495,7 @@ def _register_analyses() -> None:
                     raise ValueError(f"key figure {spec.key!r} is declared twice differently")
                 continue
             labels[spec.key] = (spec.label, spec.unit)
-            register_figure(
-                Figure(
-                    name=spec.name,
-                    key=spec.key,
-                    label=spec.label,
-                    unit=spec.unit,
-                    function=_reader(analysed, spec),
-                    better=spec.better,
-                    subjects=analysed.subjects,
-                    description=spec.description or spec.label,
-                )
-            )
+            register_figure(_figure(analysed, spec, spec.description or spec.label))
 
 
 _register_analyses()
@@ -525,17 +528,13 @@ def _register_tvc() -> None:
     """:data:`TVC_FIGURES`."""
     for spec in TVC.result_class().figure_specs():
         if spec.name in TVC_FIGURES:
+            own = spec.description not in ("", spec.label)
             register_figure(
-                Figure(
-                    name=spec.name,
-                    key=spec.key,
-                    label=spec.label,
-                    unit=spec.unit,
-                    function=_reader(TVC, spec),
-                    better=spec.better,
-                    subjects=TVC.subjects,
-                    description=spec.description
-                    if spec.description not in ("", spec.label)
+                _figure(
+                    TVC,
+                    spec,
+                    spec.description
+                    if own
                     else "over every condition of crankdyn tvc (normal firing, each misfire, "
                     "damper out of order, the passages)",
                 )
