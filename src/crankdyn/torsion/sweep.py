@@ -33,6 +33,7 @@ one batched evaluation of the new speeds.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
@@ -167,6 +168,7 @@ class Sweep:
         self.major = line_major(excitation, orders)
         # (mode, order, critical speed) of the undamped resonances in the range (:meth:`seeds`)
         self.unbounded: list[tuple[int, float, float]] = []
+        self._at: OrderedDict[bytes, ResponseResult] = OrderedDict()  # :meth:`at`'s last ones
 
     # ---- evaluation ---------------------------------------------------------------------------
     def block_size(self) -> int:
@@ -270,8 +272,22 @@ class Sweep:
 
     def at(self, speeds: ArrayLike) -> ResponseResult:
         """The response at exactly ``speeds`` (rad/s, checked positive), in their order, without
-        resolution or rule check (:meth:`crankdyn.torsion.response.ResponseResult.at`)."""
-        return self.result(self.evaluate(_check_speeds(speeds)))
+        resolution or rule check (:meth:`crankdyn.torsion.response.ResponseResult.at`). The
+        last :data:`AT_KEPT` answers of at most :data:`AT_SPEEDS` speeds are kept (immutable
+        results): the TVC's checks of one condition each ask for the range's ends and the
+        barred ranges' ends."""
+        checked = _check_speeds(speeds)
+        if checked.size > AT_SPEEDS:  # a long grid: not kept
+            return self.result(self.evaluate(checked))
+        key = checked.tobytes()
+        found = self._at.get(key)
+        if found is None:
+            found = self._at[key] = self.result(self.evaluate(checked))
+            if len(self._at) > AT_KEPT:
+                self._at.popitem(last=False)
+        else:
+            self._at.move_to_end(key)
+        return found
 
     # ---- the curves whose peaks are resolved ----------------------------------------------------
     def tracked(self, block: _Block) -> tuple[np.ndarray, np.ndarray]:
@@ -732,6 +748,10 @@ def low_rank_solve(
     return out
 
 
+AT_KEPT = 64
+"""How many answers of :meth:`Sweep.at` a sweep keeps."""
+AT_SPEEDS = 8
+"""The most speeds of an answer of :meth:`Sweep.at` that is kept."""
 WORKING_BYTES = 160
 """Bytes of working arrays per speed, order and item (degree of freedom, listed mass, element,
 tracked pair) of one block of an evaluation (:meth:`Sweep.evaluate`: the forcing, the solve

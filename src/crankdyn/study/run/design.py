@@ -109,7 +109,21 @@ def _verdicts(space: DesignSpace, candidate: Candidate) -> tuple[tuple[Any, ...]
 
 def whole_tvc(space: DesignSpace, case: Case) -> Any:
     """A candidate's whole TVC (:meth:`crankdyn.session.Analysis.tvc`: every condition, the
-    events and the passages), as ``crankdyn tvc`` computes it for the file."""
+    events and the passages), as the search's workers compute it (the study's analysis
+    settings).
+
+    Parameters
+    ----------
+    space : crankdyn.design.space.DesignSpace
+        The space.
+    case : crankdyn.study.cases.Case
+        The candidate.
+
+    Returns
+    -------
+    crankdyn.tvc.TvcResult
+        Its whole TVC.
+    """
     base = space.study.base
     subject = parse_base(
         base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
