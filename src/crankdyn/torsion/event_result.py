@@ -141,6 +141,41 @@ class EventResult(Result):
     loaded_from: float = scalar(
         "loaded_from_s", "Gear reversals judged from", "s", summary=False, default=0.0
     )
+    modes_kept: int = scalar(
+        "modes_kept",
+        "Elastic modes integrated in time",
+        "",
+        default=0,
+        description="the elastic modes up to the cut-off frequency (every mode without one)",
+    )
+    cutoff_frequency: float | None = scalar(
+        "cutoff_frequency_hz",
+        "Modal cut-off frequency",
+        "Hz",
+        HZ,
+        default=None,
+        description="the modes above it respond quasi-statically (residual flexibility)",
+    )
+    truncation_bound: float = scalar(
+        "truncation_bound",
+        "Truncation error bound (of the dropped modes' quasi-static part)",
+        "",
+        default=0.0,
+        description="the dropped modes' dynamic part relative to their quasi-static part",
+    )
+    truncation_error: float = scalar(
+        "truncation_error_Nm",
+        "Truncation error bound of the element torques",
+        "N·m",
+        default=0.0,
+        description="max over the elements of the bound per element",
+    )
+    truncation_torque: np.ndarray | None = array(
+        "truncation_error_per_element_Nm",
+        "Truncation error bound per element",
+        "N·m",
+        default=None,
+    )
     engine_torque: np.ndarray | None = array(
         "engine_torque_Nm", "Engine torque on its governor (at the kept samples)", "N·m",
         default=None,

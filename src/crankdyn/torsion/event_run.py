@@ -60,7 +60,7 @@ from crankdyn.errors import InputError
 from crankdyn.roots import brentq
 from crankdyn.torsion.event_line import Line, Profile, constant_profile, line_of, speed_profile
 from crankdyn.torsion.events import ClutchEngagement, SpeedChange
-from crankdyn.torsion.integrator import ModalState, ModalSystem, modal_system
+from crankdyn.torsion.integrator import ModalState, ModalSystem, loaded, modal_system
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
@@ -238,7 +238,7 @@ def _forcing(
 
 # ---- the clutch: two systems and the switches between them ------------------------------------
 def _clutch_modes(
-    line: Line, event: ClutchEngagement, absolute_damping: str
+    line: Line, event: ClutchEngagement, absolute_damping: str, cutoff: float | None = None
 ) -> tuple[_Mode, int, ModalSystem]:
     """The slipping mode of a clutch engagement (its switch builds the locked one), the
     element, and the locked system."""
@@ -248,9 +248,15 @@ def _clutch_modes(
     k_e, c_e = float(line.element_stiffness[e]), float(line.element_damping[e])
     k_slip = line.stiffness - line.element_matrix(e, k_e)
     c_slip = line.damping - line.element_matrix(e, c_e)
-    slip_system = modal_system(line.inertia, k_slip, c_slip, absolute_damping=absolute_damping)
+    slip_system = modal_system(
+        line.inertia, k_slip, c_slip, absolute_damping=absolute_damping, max_frequency=cutoff
+    )
     lock_system = modal_system(
-        line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
+        line.inertia,
+        line.stiffness,
+        line.damping,
+        absolute_damping=absolute_damping,
+        max_frequency=cutoff,
     )
     direction = np.zeros(line.size)
     direction[a], direction[b] = -r, r  # the friction on a (slip a faster than b: -|r| T)
@@ -313,7 +319,26 @@ class _Window:
     states: list[ModalState]  # at the window's samples
     u: NDArray[np.complex128]  # (samples, m)
     g: NDArray[np.float64]  # (samples, b)
-    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any]
+    f: NDArray[np.float64]  # (samples, n) the generalised torques (N m)
+    force: Forcing
+    mean: Forcing
+
+    def at(
+        self, s: int, taus: ArrayLike, dofs: NDArray[np.int_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(t, x, v) at times ``taus`` (s) into the window's step s, the angles and rates at
+        ``dofs`` only (the exact solution; the modes left out quasi-statically under the
+        forcing's first-order hold)."""
+        system = self.mode.system
+        tau = np.asarray(taus, dtype=float)
+        st = system.within(
+            self.states[s], self.u[s], self.u[s + 1], self.g[s], self.g[s + 1], self.step, tau
+        )
+        slope = (self.f[s + 1] - self.f[s]) / self.step
+        force = self.f[s][None, :] + tau[:, None] * slope[None, :]
+        rate = np.broadcast_to(slope, force.shape)
+        x, v = system.to_physical(st, dofs, force, rate)
+        return self.t0 + s * self.step + tau, x, v
 
 
 @dataclass(eq=False)
@@ -334,6 +359,20 @@ class _Recorder:
     high_at: NDArray[np.float64] | None = None
     low_at: NDArray[np.float64] | None = None
     windows: dict[tuple[int, int], _Window] = field(default_factory=dict)
+    residual: NDArray[np.float64] | None = None
+
+    def dropped(self, x: NDArray[np.float64]) -> None:
+        """Track every element's largest torque |k twist / r| (N m) under the angles x (L, n)
+        of the modes left out (their quasi-static part R f); a gear mesh's: the sum over its
+        elements."""
+        line = self.line
+        ends = line.element_dofs
+        xa = np.where(ends[:, 0] >= 0, x[:, np.maximum(ends[:, 0], 0)], 0.0)
+        xb = np.where(ends[:, 1] >= 0, x[:, np.maximum(ends[:, 1], 0)], 0.0)
+        top = np.max(np.abs(line.element_stiffness * (xa - xb) / line.element_ratio), axis=0)
+        meshes = [sum(abs(s) * top[e] for e, s in g.elements) for g in line.gears]
+        top = np.concatenate([top, np.asarray(meshes, dtype=float)])
+        self.residual = top if self.residual is None else np.maximum(self.residual, top)
 
     def add(
         self,
@@ -385,53 +424,158 @@ class _Recorder:
 
 def _refine(line: Line, rec: _Recorder) -> None:
     """Every element's extremes on the exact solution within the steps around them (module
-    docstring); a window shared by several extremes (an impact loads many elements at once)
-    is evaluated once."""
+    docstring): the windows shared by several extremes (an impact loads many elements at
+    once) evaluated once, at the dofs their elements' torques read only."""
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
-    evaluated: dict[tuple[int, float, float], tuple[Any, Any]] = {}
+    width = line.element_stiffness.size + len(line.gears)
+    groups: dict[tuple[int, float, float], list[tuple[int, int, _Window]]] = {}
     for (e, which), w in rec.windows.items():
-        sign = 1.0 if which == 0 else -1.0
-        key = (id(w.mode), w.t0, w.step)
-        if key not in evaluated:
-            taus = np.linspace(0.0, w.step, REFINE_POINTS)
-            ts, vals = [], []
-            for s in range(len(w.states) - 1):
-                st = w.mode.system.within(
-                    w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
-                )
-                x, v = w.mode.system.to_physical(st)
-                t = w.t0 + s * w.step + taus
-                ts.append(t)
-                vals.append(w.series(t, x, v))
-            evaluated[key] = (np.concatenate(ts), np.concatenate(vals))
-        t_all, series_all = evaluated[key]
-        v_all = sign * series_all[:, e]
-        k = int(np.argmax(v_all))
-        best, at = float(v_all[k]), float(t_all[k])
-        if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
-            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]  # evaluated on the solution
-            den = y0 - 2.0 * y1 + y2
-            if den < 0.0:
-                vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
-                s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
-                st = w.mode.system.within(
-                    w.states[s],
-                    w.u[s],
-                    w.u[s + 1],
-                    w.g[s],
-                    w.g[s + 1],
-                    w.step,
-                    [vertex - w.t0 - s * w.step],
-                )
-                x, v = w.mode.system.to_physical(st)
-                value = float(sign * w.series(np.array([vertex]), x, v)[0, e])
-                if value > best:
-                    best, at = value, vertex
-        target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
-        if best > sign * target[e]:  # best is in sign x torque
-            target[e] = sign * best
-            times[e] = at
+        groups.setdefault((id(w.mode), w.t0, w.step), []).append((e, which, w))
+    taus = np.linspace(0.0, 1.0, REFINE_POINTS)
+    for items in groups.values():
+        w = items[0][2]
+        columns = sorted({e for e, _which, _w in items})
+        dofs = _dofs_of(line, w.mode, [c % width for c in columns])
+        ts, vals = [], []
+        for s in range(len(w.states) - 1):
+            t, x, v = w.at(s, taus * w.step, dofs)
+            ts.append(t)
+            vals.append(_columns(line, w.mode, t, x, v, dofs, columns, w.force, w.mean))
+        t_all, series_all = np.concatenate(ts), np.concatenate(vals)
+        for e, which, _w in items:
+            _refine_one(rec, w, e, 1.0 if which == 0 else -1.0, t_all, series_all, columns, dofs)
+
+
+def _refine_one(
+    rec: _Recorder,
+    w: _Window,
+    e: int,
+    sign: float,
+    t_all: NDArray[np.float64],
+    series_all: NDArray[np.float64],
+    columns: list[int],
+    dofs: NDArray[np.int_],
+) -> None:
+    """One extreme of column e refined on its window's points (then a parabola's vertex,
+    evaluated on the solution)."""
+    assert rec.high is not None and rec.low is not None
+    assert rec.high_at is not None and rec.low_at is not None
+    line = rec.line
+    v_all = sign * series_all[:, columns.index(e)]
+    k = int(np.argmax(v_all))
+    best, at = float(v_all[k]), float(t_all[k])
+    if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
+        y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]  # evaluated on the solution
+        den = y0 - 2.0 * y1 + y2
+        if den < 0.0:
+            vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
+            s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
+            t, x, v = w.at(s, [vertex - w.t0 - s * w.step], dofs)
+            t = np.array([vertex])
+            value = float(sign * _columns(line, w.mode, t, x, v, dofs, [e], w.force, w.mean)[0, 0])
+            if value > best:
+                best, at = value, vertex
+    target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
+    if best > sign * target[e]:  # best is in sign x torque
+        target[e] = sign * best
+        times[e] = at
+
+
+def _dofs_of(line: Line, mode: _Mode, elements: Sequence[int]) -> NDArray[np.int_]:
+    """The dofs the torques of ``elements`` (indices of the elements, then the gear meshes)
+    read: an element's two ends; a gear mesh's dof, its stiffness and damping neighbours and
+    its elements' ends."""
+    n_el = line.element_stiffness.size
+    out: set[int] = set()
+    for e in elements:
+        if e < n_el:
+            out.update(int(d) for d in line.element_dofs[e] if d >= 0)
+            continue
+        g = line.gears[e - n_el]
+        out.add(g.dof)
+        out.update(np.flatnonzero(mode.system.stiffness[g.dof]).tolist())
+        out.update(np.flatnonzero(mode.system.damping[g.dof]).tolist())
+        for ee, _s in g.elements:
+            out.update(int(d) for d in line.element_dofs[ee] if d >= 0)
+    return np.array(sorted(out), dtype=int)
+
+
+def _torque_columns(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    dofs: NDArray[np.int_],
+    elements: Sequence[int],
+    f: NDArray[np.float64] | None,
+) -> dict[int, NDArray[np.float64]]:
+    """The torques of ``elements`` (as :func:`_element_torques`) from the angles and rates at
+    ``dofs`` (T, len(dofs)) only; f (T, n) the generalised torques (gear meshes only)."""
+    n_el = line.element_stiffness.size
+    pos = np.full(line.size, -1)
+    pos[dofs] = np.arange(dofs.size)
+    out: dict[int, NDArray[np.float64]] = {}
+
+    def element(e: int) -> NDArray[np.float64]:
+        if e not in out:
+            a, b = (int(d) for d in line.element_dofs[e])
+            xa = x[:, pos[a]] if a >= 0 else np.zeros(t.size)
+            xb = x[:, pos[b]] if b >= 0 else np.zeros(t.size)
+            value = line.element_stiffness[e] * (xa - xb) / line.element_ratio[e]
+            if mode.offset is not None:
+                value = value - mode.offset[e]
+            if mode.friction is not None and mode.friction[0] == e:
+                value = mode.friction[1] * mode.friction[2](t) * np.ones(t.size)
+            out[e] = value
+        return out[e]
+
+    for e in elements:
+        if e < n_el:
+            element(e)
+            continue
+        g = line.gears[e - n_el]
+        assert f is not None
+        d, system = g.dof, mode.system
+        ks, cs = np.flatnonzero(system.stiffness[d]), np.flatnonzero(system.damping[d])
+        stiff = x[:, pos[ks]] @ system.stiffness[d, ks]
+        accel = (f[:, d] - stiff - v[:, pos[cs]] @ system.damping[d, cs]) / line.inertia[d]
+        out[e] = g.inertia * g.ratio * accel + sum(s * element(ee) for ee, s in g.elements)
+    return out
+
+
+def _columns(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    dofs: NDArray[np.int_],
+    columns: Sequence[int],
+    force: Forcing,
+    mean: Forcing,
+) -> NDArray[np.float64]:
+    """(T, len(columns)) the columns of :func:`_series` (the torques, then the vibratory
+    torques) from the angles and rates at ``dofs`` only: the quasi-static twist there from the
+    static flexibility's columns of the loaded dofs."""
+    n_el = line.element_stiffness.size
+    width = n_el + len(line.gears)
+    wanted = sorted({c % width for c in columns})
+    gears = any(c >= n_el for c in wanted)
+    totals = _torque_columns(line, mode, t, x, v, dofs, wanted, force(t) if gears else None)
+    statics: dict[int, NDArray[np.float64]] = {}
+    if any(c >= width for c in columns):
+        m = mean(t)
+        cols = loaded(m)
+        xs = m[:, cols] @ mode.system.flexibility(cols)[dofs].T
+        vib = sorted({c - width for c in columns if c >= width})
+        plain = _Mode(mode.key, mode.system)
+        statics = _torque_columns(line, plain, t, xs, np.zeros_like(xs), dofs, vib, m)
+    out = np.empty((t.size, len(columns)))
+    for i, c in enumerate(columns):
+        out[:, i] = totals[c] if c < width else totals[c - width] - statics[c - width]
+    return out
 
 
 # ---- the march through the segments -----------------------------------------------------------
@@ -450,6 +594,15 @@ class _Run:
     switches: list[str] = field(default_factory=list)
     sampled: _Sampled | None = None
     locked_at: float | None = None
+    jumps: list[float] = field(default_factory=list)
+
+
+def _jump(force: Forcing, t: float, after: NDArray[np.float64]) -> float:
+    """The largest jump of the generalised torques at t, relative to their largest value
+    there (their one-sided values; 0 where they are continuous)."""
+    before = force(np.array([np.nextafter(t, -np.inf)]))[0]
+    top = max(float(np.max(np.abs(after), initial=0.0)), float(np.max(np.abs(before), initial=0.0)))
+    return float(np.max(np.abs(after - before), initial=0.0)) / max(top, 1e-300)
 
 
 def _mode_forcing(run: _Run, mode: _Mode) -> Forcing:
@@ -473,10 +626,12 @@ def _state_at(start: ModalState, w: ModalState, j: int) -> ModalState:
 
 def _windows(
     mode: _Mode,
-    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any],
+    run: _Run,
+    force: Forcing,
     start: ModalState,
     w: ModalState,
     times: NDArray[Any],
+    f: NDArray[np.float64],
     u: Any,
     g: Any,
     h: float,
@@ -487,30 +642,42 @@ def _windows(
         s = k + 1
         last = min(s + 1, times.size - 1)
         states = [_state_at(start, w, j) for j in range(s - 1, last + 1)]
+        span = slice(s - 1, last + 1)
         return _Window(
-            mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1], series
+            mode, float(times[s - 1]), h, states, u[span], g[span], f[span], force, run.mean
         )
 
     return window
 
 
 def _crossing(
-    run: _Run, mode: _Mode, prev: ModalState, times: NDArray[Any], u: Any, g: Any, j: int, h: float
+    run: _Run,
+    mode: _Mode,
+    prev: ModalState,
+    times: NDArray[Any],
+    f: NDArray[np.float64],
+    u: Any,
+    g: Any,
+    j: int,
+    h: float,
 ) -> tuple[float, NDArray[np.float64], NDArray[np.float64]]:
     """The instant in step (j - 1 -> j) where the mode's watched value reaches 0, and the
     angles and rates there (Brent's method on the exact solution within the step)."""
     system = mode.system
     watch = mode.watch
     assert watch is not None
+    slope = (f[j] - f[j - 1]) / h
+
+    def state(tau: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
+        return system.to_physical(st, None, (f[j - 1] + tau * slope)[None], slope[None])
 
     def value(tau: float) -> float:
-        st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
-        x, v = system.to_physical(st)
+        x, v = state(tau)
         return float(np.asarray(watch(np.array([times[j - 1] + tau]), x, v))[0])
 
     tau = 0.0 if value(0.0) >= 0.0 else brentq(value, 0.0, h, xtol=1e-15 + 1e-12 * h)
-    st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
-    x, v = system.to_physical(st)
+    x, v = state(tau)
     return float(times[j - 1] + tau), x[0], v[0]
 
 
@@ -536,9 +703,13 @@ def _segment(
             tf[-1] = np.nextafter(stop, -np.inf)
         force = _mode_forcing(run, mode)
         f = force(tf)
+        if done == 0 and system.residual is not None:
+            run.jumps.append(_jump(force, t, f[0]))
         u, g = system.modal_forcing(f)
         w = system.run(state, u, g, h)
-        x, v = system.to_physical(w)
+        x, v = system.to_physical(w, None, f[1:], np.diff(f, axis=0) / h)
+        if system.residual is not None:
+            run.recorder.dropped(system.residual.angles(f[1:]))
         tk = times[1:]
         hit = None
         if mode.watch is not None:
@@ -548,7 +719,7 @@ def _segment(
         def series(tt: Any, xx: Any, vv: Any, force: Forcing = force) -> Any:
             return _series(line, mode, tt, xx, vv, force, run.mean)
 
-        windows = _windows(mode, series, state, w, times, u, g, h)
+        windows = _windows(mode, run, force, state, w, times, f, u, g, h)
         if hit is None:
             run.recorder.add(tk, x, v, series(tk, x, v), windows, keep_last=last and final)
             state, t, done = w.last(), float(times[-1]), done + n
@@ -557,7 +728,7 @@ def _segment(
         if hit > 1:
             k = hit - 1
             run.recorder.add(tk[:k], x[:k], v[:k], series(tk[:k], x[:k], v[:k]), windows)
-        ts, xs, vs = _crossing(run, mode, prev, times, u, g, hit, h)
+        ts, xs, vs = _crossing(run, mode, prev, times, f, u, g, hit, h)
         tsa = np.array([ts])
         run.recorder.add(
             tsa,
@@ -721,7 +892,9 @@ def event_response(
         omega_h (rad/s) for the loss factors as viscous damping; default the lowest elastic
         natural frequency.
     max_frequency : float or None
-        The highest natural frequency of interest (rad/s); default every mode.
+        The highest natural frequency of interest (rad/s): the modes up to it are integrated,
+        those above quasi-statically (:mod:`crankdyn.torsion.integrator`, "Modal truncation";
+        the bound reported with the result); default every mode, exactly.
     max_samples : int
         The most samples kept (>= 2); the extremes come from every step.
     mean_torques : bool
@@ -759,6 +932,10 @@ def event_response(
     """
     from crankdyn.torsion.event_result import EventResult
 
+    if max_frequency is not None and not (math.isfinite(max_frequency) and max_frequency > 0.0):
+        raise InputError(
+            "the highest frequency must be positive", key="max_frequency", value=max_frequency
+        )
     if isinstance(max_samples, bool) or int(max_samples) < 2:
         raise InputError("expected at least 2 samples", key="max_samples", value=max_samples)
     line = line_of(model, dampers, hysteretic_frequency)
@@ -771,7 +948,7 @@ def event_response(
         clutch = isinstance(event, ClutchEngagement)  # its loads: sampled at its masses' speeds
         profile = constant_profile(line, w0, loads=mean_torques and not clutch)
     mode, systems, torque_events, body_speed = _setup(
-        model, line, event, w0, profile, absolute_damping
+        model, line, event, w0, profile, absolute_damping, max_frequency
     )
     harmonics = (
         _harmonics(model, line, excitation, orders if orders is not None else [], profile)
@@ -813,9 +990,47 @@ def event_response(
     kept = 8 * rows * (line.mass_dof.size + n_el + len(line.gears) + 2)
     result = _result(
         EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
-        float(kept + block * per_step),
+        float(kept + block * per_step), _truncation(systems, recorder, run, frequency),
     )  # fmt: skip
     return result
+
+
+def _truncation(
+    systems: Sequence[ModalSystem], rec: _Recorder, run: _Run, frequency: float
+) -> dict[str, Any]:
+    """The modal truncation's fields of the result (:mod:`crankdyn.torsion.integrator`,
+    "Modal truncation"): the modes kept, the cut-off, the bound beta of the dropped modes'
+    dynamic part relative to their quasi-static part (r^2 / (1 - r^2), r the forcing's
+    highest frequency over the lowest dropped mode's; plus 1 when the forcing jumps), and beta
+    times every element's largest quasi-static torque of the dropped modes (N m)."""
+    kept = max(int(s.modes.shape[1]) for s in systems)
+    if all(s.residual is None for s in systems):
+        return {"modes_kept": kept, "note": None}
+    lowest = min(s.lowest_dropped for s in systems)
+    cutoff = max(s.cutoff for s in systems if s.residual is not None)
+    dropped = max(s.dropped for s in systems)
+    r2 = (frequency / lowest) ** 2
+    jumps = max(run.jumps, default=0.0) > 1e-9
+    bound = (r2 / (1.0 - r2) if r2 < 1.0 else math.inf) + (1.0 if jumps else 0.0)
+    residual = rec.residual if rec.residual is not None else np.zeros(1)
+    per_element = bound * residual
+    note = (
+        f"modal truncation: the {kept} elastic modes up to {cutoff / (2 * math.pi):.4g} Hz "
+        f"integrated, the {dropped} above (from {lowest / (2 * math.pi):.4g} Hz) "
+        "quasi-statically (residual flexibility); their dynamic part is at most "
+        f"{bound:.3g} of their quasi-static part (forcing up to "
+        f"{frequency / (2 * math.pi):.4g} Hz{', with jumps' if jumps else ''}): every element "
+        f"torque within {float(np.max(per_element)):.4g} N·m; the damping coupling of the "
+        "kept and the dropped modes is left out"
+    )
+    return {
+        "modes_kept": kept,
+        "cutoff_frequency": float(cutoff),
+        "truncation_bound": float(bound),
+        "truncation_error": float(np.max(per_element)),
+        "truncation_torque": per_element,
+        "note": note,
+    }
 
 
 @dataclass(eq=False)
@@ -878,6 +1093,7 @@ def _setup(
     w0: float,
     profile: Profile,
     absolute_damping: str,
+    cutoff: float | None = None,
 ) -> tuple[_Mode, list[ModalSystem], list[tuple[int, Any]], Callable[[NDArray[np.int_]], float]]:
     """(the first mode, every system the run may be in, the torque events at their masses, the
     free bodies' starting speeds) of an event."""
@@ -888,7 +1104,7 @@ def _setup(
         return w_start
 
     if isinstance(event, ClutchEngagement):
-        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping)
+        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping, cutoff)
         a, b = (int(v) for v in line.element_dofs[clutch_e])
         r = float(line.element_ratio[clutch_e])
 
@@ -908,7 +1124,11 @@ def _setup(
             torque_events.append((line.mass(at, "drive_at"), StepTorque(at, event.drive_torque)))
         return mode, [mode.system, lock_system], torque_events, halves
     system = modal_system(
-        line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
+        line.inertia,
+        line.stiffness,
+        line.damping,
+        absolute_damping=absolute_damping,
+        max_frequency=cutoff,
     )
     if not isinstance(event, SpeedChange):
         index = line.mass(event.at)
@@ -962,6 +1182,7 @@ def _result(
     rule: str,
     stride: int,
     memory: float,
+    truncation: dict[str, Any],
 ) -> EventResult:
     """The result of a run (module docstring)."""
     from crankdyn.results import freeze
@@ -985,6 +1206,11 @@ def _result(
         )
     if isinstance(event, SpeedChange) and event.fuel_cut is not None:
         notes.append("after the fuel cut the cylinders' harmonic torques are left out")
+    extra = dict(truncation)
+    if extra.pop("note") is not None:
+        notes.append(str(truncation["note"]))
+    if extra.get("truncation_torque") is not None:
+        extra["truncation_torque"] = freeze(extra["truncation_torque"])
     times = np.concatenate(rec.times)
     engine_torque = None
     governor = run.sampled.governor if run.sampled is not None else None
@@ -1041,4 +1267,5 @@ def _result(
         limit_torque=freeze(limits),
         engine_torque=engine_torque,
         loaded_from=float(run.locked_at or 0.0),
+        **extra,
     )

@@ -504,10 +504,16 @@ class ModalSystem:
         # Re(w P^T) as two real products: a complex product of a few rows runs far slower in
         # threaded BLAS on a busy machine (thread start-up), the same numbers to rounding
         wr, wi = np.ascontiguousarray(ww.real), np.ascontiguousarray(ww.imag)
-        q = wr @ self.position.real.T - wi @ self.position.imag.T
-        qd = wr @ self.velocity.real.T - wi @ self.velocity.imag.T
-        x = q @ modes.T + state.r @ bodies.T
-        v = qd @ modes.T + state.rd @ bodies.T
+        if dofs is not None and modes.shape[0] < modes.shape[1]:
+            # a few dofs: their rows of Phi V first (O(dofs) per instant, not O(modes))
+            px, pv = modes @ self.position, modes @ self.velocity
+            x = wr @ px.real.T - wi @ px.imag.T + state.r @ bodies.T
+            v = wr @ pv.real.T - wi @ pv.imag.T + state.rd @ bodies.T
+        else:
+            q = wr @ self.position.real.T - wi @ self.position.imag.T
+            qd = wr @ self.velocity.real.T - wi @ self.velocity.imag.T
+            x = q @ modes.T + state.r @ bodies.T
+            v = qd @ modes.T + state.rd @ bodies.T
         if self.residual is not None and forcing is not None:
             x = x + self.residual.angles(forcing, rows)
             if rate is not None:
