@@ -60,7 +60,13 @@ from crankdyn.errors import InputError
 from crankdyn.roots import brentq
 from crankdyn.torsion.event_line import Line, Profile, constant_profile, line_of, speed_profile
 from crankdyn.torsion.events import ClutchEngagement, SpeedChange
-from crankdyn.torsion.integrator import ModalState, ModalSystem, loaded, modal_system
+from crankdyn.torsion.integrator import (
+    ModalState,
+    ModalSystem,
+    linear_recurrence,
+    loaded,
+    modal_system,
+)
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
@@ -360,19 +366,48 @@ class _Recorder:
     low_at: NDArray[np.float64] | None = None
     windows: dict[tuple[int, int], _Window] = field(default_factory=dict)
     residual: NDArray[np.float64] | None = None
+    coupling: NDArray[np.float64] | None = None
+    kicks: NDArray[np.float64] | None = None
 
-    def dropped(self, x: NDArray[np.float64]) -> None:
-        """Track every element's largest torque |k twist / r| (N m) under the angles x (L, n)
-        of the modes left out (their quasi-static part R f); a gear mesh's: the sum over its
-        elements."""
+    def _twist(self, system: ModalSystem, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(L, E + G) |k twist / r| of every element (N m) under angles x (L, n) of the modes
+        left out; a gear mesh's: the sum over its elements, and its wheel's inertia torque
+        of the elastic torque K x at the wheel (the modes' accelerations are omega^2 times
+        their displacements: their dynamic part's share of the inertia torque)."""
         line = self.line
         ends = line.element_dofs
         xa = np.where(ends[:, 0] >= 0, x[:, np.maximum(ends[:, 0], 0)], 0.0)
         xb = np.where(ends[:, 1] >= 0, x[:, np.maximum(ends[:, 1], 0)], 0.0)
-        top = np.max(np.abs(line.element_stiffness * (xa - xb) / line.element_ratio), axis=0)
-        meshes = [sum(abs(s) * top[e] for e, s in g.elements) for g in line.gears]
-        top = np.concatenate([top, np.asarray(meshes, dtype=float)])
-        self.residual = top if self.residual is None else np.maximum(self.residual, top)
+        out = np.abs(line.element_stiffness * (xa - xb) / line.element_ratio)
+        meshes = np.empty((x.shape[0], len(line.gears)))
+        for i, g in enumerate(line.gears):
+            inertia = abs(g.inertia * g.ratio) / line.inertia[g.dof]
+            meshes[:, i] = inertia * np.abs(x @ system.stiffness[g.dof])
+            meshes[:, i] += sum(abs(s) * out[:, e] for e, s in g.elements)
+        return np.concatenate([out, meshes], axis=1)
+
+    def dropped(self, system: ModalSystem, x: NDArray[np.float64], coupled: bool) -> None:
+        """Track every element's largest torque (N m) under the angles x (L, n) of the modes
+        left out (their quasi-static part R f) or, ``coupled``, of the kept modes' response
+        to the damping force of its rates."""
+        top = np.max(self._twist(system, x), axis=0)
+        old = self.coupling if coupled else self.residual
+        new = top if old is None else np.maximum(old, top)
+        if coupled:
+            self.coupling = new
+        else:
+            self.residual = new
+
+    def kick(
+        self, system: ModalSystem, jump: NDArray[np.float64], bend: NDArray[np.float64]
+    ) -> None:
+        """Add the dynamic part a jump (N m) and a change of slope (N m/s) of the forcing (n,)
+        start in the modes left out (module docstring of :mod:`crankdyn.torsion.integrator`):
+        at most their quasi-static torque R jump and R bend / omega_d."""
+        assert system.residual is not None
+        x = system.residual.angles(np.stack([jump, bend / system.lowest_dropped]))
+        add = np.sum(self._twist(system, x), axis=0)
+        self.kicks = add if self.kicks is None else self.kicks + add
 
     def add(
         self,
@@ -538,9 +573,10 @@ def _torque_columns(
         g = line.gears[e - n_el]
         assert f is not None
         d, system = g.dof, mode.system
-        ks, cs = np.flatnonzero(system.stiffness[d]), np.flatnonzero(system.damping[d])
-        stiff = x[:, pos[ks]] @ system.stiffness[d, ks]
-        accel = (f[:, d] - stiff - v[:, pos[cs]] @ system.damping[d, cs]) / line.inertia[d]
+        # the whole rows (zeros elsewhere): the products of _element_torques to the digit
+        xf, vf = np.zeros((t.size, line.size)), np.zeros((t.size, line.size))
+        xf[:, dofs], vf[:, dofs] = x, v
+        accel = (f[:, d] - xf @ system.stiffness[d] - vf @ system.damping[d]) / line.inertia[d]
         out[e] = g.inertia * g.ratio * accel + sum(s * element(ee) for ee, s in g.elements)
     return out
 
@@ -594,15 +630,41 @@ class _Run:
     switches: list[str] = field(default_factory=list)
     sampled: _Sampled | None = None
     locked_at: float | None = None
-    jumps: list[float] = field(default_factory=list)
+    last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+    coupled: tuple[int, NDArray[np.complex128]] | None = None
 
 
-def _jump(force: Forcing, t: float, after: NDArray[np.float64]) -> float:
-    """The largest jump of the generalised torques at t, relative to their largest value
-    there (their one-sided values; 0 where they are continuous)."""
-    before = force(np.array([np.nextafter(t, -np.inf)]))[0]
-    top = max(float(np.max(np.abs(after), initial=0.0)), float(np.max(np.abs(before), initial=0.0)))
-    return float(np.max(np.abs(after - before), initial=0.0)) / max(top, 1e-300)
+def _coupled(
+    run: _Run, system: ModalSystem, rates: NDArray[np.float64], h: float
+) -> NDArray[np.float64]:
+    """(L, n) the kept modes' response to the damping force of the dropped modes'
+    quasi-static rates alone, -Phi_k^T C R f' (carried by the run, :meth:`ModalSystem.
+    modal_forcing`): the dropped modes' dynamic part, at most beta times their quasi-static
+    part, drives the kept modes through the damping by at most beta times this response."""
+    assert system.residual is not None
+    uc = -system.residual.coupling(rates) @ system.input_gain.T
+    a, b0, b1 = system.coefficients(h)
+    start = np.zeros(a.size, dtype=complex)
+    if run.coupled is not None and run.coupled[0] == id(system):
+        start = run.coupled[1]
+    w = linear_recurrence(a, b0 * uc[:-1] + b1 * uc[1:], start)
+    run.coupled = (id(system), w[-1])
+    bodies = np.zeros((w.shape[0], system.bodies.shape[1]))
+    x, _v = system.to_physical(ModalState(w, bodies, bodies))
+    return x
+
+
+def _kick(
+    run: _Run, system: ModalSystem, force: Forcing, t: float, f: NDArray[np.float64], h: float
+) -> None:
+    """At a segment's start t: the forcing's jump and change of slope there (its value and
+    slope at the end of the segment before, or, at the start, its own left-hand values) into
+    the bound of the modes left out (:meth:`_Recorder.kick`)."""
+    if run.last is None:
+        left = force(np.array([np.nextafter(t, -np.inf), t - h]))
+        run.last = (left[0], (left[0] - left[1]) / h)
+    before, slope = run.last
+    run.recorder.kick(system, f[0] - before, (f[1] - f[0]) / h - slope)
 
 
 def _mode_forcing(run: _Run, mode: _Mode) -> Forcing:
@@ -678,6 +740,7 @@ def _crossing(
 
     tau = 0.0 if value(0.0) >= 0.0 else brentq(value, 0.0, h, xtol=1e-15 + 1e-12 * h)
     x, v = state(tau)
+    run.last = (f[j - 1] + tau * slope, slope)
     return float(times[j - 1] + tau), x[0], v[0]
 
 
@@ -704,12 +767,16 @@ def _segment(
         force = _mode_forcing(run, mode)
         f = force(tf)
         if done == 0 and system.residual is not None:
-            run.jumps.append(_jump(force, t, f[0]))
-        u, g = system.modal_forcing(f)
+            _kick(run, system, force, t, f, h)
+        run.last = (f[-1], (f[-1] - f[-2]) / h)
+        slopes = np.diff(f, axis=0) / h  # of the steps; at the samples their mean
+        rates = np.concatenate([slopes[:1], 0.5 * (slopes[:-1] + slopes[1:]), slopes[-1:]])
+        u, g = system.modal_forcing(f, rates if system.residual is not None else None)
         w = system.run(state, u, g, h)
-        x, v = system.to_physical(w, None, f[1:], np.diff(f, axis=0) / h)
+        x, v = system.to_physical(w, None, f[1:], slopes)
         if system.residual is not None:
-            run.recorder.dropped(system.residual.angles(f[1:]))
+            run.recorder.dropped(system, system.residual.angles(f[1:]), False)
+            run.recorder.dropped(system, _coupled(run, system, rates, h), True)
         tk = times[1:]
         hit = None
         if mode.watch is not None:
@@ -999,38 +1066,87 @@ def _truncation(
     systems: Sequence[ModalSystem], rec: _Recorder, run: _Run, frequency: float
 ) -> dict[str, Any]:
     """The modal truncation's fields of the result (:mod:`crankdyn.torsion.integrator`,
-    "Modal truncation"): the modes kept, the cut-off, the bound beta of the dropped modes'
-    dynamic part relative to their quasi-static part (r^2 / (1 - r^2), r the forcing's
-    highest frequency over the lowest dropped mode's; plus 1 when the forcing jumps), and beta
-    times every element's largest quasi-static torque of the dropped modes (N m)."""
+    "Modal truncation"): the modes kept, the cut-off, beta (:func:`truncation_factor`: the
+    dropped modes' dynamic part relative to their quasi-static part under forcing up to the
+    forcing's highest frequency), and every element's bound (N m): beta times its largest
+    quasi-static torque of the dropped modes and its largest torque of the kept modes'
+    response to their damping force (:func:`_coupled`), plus what the forcing's jumps and
+    kinks at the segments' starts add (:meth:`_Recorder.kick`)."""
     kept = max(int(s.modes.shape[1]) for s in systems)
     if all(s.residual is None for s in systems):
         return {"modes_kept": kept, "note": None}
     lowest = min(s.lowest_dropped for s in systems)
     cutoff = max(s.cutoff for s in systems if s.residual is not None)
     dropped = max(s.dropped for s in systems)
-    r2 = (frequency / lowest) ** 2
-    jumps = max(run.jumps, default=0.0) > 1e-9
-    bound = (r2 / (1.0 - r2) if r2 < 1.0 else math.inf) + (1.0 if jumps else 0.0)
-    residual = rec.residual if rec.residual is not None else np.zeros(1)
-    per_element = bound * residual
+    damping = max(_damping_radius(s) for s in systems if s.residual is not None)
+    beta = truncation_factor(frequency, lowest, damping)
+    width = rec.line.element_stiffness.size + len(rec.line.gears)
+    residual = rec.residual if rec.residual is not None else np.zeros(width)
+    coupling = rec.coupling if rec.coupling is not None else np.zeros(width)
+    kicks = rec.kicks if rec.kicks is not None else np.zeros(width)
+    per_element = beta * (residual + coupling) + kicks
     note = (
         f"modal truncation: the {kept} elastic modes up to {cutoff / (2 * math.pi):.4g} Hz "
         f"integrated, the {dropped} above (from {lowest / (2 * math.pi):.4g} Hz) "
-        "quasi-statically (residual flexibility); their dynamic part is at most "
-        f"{bound:.3g} of their quasi-static part (forcing up to "
-        f"{frequency / (2 * math.pi):.4g} Hz{', with jumps' if jumps else ''}): every element "
-        f"torque within {float(np.max(per_element)):.4g} N·m; the damping coupling of the "
-        "kept and the dropped modes is left out"
+        "quasi-statically (residual flexibility); their dynamic part at most "
+        f"{beta:.3g} of their quasi-static part under forcing up to "
+        f"{frequency / (2 * math.pi):.4g} Hz, plus the forcing's jumps' and kinks': every "
+        f"element torque within {float(np.max(per_element)):.4g} N·m of the all-mode run"
     )
     return {
         "modes_kept": kept,
         "cutoff_frequency": float(cutoff),
-        "truncation_bound": float(bound),
+        "truncation_bound": float(beta),
         "truncation_error": float(np.max(per_element)),
         "truncation_torque": per_element,
         "note": note,
     }
+
+
+def _damping_radius(system: ModalSystem) -> float:
+    """An upper bound of the modal damping of every mode, max_j phi_j^T C phi_j (1/s): the
+    largest absolute row sum of M^-1/2 C M^-1/2 (Gershgorin's theorem)."""
+    scale = 1.0 / np.sqrt(system.inertia)
+    c = np.abs(system.damping) * scale[:, None] * scale[None, :]
+    return float(np.max(np.sum(c, axis=1), initial=0.0))
+
+
+def truncation_factor(forcing: float, lowest: float, damping: float = 0.0) -> float:
+    """The largest dynamic part of a dropped mode relative to its quasi-static part, under
+    harmonic forcing up to ``forcing`` (rad/s): |H / H_qs - 1| =
+    |omega_f^2 - i omega_f c| / |omega_d^2 - omega_f^2 + i omega_f c| for a mode omega_d >=
+    ``lowest`` with modal damping c <= ``damping`` (1/s) (the steady state of
+    q'' + c q' + omega_d^2 q = p; Craig and Kurdila 2006, sec. 14.5, the mode-acceleration
+    method's residual), largest at omega_d = ``lowest``, c = ``damping`` for r^2 =
+    (omega_f / omega_d)^2 < 1/2; r^2 / (1 - r^2) undamped.
+
+    Parameters
+    ----------
+    forcing : float
+        omega_f (rad/s).
+    lowest : float
+        omega_d (rad/s).
+    damping : float
+        The bound of the dropped modes' modal damping c (1/s).
+
+    Returns
+    -------
+    float
+        (dimensionless); inf when omega_f >= omega_d.
+
+    Examples
+    --------
+    >>> round(truncation_factor(1.0, 4.0), 6), round(1 / 15, 6)
+    (0.066667, 0.066667)
+    """
+    r2 = (forcing / lowest) ** 2 if lowest > 0.0 else math.inf
+    if not r2 < 1.0:
+        return math.inf
+    x2 = (forcing * damping / lowest**2) ** 2
+    base = math.sqrt((r2 * r2 + x2) / ((1.0 - r2) ** 2 + x2))
+    if r2 <= 0.5:
+        return base
+    return max(base, r2 / (1.0 - r2))
 
 
 @dataclass(eq=False)

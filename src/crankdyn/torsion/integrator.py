@@ -49,11 +49,12 @@ Ostermann, "Exponential integrators", Acta Numerica 19, 2010, 209-286, sec. 2.1)
        x = G r + Phi_k q + R f,   R = sum over the dropped modes phi_j phi_j^T / omega_j^2,
 
    R formed only in the columns of the loaded dofs (:class:`Residual`), and x' the same with
-   f' (the slope of the first-order hold). The damping of the kept block only is integrated
-   (D_k = Phi_k^T C Phi_k; a non-classical damping's coupling of kept and dropped modes is
-   left out). The error is the dropped modes' dynamic part: for a forcing of frequencies up
-   to omega_f below the lowest dropped mode omega_d it is at most
-   r^2 / (1 - r^2), r = omega_f / omega_d, of their quasi-static part R f (the steady-state
+   f' (the slope of the first-order hold). The kept modes carry the damping of their own
+   block, D_k = Phi_k^T C Phi_k, and the damping force of the dropped modes' quasi-static
+   rates, -Phi_k^T C R f' (a non-classical damping couples them; the coupling through the
+   dropped modes' dynamic part is left out). The error is the dropped modes' dynamic part:
+   for a forcing of frequencies up to omega_f below the lowest dropped mode omega_d it is at
+   most r^2 / (1 - r^2), r = omega_f / omega_d, of their quasi-static part R f (the steady-state
    amplification of an undamped mode, 1 / (1 - r^2), less one); a jump of the forcing adds at
    most the quasi-static part of the jump itself (an undamped mode overshoots a step by its
    static deflection).
@@ -128,6 +129,11 @@ def phi_functions(z: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.comp
         p2 = np.where(small, s2, p2)
     return p1, p2
 
+
+FEW_ROWS_MODES = 200
+"""Above this many modes :meth:`ModalSystem.to_physical` of a few dofs forms their rows of
+Phi V first (O(dofs) per instant); below it, the modal coordinates q first and then the rows
+(the all-dof products' rounding: the same numbers to the last digits)."""
 
 SCAN_BLOCK = 16
 """Samples per block of :func:`linear_recurrence`."""
@@ -290,14 +296,50 @@ class Residual:
         (n, r) Psi (kg^-0.5 m^-1).
     factor : tuple
         The LU factors of K_s (:func:`scipy.linalg.lu_factor`).
+    modes : numpy.ndarray
+        (n, p) the kept elastic modes Phi_k (kg^-0.5 m^-1).
+    damping : numpy.ndarray
+        (n, n) C (N m s/rad): the damping force of the dropped modes' quasi-static rates on
+        the kept modes, Phi_k^T C R f', is carried (:meth:`coupling`).
     """
 
     inertia: NDArray[np.float64]
     kept: NDArray[np.float64]
     factor: tuple[Any, Any]
+    modes: NDArray[np.float64]
+    damping: NDArray[np.float64]
     _cols: dict[int, NDArray[np.float64]] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )
+    _coupled: dict[int, NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+
+    def coupling(self, forcing: ArrayLike) -> NDArray[Any]:
+        """Phi_k^T C R f: the damping force (N m, in the kept modes' coordinates) of the
+        dropped modes' quasi-static motion R f on the kept modes, for f (..., n) (N m; or
+        their rates: the force then in N m per unit speed, as C R f').
+
+        Parameters
+        ----------
+        forcing : array_like
+            (..., n), real or complex.
+
+        Returns
+        -------
+        numpy.ndarray
+            (..., p) (the kept modes' coordinates).
+        """
+        f = np.asarray(forcing)
+        cols = loaded(np.abs(f))
+        missing = [int(c) for c in cols if int(c) not in self._coupled]
+        if missing:
+            block = self.modes.T @ (self.damping @ self.columns(missing))
+            for i, c in enumerate(missing):
+                self._coupled[c] = block[:, i]
+        if cols.size == 0:
+            return np.zeros((*f.shape[:-1], self.modes.shape[1]), dtype=f.dtype)
+        return f[..., cols] @ np.stack([self._coupled[int(c)] for c in cols], axis=1).T
 
     def columns(self, cols: ArrayLike) -> NDArray[np.float64]:
         """Columns of R (rad/(N m)) for unit torques at the dofs ``cols``, (n, len(cols)).
@@ -504,7 +546,7 @@ class ModalSystem:
         # Re(w P^T) as two real products: a complex product of a few rows runs far slower in
         # threaded BLAS on a busy machine (thread start-up), the same numbers to rounding
         wr, wi = np.ascontiguousarray(ww.real), np.ascontiguousarray(ww.imag)
-        if dofs is not None and modes.shape[0] < modes.shape[1]:
+        if dofs is not None and modes.shape[1] > FEW_ROWS_MODES:
             # a few dofs: their rows of Phi V first (O(dofs) per instant, not O(modes))
             px, pv = modes @ self.position, modes @ self.velocity
             x = wr @ px.real.T - wi @ px.imag.T + state.r @ bodies.T
@@ -591,14 +633,17 @@ class ModalSystem:
         out = np.zeros(f.shape, dtype=complex)
         for i in range(w.size):
             dyn = np.diag(omega2 - w[i] ** 2) + 1j * w[i] * self.modal_damping
-            q = np.linalg.solve(dyn, self.modes.T @ f[i]) if p else np.zeros(0)
+            rhs = self.modes.T @ f[i]
+            if self.residual is not None:  # the dropped modes' damping force on the kept ones
+                rhs = rhs - 1j * w[i] * self.residual.coupling(f[i])
+            q = np.linalg.solve(dyn, rhs) if p else np.zeros(0)
             out[i] = self.modes @ q - self.bodies @ (self.bodies.T @ f[i]) / w[i] ** 2
         if self.residual is not None:  # the modes left out: quasi-statically
             out = out + self.residual.angles(f.real) + 1j * self.residual.angles(f.imag)
         return out
 
     def modal_forcing(
-        self, forcing: ArrayLike
+        self, forcing: ArrayLike, rate: ArrayLike | None = None
     ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
         """The modal inputs of generalised torques f (N m), shape (..., n).
 
@@ -606,6 +651,10 @@ class ModalSystem:
         ----------
         forcing : array_like
             Generalised torques on the degrees of freedom (N m), (..., n).
+        rate : array_like or None
+            (..., n) their rates f' (N m/s): with modes left out, the damping force of their
+            quasi-static rates R f' on the kept modes, -Phi_k^T C R f', is added (module
+            docstring, "Modal truncation").
 
         Returns
         -------
@@ -615,7 +664,10 @@ class ModalSystem:
             (..., b) accelerations of the free bodies' coordinates.
         """
         f = np.asarray(forcing, dtype=float)
-        return (f @ self.modes) @ self.input_gain.T, f @ self.bodies
+        modal = f @ self.modes
+        if self.residual is not None and rate is not None:
+            modal = modal - self.residual.coupling(rate)
+        return modal @ self.input_gain.T, f @ self.bodies
 
     def run(
         self,
@@ -801,7 +853,7 @@ def modal_system(
     phi = vecs * scale[:, None]  # M-normalised
     residual = None
     if vals.size < n - b:
-        residual = _residual(m, k, g, phi, vals, top, float(max_frequency or 0.0))
+        residual = _residual(m, k, c, g, phi, vals, top, float(max_frequency or 0.0))
     omega2 = np.clip(vals, 0.0, None)
     p_count = omega2.size
     d = phi.T @ c @ phi  # the kept block only: the coupling to the modes left out is dropped
@@ -875,6 +927,7 @@ def _undamped(
 def _residual(
     m: NDArray[np.float64],
     k: NDArray[np.float64],
+    c: NDArray[np.float64],
     g: NDArray[np.float64],
     phi: NDArray[np.float64],
     vals: NDArray[np.float64],
@@ -890,4 +943,4 @@ def _residual(
     v = np.concatenate([g, zero], axis=1) * m[:, None]  # M V
     alpha = max(cutoff * cutoff, 1e-300)
     factor = lu_factor(k + alpha * (v @ v.T))
-    return Residual(m, np.concatenate([g, phi], axis=1), factor)
+    return Residual(m, np.concatenate([g, phi], axis=1), factor, phi, c)
