@@ -229,3 +229,28 @@ def test_residual_flexibility_columns_equal_the_dropped_modes():
         f = np.zeros(n)
         f[[0, 3]] = [1.0, -2.0]
         np.testing.assert_allclose(part.static(f), full.static(f), rtol=1e-9, atol=1e-18)
+
+
+def test_damper_ring_without_stiffness_stays_at_zero_frequency():
+    """A viscous damper's ring (joined by damping only) is a zero-frequency motion: kept, at
+    exactly zero frequency by both eigen-solvers (a rounding-positive eigenvalue would make
+    the static twist 1/omega^2 huge: seen on the marine line at 100 masses), and the
+    truncated static twist equals the all-mode one."""
+    n = 30
+    m = np.linspace(0.5, 3.0, n)
+    m[-1] = 0.05  # the ring
+    k = np.zeros((n, n))
+    for i in range(n - 2):
+        k[i : i + 2, i : i + 2] += 10.0 ** (4 + (i % 3)) * np.array([[1.0, -1.0], [-1.0, 1.0]])
+    c = 1e-5 * k
+    c[[0, n - 1], [0, n - 1]] += 50.0
+    c[0, n - 1] = c[n - 1, 0] = -50.0
+    full = modal_system(m, k, c)
+    part = modal_system(m, k, c, max_frequency=float(full.natural_frequency[6]) * 1.0001)
+    assert full.natural_frequency[0] == 0.0 and part.natural_frequency[0] == 0.0
+    f = np.zeros(n)
+    f[[1, 12]] = [3e3, -1e3]
+    expected = full.static(f)
+    np.testing.assert_allclose(
+        part.static(f), expected, rtol=0, atol=1e-9 * np.max(np.abs(expected))
+    )

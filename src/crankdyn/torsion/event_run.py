@@ -461,8 +461,6 @@ def _refine(line: Line, rec: _Recorder) -> None:
     """Every element's extremes on the exact solution within the steps around them (module
     docstring): the windows shared by several extremes (an impact loads many elements at
     once) evaluated once, at the dofs their elements' torques read only."""
-    assert rec.high is not None and rec.low is not None
-    assert rec.high_at is not None and rec.low_at is not None
     width = line.element_stiffness.size + len(line.gears)
     groups: dict[tuple[int, float, float], list[tuple[int, int, _Window]]] = {}
     for (e, which), w in rec.windows.items():
@@ -477,44 +475,50 @@ def _refine(line: Line, rec: _Recorder) -> None:
             t, x, v = w.at(s, taus * w.step, dofs)
             ts.append(t)
             vals.append(_columns(line, w.mode, t, x, v, dofs, columns, w.force, w.mean))
-        t_all, series_all = np.concatenate(ts), np.concatenate(vals)
-        for e, which, _w in items:
-            _refine_one(rec, w, e, 1.0 if which == 0 else -1.0, t_all, series_all, columns, dofs)
+        _refine_group(rec, w, items, np.concatenate(ts), np.concatenate(vals), columns, dofs)
 
 
-def _refine_one(
+def _refine_group(
     rec: _Recorder,
     w: _Window,
-    e: int,
-    sign: float,
+    items: list[tuple[int, int, _Window]],
     t_all: NDArray[np.float64],
     series_all: NDArray[np.float64],
     columns: list[int],
     dofs: NDArray[np.int_],
 ) -> None:
-    """One extreme of column e refined on its window's points (then a parabola's vertex,
-    evaluated on the solution)."""
+    """The extremes of one window's columns: the best point of each, then the vertex of the
+    parabola through it and its neighbours, evaluated on the solution."""
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
-    line = rec.line
-    v_all = sign * series_all[:, columns.index(e)]
-    k = int(np.argmax(v_all))
-    best, at = float(v_all[k]), float(t_all[k])
-    if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
-        y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]  # evaluated on the solution
-        den = y0 - 2.0 * y1 + y2
-        if den < 0.0:
-            vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
-            s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
-            t, x, v = w.at(s, [vertex - w.t0 - s * w.step], dofs)
-            t = np.array([vertex])
-            value = float(sign * _columns(line, w.mode, t, x, v, dofs, [e], w.force, w.mean)[0, 0])
-            if value > best:
-                best, at = value, vertex
-    target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
-    if best > sign * target[e]:  # best is in sign x torque
-        target[e] = sign * best
-        times[e] = at
+    found: list[list[float]] = []
+    vertices: list[tuple[int, float]] = []
+    for i, (e, which, _w) in enumerate(items):
+        sign = 1.0 if which == 0 else -1.0
+        v_all = sign * series_all[:, columns.index(e)]
+        k = int(np.argmax(v_all))
+        found.append([float(v_all[k]), float(t_all[k])])
+        if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points
+            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]
+            den = y0 - 2.0 * y1 + y2
+            if den < 0.0:
+                step = t_all[k + 1] - t_all[k]
+                vertices.append((i, float(t_all[k] + 0.5 * (y0 - y2) / den * step)))
+    last = len(w.states) - 2
+    for i, vertex in vertices:  # one at a time: the products of the whole-state refinement
+        e, which, _w = items[i]
+        s = min(int((vertex - w.t0) // w.step), last)
+        _t, x, v = w.at(s, [vertex - w.t0 - s * w.step], dofs)
+        t = np.array([vertex])
+        value = _columns(rec.line, w.mode, t, x, v, dofs, [e], w.force, w.mean)[0, 0]
+        if (1.0 if which == 0 else -1.0) * float(value) > found[i][0]:
+            found[i] = [(1.0 if which == 0 else -1.0) * float(value), vertex]
+    for (e, which, _w), (best, at) in zip(items, found, strict=True):
+        sign = 1.0 if which == 0 else -1.0
+        target, times_at = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
+        if best > sign * target[e]:  # best is in sign x torque
+            target[e] = sign * best
+            times_at[e] = at
 
 
 def _dofs_of(line: Line, mode: _Mode, elements: Sequence[int]) -> NDArray[np.int_]:

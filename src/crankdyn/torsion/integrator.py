@@ -854,7 +854,8 @@ def modal_system(
     residual = None
     if vals.size < n - b:
         residual = _residual(m, k, c, g, phi, vals, top, float(max_frequency or 0.0))
-    omega2 = np.clip(vals, 0.0, None)
+    # a zero-frequency motion (a damper's ring without stiffness) to rounding: exactly zero
+    omega2 = np.where(vals > 1e-12 * max(top, 1e-300), vals, 0.0)
     p_count = omega2.size
     d = phi.T @ c @ phi  # the kept block only: the coupling to the modes left out is dropped
     d = 0.5 * (d + d.T)
