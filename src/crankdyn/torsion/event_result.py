@@ -81,6 +81,13 @@ class EventResult(Result):
     for a rigid gear mesh), ``section_modulus`` its W_p where it has a diameter (NaN
     otherwise), ``limit_torque`` a coupling's T_Kmax from the model (NaN otherwise).
 
+    A run with a cut-off (``max_frequency``: the TVC's) integrates the modes up to it and the
+    modes above quasi-statically: ``modes_kept``, ``cutoff_frequency`` (None: every mode),
+    ``truncation_bound`` (the dropped modes' dynamic part relative to their quasi-static
+    part), ``truncation_torque`` (every element's bound of the truncation error, N m) and
+    ``truncation_error`` (its largest) say how (:mod:`crankdyn.torsion.integrator`, "Modal
+    truncation").
+
     The verdicts are not the run's own: the TVC's checks judge it
     (:func:`crankdyn.tvc.events.judge_event`, the one evaluation of every check).
 

@@ -38,7 +38,12 @@ exact for any step, the step is what resolves the response in time) and a fortie
 period of the highest frequency the forcing holds (the orders' at the highest speed, the
 event's own), and 1/200 of the run. The largest and smallest torque of every element are found
 on every step (whatever is stored) and refined on the exact solution within the two steps
-around them (41 points each, then a parabola).
+around them (41 points each, then a parabola), at the few dofs each element's torque reads.
+
+Modal truncation: with ``max_frequency`` only the modes up to it are integrated, those above
+follow the forcing quasi-statically (:mod:`crankdyn.torsion.integrator`, "Modal truncation"),
+each step O(N x kept modes); the bound of the error is reported with the result
+(:func:`_truncation`: every element's bound in N m, the cut-off, the modes kept, a note).
 
 Memory: the run is integrated in blocks of at most :data:`BLOCK_BYTES` of working arrays, and
 at most ``max_samples`` samples are kept (every ``stride``-th step, and the switching instants
