@@ -404,13 +404,22 @@ class _Recorder:
             self.residual = new
 
     def kick(
-        self, system: ModalSystem, jump: NDArray[np.float64], bend: NDArray[np.float64]
+        self,
+        system: ModalSystem,
+        jump: NDArray[np.float64] | None,
+        bend: NDArray[np.float64] | None,
+        angles: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
     ) -> None:
         """Add the dynamic part a jump (N m) and a change of slope (N m/s) of the forcing (n,)
         start in the modes left out (module docstring of :mod:`crankdyn.torsion.integrator`):
-        at most their quasi-static torque R jump and R bend / omega_d."""
+        at most their quasi-static torque R jump and R bend / omega_d; or that of ``angles``
+        (two (n,) twists, rad) the dropped modes start from."""
         assert system.residual is not None
-        x = system.residual.angles(np.stack([jump, bend / system.lowest_dropped]))
+        if angles is not None:
+            x = np.stack(angles)
+        else:
+            assert jump is not None and bend is not None
+            x = system.residual.angles(np.stack([jump, bend / system.lowest_dropped]))
         add = np.sum(self._twist(system, x), axis=0)
         self.kicks = add if self.kicks is None else self.kicks + add
 
@@ -641,6 +650,7 @@ class _Run:
     locked_at: float | None = None
     last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
     coupled: tuple[int, NDArray[np.complex128]] | None = None
+    switched: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
 
 
 def _coupled(
@@ -667,8 +677,16 @@ def _kick(
     run: _Run, system: ModalSystem, force: Forcing, t: float, f: NDArray[np.float64], h: float
 ) -> None:
     """At a segment's start t: the forcing's jump and change of slope there (its value and
-    slope at the end of the segment before, or, at the start, its own left-hand values) into
-    the bound of the modes left out (:meth:`_Recorder.kick`)."""
+    slope at the end of the segment before, or, at the start and after a switch, its own
+    left-hand values: a clutch's element put back carries the friction torque, no jump) into
+    the bound of the modes left out (:meth:`_Recorder.kick`); after a switch, the dropped
+    modes' start (quasi-static in the new system, not the state reached): the difference of
+    the angles, and of the rates over omega_d, oscillates at most with its own amplitude."""
+    if run.switched is not None:
+        xs, vs = run.switched
+        x, v = system.to_physical(system.to_modal(xs, vs), None, f[:1], ((f[1] - f[0]) / h)[None])
+        run.recorder.kick(system, None, None, (x[0] - xs, (v[0] - vs) / system.lowest_dropped))
+        run.switched = None
     if run.last is None:
         left = force(np.array([np.nextafter(t, -np.inf), t - h]))
         run.last = (left[0], (left[0] - left[1]) / h)
@@ -819,6 +837,7 @@ def _segment(
         run.switches.append(f"{mode.key} -> {new.key} at {ts:.6g} s")
         if new.key == "locked" and run.locked_at is None:
             run.locked_at = ts
+        run.last, run.switched = None, (xs, vs)
         return ts, new, new.system.to_modal(xs, vs)
     return t, mode, state
 
