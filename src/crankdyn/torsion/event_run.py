@@ -1211,8 +1211,10 @@ class _Sampled:
 
     def __call__(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
         """(L, n) the held generalised torques at times (L,) (N m)."""
-        values = np.array([self.before, *self.held])
-        return values[np.searchsorted(np.array(self.times), np.asarray(t), side="right")]
+        index = np.searchsorted(np.array(self.times), np.asarray(t), side="right")
+        used, where = np.unique(index, return_inverse=True)  # a segment holds one or two
+        values = np.stack([self.before if i == 0 else self.held[i - 1] for i in used])
+        return values[where.reshape(np.shape(index))]
 
 
 def _sampled(line: Line, event: Any, mean: bool) -> _Sampled | None:

@@ -314,6 +314,9 @@ class Residual:
     _coupled: dict[int, NDArray[np.float64]] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )
+    _stacked: dict[tuple[int, ...], NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     def coupling(self, forcing: ArrayLike) -> NDArray[Any]:
         """Phi_k^T C R f: the damping force (N m, in the kept modes' coordinates) of the
@@ -367,9 +370,14 @@ class Residual:
                 y = y - self.kept @ (self.kept.T @ (self.inertia[:, None] * y))
             for i, c in enumerate(missing):
                 self._cols[c] = y[:, i]
-        if not cols:
-            return np.zeros((self.inertia.size, 0))
-        return np.stack([self._cols[c] for c in cols], axis=1)
+        key = tuple(cols)
+        if key not in self._stacked:  # the same few columns, block after block
+            self._stacked[key] = (
+                np.stack([self._cols[c] for c in cols], axis=1)
+                if cols
+                else np.zeros((self.inertia.size, 0))
+            )
+        return self._stacked[key]
 
     def angles(self, forcing: ArrayLike, rows: Any = slice(None)) -> NDArray[np.float64]:
         """R f at the dofs ``rows`` (rad) of torques f (..., n) (N m), (..., len(rows)).
@@ -488,6 +496,9 @@ class ModalSystem:
     _flex: dict[int, NDArray[np.float64]] = field(
         default_factory=dict, init=False, repr=False, compare=False
     )
+    _stacked: dict[tuple[int, ...], NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     @property
     def size(self) -> int:
@@ -587,9 +598,14 @@ class ModalSystem:
                 block = block + self.residual.columns(missing)
             for i, c in enumerate(missing):
                 self._flex[c] = block[:, i]
-        if not cols:
-            return np.zeros((self.size, 0))
-        return np.stack([self._flex[c] for c in cols], axis=1)
+        key = tuple(cols)
+        if key not in self._stacked:
+            self._stacked[key] = (
+                np.stack([self._flex[c] for c in cols], axis=1)
+                if cols
+                else np.zeros((self.size, 0))
+            )
+        return self._stacked[key]
 
     def static(self, forcing: ArrayLike) -> NDArray[np.float64]:
         """The static twist under generalised torques f (N m), (n,): K x = P^T f, the part of
@@ -909,18 +925,23 @@ def _undamped(
     when none is) of the ``count`` lowest eigenpairs of M^-1/2 K M^-1/2 shifted on the free
     bodies: every mode, or those up to ``max_frequency`` (a partial symmetric eigen-solve: the
     eigenvalues, then the vectors of the lowest ones only)."""
-    from scipy.linalg import eigh, eigvalsh
+    from scipy.linalg import eigh
 
     if max_frequency is not None and count > 0:
         cut2 = float(max_frequency) ** 2
-        values = eigvalsh(shifted, subset_by_index=(0, count - 1))
-        kept = int(np.searchsorted(values, cut2, side="right"))
+        # the pairs up to (2 omega_c)^2: the kept ones and the lowest dropped one (the free
+        # bodies, shifted above every mode, come last if at all)
+        vals, vecs = eigh(shifted, subset_by_value=(-np.inf, 4.0 * cut2))
+        vals, vecs = vals[:count], vecs[:, :count]
+        kept = int(np.searchsorted(vals, cut2, side="right"))
         if kept < count:
-            lowest = math.sqrt(max(float(values[kept]), 0.0))
-            if kept == 0:
-                return np.zeros(0), np.zeros((shifted.shape[0], 0)), lowest
-            vals, vecs = eigh(shifted, subset_by_index=(0, kept - 1))
-            return vals, vecs, lowest
+            # none found up to 2 omega_c: the lowest dropped mode is above it (a lower bound)
+            lowest = (
+                math.sqrt(max(float(vals[kept]), 0.0))
+                if kept < vals.size
+                else 2.0 * math.sqrt(cut2)
+            )
+            return vals[:kept], vecs[:, :kept], lowest
     vals, vecs = np.linalg.eigh(shifted)
     return vals[:count], vecs[:, :count], math.inf
 
