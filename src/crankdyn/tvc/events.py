@@ -31,7 +31,7 @@ from crankdyn.defaults import DEFAULTS
 from crankdyn.errors import InputError
 from crankdyn.tvc.checks import Check, model_checks
 from crankdyn.tvc.evaluate import evaluate_event
-from crankdyn.tvc.result import EventCondition, EventCurve
+from crankdyn.tvc.result import EventCondition, EventCurve, truncation_fields
 
 if TYPE_CHECKING:
     from crankdyn.torsion.event_result import EventResult
@@ -254,6 +254,7 @@ def event_conditions(
                 verdicts=run.verdicts,
                 run=run,
                 curves=event_curves(run, checks),
+                **truncation_fields(run),
             )
         )
     return out

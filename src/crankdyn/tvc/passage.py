@@ -39,7 +39,7 @@ from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.tvc.evaluate import merge_intervals
 from crankdyn.tvc.events import EVENT_MODE_FACTOR
-from crankdyn.tvc.result import BarredSpeedRange, Passage
+from crankdyn.tvc.result import BarredSpeedRange, Passage, truncation_fields
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
@@ -254,6 +254,7 @@ def passages(
                     f"{words}, {load_words}"
                 ),
                 transient=run,
+                **truncation_fields(run),
             )
         )
         title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
