@@ -276,3 +276,21 @@ def test_marine_tvc_clutch_and_start_within_their_bounds(monkeypatch, index):
     for name in ("max_torque", "min_torque", "max_vibratory", "min_vibratory"):
         difference = np.abs(getattr(run, name) - getattr(exact, name))
         assert np.all(difference <= bound), (name, np.max(difference - bound))
+
+
+@pytest.mark.parametrize(
+    ("forcing", "lowest", "damping"), [(1.0, 4.0, 0.0), (1.0, 4.0, 30.0), (2.0, 3.0, 5.0)]
+)
+def test_truncation_factor_is_the_largest_dynamic_part(forcing, lowest, damping):
+    """beta against the steady state of q'' + c q' + w^2 q = p e^{i W t} evaluated on a grid
+    of dropped modes (w from the lowest to 20 times it, c from 0 to the bound) and forcing
+    frequencies (0 to W): the largest |H / H_qs - 1| equals beta (at w lowest, c largest, the
+    forcing's top), to the grid."""
+    from crankdyn.torsion.event_run import truncation_factor
+
+    w = lowest * np.linspace(1.0, 20.0, 400)[:, None, None]
+    c = np.linspace(0.0, damping, 41)[None, :, None]
+    f = forcing * np.linspace(0.0, 1.0, 101)[None, None, :]
+    ratio = np.abs(w**2 / (w**2 - f**2 + 1j * f * c) - 1.0)
+    beta = truncation_factor(forcing, lowest, damping)
+    assert np.max(ratio) == pytest.approx(beta, rel=1e-12)

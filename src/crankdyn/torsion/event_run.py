@@ -81,7 +81,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["BLOCK_BYTES", "FORCE_POINTS", "MODE_POINTS", "event_response"]
+__all__ = ["BLOCK_BYTES", "FORCE_POINTS", "MODE_POINTS", "event_response", "truncation_factor"]
 
 MODE_POINTS = 10
 """Steps per period of the highest natural frequency of interest."""
