@@ -26,13 +26,13 @@ demo: $(VENV)/.stamp-base
 
 ## make test: install with test extras (studies, docs tools), lint, type-check the package,
 ## run the whole suite (with the docstring examples of the modules in pyproject's testpaths; it
-## builds the documentation site with warnings as errors and opens it in a headless browser)
+## builds the documentation site with warnings as errors and opens it in a headless browser);
+## mypy runs beside the suite (scripts/types-and-tests.sh), both must pass
 test: $(VENV)/.stamp-test
 	@bash scripts/install-browser.sh
 	$(BIN)/ruff check $(LINTED)
 	$(BIN)/ruff format --check $(LINTED)
-	$(BIN)/mypy
-	$(BIN)/python -m pytest -n 2 -q
+	@bash scripts/types-and-tests.sh $(BIN)
 
 ## make docs: the documentation site in docs/_build/html (user guide, theory, command and API
 ## reference, validation cases, worked examples run at build time); warnings are errors

@@ -148,22 +148,23 @@ def design_command(
     written = [folder / "results.csv", folder / "summary" / "index.html"]
     written += [folder / "best.toml"] if result.found else []
     if result.found and not no_report:
-        written.append(_report(folder, result.tvc))
+        written.append(_report(folder, result))
     Output("table").write(blocks=blocks)
     click.echo("wrote " + ", ".join(str(p) for p in written), err=True)
     return 0 if result.found else 1
 
 
-def _report(folder: Path, tvc: Any) -> Path:
-    """The chosen design's TVC report (no PDF): its whole TVC where the search checked it,
-    else from best.toml as crankdyn tvc reads it."""
-    from crankdyn.cli.torsion import model_session
+def _report(folder: Path, result: Any) -> Path:
+    """The chosen design's TVC report (no PDF): its whole TVC where the search computed it
+    here, else computed as the search's workers computed it (the study's analysis settings)."""
     from crankdyn.report.tvc import build_tvc_report
     from crankdyn.report.write import write_report
+    from crankdyn.study.run.design import whole_tvc
 
     with console(stderr=True).status("TVC report of the chosen design"):
+        tvc = result.tvc
         if tvc is None:
-            tvc = model_session(str(folder / "best.toml")).tvc()
+            tvc = whole_tvc(result.space, result.best.case)
         report = build_tvc_report(tvc)
         return write_report(report, folder / "tvc", force=True) / "index.html"
 

@@ -641,6 +641,7 @@ def parse_design(
             samples=1,
             seed=search.seed,
             source=file,
+            verdict_rows=verdicts != "none",
         )
         space = DesignSpace(
             study=study,

@@ -19,7 +19,7 @@ that defines each figure before running a case.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -31,7 +31,7 @@ from crankdyn.session import ANALYSES, Analysed
 
 if TYPE_CHECKING:
     from crankdyn.session import Analysis
-    from crankdyn.summary import FigureSpec
+    from crankdyn.summary import FigureSpec, Verdict
 
 __all__ = [
     "FIGURES",
@@ -42,6 +42,7 @@ __all__ = [
     "CaseContext",
     "Figure",
     "Setting",
+    "case_verdicts",
     "figures_markdown",
     "register_figure",
     "register_setting",
@@ -214,6 +215,31 @@ class CaseContext:
         if self._analysis is None:
             self._analysis = _session(self)
         return self._analysis
+
+
+def case_verdicts(ctx: CaseContext, figures: Sequence[str]) -> tuple[Verdict, ...]:
+    """The verdict rows a case's figures read: every condition's (the whole TVC,
+    :meth:`crankdyn.session.Analysis.tvc`) when they include ``worst_margin`` or
+    ``failed_rows``, else the normal-firing condition's (:meth:`crankdyn.session.Analysis.
+    judged`; none without a rule check). The session's analyses: computed once for the figures
+    and the rows.
+
+    Parameters
+    ----------
+    ctx : CaseContext
+        The case.
+    figures : sequence of str
+        The names of the figures the study computes.
+
+    Returns
+    -------
+    tuple of crankdyn.summary.Verdict
+        The rows.
+    """
+    if "worst_margin" in figures or "failed_rows" in figures:
+        return tuple(ctx.analysis.tvc().verdicts)
+    judged = ctx.analysis.judged()
+    return () if judged is None else tuple(judged.verdicts)
 
 
 def _session(ctx: CaseContext) -> Analysis:

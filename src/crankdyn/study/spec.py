@@ -417,6 +417,10 @@ class StudySpec:
         (figure, "min" or "max") overriding a figure's own sense of better.
     source : str or None
         The study file, for messages.
+    verdict_rows : bool
+        Keep each case's verdict rows in its journal record (:func:`crankdyn.study.figures.
+        case_verdicts`): a design search tables its best designs' rows from them instead of
+        analysing them again. Default False.
 
     Raises
     ------
@@ -437,6 +441,7 @@ class StudySpec:
     sampling: str = "random"
     best: tuple[tuple[str, str], ...] = ()
     source: str | None = field(default=None, compare=False)
+    verdict_rows: bool = False
 
     def __post_init__(self) -> None:
         if not self.parameters:

@@ -35,15 +35,25 @@ with no heat release), which needs the compression ratio. Under a load curve the
 pressure is scaled by the same factor s(Omega) as the firing cylinders' absolute pressure: the
 cylinders share the intake manifold, so at part load a misfiring cylinder compresses the same
 (lower) charge as its neighbours, whose scaled traces carry that charge's compression.
+
+Computed once per engine. The spectra of the basis signals (the pressure traces', the inertia
+torque's at 1 rad/s, the crankcase pressure's, over the cycle grid) depend on the engine and the
+excitation spec only, not on the torsional model nor on the misfiring cylinders: the
+excitations of equal engines (equal in every field but the torsional model: a TVC's misfire
+conditions, a design search's candidates that share the engine and its firing order) share them,
+the last :data:`SHARED_ENGINES` engines' kept in the process (read-only arrays).
 """
 
 from __future__ import annotations
 
+import dataclasses
+import hashlib
 import math
+import pickle
+from collections import OrderedDict
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
-from functools import cached_property
-from typing import TYPE_CHECKING, TypeAlias
+from typing import TYPE_CHECKING, Any, Generic, TypeAlias, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -70,6 +80,7 @@ if TYPE_CHECKING:
 __all__ = [
     "MAJOR_UNDETERMINED",
     "SAMPLES",
+    "SHARED_ENGINES",
     "EngineExcitation",
     "SourceExcitation",
     "TabulatedExcitation",
@@ -241,6 +252,65 @@ class UniformExcitation:
         return gas
 
 
+SHARED_ENGINES = 8
+"""How many engines' basis spectra a process keeps (module docstring)."""
+
+_SHARED: OrderedDict[str, dict[str, Any]] = OrderedDict()
+_T = TypeVar("_T")
+
+
+class _Digest:
+    """A file that hashes what is written to it."""
+
+    def __init__(self, digest: Any) -> None:
+        self.write = digest.update
+
+
+def _shared_store(engine: Engine, spec: ExcitationSpec | None) -> dict[str, Any]:
+    """The basis spectra of an engine and spec (module docstring), shared by equal ones: keyed by
+    the digest of their fields' values pickled, the torsional model left out; an engine that
+    cannot be pickled keeps its own."""
+    digest = hashlib.sha256()
+    pickler = pickle.Pickler(_Digest(digest), protocol=5)
+    pickler.fast = True  # no memo: equal values give equal bytes whatever objects they share
+    try:
+        # the fields' values only (astuple: no attribute an object keeps for later use)
+        fields = dataclasses.astuple(dataclasses.replace(engine, torsion=None))
+        pickler.dump((fields, None if spec is None else dataclasses.astuple(spec)))
+    except (pickle.PicklingError, TypeError, AttributeError, ValueError):
+        return {}
+    key = digest.hexdigest()
+    store = _SHARED.get(key)
+    if store is None:
+        store = _SHARED[key] = {}
+        while len(_SHARED) > SHARED_ENGINES:
+            _SHARED.popitem(last=False)
+    else:
+        _SHARED.move_to_end(key)
+    return store
+
+
+class _basis(Generic[_T]):  # a decorator, like cached_property
+    """A basis spectrum of :class:`EngineExcitation`: computed on first use and kept in the
+    store its engine shares (module docstring), arrays read-only."""
+
+    def __init__(self, func: Callable[[Any], _T]) -> None:
+        self.func = func
+        self.name = func.__name__
+        self.__doc__ = func.__doc__
+
+    def __get__(self, obj: Any, owner: Any = None) -> _T:
+        if obj is None:
+            return self  # type: ignore[return-value]  # the descriptor itself, as a property's
+        store = obj._store
+        if self.name not in store:
+            value = self.func(obj)
+            if isinstance(value, np.ndarray):
+                value.flags.writeable = False
+            store[self.name] = value
+        return store[self.name]
+
+
 @dataclass(frozen=True, eq=False)
 class EngineExcitation:
     """The gas and inertia torques of an engine's cylinders (module docstring).
@@ -267,6 +337,7 @@ class EngineExcitation:
     misfire: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "_store", _shared_store(self.engine, self.spec))
         count = self.engine.cylinders.count
         both = tuple(self.misfire) + (self.spec.misfire if self.spec else ())
         object.__setattr__(
@@ -367,17 +438,17 @@ class EngineExcitation:
         return tuple(out)
 
     # ---- spectra of the basis signals (computed once) -----------------------------------------
-    @cached_property
+    @_basis
     def _trace(self) -> PressureTrace:
         from crankdyn.crank.pressure_model import default_pressure
 
         return default_pressure(self.engine)
 
-    @cached_property
+    @_basis
     def _theta(self) -> NDArray[np.float64]:
         return _cycle_grid(self.cycle)
 
-    @cached_property
+    @_basis
     def _lever(self) -> NDArray[np.float64]:
         """R sin(phi + beta)/cos(beta) (m) of every cylinder over the cycle grid."""
         from crankdyn.engine.forces import rod_forces
@@ -386,7 +457,7 @@ class EngineExcitation:
         phi = self._theta[None, :] - np.asarray(cyl.throw_angles)[:, None]
         return rod_forces(np.ones_like(phi), phi, g.lam, g.k)[2] * g.crank_radius
 
-    @cached_property
+    @_basis
     def _phase(self) -> NDArray[np.float64]:
         """Every cylinder's angle from its firing TDC over the grid (rad)."""
         return np.mod(self._theta[None, :] - self.firing_angles[:, None], self.engine.cycle_angle)
@@ -396,12 +467,12 @@ class EngineExcitation:
         area = self.engine.geometry.piston_area
         return np.fft.rfft(trace.at(self._phase) * area * self._lever, axis=-1)
 
-    @cached_property
+    @_basis
     def _crankcase_spectrum(self) -> Complex:
         area = self.engine.geometry.piston_area
         return np.fft.rfft(self.engine.crankcase_pressure * area * self._lever, axis=-1)
 
-    @cached_property
+    @_basis
     def _inertia_spectrum(self) -> Complex:
         """rfft of the inertia torque at 1 rad/s, shape (Z, N/2+1)."""
         from crankdyn.crank.kinematics import slider_crank_exact
@@ -413,16 +484,16 @@ class EngineExcitation:
         a = slider_crank_exact(phi, g.crank_radius, g.rod_length, g.offset, 1.0).acceleration
         return np.fft.rfft(-m_j * a * self._lever, axis=-1)
 
-    @cached_property
+    @_basis
     def _trace_spectrum(self) -> Complex:
         return self._pressure_spectrum(self._trace)
 
-    @cached_property
+    @_basis
     def _speed_trace_spectra(self) -> Complex:
         traces = self.spec.traces if self.spec is not None else ()
         return np.stack([self._pressure_spectrum(t.trace) for t in traces])
 
-    @cached_property
+    @_basis
     def _motored_trace(self) -> PressureTrace:
         from crankdyn.crank.pressure_model import WiebePressureModel
 
@@ -440,7 +511,7 @@ class EngineExcitation:
         model = WiebePressureModel(compression_ratio=eps, fuel_energy=0.0, intake_pressure=p_in)
         return model.trace(self.engine.geometry, self.cycle, source="motored")
 
-    @cached_property
+    @_basis
     def _motored_spectrum(self) -> Complex:
         return self._pressure_spectrum(self._motored_trace)
 

@@ -35,13 +35,21 @@ from crankdyn.io.study_file import parse_base
 from crankdyn.io.toml_text import dumps
 from crankdyn.study.cases import Case, case_id
 from crankdyn.study.docpath import apply_values, referenced_files
-from crankdyn.study.figures import FIGURES, CaseContext
+from crankdyn.study.figures import FIGURES, CaseContext, case_verdicts
 from crankdyn.study.run.runner import CaseRunner, Progress
+from crankdyn.study.run.worker import verdicts_of_record
 
-__all__ = ["BEST_DESIGNS", "candidate_document", "run_design", "write_design", "write_summary"]
+__all__ = [
+    "BEST_DESIGNS",
+    "candidate_document",
+    "run_design",
+    "whole_tvc",
+    "write_design",
+    "write_summary",
+]
 
 BEST_DESIGNS = 3
-"""The best designs whose verdict rows are tabled (each one analysed again in this process)."""
+"""The best designs whose verdict rows are tabled (as their workers kept them)."""
 
 
 def base_case() -> Case:
@@ -77,22 +85,29 @@ def candidate_document(space: DesignSpace, case: Case) -> dict[str, Any]:
     return apply_values(space.study.base.document, values, space.study.remove)
 
 
-def _verdicts(space: DesignSpace, case: Case) -> tuple[tuple[Any, ...], Any]:
-    """The verdict rows a candidate's constraints and objective read, analysed again here: the
-    normal-firing condition's (``judged``), or every condition's (the whole TVC), with the whole
-    TVC when it was computed (None otherwise), so that its report need not compute it again."""
-    if "worst_margin" in space.study.figures or "failed_rows" in space.study.figures:
-        tvc = _whole_tvc(space, case)
+def _verdicts(space: DesignSpace, candidate: Candidate) -> tuple[tuple[Any, ...], Any]:
+    """The verdict rows a candidate's constraints and objective read (:func:`crankdyn.study.
+    figures.case_verdicts`): those its worker kept in its record, else analysed again here
+    (a journal of an earlier version), with the whole TVC when it was computed here (None
+    otherwise), so that its report need not compute it again."""
+    kept = verdicts_of_record(candidate.record)
+    if kept is not None:
+        return kept, None
+    figures = space.study.figures
+    if "worst_margin" in figures or "failed_rows" in figures:
+        tvc = whole_tvc(space, candidate.case)
         return tuple(tvc.verdicts), tvc
     base = space.study.base
     subject = parse_base(
-        base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
+        base.kind,
+        candidate_document(space, candidate.case),
+        file=base.source,
+        base_dir=base.base_dir,
     )
-    judged = CaseContext(subject, space.study.settings, base.kind).analysis.judged()
-    return ((), None) if judged is None else (tuple(judged.verdicts), None)
+    return case_verdicts(CaseContext(subject, space.study.settings, base.kind), figures), None
 
 
-def _whole_tvc(space: DesignSpace, case: Case) -> Any:
+def whole_tvc(space: DesignSpace, case: Case) -> Any:
     """A candidate's whole TVC (:meth:`crankdyn.session.Analysis.tvc`: every condition, the
     events and the passages), as ``crankdyn tvc`` computes it for the file."""
     base = space.study.base
@@ -173,7 +188,7 @@ def run_design(
     )
     if best is not None and normal_only and space.search.verify:
         for c in feasible[: space.search.verify]:
-            tvc = _whole_tvc(space, c.case)
+            tvc = whole_tvc(space, c.case)
             if tvc.passed:
                 chosen_number, best = c.number, c
                 break
@@ -191,10 +206,15 @@ def run_design(
             )
         if chosen_number is not None:
             feasible = [best, *(c for c in feasible if c is not best)]
-    analysed = [_verdicts(space, c.case) for c in feasible[:BEST_DESIGNS]]
+    analysed = [_verdicts(space, c) for c in feasible[:BEST_DESIGNS]]
     best_verdicts = tuple(rows for rows, _ in analysed)
     if tvc is None and analysed and analysed[0][1] is not None and not notes:
         tvc = analysed[0][1]  # the chosen design's whole TVC, for its report: computed once
+    tvc_passed = None if tvc is None and not notes else tvc is not None and bool(tvc.passed)
+    figures = space.study.figures
+    whole = "worst_margin" in figures or "failed_rows" in figures
+    if tvc is None and not notes and analysed and whole:  # its worker's whole TVC's rows
+        tvc_passed = bool(analysed[0][0]) and all(v.passed for v in analysed[0][0])
     front: tuple[int, ...] = ()
     if len(space.objectives) > 1:
         front = tuple(pareto_front(candidates, [o.sense for o in space.objectives]))
@@ -219,7 +239,7 @@ def run_design(
         chosen=_text(space, best) if best is not None else "none feasible",
         chosen_number=chosen_number,
         tvc=tvc,
-        tvc_passed=None if tvc is None and not notes else tvc is not None and bool(tvc.passed),
+        tvc_passed=tvc_passed,
         notes=tuple(notes),
         space=space,
         candidates=tuple(candidates),

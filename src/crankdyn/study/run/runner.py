@@ -127,6 +127,7 @@ def payload_of(spec: StudySpec, *, ship_files: bool = False) -> Payload:
         modules=modules,
         files=spec.base.files if ship_files else (),
         bundles=tuple(p.key for p in spec.parameters if p.bundle),
+        verdict_rows=spec.verdict_rows,
     )
 
 

@@ -10,6 +10,7 @@ own text, else the exception's type and message), so the study goes on. Only int
 from __future__ import annotations
 
 import atexit
+import dataclasses
 import hashlib
 import importlib
 import math
@@ -24,7 +25,7 @@ from typing import Any
 from crankdyn.errors import InputError
 from crankdyn.io.study_file import parse_base
 from crankdyn.study.docpath import KeyPath, apply_values
-from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext
+from crankdyn.study.figures import FIGURES, AnalysisSettings, CaseContext, case_verdicts
 
 __all__ = [
     "ANALYSIS_MODULES",
@@ -32,6 +33,7 @@ __all__ = [
     "evaluate_case",
     "import_analyses",
     "prepare_worker",
+    "verdicts_of_record",
     "warm_up",
 ]
 
@@ -70,6 +72,9 @@ class Payload:
     bundles : tuple of str
         The keys of the parameters whose values are bundles (dicts of key path text to value:
         :attr:`crankdyn.study.spec.Parameter.bundle`).
+    verdict_rows : bool
+        Keep every case's verdict rows in its record (:attr:`crankdyn.study.spec.StudySpec.
+        verdict_rows`).
     settings : crankdyn.study.figures.AnalysisSettings
         The ``[analysis]`` values.
     figures : tuple of str
@@ -91,6 +96,7 @@ class Payload:
     modules: tuple[str, ...]  # modules defining the figures (imported before a case runs)
     files: tuple[tuple[str, bytes], ...] = ()  # (relative path, bytes) for remote workers
     bundles: tuple[str, ...] = ()  # parameters whose values set several keys each
+    verdict_rows: bool = False  # keep every case's verdict rows in its record
 
     def assignments(self, params: dict[str, Any]) -> dict[KeyPath, Any]:
         """The document values a case sets.
@@ -204,10 +210,12 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
     dict of str to object
         The journal record (:mod:`crankdyn.study.run.journal`): ``case_id``, ``params``,
         ``status`` (``"ok"`` or ``"failed"``), ``figures`` (SI, None where not finite),
-        ``error`` (one line or None) and ``elapsed_s`` (s).
+        ``error`` (one line or None) and ``elapsed_s`` (s); with ``payload.verdict_rows``
+        also ``verdicts``, the case's verdict rows (:func:`verdicts_of_record` reads them).
     """
     start = time.perf_counter()
     figures: dict[str, float | None] = {}
+    rows: list[dict[str, Any]] = []
     error = None
     try:
         prepare_worker(payload)
@@ -217,12 +225,14 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
         ctx = CaseContext(subject, payload.settings, payload.kind)
         for name in payload.figures:
             figures[name] = FIGURES[name].evaluate(ctx)
+        if payload.verdict_rows:  # the session's analyses, computed once for the figures
+            rows = [_verdict_record(v) for v in case_verdicts(ctx, payload.figures)]
     except InputError as exc:
         error = _one_line(str(exc))
     except Exception as exc:  # an analysis failing on a variant: recorded, the study goes on
         error = _one_line(f"{type(exc).__name__}: {exc}") or type(exc).__name__
     elapsed = time.perf_counter() - start
-    return {
+    record: dict[str, Any] = {
         "case_id": case_id,
         "params": params,
         "status": "failed" if error else "ok",
@@ -230,6 +240,65 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
         "error": error,
         "elapsed_s": round(elapsed, 6),
     }
+    if payload.verdict_rows and not error:
+        record["verdicts"] = rows
+    return record
+
+
+_NUMBERS = ("worst", "limit", "speed", "margin")
+"""The float fields of a verdict row, written as text where not finite (the journal is strict
+JSON)."""
+
+
+def _verdict_record(verdict: Any) -> dict[str, Any]:
+    """A verdict row (:class:`crankdyn.summary.Verdict`) as a JSON object."""
+    row = dataclasses.asdict(verdict)
+    for key in _NUMBERS:
+        value = row[key]
+        if isinstance(value, float) and not math.isfinite(value):
+            row[key] = repr(value)  # "nan", "inf", "-inf"
+    return row
+
+
+def verdicts_of_record(record: dict[str, Any]) -> tuple[Any, ...] | None:
+    """The verdict rows a case's record keeps (:attr:`Payload.verdict_rows`), or None when it
+    keeps none (a study that does not ask for them, a failed case, a journal of an earlier
+    version).
+
+    Parameters
+    ----------
+    record : dict
+        A journal record (:func:`evaluate_case`).
+
+    Returns
+    -------
+    tuple of crankdyn.summary.Verdict or None
+        The rows, as the case's analysis gave them.
+
+    Examples
+    --------
+    >>> import json, math
+    >>> from crankdyn.summary import Verdict
+    >>> rows = [Verdict("shaft", "normal", "stress", 2e7, 5e7, "Pa", True, "rule"),
+    ...         Verdict("gear", "normal", "reversal", math.nan, 1.0, "", False, "rule")]
+    >>> text = json.dumps({"verdicts": [_verdict_record(v) for v in rows]}, allow_nan=False)
+    >>> back = verdicts_of_record(json.loads(text))
+    >>> back[0] == rows[0], back[0].margin, math.isnan(back[1].worst), back[1].passed
+    (True, 0.6, True, False)
+    """
+    from crankdyn.summary import Verdict
+
+    rows = record.get("verdicts")
+    if rows is None:
+        return None
+    out = []
+    for row in rows:
+        values = dict(row)
+        for key in _NUMBERS:
+            if isinstance(values[key], str):
+                values[key] = float(values[key])
+        out.append(Verdict(**values))
+    return tuple(out)
 
 
 def _finite(value: float | None) -> float | None:
