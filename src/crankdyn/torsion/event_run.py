@@ -372,7 +372,26 @@ class _Recorder:
     windows: dict[tuple[int, int], _Window] = field(default_factory=dict)
     residual: NDArray[np.float64] | None = None
     coupling: NDArray[np.float64] | None = None
+    rate: NDArray[np.float64] | None = None
     kicks: NDArray[np.float64] | None = None
+    paces: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+    _reaches: dict[int, NDArray[np.float64]] = field(default_factory=dict)
+
+    def pace(self, f: NDArray[np.float64], rates: NDArray[np.float64]) -> None:
+        """Track every dof's largest torque (N m) and rate of torque (N m/s)."""
+        top, speed = np.max(np.abs(f), axis=0), np.max(np.abs(rates), axis=0)
+        if self.paces is not None:
+            top, speed = np.maximum(self.paces[0], top), np.maximum(self.paces[1], speed)
+        self.paces = (top, speed)
+
+    def frequency(self) -> float:
+        """The forcing's own pace (rad/s): the largest over the dofs of the largest rate of
+        torque over the largest torque (omega of a sine, pi / T of a half sine of length T)."""
+        if self.paces is None:
+            return 0.0
+        top, speed = self.paces
+        loaded = top > 0.0
+        return float(np.max(speed[loaded] / top[loaded], initial=0.0))
 
     def _twist(self, system: ModalSystem, x: NDArray[np.float64]) -> NDArray[np.float64]:
         """(L, E + G) |k twist / r| of every element (N m) under angles x (L, n) of the modes
@@ -391,17 +410,13 @@ class _Recorder:
             meshes[:, i] += sum(abs(s) * out[:, e] for e, s in g.elements)
         return np.concatenate([out, meshes], axis=1)
 
-    def dropped(self, system: ModalSystem, x: NDArray[np.float64], coupled: bool) -> None:
-        """Track every element's largest torque (N m) under the angles x (L, n) of the modes
-        left out (their quasi-static part R f) or, ``coupled``, of the kept modes' response
-        to the damping force of its rates."""
+    def dropped(self, system: ModalSystem, x: NDArray[np.float64], kind: str) -> None:
+        """Track every element's largest torque (N m) under the angles x (L, n): of the modes
+        left out (``"residual"``: their quasi-static part R f; ``"rate"``: R f', N m/s), or
+        of the kept modes' response to the damping force of R f' (``"coupling"``)."""
         top = np.max(self._twist(system, x), axis=0)
-        old = self.coupling if coupled else self.residual
-        new = top if old is None else np.maximum(old, top)
-        if coupled:
-            self.coupling = new
-        else:
-            self.residual = new
+        old = getattr(self, kind)
+        setattr(self, kind, top if old is None else np.maximum(old, top))
 
     def kick(
         self,
@@ -416,12 +431,51 @@ class _Recorder:
         (two (n,) twists, rad) the dropped modes start from."""
         assert system.residual is not None
         if angles is not None:
-            x = np.stack(angles)
+            add = np.sum(self._twist(system, np.stack(angles)), axis=0)
         else:
+            # every dropped mode rings on its own: sum_j |T_e(phi_j)| |phi_j^T g| / omega_j^2
+            # <= sqrt(t_e^T R t_e) sqrt(g^T R g) (Cauchy-Schwarz), g the jump, then the bend
+            # over omega_d (a kink rings 1 / omega_j of its slope's static part)
             assert jump is not None and bend is not None
-            x = system.residual.angles(np.stack([jump, bend / system.lowest_dropped]))
-        add = np.sum(self._twist(system, x), axis=0)
+            g = np.stack([jump, bend / system.lowest_dropped])
+            cols = loaded(g)
+            rc = system.residual.columns(cols)[cols]
+            energy = np.einsum("ki,ij,kj->k", g[:, cols], rc, g[:, cols])
+            add = self._reach(system) * float(np.sum(np.sqrt(np.maximum(energy, 0.0))))
         self.kicks = add if self.kicks is None else self.kicks + add
+
+    def spread(self, system: ModalSystem, f: NDArray[np.float64], kind: str) -> None:
+        """Track every element's sqrt(t_e^T R t_e) sqrt(f^T R f) (N m) over the samples f
+        (L, n) of the forcing (``"residual"``) or of its rates (``"rate"``, N m/s): the bound
+        of sum_j |T_e(phi_j)| |phi_j^T f| / omega_j^2 over the dropped modes (Cauchy-Schwarz),
+        every mode's dynamic part taken at its own worst."""
+        assert system.residual is not None
+        cols = loaded(f)
+        rc = system.residual.columns(cols)[cols]
+        energy = float(np.max(np.einsum("ki,ij,kj->k", f[:, cols], rc, f[:, cols]), initial=0.0))
+        top = self._reach(system) * math.sqrt(max(energy, 0.0))
+        old = getattr(self, kind)
+        setattr(self, kind, top if old is None else np.maximum(old, top))
+
+    def _reach(self, system: ModalSystem) -> NDArray[np.float64]:
+        """sqrt(t_e^T R t_e) of every element (N m per sqrt(N m rad)): t_e its torque's
+        pattern k_e (e_a - e_b) / r_e; a gear mesh's: the sum over its elements (R in full,
+        once per system: n solves of the factorised shifted stiffness)."""
+        assert system.residual is not None
+        key = id(system)
+        if key not in self._reaches:
+            line = self.line
+            r = system.residual.columns(np.arange(line.size))
+            a, b = line.element_dofs[:, 0], line.element_dofs[:, 1]
+            aa, bb = np.maximum(a, 0), np.maximum(b, 0)
+            ra = np.where(a >= 0, r[aa, aa], 0.0)
+            rb = np.where(b >= 0, r[bb, bb], 0.0)
+            rab = np.where((a >= 0) & (b >= 0), r[aa, bb], 0.0)
+            k = line.element_stiffness / line.element_ratio
+            reach = np.sqrt(np.maximum(k * k * (ra + rb - 2.0 * rab), 0.0))
+            meshes = [sum(abs(s) * reach[e] for e, s in g.elements) for g in line.gears]
+            self._reaches[key] = np.concatenate([reach, np.asarray(meshes, dtype=float)])
+        return self._reaches[key]
 
     def add(
         self,
@@ -802,8 +856,10 @@ def _segment(
         w = system.run(state, u, g, h)
         x, v = system.to_physical(w, None, f[1:], slopes)
         if system.residual is not None:
-            run.recorder.dropped(system, system.residual.angles(f[1:]), False)
-            run.recorder.dropped(system, _coupled(run, system, rates, h), True)
+            run.recorder.spread(system, f[1:], "residual")
+            run.recorder.spread(system, rates[1:], "rate")
+            run.recorder.pace(f, rates)
+            run.recorder.dropped(system, _coupled(run, system, rates, h), "coupling")
         tk = times[1:]
         hit = None
         if mode.watch is not None:
@@ -1096,23 +1152,29 @@ def _truncation(
     """The modal truncation's fields of the result (:mod:`crankdyn.torsion.integrator`,
     "Modal truncation"): the modes kept, the cut-off, beta (:func:`truncation_factor`: the
     dropped modes' dynamic part relative to their quasi-static part under forcing up to the
-    forcing's highest frequency), and every element's bound (N m): beta times its largest
-    quasi-static torque of the dropped modes and its largest torque of the kept modes'
-    response to their damping force (:func:`_coupled`), plus what the forcing's jumps and
-    kinks at the segments' starts add (:meth:`_Recorder.kick`)."""
+    forcing's highest frequency, their damping bounded by :func:`_damping_lag`), and every
+    element's bound (N m): beta times its largest quasi-static torque of the dropped modes and
+    its largest torque of the kept modes' response to their damping force (:func:`_coupled`),
+    plus the dropped modes' lag behind their quasi-static part (the bound of c_j / omega_j^2
+    times the torque of R f'), plus what the forcing's jumps and kinks at the segments' starts
+    add (:meth:`_Recorder.kick`)."""
     kept = max(int(s.modes.shape[1]) for s in systems)
     if all(s.residual is None for s in systems):
         return {"modes_kept": kept, "note": None}
     lowest = min(s.lowest_dropped for s in systems)
     cutoff = max(s.cutoff for s in systems if s.residual is not None)
     dropped = max(s.dropped for s in systems)
-    damping = max(_damping_radius(s) for s in systems if s.residual is not None)
-    beta = truncation_factor(frequency, lowest, damping)
+    frequency = max(frequency, rec.frequency())
+    lag = _damping_lag(rec.line, lowest)
+    beta = truncation_factor(frequency, lowest, lag * lowest**2)
     width = rec.line.element_stiffness.size + len(rec.line.gears)
-    residual = rec.residual if rec.residual is not None else np.zeros(width)
-    coupling = rec.coupling if rec.coupling is not None else np.zeros(width)
-    kicks = rec.kicks if rec.kicks is not None else np.zeros(width)
-    per_element = beta * (residual + coupling) + kicks
+    residual, coupling, rate, kicks = (
+        np.zeros(width) if v is None else v
+        for v in (rec.residual, rec.coupling, rec.rate, rec.kicks)
+    )
+    # the dropped modes' own damping force on their quasi-static rates, c_j R f' / omega_j^2:
+    # the lag of a damped mode behind its quasi-static part
+    per_element = beta * (residual + coupling) + lag * rate + kicks
     note = (
         f"modal truncation: the {kept} elastic modes up to {cutoff / (2 * math.pi):.4g} Hz "
         f"integrated, the {dropped} above (from {lowest / (2 * math.pi):.4g} Hz) "
@@ -1131,12 +1193,24 @@ def _truncation(
     }
 
 
-def _damping_radius(system: ModalSystem) -> float:
-    """An upper bound of the modal damping of every mode, max_j phi_j^T C phi_j (1/s): the
-    largest absolute row sum of M^-1/2 C M^-1/2 (Gershgorin's theorem)."""
-    scale = 1.0 / np.sqrt(system.inertia)
-    c = np.abs(system.damping) * scale[:, None] * scale[None, :]
-    return float(np.max(np.sum(c, axis=1), initial=0.0))
+def _damping_lag(line: Line, lowest: float) -> float:
+    """A bound of c_j / omega_j^2 (s) over the modes left out (omega_j >= ``lowest``, rad/s;
+    c_j = phi_j^T C phi_j): the elements with stiffness give at most their own c_e / k_e
+    (Rayleigh's quotient of C_e <= tau K), the rest of C (the masses' absolute damping, the
+    dampers' dashpots without stiffness) at most its largest absolute row sum of
+    M^-1/2 C M^-1/2 (Gershgorin's theorem) over omega_j^2."""
+    k, c = line.element_stiffness, line.element_damping
+    stiff = k > 0.0
+    tau = float(np.max(c[stiff] / k[stiff], initial=0.0))
+    rest = np.array(line.damping, dtype=float)
+    ends = line.element_dofs[stiff & (c != 0.0)]
+    values = c[stiff & (c != 0.0)]
+    for (a, b), sign in (((0, 0), 1.0), ((1, 1), 1.0), ((0, 1), -1.0), ((1, 0), -1.0)):
+        ok = (ends[:, a] >= 0) & (ends[:, b] >= 0)
+        np.add.at(rest, (ends[ok, a], ends[ok, b]), -sign * values[ok])
+    scale = 1.0 / np.sqrt(line.inertia)
+    radius = float(np.max(np.sum(np.abs(rest) * scale[:, None] * scale[None, :], axis=1)))
+    return tau + radius / lowest**2
 
 
 def truncation_factor(forcing: float, lowest: float, damping: float = 0.0) -> float:

@@ -55,9 +55,11 @@ Ostermann, "Exponential integrators", Acta Numerica 19, 2010, 209-286, sec. 2.1)
    dropped modes' dynamic part is left out). The error is the dropped modes' dynamic part:
    for a forcing of frequencies up to omega_f below the lowest dropped mode omega_d it is at
    most r^2 / (1 - r^2), r = omega_f / omega_d, of their quasi-static part R f (the steady-state
-   amplification of an undamped mode, 1 / (1 - r^2), less one); a jump of the forcing adds at
-   most the quasi-static part of the jump itself (an undamped mode overshoots a step by its
-   static deflection).
+   amplification of an undamped mode, 1 / (1 - r^2), less one), each mode's (a damped mode's:
+   :func:`crankdyn.torsion.event_run.truncation_factor`); a jump of the forcing adds at most
+   the quasi-static part of the jump itself in each mode (an undamped mode overshoots a step by
+   its static deflection). The modes summed at their own worst are bounded by Cauchy-Schwarz,
+   sqrt(t^T R t) sqrt(f^T R f) for a torque pattern t (:mod:`crankdyn.torsion.event_run`).
 
 The recurrence w_k = a w_(k-1) + c_k of every coordinate over a block of samples is evaluated
 for all coordinates at once by a blocked scan (:func:`linear_recurrence`): no Python call per
