@@ -125,9 +125,10 @@ DEFAULTS: dict[str, Default] = {
             "event_mode_factor",
             4.0,
             "",
-            "the TVC's transient events resolve in time the natural modes up to this factor "
-            "times the highest excitation frequency (the highest order at the top speed; the "
-            "exact integrator carries every mode, the step only samples them)",
+            "the TVC's transient events integrate in time the natural modes up to this factor "
+            "times the highest excitation frequency (the highest order at the top speed), the "
+            "modes above quasi-statically (residual flexibility, the truncation's bound "
+            "reported with the run)",
             "crankdyn convention",
         ),
         Default(

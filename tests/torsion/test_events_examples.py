@@ -75,7 +75,7 @@ def test_marine_start_through_the_speed_range():
         model=model,
     )
     # the TVC's time resolution: the modes up to EVENT_MODE_FACTOR times the highest order's
-    # frequency at the top speed (the exact integrator carries every mode; the step samples them)
+    # frequency at the top speed (the modes above it quasi-statically: the modal truncation)
     top = EVENT_MODE_FACTOR * float(np.max(session.orders)) * 560.0 / RPM
     run = event_response(
         model, event, excitation=session.excitation(), orders=session.orders, max_frequency=top

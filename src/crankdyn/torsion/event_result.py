@@ -81,6 +81,13 @@ class EventResult(Result):
     for a rigid gear mesh), ``section_modulus`` its W_p where it has a diameter (NaN
     otherwise), ``limit_torque`` a coupling's T_Kmax from the model (NaN otherwise).
 
+    A run with a cut-off (``max_frequency``: the TVC's) integrates the modes up to it and the
+    modes above quasi-statically: ``modes_kept``, ``cutoff_frequency`` (None: every mode),
+    ``truncation_bound`` (the dropped modes' dynamic part relative to their quasi-static
+    part), ``truncation_torque`` (every element's bound of the truncation error, N m) and
+    ``truncation_error`` (its largest) say how (:mod:`crankdyn.torsion.integrator`, "Modal
+    truncation").
+
     The verdicts are not the run's own: the TVC's checks judge it
     (:func:`crankdyn.tvc.events.judge_event`, the one evaluation of every check).
 
@@ -140,6 +147,41 @@ class EventResult(Result):
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False, default=())
     loaded_from: float = scalar(
         "loaded_from_s", "Gear reversals judged from", "s", summary=False, default=0.0
+    )
+    modes_kept: int = scalar(
+        "modes_kept",
+        "Elastic modes integrated in time",
+        "",
+        default=0,
+        description="the elastic modes up to the cut-off frequency (every mode without one)",
+    )
+    cutoff_frequency: float | None = scalar(
+        "cutoff_frequency_hz",
+        "Modal cut-off frequency",
+        "Hz",
+        HZ,
+        default=None,
+        description="the modes above it respond quasi-statically (residual flexibility)",
+    )
+    truncation_bound: float = scalar(
+        "truncation_bound",
+        "Truncation error bound (of the dropped modes' quasi-static part)",
+        "",
+        default=0.0,
+        description="the dropped modes' dynamic part relative to their quasi-static part",
+    )
+    truncation_error: float = scalar(
+        "truncation_error_Nm",
+        "Truncation error bound of the element torques",
+        "N·m",
+        default=0.0,
+        description="max over the elements of the bound per element",
+    )
+    truncation_torque: np.ndarray | None = array(
+        "truncation_error_per_element_Nm",
+        "Truncation error bound per element",
+        "N·m",
+        default=None,
     )
     engine_torque: np.ndarray | None = array(
         "engine_torque_Nm", "Engine torque on its governor (at the kept samples)", "N·m",

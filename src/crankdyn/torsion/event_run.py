@@ -38,7 +38,12 @@ exact for any step, the step is what resolves the response in time) and a fortie
 period of the highest frequency the forcing holds (the orders' at the highest speed, the
 event's own), and 1/200 of the run. The largest and smallest torque of every element are found
 on every step (whatever is stored) and refined on the exact solution within the two steps
-around them (41 points each, then a parabola).
+around them (41 points each, then a parabola), at the few dofs each element's torque reads.
+
+Modal truncation: with ``max_frequency`` only the modes up to it are integrated, those above
+follow the forcing quasi-statically (:mod:`crankdyn.torsion.integrator`, "Modal truncation"),
+each step O(N x kept modes); the bound of the error is reported with the result
+(:func:`_truncation`: every element's bound in N m, the cut-off, the modes kept, a note).
 
 Memory: the run is integrated in blocks of at most :data:`BLOCK_BYTES` of working arrays, and
 at most ``max_samples`` samples are kept (every ``stride``-th step, and the switching instants
@@ -60,7 +65,13 @@ from crankdyn.errors import InputError
 from crankdyn.roots import brentq
 from crankdyn.torsion.event_line import Line, Profile, constant_profile, line_of, speed_profile
 from crankdyn.torsion.events import ClutchEngagement, SpeedChange
-from crankdyn.torsion.integrator import ModalState, ModalSystem, modal_system
+from crankdyn.torsion.integrator import (
+    ModalState,
+    ModalSystem,
+    linear_recurrence,
+    loaded,
+    modal_system,
+)
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
@@ -70,7 +81,7 @@ if TYPE_CHECKING:
     from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["BLOCK_BYTES", "FORCE_POINTS", "MODE_POINTS", "event_response"]
+__all__ = ["BLOCK_BYTES", "FORCE_POINTS", "MODE_POINTS", "event_response", "truncation_factor"]
 
 MODE_POINTS = 10
 """Steps per period of the highest natural frequency of interest."""
@@ -238,7 +249,7 @@ def _forcing(
 
 # ---- the clutch: two systems and the switches between them ------------------------------------
 def _clutch_modes(
-    line: Line, event: ClutchEngagement, absolute_damping: str
+    line: Line, event: ClutchEngagement, absolute_damping: str, cutoff: float | None = None
 ) -> tuple[_Mode, int, ModalSystem]:
     """The slipping mode of a clutch engagement (its switch builds the locked one), the
     element, and the locked system."""
@@ -248,9 +259,15 @@ def _clutch_modes(
     k_e, c_e = float(line.element_stiffness[e]), float(line.element_damping[e])
     k_slip = line.stiffness - line.element_matrix(e, k_e)
     c_slip = line.damping - line.element_matrix(e, c_e)
-    slip_system = modal_system(line.inertia, k_slip, c_slip, absolute_damping=absolute_damping)
+    slip_system = modal_system(
+        line.inertia, k_slip, c_slip, absolute_damping=absolute_damping, max_frequency=cutoff
+    )
     lock_system = modal_system(
-        line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
+        line.inertia,
+        line.stiffness,
+        line.damping,
+        absolute_damping=absolute_damping,
+        max_frequency=cutoff,
     )
     direction = np.zeros(line.size)
     direction[a], direction[b] = -r, r  # the friction on a (slip a faster than b: -|r| T)
@@ -313,7 +330,26 @@ class _Window:
     states: list[ModalState]  # at the window's samples
     u: NDArray[np.complex128]  # (samples, m)
     g: NDArray[np.float64]  # (samples, b)
-    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any]
+    f: NDArray[np.float64]  # (samples, n) the generalised torques (N m)
+    force: Forcing
+    mean: Forcing
+
+    def at(
+        self, s: int, taus: ArrayLike, dofs: NDArray[np.int_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """(t, x, v) at times ``taus`` (s) into the window's step s, the angles and rates at
+        ``dofs`` only (the exact solution; the modes left out quasi-statically under the
+        forcing's first-order hold)."""
+        system = self.mode.system
+        tau = np.asarray(taus, dtype=float)
+        st = system.within(
+            self.states[s], self.u[s], self.u[s + 1], self.g[s], self.g[s + 1], self.step, tau
+        )
+        slope = (self.f[s + 1] - self.f[s]) / self.step
+        force = self.f[s][None, :] + tau[:, None] * slope[None, :]
+        rate = np.broadcast_to(slope, force.shape)
+        x, v = system.to_physical(st, dofs, force, rate)
+        return self.t0 + s * self.step + tau, x, v
 
 
 @dataclass(eq=False)
@@ -334,6 +370,112 @@ class _Recorder:
     high_at: NDArray[np.float64] | None = None
     low_at: NDArray[np.float64] | None = None
     windows: dict[tuple[int, int], _Window] = field(default_factory=dict)
+    residual: NDArray[np.float64] | None = None
+    coupling: NDArray[np.float64] | None = None
+    rate: NDArray[np.float64] | None = None
+    kicks: NDArray[np.float64] | None = None
+    paces: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+    _reaches: dict[int, NDArray[np.float64]] = field(default_factory=dict)
+
+    def pace(self, f: NDArray[np.float64], rates: NDArray[np.float64]) -> None:
+        """Track every dof's largest torque (N m) and rate of torque (N m/s)."""
+        top, speed = np.max(np.abs(f), axis=0), np.max(np.abs(rates), axis=0)
+        if self.paces is not None:
+            top, speed = np.maximum(self.paces[0], top), np.maximum(self.paces[1], speed)
+        self.paces = (top, speed)
+
+    def frequency(self) -> float:
+        """The forcing's own pace (rad/s): the largest over the dofs of the largest rate of
+        torque over the largest torque (omega of a sine, pi / T of a half sine of length T)."""
+        if self.paces is None:
+            return 0.0
+        top, speed = self.paces
+        loaded = top > 0.0
+        return float(np.max(speed[loaded] / top[loaded], initial=0.0))
+
+    def _twist(self, system: ModalSystem, x: NDArray[np.float64]) -> NDArray[np.float64]:
+        """(L, E + G) |k twist / r| of every element (N m) under angles x (L, n) of the modes
+        left out; a gear mesh's: the sum over its elements, and its wheel's inertia torque
+        of the elastic torque K x at the wheel (the modes' accelerations are omega^2 times
+        their displacements: their dynamic part's share of the inertia torque)."""
+        line = self.line
+        ends = line.element_dofs
+        xa = np.where(ends[:, 0] >= 0, x[:, np.maximum(ends[:, 0], 0)], 0.0)
+        xb = np.where(ends[:, 1] >= 0, x[:, np.maximum(ends[:, 1], 0)], 0.0)
+        out = np.abs(line.element_stiffness * (xa - xb) / line.element_ratio)
+        meshes = np.empty((x.shape[0], len(line.gears)))
+        for i, g in enumerate(line.gears):
+            inertia = abs(g.inertia * g.ratio) / line.inertia[g.dof]
+            meshes[:, i] = inertia * np.abs(x @ system.stiffness[g.dof])
+            meshes[:, i] += sum(abs(s) * out[:, e] for e, s in g.elements)
+        return np.concatenate([out, meshes], axis=1)
+
+    def dropped(self, system: ModalSystem, x: NDArray[np.float64], kind: str) -> None:
+        """Track every element's largest torque (N m) under the angles x (L, n): of the modes
+        left out (``"residual"``: their quasi-static part R f; ``"rate"``: R f', N m/s), or
+        of the kept modes' response to the damping force of R f' (``"coupling"``)."""
+        top = np.max(self._twist(system, x), axis=0)
+        old = getattr(self, kind)
+        setattr(self, kind, top if old is None else np.maximum(old, top))
+
+    def kick(
+        self,
+        system: ModalSystem,
+        jump: NDArray[np.float64] | None,
+        bend: NDArray[np.float64] | None,
+        angles: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None,
+    ) -> None:
+        """Add the dynamic part a jump (N m) and a change of slope (N m/s) of the forcing (n,)
+        start in the modes left out (module docstring of :mod:`crankdyn.torsion.integrator`):
+        at most their quasi-static torque R jump and R bend / omega_d; or that of ``angles``
+        (two (n,) twists, rad) the dropped modes start from."""
+        assert system.residual is not None
+        if angles is not None:
+            add = np.sum(self._twist(system, np.stack(angles)), axis=0)
+        else:
+            # every dropped mode rings on its own: sum_j |T_e(phi_j)| |phi_j^T g| / omega_j^2
+            # <= sqrt(t_e^T R t_e) sqrt(g^T R g) (Cauchy-Schwarz), g the jump, then the bend
+            # over omega_d (a kink rings 1 / omega_j of its slope's static part)
+            assert jump is not None and bend is not None
+            g = np.stack([jump, bend / system.lowest_dropped])
+            cols = loaded(g)
+            rc = system.residual.columns(cols)[cols]
+            energy = np.einsum("ki,ij,kj->k", g[:, cols], rc, g[:, cols])
+            add = self._reach(system) * float(np.sum(np.sqrt(np.maximum(energy, 0.0))))
+        self.kicks = add if self.kicks is None else self.kicks + add
+
+    def spread(self, system: ModalSystem, f: NDArray[np.float64], kind: str) -> None:
+        """Track every element's sqrt(t_e^T R t_e) sqrt(f^T R f) (N m) over the samples f
+        (L, n) of the forcing (``"residual"``) or of its rates (``"rate"``, N m/s): the bound
+        of sum_j |T_e(phi_j)| |phi_j^T f| / omega_j^2 over the dropped modes (Cauchy-Schwarz),
+        every mode's dynamic part taken at its own worst."""
+        assert system.residual is not None
+        cols = loaded(f)
+        rc = system.residual.columns(cols)[cols]
+        energy = float(np.max(np.einsum("ki,ij,kj->k", f[:, cols], rc, f[:, cols]), initial=0.0))
+        top = self._reach(system) * math.sqrt(max(energy, 0.0))
+        old = getattr(self, kind)
+        setattr(self, kind, top if old is None else np.maximum(old, top))
+
+    def _reach(self, system: ModalSystem) -> NDArray[np.float64]:
+        """sqrt(t_e^T R t_e) of every element (N m per sqrt(N m rad)): t_e its torque's
+        pattern k_e (e_a - e_b) / r_e; a gear mesh's: the sum over its elements (R in full,
+        once per system: n solves of the factorised shifted stiffness)."""
+        assert system.residual is not None
+        key = id(system)
+        if key not in self._reaches:
+            line = self.line
+            r = system.residual.columns(np.arange(line.size))
+            a, b = line.element_dofs[:, 0], line.element_dofs[:, 1]
+            aa, bb = np.maximum(a, 0), np.maximum(b, 0)
+            ra = np.where(a >= 0, r[aa, aa], 0.0)
+            rb = np.where(b >= 0, r[bb, bb], 0.0)
+            rab = np.where((a >= 0) & (b >= 0), r[aa, bb], 0.0)
+            k = line.element_stiffness / line.element_ratio
+            reach = np.sqrt(np.maximum(k * k * (ra + rb - 2.0 * rab), 0.0))
+            meshes = [sum(abs(s) * reach[e] for e, s in g.elements) for g in line.gears]
+            self._reaches[key] = np.concatenate([reach, np.asarray(meshes, dtype=float)])
+        return self._reaches[key]
 
     def add(
         self,
@@ -385,53 +527,163 @@ class _Recorder:
 
 def _refine(line: Line, rec: _Recorder) -> None:
     """Every element's extremes on the exact solution within the steps around them (module
-    docstring); a window shared by several extremes (an impact loads many elements at once)
-    is evaluated once."""
+    docstring): the windows shared by several extremes (an impact loads many elements at
+    once) evaluated once, at the dofs their elements' torques read only."""
+    width = line.element_stiffness.size + len(line.gears)
+    groups: dict[tuple[int, float, float], list[tuple[int, int, _Window]]] = {}
+    for (e, which), w in rec.windows.items():
+        groups.setdefault((id(w.mode), w.t0, w.step), []).append((e, which, w))
+    taus = np.linspace(0.0, 1.0, REFINE_POINTS)
+    for items in groups.values():
+        w = items[0][2]
+        columns = sorted({e for e, _which, _w in items})
+        dofs = _dofs_of(line, w.mode, [c % width for c in columns])
+        ts, vals = [], []
+        for s in range(len(w.states) - 1):
+            t, x, v = w.at(s, taus * w.step, dofs)
+            ts.append(t)
+            vals.append(_columns(line, w.mode, t, x, v, dofs, columns, w.force, w.mean))
+        _refine_group(rec, w, items, np.concatenate(ts), np.concatenate(vals), columns, dofs)
+
+
+def _refine_group(
+    rec: _Recorder,
+    w: _Window,
+    items: list[tuple[int, int, _Window]],
+    t_all: NDArray[np.float64],
+    series_all: NDArray[np.float64],
+    columns: list[int],
+    dofs: NDArray[np.int_],
+) -> None:
+    """The extremes of one window's columns: the best point of each, then the vertex of the
+    parabola through it and its neighbours, evaluated on the solution."""
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
-    evaluated: dict[tuple[int, float, float], tuple[Any, Any]] = {}
-    for (e, which), w in rec.windows.items():
+    found: list[list[float]] = []
+    vertices: list[tuple[int, float]] = []
+    for i, (e, which, _w) in enumerate(items):
         sign = 1.0 if which == 0 else -1.0
-        key = (id(w.mode), w.t0, w.step)
-        if key not in evaluated:
-            taus = np.linspace(0.0, w.step, REFINE_POINTS)
-            ts, vals = [], []
-            for s in range(len(w.states) - 1):
-                st = w.mode.system.within(
-                    w.states[s], w.u[s], w.u[s + 1], w.g[s], w.g[s + 1], w.step, taus
-                )
-                x, v = w.mode.system.to_physical(st)
-                t = w.t0 + s * w.step + taus
-                ts.append(t)
-                vals.append(w.series(t, x, v))
-            evaluated[key] = (np.concatenate(ts), np.concatenate(vals))
-        t_all, series_all = evaluated[key]
-        v_all = sign * series_all[:, e]
+        v_all = sign * series_all[:, columns.index(e)]
         k = int(np.argmax(v_all))
-        best, at = float(v_all[k]), float(t_all[k])
-        if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points,
-            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]  # evaluated on the solution
+        found.append([float(v_all[k]), float(t_all[k])])
+        if 0 < k < v_all.size - 1:  # the vertex of a parabola through the three best points
+            y0, y1, y2 = v_all[k - 1], v_all[k], v_all[k + 1]
             den = y0 - 2.0 * y1 + y2
             if den < 0.0:
-                vertex = float(t_all[k] + 0.5 * (y0 - y2) / den * (t_all[k + 1] - t_all[k]))
-                s = min(int((vertex - w.t0) // w.step), len(w.states) - 2)
-                st = w.mode.system.within(
-                    w.states[s],
-                    w.u[s],
-                    w.u[s + 1],
-                    w.g[s],
-                    w.g[s + 1],
-                    w.step,
-                    [vertex - w.t0 - s * w.step],
-                )
-                x, v = w.mode.system.to_physical(st)
-                value = float(sign * w.series(np.array([vertex]), x, v)[0, e])
-                if value > best:
-                    best, at = value, vertex
-        target, times = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
+                step = t_all[k + 1] - t_all[k]
+                vertices.append((i, float(t_all[k] + 0.5 * (y0 - y2) / den * step)))
+    last = len(w.states) - 2
+    for i, vertex in vertices:  # one at a time: the products of the whole-state refinement
+        e, which, _w = items[i]
+        s = min(int((vertex - w.t0) // w.step), last)
+        _t, x, v = w.at(s, [vertex - w.t0 - s * w.step], dofs)
+        t = np.array([vertex])
+        value = _columns(rec.line, w.mode, t, x, v, dofs, [e], w.force, w.mean)[0, 0]
+        if (1.0 if which == 0 else -1.0) * float(value) > found[i][0]:
+            found[i] = [(1.0 if which == 0 else -1.0) * float(value), vertex]
+    for (e, which, _w), (best, at) in zip(items, found, strict=True):
+        sign = 1.0 if which == 0 else -1.0
+        target, times_at = (rec.high, rec.high_at) if sign > 0 else (rec.low, rec.low_at)
         if best > sign * target[e]:  # best is in sign x torque
             target[e] = sign * best
-            times[e] = at
+            times_at[e] = at
+
+
+def _dofs_of(line: Line, mode: _Mode, elements: Sequence[int]) -> NDArray[np.int_]:
+    """The dofs the torques of ``elements`` (indices of the elements, then the gear meshes)
+    read: an element's two ends; a gear mesh's dof, its stiffness and damping neighbours and
+    its elements' ends."""
+    n_el = line.element_stiffness.size
+    out: set[int] = set()
+    for e in elements:
+        if e < n_el:
+            out.update(int(d) for d in line.element_dofs[e] if d >= 0)
+            continue
+        g = line.gears[e - n_el]
+        out.add(g.dof)
+        out.update(np.flatnonzero(mode.system.stiffness[g.dof]).tolist())
+        out.update(np.flatnonzero(mode.system.damping[g.dof]).tolist())
+        for ee, _s in g.elements:
+            out.update(int(d) for d in line.element_dofs[ee] if d >= 0)
+    return np.array(sorted(out), dtype=int)
+
+
+def _torque_columns(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    dofs: NDArray[np.int_],
+    elements: Sequence[int],
+    f: NDArray[np.float64] | None,
+) -> dict[int, NDArray[np.float64]]:
+    """The torques of ``elements`` (as :func:`_element_torques`) from the angles and rates at
+    ``dofs`` (T, len(dofs)) only; f (T, n) the generalised torques (gear meshes only)."""
+    n_el = line.element_stiffness.size
+    pos = np.full(line.size, -1)
+    pos[dofs] = np.arange(dofs.size)
+    out: dict[int, NDArray[np.float64]] = {}
+
+    def element(e: int) -> NDArray[np.float64]:
+        if e not in out:
+            a, b = (int(d) for d in line.element_dofs[e])
+            xa = x[:, pos[a]] if a >= 0 else np.zeros(t.size)
+            xb = x[:, pos[b]] if b >= 0 else np.zeros(t.size)
+            value = line.element_stiffness[e] * (xa - xb) / line.element_ratio[e]
+            if mode.offset is not None:
+                value = value - mode.offset[e]
+            if mode.friction is not None and mode.friction[0] == e:
+                value = mode.friction[1] * mode.friction[2](t) * np.ones(t.size)
+            out[e] = value
+        return out[e]
+
+    for e in elements:
+        if e < n_el:
+            element(e)
+            continue
+        g = line.gears[e - n_el]
+        assert f is not None
+        d, system = g.dof, mode.system
+        # the whole rows (zeros elsewhere): the products of _element_torques to the digit
+        xf, vf = np.zeros((t.size, line.size)), np.zeros((t.size, line.size))
+        xf[:, dofs], vf[:, dofs] = x, v
+        accel = (f[:, d] - xf @ system.stiffness[d] - vf @ system.damping[d]) / line.inertia[d]
+        out[e] = g.inertia * g.ratio * accel + sum(s * element(ee) for ee, s in g.elements)
+    return out
+
+
+def _columns(
+    line: Line,
+    mode: _Mode,
+    t: NDArray[np.float64],
+    x: NDArray[np.float64],
+    v: NDArray[np.float64],
+    dofs: NDArray[np.int_],
+    columns: Sequence[int],
+    force: Forcing,
+    mean: Forcing,
+) -> NDArray[np.float64]:
+    """(T, len(columns)) the columns of :func:`_series` (the torques, then the vibratory
+    torques) from the angles and rates at ``dofs`` only: the quasi-static twist there from the
+    static flexibility's columns of the loaded dofs."""
+    n_el = line.element_stiffness.size
+    width = n_el + len(line.gears)
+    wanted = sorted({c % width for c in columns})
+    gears = any(c >= n_el for c in wanted)
+    totals = _torque_columns(line, mode, t, x, v, dofs, wanted, force(t) if gears else None)
+    statics: dict[int, NDArray[np.float64]] = {}
+    if any(c >= width for c in columns):
+        m = mean(t)
+        cols = loaded(m)
+        xs = m[:, cols] @ mode.system.flexibility(cols)[dofs].T
+        vib = sorted({c - width for c in columns if c >= width})
+        plain = _Mode(mode.key, mode.system)
+        statics = _torque_columns(line, plain, t, xs, np.zeros_like(xs), dofs, vib, m)
+    out = np.empty((t.size, len(columns)))
+    for i, c in enumerate(columns):
+        out[:, i] = totals[c] if c < width else totals[c - width] - statics[c - width]
+    return out
 
 
 # ---- the march through the segments -----------------------------------------------------------
@@ -450,6 +702,50 @@ class _Run:
     switches: list[str] = field(default_factory=list)
     sampled: _Sampled | None = None
     locked_at: float | None = None
+    last: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+    coupled: tuple[int, NDArray[np.complex128]] | None = None
+    switched: tuple[NDArray[np.float64], NDArray[np.float64]] | None = None
+
+
+def _coupled(
+    run: _Run, system: ModalSystem, rates: NDArray[np.float64], h: float
+) -> NDArray[np.float64]:
+    """(L, n) the kept modes' response to the damping force of the dropped modes'
+    quasi-static rates alone, -Phi_k^T C R f' (carried by the run, :meth:`ModalSystem.
+    modal_forcing`): the dropped modes' dynamic part, at most beta times their quasi-static
+    part, drives the kept modes through the damping by at most beta times this response."""
+    assert system.residual is not None
+    uc = -system.residual.coupling(rates) @ system.input_gain.T
+    a, b0, b1 = system.coefficients(h)
+    start = np.zeros(a.size, dtype=complex)
+    if run.coupled is not None and run.coupled[0] == id(system):
+        start = run.coupled[1]
+    w = linear_recurrence(a, b0 * uc[:-1] + b1 * uc[1:], start)
+    run.coupled = (id(system), w[-1])
+    bodies = np.zeros((w.shape[0], system.bodies.shape[1]))
+    x, _v = system.to_physical(ModalState(w, bodies, bodies))
+    return x
+
+
+def _kick(
+    run: _Run, system: ModalSystem, force: Forcing, t: float, f: NDArray[np.float64], h: float
+) -> None:
+    """At a segment's start t: the forcing's jump and change of slope there (its value and
+    slope at the end of the segment before, or, at the start and after a switch, its own
+    left-hand values: a clutch's element put back carries the friction torque, no jump) into
+    the bound of the modes left out (:meth:`_Recorder.kick`); after a switch, the dropped
+    modes' start (quasi-static in the new system, not the state reached): the difference of
+    the angles, and of the rates over omega_d, oscillates at most with its own amplitude."""
+    if run.switched is not None:
+        xs, vs = run.switched
+        x, v = system.to_physical(system.to_modal(xs, vs), None, f[:1], ((f[1] - f[0]) / h)[None])
+        run.recorder.kick(system, None, None, (x[0] - xs, (v[0] - vs) / system.lowest_dropped))
+        run.switched = None
+    if run.last is None:
+        left = force(np.array([np.nextafter(t, -np.inf), t - h]))
+        run.last = (left[0], (left[0] - left[1]) / h)
+    before, slope = run.last
+    run.recorder.kick(system, f[0] - before, (f[1] - f[0]) / h - slope)
 
 
 def _mode_forcing(run: _Run, mode: _Mode) -> Forcing:
@@ -473,10 +769,12 @@ def _state_at(start: ModalState, w: ModalState, j: int) -> ModalState:
 
 def _windows(
     mode: _Mode,
-    series: Callable[[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]], Any],
+    run: _Run,
+    force: Forcing,
     start: ModalState,
     w: ModalState,
     times: NDArray[Any],
+    f: NDArray[np.float64],
     u: Any,
     g: Any,
     h: float,
@@ -487,30 +785,43 @@ def _windows(
         s = k + 1
         last = min(s + 1, times.size - 1)
         states = [_state_at(start, w, j) for j in range(s - 1, last + 1)]
+        span = slice(s - 1, last + 1)
         return _Window(
-            mode, float(times[s - 1]), h, states, u[s - 1 : last + 1], g[s - 1 : last + 1], series
+            mode, float(times[s - 1]), h, states, u[span], g[span], f[span], force, run.mean
         )
 
     return window
 
 
 def _crossing(
-    run: _Run, mode: _Mode, prev: ModalState, times: NDArray[Any], u: Any, g: Any, j: int, h: float
+    run: _Run,
+    mode: _Mode,
+    prev: ModalState,
+    times: NDArray[Any],
+    f: NDArray[np.float64],
+    u: Any,
+    g: Any,
+    j: int,
+    h: float,
 ) -> tuple[float, NDArray[np.float64], NDArray[np.float64]]:
     """The instant in step (j - 1 -> j) where the mode's watched value reaches 0, and the
     angles and rates there (Brent's method on the exact solution within the step)."""
     system = mode.system
     watch = mode.watch
     assert watch is not None
+    slope = (f[j] - f[j - 1]) / h
+
+    def state(tau: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
+        return system.to_physical(st, None, (f[j - 1] + tau * slope)[None], slope[None])
 
     def value(tau: float) -> float:
-        st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
-        x, v = system.to_physical(st)
+        x, v = state(tau)
         return float(np.asarray(watch(np.array([times[j - 1] + tau]), x, v))[0])
 
     tau = 0.0 if value(0.0) >= 0.0 else brentq(value, 0.0, h, xtol=1e-15 + 1e-12 * h)
-    st = system.within(prev, u[j - 1], u[j], g[j - 1], g[j], h, [tau])
-    x, v = system.to_physical(st)
+    x, v = state(tau)
+    run.last = (f[j - 1] + tau * slope, slope)
     return float(times[j - 1] + tau), x[0], v[0]
 
 
@@ -536,9 +847,19 @@ def _segment(
             tf[-1] = np.nextafter(stop, -np.inf)
         force = _mode_forcing(run, mode)
         f = force(tf)
-        u, g = system.modal_forcing(f)
+        if done == 0 and system.residual is not None:
+            _kick(run, system, force, t, f, h)
+        run.last = (f[-1], (f[-1] - f[-2]) / h)
+        slopes = np.diff(f, axis=0) / h  # of the steps; at the samples their mean
+        rates = np.concatenate([slopes[:1], 0.5 * (slopes[:-1] + slopes[1:]), slopes[-1:]])
+        u, g = system.modal_forcing(f, rates if system.residual is not None else None)
         w = system.run(state, u, g, h)
-        x, v = system.to_physical(w)
+        x, v = system.to_physical(w, None, f[1:], slopes)
+        if system.residual is not None:
+            run.recorder.spread(system, f[1:], "residual")
+            run.recorder.spread(system, rates[1:], "rate")
+            run.recorder.pace(f, rates)
+            run.recorder.dropped(system, _coupled(run, system, rates, h), "coupling")
         tk = times[1:]
         hit = None
         if mode.watch is not None:
@@ -548,7 +869,7 @@ def _segment(
         def series(tt: Any, xx: Any, vv: Any, force: Forcing = force) -> Any:
             return _series(line, mode, tt, xx, vv, force, run.mean)
 
-        windows = _windows(mode, series, state, w, times, u, g, h)
+        windows = _windows(mode, run, force, state, w, times, f, u, g, h)
         if hit is None:
             run.recorder.add(tk, x, v, series(tk, x, v), windows, keep_last=last and final)
             state, t, done = w.last(), float(times[-1]), done + n
@@ -557,7 +878,7 @@ def _segment(
         if hit > 1:
             k = hit - 1
             run.recorder.add(tk[:k], x[:k], v[:k], series(tk[:k], x[:k], v[:k]), windows)
-        ts, xs, vs = _crossing(run, mode, prev, times, u, g, hit, h)
+        ts, xs, vs = _crossing(run, mode, prev, times, f, u, g, hit, h)
         tsa = np.array([ts])
         run.recorder.add(
             tsa,
@@ -572,6 +893,7 @@ def _segment(
         run.switches.append(f"{mode.key} -> {new.key} at {ts:.6g} s")
         if new.key == "locked" and run.locked_at is None:
             run.locked_at = ts
+        run.last, run.switched = None, (xs, vs)
         return ts, new, new.system.to_modal(xs, vs)
     return t, mode, state
 
@@ -721,7 +1043,9 @@ def event_response(
         omega_h (rad/s) for the loss factors as viscous damping; default the lowest elastic
         natural frequency.
     max_frequency : float or None
-        The highest natural frequency of interest (rad/s); default every mode.
+        The highest natural frequency of interest (rad/s): the modes up to it are integrated,
+        those above quasi-statically (:mod:`crankdyn.torsion.integrator`, "Modal truncation";
+        the bound reported with the result); default every mode, exactly.
     max_samples : int
         The most samples kept (>= 2); the extremes come from every step.
     mean_torques : bool
@@ -759,6 +1083,10 @@ def event_response(
     """
     from crankdyn.torsion.event_result import EventResult
 
+    if max_frequency is not None and not (math.isfinite(max_frequency) and max_frequency > 0.0):
+        raise InputError(
+            "the highest frequency must be positive", key="max_frequency", value=max_frequency
+        )
     if isinstance(max_samples, bool) or int(max_samples) < 2:
         raise InputError("expected at least 2 samples", key="max_samples", value=max_samples)
     line = line_of(model, dampers, hysteretic_frequency)
@@ -771,7 +1099,7 @@ def event_response(
         clutch = isinstance(event, ClutchEngagement)  # its loads: sampled at its masses' speeds
         profile = constant_profile(line, w0, loads=mean_torques and not clutch)
     mode, systems, torque_events, body_speed = _setup(
-        model, line, event, w0, profile, absolute_damping
+        model, line, event, w0, profile, absolute_damping, max_frequency
     )
     harmonics = (
         _harmonics(model, line, excitation, orders if orders is not None else [], profile)
@@ -813,9 +1141,114 @@ def event_response(
     kept = 8 * rows * (line.mass_dof.size + n_el + len(line.gears) + 2)
     result = _result(
         EventResult, model, line, event, recorder, run, t_end, step, top, rule, stride,
-        float(kept + block * per_step),
+        float(kept + block * per_step), _truncation(systems, recorder, run, frequency),
     )  # fmt: skip
     return result
+
+
+def _truncation(
+    systems: Sequence[ModalSystem], rec: _Recorder, run: _Run, frequency: float
+) -> dict[str, Any]:
+    """The modal truncation's fields of the result (:mod:`crankdyn.torsion.integrator`,
+    "Modal truncation"): the modes kept, the cut-off, beta (:func:`truncation_factor`: the
+    dropped modes' dynamic part relative to their quasi-static part under forcing up to the
+    forcing's highest frequency, their damping bounded by :func:`_damping_lag`), and every
+    element's bound (N m): beta times its largest quasi-static torque of the dropped modes and
+    its largest torque of the kept modes' response to their damping force (:func:`_coupled`),
+    plus the dropped modes' lag behind their quasi-static part (the bound of c_j / omega_j^2
+    times the torque of R f'), plus what the forcing's jumps and kinks at the segments' starts
+    add (:meth:`_Recorder.kick`)."""
+    kept = max(int(s.modes.shape[1]) for s in systems)
+    if all(s.residual is None for s in systems):
+        return {"modes_kept": kept, "note": None}
+    lowest = min(s.lowest_dropped for s in systems)
+    cutoff = max(s.cutoff for s in systems if s.residual is not None)
+    dropped = max(s.dropped for s in systems)
+    frequency = max(frequency, rec.frequency())
+    lag = _damping_lag(rec.line, lowest)
+    beta = truncation_factor(frequency, lowest, lag * lowest**2)
+    width = rec.line.element_stiffness.size + len(rec.line.gears)
+    residual, coupling, rate, kicks = (
+        np.zeros(width) if v is None else v
+        for v in (rec.residual, rec.coupling, rec.rate, rec.kicks)
+    )
+    # the dropped modes' own damping force on their quasi-static rates, c_j R f' / omega_j^2:
+    # the lag of a damped mode behind its quasi-static part
+    per_element = beta * (residual + coupling) + lag * rate + kicks
+    note = (
+        f"modal truncation: the {kept} elastic modes up to {cutoff / (2 * math.pi):.4g} Hz "
+        f"integrated, the {dropped} above (from {lowest / (2 * math.pi):.4g} Hz) "
+        "quasi-statically (residual flexibility); their dynamic part at most "
+        f"{beta:.3g} of their quasi-static part under forcing up to "
+        f"{frequency / (2 * math.pi):.4g} Hz, plus the forcing's jumps' and kinks': every "
+        f"element torque within {float(np.max(per_element)):.4g} N·m of the all-mode run"
+    )
+    return {
+        "modes_kept": kept,
+        "cutoff_frequency": float(cutoff),
+        "truncation_bound": float(beta),
+        "truncation_error": float(np.max(per_element)),
+        "truncation_torque": per_element,
+        "note": note,
+    }
+
+
+def _damping_lag(line: Line, lowest: float) -> float:
+    """A bound of c_j / omega_j^2 (s) over the modes left out (omega_j >= ``lowest``, rad/s;
+    c_j = phi_j^T C phi_j): the elements with stiffness give at most their own c_e / k_e
+    (Rayleigh's quotient of C_e <= tau K), the rest of C (the masses' absolute damping, the
+    dampers' dashpots without stiffness) at most its largest absolute row sum of
+    M^-1/2 C M^-1/2 (Gershgorin's theorem) over omega_j^2."""
+    k, c = line.element_stiffness, line.element_damping
+    stiff = k > 0.0
+    tau = float(np.max(c[stiff] / k[stiff], initial=0.0))
+    rest = np.array(line.damping, dtype=float)
+    ends = line.element_dofs[stiff & (c != 0.0)]
+    values = c[stiff & (c != 0.0)]
+    for (a, b), sign in (((0, 0), 1.0), ((1, 1), 1.0), ((0, 1), -1.0), ((1, 0), -1.0)):
+        ok = (ends[:, a] >= 0) & (ends[:, b] >= 0)
+        np.add.at(rest, (ends[ok, a], ends[ok, b]), -sign * values[ok])
+    scale = 1.0 / np.sqrt(line.inertia)
+    radius = float(np.max(np.sum(np.abs(rest) * scale[:, None] * scale[None, :], axis=1)))
+    return tau + radius / lowest**2
+
+
+def truncation_factor(forcing: float, lowest: float, damping: float = 0.0) -> float:
+    """The largest dynamic part of a dropped mode relative to its quasi-static part, under
+    harmonic forcing up to ``forcing`` (rad/s): |H / H_qs - 1| =
+    |omega_f^2 - i omega_f c| / |omega_d^2 - omega_f^2 + i omega_f c| for a mode omega_d >=
+    ``lowest`` with modal damping c <= ``damping`` (1/s) (the steady state of
+    q'' + c q' + omega_d^2 q = p; Craig and Kurdila 2006, sec. 14.5, the mode-acceleration
+    method's residual), largest at omega_d = ``lowest``, c = ``damping`` for r^2 =
+    (omega_f / omega_d)^2 < 1/2; r^2 / (1 - r^2) undamped.
+
+    Parameters
+    ----------
+    forcing : float
+        omega_f (rad/s).
+    lowest : float
+        omega_d (rad/s).
+    damping : float
+        The bound of the dropped modes' modal damping c (1/s).
+
+    Returns
+    -------
+    float
+        (dimensionless); inf when omega_f >= omega_d.
+
+    Examples
+    --------
+    >>> round(truncation_factor(1.0, 4.0), 6), round(1 / 15, 6)
+    (0.066667, 0.066667)
+    """
+    r2 = (forcing / lowest) ** 2 if lowest > 0.0 else math.inf
+    if not r2 < 1.0:
+        return math.inf
+    x2 = (forcing * damping / lowest**2) ** 2
+    base = math.sqrt((r2 * r2 + x2) / ((1.0 - r2) ** 2 + x2))
+    if r2 <= 0.5:
+        return base
+    return max(base, r2 / (1.0 - r2))
 
 
 @dataclass(eq=False)
@@ -852,8 +1285,10 @@ class _Sampled:
 
     def __call__(self, t: NDArray[np.float64]) -> NDArray[np.float64]:
         """(L, n) the held generalised torques at times (L,) (N m)."""
-        values = np.array([self.before, *self.held])
-        return values[np.searchsorted(np.array(self.times), np.asarray(t), side="right")]
+        index = np.searchsorted(np.array(self.times), np.asarray(t), side="right")
+        used, where = np.unique(index, return_inverse=True)  # a segment holds one or two
+        values = np.stack([self.before if i == 0 else self.held[i - 1] for i in used])
+        return values[where.reshape(np.shape(index))]
 
 
 def _sampled(line: Line, event: Any, mean: bool) -> _Sampled | None:
@@ -878,6 +1313,7 @@ def _setup(
     w0: float,
     profile: Profile,
     absolute_damping: str,
+    cutoff: float | None = None,
 ) -> tuple[_Mode, list[ModalSystem], list[tuple[int, Any]], Callable[[NDArray[np.int_]], float]]:
     """(the first mode, every system the run may be in, the torque events at their masses, the
     free bodies' starting speeds) of an event."""
@@ -888,7 +1324,7 @@ def _setup(
         return w_start
 
     if isinstance(event, ClutchEngagement):
-        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping)
+        mode, clutch_e, lock_system = _clutch_modes(line, event, absolute_damping, cutoff)
         a, b = (int(v) for v in line.element_dofs[clutch_e])
         r = float(line.element_ratio[clutch_e])
 
@@ -908,7 +1344,11 @@ def _setup(
             torque_events.append((line.mass(at, "drive_at"), StepTorque(at, event.drive_torque)))
         return mode, [mode.system, lock_system], torque_events, halves
     system = modal_system(
-        line.inertia, line.stiffness, line.damping, absolute_damping=absolute_damping
+        line.inertia,
+        line.stiffness,
+        line.damping,
+        absolute_damping=absolute_damping,
+        max_frequency=cutoff,
     )
     if not isinstance(event, SpeedChange):
         index = line.mass(event.at)
@@ -962,6 +1402,7 @@ def _result(
     rule: str,
     stride: int,
     memory: float,
+    truncation: dict[str, Any],
 ) -> EventResult:
     """The result of a run (module docstring)."""
     from crankdyn.results import freeze
@@ -985,6 +1426,11 @@ def _result(
         )
     if isinstance(event, SpeedChange) and event.fuel_cut is not None:
         notes.append("after the fuel cut the cylinders' harmonic torques are left out")
+    extra = dict(truncation)
+    if extra.pop("note") is not None:
+        notes.append(str(truncation["note"]))
+    if extra.get("truncation_torque") is not None:
+        extra["truncation_torque"] = freeze(extra["truncation_torque"])
     times = np.concatenate(rec.times)
     engine_torque = None
     governor = run.sampled.governor if run.sampled is not None else None
@@ -1041,4 +1487,5 @@ def _result(
         limit_torque=freeze(limits),
         engine_torque=engine_torque,
         loaded_from=float(run.locked_at or 0.0),
+        **extra,
     )

@@ -39,6 +39,28 @@ Ostermann, "Exponential integrators", Acta Numerica 19, 2010, 209-286, sec. 2.1)
    conjugate pair only one coordinate is carried (the forcing is real: its partner is its
    conjugate, and the state is twice the real part).
 
+3. *Modal truncation* (:func:`modal_system` with ``max_frequency`` omega_c): only the elastic
+   modes up to omega_c are integrated (Phi_k, the lowest eigenpairs of a partial symmetric
+   eigen-solve: no eigen-solve of the whole first-order matrix), the modes above respond
+   quasi-statically: the mode-acceleration method (R. R. Craig and A. J. Kurdila,
+   *Fundamentals of Structural Dynamics*, 2nd ed., Wiley 2006, sec. 14.5; residual
+   flexibility),
+
+       x = G r + Phi_k q + R f,   R = sum over the dropped modes phi_j phi_j^T / omega_j^2,
+
+   R formed only in the columns of the loaded dofs (:class:`Residual`), and x' the same with
+   f' (the slope of the first-order hold). The kept modes carry the damping of their own
+   block, D_k = Phi_k^T C Phi_k, and the damping force of the dropped modes' quasi-static
+   rates, -Phi_k^T C R f' (a non-classical damping couples them; the coupling through the
+   dropped modes' dynamic part is left out). The error is the dropped modes' dynamic part:
+   for a forcing of frequencies up to omega_f below the lowest dropped mode omega_d it is at
+   most r^2 / (1 - r^2), r = omega_f / omega_d, of their quasi-static part R f (the steady-state
+   amplification of an undamped mode, 1 / (1 - r^2), less one), each mode's (a damped mode's:
+   :func:`crankdyn.torsion.event_run.truncation_factor`); a jump of the forcing adds at most
+   the quasi-static part of the jump itself in each mode (an undamped mode overshoots a step by
+   its static deflection). The modes summed at their own worst are bounded by Cauchy-Schwarz,
+   sqrt(t^T R t) sqrt(f^T R f) for a torque pattern t (:mod:`crankdyn.torsion.event_run`).
+
 The recurrence w_k = a w_(k-1) + c_k of every coordinate over a block of samples is evaluated
 for all coordinates at once by a blocked scan (:func:`linear_recurrence`): no Python call per
 step.
@@ -47,7 +69,8 @@ step.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -55,8 +78,10 @@ from numpy.typing import ArrayLike, NDArray
 __all__ = [
     "ModalState",
     "ModalSystem",
+    "Residual",
     "free_bodies",
     "linear_recurrence",
+    "loaded",
     "modal_system",
     "phi_functions",
 ]
@@ -106,6 +131,11 @@ def phi_functions(z: ArrayLike) -> tuple[NDArray[np.complex128], NDArray[np.comp
         p2 = np.where(small, s2, p2)
     return p1, p2
 
+
+FEW_ROWS_MODES = 200
+"""Above this many modes :meth:`ModalSystem.to_physical` of a few dofs forms their rows of
+Phi V first (O(dofs) per instant); below it, the modal coordinates q first and then the rows
+(the all-dof products' rounding: the same numbers to the last digits)."""
 
 SCAN_BLOCK = 16
 """Samples per block of :func:`linear_recurrence`."""
@@ -224,6 +254,153 @@ def free_bodies(
     return out
 
 
+def loaded(forcing: ArrayLike) -> NDArray[np.int_]:
+    """The degrees of freedom a forcing (..., n) loads at some instant (its nonzero columns).
+
+    Parameters
+    ----------
+    forcing : array_like
+        (..., n) generalised torques (N m).
+
+    Returns
+    -------
+    numpy.ndarray
+        The loaded dofs (int), ascending.
+
+    Examples
+    --------
+    >>> loaded([[0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]).tolist()
+    [1]
+    """
+    f = np.asarray(forcing, dtype=float)
+    if f.ndim == 0 or f.shape[-1] == 0:
+        return np.zeros(0, dtype=int)
+    return np.flatnonzero(np.any(f.reshape(-1, f.shape[-1]) != 0.0, axis=0))
+
+
+@dataclass(frozen=True, eq=False)
+class Residual:
+    """The residual flexibility of the elastic modes left out of a truncated
+    :class:`ModalSystem` (module docstring, "Modal truncation"),
+
+        R = sum over the dropped modes phi_j phi_j^T / omega_j^2 = (I - Psi Psi^T M) F,
+
+    F the static flexibility on the complement of the zero-frequency motions, Psi the carried
+    modes and free bodies (M-orthonormal). A column of F is a solve with the shifted stiffness
+    K_s = K + alpha M V V^T M (V the zero-frequency motions: K_s x = K x for x M-orthogonal to
+    V, and K_s is regular), so only the columns of the loaded dofs are formed (cached).
+
+    Parameters
+    ----------
+    inertia : numpy.ndarray
+        (n,) M's diagonal (kg m^2).
+    kept : numpy.ndarray
+        (n, r) Psi (kg^-0.5 m^-1).
+    factor : tuple
+        The LU factors of K_s (:func:`scipy.linalg.lu_factor`).
+    modes : numpy.ndarray
+        (n, p) the kept elastic modes Phi_k (kg^-0.5 m^-1).
+    damping : numpy.ndarray
+        (n, n) C (N m s/rad): the damping force of the dropped modes' quasi-static rates on
+        the kept modes, Phi_k^T C R f', is carried (:meth:`coupling`).
+    """
+
+    inertia: NDArray[np.float64]
+    kept: NDArray[np.float64]
+    factor: tuple[Any, Any]
+    modes: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    _cols: dict[int, NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+    _coupled: dict[int, NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+    _stacked: dict[tuple[int, ...], NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+
+    def coupling(self, forcing: ArrayLike) -> NDArray[Any]:
+        """Phi_k^T C R f: the damping force (N m, in the kept modes' coordinates) of the
+        dropped modes' quasi-static motion R f on the kept modes, for f (..., n) (N m; or
+        their rates: the force then in N m per unit speed, as C R f').
+
+        Parameters
+        ----------
+        forcing : array_like
+            (..., n), real or complex.
+
+        Returns
+        -------
+        numpy.ndarray
+            (..., p) (the kept modes' coordinates).
+        """
+        f = np.asarray(forcing)
+        cols = loaded(np.abs(f))
+        missing = [int(c) for c in cols if int(c) not in self._coupled]
+        if missing:
+            block = self.modes.T @ (self.damping @ self.columns(missing))
+            for i, c in enumerate(missing):
+                self._coupled[c] = block[:, i]
+        if cols.size == 0:
+            return np.zeros((*f.shape[:-1], self.modes.shape[1]), dtype=f.dtype)
+        return f[..., cols] @ np.stack([self._coupled[int(c)] for c in cols], axis=1).T
+
+    def columns(self, cols: ArrayLike) -> NDArray[np.float64]:
+        """Columns of R (rad/(N m)) for unit torques at the dofs ``cols``, (n, len(cols)).
+
+        Parameters
+        ----------
+        cols : array_like
+            Degrees of freedom (int).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, len(cols)).
+        """
+        from scipy.linalg import lu_solve
+
+        cols = [int(c) for c in np.asarray(cols, dtype=int).ravel()]
+        missing = [c for c in cols if c not in self._cols]
+        if missing:
+            n = self.inertia.size
+            unit = np.zeros((n, len(missing)))
+            unit[missing, np.arange(len(missing))] = 1.0
+            y = lu_solve(self.factor, unit)
+            for _ in range(2):  # the carried components off, twice for rounding
+                y = y - self.kept @ (self.kept.T @ (self.inertia[:, None] * y))
+            for i, c in enumerate(missing):
+                self._cols[c] = y[:, i]
+        key = tuple(cols)
+        if key not in self._stacked:  # the same few columns, block after block
+            self._stacked[key] = (
+                np.stack([self._cols[c] for c in cols], axis=1)
+                if cols
+                else np.zeros((self.inertia.size, 0))
+            )
+        return self._stacked[key]
+
+    def angles(self, forcing: ArrayLike, rows: Any = slice(None)) -> NDArray[np.float64]:
+        """R f at the dofs ``rows`` (rad) of torques f (..., n) (N m), (..., len(rows)).
+
+        Parameters
+        ----------
+        forcing : array_like
+            (..., n) generalised torques (N m) (or their rates: R f' in rad/s).
+        rows : slice or array_like
+            The dofs wanted.
+
+        Returns
+        -------
+        numpy.ndarray
+            (..., len(rows)).
+        """
+        f = np.asarray(forcing, dtype=float)
+        cols = loaded(f)
+        return f[..., cols] @ self.columns(cols)[rows].T
+
+
 @dataclass(frozen=True, eq=False)
 class ModalState:
     """The state of a :class:`ModalSystem` in its own coordinates, at one instant or at many.
@@ -290,6 +467,15 @@ class ModalSystem:
         (N m s/rad).
     inverse : numpy.ndarray
         (m, 2p) the carried rows of V^-1 (the modal state of (q, q')).
+    residual : Residual or None
+        The residual flexibility of the modes left out above ``cutoff`` (module docstring,
+        "Modal truncation"); None when every mode is carried.
+    cutoff : float
+        The cut-off frequency (rad/s): the elastic modes up to it are carried; inf for all.
+    dropped : int
+        Number of elastic modes left out.
+    lowest_dropped : float
+        The lowest natural frequency left out (rad/s); inf when none is.
     """
 
     inertia: NDArray[np.float64]
@@ -305,6 +491,16 @@ class ModalSystem:
     stiffness: NDArray[np.float64]
     damping: NDArray[np.float64]
     inverse: NDArray[np.complex128]
+    residual: Residual | None = None
+    cutoff: float = math.inf
+    dropped: int = 0
+    lowest_dropped: float = math.inf
+    _flex: dict[int, NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
+    _stacked: dict[tuple[int, ...], NDArray[np.float64]] = field(
+        default_factory=dict, init=False, repr=False, compare=False
+    )
 
     @property
     def size(self) -> int:
@@ -329,28 +525,89 @@ class ModalSystem:
         z = np.concatenate([self.modes.T @ mx, self.modes.T @ mv])
         return ModalState(self.inverse @ z, self.bodies.T @ mx, self.bodies.T @ mv)
 
-    def to_physical(self, state: ModalState) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """Angles (rad) and rates (rad/s) of a modal state, shape (..., n) each.
+    def to_physical(
+        self,
+        state: ModalState,
+        dofs: ArrayLike | None = None,
+        forcing: ArrayLike | None = None,
+        rate: ArrayLike | None = None,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Angles (rad) and rates (rad/s) of a modal state, shape (..., n) each (or
+        (..., len(dofs))), with the quasi-static part of the modes left out (module docstring,
+        "Modal truncation") when the forcing is given.
 
         Parameters
         ----------
         state : ModalState
             At one instant or many.
+        dofs : array_like or None
+            Only these degrees of freedom (int); None: all.
+        forcing : array_like or None
+            (..., n) the generalised torques at the same instants (N m): the residual
+            flexibility's angles R f are added (nothing when every mode is carried).
+        rate : array_like or None
+            (..., n) their rates (N m/s): R f' is added to the rates.
 
         Returns
         -------
         x, v : numpy.ndarray
             Angles (rad) and angular speeds (rad/s).
         """
+        rows = slice(None) if dofs is None else np.asarray(dofs, dtype=int)
+        modes, bodies = self.modes[rows], self.bodies[rows]
         ww = state.w * self.weight
         # Re(w P^T) as two real products: a complex product of a few rows runs far slower in
         # threaded BLAS on a busy machine (thread start-up), the same numbers to rounding
         wr, wi = np.ascontiguousarray(ww.real), np.ascontiguousarray(ww.imag)
-        q = wr @ self.position.real.T - wi @ self.position.imag.T
-        qd = wr @ self.velocity.real.T - wi @ self.velocity.imag.T
-        x = q @ self.modes.T + state.r @ self.bodies.T
-        v = qd @ self.modes.T + state.rd @ self.bodies.T
+        if dofs is not None and modes.shape[1] > FEW_ROWS_MODES:
+            # a few dofs: their rows of Phi V first (O(dofs) per instant, not O(modes))
+            px, pv = modes @ self.position, modes @ self.velocity
+            x = wr @ px.real.T - wi @ px.imag.T + state.r @ bodies.T
+            v = wr @ pv.real.T - wi @ pv.imag.T + state.rd @ bodies.T
+        else:
+            q = wr @ self.position.real.T - wi @ self.position.imag.T
+            qd = wr @ self.velocity.real.T - wi @ self.velocity.imag.T
+            x = q @ modes.T + state.r @ bodies.T
+            v = qd @ modes.T + state.rd @ bodies.T
+        if self.residual is not None and forcing is not None:
+            x = x + self.residual.angles(forcing, rows)
+            if rate is not None:
+                v = v + self.residual.angles(rate, rows)
         return x, v
+
+    def flexibility(self, cols: ArrayLike) -> NDArray[np.float64]:
+        """Columns of the static flexibility: the twist (rad) under a unit torque (N m) at
+        each dof of ``cols`` (K x = P^T f, the free bodies' share taken by their inertia),
+        (n, len(cols)); cached per column (the static influence of the few loaded dofs).
+
+        Parameters
+        ----------
+        cols : array_like
+            Degrees of freedom (int).
+
+        Returns
+        -------
+        numpy.ndarray
+            (n, len(cols)) (rad/(N m)).
+        """
+        cols = [int(c) for c in np.asarray(cols, dtype=int).ravel()]
+        missing = [c for c in cols if c not in self._flex]
+        if missing:
+            omega2 = self.natural_frequency**2
+            inverse = np.where(omega2 > 0.0, 1.0 / np.where(omega2 > 0.0, omega2, 1.0), 0.0)
+            block = self.modes @ (self.modes[missing].T * inverse[:, None])
+            if self.residual is not None:
+                block = block + self.residual.columns(missing)
+            for i, c in enumerate(missing):
+                self._flex[c] = block[:, i]
+        key = tuple(cols)
+        if key not in self._stacked:
+            self._stacked[key] = (
+                np.stack([self._flex[c] for c in cols], axis=1)
+                if cols
+                else np.zeros((self.size, 0))
+            )
+        return self._stacked[key]
 
     def static(self, forcing: ArrayLike) -> NDArray[np.float64]:
         """The static twist under generalised torques f (N m), (n,): K x = P^T f, the part of
@@ -367,9 +624,8 @@ class ModalSystem:
             (..., n) angles (rad), M-orthogonal to the free bodies.
         """
         f = np.asarray(forcing, dtype=float)
-        omega2 = self.natural_frequency**2
-        inverse = np.where(omega2 > 0.0, 1.0 / np.where(omega2 > 0.0, omega2, 1.0), 0.0)
-        return ((f @ self.modes) * inverse) @ self.modes.T
+        cols = loaded(f)
+        return f[..., cols] @ self.flexibility(cols).T
 
     def harmonic(self, forcing: ArrayLike, omega: ArrayLike) -> NDArray[np.complex128]:
         """Steady-state amplitudes X of M x'' + C x' + K x = Re(F e^{i omega t}), for every
@@ -395,12 +651,17 @@ class ModalSystem:
         out = np.zeros(f.shape, dtype=complex)
         for i in range(w.size):
             dyn = np.diag(omega2 - w[i] ** 2) + 1j * w[i] * self.modal_damping
-            q = np.linalg.solve(dyn, self.modes.T @ f[i]) if p else np.zeros(0)
+            rhs = self.modes.T @ f[i]
+            if self.residual is not None:  # the dropped modes' damping force on the kept ones
+                rhs = rhs - 1j * w[i] * self.residual.coupling(f[i])
+            q = np.linalg.solve(dyn, rhs) if p else np.zeros(0)
             out[i] = self.modes @ q - self.bodies @ (self.bodies.T @ f[i]) / w[i] ** 2
+        if self.residual is not None:  # the modes left out: quasi-statically
+            out = out + self.residual.angles(f.real) + 1j * self.residual.angles(f.imag)
         return out
 
     def modal_forcing(
-        self, forcing: ArrayLike
+        self, forcing: ArrayLike, rate: ArrayLike | None = None
     ) -> tuple[NDArray[np.complex128], NDArray[np.float64]]:
         """The modal inputs of generalised torques f (N m), shape (..., n).
 
@@ -408,6 +669,10 @@ class ModalSystem:
         ----------
         forcing : array_like
             Generalised torques on the degrees of freedom (N m), (..., n).
+        rate : array_like or None
+            (..., n) their rates f' (N m/s): with modes left out, the damping force of their
+            quasi-static rates R f' on the kept modes, -Phi_k^T C R f', is added (module
+            docstring, "Modal truncation").
 
         Returns
         -------
@@ -417,7 +682,10 @@ class ModalSystem:
             (..., b) accelerations of the free bodies' coordinates.
         """
         f = np.asarray(forcing, dtype=float)
-        return (f @ self.modes) @ self.input_gain.T, f @ self.bodies
+        modal = f @ self.modes
+        if self.residual is not None and rate is not None:
+            modal = modal - self.residual.coupling(rate)
+        return modal @ self.input_gain.T, f @ self.bodies
 
     def run(
         self,
@@ -531,6 +799,7 @@ def modal_system(
     damping: ArrayLike,
     *,
     absolute_damping: str = "vibration",
+    max_frequency: float | None = None,
 ) -> ModalSystem:
     """The exact propagator of a linear model (module docstring).
 
@@ -546,6 +815,9 @@ def modal_system(
         ``"vibration"`` (default): the masses' damping acts on the vibration, not on the free
         bodies' mean rotation (module docstring); ``"absolute"``: C as given (a free body with
         absolute damping slows down).
+    max_frequency : float or None
+        The cut-off (rad/s): only the elastic modes up to it are integrated, those above it
+        quasi-statically (module docstring, "Modal truncation"); None (default): every mode.
 
     Returns
     -------
@@ -595,12 +867,15 @@ def modal_system(
     top = float(np.max(np.sum(np.abs(ks), axis=1), initial=0.0))
     shift = 2.0 * top + 1.0
     gs = g * np.sqrt(m)[:, None]  # orthonormal in the plain inner product
-    vals, vecs = np.linalg.eigh(ks + shift * (gs @ gs.T))
-    vals, vecs = vals[: n - b], vecs[:, : n - b]
+    vals, vecs, lowest = _undamped(ks + shift * (gs @ gs.T), n - b, max_frequency)
     phi = vecs * scale[:, None]  # M-normalised
-    omega2 = np.clip(vals, 0.0, None)
-    p_count = n - b
-    d = phi.T @ c @ phi
+    residual = None
+    if vals.size < n - b:
+        residual = _residual(m, k, c, g, phi, vals, top, float(max_frequency or 0.0))
+    # a zero-frequency motion (a damper's ring without stiffness) to rounding: exactly zero
+    omega2 = np.where(vals > 1e-12 * max(top, 1e-300), vals, 0.0)
+    p_count = omega2.size
+    d = phi.T @ c @ phi  # the kept block only: the coupling to the modes left out is dropped
     d = 0.5 * (d + d.T)
     a = np.zeros((2 * p_count, 2 * p_count))
     a[:p_count, p_count:] = np.eye(p_count)
@@ -638,4 +913,58 @@ def modal_system(
         stiffness=k,
         damping=c,
         inverse=inv[sel],
+        residual=residual,
+        cutoff=math.inf if residual is None else float(max_frequency or 0.0),
+        dropped=n - b - p_count,
+        lowest_dropped=lowest,
     )
+
+
+def _undamped(
+    shifted: NDArray[np.float64], count: int, max_frequency: float | None
+) -> tuple[NDArray[np.float64], NDArray[np.float64], float]:
+    """(omega^2, the mass-scaled modes, the lowest natural frequency left out (rad/s), inf
+    when none is) of the ``count`` lowest eigenpairs of M^-1/2 K M^-1/2 shifted on the free
+    bodies: every mode, or those up to ``max_frequency`` (a partial symmetric eigen-solve: the
+    eigenvalues, then the vectors of the lowest ones only)."""
+    from scipy.linalg import eigh
+
+    if max_frequency is not None and count > 0:
+        cut2 = float(max_frequency) ** 2
+        # the pairs up to (2 omega_c)^2: the kept ones and the lowest dropped one (the free
+        # bodies, shifted above every mode, come last if at all)
+        vals, vecs = eigh(shifted, subset_by_value=(-np.inf, 4.0 * cut2))
+        vals, vecs = vals[:count], vecs[:, :count]
+        kept = int(np.searchsorted(vals, cut2, side="right"))
+        if kept < count:
+            # none found up to 2 omega_c: the lowest dropped mode is above it (a lower bound)
+            lowest = (
+                math.sqrt(max(float(vals[kept]), 0.0))
+                if kept < vals.size
+                else 2.0 * math.sqrt(cut2)
+            )
+            return vals[:kept], vecs[:, :kept], lowest
+    vals, vecs = np.linalg.eigh(shifted)
+    return vals[:count], vecs[:, :count], math.inf
+
+
+def _residual(
+    m: NDArray[np.float64],
+    k: NDArray[np.float64],
+    c: NDArray[np.float64],
+    g: NDArray[np.float64],
+    phi: NDArray[np.float64],
+    vals: NDArray[np.float64],
+    top: float,
+    cutoff: float,
+) -> Residual:
+    """The residual flexibility of the modes left out (:class:`Residual`): K shifted on the
+    zero-frequency motions (the free bodies, and the carried modes at zero frequency) by
+    alpha = cutoff^2, factorised once."""
+    from scipy.linalg import lu_factor
+
+    zero = phi[:, vals <= 1e-12 * max(top, 1e-300)]
+    v = np.concatenate([g, zero], axis=1) * m[:, None]  # M V
+    alpha = max(cutoff * cutoff, 1e-300)
+    factor = lu_factor(k + alpha * (v @ v.T))
+    return Residual(m, np.concatenate([g, phi], axis=1), factor, phi, c)

@@ -11,9 +11,9 @@ How a run is set up: the line runs at ``speed`` (default the rated speed n_0) be
 the sources' harmonic torques at the TVC's orders (``harmonics``, default true; a clutch
 engagement without them), for ``duration`` (default the event's own). The integration resolves
 in time the natural modes up to :data:`EVENT_MODE_FACTOR` times the highest excitation
-frequency (the highest order at the run's top speed, or the event's own frequency); the exact
-integrator carries every mode, the step only samples them
-(:mod:`crankdyn.torsion.event_run`).
+frequency (the highest order at the run's top speed, or the event's own frequency), the modes
+above quasi-statically: the modal truncation of :mod:`crankdyn.torsion.integrator`, its bound
+reported with the run (:mod:`crankdyn.torsion.event_run`).
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from crankdyn.defaults import DEFAULTS
 from crankdyn.errors import InputError
 from crankdyn.tvc.checks import Check, model_checks
 from crankdyn.tvc.evaluate import evaluate_event
-from crankdyn.tvc.result import EventCondition, EventCurve
+from crankdyn.tvc.result import EventCondition, EventCurve, truncation_fields
 
 if TYPE_CHECKING:
     from crankdyn.torsion.event_result import EventResult
@@ -254,6 +254,7 @@ def event_conditions(
                 verdicts=run.verdicts,
                 run=run,
                 curves=event_curves(run, checks),
+                **truncation_fields(run),
             )
         )
     return out

@@ -11,9 +11,10 @@ time with the same duration (the acceleration torque varies little across a barr
 the largest transient stress (torque) of every component during the run, its vibratory part
 (less the quasi-static torque of the mean torques), is checked against its transient limit
 (tau_T, T_Kmax less the mean torque) by the component's own check
-(:mod:`crankdyn.tvc.checks`). The run resolves the modes up to
+(:mod:`crankdyn.tvc.checks`). The run integrates the modes up to
 :data:`crankdyn.tvc.events.EVENT_MODE_FACTOR` times the highest order's frequency at its top
-speed.
+speed, those above quasi-statically (the modal truncation of
+:mod:`crankdyn.torsion.integrator`, its bound reported with the run).
 
 The engine's torque (:func:`engine_torque`) is its torque-speed curve (``[tvc]
 engine_torque_curve``: the torque limit of the engine builder's load diagram), else a given
@@ -38,7 +39,7 @@ from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.tvc.evaluate import merge_intervals
 from crankdyn.tvc.events import EVENT_MODE_FACTOR
-from crankdyn.tvc.result import BarredSpeedRange, Passage
+from crankdyn.tvc.result import BarredSpeedRange, Passage, truncation_fields
 
 if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
@@ -253,6 +254,7 @@ def passages(
                     f"{words}, {load_words}"
                 ),
                 transient=run,
+                **truncation_fields(run),
             )
         )
         title = f"transient peak passing {label} ({t_in:.3g} s in the range)"

@@ -4,6 +4,7 @@ the whole TVC."""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -20,6 +21,9 @@ from crankdyn.summary import (
     verdict_status,
     verdict_text,
 )
+
+_HZ = 1.0 / (2.0 * math.pi)
+"""rad/s to Hz."""
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -43,6 +47,7 @@ __all__ = [
     "Passage",
     "TvcResult",
     "Verdict",
+    "truncation_fields",
 ]
 
 
@@ -136,6 +141,8 @@ class Passage(Result):
         not exported).
     elements : tuple of int
         The model's shaft indices of the component whose barred range this is (for plots).
+    modes_kept, cutoff_frequency, truncation_error, truncation
+        The run's modal truncation (:func:`truncation_fields`).
     """
 
     condition: str = scalar("condition", "Condition", "")
@@ -151,6 +158,55 @@ class Passage(Result):
     note: str = scalar("note", "How", "")
     transient: EventResult | None = field(default=None, repr=False, compare=False)
     elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
+    modes_kept: int = scalar("modes_kept", "Elastic modes integrated in time", "", default=0)
+    cutoff_frequency: float | None = scalar(
+        "cutoff_frequency_hz", "Modal cut-off frequency", "Hz", _HZ, default=None
+    )
+    truncation_error: float = scalar(
+        "truncation_error_Nm", "Truncation error bound of the element torques", "N·m",
+        default=0.0,
+    )  # fmt: skip
+    truncation: str = scalar("truncation", "Modal truncation", "", default="")
+
+
+def truncation_fields(run: EventResult) -> dict[str, Any]:
+    """The modal truncation of an event's or a passage's run as the fields of
+    :class:`EventCondition` and :class:`Passage` (:mod:`crankdyn.torsion.integrator`, "Modal
+    truncation"; the note of the run).
+
+    Parameters
+    ----------
+    run : EventResult
+        The run.
+
+    Returns
+    -------
+    dict
+        ``modes_kept``, ``cutoff_frequency`` (rad/s or None), ``truncation_error`` (N m) and
+        ``truncation`` (words; "" without a cut-off).
+    """
+    words = next((n for n in run.notes if n.startswith("modal truncation")), "")
+    return {
+        "modes_kept": int(run.modes_kept),
+        "cutoff_frequency": run.cutoff_frequency,
+        "truncation_error": float(run.truncation_error),
+        "truncation": words,
+    }
+
+
+_TRUNCATION_COLUMNS = (
+    SummaryColumn("modes_kept", "Modes integrated"),
+    SummaryColumn("cutoff_frequency_hz", "Modal cut-off", "Hz"),
+    SummaryColumn("truncation_error_Nm", "Truncation bound", "N·m"),
+)
+"""The modal truncation's columns of the events' and the passages' tables."""
+
+
+def _truncation_cells(item: EventCondition | Passage) -> tuple[Any, ...]:
+    """The cells of :data:`_TRUNCATION_COLUMNS` of an event or a passage (SI values but the
+    cut-off, in Hz as its column says)."""
+    cutoff = item.cutoff_frequency
+    return (item.modes_kept, None if cutoff is None else cutoff * _HZ, item.truncation_error)
 
 
 def _largest_m68_ratio(condition: Any) -> tuple[float, str] | None:
@@ -349,6 +405,10 @@ class EventCondition(Result):
     ----------
     run : EventResult or None
         The run (:func:`crankdyn.torsion.event_run.event_response`; not exported).
+    modes_kept, cutoff_frequency, truncation_error, truncation
+        The run's modal truncation (:func:`truncation_fields`): the modes integrated, the
+        cut-off (rad/s; exported in Hz), the bound of the element torques' error (N m), in
+        words.
     curves : tuple of EventCurve
         Every checked quantity over the run, with its limit (for the plot; not exported).
     """
@@ -364,6 +424,15 @@ class EventCondition(Result):
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     run: EventResult | None = field(default=None, repr=False, compare=False)
     curves: tuple[EventCurve, ...] = field(default=(), repr=False, compare=False)
+    modes_kept: int = scalar("modes_kept", "Elastic modes integrated in time", "", default=0)
+    cutoff_frequency: float | None = scalar(
+        "cutoff_frequency_hz", "Modal cut-off frequency", "Hz", _HZ, default=None
+    )
+    truncation_error: float = scalar(
+        "truncation_error_Nm", "Truncation error bound of the element torques", "N·m",
+        default=0.0,
+    )  # fmt: skip
+    truncation: str = scalar("truncation", "Modal truncation", "", default="")
 
     FIGURES = (
         derived(
@@ -578,6 +647,7 @@ class TvcResult(Result):
                         SummaryColumn("end_rpm", "To", "rpm"),
                         SummaryColumn("time_in_range_s", "Time in the range", "s"),
                         SummaryColumn("note", "How"),
+                        *_TRUNCATION_COLUMNS,
                     ),
                     tuple(
                         (
@@ -586,6 +656,7 @@ class TvcResult(Result):
                             round(p.end * RPM, 1),
                             p.time_in_range,
                             p.note,
+                            *_truncation_cells(p),
                         )
                         for p in self.passages
                     ),
@@ -615,6 +686,7 @@ class TvcResult(Result):
                 SummaryColumn("duration_s", "Run", "s"),
                 SummaryColumn("worst_margin", "Smallest margin"),
                 SummaryColumn("passed", "Passed"),
+                *_TRUNCATION_COLUMNS,
             ),
             tuple(
                 (
@@ -625,6 +697,7 @@ class TvcResult(Result):
                     e.duration,
                     w[0] if (w := _worst(e)) is not None else None,
                     "yes" if all(v.passed for v in e.verdicts) else "no",
+                    *_truncation_cells(e),
                 )
                 for e in self.events
             ),
