@@ -132,6 +132,15 @@ DEFAULTS: dict[str, Default] = {
             "crankdyn convention",
         ),
         Default(
+            "event_truncation_dofs",
+            150,
+            "",
+            "the TVC's transient events and passages integrate the modes above the cut-off "
+            "quasi-statically (modal truncation, its bound reported) from this many degrees of "
+            "freedom on; a smaller model integrates every mode, exactly (it costs little there)",
+            "crankdyn convention",
+        ),
+        Default(
             "response_block_memory",
             256.0 * 2**20,
             "B",

@@ -263,9 +263,11 @@ def test_marine_tvc_clutch_and_start_within_their_bounds(monkeypatch, index):
     quasi-statically in the locked line; the governor's held torques jump at every sample)
     and its start through the barred range (a speed ramp with the harmonic torques): every
     element's peaks of the truncated run within the reported bound of the all-mode run's
-    (observed: 0.23 and 0.035 of it)."""
+    (observed: 0.23 and 0.035 of it). The 38-mass line is below the TVC's truncation
+    threshold (it integrates every mode): the threshold is lowered here."""
     from crankdyn.tvc.events import _run
 
+    monkeypatch.setattr("crankdyn.tvc.events.EVENT_TRUNCATION_DOFS", 1)
     session = _marine()
     te = session.tvc_spec.events[index]
     args = (session.loaded_model, te, 750 / RPM, session.excitation(), session.orders)
@@ -333,3 +335,22 @@ def test_subdivided_line_truncated_within_its_bound(monkeypatch):
     _within(run, exact, bound)
     ratio = np.max(np.abs(run.torque - exact.torque) / np.maximum(bound, 1e-300)[None, :])
     assert ratio < 0.5  # not trivially loose
+
+
+def test_the_tvc_truncates_from_its_threshold_on(monkeypatch):
+    """Below :data:`crankdyn.tvc.events.EVENT_TRUNCATION_DOFS` degrees of freedom the TVC's runs
+    integrate every mode (no cut-off, bound 0, no truncation columns in its tables); from it
+    on they truncate at the cut-off and the tables show the modes, cut-off and bound."""
+    from crankdyn.tvc.events import EVENT_TRUNCATION_DOFS, _run, truncates
+
+    session = _marine()
+    model = session.loaded_model
+    assert model.dof_count < EVENT_TRUNCATION_DOFS and not truncates(model)
+    te = session.tvc_spec.events[2]  # the ice impact
+    args = (model, te, 750 / RPM, session.excitation(), session.orders)
+    whole = _run(*args)
+    assert whole.cutoff_frequency is None and whole.truncation_error == 0.0
+    monkeypatch.setattr("crankdyn.tvc.events.EVENT_TRUNCATION_DOFS", model.dof_count)
+    assert truncates(model)
+    cut = _run(*args)
+    assert cut.cutoff_frequency is not None and 0 < cut.modes_kept < whole.modes_kept

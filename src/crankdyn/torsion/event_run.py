@@ -1018,6 +1018,7 @@ def event_response(
     mean_torques: bool = True,
     absolute_damping: str = "vibration",
     force_points: int = FORCE_POINTS,
+    truncate: bool = True,
 ) -> EventResult:
     """The line's speeds and element torques through a transient event (module docstring).
 
@@ -1045,7 +1046,8 @@ def event_response(
     max_frequency : float or None
         The highest natural frequency of interest (rad/s): the modes up to it are integrated,
         those above quasi-statically (:mod:`crankdyn.torsion.integrator`, "Modal truncation";
-        the bound reported with the result); default every mode, exactly.
+        the bound reported with the result; with ``truncate`` False it sets the step only);
+        default every mode, exactly.
     max_samples : int
         The most samples kept (>= 2); the extremes come from every step.
     mean_torques : bool
@@ -1055,6 +1057,9 @@ def event_response(
         modal_system`).
     force_points : int
         Steps per period of the forcing's highest frequency (default 40).
+    truncate : bool
+        Whether ``max_frequency`` truncates the modes (default True); False: every mode is
+        integrated, the cut-off only sets the step.
 
     Returns
     -------
@@ -1099,7 +1104,7 @@ def event_response(
         clutch = isinstance(event, ClutchEngagement)  # its loads: sampled at its masses' speeds
         profile = constant_profile(line, w0, loads=mean_torques and not clutch)
     mode, systems, torque_events, body_speed = _setup(
-        model, line, event, w0, profile, absolute_damping, max_frequency
+        model, line, event, w0, profile, absolute_damping, max_frequency if truncate else None
     )
     harmonics = (
         _harmonics(model, line, excitation, orders if orders is not None else [], profile)

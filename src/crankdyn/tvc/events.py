@@ -39,11 +39,38 @@ if TYPE_CHECKING:
     from crankdyn.torsion.model import TorsionModel
     from crankdyn.tvc.spec import TvcEvent, TvcSpec
 
-__all__ = ["EVENT_MODE_FACTOR", "event_conditions", "event_curves", "judge_event"]
+__all__ = [
+    "EVENT_MODE_FACTOR",
+    "EVENT_TRUNCATION_DOFS",
+    "event_conditions",
+    "event_curves",
+    "judge_event",
+    "truncates",
+]
 
 EVENT_MODE_FACTOR = float(DEFAULTS["event_mode_factor"].value)
 """The natural modes an event's run resolves in time: up to this factor times the highest
 excitation frequency."""
+EVENT_TRUNCATION_DOFS = int(DEFAULTS["event_truncation_dofs"].value)
+"""From this many degrees of freedom on, the modes above the cut-off are integrated
+quasi-statically (modal truncation); a smaller model's runs integrate every mode."""
+
+
+def truncates(model: TorsionModel) -> bool:
+    """Whether the TVC's runs (events, passages) on ``model`` truncate its modes at their
+    cut-off (:data:`EVENT_TRUNCATION_DOFS`).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+
+    Returns
+    -------
+    bool
+        True for a model of at least that many degrees of freedom.
+    """
+    return model.dof_count >= EVENT_TRUNCATION_DOFS
 
 
 def judge_event(
@@ -188,6 +215,7 @@ def _run(
         excitation=excitation if harmonic else None,
         orders=orders if harmonic else None,
         max_frequency=max_frequency,
+        truncate=truncates(model),
     )
 
 

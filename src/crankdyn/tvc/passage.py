@@ -38,7 +38,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
 from crankdyn.tvc.evaluate import merge_intervals
-from crankdyn.tvc.events import EVENT_MODE_FACTOR
+from crankdyn.tvc.events import EVENT_MODE_FACTOR, truncates
 from crankdyn.tvc.result import BarredSpeedRange, Passage, truncation_fields
 
 if TYPE_CHECKING:
@@ -230,6 +230,7 @@ def passages(
             orders=orders,
             dampers=cond.dampers,
             max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
+            truncate=truncates(model),
         )
         passages.append(
             Passage(

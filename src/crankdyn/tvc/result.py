@@ -5,6 +5,7 @@ the whole TVC."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -202,9 +203,21 @@ _TRUNCATION_COLUMNS = (
 """The modal truncation's columns of the events' and the passages' tables."""
 
 
-def _truncation_cells(item: EventCondition | Passage) -> tuple[Any, ...]:
-    """The cells of :data:`_TRUNCATION_COLUMNS` of an event or a passage (SI values but the
-    cut-off, in Hz as its column says)."""
+def _truncation_columns(items: Sequence[EventCondition | Passage]) -> tuple[SummaryColumn, ...]:
+    """:data:`_TRUNCATION_COLUMNS` where one of the runs truncated its modes (none where every
+    run integrated every mode: a model below :data:`crankdyn.tvc.events.EVENT_TRUNCATION_DOFS`
+    degrees of freedom)."""
+    truncated = any(item.cutoff_frequency is not None for item in items)
+    return _TRUNCATION_COLUMNS if truncated else ()
+
+
+def _truncation_cells(
+    item: EventCondition | Passage, columns: tuple[SummaryColumn, ...]
+) -> tuple[Any, ...]:
+    """The cells of the truncation's ``columns`` (:func:`_truncation_columns`) of an event or a
+    passage (SI values but the cut-off, in Hz as its column says)."""
+    if not columns:
+        return ()
     cutoff = item.cutoff_frequency
     return (item.modes_kept, None if cutoff is None else cutoff * _HZ, item.truncation_error)
 
@@ -637,6 +650,7 @@ class TvcResult(Result):
         if events is not None:
             out.append(events)
         if self.passages:
+            shown = _truncation_columns(self.passages)
             out.append(
                 SummaryTable(
                     "passages",
@@ -647,7 +661,7 @@ class TvcResult(Result):
                         SummaryColumn("end_rpm", "To", "rpm"),
                         SummaryColumn("time_in_range_s", "Time in the range", "s"),
                         SummaryColumn("note", "How"),
-                        *_TRUNCATION_COLUMNS,
+                        *shown,
                     ),
                     tuple(
                         (
@@ -656,7 +670,7 @@ class TvcResult(Result):
                             round(p.end * RPM, 1),
                             p.time_in_range,
                             p.note,
-                            *_truncation_cells(p),
+                            *_truncation_cells(p, shown),
                         )
                         for p in self.passages
                     ),
@@ -675,6 +689,7 @@ class TvcResult(Result):
         """
         if not self.events:
             return None
+        shown = _truncation_columns(self.events)
         return SummaryTable(
             "events",
             "Transient events",
@@ -686,7 +701,7 @@ class TvcResult(Result):
                 SummaryColumn("duration_s", "Run", "s"),
                 SummaryColumn("worst_margin", "Smallest margin"),
                 SummaryColumn("passed", "Passed"),
-                *_TRUNCATION_COLUMNS,
+                *shown,
             ),
             tuple(
                 (
@@ -697,7 +712,7 @@ class TvcResult(Result):
                     e.duration,
                     w[0] if (w := _worst(e)) is not None else None,
                     "yes" if all(v.passed for v in e.verdicts) else "no",
-                    *_truncation_cells(e),
+                    *_truncation_cells(e, shown),
                 )
                 for e in self.events
             ),
