@@ -44,6 +44,7 @@ __all__ = [
     "Setting",
     "case_verdicts",
     "figures_markdown",
+    "reads_whole_tvc",
     "register_figure",
     "register_setting",
 ]
@@ -217,6 +218,28 @@ class CaseContext:
         return self._analysis
 
 
+def reads_whole_tvc(figures: Sequence[str]) -> bool:
+    """Whether figures read the whole TVC's verdict rows (``worst_margin``, ``failed_rows``:
+    every condition's) rather than the normal-firing condition's.
+
+    Parameters
+    ----------
+    figures : sequence of str
+        Names of study figures.
+
+    Returns
+    -------
+    bool
+        True when one of them is a whole-TVC figure.
+
+    Examples
+    --------
+    >>> reads_whole_tvc(["failed_rows"]), reads_whole_tvc(["condition_passed"])
+    (True, False)
+    """
+    return "worst_margin" in figures or "failed_rows" in figures
+
+
 def case_verdicts(ctx: CaseContext, figures: Sequence[str]) -> tuple[Verdict, ...]:
     """The verdict rows a case's figures read: every condition's (the whole TVC,
     :meth:`crankdyn.session.Analysis.tvc`) when they include ``worst_margin`` or
@@ -236,7 +259,7 @@ def case_verdicts(ctx: CaseContext, figures: Sequence[str]) -> tuple[Verdict, ..
     tuple of crankdyn.summary.Verdict
         The rows.
     """
-    if "worst_margin" in figures or "failed_rows" in figures:
+    if reads_whole_tvc(figures):
         return tuple(ctx.analysis.tvc().verdicts)
     judged = ctx.analysis.judged()
     return () if judged is None else tuple(judged.verdicts)

@@ -35,7 +35,7 @@ from crankdyn.io.study_file import parse_base
 from crankdyn.io.toml_text import dumps
 from crankdyn.study.cases import Case, case_id
 from crankdyn.study.docpath import apply_values, referenced_files
-from crankdyn.study.figures import FIGURES, CaseContext, case_verdicts
+from crankdyn.study.figures import FIGURES, CaseContext, case_verdicts, reads_whole_tvc
 from crankdyn.study.run.runner import CaseRunner, Progress
 from crankdyn.study.run.worker import verdicts_of_record
 
@@ -94,17 +94,18 @@ def _verdicts(space: DesignSpace, candidate: Candidate) -> tuple[tuple[Any, ...]
     if kept is not None:
         return kept, None
     figures = space.study.figures
-    if "worst_margin" in figures or "failed_rows" in figures:
+    if reads_whole_tvc(figures):
         tvc = whole_tvc(space, candidate.case)
         return tuple(tvc.verdicts), tvc
+    return case_verdicts(_context(space, candidate.case), figures), None
+
+
+def _context(space: DesignSpace, case: Case) -> CaseContext:
+    """A candidate as a study case (its document read as the base is, the study's settings)."""
     base = space.study.base
-    subject = parse_base(
-        base.kind,
-        candidate_document(space, candidate.case),
-        file=base.source,
-        base_dir=base.base_dir,
-    )
-    return case_verdicts(CaseContext(subject, space.study.settings, base.kind), figures), None
+    document = candidate_document(space, case)
+    subject = parse_base(base.kind, document, file=base.source, base_dir=base.base_dir)
+    return CaseContext(subject, space.study.settings, base.kind)
 
 
 def whole_tvc(space: DesignSpace, case: Case) -> Any:
@@ -124,11 +125,7 @@ def whole_tvc(space: DesignSpace, case: Case) -> Any:
     crankdyn.tvc.TvcResult
         Its whole TVC.
     """
-    base = space.study.base
-    subject = parse_base(
-        base.kind, candidate_document(space, case), file=base.source, base_dir=base.base_dir
-    )
-    return CaseContext(subject, space.study.settings, base.kind).analysis.tvc()
+    return _context(space, case).analysis.tvc()
 
 
 def _text(space: DesignSpace, c: Candidate) -> str:
@@ -226,7 +223,7 @@ def run_design(
         tvc = analysed[0][1]  # the chosen design's whole TVC, for its report: computed once
     tvc_passed = None if tvc is None and not notes else tvc is not None and bool(tvc.passed)
     figures = space.study.figures
-    whole = "worst_margin" in figures or "failed_rows" in figures
+    whole = reads_whole_tvc(figures)
     if tvc is None and not notes and analysed and whole:  # its worker's whole TVC's rows
         tvc_passed = bool(analysed[0][0]) and all(v.passed for v in analysed[0][0])
     front: tuple[int, ...] = ()
