@@ -482,3 +482,55 @@ def test_a_child_forked_after_preparing_loads_no_writer_of_its_own():
     _, status = os.waitpid(pid, 0)
     assert status == 0
     assert [m for m in loaded if m.startswith(("PIL", "matplotlib.backends"))] == []
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals and fork")
+def test_a_signal_as_a_child_is_forked_ends_the_child_not_a_copy_of_this_process(
+    tmp_path, monkeypatch
+):
+    """A SIGTERM that reaches a drawing child at once after the fork (close() sends one to the
+    children still drawing when an analysis is interrupted) ends that child by its default
+    action. It was handled by this process's handler (the command line's raises) before the
+    child entered its try, and the child ran on as a copy of this process (under pytest: a
+    second worker waiting for tests, and close() waiting for it for ever). The child here
+    signals itself before returning from the fork; were the signal handled, the exception
+    would reach this test in the child, which leaves a mark and exits."""
+    import os
+    import signal
+
+    from crankdyn.plots import render
+
+    class _Handled(Exception):
+        pass
+
+    def handler(signum, frame):
+        raise _Handled
+
+    parent = os.getpid()
+    mark = tmp_path / "escaped"
+    real_fork = os.fork
+
+    def fork():
+        pid = real_fork()
+        if pid == 0:
+            os.kill(os.getpid(), signal.SIGTERM)
+        return pid
+
+    before = signal.signal(signal.SIGTERM, handler)
+    monkeypatch.setattr(os, "fork", fork)
+    try:
+        with render.Renderer(2) as renderer:
+            renderer.submit(_figures(1)[0])
+            ((png, _),) = renderer.results()
+    except BaseException:
+        if os.getpid() != parent:
+            mark.write_text("the child ran on")
+            os._exit(3)
+        raise
+    finally:
+        if os.getpid() != parent:  # pragma: no cover - the child escaped its try
+            mark.write_text("the child ran on")
+            os._exit(3)
+        signal.signal(signal.SIGTERM, before)
+    assert not mark.exists()
+    assert png.startswith(b"\x89PNG")  # the figure drawn here, the child having died

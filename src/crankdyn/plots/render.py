@@ -608,26 +608,35 @@ class Renderer:
             # time): the small ones left for the end fill both cores to the last
             at = max(range(len(self._queue)), key=lambda k: self._cost[self._queue[k][0]])
             index, part = self._queue[at]
+            # SIGINT and SIGTERM held across the fork: a signal handled in the child before its
+            # try (the command line's handlers raise) would unwind it into this process's
+            # stack, to run on as a copy of it (close() then waits for it for ever)
+            mask = _hold_signals()
             try:
                 read, write = os.pipe()
                 pid = os.fork()
             except OSError:  # no more processes: the rest are drawn here
+                _release_signals(mask)
                 self._forking = False
                 return
             if pid == 0:  # the child: draw, write, exit without running this process's exits
                 code = 1
                 try:
+                    # the default actions (close()'s SIGTERM ends the child), then released
+                    with contextlib.suppress(ValueError):  # not the main thread
+                        signal.signal(signal.SIGINT, signal.SIG_DFL)
+                        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+                    _release_signals(mask)
                     os.close(read)
                     # no collector passes: they would touch, and so copy, every page of this
                     # process's objects; a child lives for one figure
                     gc.disable()
                     _fresh_streams()
-                    with contextlib.suppress(ValueError):  # not the main thread
-                        signal.signal(signal.SIGINT, signal.SIG_DFL)
                     self._draw(index, part)
                     code = 0
                 finally:
                     os._exit(code)
+            _release_signals(mask)
             os.close(write)
             self._queue.pop(at)
             self._running[read] = (pid, index, part)
@@ -721,6 +730,23 @@ class Renderer:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
+
+
+_HELD = {signal.SIGINT, getattr(signal, "SIGTERM", signal.SIGINT)}
+
+
+def _hold_signals() -> set[signal.Signals] | None:
+    """Block SIGINT and SIGTERM in this thread (delivered when released); the mask before, or
+    None where threads have no signal mask."""
+    if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
+        return None
+    return signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
+
+
+def _release_signals(mask: set[signal.Signals] | None) -> None:
+    """Restore the signal mask :func:`_hold_signals` returned."""
+    if mask is not None:
+        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
 
 def _read(path: Path | None) -> bytes | None:
