@@ -33,7 +33,7 @@ from crankdyn.summary import (
     SummaryColumn,
     SummaryTable,
     Verdict,
-    verdict_text,
+    verdict_of,
     warnings_dict,
 )
 
@@ -260,10 +260,7 @@ class Result:
             out.update(warnings_dict(self.warnings))
         verdicts = self.summary_verdicts()
         if verdicts:  # the verdict in words, never a clean "passed" on implausible inputs
-            from crankdyn.plausibility import input_warnings
-
-            passed = all(v.passed for v in verdicts)
-            out.setdefault("verdict", verdict_text(passed, len(input_warnings(self.warnings))))
+            out.setdefault("verdict", verdict_of(verdicts, self.warnings))
         return out
 
     def to_json(self, indent: int | None = 2) -> str:

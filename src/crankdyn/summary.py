@@ -66,6 +66,7 @@ __all__ = [
     "reduced",
     "summary_html",
     "verdict_cells",
+    "verdict_of",
     "verdict_status",
     "verdict_text",
     "warnings_dict",
@@ -79,11 +80,13 @@ STATUSES = ("pass", "warn", "fail")
 """A key figure's status (None: information)."""
 
 
-def verdict_text(passed: bool | None, input_warnings: int = 0) -> str | None:
+def verdict_text(passed: bool | None, input_warnings: int = 0, undecided: int = 0) -> str | None:
     """The verdict in words, as every front end shows it: ``passed`` or ``FAILED``, with the
     number of input warnings the verdict stands on (values of the input files outside the
-    plausible range of their role, :mod:`crankdyn.io.plausibility`): a verdict on implausible
-    inputs is never a clean "passed".
+    plausible range of their role, :mod:`crankdyn.io.plausibility`) and of undecided rows (rows
+    whose worst value lies within its computation's error bound of the limit,
+    :attr:`Verdict.undecided`): a verdict on implausible inputs or on a bound that could
+    overturn it is never a clean "passed".
 
     Parameters
     ----------
@@ -91,6 +94,8 @@ def verdict_text(passed: bool | None, input_warnings: int = 0) -> str | None:
         Whether every verdict row passed; None without verdict rows.
     input_warnings : int
         How many input warnings the result carries.
+    undecided : int
+        How many verdict rows are undecided.
 
     Returns
     -------
@@ -101,13 +106,52 @@ def verdict_text(passed: bool | None, input_warnings: int = 0) -> str | None:
     --------
     >>> verdict_text(True), verdict_text(True, 1), verdict_text(False, 2)
     ('passed', 'passed, with 1 input warning', 'FAILED, with 2 input warnings')
+    >>> verdict_text(True, 1, 2)
+    'passed, with 1 input warning and 2 undecided rows'
     """
     if passed is None:
         return None
     word = "passed" if passed else "FAILED"
-    if not input_warnings:
-        return word
-    return f"{word}, with {input_warnings} input warning{'s' if input_warnings != 1 else ''}"
+    parts = []
+    if input_warnings:
+        parts.append(f"{input_warnings} input warning{'s' if input_warnings != 1 else ''}")
+    if undecided:
+        parts.append(f"{undecided} undecided row{'s' if undecided != 1 else ''}")
+    return f"{word}, with {' and '.join(parts)}" if parts else word
+
+
+def verdict_of(
+    verdicts: Sequence[Verdict], warnings: Sequence[PlausibilityWarning] = ()
+) -> str | None:
+    """The verdict in words of verdict rows (:func:`verdict_text`): passed when every row
+    passed, with the input warnings among ``warnings`` and the undecided rows counted; the one
+    place every result and front end takes it from.
+
+    Parameters
+    ----------
+    verdicts : sequence of Verdict
+        The rows.
+    warnings : sequence of PlausibilityWarning
+        The result's warnings (its input warnings are counted).
+
+    Returns
+    -------
+    str or None
+        The verdict; None without rows.
+
+    Examples
+    --------
+    >>> v = Verdict("shaft", "event", "peak", 40e6, 41e6, "Pa", True, "UR M68", error_bound=2e6)
+    >>> v.undecided, verdict_of([v])
+    (True, 'passed, with 1 undecided row')
+    """
+    from crankdyn.plausibility import input_warnings
+
+    if not verdicts:
+        return None
+    passed = all(v.passed for v in verdicts)
+    undecided = sum(1 for v in verdicts if v.undecided)
+    return verdict_text(passed, len(input_warnings(tuple(warnings))), undecided)
 
 
 def verdict_status(text: str | None) -> str | None:
@@ -455,6 +499,10 @@ class Verdict:
     kind : str
         What the row checks, whatever its range (the worst misfiring cylinder is chosen per
         component and kind); not exported.
+    error_bound : float
+        A bound on the error of ``worst`` from the way it was computed (in ``unit``; e.g. the
+        modal truncation's of a transient event, :mod:`crankdyn.torsion.integrator`); 0: none
+        stated. A row whose worst value lies within it of the limit is :attr:`undecided`.
 
     Examples
     --------
@@ -478,6 +526,7 @@ class Verdict:
     note: str = ""
     margin: float = None  # type: ignore[assignment]  # computed in __post_init__ when None
     kind: str = field(default="", compare=False)
+    error_bound: float = 0.0
 
     def __post_init__(self) -> None:
         if self.margin is None:
@@ -485,6 +534,17 @@ class Verdict:
             if math.isfinite(self.limit) and self.limit != 0.0 and math.isfinite(self.worst):
                 margin = 1.0 - self.worst / self.limit
             object.__setattr__(self, "margin", margin)
+
+    @property
+    def undecided(self) -> bool:
+        """Whether the error bound could overturn the row: its worst value lies within
+        ``error_bound`` of the limit (a row that passed could fail, or one that failed pass)."""
+        return (
+            self.error_bound > 0.0
+            and math.isfinite(self.worst)
+            and math.isfinite(self.limit)
+            and abs(self.worst - self.limit) <= self.error_bound
+        )
 
     @property
     def rule(self) -> str:
@@ -517,6 +577,8 @@ class Verdict:
             "clause": self.clause,
             "speed_rpm": None if self.speed is None else round(self.speed * RPM, 9),
             "note": self.note or None,
+            **({"error_bound": self.error_bound} if self.error_bound > 0.0 else {}),
+            **({"undecided": True} if self.undecided else {}),
         }
 
 
@@ -605,7 +667,7 @@ class Summary:
     def verdict(self) -> str | None:
         """The verdict in words (:func:`verdict_text`): ``"passed"``, ``"passed, with 1 input
         warning"``, ``"FAILED"``...; None without verdicts."""
-        return verdict_text(self.passed, len(self.input_warnings))
+        return verdict_of(self.verdicts, self.warnings)
 
     def to_dict(self) -> dict[str, Any]:
         """The summary as JSON data.
@@ -724,7 +786,7 @@ def verdict_cells(verdicts: Sequence[Verdict]) -> tuple[list[str], list[list[str
                 unit,
                 "-" if not math.isfinite(margin) else f"{number(margin * 100.0, 3)} %",
                 "-" if v.speed is None else number(v.speed * RPM),
-                "passed" if v.passed else "FAILED",
+                ("passed" if v.passed else "FAILED") + (" (undecided)" if v.undecided else ""),
                 v.rule,
             ]
         )

@@ -107,7 +107,7 @@ def _cell(value: object) -> str:
     """A body cell: numbers right-aligned and kept on one line, text left-aligned and wrapped."""
     text = str(value)
     kind = "num" if _NUMBER.match(text.strip()) or text.strip() in ("-", "") else "text"
-    if text == "FAILED":  # a verdict cell
+    if text.startswith("FAILED"):  # a verdict cell ("FAILED (undecided)" too)
         kind += " failed"
     return f"<td class='{kind}'>{escape(text)}</td>"
 

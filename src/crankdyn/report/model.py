@@ -13,7 +13,7 @@ from typing import Any
 
 from crankdyn.results import Result
 from crankdyn.summary import KeyFigure as SummaryFigure
-from crankdyn.summary import Summary, SummaryTable, verdict_cells, verdict_text, warnings_dict
+from crankdyn.summary import Summary, SummaryTable, verdict_cells, verdict_of, warnings_dict
 
 __all__ = ["Check", "FrontMatter", "KeyFigure", "Plot", "Report", "Section", "Table"]
 
@@ -363,9 +363,7 @@ class Section:
             all_tables.insert(
                 0, Table(verdicts_name or f"{key}-verdicts", "Verdicts", header=header, rows=rows)
             )
-            given = [w for s in summaries for w in s.input_warnings]
-            count = len([w for w in warnings if w in given])  # each once
-            verdict = verdict_text(all(v.passed for v in verdicts), count)
+            verdict = verdict_of(verdicts, warnings)  # each warning once
         return cls(
             key=key,
             title=title,

@@ -49,10 +49,17 @@ if TYPE_CHECKING:
     from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.response import ResponseResult
     from crankdyn.torsion.rules import Exceedance
-    from crankdyn.tvc.checks import Check
+    from crankdyn.tvc.checks import Check, EventReading
     from crankdyn.tvc.spec import TvcSpec
 
-__all__ = ["Found", "evaluate_condition", "evaluate_event", "margins", "merge_intervals"]
+__all__ = [
+    "Found",
+    "evaluate_condition",
+    "evaluate_event",
+    "margins",
+    "merge_intervals",
+    "truncation_bound",
+]
 
 
 @dataclass(frozen=True)
@@ -415,6 +422,34 @@ def evaluate_condition(
     return verdicts, barred
 
 
+def truncation_bound(run: EventResult, reading: EventReading | None) -> float:
+    """The bound of the error a run's modal truncation leaves in a check's event quantity
+    (its unit): the largest over the check's elements of the factor times the element's bound
+    (:attr:`crankdyn.torsion.event_result.EventResult.truncation_torque`; the quantity is
+    the largest of the factored element torques, so its error is at most the largest of
+    their bounds; :mod:`crankdyn.torsion.integrator`, "Modal truncation"); 0 for a run that
+    carried every mode.
+
+    Parameters
+    ----------
+    run : crankdyn.torsion.event_result.EventResult
+        The run.
+    reading : EventReading or None
+        How the check reads it (:attr:`crankdyn.tvc.checks.Check.event`).
+
+    Returns
+    -------
+    float
+        The bound (0 without truncation or reading).
+    """
+    per = run.truncation_torque
+    if per is None or reading is None:
+        return 0.0
+    idx = [_element(run, key) for key in reading.elements]
+    factors = reading.factors or (1.0,) * len(idx)
+    return float(max(abs(f) * float(per[e]) for e, f in zip(idx, factors, strict=True)))
+
+
 def _element(run: EventResult, key: int | tuple[str, str]) -> int:
     """The run's element of a check's key: a model shaft's index, or a rigid gear's ends."""
     return key if isinstance(key, int) else run.element_index(tuple(key))
@@ -441,6 +476,8 @@ def _event_reversal(run: EventResult, check: Check, condition: str, e: int) -> V
         ),
         margin=1.0 - drop / abs(mean) if mean != 0.0 else -math.inf,
         kind="event torque reversal",
+        # drop < |mean| is the mesh torque's least value against 0: the element's own bound
+        error_bound=truncation_bound(run, check.event),
     )
 
 
@@ -479,6 +516,7 @@ def evaluate_event(run: EventResult, condition: str, checks: Sequence[Check]) ->
         if reading.limits is None:
             continue
         factors = reading.factors or (1.0,) * len(idx)
+        bound = truncation_bound(run, reading)
         peak = run.vibratory_peak if reading.vibratory else run.peak
         values = [f * peak(e) for e, f in zip(idx, factors, strict=True)]
         k = int(np.argmax(values))
@@ -505,6 +543,7 @@ def evaluate_event(run: EventResult, condition: str, checks: Sequence[Check]) ->
                     note="; ".join(x for x in (note, limit.note) if x),
                     margin=1.0 - worst / limit.value,
                     kind=f"event peak vs {limit.name}",
+                    error_bound=bound,
                 )
             )
     return out

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -34,6 +34,7 @@ from crankdyn.tvc.evaluate import evaluate_event
 from crankdyn.tvc.result import EventCondition, EventCurve, truncation_fields
 
 if TYPE_CHECKING:
+    from crankdyn.summary import Verdict
     from crankdyn.torsion.event_result import EventResult
     from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
@@ -42,6 +43,7 @@ if TYPE_CHECKING:
 __all__ = [
     "EVENT_MODE_FACTOR",
     "EVENT_TRUNCATION_DOFS",
+    "decided",
     "event_conditions",
     "event_curves",
     "judge_event",
@@ -185,14 +187,60 @@ def _top_speed(te: TvcEvent, speed: float | None) -> float:
     return float(speed or 0.0)
 
 
+def decided(
+    model: TorsionModel,
+    run_with: Callable[[bool], EventResult],
+    judge: Callable[[EventResult], list[Verdict]],
+) -> tuple[EventResult, list[Verdict]]:
+    """A run of the TVC (an event's, a passage's) and its verdict rows, no row left to the
+    modal truncation: the run truncates on a large line (:func:`truncates`), and when the
+    truncation's bound could overturn one of its rows (:attr:`crankdyn.summary.Verdict.
+    undecided`: the row's worst value within the bound of its limit) it is run again with every
+    mode, exactly, and judged on that (a note of the run says so).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The line.
+    run_with : callable
+        ``run_with(truncate)`` -> the run, truncated or with every mode.
+    judge : callable
+        ``judge(run)`` -> its verdict rows.
+
+    Returns
+    -------
+    run : crankdyn.torsion.event_result.EventResult
+        The run the rows stand on.
+    rows : list of crankdyn.summary.Verdict
+        Its verdict rows.
+    """
+    truncate = truncates(model)
+    run = run_with(truncate)
+    rows = judge(run)
+    undecided = [v for v in rows if v.undecided]
+    if not undecided:
+        return run, rows
+    first = undecided[0]
+    why = (
+        f"run again with every mode: the modal truncation's bound could overturn "
+        f"{len(undecided)} row(s) ({first.component}: {first.worst:.6g} against "
+        f"{first.limit:.6g} {first.unit}, bound {first.error_bound:.3g})"
+    )
+    run = run_with(False)
+    run = dataclasses.replace(run, notes=(*run.notes, why))
+    return run, judge(run)
+
+
 def _run(
     model: TorsionModel,
     te: TvcEvent,
     rated: float,
     excitation: Excitation | None,
     orders: NDArray[np.float64],
+    truncate: bool | None = None,
 ) -> EventResult:
-    """One event's run (module docstring)."""
+    """One event's run (module docstring), truncated or with every mode (None: as
+    :func:`truncates` says of the line)."""
     from crankdyn.torsion.event_run import event_response
     from crankdyn.torsion.events import ClutchEngagement, SpeedChange
 
@@ -215,7 +263,7 @@ def _run(
         excitation=excitation if harmonic else None,
         orders=orders if harmonic else None,
         max_frequency=max_frequency,
-        truncate=truncates(model),
+        truncate=truncates(model) if truncate is None else truncate,
     )
 
 
@@ -257,8 +305,12 @@ def event_conditions(
     """
     out = []
     for te in spec.events:
-        run = judge_event(model, _run(model, te, rated, excitation, orders), spec, rated,
-                          checks=checks)  # fmt: skip
+
+        def run_with(truncate: bool, te: TvcEvent = te) -> EventResult:
+            return _run(model, te, rated, excitation, orders, truncate)
+
+        found, rows = decided(model, run_with, lambda r: evaluate_event(r, r.event, checks))
+        run = dataclasses.replace(found, verdicts=tuple(rows))
         event: Any = te.event
         if hasattr(event, "speeds"):  # a clutch: the engine's half
             speed = float(event.speeds[0])

@@ -37,8 +37,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.constants import RPM
 from crankdyn.summary import Verdict
-from crankdyn.tvc.evaluate import merge_intervals
-from crankdyn.tvc.events import EVENT_MODE_FACTOR, truncates
+from crankdyn.tvc.evaluate import merge_intervals, truncation_bound
+from crankdyn.tvc.events import EVENT_MODE_FACTOR, decided
 from crankdyn.tvc.result import BarredSpeedRange, Passage, truncation_fields
 
 if TYPE_CHECKING:
@@ -222,16 +222,26 @@ def passages(
         ramp = SpeedChange(
             "ramp", w0, w1, ramp_time=duration, load=passage_load == "law", name=f"pass {label}"
         )
-        run = event_response(
-            model,
-            ramp,
-            duration=duration,
-            excitation=cond.excitation,
-            orders=orders,
-            dampers=cond.dampers,
-            max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
-            truncate=truncates(model),
-        )
+        title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
+        how = f"{words}; {load_words}"
+
+        def run_with(truncate: bool, ramp: SpeedChange = ramp, duration: float = duration,
+                     w1: float = w1) -> Any:  # fmt: skip
+            return event_response(
+                model,
+                ramp,
+                duration=duration,
+                excitation=cond.excitation,
+                orders=orders,
+                dampers=cond.dampers,
+                max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
+                truncate=truncate,
+            )
+
+        def judge(run: Any, a: float = a, title: str = title, how: str = how) -> list[Verdict]:
+            return _transient_verdicts(run, a, cond.name, title, checks, barred, mean, how)
+
+        run, rows = decided(model, run_with, judge)
         passages.append(
             Passage(
                 condition=cond.name,
@@ -258,9 +268,7 @@ def passages(
                 **truncation_fields(run),
             )
         )
-        title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
-        how = f"{words}; {load_words}"
-        verdicts += _transient_verdicts(run, a, cond.name, title, checks, barred, mean, how)
+        verdicts += rows
     return passages, verdicts, notes
 
 
@@ -324,6 +332,7 @@ def _transient_verdicts(
                 speed=float(run.speed[inside][k]),
                 note=how,
                 kind="transient passage",
+                error_bound=truncation_bound(run, check.event),
             )
         )
     return out

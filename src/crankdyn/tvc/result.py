@@ -12,15 +12,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from crankdyn.constants import RPM
-from crankdyn.plausibility import input_warnings
 from crankdyn.results import Result, scalar
 from crankdyn.summary import (
     SummaryColumn,
     SummaryTable,
     Verdict,
     derived,
+    verdict_of,
     verdict_status,
-    verdict_text,
 )
 
 _HZ = 1.0 / (2.0 * math.pi)
@@ -620,9 +619,7 @@ class TvcResult(Result):
         str or None
             The verdict; None without verdict rows.
         """
-        if not self.verdicts:
-            return None
-        return verdict_text(self.passed, len(input_warnings(self.warnings)))
+        return verdict_of(self.verdicts, self.warnings)
 
     def summary_verdicts(self) -> list[Verdict]:
         """Every verdict row (every component x condition).
