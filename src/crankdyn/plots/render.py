@@ -735,7 +735,7 @@ class Renderer:
 _HELD = {signal.SIGINT, getattr(signal, "SIGTERM", signal.SIGINT)}
 
 
-def _hold_signals() -> set[signal.Signals] | None:
+def _hold_signals() -> set[int | signal.Signals] | None:
     """Block SIGINT and SIGTERM in this thread (delivered when released); the mask before, or
     None where threads have no signal mask."""
     if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
@@ -743,7 +743,7 @@ def _hold_signals() -> set[signal.Signals] | None:
     return signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
 
 
-def _release_signals(mask: set[signal.Signals] | None) -> None:
+def _release_signals(mask: set[int | signal.Signals] | None) -> None:
     """Restore the signal mask :func:`_hold_signals` returned."""
     if mask is not None:
         signal.pthread_sigmask(signal.SIG_SETMASK, mask)
