@@ -74,40 +74,50 @@ def test_a_result_and_its_report_give_the_verdict_with_its_undecided_rows():
     assert section.verdict == summary.verdict
 
 
-def test_the_run_is_decided_again_with_every_mode_only_when_a_row_is_undecided(monkeypatch):
+def test_the_run_is_decided_again_at_a_higher_cutoff_then_with_every_mode(monkeypatch):
     """:func:`crankdyn.tvc.events.decided`: a truncated run whose rows are all decided stands;
-    one with an undecided row is run again with every mode, and its rows are that run's."""
+    one with an undecided row is run again at four times its cut-off, then with every mode
+    while a row stays undecided, and the rows are the last run's; a small line runs every
+    mode at once."""
     from crankdyn.tvc.events import decided
 
     @dataclasses.dataclass(frozen=True)
     class Run:
-        truncate: bool
+        scale: float | None
         notes: tuple[str, ...] = ()
 
     class Line:
         dof_count = 10
 
     monkeypatch.setattr("crankdyn.tvc.events.EVENT_TRUNCATION_DOFS", 5)
-    asked: list[bool] = []
+    asked: list[float | None] = []
 
-    def run_with(truncate: bool) -> Run:
-        asked.append(truncate)
-        return Run(truncate)
+    def run_with(scale: float | None) -> Run:
+        asked.append(scale)
+        return Run(scale)
 
-    def judge(bound: float):
-        return lambda run: [_row(40e6, 41e6, bound if run.truncate else 0.0)]
+    def judge(bounds: dict):
+        return lambda run: [_row(40e6, 41e6, bounds.get(run.scale, 0.0))]
 
-    run, rows = decided(Line(), run_with, judge(0.5e6))
-    assert asked == [True] and run.truncate and rows[0].error_bound == 0.5e6
+    run, rows = decided(Line(), run_with, judge({1.0: 0.5e6}))
+    assert asked == [1.0] and run.scale == 1.0 and rows[0].error_bound == 0.5e6
+    assert run.notes == ()
     asked.clear()
-    run, rows = decided(Line(), run_with, judge(2e6))
-    assert asked == [True, False] and not run.truncate
+    run, rows = decided(Line(), run_with, judge({1.0: 2e6, 4.0: 0.1e6}))
+    assert asked == [1.0, 4.0] and rows[0].error_bound == 0.1e6
+    assert run.notes == (
+        "run again with 4 times its cut-off: the modal truncation's bound could overturn "
+        "1 row(s) (intermediate shaft: 4e+07 against 4.1e+07 Pa, bound 2e+06)",
+    )
+    asked.clear()
+    run, rows = decided(Line(), run_with, judge({1.0: 2e6, 4.0: 1.5e6}))
+    assert asked == [1.0, 4.0, None] and run.scale is None
     assert rows == [_row(40e6, 41e6, 0.0)]
-    assert "run again with every mode" in run.notes[-1] and "1 row(s)" in run.notes[-1]
+    assert len(run.notes) == 2 and run.notes[1].startswith("run again with every mode")
     monkeypatch.setattr("crankdyn.tvc.events.EVENT_TRUNCATION_DOFS", 50)
     asked.clear()
-    decided(Line(), run_with, judge(2e6))
-    assert asked == [False]  # a small line: every mode at once, nothing undecided
+    decided(Line(), run_with, judge({1.0: 2e6}))
+    assert asked == [None]  # a small line: every mode at once, nothing undecided
 
 
 @lru_cache(maxsize=1)
@@ -135,13 +145,13 @@ def test_marine_ice_impact_rows_within_their_bounds_and_decided_with_every_mode(
     te = spec.events[2]  # the ice impact
     assert "ice" in te.name
 
-    def run_with(truncate: bool):
-        return _run(model, te, rated, session.excitation(), session.orders, truncate)
+    def run_with(scale):
+        return _run(model, te, rated, session.excitation(), session.orders, scale is not None)
 
     def judge(run):
         return list(judge_event(model, run, spec, rated).verdicts)
 
-    cut, exact = judge(run_with(True)), judge(run_with(False))
+    cut, exact = judge(run_with(1.0)), judge(run_with(None))
     assert len(cut) == len(exact) > 3
     bounded = [v for v in cut if v.error_bound > 0.0]
     assert len(bounded) == len(cut)
@@ -156,8 +166,14 @@ def test_marine_ice_impact_rows_within_their_bounds_and_decided_with_every_mode(
     def close(run):  # every limit moved to within half the row's bound of its worst value
         return [dataclasses.replace(v, limit=v.worst + 0.5 * v.error_bound) for v in judge(run)]
 
+    # (run_with gives the first cut-off at every truncated step: the rows stay undecided
+    # until the run with every mode)
+
     run, rows = decided(model, run_with, close)
     assert run.cutoff_frequency is None and "run again with every mode" in run.notes[-1]
+    from crankdyn.tvc.result import truncation_fields
+
+    assert "run again with every mode" in truncation_fields(run)["truncation"]  # exported
     assert [v.worst for v in rows] == [v.worst for v in exact]
     assert all(v.error_bound == 0.0 and not v.undecided for v in rows)
     np.testing.assert_array_equal([v.limit for v in rows], [v.worst for v in exact])

@@ -225,7 +225,7 @@ def passages(
         title = f"transient peak passing {label} ({t_in:.3g} s in the range)"
         how = f"{words}; {load_words}"
 
-        def run_with(truncate: bool, ramp: SpeedChange = ramp, duration: float = duration,
+        def run_with(scale: float | None, ramp: SpeedChange = ramp, duration: float = duration,
                      w1: float = w1) -> Any:  # fmt: skip
             return event_response(
                 model,
@@ -234,8 +234,8 @@ def passages(
                 excitation=cond.excitation,
                 orders=orders,
                 dampers=cond.dampers,
-                max_frequency=EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
-                truncate=truncate,
+                max_frequency=(scale or 1.0) * EVENT_MODE_FACTOR * float(np.max(orders)) * w1,
+                truncate=scale is not None,
             )
 
         def judge(run: Any, a: float = a, title: str = title, how: str = how) -> list[Verdict]:

@@ -183,9 +183,11 @@ def truncation_fields(run: EventResult) -> dict[str, Any]:
     -------
     dict
         ``modes_kept``, ``cutoff_frequency`` (rad/s or None), ``truncation_error`` (N m) and
-        ``truncation`` (words; "" without a cut-off).
+        ``truncation`` (words: the run's truncation, and why it was run again at a higher
+        cut-off or with every mode, :func:`crankdyn.tvc.events.decided`; "" for neither).
     """
-    words = next((n for n in run.notes if n.startswith("modal truncation")), "")
+    found = [n for n in run.notes if n.startswith("modal truncation")][:1]
+    words = "; ".join(found + [n for n in run.notes if n.startswith("run again")])
     return {
         "modes_kept": int(run.modes_kept),
         "cutoff_frequency": run.cutoff_frequency,
