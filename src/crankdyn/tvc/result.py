@@ -126,6 +126,27 @@ def barred_table(
     return SummaryTable("barred_speed_ranges", title, BARRED_COLUMNS, rows)
 
 
+_TRUNCATION_SCALARS: dict[str, tuple[tuple[Any, ...], Any]] = {
+    "modes_kept": (("modes_kept", "Elastic modes integrated in time", ""), 0),
+    "cutoff_frequency": (("cutoff_frequency_hz", "Modal cut-off frequency", "Hz", _HZ), None),
+    "truncation_error": (
+        ("truncation_error_Nm", "Truncation error bound of the element torques", "N·m"),
+        0.0,
+    ),
+    "truncation": (("truncation", "Modal truncation", ""), ""),
+}
+"""The modal truncation's fields of a run of the TVC (:class:`Passage`, :class:`EventCondition`;
+:func:`truncation_fields`): key, label, unit (and display scale), and the default of a run that
+carried every mode."""
+
+
+def _truncation_scalar(name: str) -> Any:
+    """The declaration of the truncation field ``name`` (:data:`_TRUNCATION_SCALARS`): one
+    declaration for the passages and the events."""
+    args, default = _TRUNCATION_SCALARS[name]
+    return scalar(*args, default=default)
+
+
 @dataclass(frozen=True)
 class Passage(Result):
     """A time-domain run-up through a barred range: the time spent in it (s) and the run's
@@ -158,15 +179,10 @@ class Passage(Result):
     note: str = scalar("note", "How", "")
     transient: EventResult | None = field(default=None, repr=False, compare=False)
     elements: tuple[int, ...] = field(default=(), repr=False, compare=False)
-    modes_kept: int = scalar("modes_kept", "Elastic modes integrated in time", "", default=0)
-    cutoff_frequency: float | None = scalar(
-        "cutoff_frequency_hz", "Modal cut-off frequency", "Hz", _HZ, default=None
-    )
-    truncation_error: float = scalar(
-        "truncation_error_Nm", "Truncation error bound of the element torques", "N·m",
-        default=0.0,
-    )  # fmt: skip
-    truncation: str = scalar("truncation", "Modal truncation", "", default="")
+    modes_kept: int = _truncation_scalar("modes_kept")
+    cutoff_frequency: float | None = _truncation_scalar("cutoff_frequency")
+    truncation_error: float = _truncation_scalar("truncation_error")
+    truncation: str = _truncation_scalar("truncation")
 
 
 def truncation_fields(run: EventResult) -> dict[str, Any]:
@@ -438,15 +454,10 @@ class EventCondition(Result):
     verdicts: tuple[Verdict, ...] = scalar("verdicts", "Verdicts", "", summary=False)
     run: EventResult | None = field(default=None, repr=False, compare=False)
     curves: tuple[EventCurve, ...] = field(default=(), repr=False, compare=False)
-    modes_kept: int = scalar("modes_kept", "Elastic modes integrated in time", "", default=0)
-    cutoff_frequency: float | None = scalar(
-        "cutoff_frequency_hz", "Modal cut-off frequency", "Hz", _HZ, default=None
-    )
-    truncation_error: float = scalar(
-        "truncation_error_Nm", "Truncation error bound of the element torques", "N·m",
-        default=0.0,
-    )  # fmt: skip
-    truncation: str = scalar("truncation", "Modal truncation", "", default="")
+    modes_kept: int = _truncation_scalar("modes_kept")
+    cutoff_frequency: float | None = _truncation_scalar("cutoff_frequency")
+    truncation_error: float = _truncation_scalar("truncation_error")
+    truncation: str = _truncation_scalar("truncation")
 
     FIGURES = (
         derived(
