@@ -210,7 +210,8 @@ def _small_files():
     ("args", "target"),
     [
         (("analyze", "vaz2108"), "rep"),
-        (("tvc", "verdict-geared-line"), "tvc"),
+        # no PDF, no passage: the failed write is the point, not the browser's print
+        (("tvc", "verdict-geared-line", "--no-pdf", "--no-passage"), "tvc"),
         (("forces", "vaz2108", "--format", "json"), "f.json"),
     ],
 )
