@@ -245,7 +245,7 @@ def evaluate_case(payload: Payload, case_id: str, params: dict[str, Any]) -> dic
     return record
 
 
-_NUMBERS = ("worst", "limit", "speed", "margin")
+_NUMBERS = ("worst", "limit", "speed", "margin", "error_bound")
 """The float fields of a verdict row, written as text where not finite (the journal is strict
 JSON)."""
 
@@ -254,7 +254,7 @@ def _verdict_record(verdict: Any) -> dict[str, Any]:
     """A verdict row (:class:`crankdyn.summary.Verdict`) as a JSON object."""
     row = dataclasses.asdict(verdict)
     for key in _NUMBERS:
-        value = row[key]
+        value = row.get(key)
         if isinstance(value, float) and not math.isfinite(value):
             row[key] = repr(value)  # "nan", "inf", "-inf"
     return row
@@ -280,11 +280,14 @@ def verdicts_of_record(record: dict[str, Any]) -> tuple[Any, ...] | None:
     >>> import json, math
     >>> from crankdyn.summary import Verdict
     >>> rows = [Verdict("shaft", "normal", "stress", 2e7, 5e7, "Pa", True, "rule"),
-    ...         Verdict("gear", "normal", "reversal", math.nan, 1.0, "", False, "rule")]
+    ...         Verdict("gear", "normal", "reversal", math.nan, 1.0, "", False, "rule"),
+    ...         Verdict("span", "ice", "peak", 4e7, 5e7, "Pa", True, "rule", error_bound=math.inf)]
     >>> text = json.dumps({"verdicts": [_verdict_record(v) for v in rows]}, allow_nan=False)
     >>> back = verdicts_of_record(json.loads(text))
     >>> back[0] == rows[0], back[0].margin, math.isnan(back[1].worst), back[1].passed
     (True, 0.6, True, False)
+    >>> back[2] == rows[2], back[2].undecided
+    (True, True)
     """
     from crankdyn.summary import Verdict
 
@@ -294,8 +297,8 @@ def verdicts_of_record(record: dict[str, Any]) -> tuple[Any, ...] | None:
     out = []
     for row in rows:
         values = dict(row)
-        for key in _NUMBERS:
-            if isinstance(values[key], str):
+        for key in _NUMBERS:  # (a record of an earlier version may lack error_bound)
+            if isinstance(values.get(key), str):
                 values[key] = float(values[key])
         out.append(Verdict(**values))
     return tuple(out)
