@@ -164,6 +164,34 @@ def test_pulse_times_need_teeth_before_any_reading(tmp_path):
         open_signal(path, None)
 
 
+def test_a_record_expected_longer_than_the_cache_is_read_again_not_kept(tmp_path, monkeypatch):
+    """A text file's expected pulses: its size over its first lines' length (exact for a file
+    shorter than the sample). Over the limit of :meth:`PulseRecord.cached`, every reading reads
+    the file (the first is not kept, to be dropped when it grows too long); under it, the first
+    reading's times are replayed. The pulses read are the same either way."""
+    path = tmp_path / "p.csv"
+    times = np.cumsum(np.full(5000, 1e-3))
+    path.write_text("time [s]\n" + "".join(f"{t:.6f}\n" for t in times), encoding="utf-8")
+    assert open_signal(path, 60).expected == 5001  # the whole file sampled: its lines
+    monkeypatch.setattr(signals, "SAMPLE_BYTES", 1000)
+    record = open_signal(path, 60)
+    assert abs(record.expected - 5001) <= 5001 * 0.1  # lines of 9 to 12 characters
+    reads = []
+
+    def counted():
+        reads.append(1)
+        return record.chunks()
+
+    counting = PulseRecord(counted, 60, "p.csv", record.expected)
+    for limit, readings in ((10_000, 1), (1_000, 3)):
+        reads.clear()
+        kept = counting.cached(limit)
+        got = [np.concatenate([c.times for c in kept.chunks()]) for _ in range(3)]
+        assert len(reads) == readings
+        for g in got:
+            np.testing.assert_array_equal(g, read_signal(path, 60).times)
+
+
 # ---- NumPy files ------------------------------------------------------------------------------
 
 

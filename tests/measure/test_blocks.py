@@ -126,6 +126,27 @@ def test_steady_records_in_blocks_are_the_whole_record(name):
     _assert_same(whole, blocked, _bound(train, whole))
 
 
+@pytest.mark.parametrize("name", ["marks every cycle", "tooth errors given"])
+def test_steady_analysis_in_blocks_keeps_only_the_moments(name):
+    """``analysis="steady"`` in blocks keeps no per-cycle orders (its memory does not grow with
+    them), only their running mean and scatter: the whole record's, which computes them from
+    every cycle's orders at once (numpy's mean, then the RMS deviation from it)."""
+    train, kw = RECORDS[name]
+    whole = order_analysis(train, orders=ORDERS, analysis="steady", **kw)
+    record = PulseRecord.from_train(train, chunk=[777, 5000, 123])
+    blocked = order_analysis(record, orders=ORDERS, block=2500, analysis="steady", **kw)
+    assert blocked.cycle_coefficients is None and whole.cycle_coefficients is not None
+    bound = _bound(train, whole) * float(np.max(whole.amplitude))
+    assert np.max(np.abs(blocked.coefficients - whole.coefficients)) <= bound
+    np.testing.assert_allclose(blocked.scatter, whole.scatter, rtol=0, atol=bound)
+    per = whole.cycle_coefficients
+    scatter = np.sqrt(np.mean(np.abs(per - per.mean(axis=0)) ** 2, axis=0))
+    np.testing.assert_allclose(whole.scatter, scatter, rtol=1e-14, atol=0)
+    assert (blocked.speed_min, blocked.speed_max) == pytest.approx(
+        (whole.speed_min, whole.speed_max), rel=1e-12
+    )
+
+
 @settings(max_examples=fuzz_examples(12))
 @given(
     name=st.sampled_from(sorted(RECORDS)),

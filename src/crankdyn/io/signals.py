@@ -65,6 +65,9 @@ MAX_SPEED_SAMPLES = MAX_ARRAY_VALUES
 """The most samples of a sampled speed signal (4,194,304), which is read and resampled whole
 (:meth:`crankdyn.measure.signals.SpeedSignal.to_pulses`)."""
 
+SAMPLE_BYTES = 1 << 16
+"""Bytes of a text signal file read to estimate its number of lines."""
+
 COLUMNS = {"time": "time", "speed": "speed", "reference": "time"}
 """The columns a signal file may hold, with the kind of quantity of each."""
 
@@ -267,7 +270,20 @@ def _open_csv(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
             if block.lines.size or marks is not None:
                 yield PulseChunk(block.values[time_col], block.lines, marks, mark_lines)
 
-    return PulseRecord(read, _need_teeth(name, teeth), name)
+    return PulseRecord(read, _need_teeth(name, teeth), name, _expected_lines(path))
+
+
+def _expected_lines(path: str | Path) -> int:
+    """The lines a text file is expected to hold: its size over the mean length of the lines in
+    its first :data:`SAMPLE_BYTES` (exact for a shorter file); an estimate that decides only
+    whether a reading is kept in memory (:meth:`PulseRecord.cached`)."""
+    with open_regular(path, what="signal file") as handle:
+        size = os.fstat(handle.fileno()).st_size
+        sample = handle.read(SAMPLE_BYTES)
+    lines = sample.count(b"\n")
+    if len(sample) >= size or not lines:
+        return lines
+    return int(size * lines / len(sample))
 
 
 def _speed_csv(
@@ -489,7 +505,7 @@ def _open_npy(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
             for times in _values(handle, dtype, count, name, "array"):
                 yield PulseChunk(times)
 
-    return PulseRecord(read, _need_teeth(name, teeth), name)
+    return PulseRecord(read, _need_teeth(name, teeth), name, count)
 
 
 def _open_npz(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
@@ -537,7 +553,7 @@ def _open_npz(path: str | Path, teeth: int | None) -> PulseRecord | SpeedSignal:
                 yield PulseChunk(times, reference=marks)
                 marks = None
 
-    return PulseRecord(read, teeth, name)
+    return PulseRecord(read, teeth, name, count)
 
 
 def _whole(signal: PulseTrain | SpeedSignal) -> PulseRecord | SpeedSignal:

@@ -441,8 +441,12 @@ def _whole_record(
     average = np.mean(domain.vibration[: domain.cycles * length].reshape(domain.cycles, -1), axis=0)
     start = math.floor(domain.angle[0] / cycle_angle + 1e-9) * cycle_angle
     angle_span = cycle_angle * domain.cycles
+    mean = np.mean(per_cycle.coefficients, axis=0)
     cycles = _Cycles(
         per_cycle,
+        per_cycle.speed,
+        mean,
+        np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0)),
         domain.cycles,
         length,
         float(angle_span / (domain.boundary_times[-1] - domain.boundary_times[0])),
@@ -451,7 +455,7 @@ def _whole_record(
     )
     common = _common(q, prep.teeth, settings, reference, correction, tooth_errors, pulses.source)
     common["domain"] = domain
-    kind = _kind(settings, per_cycle, notes)
+    kind = _kind(settings, per_cycle.speed, notes)
     if kind == "steady":
         return _steady_spectrum(cycles, q, notes, common, settings)
     win = (
@@ -483,7 +487,10 @@ class _Settings:
 class _Cycles:
     """What the steady-speed analysis takes from the whole cycles of a record."""
 
-    per_cycle: Windows
+    per_cycle: Windows | None  # None: not kept (a steady analysis in blocks)
+    speeds: np.ndarray  # of each cycle (rad/s)
+    mean: np.ndarray  # the cycles' mean orders (rad)
+    scatter: np.ndarray  # their RMS scatter about it (rad)
     count: int
     length: int
     speed: float  # rad/s
@@ -512,10 +519,10 @@ def _common(
     }
 
 
-def _kind(settings: _Settings, per_cycle: Windows, notes: list[str]) -> str:
-    """``steady`` or ``tracking`` (``auto``: by the spread of the cycles' speeds); a note when
-    a steady analysis blurs a spread."""
-    spread = (np.max(per_cycle.speed) - np.min(per_cycle.speed)) / np.mean(per_cycle.speed)
+def _kind(settings: _Settings, speeds: np.ndarray, notes: list[str]) -> str:
+    """``steady`` or ``tracking`` (``auto``: by the spread of the cycles' speeds, rad/s); a
+    note when a steady analysis blurs a spread."""
+    spread = (np.max(speeds) - np.min(speeds)) / np.mean(speeds)
     kind = settings.analysis
     if kind == "auto":
         kind = "tracking" if spread > STEADY_LIMIT else "steady"
@@ -573,20 +580,25 @@ def _blocked(
         window=settings.window,
         tracking=settings.analysis != "steady",
         block=block,
+        keep_cycles=settings.analysis != "steady",
     )
     common = _common(q, scan.teeth, settings, reference, correction, errors, record.source)
     common["envelope"] = blocks.envelope
     cycles = _Cycles(
         blocks.per_cycle,
+        blocks.cycle_speed,
+        blocks.mean,
+        blocks.scatter,
         blocks.cycles,
         blocks.length,
         blocks.speed,
         blocks.average,
         blocks.cycle_angle,
     )
-    if _kind(settings, blocks.per_cycle, notes) == "steady":
+    if _kind(settings, blocks.cycle_speed, notes) == "steady":
         return _steady_spectrum(cycles, q, notes, common, settings)
-    if settings.window_cycles == 1 and settings.window == "uniform":
+    uniform = settings.window_cycles == 1 and settings.window == "uniform"
+    if uniform and blocks.per_cycle is not None:
         win = blocks.per_cycle
     elif blocks.windows is None or blocks.cycles < settings.window_cycles:
         raise _too_few_cycles(blocks.cycles, settings.window_cycles)
@@ -743,8 +755,7 @@ def _steady_spectrum(
     """The steady-speed analysis (module docstring): the complex (synchronous) average of the
     one-cycle windows, its synthesis and the averaged cycle's angle and speed."""
     per_cycle, cycle_angle = cycles.per_cycle, settings.cycle_angle
-    mean = np.mean(per_cycle.coefficients, axis=0)
-    scatter = np.sqrt(np.mean(np.abs(per_cycle.coefficients - mean) ** 2, axis=0))
+    mean, scatter = cycles.mean, cycles.scatter
     speed = cycles.speed
     top, low = half_range(mean, harmonic_index(q, settings.cycle))
     avg = cycles.average
@@ -759,8 +770,8 @@ def _steady_spectrum(
         scatter=freeze(scatter),
         synthesized=float(0.5 * (top - low)),
         cycles=int(cycles.count),
-        speed_min=float(np.min(per_cycle.speed)),
-        speed_max=float(np.max(per_cycle.speed)),
+        speed_min=float(np.min(cycles.speeds)),
+        speed_max=float(np.max(cycles.speeds)),
         window=f"uniform (rectangular) over 1 cycle ({cycle_angle * DEG:g} deg), "
         f"synchronous: {cycles.length} samples per cycle",
         averaging=f"complex (synchronous) average of {cycles.count} cycles",
@@ -768,7 +779,7 @@ def _steady_spectrum(
         cycle_vibration=freeze(avg),
         cycle_speed=freeze(speed * (1.0 + dv)),
         notes=tuple(notes),
-        cycle_coefficients=per_cycle.coefficients,
+        cycle_coefficients=None if per_cycle is None else per_cycle.coefficients,
         **common,
     )
 
@@ -888,7 +899,9 @@ class OrderSpectrum(Result):
     Parameters
     ----------
     cycle_coefficients : numpy.ndarray or None
-        (cycles, Q) complex V_q of every single cycle (rad), for plots and checks.
+        (cycles, Q) complex V_q of every single cycle (rad), for plots and checks; None for a
+        record analysed block by block with ``analysis="steady"``, which keeps only their mean
+        and scatter (its memory does not grow by 16 bytes per order per cycle).
     domain : crankdyn.measure.angle.AngleDomain or None
         The resampled angular vibration the orders come from (not exported); None for a
         record analysed block by block.

@@ -65,6 +65,10 @@ class PulseRecord:
         Pulses per revolution N of a complete wheel (as :class:`PulseTrain`), >= 4.
     source : str
         Where the record came from (for messages and titles).
+    expected : int or None
+        The pulses the record is expected to hold, known before it is read (a binary array's
+        length, or a text file's size over its first lines' length), or None. Only whether a
+        reading is kept in memory (:meth:`cached`) depends on it, never a result.
 
     Raises
     ------
@@ -86,6 +90,7 @@ class PulseRecord:
     read: Callable[[], Iterable[PulseChunk]]
     teeth: int
     source: str = "signal"
+    expected: int | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "teeth", check_teeth(self.teeth))
@@ -143,12 +148,14 @@ class PulseRecord:
                 )
                 start, k = stop, k + 1
 
-        return cls(read, train.teeth, train.source)
+        return cls(read, train.teeth, train.source, train.times.size)
 
     def cached(self, limit: int) -> PulseRecord:
         """This record, its pulse times kept in memory after a first whole reading when they
         are at most ``limit``: later readings replay them (without lines and marks, which the
-        first reading gave) instead of reading the file again.
+        first reading gave) instead of reading the file again. A record expected to hold more
+        than ``limit`` (:attr:`expected`) is not kept at all: its first reading would hold
+        ``limit`` pulses only to let them go (on a long record, the peak of its memory).
 
         Parameters
         ----------
@@ -160,6 +167,8 @@ class PulseRecord:
         PulseRecord
             The same record.
         """
+        if self.expected is not None and self.expected > limit:
+            return self
         kept: list[NDArray[np.float64]] | None = None
 
         def read() -> Iterator[PulseChunk]:
@@ -178,7 +187,7 @@ class PulseRecord:
                 yield chunk
             kept = parts
 
-        return PulseRecord(read, self.teeth, self.source)
+        return PulseRecord(read, self.teeth, self.source, self.expected)
 
     def train(self) -> PulseTrain:
         """The whole record as a pulse train in memory (its checks as a train's).
