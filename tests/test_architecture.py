@@ -19,6 +19,7 @@
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import crankdyn
@@ -112,10 +113,17 @@ def _resolve(name: str) -> str | None:
     return name or None
 
 
+@functools.cache
+def _tree(path: Path) -> ast.Module:
+    """A module's syntax tree, parsed once per test process (the checks below share it)."""
+    return ast.parse(path.read_text(encoding="utf-8"))
+
+
+@functools.cache
 def _imports(path: Path):
     """(imported module, enclosing function or None, the names imported) of every import,
     leaving out ``if TYPE_CHECKING:`` blocks."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
+    tree = _tree(path)
     found = []
 
     def visit(node, function):
@@ -153,6 +161,7 @@ def _lazy(module: str, function: str | None, target: str) -> bool:
     return function.startswith("plot") and target.startswith("crankdyn.plots")
 
 
+@functools.cache
 def _graph() -> dict[str, set[str]]:
     graph: dict[str, set[str]] = {m: set() for m in MODULES}
     for module, path in MODULES.items():
@@ -246,8 +255,7 @@ def test_the_architecture_sets_name_real_modules():
 
 
 def _calls(path: Path):
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    for node in ast.walk(tree):
+    for node in ast.walk(_tree(path)):
         if isinstance(node, ast.Call):
             func = node.func
             name = func.attr if isinstance(func, ast.Attribute) else getattr(func, "id", None)
@@ -287,7 +295,7 @@ def test_modules_and_functions_stay_small():
         name = path.relative_to(PACKAGE).as_posix()
         if text.count("\n") > MAX_MODULE_LINES:
             too_long.append(f"{name}: {text.count(chr(10))} lines")
-        for node in ast.walk(ast.parse(text)):
+        for node in ast.walk(_tree(path)):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 length = (node.end_lineno or node.lineno) - node.lineno + 1
                 if length > MAX_FUNCTION_LINES:
