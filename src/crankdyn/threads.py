@@ -24,7 +24,14 @@ from collections.abc import Mapping
 
 from crankdyn.errors import InputError
 
-__all__ = ["LIBRARY_VARIABLES", "VARIABLE", "available_cores", "blas_threads", "limit_blas_threads"]
+__all__ = [
+    "LIBRARY_VARIABLES",
+    "VARIABLE",
+    "available_cores",
+    "blas_threads",
+    "free_cores",
+    "limit_blas_threads",
+]
 
 VARIABLE = "CRANKDYN_THREADS"
 """The environment variable that sets the number of linear-algebra threads (a whole number >= 1)."""
@@ -77,6 +84,41 @@ def blas_threads(cores: int | None = None, load: float | None = None) -> int:
             load = 0.0
     free = math.floor(n - load + 0.5) if math.isfinite(load) else n
     return max(1, min(n, free))
+
+
+def free_cores(cores: int | None = None, running: int | None = None) -> int:
+    """The processors this process may use that are not busy now, for work run beside it in a
+    child (:mod:`crankdyn.forks`; with fewer than two, a child would only take turns with this
+    process): its cores less the tasks running now other than itself (``/proc/loadavg``'s
+    fourth field, an instant count, not an average: a benchmark's or a script's previous run
+    that has just ended leaves a load average of about one for a minute, but no running task),
+    at least 1; where the system gives no such count, :func:`blas_threads`'s (load average).
+
+    Parameters
+    ----------
+    cores : int or None
+        The processors available (default :func:`available_cores`).
+    running : int or None
+        The tasks running now, this process included (default read from ``/proc/loadavg``).
+
+    Returns
+    -------
+    int
+        The free processors.
+
+    Examples
+    --------
+    >>> free_cores(2, 1), free_cores(2, 2), free_cores(2, 5), free_cores(8, 3)
+    (2, 1, 1, 6)
+    """
+    n = available_cores() if cores is None else int(cores)
+    if running is None:
+        try:
+            with open("/proc/loadavg", encoding="ascii") as handle:
+                running = int(handle.read().split()[3].partition("/")[0])
+        except (OSError, ValueError, IndexError):  # not Linux: the load average
+            return blas_threads(n)
+    return max(1, min(n, n - max(0, running - 1)))
 
 
 def _requested(environ: Mapping[str, str]) -> int | None:

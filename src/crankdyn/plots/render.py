@@ -18,7 +18,8 @@ word's size cached already (:func:`lay_out`, ``keep_canvas``). A child writes it
 the renderer's private temporary folder and exits; :meth:`Renderer.results` waits for them and
 reads them back. Where a fork is not safe (not Linux, or inside a daemonic process) or of no use
 (one core), or when a child fails, the figures are drawn here, one after another, when their
-results are asked for.
+results are asked for. The fork itself (the signals held across it, the child's set-up) is
+:mod:`crankdyn.forks`'s.
 """
 
 from __future__ import annotations
@@ -27,16 +28,16 @@ import contextlib
 import functools
 import gc
 import io
-import multiprocessing
 import os
 import select
 import shutil
 import signal
-import sys
 import tempfile
 from collections.abc import Callable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
+
+from crankdyn.forks import can_fork, child_setup, hold_signals, release_signals
 
 __all__ = [
     "PNG_DPI",
@@ -408,25 +409,6 @@ def collector_paused() -> Iterator[None]:
             gc.enable()
 
 
-def _fresh_streams() -> None:
-    """A worker's own standard output and error objects on the same files: a lock that a
-    thread of the parent (a progress display) held at the fork is not inherited held."""
-    for name, fd in (("stdout", 1), ("stderr", 2)):
-        with contextlib.suppress(OSError):
-            stream = open(os.dup(fd), "w", encoding="utf-8", errors="replace")  # noqa: SIM115
-            setattr(sys, name, stream)
-
-
-def _can_fork() -> bool:
-    """Whether a forked pool is safe here: Linux (macOS's system libraries are not safe to use
-    after a fork), and not inside a daemonic process (which may not have children)."""
-    return (
-        sys.platform.startswith("linux")
-        and "fork" in multiprocessing.get_all_start_methods()
-        and not multiprocessing.current_process().daemon
-    )
-
-
 def workers_for(count: int) -> int:
     """Worker processes for ``count`` figures: one per usable core, at most one per figure (a
     figure takes a few tenths of a second; more workers than cores would only queue).
@@ -514,7 +496,7 @@ class Renderer:
     def __init__(self, workers: int | None = None) -> None:
         self.workers = _cores() if workers is None else max(1, workers)
         """Children drawing at a time."""
-        self._forking = self.workers > 1 and _can_fork()
+        self._forking = self.workers > 1 and can_fork()
         self._figures: list[Any] = []
         self._cost: list[int] = []  # per figure: its axes (the largest is started first)
         self._parts: list[tuple[str, ...]] = []  # per figure: ("both",), ("png",), ("png", "svg")
@@ -611,32 +593,26 @@ class Renderer:
             # SIGINT and SIGTERM held across the fork: a signal handled in the child before its
             # try (the command line's handlers raise) would unwind it into this process's
             # stack, to run on as a copy of it (close() then waits for it for ever)
-            mask = _hold_signals()
+            mask = hold_signals()
             try:
                 read, write = os.pipe()
                 pid = os.fork()
             except OSError:  # no more processes: the rest are drawn here
-                _release_signals(mask)
+                release_signals(mask)
                 self._forking = False
                 return
             if pid == 0:  # the child: draw, write, exit without running this process's exits
                 code = 1
                 try:
-                    # the default actions (close()'s SIGTERM ends the child), then released
-                    with contextlib.suppress(ValueError):  # not the main thread
-                        signal.signal(signal.SIGINT, signal.SIG_DFL)
-                        signal.signal(signal.SIGTERM, signal.SIG_DFL)
-                    _release_signals(mask)
+                    # the default actions (close()'s SIGTERM ends the child), released; no
+                    # collector passes (a child lives for one figure); its own streams
+                    child_setup(mask)
                     os.close(read)
-                    # no collector passes: they would touch, and so copy, every page of this
-                    # process's objects; a child lives for one figure
-                    gc.disable()
-                    _fresh_streams()
                     self._draw(index, part)
                     code = 0
                 finally:
                     os._exit(code)
-            _release_signals(mask)
+            release_signals(mask)
             os.close(write)
             self._queue.pop(at)
             self._running[read] = (pid, index, part)
@@ -730,23 +706,6 @@ class Renderer:
 
     def __exit__(self, *exc: object) -> None:
         self.close()
-
-
-_HELD = {signal.SIGINT, getattr(signal, "SIGTERM", signal.SIGINT)}
-
-
-def _hold_signals() -> set[int | signal.Signals] | None:
-    """Block SIGINT and SIGTERM in this thread (delivered when released); the mask before, or
-    None where threads have no signal mask."""
-    if not hasattr(signal, "pthread_sigmask"):  # pragma: no cover - not POSIX
-        return None
-    return signal.pthread_sigmask(signal.SIG_BLOCK, _HELD)
-
-
-def _release_signals(mask: set[int | signal.Signals] | None) -> None:
-    """Restore the signal mask :func:`_hold_signals` returned."""
-    if mask is not None:
-        signal.pthread_sigmask(signal.SIG_SETMASK, mask)
 
 
 def _read(path: Path | None) -> bytes | None:

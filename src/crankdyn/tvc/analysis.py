@@ -51,14 +51,22 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.defaults import speed_grid
 from crankdyn.errors import InputError
+from crankdyn.forks import Beside
 from crankdyn.summary import Verdict
+from crankdyn.threads import free_cores
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
 from crankdyn.tvc.conditions import Condition
 from crankdyn.tvc.conditions import conditions as conditions_of
 from crankdyn.tvc.evaluate import evaluate_condition
 from crankdyn.tvc.installation import installation_verdicts, rule_notes
 from crankdyn.tvc.passage import passages as passages_of
-from crankdyn.tvc.result import BarredSpeedRange, ConditionResult, Passage, TvcResult
+from crankdyn.tvc.result import (
+    BarredSpeedRange,
+    ConditionResult,
+    EventCondition,
+    Passage,
+    TvcResult,
+)
 from crankdyn.tvc.spec import CONDITION_KINDS, TvcSpec
 
 if TYPE_CHECKING:
@@ -489,6 +497,30 @@ def _run_conditions(
     return condition_results, verdicts_all, passages_all
 
 
+def _events_beside(
+    run: _Run, conds: Sequence[Condition], events: bool, beside: bool | None
+) -> Beside[list[EventCondition]]:
+    """The settings' transient events (:func:`crankdyn.tvc.events.event_conditions`), run in a
+    child beside the conditions where ``beside`` says so (None: where two processors are free);
+    none when ``events`` is false or the settings have none. The events need only the model,
+    the normal-firing excitation, the orders and the installation's checks (made here, before
+    the fork, and kept for the conditions)."""
+    spec = run.spec
+    if not (events and spec.events):
+        return Beside(list, fork=False)
+    from crankdyn.tvc.events import event_conditions
+
+    checks = run.checks_of(conds[0])
+    base = conds[0].excitation
+    if beside is None:
+        beside = free_cores() >= 2
+
+    def compute() -> list[EventCondition]:
+        return event_conditions(run.model, spec, run.rated, base, run.orders, checks)
+
+    return Beside(compute, fork=beside)
+
+
 def _campbell(
     model: TorsionModel,
     orders: NDArray[np.float64],
@@ -528,6 +560,7 @@ def tvc(
     conditions: Sequence[str] = CONDITION_KINDS,
     response_of: ResponseOf | None = None,
     events: bool = True,
+    beside: bool | None = None,
 ) -> TvcResult:
     """The torsional vibration calculation of an installation (module docstring).
 
@@ -565,6 +598,10 @@ def tvc(
     events : bool
         Whether to run the transient events of the settings (``[[tvc.event]]``,
         :mod:`crankdyn.tvc.events`; default True).
+    beside : bool or None
+        Whether to run the events in a child process beside the conditions' forced responses
+        (:class:`crankdyn.forks.Beside`: the same results, computed from the same state); None:
+        where two processors are free (:func:`crankdyn.threads.free_cores`).
 
     Returns
     -------
@@ -622,17 +659,12 @@ def tvc(
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
-    condition_results, verdicts_all, passages_all = _run_conditions(
-        run, conds, response_of or _response, passage
-    )
-    found_events = []
-    if events and spec.events:
-        from crankdyn.tvc.events import event_conditions
-
-        found_events = event_conditions(
-            model, spec, rated, base, run.orders, run.checks_of(conds[0])
+    with _events_beside(run, conds, events, beside) as pending:
+        condition_results, verdicts_all, passages_all = _run_conditions(
+            run, conds, response_of or _response, passage
         )
-        verdicts_all.extend(v for e in found_events for v in e.verdicts)
+        found_events = pending.result()
+    verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)
     diagram = _campbell(model, run.orders, (low, high), base, notes)

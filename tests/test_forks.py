@@ -1,0 +1,87 @@
+"""Work done beside this process in a forked child (crankdyn.forks): the result is the one this
+process would compute, whatever happens to the child; the TVC's events run beside its
+conditions give the same calculation as run after them."""
+
+from __future__ import annotations
+
+import os
+import time
+
+import pytest
+
+from crankdyn.forks import Beside, can_fork
+
+needs_fork = pytest.mark.skipif(not can_fork(), reason="no safe fork here (Linux only)")
+
+
+@needs_fork
+def test_the_result_comes_from_the_child():
+    parent = os.getpid()
+    work = Beside(lambda: (os.getpid(), [1.5, "two", {"three": 3}]))
+    assert work.forked
+    pid, value = work.result()
+    assert pid != parent and value == [1.5, "two", {"three": 3}]
+    assert not work.forked  # the child waited for
+
+
+@needs_fork
+def test_a_failure_in_the_child_is_computed_here():
+    """An exception, or a result that does not pickle: the function is run here (its own
+    exception raised here, with this process's traceback)."""
+    calls = []
+
+    def failing():
+        calls.append(os.getpid())
+        raise ValueError("bad input")
+
+    work = Beside(failing)
+    with pytest.raises(ValueError, match="bad input"):
+        work.result()
+    assert calls == [os.getpid()]  # the child's call left no trace here; this one ran here
+    work = Beside(lambda: lambda: None)  # a function does not pickle
+    assert callable(work.result())
+
+
+def test_not_forked_when_not_wanted():
+    work = Beside(lambda: os.getpid(), fork=False)
+    assert not work.forked and work.result() == os.getpid()
+
+
+@needs_fork
+def test_close_stops_a_child_still_computing():
+    work = Beside(lambda: time.sleep(60))
+    pid = work._pid
+    started = time.monotonic()
+    work.close()
+    assert time.monotonic() - started < 10
+    with pytest.raises(ChildProcessError):
+        os.waitpid(pid, os.WNOHANG)  # reaped
+
+
+@needs_fork
+def test_an_exception_here_stops_the_child():
+    """The TVC holds its events' child in a ``with``: an interrupt (KeyboardInterrupt, the
+    command line's SIGTERM handler's exception) while the conditions run stops it."""
+    with pytest.raises(KeyboardInterrupt), Beside(lambda: time.sleep(60)) as work:
+        pid = work._pid
+        raise KeyboardInterrupt
+    with pytest.raises(ChildProcessError):
+        os.waitpid(pid, os.WNOHANG)
+
+
+@needs_fork
+@pytest.mark.slow
+def test_tvc_events_beside_the_conditions_give_the_same_calculation(tmp_path):
+    """The genset's TVC (its events: a start and a load step) with the events run in a child
+    while the conditions run here, and all in this process: the same result, to the bit (the
+    child computes from the same state with the same code)."""
+    from crankdyn.io.catalogue import resolve_model_and_engine
+    from crankdyn.tvc.analysis import tvc
+
+    model, engine = resolve_model_and_engine("genset-1500")
+    beside = tvc(model, engine, passage=False, beside=True)
+    here = tvc(model, engine, passage=False, beside=False)
+    assert beside.events and [e.name for e in beside.events] == [e.name for e in here.events]
+    assert beside.to_json() == here.to_json()
+    for a, b in zip(beside.events, here.events, strict=True):
+        assert a.to_json() == b.to_json()
