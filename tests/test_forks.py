@@ -9,7 +9,8 @@ import time
 
 import pytest
 
-from crankdyn.forks import Beside, can_fork
+from crankdyn.forks import Beside, can_fork, room_for_a_copy
+from crankdyn.threads import free_cores
 
 needs_fork = pytest.mark.skipif(not can_fork(), reason="no safe fork here (Linux only)")
 
@@ -85,3 +86,17 @@ def test_tvc_events_beside_the_conditions_give_the_same_calculation(tmp_path):
     assert beside.to_json() == here.to_json()
     for a, b in zip(beside.events, here.events, strict=True):
         assert a.to_json() == b.to_json()
+
+
+def test_when_the_tvc_forks(monkeypatch):
+    """Two processors free now (CRANKDYN_THREADS caps them: 1 keeps one process), and room in
+    memory for a copy of this process (this small test process: room on any machine that runs
+    the suite)."""
+    monkeypatch.delenv("CRANKDYN_THREADS", raising=False)
+    assert free_cores(2, 1) == 2 and free_cores(4, 4) == 1
+    monkeypatch.setenv("CRANKDYN_THREADS", "1")
+    assert free_cores(2, 1) == 1
+    monkeypatch.setenv("CRANKDYN_THREADS", "3")
+    assert free_cores(8, 1) == 3
+    if os.path.exists("/proc/meminfo"):
+        assert room_for_a_copy() is True

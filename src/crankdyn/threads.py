@@ -93,6 +93,7 @@ def free_cores(cores: int | None = None, running: int | None = None) -> int:
     fourth field, an instant count, not an average: a benchmark's or a script's previous run
     that has just ended leaves a load average of about one for a minute, but no running task),
     at least 1; where the system gives no such count, :func:`blas_threads`'s (load average).
+    ``CRANKDYN_THREADS`` caps it (``CRANKDYN_THREADS=1``: one process, one thread).
 
     Parameters
     ----------
@@ -106,19 +107,25 @@ def free_cores(cores: int | None = None, running: int | None = None) -> int:
     int
         The free processors.
 
+    Raises
+    ------
+    crankdyn.errors.InputError
+        ``CRANKDYN_THREADS`` that is not a whole number >= 1.
+
     Examples
     --------
     >>> free_cores(2, 1), free_cores(2, 2), free_cores(2, 5), free_cores(8, 3)
     (2, 1, 1, 6)
     """
     n = available_cores() if cores is None else int(cores)
+    cap = _requested(os.environ) or n
     if running is None:
         try:
             with open("/proc/loadavg", encoding="ascii") as handle:
                 running = int(handle.read().split()[3].partition("/")[0])
         except (OSError, ValueError, IndexError):  # not Linux: the load average
-            return blas_threads(n)
-    return max(1, min(n, n - max(0, running - 1)))
+            return min(cap, blas_threads(n))
+    return max(1, min(n, cap, n - max(0, running - 1)))
 
 
 def _requested(environ: Mapping[str, str]) -> int | None:

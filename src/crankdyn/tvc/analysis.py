@@ -51,7 +51,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.defaults import speed_grid
 from crankdyn.errors import InputError
-from crankdyn.forks import Beside
+from crankdyn.forks import Beside, room_for_a_copy
 from crankdyn.summary import Verdict
 from crankdyn.threads import free_cores
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
@@ -513,7 +513,7 @@ def _events_beside(
     checks = run.checks_of(conds[0])
     base = conds[0].excitation
     if beside is None:
-        beside = free_cores() >= 2
+        beside = free_cores() >= 2 and room_for_a_copy()
 
     def compute() -> list[EventCondition]:
         return event_conditions(run.model, spec, run.rated, base, run.orders, checks)
@@ -601,7 +601,8 @@ def tvc(
     beside : bool or None
         Whether to run the events in a child process beside the conditions' forced responses
         (:class:`crankdyn.forks.Beside`: the same results, computed from the same state); None:
-        where two processors are free (:func:`crankdyn.threads.free_cores`).
+        where two processors are free (:func:`crankdyn.threads.free_cores`) and the memory
+        holds a second process this one's size (:func:`crankdyn.forks.room_for_a_copy`).
 
     Returns
     -------
