@@ -12,14 +12,12 @@ $(BIN)/python:
 
 LINTED := src tests bench docs/examples docs/conf.py docs/_ext setup.py notebooks
 
-# --no-compile: Python compiles the modules it imports, when it first imports them; pip would
-# compile every module of every package first (some 20 s of CPU for the test extras)
 $(VENV)/.stamp-base: pyproject.toml setup.py | $(BIN)/python
-	$(BIN)/python -m pip install -q --no-compile -e .
+	$(BIN)/python -m pip install -q -e .
 	@touch $@
 
 $(VENV)/.stamp-test: pyproject.toml setup.py | $(BIN)/python
-	$(BIN)/python -m pip install -q --no-compile -e '.[test]'
+	$(BIN)/python -m pip install -q -e '.[test]'
 	@touch $@ $(VENV)/.stamp-base
 
 ## make demo: install and run the main job on the built-in inline-6 diesel
