@@ -21,7 +21,7 @@ def test_the_result_comes_from_the_child():
     work = Beside(lambda: (os.getpid(), [1.5, "two", {"three": 3}]))
     assert work.forked
     pid, value = work.result()
-    assert pid != parent and value == [1.5, "two", {"three": 3}]
+    assert work.from_child and pid != parent and value == [1.5, "two", {"three": 3}]
     assert not work.forked  # the child waited for
 
 
@@ -72,15 +72,25 @@ def test_an_exception_here_stops_the_child():
 
 @needs_fork
 @pytest.mark.slow
-def test_tvc_events_beside_the_conditions_give_the_same_calculation(tmp_path):
+def test_tvc_events_beside_the_conditions_give_the_same_calculation(monkeypatch):
     """The genset's TVC (its events: a start and a load step) with the events run in a child
     while the conditions run here, and all in this process: the same result, to the bit (the
     child computes from the same state with the same code)."""
+    import crankdyn.tvc.analysis as analysis
     from crankdyn.io.catalogue import resolve_model_and_engine
     from crankdyn.tvc.analysis import tvc
 
+    made = []
+
+    class Recorded(Beside):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append(self)
+
+    monkeypatch.setattr(analysis, "Beside", Recorded)
     model, engine = resolve_model_and_engine("genset-1500")
     beside = tvc(model, engine, passage=False, beside=True)
+    assert [w.from_child for w in made] == [True]  # the events came from the child
     here = tvc(model, engine, passage=False, beside=False)
     assert beside.events and [e.name for e in beside.events] == [e.name for e in here.events]
     assert beside.to_json() == here.to_json()

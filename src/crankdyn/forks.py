@@ -158,6 +158,11 @@ class Beside(Generic[T]):
         Whether to fork at all (the caller's judgement of the cores free); False computes it
         here, when :meth:`result` is called.
 
+    Attributes
+    ----------
+    from_child : bool
+        Whether the result came from the child (set by :meth:`result`).
+
     Examples
     --------
     >>> work = Beside(lambda: sum(range(10)))
@@ -174,6 +179,7 @@ class Beside(Generic[T]):
         self._pid: int | None = None
         self._read: int | None = None
         self._limits: Any = None
+        self.from_child = False  # whether the result came from a child
         if fork and can_fork():
             from threadpoolctl import threadpool_limits
 
@@ -236,6 +242,7 @@ class Beside(Generic[T]):
             if data:
                 with contextlib.suppress(Exception):
                     value: T = pickle.loads(data)
+                    self.from_child = True
                     return value
         return self._function()
 
