@@ -38,6 +38,7 @@ from pathlib import Path
 from typing import Any
 
 from crankdyn.forks import can_fork, child_setup, hold_signals, release_signals
+from crankdyn.threads import available_cores
 
 __all__ = [
     "PNG_DPI",
@@ -430,15 +431,7 @@ def workers_for(count: int) -> int:
     >>> 1 <= workers_for(1000) <= (os.cpu_count() or 1)
     True
     """
-    return max(1, min(_cores(), count))
-
-
-def _cores() -> int:
-    """Cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):
-        return os.cpu_count() or 1
+    return max(1, min(available_cores(), count))
 
 
 _PREPARED = False
@@ -494,7 +487,7 @@ class Renderer:
     """
 
     def __init__(self, workers: int | None = None) -> None:
-        self.workers = _cores() if workers is None else max(1, workers)
+        self.workers = available_cores() if workers is None else max(1, workers)
         """Children drawing at a time."""
         self._forking = self.workers > 1 and can_fork()
         self._figures: list[Any] = []

@@ -27,7 +27,6 @@ import concurrent.futures as cf
 import contextlib
 import math
 import multiprocessing
-import os
 import signal
 import threading
 import time
@@ -53,6 +52,7 @@ from crankdyn.study.run.worker import (
     warm_up,
 )
 from crankdyn.study.spec import StudySpec
+from crankdyn.threads import available_cores
 
 __all__ = [
     "SCHEDULER_TIMEOUT",
@@ -473,10 +473,7 @@ def available_cpus() -> int:
     int
         Its CPU affinity's count where the system tells it, else the machine's count (>= 1).
     """
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except (AttributeError, OSError):
-        return max(1, os.cpu_count() or 1)
+    return available_cores()  # (one definition: crankdyn.threads)
 
 
 def pool_size(workers: int | None, cases: int) -> tuple[int, str]:
