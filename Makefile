@@ -39,6 +39,10 @@ test: | $(BIN)/python
 	@bash scripts/install-browser.sh & browser=$$!; \
 	  $(MAKE) --no-print-directory $(VENV)/.stamp-test; installed=$$?; \
 	  wait $$browser; exit $$installed
+	@# the package's bytecode written once, on both cores: every process of the suite (the CLI's
+	@# subprocesses, the docs build, the notebooks' kernels, the pools' workers) then loads it
+	@# instead of compiling the sources again (none is written where PYTHONDONTWRITEBYTECODE is set)
+	@$(BIN)/python -m compileall -q -j 0 src
 	$(BIN)/ruff check $(LINTED)
 	$(BIN)/ruff format --check $(LINTED)
 	@bash scripts/types-and-tests.sh $(BIN)
