@@ -201,6 +201,7 @@ def _extremes(
     mf = m.astype(float)
     m2 = mf * mf
     step = 2.0 * math.pi / samples
+    phi = phi.copy()  # moved in place, crest by crest
     coef = c[row]
     coef[~is_max] *= -1.0  # the minima as maxima of -x
     top = int(m.max())
