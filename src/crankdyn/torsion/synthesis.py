@@ -80,12 +80,11 @@ def half_range(
     ]
     found = []
     count = 0
-    for start in range(0, c2.shape[0] + 1, rows):  # blocks of rows, not a loop per speed
-        if start < c2.shape[0]:
-            row, pos, grid_value, is_max = _block_crests(c2[start : start + rows], m, samples)
-            found.append((row + start, pos, grid_value, is_max))
-            count += row.size
-        if found and (count >= _CRESTS or start + rows >= c2.shape[0]):
+    for start in range(0, c2.shape[0], rows):  # blocks of rows, not a loop per speed
+        row, pos, grid_value, is_max = _block_crests(c2[start : start + rows], m, samples)
+        found.append((row + start, pos, grid_value, is_max))
+        count += row.size
+        if count >= _CRESTS or start + rows >= c2.shape[0]:
             # the crests of several blocks refined at once: Newton's few dozen array operations
             # per step are then over thousands of crests, not hundreds
             row, pos, grid_value, is_max = (np.concatenate(a) for a in zip(*found, strict=True))
