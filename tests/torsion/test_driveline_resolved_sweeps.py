@@ -353,3 +353,43 @@ def test_marine_loaded_poles_by_modes_and_in_blocks(marine, monkeypatch):
         for a in modal[light]:
             nearest = row_exact[np.nanargmin(np.abs(row_exact.real - a.real))]
             assert a.real == pytest.approx(nearest.real, rel=1e-2)
+
+
+@pytest.mark.parametrize("modal", [False, True])
+def test_equal_speeds_are_one_eigenproblem(marine, monkeypatch, modal):
+    """The resonances followed beyond the range all sit at its ends: equal speeds are one
+    eigenproblem (dense, or by the modes above TRACK_POLE_LIMIT), their rows the same bits, and
+    each speed's the poles of that speed alone (to 1e-6: LAPACK's rounding depends on where a
+    matrix sits in a batch, 1e-8 measured on the ring damper's overdamped pole)."""
+    import crankdyn.torsion.resolve as resolve_module
+    import crankdyn.torsion.sweep as sweep_module
+
+    model, ex, orders = marine
+    r = forced_response(model, ex, _grid(300.0, 750.0, 50.0), orders, resolve=False)
+    sweep = r.evaluator
+    if modal:
+        monkeypatch.setattr(sweep_module, "TRACK_POLE_LIMIT", 1)
+    top = 2.0 * float(np.max(orders)) * 750.0 * RPM
+    speeds = np.array([300.0, 750.0, 512.5, 300.0, 750.0, 750.0, 512.5]) * RPM
+    solved = []
+    dense, chains = resolve_module._damped_frequency_rows, sweep_module.modal_pole_rows
+    monkeypatch.setattr(resolve_module, "_POLE_CACHE", {})
+    monkeypatch.setattr(
+        resolve_module,
+        "_damped_frequency_rows",
+        lambda m, k, c, h: solved.append(k.shape[0]) or dense(m, k, c, h),
+    )
+    monkeypatch.setattr(
+        sweep_module,
+        "modal_pole_rows",
+        lambda m, links, *rest: solved.append(np.shape(links[0])[0]) or chains(m, links, *rest),
+    )
+    rows = sweep.loaded_poles(speeds, top)
+    assert solved == [3]
+    for a, b in ((0, 3), (1, 4), (1, 5), (2, 6)):
+        np.testing.assert_array_equal(rows[a], rows[b])
+    for k, n in enumerate(speeds):
+        one = sweep.loaded_poles([n], top)[0]
+        width = np.count_nonzero(~np.isnan(one.real))
+        assert rows[k, :width] == pytest.approx(one[:width], rel=1e-6)
+        assert np.all(np.isnan(rows[k, width:]))

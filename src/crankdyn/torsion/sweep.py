@@ -505,12 +505,14 @@ class Sweep:
         """Damped natural frequencies (rad/s) with the load-dependent couplings' stiffness at
         the mean torque of every speed (rad/s): (S, P), NaN-padded, ascending (:meth:`poles`;
         the forced response takes the same stiffness at that speed); above
-        :data:`POLE_LIMIT` degrees of freedom those up to ``top`` (rad/s) only."""
+        :data:`POLE_LIMIT` degrees of freedom those up to ``top`` (rad/s) only. Equal speeds
+        are one eigenproblem (the resonances followed beyond the range all sit at its ends)."""
         speeds = np.asarray(speeds, dtype=float)
-        found = self._loaded_change(speeds)
+        distinct, where = np.unique(speeds, return_inverse=True)
+        found = self._loaded_change(distinct)
         if found is None:  # pragma: no cover - called only with load-dependent couplings
             raise ValueError("no coupling of the model depends on the load")
-        return self._pole_rows(found, top)
+        return self._pole_rows(found, top)[where.reshape(speeds.shape)]
 
     def _tracked_resonances(
         self, poles: np.ndarray, orders: np.ndarray, low: float, high: float
