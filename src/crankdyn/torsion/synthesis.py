@@ -15,6 +15,8 @@ __all__ = ["NEWTON", "half_range"]
 _BLOCK = 1 << 17  # grid values per block of the synthesis (256 rows of 512: in cache)
 _CRESTS = 2048  # crests refined together (their coefficients a few MB)
 NEWTON = 4  # evaluations per crest in the time-domain synthesis (the last step by Taylor)
+TAYLOR = 1e-5  # a last Newton step longer than this fraction of a grid step is evaluated
+NEWTON_MAX = 12  # evaluations of a crest at most (NEWTON, more after steps not Newton's own)
 SETTLED = 1e-6  # a Newton step below this fraction of a grid step ends a crest's refinement
 
 
@@ -31,7 +33,14 @@ def half_range(
     grid crest within B of the grid's extreme is refined (not only the grid's extreme: two
     crests of nearly equal height are otherwise confused, by up to B): from the vertex of the
     parabola through its three grid points, by Newton's method on x'(phi) = 0 (three steps,
-    each kept within one grid step; the fourth taken in the Taylor expansion of x). The
+    each kept within one grid step; the fourth taken in the Taylor expansion of x). Where x is
+    not concave at a crest's point (the vertex past an inflection, on the shoulder of a peak up
+    to a grid step away) the step is half a grid step up the slope instead, and where a step
+    was not Newton's own (that, or one cut to a grid step) or the last is longer than
+    :data:`TAYLOR` of a grid step (its Taylor value then not exact to round-off) the crest takes
+    one more evaluation, up to :data:`NEWTON_MAX` (found against a dense evaluation of
+    wide-band harmonics and an independent bounded search: a few rows in ten thousand were
+    short by up to 8e-5 of sum_k |c_k| with the fixed four evaluations). The
     harmonics exp(i m phi) are products of exp(i phi) where the indices are small (each the last
     times the power of the step between them); a crest whose step falls below
     :data:`SETTLED` of a grid step takes no further step (its Taylor value then differs from
@@ -213,8 +222,11 @@ def _extremes(
     d1 = np.empty(row.size)
     d2 = np.empty(row.size)
     move = np.empty(row.size)
+    # evaluations of every crest: NEWTON, one more for every step that was not Newton's own
+    # (clipped to a grid step, or up a shoulder where x is not concave)
+    budget = np.full(row.size, NEWTON)
     active = np.arange(row.size)  # the crests still moving
-    for k in range(NEWTON):  # Newton on x'(phi) = 0, all crests at once
+    for k in range(NEWTON_MAX):  # Newton on x'(phi) = 0, all crests at once
         # exp(i m phi) as powers of exp(i phi) where the indices are small
         p = phi[active]
         e = _powers(np.exp(1j * p), m) if powers else np.exp(1j * p[:, None] * mf)
@@ -227,17 +239,29 @@ def _extremes(
         terms = np.zeros((-(-n // 8) * 8, m.size), dtype=complex)
         np.multiply(coef if n == row.size else coef[active], e, out=terms[:n])
         value[active], d1[active], d2[active] = (terms.view(float) @ weights)[:n].T
+        slope, curve = d1[active], d2[active]
+        concave = curve < 0.0
         with np.errstate(divide="ignore", invalid="ignore"):
-            now = np.clip(np.where(d2[active] < 0.0, -d1[active] / d2[active], 0.0), -step, step)
-        move[active] = now
-        if k < NEWTON - 1:
-            phi[active] = p + now
-            # a crest whose step is below SETTLED of a grid step keeps its last value and
-            # step: further steps would change its Taylor value by O(x''' d^3), far below
-            # round-off (the steps shrink quadratically from the parabola's vertex)
-            active = active[np.abs(now) > SETTLED * step]
-            if active.size == 0:
-                break
+            newton = np.clip(np.where(concave, -slope / curve, 0.0), -step, step)
+        # where x is not concave (the parabola's vertex past an inflection, on the shoulder of
+        # a crest whose peak is up to a grid step away) half a grid step up the slope instead;
+        # such a point's value is its own, not a Taylor step's
+        now = np.where(concave, newton, np.copysign(0.5 * step, slope))
+        move[active] = newton
+        # and one more where the last step would be too long for its Taylor value to be exact
+        # to round-off (its error O(sum m^3 |c| d^3): d above TAYLOR of a grid step)
+        last = (k + 1 >= budget[active]) & (np.abs(newton) > TAYLOR * step)
+        budget[active[~concave | (np.abs(newton) >= step) | last]] += 1
+        # a crest whose step is below SETTLED of a grid step keeps its last value and step:
+        # further steps would change its Taylor value by O(x''' d^3), far below round-off (the
+        # steps shrink quadratically from the parabola's vertex)
+        go = (k + 1 < np.minimum(budget[active], NEWTON_MAX)) & (
+            (np.abs(now) > SETTLED * step) | ~concave
+        )
+        phi[active[go]] = p[go] + now[go]
+        active = active[go]
+        if active.size == 0:
+            break
     value = value + d1 * move + 0.5 * d2 * move * move  # the last step, by Taylor
     value = np.maximum(value, grid_value)
     # per row: the largest refined maximum, the largest refined maximum of -x
