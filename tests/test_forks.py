@@ -26,6 +26,47 @@ def test_the_result_comes_from_the_child():
 
 
 @needs_fork
+def test_arrays_come_back_through_their_own_buffers():
+    """Arrays travel out of band (pickle protocol 5): the same values, order and dtype, read-only
+    where they were (the results' frozen arrays stay frozen), writable where they were; a
+    strided view and plain objects as usual."""
+    import numpy as np
+
+    from crankdyn.results import freeze
+
+    frozen = freeze(np.arange(2e5).reshape(400, 500))
+    fortran = np.asfortranarray(np.linspace(0.0, 1.0, 6000).reshape(60, 100))
+    strided = np.arange(20)[::3]
+    work = Beside(lambda: {"frozen": frozen, "fortran": fortran, "strided": strided, "n": "x"})
+    found = work.result()
+    assert work.from_child
+    np.testing.assert_array_equal(found["frozen"], frozen)
+    np.testing.assert_array_equal(found["fortran"], fortran)
+    np.testing.assert_array_equal(found["strided"], strided)
+    assert not found["frozen"].flags.writeable and found["fortran"].flags.writeable
+    assert found["fortran"].flags.f_contiguous and found["n"] == "x"
+
+
+def test_a_result_cut_short_is_not_taken():
+    """A child that ends part way through writing its result: the parent reads no value from it
+    (EOFError, caught by Beside.result, which then computes the function itself)."""
+    import io
+    import struct
+
+    import numpy as np
+
+    from crankdyn.forks import _pickled, _unpickled
+
+    whole = b"".join(bytes(part) for part in _pickled({"a": np.arange(1000.0), "b": [1, 2]}))
+    value = _unpickled(io.BufferedReader(io.BytesIO(whole)))[0]
+    np.testing.assert_array_equal(value["a"], np.arange(1000.0))
+    assert _unpickled(io.BufferedReader(io.BytesIO(b""))) == []
+    for cut in (4, 20, len(whole) - 8):
+        with pytest.raises((struct.error, EOFError)):
+            _unpickled(io.BufferedReader(io.BytesIO(whole[:cut])))
+
+
+@needs_fork
 def test_a_failure_in_the_child_is_computed_here():
     """An exception, or a result that does not pickle: the function is run here (its own
     exception raised here, with this process's traceback)."""
