@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 
 __all__ = ["NEWTON", "half_range"]
 
-_BLOCK = 1 << 17  # grid values per block of the synthesis (256 rows of 512: in cache)
+_BLOCK = 1 << 18  # grid values per block of the synthesis (single precision: 1 MiB, in cache)
 _CRESTS = 2048  # crests refined together (their coefficients a few MB)
 NEWTON = 4  # evaluations per crest in the time-domain synthesis (the last step by Taylor)
 TAYLOR = 1e-5  # a last Newton step longer than this fraction of a grid step is evaluated
@@ -106,50 +106,59 @@ def half_range(
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
-def _grid(m: NDArray[np.int_], samples: int) -> NDArray[np.float64]:
+def _grid(
+    m: NDArray[np.int_], samples: int, dtype: type = np.float64, transposed: bool = False
+) -> NDArray[np.floating]:
     """(2K, samples) the basis [cos(m_k phi_j); -sin(m_k phi_j)] of the grid phi_j = 2 pi j /
     samples: x(phi_j) = [Re c, Im c] @ basis, the inverse FFT's values as one matrix product
-    (K harmonics of a few dozen: cheaper than a transform of every row)."""
-    key = (m.tobytes(), samples)
+    (K harmonics of a few dozen: cheaper than a transform of every row); in ``dtype`` (the
+    double-precision values rounded); ``transposed``: (samples, 2K), C-contiguous."""
+    key = (m.tobytes(), samples, np.dtype(dtype).char, transposed)
     found = _BASES.get(key)
     if found is None:
         phi = (2.0 * math.pi / samples) * np.arange(samples)
         angle = np.outer(m.astype(float), phi)
-        found = np.concatenate([np.cos(angle), -np.sin(angle)])
+        found = np.concatenate([np.cos(angle), -np.sin(angle)]).astype(dtype)
+        if transposed:
+            found = np.ascontiguousarray(found.T)
         if len(_BASES) >= 8:
             _BASES.clear()
         _BASES[key] = found
     return found
 
 
-_BASES: dict[tuple[bytes, int], NDArray[np.float64]] = {}
+_BASES: dict[tuple[bytes, int, str, bool], NDArray[np.floating]] = {}
 
 
 def _crests(
-    x: NDArray[np.float64], bound: NDArray[np.float64]
-) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
-    """(row, position in grid steps, grid value of the crest of x or of -x, which: True for a
-    maximum) of every crest of the rows of ``x`` within ``bound`` of the row's largest value
-    (maxima) or of its smallest (minima, as maxima of -x), the position from the parabola
-    through the crest's three grid points; the maxima of each row before its minima."""
-    samples = x.shape[1]
-    best = np.max(x, axis=1)
-    worst = np.min(x, axis=1)
-    near = (x >= (best - bound)[:, None]) | (x <= (worst + bound)[:, None])
+    x: NDArray[np.floating], bound: NDArray[np.float64]
+) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.intp], NDArray[np.bool_]]:
+    """(row, position in grid steps, grid point, which: True for a maximum) of every crest of
+    the columns of ``x`` (samples, rows: one column per row of coefficients) within ``bound``
+    of the column's largest value (maxima) or of its smallest (minima, as maxima of -x), the
+    position from the parabola through the crest's three grid points; the maxima of each row
+    before its minima. The thresholds are rounded outwards to the precision of ``x`` (a value
+    at a threshold is kept)."""
+    samples, count = x.shape
+    best = np.max(x, axis=0)  # along the first axis: elementwise over contiguous rows, fast
+    worst = np.min(x, axis=0)
+    high = np.nextafter((best - bound).astype(x.dtype), -np.inf)
+    low = np.nextafter((worst + bound).astype(x.dtype), np.inf)
+    near = (x >= high) | (x <= low)
     flat = np.flatnonzero(near)
-    row, j = np.divmod(flat, samples)
-    y1 = x.ravel()[flat]
-    top = y1 >= (best - bound)[row]
+    j, row = np.divmod(flat, count)  # by grid point, then row: each row's crests by angle
+    y1 = x.ravel()[flat].astype(float)
+    top = y1 >= high[row]
     # a value near both extremes (a row of round-off) is a candidate of both
-    both = top & (y1 <= (worst + bound)[row])
+    both = top & (y1 <= low[row])
     if np.any(both):
         row = np.concatenate([row, row[both]])
         j = np.concatenate([j, j[both]])
         y1 = np.concatenate([y1, y1[both]])
         top = np.concatenate([top, np.zeros(int(np.count_nonzero(both)), dtype=bool)])
     sign = np.where(top, 1.0, -1.0)
-    y0 = x[row, (j - 1) % samples] * sign
-    y2 = x[row, (j + 1) % samples] * sign
+    y0 = x[(j - 1) % samples, row] * sign
+    y2 = x[(j + 1) % samples, row] * sign
     y1 = y1 * sign
     crest = (y1 >= y0) & (y1 >= y2)
     row, j, y0, y1, y2, top = row[crest], j[crest], y0[crest], y1[crest], y2[crest], top[crest]
@@ -158,7 +167,7 @@ def _crests(
         shift = np.where(den < 0.0, 0.5 * (y0 - y2) / den, 0.0)
     first = np.lexsort((~top, row))  # by row, the maxima first
     pos = (j + np.clip(shift, -0.5, 0.5))[first]
-    return row[first], pos, y1[first], top[first]
+    return row[first], pos, j[first], top[first]
 
 
 def _powers(z: NDArray[np.complex128], m: NDArray[np.int_]) -> NDArray[np.complex128]:
@@ -186,12 +195,33 @@ def _block_crests(
     block: NDArray[np.complex128], m: NDArray[np.int_], samples: int
 ) -> tuple[NDArray[np.intp], NDArray[np.float64], NDArray[np.float64], NDArray[np.bool_]]:
     """:func:`_crests` of the grid of every row of ``block`` (:func:`half_range`): the grid's
-    values as one matrix product, the bound B of every row."""
-    x = np.concatenate([block.real, block.imag], axis=1) @ _grid(m, samples)
+    values as one matrix product in single precision (half the time and memory traffic of
+    double), each row first scaled by a power of two to the order of one (exact; no row
+    underflows or overflows), the bound B of every row widened by twice the product's rounding
+    error, so that every crest the double-precision grid would select is selected; the
+    candidates' grid values then evaluated again in double precision (they are the floor of
+    the row's refined extremes)."""
+    parts = np.concatenate([block.real, block.imag], axis=1)  # (R, 2K): [Re c, Im c]
+    size = np.sum(np.abs(parts), axis=1)  # sum |Re c| + |Im c| >= every grid value's size
+    exponent = np.frexp(np.where(size > 0.0, size, 1.0))[1]
+    scale = np.ldexp(1.0, -exponent)  # a power of two: size * scale in [1/2, 1)
+    # (samples, R): a column per row, so that the rows' extremes are elementwise maxima of
+    # contiguous rows (twice as fast as maxima along the last axis)
+    x = _grid(m, samples, np.float32, True) @ (parts * scale[:, None]).astype(np.float32).T
     mf = m.astype(float)
     step = 2.0 * math.pi / samples
-    bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ (mf * mf))
-    return _crests(x, bound)
+    bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ (mf * mf)) * scale
+    # single precision: each of the 2K products and their sum rounded, every input too, so a
+    # grid value is within gamma_(2K+2) * sum(|Re c| + |Im c|) (<= (2K+2) u / (1 - (2K+2) u)
+    # of the scaled size 1, u = 2^-24; Higham, Accuracy and Stability, 2nd ed., eq. 3.5) of
+    # its exact value: a value is selected where its exact one would be, and the row's largest
+    # and smallest are off by as much, hence twice the error
+    terms = parts.shape[1] + 2
+    unit = float(np.finfo(np.float32).eps) / 2.0
+    bound = bound + 2.0 * (terms * unit / (1.0 - terms * unit))
+    row, pos, j, is_max = _crests(x, bound)
+    exact = np.einsum("ij,ij->i", parts[row], _grid(m, samples, np.float64, True)[j])
+    return row, pos, np.where(is_max, exact, -exact), is_max
 
 
 def _extremes(
