@@ -158,15 +158,20 @@ def _report(folder: Path, result: Any) -> Path:
     """The chosen design's TVC report (no PDF): its whole TVC where the search computed it
     here, else computed as the search's workers computed it (the study's analysis settings)."""
     from crankdyn.report.tvc import build_tvc_report
-    from crankdyn.report.write import write_report
+    from crankdyn.report.write import write_drawn
     from crankdyn.study.run.design import whole_tvc
 
     with console(stderr=True).status("TVC report of the chosen design"):
         tvc = result.tvc
         if tvc is None:
             tvc = whole_tvc(result.space, result.best.case)
-        report = build_tvc_report(tvc)
-        return write_report(report, folder / "tvc", force=True) / "index.html"
+        chosen = tvc
+        return (
+            write_drawn(
+                lambda built: build_tvc_report(chosen, built=built), folder / "tvc", force=True
+            )
+            / "index.html"
+        )
 
 
 def register(group: click.Group) -> None:

@@ -57,7 +57,7 @@ def tvc_command(
     an error; --no-fail gives 0 whatever the verdict."""
     from crankdyn.report.pdf import print_pdf
     from crankdyn.report.tvc import build_tvc_report
-    from crankdyn.report.write import write_report
+    from crankdyn.report.write import write_drawn
 
     output_dir = merge_alias(output_dir, out, "--output", "--out")
     stem = Path(model).stem if model.endswith(".toml") else model
@@ -68,7 +68,6 @@ def tvc_command(
     err = console(stderr=True)
     with err.status("Torsional vibration calculation"):
         result = session.tvc(passage=not no_passage)
-        report = build_tvc_report(result)
         pdf_note: list[str] = []
 
         def finish(folder: Path) -> None:
@@ -80,7 +79,10 @@ def tvc_command(
                 pdf_note.append(why)
 
         # the folder written: a numbered sibling when ``target`` appeared meanwhile
-        target = write_report(report, target, force=force, finish=finish)
+        # each section's figures drawn while the next are made
+        target = write_drawn(
+            lambda built: build_tvc_report(result, built=built), target, force=force, finish=finish
+        )
     # the verdict line (with the input warnings it stands on) is the summary's
     blocks: list = summary_blocks(result, f"{result.model_name}: torsional vibration calculation")
     blocks.extend(pdf_note)

@@ -9,6 +9,7 @@ verdict table (docs/tvc.md)."""
 from __future__ import annotations
 
 import datetime as _dt
+from collections.abc import Callable, Iterator
 from typing import TYPE_CHECKING, Any
 
 from crankdyn import __version__
@@ -322,11 +323,10 @@ def _model_sections(result: TvcResult) -> list[Section]:
     return sections
 
 
-def _condition_sections(result: TvcResult) -> list[Section]:
+def _condition_sections(result: TvcResult) -> Iterator[Section]:
     """Every condition: every component against its limit, and per component the forced
     response per order and synthesised against its limits (the rows and barred ranges are the
-    verdict table's)."""
-    out = []
+    verdict table's), one at a time."""
     for k, cond in enumerate(result.condition_results):
         section = Section.of(
             f"condition-{k + 1}",
@@ -357,14 +357,13 @@ def _condition_sections(result: TvcResult) -> list[Section]:
         section.tables, section.show_figures = [], False
         for figure in section.figures:  # the conditions' table of the summary shows them
             figure.headline = False
-        out.append(section)
-    return out
+        yield section
 
 
-def _event_sections(result: TvcResult) -> list[Section]:
+def _event_sections(result: TvcResult) -> Iterator[Section]:
     """Every transient event (``[[tvc.event]]``): its time history with the limits (plot); its
-    verdict rows are the verdict table's, its key figures the events' table's (each once)."""
-    out = []
+    verdict rows are the verdict table's, its key figures the events' table's (each once); one
+    at a time."""
     for k, event in enumerate(result.events):
         section = Section.of(
             f"event-{k + 1}",
@@ -386,8 +385,7 @@ def _event_sections(result: TvcResult) -> list[Section]:
         section.tables, section.show_figures = [], False
         for figure in section.figures:  # the verdict table and the events' table show them
             figure.headline = False
-        out.append(section)
-    return out
+        yield section
 
 
 def _passage_section(result: TvcResult) -> Section:
@@ -417,7 +415,18 @@ def _passage_section(result: TvcResult) -> Section:
     )
 
 
-def build_tvc_report(result: TvcResult) -> Report:
+def _sections(result: TvcResult) -> Iterator[Section]:
+    """The report's sections in order, each made when it is asked for."""
+    yield from _model_sections(result)
+    yield _verdict_section(result)
+    yield from _condition_sections(result)
+    yield from _event_sections(result)
+    yield _passage_section(result)
+
+
+def build_tvc_report(
+    result: TvcResult, *, built: Callable[[Section], object] | None = None
+) -> Report:
     """The report of a :class:`~crankdyn.tvc.TvcResult` (module docstring): a title page with
     the document control of the model's ``[project]``, a numbered contents list, the summary
     (the key figures and the conditions' table, once), the installation data, the
@@ -432,6 +441,9 @@ def build_tvc_report(result: TvcResult) -> Report:
     result : crankdyn.tvc.result.TvcResult
         The torsional vibration calculation (SI units; the report shows speeds in rpm,
         margins in percent and every value with its unit).
+    built : callable or None
+        ``built(section)`` is called as each section is made (the command line starts drawing
+        its figures while the next sections' are made: :class:`crankdyn.plots.render.Renderer`).
 
     Returns
     -------
@@ -441,13 +453,11 @@ def build_tvc_report(result: TvcResult) -> Report:
     """
     model: Any = result.model  # a TorsionModel
     created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    sections = [
-        *_model_sections(result),
-        _verdict_section(result),
-        *_condition_sections(result),
-        *_event_sections(result),
-        _passage_section(result),
-    ]
+    sections = []
+    for section in _sections(result):
+        sections.append(section)
+        if built is not None:
+            built(section)
     front = _front(result, created)
     project: Project = getattr(model, "project", None) or Project()
     left = " · ".join(x for x in ("TVC", project.document, project.project or model.name) if x)

@@ -13,8 +13,52 @@ from crankdyn.report.model import Report
 
 if TYPE_CHECKING:
     from crankdyn.plots.render import Renderer
+    from crankdyn.report.model import Section
 
-__all__ = ["write_report"]
+__all__ = ["write_drawn", "write_report"]
+
+
+def write_drawn(
+    make: Callable[[Callable[[Section], object]], Report],
+    out: str | Path,
+    *,
+    force: bool = False,
+    finish: Callable[[Path], object] | None = None,
+) -> Path:
+    """Make a report with each section's figures drawn (on the other cores) while the next
+    sections are made, and write it (:func:`write_report`).
+
+    Parameters
+    ----------
+    make : callable
+        ``make(built)`` returns the report, calling ``built(section)`` as each section is
+        made (e.g. ``lambda built: build_tvc_report(result, built=built)``).
+    out : str or pathlib.Path
+        The folder to write.
+    force : bool
+        Replace an existing folder (else it is an error).
+    finish : callable or None
+        ``finish(folder)`` is called on the complete temporary folder before it is moved into
+        place (e.g. to print the page to PDF).
+
+    Returns
+    -------
+    pathlib.Path
+        The folder written (:func:`write_report`).
+    """
+    from crankdyn.plots.render import Renderer, collector_paused
+
+    # no collector passes over the figures kept to the end
+    with collector_paused(), Renderer() as renderer:
+        renderer.busy()
+
+        def built(section: Section) -> None:
+            """Start drawing the figures of ``section``."""
+            for plot in section.plots:
+                renderer.submit(plot.figure)
+
+        report = make(built)
+        return write_report(report, out, force=force, finish=finish, renderer=renderer)
 
 
 def write_report(
