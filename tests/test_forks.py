@@ -7,6 +7,7 @@ from __future__ import annotations
 import os
 import time
 
+import numpy as np
 import pytest
 
 from crankdyn.forks import Beside, can_fork, room_for_a_copy
@@ -151,3 +152,71 @@ def test_when_the_tvc_forks(monkeypatch):
     assert free_cores(8, 1) == 3
     if os.path.exists("/proc/meminfo"):
         assert room_for_a_copy() is True
+
+
+@needs_fork
+def test_the_child_takes_conditions_from_the_end_once_its_events_are_done(monkeypatch):
+    """With its events done at once (none), the child beside the conditions claims them from
+    the end while this process claims them from the start (crankdyn.tvc.claims): every
+    condition computed once, on one side or the other, the result the same as all of them
+    computed here, to the bit (of the misfiring cylinders only the worst keeps its response,
+    wherever it was computed)."""
+    import crankdyn.tvc.analysis as analysis
+    import crankdyn.tvc.events as events
+    from crankdyn.io.catalogue import resolve_model_and_engine
+    from crankdyn.tvc.analysis import tvc
+    from crankdyn.tvc.claims import Claims
+
+    made = []
+
+    class Recorded(Claims):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append(self)
+
+    monkeypatch.setattr(analysis, "Claims", Recorded)
+    monkeypatch.setattr(events, "event_conditions", lambda *args: [])
+    model, engine = resolve_model_and_engine("genset-1500")
+    beside = tvc(model, engine, passage=False, beside=True)
+    start, end = made[0]._ends[:]
+    assert made[0].size >= 3 and start == end  # every condition claimed ...
+    assert end < made[0].size  # ... some by the child
+    here = tvc(model, engine, passage=False, beside=False)
+    assert made[1]._ends[:] == [made[1].size, made[1].size]  # all of them here
+    assert beside.to_json() == here.to_json()
+    for a, b in zip(beside.condition_results, here.condition_results, strict=True):
+        assert (a.response is None) == (b.response is None)
+        if a.response is not None:
+            assert np.array_equal(a.response.speed, b.response.speed)
+            assert np.array_equal(a.response.shaft_response, b.response.shaft_response)
+
+
+@needs_fork
+def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
+    """The child fails on the first condition it claims (:class:`crankdyn.forks.Beside` then
+    computes its function here): the condition it had claimed is computed here, once, and the
+    result is the one computed all here."""
+    import crankdyn.tvc.analysis as analysis
+    import crankdyn.tvc.events as events
+    from crankdyn.io.catalogue import resolve_model_and_engine
+    from crankdyn.tvc.analysis import tvc
+
+    parent = os.getpid()
+    judge = analysis._judge
+    judged = []
+
+    def failing(run, cond, respond):
+        if os.getpid() != parent:
+            raise RuntimeError("the child fails")
+        judged.append(cond.name)
+        return judge(run, cond, respond)
+
+    monkeypatch.setattr(analysis, "_judge", failing)
+    monkeypatch.setattr(events, "event_conditions", lambda *args: [])
+    model, engine = resolve_model_and_engine("genset-1500")
+    beside = tvc(model, engine, passage=False, beside=True)
+    there = list(judged)
+    judged.clear()
+    here = tvc(model, engine, passage=False, beside=False)
+    assert len(there) >= 3 and sorted(there) == sorted(judged)  # each once, none left out
+    assert beside.to_json() == here.to_json()

@@ -55,6 +55,7 @@ from crankdyn.forks import Beside, room_for_a_copy
 from crankdyn.summary import Verdict
 from crankdyn.threads import free_cores
 from crankdyn.tvc.checks import Check, mean_torque_function, model_checks
+from crankdyn.tvc.claims import Claims
 from crankdyn.tvc.conditions import Condition
 from crankdyn.tvc.conditions import conditions as conditions_of
 from crankdyn.tvc.evaluate import evaluate_condition
@@ -452,40 +453,67 @@ def _condition_result(
     return result, found, verdicts
 
 
+def _judge(run: _Run, cond: Condition, respond: ResponseOf) -> Evaluated:
+    """One condition's resolved forced response judged by its checks (normal firing also by
+    the installation's own rows)."""
+    grid = speed_grid(cond.low, cond.high, run.spec.step)
+    r: Any = respond(run.line(cond), cond, grid, run.orders_of(cond))
+    verdicts, barred = evaluate_condition(r, cond.name, run.checks_of(cond), run.spec, run.rated)
+    if cond.kind == "normal":
+        verdicts += installation_verdicts(
+            run.model, run.spec, run.rated, engine=run.engine, load=run.load
+        )
+    return cond, verdicts, barred, r
+
+
+def _worst_kept(judged: dict[int, Any], worst: int | None, i: int) -> int:
+    """Of the misfiring cylinders ``judged`` (index -> Evaluated), the one with the smallest
+    margin (the first in the conditions' order of equal ones) keeps its response: the others'
+    are let go as soon as they are judged, so that a calculation holds one misfire response,
+    not one per cylinder (issue 33). Returns the worst's index after adding ``i``."""
+
+    def margin(k: int) -> float:
+        return min((v.margin for v in judged[k][1]), default=math.inf)
+
+    if worst is None:
+        return i
+    if margin(i) < margin(worst) or (margin(i) == margin(worst) and i < worst):
+        worst, i = i, worst
+    judged[i] = (*judged[i][:3], None)
+    return worst
+
+
 def _run_conditions(
-    run: _Run, conds: Sequence[Condition], respond: ResponseOf, passage: bool
+    run: _Run,
+    conds: Sequence[Condition],
+    respond: ResponseOf,
+    passage: bool,
+    claims: Claims,
+    away: Callable[[], dict[int, Any]],
 ) -> tuple[list[Any], list[Any], list[Any]]:
-    """Every condition's resolved forced response judged by its checks (normal firing also by
-    the installation's own rows), grouped into condition results with their passages.
+    """Every condition judged (:func:`_judge`): those this process claims from the start
+    (``claims``: the child beside it takes them from the other end once its events are done,
+    ``away()`` returns its), grouped into condition results with their passages in the
+    conditions' order; of the misfiring cylinders only the worst keeps its response
+    (:func:`_worst_kept`).
 
     Returns
     -------
     condition_results, verdicts, passages : list
         The condition results, every verdict row and every passage, in condition order.
     """
-    model, spec, rated = run.model, run.spec, run.rated
-    results: list[Any] = []
-    worst: dict[str, tuple[float, int]] = {}  # per kind of a group: (smallest margin, row)
-    for cond in conds:
-        checks = run.checks_of(cond)
-        grid = speed_grid(cond.low, cond.high, spec.step)
-        r: Any = respond(run.line(cond), cond, grid, run.orders_of(cond))
-        verdicts, barred = evaluate_condition(r, cond.name, checks, spec, rated)
-        if cond.kind == "normal":
-            verdicts += installation_verdicts(model, spec, rated, engine=run.engine, load=run.load)
-        if cond.kind == "misfire":
-            # the group shows its worst cylinder's response only (_group_rows: the first of
-            # the smallest margin): the others' are let go as soon as they are judged, so the
-            # calculation holds one misfire response, not one per cylinder (issue 33)
-            margin = min((v.margin for v in verdicts), default=math.inf)
-            best = worst.get(cond.kind)
-            if best is None or margin < best[0]:
-                if best is not None:
-                    results[best[1]] = (*results[best[1]][:3], None)
-                worst[cond.kind] = (margin, len(results))
-            else:
-                r = None
-        results.append((cond, verdicts, barred, r))
+    judged: dict[int, Any] = {}
+    worst: int | None = None
+    while (i := claims.front()) is not None:
+        judged[i] = _judge(run, conds[i], respond)
+        if conds[i].kind == "misfire":
+            worst = _worst_kept(judged, worst, i)
+    theirs = away()  # the child's conditions (of its cylinders only its worst's response)
+    for i in sorted(theirs):
+        judged[i] = theirs[i]
+        if conds[i].kind == "misfire" and judged[i][3] is not None:
+            worst = _worst_kept(judged, worst, i)
+    results = [judged[i] for i in range(len(conds))]
     condition_results: list[Any] = []
     verdicts_all: list[Any] = []
     passages_all: list[Any] = []
@@ -497,28 +525,47 @@ def _run_conditions(
     return condition_results, verdicts_all, passages_all
 
 
-def _events_beside(
-    run: _Run, conds: Sequence[Condition], events: bool, beside: bool | None
-) -> Beside[list[EventCondition]]:
-    """The settings' transient events (:func:`crankdyn.tvc.events.event_conditions`), run in a
-    child beside the conditions where ``beside`` says so (None: where two processors are free);
-    none when ``events`` is false or the settings have none. The events need only the model,
-    the normal-firing excitation, the orders and the installation's checks (made here, before
-    the fork, and kept for the conditions)."""
-    spec = run.spec
-    if not (events and spec.events):
-        return Beside(list, fork=False)
+def _beside(
+    run: _Run,
+    conds: Sequence[Condition],
+    respond: ResponseOf,
+    events: bool,
+    beside: bool | None,
+) -> tuple[Claims, Beside[tuple[list[EventCondition], dict[int, Any]]]]:
+    """The work of a child beside the conditions, where ``beside`` says so (None: where two
+    processors are free and the memory holds a copy): the settings' transient events
+    (:func:`crankdyn.tvc.events.event_conditions`; none when ``events`` is false or the
+    settings have none), then the conditions it claims from the end while this process claims
+    them from the start (:class:`crankdyn.tvc.claims.Claims`), so that both end together
+    whatever the events cost; of its misfiring cylinders only the worst's response comes back.
+    Without events there is no child (the conditions are all this process's). Every
+    condition's checks are made here, before the fork, in the conditions' order (the notes of
+    normal firing first)."""
     from crankdyn.tvc.events import event_conditions
 
+    spec = run.spec
+    for cond in conds:
+        run.checks_of(cond)
+    claims = Claims(range(len(conds)))
+    if not (events and spec.events):
+        return claims, Beside(lambda: ([], {}), fork=False)
     checks = run.checks_of(conds[0])
     base = conds[0].excitation
     if beside is None:
         beside = free_cores() >= 2 and room_for_a_copy()
 
-    def compute() -> list[EventCondition]:
-        return event_conditions(run.model, spec, run.rated, base, run.orders, checks)
+    def compute() -> tuple[list[EventCondition], dict[int, Any]]:
+        found = event_conditions(run.model, spec, run.rated, base, run.orders, checks)
+        mine: dict[int, Any] = {}
+        worst: int | None = None
+        # claimed here or, where a child failed part way, by that child: computed here
+        while (i := claims.back()) is not None or (i := claims.unjudged(mine)) is not None:
+            mine[i] = _judge(run, conds[i], respond)
+            if conds[i].kind == "misfire":
+                worst = _worst_kept(mine, worst, i)
+        return found, mine
 
-    return Beside(compute, fork=beside)
+    return claims, Beside(compute, fork=beside)
 
 
 def _campbell(
@@ -660,11 +707,19 @@ def tvc(
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
-    with _events_beside(run, conds, events, beside) as pending:
+    respond = response_of or _response
+    claims, pending = _beside(run, conds, respond, events, beside)
+    outcome: list[tuple[list[EventCondition], dict[int, Any]]] = []
+
+    def away() -> dict[int, Any]:
+        outcome.append(pending.result())  # asked for once
+        return outcome[0][1]
+
+    with pending:
         condition_results, verdicts_all, passages_all = _run_conditions(
-            run, conds, response_of or _response, passage
+            run, conds, respond, passage, claims, away
         )
-        found_events = pending.result()
+    found_events = outcome[0][0]
     verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)

@@ -1,0 +1,72 @@
+"""Which of a calculation's conditions each of two processes computes (core).
+
+The TVC's conditions (one resolved forced response each; six or so misfiring cylinders among
+them) are shared between the process that runs them and the child beside it that runs the
+transient events (:func:`crankdyn.tvc.analysis.tvc`): this process takes them from the start
+of the list, the child from its end once its events are done, each claiming one at a time, so
+that both end together whatever the events cost. The two ends are kept in memory shared
+across the fork (:class:`multiprocessing.Array`, its lock a semaphore); each condition is
+claimed by exactly one side. Where there is no child the first side claims every one; where a
+child failed part way (:class:`crankdyn.forks.Beside` then computes its function here),
+:meth:`Claims.unjudged` gives the conditions it had claimed, so that every one is computed
+once in the results.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+from collections.abc import Container, Iterable
+
+__all__ = ["Claims"]
+
+
+class Claims:
+    """A list of indices claimed one at a time from either end (module docstring).
+
+    Parameters
+    ----------
+    indices : iterable of int
+        What is to be claimed, in order.
+
+    Examples
+    --------
+    >>> claims = Claims([3, 4, 5, 6])
+    >>> claims.front(), claims.back(), claims.front(), claims.back(), claims.front()
+    (3, 6, 4, 5, None)
+    >>> claims.unjudged({6: "done"})
+    5
+    """
+
+    def __init__(self, indices: Iterable[int]) -> None:
+        self.indices = tuple(int(i) for i in indices)
+        # the next index from the start, one past the next from the end
+        self._ends = multiprocessing.Array("q", [0, len(self.indices)])
+
+    @property
+    def size(self) -> int:
+        """How many indices there are."""
+        return len(self.indices)
+
+    def front(self) -> int | None:
+        """The next index from the start, or None when every one is claimed."""
+        with self._ends.get_lock():
+            start, end = self._ends[0], self._ends[1]
+            if start >= end:
+                return None
+            self._ends[0] = start + 1
+            return self.indices[start]
+
+    def back(self) -> int | None:
+        """The next index from the end, or None when every one is claimed."""
+        with self._ends.get_lock():
+            start, end = self._ends[0], self._ends[1]
+            if start >= end:
+                return None
+            self._ends[1] = end - 1
+            return self.indices[end - 1]
+
+    def unjudged(self, judged: Container[int]) -> int | None:
+        """The first index claimed from the end that is not in ``judged``, or None."""
+        with self._ends.get_lock():
+            end = self._ends[1]
+        return next((i for i in reversed(self.indices[end:]) if i not in judged), None)
