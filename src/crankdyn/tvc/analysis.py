@@ -568,6 +568,28 @@ def _beside(
     return claims, Beside(compute, fork=beside)
 
 
+def _calculated(
+    run: _Run,
+    conds: Sequence[Condition],
+    respond: ResponseOf,
+    passage: bool,
+    events: bool,
+    beside: bool | None,
+) -> tuple[list[Any], list[Any], list[Any], list[EventCondition]]:
+    """The conditions (:func:`_run_conditions`) and the events with the child beside them
+    (:func:`_beside`): condition results, verdict rows, passages, events."""
+    claims, pending = _beside(run, conds, respond, events, beside)
+    outcome: list[tuple[list[EventCondition], dict[int, Any]]] = []
+
+    def away() -> dict[int, Any]:
+        outcome.append(pending.result())  # asked for once
+        return outcome[0][1]
+
+    with pending:
+        found = _run_conditions(run, conds, respond, passage, claims, away)
+    return (*found, outcome[0][0])
+
+
 def _campbell(
     model: TorsionModel,
     orders: NDArray[np.float64],
@@ -707,19 +729,9 @@ def tvc(
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
-    respond = response_of or _response
-    claims, pending = _beside(run, conds, respond, events, beside)
-    outcome: list[tuple[list[EventCondition], dict[int, Any]]] = []
-
-    def away() -> dict[int, Any]:
-        outcome.append(pending.result())  # asked for once
-        return outcome[0][1]
-
-    with pending:
-        condition_results, verdicts_all, passages_all = _run_conditions(
-            run, conds, respond, passage, claims, away
-        )
-    found_events = outcome[0][0]
+    condition_results, verdicts_all, passages_all, found_events = _calculated(
+        run, conds, response_of or _response, passage, events, beside
+    )
     verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)

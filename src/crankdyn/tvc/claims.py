@@ -44,11 +44,17 @@ class Claims:
 
     @property
     def size(self) -> int:
-        """How many indices there are."""
+        """How many indices there are (claimed or not)."""
         return len(self.indices)
 
     def front(self) -> int | None:
-        """The next index from the start, or None when every one is claimed."""
+        """Claim the next index from the start.
+
+        Returns
+        -------
+        int or None
+            The index, or None when every one is claimed.
+        """
         with self._ends.get_lock():
             start, end = self._ends[0], self._ends[1]
             if start >= end:
@@ -57,7 +63,13 @@ class Claims:
             return self.indices[start]
 
     def back(self) -> int | None:
-        """The next index from the end, or None when every one is claimed."""
+        """Claim the next index from the end.
+
+        Returns
+        -------
+        int or None
+            The index, or None when every one is claimed.
+        """
         with self._ends.get_lock():
             start, end = self._ends[0], self._ends[1]
             if start >= end:
@@ -66,7 +78,19 @@ class Claims:
             return self.indices[end - 1]
 
     def unjudged(self, judged: Container[int]) -> int | None:
-        """The first index claimed from the end that is not in ``judged``, or None."""
+        """The first index claimed from the end that is not in ``judged`` (claimed by a child
+        that failed before its results came back).
+
+        Parameters
+        ----------
+        judged : container of int
+            The indices whose results are in hand.
+
+        Returns
+        -------
+        int or None
+            The index, or None when every index claimed from the end is in ``judged``.
+        """
         with self._ends.get_lock():
             end = self._ends[1]
         return next((i for i in reversed(self.indices[end:]) if i not in judged), None)
