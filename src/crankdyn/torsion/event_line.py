@@ -20,10 +20,10 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError, did_you_mean
 from crankdyn.torsion.events import SpeedChange
@@ -32,9 +32,19 @@ from crankdyn.torsion.sources import EngineSource, HarmonicSource, LoadLaw
 
 if TYPE_CHECKING:
     from crankdyn.torsion.dampers import Damper
+    from crankdyn.torsion.excitation import Excitation
     from crankdyn.torsion.model import TorsionModel
 
-__all__ = ["GearMesh", "Line", "Profile", "constant_profile", "line_of", "speed_profile"]
+__all__ = [
+    "GearMesh",
+    "Harmonics",
+    "Line",
+    "Profile",
+    "constant_profile",
+    "harmonics_of",
+    "line_of",
+    "speed_profile",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -629,3 +639,107 @@ def speed_profile(line: Line, event: SpeedChange, duration: float | None) -> Pro
         loads=loads,
         breakpoints=tuple(b for b in event.breakpoints() if b > 0.0),
     )
+
+
+@dataclass(eq=False)
+class Harmonics:
+    """Re sum_q F_q(Omega) e^{i q phi}: the harmonic torques (N m) on a line's degrees of
+    freedom at mean speeds and crank angles, F interpolated linearly over the speed grid; only
+    the degrees of freedom a torque acts on (the cylinders' and the sources' masses: a few of
+    a long line's) are computed, the others are 0.
+
+    Parameters
+    ----------
+    grid : numpy.ndarray
+        Mean speeds (rad/s), shape (G,).
+    forcing : numpy.ndarray
+        Complex harmonic torques (N m), shape (G, Q, n): per speed, order and degree of freedom.
+    orders : numpy.ndarray
+        The orders q (multiples of the crankshaft speed), shape (Q,).
+    """
+
+    grid: NDArray[np.float64]
+    forcing: NDArray[np.complex128]  # (G, Q, n)
+    orders: NDArray[np.float64]
+    excited: NDArray[np.intp] = field(init=False)
+    compact: NDArray[np.complex128] = field(init=False)  # (G, Q, excited)
+
+    def __post_init__(self) -> None:
+        self.excited = np.flatnonzero(np.any(self.forcing != 0.0, axis=(0, 1)))
+        self.compact = np.ascontiguousarray(self.forcing[:, :, self.excited])
+
+    def __call__(self, speed: NDArray[np.float64], angle: NDArray[np.float64]) -> NDArray[Any]:
+        """The torques (N m), shape (L, n), at mean speeds (rad/s) and crank angles (rad), (L,).
+
+        Parameters
+        ----------
+        speed : numpy.ndarray
+            Mean speeds (rad/s), shape (L,).
+        angle : numpy.ndarray
+            Crank angles (rad), shape (L,).
+
+        Returns
+        -------
+        numpy.ndarray
+            The harmonic torques on every degree of freedom (N m), shape (L, n).
+        """
+        phase = np.exp(1j * angle[:, None] * self.orders[None, :])  # (L, Q)
+        out = np.zeros((speed.size, self.forcing.shape[2]))
+        if self.grid.size == 1:
+            out[:, self.excited] = (phase @ self.compact[0]).real
+            return out
+        pos = np.interp(speed, self.grid, np.arange(self.grid.size, dtype=float))
+        cell = np.minimum(pos.astype(int), self.grid.size - 2)
+        frac = (pos - cell)[:, None]
+        part = np.empty((speed.size, self.excited.size))
+        for c in np.unique(cell):  # a handful of grid cells per block
+            sel = cell == c
+            p = phase[sel]
+            f0, f1 = self.compact[c], self.compact[c + 1]
+            part[sel] = ((p * (1.0 - frac[sel])) @ f0 + (p * frac[sel]) @ f1).real
+        out[:, self.excited] = part
+        return out
+
+
+def harmonics_of(
+    model: TorsionModel,
+    line: Line,
+    excitation: Excitation,
+    orders: ArrayLike,
+    profile: Profile,
+) -> Harmonics:
+    """The harmonic torques of the cylinders and sources over the profile's speeds (201 speeds
+    across its range, or its one speed).
+
+    Parameters
+    ----------
+    model : crankdyn.torsion.model.TorsionModel
+        The model.
+    line : Line
+        Its line (:func:`line_of`).
+    excitation : crankdyn.torsion.excitation.Excitation
+        The cylinders' excitation.
+    orders : array_like
+        The orders (multiples of the crankshaft speed).
+    profile : Profile
+        The event's mean-speed history.
+
+    Returns
+    -------
+    Harmonics
+        The torques, callable at mean speeds and crank angles.
+
+    Raises
+    ------
+    crankdyn.errors.InputError
+        The profile's speeds are not above 0, or an order is not one of the model's.
+    """
+    from crankdyn.torsion.sources import assemble_forcing, check_model_orders
+
+    orders = check_model_orders(model, excitation, orders)
+    low, high = max(profile.low, 1e-3 * max(profile.high, 1e-9)), profile.high
+    if not high > 0.0:
+        raise InputError("the harmonic torques need a speed above 0", key="speed")
+    grid = np.array([high]) if high - low <= 1e-12 * high else np.linspace(low, high, 201)
+    forcing, _notes = assemble_forcing(model, line.system, excitation, grid, orders)  # type: ignore[arg-type]
+    return Harmonics(grid, forcing, np.asarray(orders, dtype=float))

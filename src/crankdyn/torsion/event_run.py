@@ -63,7 +63,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from crankdyn.errors import InputError
 from crankdyn.roots import brentq
-from crankdyn.torsion.event_line import Line, Profile, constant_profile, line_of, speed_profile
+from crankdyn.torsion.event_line import (
+    Harmonics,
+    Line,
+    Profile,
+    constant_profile,
+    harmonics_of,
+    line_of,
+    speed_profile,
+)
 from crankdyn.torsion.events import ClutchEngagement, SpeedChange
 from crankdyn.torsion.integrator import (
     ModalState,
@@ -169,55 +177,11 @@ def _series(
     return np.concatenate([total, total - _quasi_static(line, mode, t, mean(t))], axis=1)
 
 
-@dataclass(eq=False)
-class _Harmonics:
-    """Re sum_q F_q(Omega) e^{i q phi}: the harmonic torques (N m) at mean speeds and crank
-    angles, F interpolated linearly over the speed grid."""
-
-    grid: NDArray[np.float64]
-    forcing: NDArray[np.complex128]  # (G, Q, n)
-    orders: NDArray[np.float64]
-
-    def __call__(self, speed: NDArray[np.float64], angle: NDArray[np.float64]) -> NDArray[Any]:
-        phase = np.exp(1j * angle[:, None] * self.orders[None, :])  # (L, Q)
-        if self.grid.size == 1:
-            return (phase @ self.forcing[0]).real
-        pos = np.interp(speed, self.grid, np.arange(self.grid.size, dtype=float))
-        cell = np.minimum(pos.astype(int), self.grid.size - 2)
-        frac = (pos - cell)[:, None]
-        out = np.empty((speed.size, self.forcing.shape[2]))
-        for c in np.unique(cell):  # a handful of grid cells per block
-            sel = cell == c
-            p = phase[sel]
-            f0, f1 = self.forcing[c], self.forcing[c + 1]
-            out[sel] = ((p * (1.0 - frac[sel])) @ f0 + (p * frac[sel]) @ f1).real
-        return out
-
-
-def _harmonics(
-    model: TorsionModel,
-    line: Line,
-    excitation: Excitation,
-    orders: ArrayLike,
-    profile: Profile,
-) -> _Harmonics:
-    """The harmonic torques of the cylinders and sources over the profile's speeds."""
-    from crankdyn.torsion.sources import assemble_forcing, check_model_orders
-
-    orders = check_model_orders(model, excitation, orders)
-    low, high = max(profile.low, 1e-3 * max(profile.high, 1e-9)), profile.high
-    if not high > 0.0:
-        raise InputError("the harmonic torques need a speed above 0", key="speed")
-    grid = np.array([high]) if high - low <= 1e-12 * high else np.linspace(low, high, 201)
-    forcing, _notes = assemble_forcing(model, line.system, excitation, grid, orders)  # type: ignore[arg-type]
-    return _Harmonics(grid, forcing, np.asarray(orders, dtype=float))
-
-
 def _forcing(
     line: Line,
     profile: Profile,
     events: Sequence[tuple[int, TorqueEvent]],
-    harmonics: _Harmonics | None,
+    harmonics: Harmonics | None,
     *,
     mean: bool,
     engine: Forcing | None = None,
@@ -920,7 +884,7 @@ def _initial(
     mode: _Mode,
     static: NDArray[np.float64],
     body_speed: Callable[[NDArray[np.int_]], float],
-    harmonics: _Harmonics | None,
+    harmonics: Harmonics | None,
     profile: Profile,
 ) -> tuple[NDArray[np.float64], NDArray[np.float64], bool]:
     """(x0, v0, absolute): the static twist under the mean torques, the steady state of the
@@ -1107,7 +1071,7 @@ def event_response(
         model, line, event, w0, profile, absolute_damping, max_frequency if truncate else None
     )
     harmonics = (
-        _harmonics(model, line, excitation, orders if orders is not None else [], profile)
+        harmonics_of(model, line, excitation, orders if orders is not None else [], profile)
         if excitation is not None
         else None
     )
