@@ -468,6 +468,7 @@ class _Recorder:
             self.vibratory.append(torque[keep][:, torque.shape[1] // 2 :])
             total = float(np.sum(line.inertia))
             self.mean.append(v[keep] @ line.inertia / total + frame)
+        made: dict[int, _Window | None] = {}  # one window per sample, shared by its peaks
         for sign, attr in ((1.0, "high"), (-1.0, "low")):
             values = sign * torque
             k = np.argmax(values, axis=0)
@@ -481,7 +482,8 @@ class _Recorder:
             setattr(self, attr, new)
             setattr(self, attr + "_at", at)
             for e in np.flatnonzero(better):
-                w = window(int(k[e]))
+                j = int(k[e])
+                w = made[j] if j in made else made.setdefault(j, window(j))
                 key = (int(e), 0 if sign > 0 else 1)
                 if w is None:
                     self.windows.pop(key, None)
