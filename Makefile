@@ -43,6 +43,9 @@ test: | $(BIN)/python
 	@# subprocesses, the docs build, the notebooks' kernels, the pools' workers) then loads it
 	@# instead of compiling the sources again (none is written where PYTHONDONTWRITEBYTECODE is set)
 	@$(BIN)/python -m compileall -q -j 0 src
+	@# and the test modules' assertion-rewritten bytecode, which pytest reads but (where
+	@# PYTHONDONTWRITEBYTECODE is set) does not write: both workers would rewrite them all
+	@$(BIN)/python scripts/rewrite-tests.py tests
 	$(BIN)/ruff check $(LINTED)
 	$(BIN)/ruff format --check $(LINTED)
 	@bash scripts/types-and-tests.sh $(BIN)
