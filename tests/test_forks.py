@@ -154,6 +154,23 @@ def test_when_the_tvc_forks(monkeypatch):
         assert room_for_a_copy() is True
 
 
+def _once_the_child_has_claimed(monkeypatch, analysis, made):
+    """This process judges its first condition only once the child has claimed one (however
+    loaded the machine: the child may start late); the child's judging is left as it is."""
+    parent = os.getpid()
+    judge = analysis._judge
+
+    def waiting(run, cond, respond):
+        if os.getpid() == parent:
+            deadline = time.monotonic() + 120.0
+            while made[-1]._ends[1] == made[-1].size and time.monotonic() < deadline:
+                time.sleep(0.005)
+        return judge(run, cond, respond)
+
+    monkeypatch.setattr(analysis, "_judge", waiting)
+    return judge
+
+
 @needs_fork
 def test_the_child_takes_conditions_from_the_end_once_its_events_are_done(monkeypatch):
     """With its events done at once (none), the child beside the conditions claims them from
@@ -176,8 +193,10 @@ def test_the_child_takes_conditions_from_the_end_once_its_events_are_done(monkey
 
     monkeypatch.setattr(analysis, "Claims", Recorded)
     monkeypatch.setattr(events, "event_conditions", lambda *args: [])
+    judge = _once_the_child_has_claimed(monkeypatch, analysis, made)
     model, engine = resolve_model_and_engine("genset-1500")
     beside = tvc(model, engine, passage=False, beside=True)
+    monkeypatch.setattr(analysis, "_judge", judge)
     start, end = made[0]._ends[:]
     assert made[0].size >= 3 and start == end  # every condition claimed ...
     assert end < made[0].size  # ... some by the child
@@ -200,6 +219,14 @@ def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
     import crankdyn.tvc.events as events
     from crankdyn.io.catalogue import resolve_model_and_engine
     from crankdyn.tvc.analysis import tvc
+    from crankdyn.tvc.claims import Claims
+
+    made = []
+
+    class Recorded(Claims):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append(self)
 
     parent = os.getpid()
     judge = analysis._judge
@@ -211,10 +238,14 @@ def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
         judged.append(cond.name)
         return judge(run, cond, respond)
 
+    monkeypatch.setattr(analysis, "Claims", Recorded)
     monkeypatch.setattr(analysis, "_judge", failing)
     monkeypatch.setattr(events, "event_conditions", lambda *args: [])
+    _once_the_child_has_claimed(monkeypatch, analysis, made)
     model, engine = resolve_model_and_engine("genset-1500")
     beside = tvc(model, engine, passage=False, beside=True)
+    assert made[0]._ends[1] < made[0].size  # the child had claimed one
+    monkeypatch.setattr(analysis, "_judge", failing)
     there = list(judged)
     judged.clear()
     here = tvc(model, engine, passage=False, beside=False)
