@@ -251,3 +251,36 @@ def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
     here = tvc(model, engine, passage=False, beside=False)
     assert len(there) >= 3 and sorted(there) == sorted(judged)  # each once, none left out
     assert beside.to_json() == here.to_json()
+
+
+def test_claims_without_shared_memory_stay_in_this_process(monkeypatch):
+    """Where shared memory or semaphores are missing (some sandboxes), the claims are this
+    process's alone and the TVC starts no child (it would compute every condition again): the
+    same calculation, all here."""
+    import multiprocessing
+
+    import crankdyn.tvc.analysis as analysis
+    import crankdyn.tvc.claims as claims_module
+    from crankdyn.io.catalogue import resolve_model_and_engine
+    from crankdyn.tvc.analysis import tvc
+
+    def missing(*args, **kwargs):
+        raise OSError(38, "Function not implemented")
+
+    monkeypatch.setattr(claims_module.multiprocessing, "Array", missing)
+    local = claims_module.Claims([1, 2, 3])
+    assert not local.shared
+    assert (local.front(), local.back(), local.front(), local.back()) == (1, 3, 2, None)
+    made = []
+
+    class Recorded(Beside):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append(self)
+
+    monkeypatch.setattr(analysis, "Beside", Recorded)
+    model, engine = resolve_model_and_engine("genset-1500")
+    alone = tvc(model, engine, passage=False, beside=True)
+    assert [w.from_child for w in made] == [False]
+    monkeypatch.setattr(claims_module.multiprocessing, "Array", multiprocessing.Array)
+    assert alone.to_json() == tvc(model, engine, passage=False, beside=False).to_json()

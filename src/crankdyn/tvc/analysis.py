@@ -553,6 +553,7 @@ def _beside(
     base = conds[0].excitation
     if beside is None:
         beside = free_cores() >= 2 and room_for_a_copy()
+    beside = beside and claims.shared  # a child shares the claims, or there is none
 
     def compute() -> tuple[list[EventCondition], dict[int, Any]]:
         found = event_conditions(run.model, spec, run.rated, base, run.orders, checks)

@@ -14,10 +14,19 @@ once in the results.
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
 from collections.abc import Container, Iterable
+from typing import Any
 
 __all__ = ["Claims"]
+
+
+class _Local(list):
+    """The two ends in this process only, with the interface of a shared array."""
+
+    def get_lock(self) -> contextlib.nullcontext[None]:
+        return contextlib.nullcontext()
 
 
 class Claims:
@@ -40,7 +49,16 @@ class Claims:
     def __init__(self, indices: Iterable[int]) -> None:
         self.indices = tuple(int(i) for i in indices)
         # the next index from the start, one past the next from the end
-        self._ends = multiprocessing.Array("q", [0, len(self.indices)])
+        ends = [0, len(self.indices)]
+        try:
+            self._ends: Any = multiprocessing.Array("q", ends)
+            self.shared = True
+        except OSError:  # no shared memory or semaphores here (some sandboxes): this process's
+            self._ends, self.shared = _Local(ends), False
+
+    shared: bool
+    """Whether the claims are shared with a child forked from this process (else a child must
+    not be started: it would compute every condition again)."""
 
     @property
     def size(self) -> int:
