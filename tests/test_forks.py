@@ -112,6 +112,17 @@ def test_an_exception_here_stops_the_child():
         os.waitpid(pid, os.WNOHANG)
 
 
+def _recorded(cls, made):
+    """``cls`` with every instance made appended to ``made``."""
+
+    class Recorded(cls):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            made.append(self)
+
+    return Recorded
+
+
 @needs_fork
 @pytest.mark.slow
 def test_tvc_events_beside_the_conditions_give_the_same_calculation(monkeypatch):
@@ -123,13 +134,7 @@ def test_tvc_events_beside_the_conditions_give_the_same_calculation(monkeypatch)
     from crankdyn.tvc.analysis import tvc
 
     made = []
-
-    class Recorded(Beside):
-        def __init__(self, *args, **kwargs):
-            super().__init__(*args, **kwargs)
-            made.append(self)
-
-    monkeypatch.setattr(analysis, "Beside", Recorded)
+    monkeypatch.setattr(analysis, "Beside", _recorded(Beside, made))
     model, engine = resolve_model_and_engine("genset-1500")
     beside = tvc(model, engine, passage=False, beside=True)
     assert [w.from_child for w in made] == [True]  # the events came from the child
@@ -186,12 +191,7 @@ def test_the_child_takes_conditions_from_the_end_once_its_events_are_done(monkey
 
     made = []
 
-    class Recorded(Claims):
-        def __init__(self, *args, **kwargs):
-            super().__init__(*args, **kwargs)
-            made.append(self)
-
-    monkeypatch.setattr(analysis, "Claims", Recorded)
+    monkeypatch.setattr(analysis, "Claims", _recorded(Claims, made))
     monkeypatch.setattr(events, "event_conditions", lambda *args: [])
     judge = _once_the_child_has_claimed(monkeypatch, analysis, made)
     model, engine = resolve_model_and_engine("genset-1500")
@@ -223,11 +223,6 @@ def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
 
     made = []
 
-    class Recorded(Claims):
-        def __init__(self, *args, **kwargs):
-            super().__init__(*args, **kwargs)
-            made.append(self)
-
     parent = os.getpid()
     judge = analysis._judge
     judged = []
@@ -238,7 +233,7 @@ def test_a_condition_the_failed_child_had_claimed_is_computed_here(monkeypatch):
         judged.append(cond.name)
         return judge(run, cond, respond)
 
-    monkeypatch.setattr(analysis, "Claims", Recorded)
+    monkeypatch.setattr(analysis, "Claims", _recorded(Claims, made))
     monkeypatch.setattr(analysis, "_judge", failing)
     monkeypatch.setattr(events, "event_conditions", lambda *args: [])
     _once_the_child_has_claimed(monkeypatch, analysis, made)
@@ -272,13 +267,7 @@ def test_claims_without_shared_memory_stay_in_this_process(monkeypatch):
     assert not local.shared
     assert (local.front(), local.back(), local.front(), local.back()) == (1, 3, 2, None)
     made = []
-
-    class Recorded(Beside):
-        def __init__(self, *args, **kwargs):
-            super().__init__(*args, **kwargs)
-            made.append(self)
-
-    monkeypatch.setattr(analysis, "Beside", Recorded)
+    monkeypatch.setattr(analysis, "Beside", _recorded(Beside, made))
     model, engine = resolve_model_and_engine("genset-1500")
     alone = tvc(model, engine, passage=False, beside=True)
     assert [w.from_child for w in made] == [False]

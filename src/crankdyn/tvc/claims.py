@@ -73,12 +73,7 @@ class Claims:
         int or None
             The index, or None when every one is claimed.
         """
-        with self._ends.get_lock():
-            start, end = self._ends[0], self._ends[1]
-            if start >= end:
-                return None
-            self._ends[0] = start + 1
-            return self.indices[start]
+        return self._claim(0)
 
     def back(self) -> int | None:
         """Claim the next index from the end.
@@ -88,12 +83,18 @@ class Claims:
         int or None
             The index, or None when every one is claimed.
         """
+        return self._claim(1)
+
+    def _claim(self, side: int) -> int | None:
+        """Move end ``side`` (0: the start, 1: the end) one index inwards, and return the index
+        it passed; None when the ends have met."""
         with self._ends.get_lock():
             start, end = self._ends[0], self._ends[1]
             if start >= end:
                 return None
-            self._ends[1] = end - 1
-            return self.indices[end - 1]
+            at = start if side == 0 else end - 1
+            self._ends[side] = start + 1 if side == 0 else end - 1
+            return self.indices[at]
 
     def unjudged(self, judged: Container[int]) -> int | None:
         """The first index claimed from the end that is not in ``judged`` (claimed by a child
