@@ -165,13 +165,10 @@ def _report(folder: Path, result: Any) -> Path:
         tvc = result.tvc
         if tvc is None:
             tvc = whole_tvc(result.space, result.best.case)
-        chosen = tvc
-        return (
-            write_drawn(
-                lambda built: build_tvc_report(chosen, built=built), folder / "tvc", force=True
-            )
-            / "index.html"
+        written = write_drawn(
+            lambda built: build_tvc_report(tvc, built=built), folder / "tvc", force=True
         )
+        return written / "index.html"
 
 
 def register(group: click.Group) -> None:

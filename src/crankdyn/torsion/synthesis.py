@@ -106,28 +106,25 @@ def half_range(
     return out_max.reshape(lead), out_min.reshape(lead)
 
 
-def _grid(
-    m: NDArray[np.int_], samples: int, dtype: type = np.float64, transposed: bool = False
-) -> NDArray[np.floating]:
-    """(2K, samples) the basis [cos(m_k phi_j); -sin(m_k phi_j)] of the grid phi_j = 2 pi j /
-    samples: x(phi_j) = [Re c, Im c] @ basis, the inverse FFT's values as one matrix product
-    (K harmonics of a few dozen: cheaper than a transform of every row); in ``dtype`` (the
-    double-precision values rounded); ``transposed``: (samples, 2K), C-contiguous."""
-    key = (m.tobytes(), samples, np.dtype(dtype).char, transposed)
+def _grid(m: NDArray[np.int_], samples: int, dtype: type = np.float64) -> NDArray[np.floating]:
+    """(samples, 2K) the basis [cos(m_k phi_j), -sin(m_k phi_j)] of the grid phi_j = 2 pi j /
+    samples, C-contiguous: x(phi_j) = basis @ [Re c, Im c], the inverse FFT's values as one
+    matrix product (K harmonics of a few dozen: cheaper than a transform of every row); in
+    ``dtype`` (the double-precision values rounded)."""
+    key = (m.tobytes(), samples, np.dtype(dtype).char)
     found = _BASES.get(key)
     if found is None:
         phi = (2.0 * math.pi / samples) * np.arange(samples)
-        angle = np.outer(m.astype(float), phi)
-        found = np.concatenate([np.cos(angle), -np.sin(angle)]).astype(dtype)
-        if transposed:
-            found = np.ascontiguousarray(found.T)
+        angle = np.outer(phi, m.astype(float))
+        found = np.ascontiguousarray(np.concatenate([np.cos(angle), -np.sin(angle)], axis=1))
+        found = found.astype(dtype)
         if len(_BASES) >= 8:
             _BASES.clear()
         _BASES[key] = found
     return found
 
 
-_BASES: dict[tuple[bytes, int, str, bool], NDArray[np.floating]] = {}
+_BASES: dict[tuple[bytes, int, str], NDArray[np.floating]] = {}
 
 
 def _crests(
@@ -207,7 +204,7 @@ def _block_crests(
     scale = np.ldexp(1.0, -exponent)  # a power of two: size * scale in [1/2, 1)
     # (samples, R): a column per row, so that the rows' extremes are elementwise maxima of
     # contiguous rows (twice as fast as maxima along the last axis)
-    x = _grid(m, samples, np.float32, True) @ (parts * scale[:, None]).astype(np.float32).T
+    x = _grid(m, samples, np.float32) @ (parts * scale[:, None]).astype(np.float32).T
     mf = m.astype(float)
     step = 2.0 * math.pi / samples
     bound = 0.5 * (0.5 * step) ** 2 * (np.abs(block) @ (mf * mf)) * scale
@@ -220,7 +217,7 @@ def _block_crests(
     unit = float(np.finfo(np.float32).eps) / 2.0
     bound = bound + 2.0 * (terms * unit / (1.0 - terms * unit))
     row, pos, j, is_max = _crests(x, bound)
-    exact = np.einsum("ij,ij->i", parts[row], _grid(m, samples, np.float64, True)[j])
+    exact = np.einsum("ij,ij->i", parts[row], _grid(m, samples)[j])
     return row, pos, np.where(is_max, exact, -exact), is_max
 
 
