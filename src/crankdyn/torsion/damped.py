@@ -68,8 +68,13 @@ magnitude, which in a free chain with absolute damping could pair an elastic mod
 rigid-body mode's eigenvalue: wrong, e.g. against Rayleigh damping's closed form, tested; the
 dense solution, of branched models and the fallback, now also gives every mode its eigenvalue
 by the MAC's assignment over the oscillating and the real eigenvalues, and a mode given a real
-one its second by the assignment among the real ones left.) With the loss factors iterated each
-overdamped mode's partner is the other root refined at its own omega_h.
+one its second by the assignment among the real ones left.) The pool is looked for only where
+the direct way fails: each partner refined from its own other root and its own shape, kept
+where every one converged to a real, non-zero eigenvalue, no two alike and none a mode's own,
+and the MAC's assignment among them gives each its own (the spectrum's real eigenvalues are
+then the modes' own and these, the set the pool's assignment chooses from; a 400-mass chain
+with Rayleigh damping overdamped at both ends: 5 s -> 0.3 s). With the loss factors iterated
+each overdamped mode's partner is the other root refined at its own omega_h.
 
 **Fallback.** Modes still not found come from the dense solution (one state-space eigenproblem
 and the assignment; with the loss factors iterated, the dense iteration mode by mode), up to
@@ -792,6 +797,8 @@ class _Modes:
         if not need:
             return
         shapes = np.column_stack([self.phi[:, rows], rigid_shape[:, None]][: 2 if rigid else 1])
+        if self._direct_partners(rows, estimates, shapes):
+            return
         n = self.pencil.size
         count = min(max(16, 2 * need), 2 * n - 2)
         for _ in range(4):
@@ -815,6 +822,44 @@ class _Modes:
             else:
                 self.fixed_lam = np.r_[self.fixed_lam, found.lam[r]]
                 self.fixed_x.append(found.x[r])
+
+    def _direct_partners(
+        self, rows: NDArray[np.intp], estimates: NDArray[np.float64], shapes: NDArray
+    ) -> bool:
+        """The partners of :meth:`_assign_partners` without the pool's eigenproblems where that
+        is safe: each refined from its own estimate (the other root) and its own shape (an
+        elastic mode's, or the rigid-body shape); kept, and True, only where every one converged
+        to a real eigenvalue that is not zero, no two of them and none of them a mode's own
+        eigenvalue, and the MAC's optimal assignment among them gives each its own. The real
+        eigenvalues of the spectrum are then every mode's own and these: the set the pool's
+        assignment chooses from, assigned as it assigns them. Otherwise False, nothing set."""
+        need = estimates.size
+        w = np.full(need, self.fixed_w)
+        found = refine(self.pencil, estimates + 0j, shapes.T.astype(complex), w, iterate=False)
+        lam, x = found.lam, found.x
+        floor = self._floor()
+        if not (np.all(found.converged) and np.all(self._real(lam))):
+            return False
+        if np.any(np.abs(lam) <= floor):
+            return False
+        count = self.lam.size
+        if any(max(i, j) >= count for i, j in _close_pairs(np.r_[self.lam, lam], floor)):
+            return False
+        m = self.pencil.m
+        mac = np.abs(x @ (m[:, None] * shapes)) ** 2  # (candidate, mode)
+        mac /= np.einsum("bi,i,bi->b", x.conj(), m, x).real[:, None]
+        picked, assigned = linear_sum_assignment(-mac.T)
+        if not np.array_equal(assigned[np.argsort(picked)], np.arange(need)):
+            return False
+        for j in range(need):
+            if j < rows.size:
+                row = int(rows[j])
+                self.partner[row], self.partner_x[row] = lam[j], x[j]
+                self.partner_ok[row] = True
+            else:
+                self.fixed_lam = np.r_[self.fixed_lam, lam[j]]
+                self.fixed_x.append(x[j])
+        return True
 
     def _real_pool(self, estimates: NDArray, count: int) -> tuple[NDArray, NDArray]:
         """Real eigenpairs near ``estimates`` (1/s) that are no mode's own eigenvalue nor 0:
