@@ -106,6 +106,22 @@ def test_rayleigh_damped_chain_closed_form(free):
         assert r.natural_frequency[0] == 0.0 and math.isnan(r.damping_ratio[0])
 
 
+def test_overdamped_partners_found_directly_where_they_can_be(monkeypatch):
+    """The Rayleigh-damped chain above: every partner (and the free chain's rigid-body pair's)
+    refined from its own other root, no Arnoldi pool (the modes are checked against the closed
+    form above)."""
+    pools = []
+    real_pool = damped._Modes._real_pool
+
+    def counted(self, estimates, count):
+        pools.append(count)
+        return real_pool(self, estimates, count)
+
+    monkeypatch.setattr(damped._Modes, "_real_pool", counted)
+    r = damped_modes(_chain(400, alpha=60.0, beta=3e-4, free=True))
+    assert not pools and np.sum(r.damping_ratio[1:] > 1.0) >= 20
+
+
 @pytest.mark.parametrize(("eta", "free"), [(0.02, True), (0.3, False), (0.9, True)])
 def test_uniform_loss_factor_chain_closed_form(eta, free):
     """Every shaft with the same loss factor: H = eta K, so each undamped mode stays a mode with
