@@ -48,13 +48,7 @@ def _shown_pages(html):
     """The headings' pages of one print with the pictures shown (as before the hiding)."""
     tools = pdf_module._DevTools(pdf_module.find_browser(), pdf_module.time.monotonic() + 60)
     try:
-        target = tools.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        tools.session = tools.call("Target.attachToTarget", {"targetId": target, "flatten": True})[
-            "sessionId"
-        ]
-        tools.call("Page.enable")
-        tools.call("Page.navigate", {"url": html.resolve().as_uri()})
-        tools.wait_for("Page.loadEventFired")
+        pdf_module._load(tools, html)
         printed = tools.call("Page.printToPDF", {"generateDocumentOutline": True})["data"]
         return heading_pages(base64.b64decode(printed))
     finally:

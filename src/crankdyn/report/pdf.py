@@ -198,17 +198,22 @@ def _templates(header: str, right: str) -> tuple[str, str]:
     return top, foot
 
 
+def _load(tools: _DevTools, html: Path) -> None:
+    """Open ``html`` in a new page of the browser, attached, and wait until it has loaded."""
+    target = tools.call("Target.createTarget", {"url": "about:blank"})["targetId"]
+    tools.session = tools.call("Target.attachToTarget", {"targetId": target, "flatten": True})[
+        "sessionId"
+    ]
+    tools.call("Page.enable")
+    tools.call("Page.navigate", {"url": html.resolve().as_uri()})
+    tools.wait_for("Page.loadEventFired")
+
+
 def _print_devtools(browser: str, html: Path) -> bytes:
     """The page printed over the DevTools protocol, the contents list's pages filled in."""
     tools = _DevTools(browser, time.monotonic() + _TIMEOUT)
     try:
-        target = tools.call("Target.createTarget", {"url": "about:blank"})["targetId"]
-        tools.session = tools.call("Target.attachToTarget", {"targetId": target, "flatten": True})[
-            "sessionId"
-        ]
-        tools.call("Page.enable")
-        tools.call("Page.navigate", {"url": html.resolve().as_uri()})
-        tools.wait_for("Page.loadEventFired")
+        _load(tools, html)
         meta = tools.call(
             "Runtime.evaluate",
             {
