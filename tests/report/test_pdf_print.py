@@ -10,6 +10,7 @@ from __future__ import annotations
 import base64
 import io
 import re
+import time
 
 import numpy as np
 import pytest
@@ -46,7 +47,7 @@ def _page(tmp_path):
 
 def _shown_pages(html):
     """The headings' pages of one print with the pictures shown (as before the hiding)."""
-    tools = pdf_module._DevTools(pdf_module.find_browser(), pdf_module.time.monotonic() + 60)
+    tools = pdf_module._DevTools(pdf_module.find_browser(), time.monotonic() + 60)
     try:
         pdf_module._load(tools, html)
         printed = tools.call("Page.printToPDF", {"generateDocumentOutline": True})["data"]
