@@ -40,7 +40,17 @@ from crankdyn.summary import (
 if TYPE_CHECKING:
     from crankdyn.plausibility import PlausibilityWarning
 
-__all__ = ["DEG", "Result", "array", "column", "freeze", "jsonable", "scalar", "scaled_value"]
+__all__ = [
+    "DEG",
+    "Result",
+    "array",
+    "column",
+    "freeze",
+    "frozen",
+    "jsonable",
+    "scalar",
+    "scaled_value",
+]
 
 from crankdyn.constants import DEG
 from crankdyn.display import csv_text, html_text
@@ -209,6 +219,45 @@ def freeze(values: ArrayLike, dtype: DTypeLike = float) -> NDArray[Any]:
     arr = np.array(values, dtype=dtype, copy=True)
     arr.setflags(write=False)
     return arr
+
+
+def frozen(values: NDArray[Any], dtype: DTypeLike = float) -> NDArray[Any]:
+    """``values`` itself made read-only, where it is an array of ``dtype`` that owns its data
+    (one the caller has just computed, e.g. a sum or a concatenation, and keeps no other
+    reference to): a large result's arrays are not copied once more; anything else (a view, a
+    list, another type) is copied as :func:`freeze` copies it.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        The values (any unit), no longer written by the caller.
+    dtype : data-type
+        The array's type; default float.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``values`` or a copy, with ``writeable`` False.
+
+    Examples
+    --------
+    >>> a = np.arange(3.0) * 2.0
+    >>> frozen(a) is a, a.flags.writeable
+    (True, False)
+    >>> b = np.arange(4.0)
+    >>> c = frozen(b[1:])  # a view: copied, b stays writeable
+    >>> c.base is None, c.flags.writeable, b.flags.writeable
+    (True, False, True)
+    """
+    if (
+        isinstance(values, np.ndarray)
+        and values.base is None
+        and values.flags.owndata
+        and values.dtype == np.dtype(dtype)
+    ):
+        values.setflags(write=False)
+        return values
+    return freeze(values, dtype)
 
 
 class Result:

@@ -1376,7 +1376,7 @@ def _result(
     truncation: dict[str, Any],
 ) -> EventResult:
     """The result of a run (module docstring)."""
-    from crankdyn.results import freeze
+    from crankdyn.results import freeze, frozen
 
     assert rec.high is not None and rec.low is not None
     assert rec.high_at is not None and rec.low_at is not None
@@ -1422,10 +1422,11 @@ def _result(
     kind = event.kind if isinstance(event, SpeedChange) else _KINDS[type(event).__name__]
     return cls(
         time=freeze(times),
-        speed=freeze(np.concatenate(rec.mean)),
-        mass_speed=freeze(np.concatenate(rec.speeds)),
-        torque=freeze(np.concatenate(rec.torques)),
-        vibratory_torque=freeze(np.concatenate(rec.vibratory)),
+        # the recorded series joined here: made read-only, not copied again
+        speed=frozen(np.concatenate(rec.mean)),
+        mass_speed=frozen(np.concatenate(rec.speeds)),
+        torque=frozen(np.concatenate(rec.torques)),
+        vibratory_torque=frozen(np.concatenate(rec.vibratory)),
         max_torque=freeze(rec.high[:half]),
         min_torque=freeze(rec.low[:half]),
         max_time=freeze(rec.high_at[:half]),

@@ -44,7 +44,7 @@ from numpy.typing import ArrayLike, NDArray
 from crankdyn.constants import RPM
 from crankdyn.defaults import RESPONSE_BLOCK_MEMORY
 from crankdyn.errors import InputError, did_you_mean
-from crankdyn.results import freeze
+from crankdyn.results import freeze, frozen
 from crankdyn.torsion.dampers import Damper
 from crankdyn.torsion.loaded import load_change, stiffness_change
 from crankdyn.torsion.model import TorsionModel
@@ -664,15 +664,16 @@ class Sweep:
             major=None if self.major is None else freeze(self.major, dtype=bool),
             masses=system.mass_names,
             shafts=system.element_labels,
-            amplitude=freeze(np.abs(x)),
-            synthesized_amplitude=freeze(0.5 * ptp),
-            peak_to_peak=freeze(ptp),
-            order_sum_amplitude=freeze(np.sum(np.abs(x), axis=1)),
-            order_shaft_torque=freeze(np.abs(torque)),
-            shaft_torque=freeze(shaft_torque),
-            synthesized_shaft_torque=freeze(synth_torque),
-            shaft_stress=freeze(shaft_torque / self.modulus),
-            synthesized_shaft_stress=freeze(synth_torque / self.modulus),
+            # the arrays computed here for the result: made read-only, not copied again
+            amplitude=frozen(np.abs(x)),
+            synthesized_amplitude=frozen(0.5 * ptp),
+            peak_to_peak=frozen(ptp),
+            order_sum_amplitude=frozen(np.sum(np.abs(x), axis=1)),
+            order_shaft_torque=frozen(np.abs(torque)),
+            shaft_torque=frozen(shaft_torque),
+            synthesized_shaft_torque=frozen(synth_torque),
+            shaft_stress=frozen(shaft_torque / self.modulus),
+            synthesized_shaft_stress=frozen(synth_torque / self.modulus),
             damper_power=None if block.power is None else freeze(block.power),
             dampers=tuple(d.name for d in system.dampers) or None,
             model_name=self.model.name,
