@@ -808,20 +808,33 @@ class _Modes:
             count = min(2 * count, 2 * n - 2)
         if lam.size < need:
             return  # the partners stay unfound: checked, repaired, or the fallback's
-        m = self.pencil.m
-        mac = np.abs(x @ (m[:, None] * shapes)) ** 2  # (candidate, mode)
-        mac /= np.einsum("bi,i,bi->b", x.conj(), m, x).real[:, None]
-        picked, assigned = linear_sum_assignment(-mac.T)
+        picked, assigned = self._assignment(x, shapes)
         w = np.full(need, self.fixed_w)
         found = refine(self.pencil, lam[assigned], x[assigned].copy(), w, iterate=False)
         for j, r in zip(picked.tolist(), range(need), strict=True):
-            if j < rows.size:
-                row = int(rows[j])
-                self.partner[row], self.partner_x[row] = found.lam[r], found.x[r]
-                self.partner_ok[row] = bool(found.converged[r])
-            else:
-                self.fixed_lam = np.r_[self.fixed_lam, found.lam[r]]
-                self.fixed_x.append(found.x[r])
+            self._set_partner(rows, j, found.lam[r], found.x[r], bool(found.converged[r]))
+
+    def _assignment(
+        self, x: NDArray[np.complex128], shapes: NDArray
+    ) -> tuple[NDArray[np.intp], NDArray[np.intp]]:
+        """(shape, candidate) pairs of the MAC's optimal assignment of the candidate vectors
+        ``x`` (rows) to ``shapes`` (columns)."""
+        m = self.pencil.m
+        mac = np.abs(x @ (m[:, None] * shapes)) ** 2  # (candidate, mode)
+        mac /= np.einsum("bi,i,bi->b", x.conj(), m, x).real[:, None]
+        return linear_sum_assignment(-mac.T)
+
+    def _set_partner(
+        self, rows: NDArray[np.intp], j: int, lam: complex, x: NDArray, ok: bool
+    ) -> None:
+        """Shape j's partner: of elastic mode ``rows[j]``, or (j past the rows) the rigid-body
+        pair's second eigenvalue."""
+        if j < rows.size:
+            row = int(rows[j])
+            self.partner[row], self.partner_x[row], self.partner_ok[row] = lam, x, ok
+        else:
+            self.fixed_lam = np.r_[self.fixed_lam, lam]
+            self.fixed_x.append(x)
 
     def _direct_partners(
         self, rows: NDArray[np.intp], estimates: NDArray[np.float64], shapes: NDArray
@@ -845,20 +858,11 @@ class _Modes:
         count = self.lam.size
         if any(max(i, j) >= count for i, j in _close_pairs(np.r_[self.lam, lam], floor)):
             return False
-        m = self.pencil.m
-        mac = np.abs(x @ (m[:, None] * shapes)) ** 2  # (candidate, mode)
-        mac /= np.einsum("bi,i,bi->b", x.conj(), m, x).real[:, None]
-        picked, assigned = linear_sum_assignment(-mac.T)
+        picked, assigned = self._assignment(x, shapes)
         if not np.array_equal(assigned[np.argsort(picked)], np.arange(need)):
             return False
         for j in range(need):
-            if j < rows.size:
-                row = int(rows[j])
-                self.partner[row], self.partner_x[row] = lam[j], x[j]
-                self.partner_ok[row] = True
-            else:
-                self.fixed_lam = np.r_[self.fixed_lam, lam[j]]
-                self.fixed_x.append(x[j])
+            self._set_partner(rows, j, lam[j], x[j], True)
         return True
 
     def _real_pool(self, estimates: NDArray, count: int) -> tuple[NDArray, NDArray]:
