@@ -214,15 +214,12 @@ def _print_devtools(browser: str, html: Path) -> bytes:
     tools = _DevTools(browser, time.monotonic() + _TIMEOUT)
     try:
         _load(tools, html)
-        meta = tools.call(
-            "Runtime.evaluate",
-            {
-                "expression": "[(document.querySelector('meta[name=crankdyn-running-header]')"
-                " || {}).content || document.title, (document.querySelector("
-                "'meta[name=crankdyn-running-header-right]') || {}).content || '']",
-                "returnByValue": True,
-            },
-        )["result"].get("value") or ["", ""]
+        meta = _evaluate(
+            tools,
+            "[(document.querySelector('meta[name=crankdyn-running-header]') || {}).content"
+            " || document.title, (document.querySelector("
+            "'meta[name=crankdyn-running-header-right]') || {}).content || '']",
+        ) or ["", ""]
         top, foot = _templates(str(meta[0]), str(meta[1]))
         options = {
             "displayHeaderFooter": True,
