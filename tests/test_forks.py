@@ -273,3 +273,26 @@ def test_claims_without_shared_memory_stay_in_this_process(monkeypatch):
     assert [w.from_child for w in made] == [False]
     monkeypatch.setattr(claims_module.multiprocessing, "Array", multiprocessing.Array)
     assert alone.to_json() == tvc(model, engine, passage=False, beside=False).to_json()
+
+
+@needs_fork
+def test_the_childs_pipe_holds_a_mebibyte():
+    """The pipe a child writes its result to is widened to 1 MiB where the system allows it
+    (``F_SETPIPE_SZ``), and a result many times that arrives whole."""
+    import fcntl
+
+    from crankdyn.forks import widen_pipe
+
+    read, write = os.pipe()
+    try:
+        widen_pipe(write)
+        size = fcntl.fcntl(write, fcntl.F_GETPIPE_SZ)
+        with open("/proc/sys/fs/pipe-max-size", encoding="ascii") as handle:
+            allowed = int(handle.read())
+        assert size == min(1 << 20, allowed) or size == 1 << 16
+    finally:
+        os.close(read)
+        os.close(write)
+    big = np.arange(3_000_000, dtype=float)  # 24 MB: two dozen pipe buffers
+    found = Beside(lambda: big).result()
+    np.testing.assert_array_equal(found, big)

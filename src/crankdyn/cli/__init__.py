@@ -32,6 +32,7 @@ from typing import Any
 import click
 
 from crankdyn import __version__
+from crankdyn.allocator import keep_freed_memory
 from crankdyn.errors import InputError
 from crankdyn.threads import limit_blas_threads
 
@@ -396,6 +397,7 @@ def main(argv: list[str] | None = None) -> int:
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         limit_blas_threads()  # the processors not already busy (crankdyn.threads)
+        keep_freed_memory()  # freed arrays' memory used again, not unmapped (crankdyn.allocator)
     except InputError as exc:
         _error(str(exc))
         return 2
