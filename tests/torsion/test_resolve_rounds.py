@@ -48,6 +48,45 @@ def test_refiner_asks_what_refinement_speeds_asks_every_round():
     np.testing.assert_array_equal(table_y, y[np.argsort(s, kind="stable")])
 
 
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_refiner_keeps_the_local_maxima_of_the_whole_table(seed):
+    """Rows added in random batches (speeds anywhere, next to each other or not), values
+    rounded to a few levels so that ties and plateaus abound, and a few NaN: after every batch
+    the Refiner's maxima are exactly those of the whole table in ascending speed by
+    local_maxima's rule (mid >= both neighbours and above one of them; a NaN next to a row
+    excludes it, since it compares false both ways)."""
+    from crankdyn.torsion.resolve import local_maxima
+
+    rng = np.random.default_rng(seed)
+
+    def values(k):
+        y = np.round(rng.random((k, 40)) * 4.0) / 4.0
+        y[rng.random((k, 40)) < 0.02] = np.nan
+        return y
+
+    s = rng.permutation(np.linspace(0.0, 1.0, 30))
+    y = values(s.size)
+    refiner = Refiner(s, y, lambda top: top)
+    for _ in range(8):
+        new = rng.random(int(rng.integers(1, 12)))
+        if rng.random() < 0.5:  # a cluster: new speeds next to each other
+            new = new[0] + 1e-3 * np.arange(new.size)
+        more = values(new.size)
+        refiner.add(new, more)
+        s, y = np.concatenate([s, new]), np.concatenate([y, more])
+        order = np.argsort(s, kind="stable")
+        table = y[order]
+        mid, before, after = table[1:-1], table[:-2], table[2:]
+        peak = (mid >= before) & (mid >= after) & ((mid > before) | (mid > after))
+        rows, cols = np.nonzero(peak)
+        expected = set(zip(order[rows + 1].tolist(), cols.tolist(), strict=True))
+        found = set(zip(refiner.rows.tolist(), refiner.cols.tolist(), strict=True))
+        assert found == expected
+        if not np.isnan(np.max(y, axis=0)).any():  # local_maxima's, where no top is NaN
+            rows, cols = local_maxima(table, floor=0.0)
+            assert found == set(zip(order[rows].tolist(), cols.tolist(), strict=True))
+
+
 def _chain(n: int = 9) -> TorsionModel:
     masses = tuple(Mass(f"m{i}", 0.3 + 0.05 * i, damping=2.0) for i in range(n))
     shafts = tuple(
