@@ -1,7 +1,7 @@
 """The command line has glibc's malloc keep the memory freed arrays leave (crankdyn.allocator):
 arrays of a few megabytes allocated again after they are freed take no new pages (no page
-faults), where without the settings the freed heap is given back and faulted in again; the user's own
-settings win."""
+faults), where without the settings the freed heap is given back and faulted in again; the
+user's own settings win."""
 
 from __future__ import annotations
 
