@@ -66,14 +66,22 @@ def tvc_command(
         raise InputError("already exists; not overwritten without --force", file=str(target))
     session = model_session(model, rules=rules)
     err = console(stderr=True)
-    with err.status("Torsional vibration calculation"):
-        result = session.tvc(passage=not no_passage)
+    title = "Torsional vibration calculation"
+    with err.status(title) as status:
+
+        def step(text: str) -> None:
+            """The step the calculation is at, beside the spinner."""
+            status.update(f"{title}: {text}")
+
+        result = session.tvc(passage=not no_passage, progress=step)
         pdf_note: list[str] = []
+        step("the report")
 
         def finish(folder: Path) -> None:
             """Print the report folder's PDF (unless --no-pdf), or note why not."""
             if no_pdf:
                 return
+            step("the PDF")
             why = print_pdf(folder / "index.html", folder / "report.pdf")
             if why is not None:
                 pdf_note.append(why)

@@ -23,7 +23,7 @@ from crankdyn.session.core import with_parameters
 from crankdyn.session.torsion import TorsionAnalyses
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
 
     from crankdyn.crankshaft.beam_engine import EngineBeam
     from crankdyn.crankshaft.beam_modes import BeamModesResult
@@ -290,6 +290,7 @@ class CrankshaftAnalyses(TorsionAnalyses):
         spec: TvcSpec | None = None,
         passage: bool = True,
         conditions: Sequence[str] | None = None,
+        progress: Callable[[str], None] | None = None,
     ) -> TvcResult:
         """The torsional vibration calculation
         (:meth:`crankdyn.session.torsion.TorsionAnalyses.tvc`) with, when the engine has a
@@ -299,7 +300,7 @@ class CrankshaftAnalyses(TorsionAnalyses):
 
         Parameters
         ----------
-        spec, passage, conditions
+        spec, passage, conditions, progress
             As :meth:`crankdyn.session.torsion.TorsionAnalyses.tvc`.
 
         Returns
@@ -308,7 +309,7 @@ class CrankshaftAnalyses(TorsionAnalyses):
             The verdict rows (the crankshaft's last), barred speed ranges (rad/s), passages,
             conditions, modes and the Campbell diagram.
         """
-        result = super().tvc(spec=spec, passage=passage, conditions=conditions)
+        result = super().tvc(spec=spec, passage=passage, conditions=conditions, progress=progress)
         engine = self.engine
         if spec is not None or engine is None or engine.crankshaft is None:
             return result

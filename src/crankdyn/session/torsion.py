@@ -5,7 +5,7 @@ the TVC, the Campbell diagram, dampers, the time domain and measurements held ag
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
@@ -373,6 +373,7 @@ class TorsionAnalyses(SessionCore):
         spec: TvcSpec | None = None,
         passage: bool = True,
         conditions: Sequence[str] | None = None,
+        progress: Callable[[str], None] | None = None,
     ) -> TvcResult:
         """The torsional vibration calculation of the installation (:func:`crankdyn.tvc.tvc`):
         every running condition (normal, each misfire, damper out of order, overspeed,
@@ -390,6 +391,9 @@ class TorsionAnalyses(SessionCore):
             Whether to run the time-domain passage through the barred ranges.
         conditions
             The kinds of condition (:data:`crankdyn.tvc.spec.CONDITION_KINDS`); None: all.
+        progress
+            Told each step the calculation begins (:func:`crankdyn.tvc.tvc`), for a progress
+            display; not called when the result is the session's cached one.
 
         Returns
         -------
@@ -413,6 +417,7 @@ class TorsionAnalyses(SessionCore):
                 orders=self.orders,
                 conditions=kinds,
                 response_of=self._condition_response,
+                progress=progress,
             ),
         )
 

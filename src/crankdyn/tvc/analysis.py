@@ -483,6 +483,10 @@ def _worst_kept(judged: dict[int, Any], worst: int | None, i: int) -> int:
     return worst
 
 
+def _silent(step: str) -> None:
+    """No progress display (:func:`tvc`'s default)."""
+
+
 def _run_conditions(
     run: _Run,
     conds: Sequence[Condition],
@@ -490,12 +494,14 @@ def _run_conditions(
     passage: bool,
     claims: Claims,
     away: Callable[[], dict[int, Any]],
+    progress: Callable[[str], None],
 ) -> tuple[list[Any], list[Any], list[Any]]:
     """Every condition judged (:func:`_judge`): those this process claims from the start
     (``claims``: the child beside it takes them from the other end once its events are done,
     ``away()`` returns its), grouped into condition results with their passages in the
     conditions' order; of the misfiring cylinders only the worst keeps its response
-    (:func:`_worst_kept`).
+    (:func:`_worst_kept`). ``progress`` is told the step this process is at (the condition it
+    computes, then the wait for the child's work).
 
     Returns
     -------
@@ -505,9 +511,16 @@ def _run_conditions(
     judged: dict[int, Any] = {}
     worst: int | None = None
     while (i := claims.front()) is not None:
+        progress(f"condition {i + 1} of {len(conds)}, {conds[i].name}")
         judged[i] = _judge(run, conds[i], respond)
         if conds[i].kind == "misfire":
             worst = _worst_kept(judged, worst, i)
+    rest = len(conds) - len(judged)  # the child's (or, where it failed, computed here)
+    parts = ["the transient events"] if run.spec.events else []
+    if rest:
+        parts.append(f"{rest} more condition{'s' if rest > 1 else ''}")
+    if parts:
+        progress(" and ".join(parts))
     theirs = away()  # the child's conditions (of its cylinders only its worst's response)
     for i in sorted(theirs):
         judged[i] = theirs[i]
@@ -576,6 +589,7 @@ def _calculated(
     passage: bool,
     events: bool,
     beside: bool | None,
+    progress: Callable[[str], None],
 ) -> tuple[list[Any], list[Any], list[Any], list[EventCondition]]:
     """The conditions (:func:`_run_conditions`) and the events with the child beside them
     (:func:`_beside`): condition results, verdict rows, passages, events."""
@@ -587,7 +601,7 @@ def _calculated(
         return outcome[0][1]
 
     with pending:
-        found = _run_conditions(run, conds, respond, passage, claims, away)
+        found = _run_conditions(run, conds, respond, passage, claims, away, progress)
     return (*found, outcome[0][0])
 
 
@@ -631,6 +645,7 @@ def tvc(
     response_of: ResponseOf | None = None,
     events: bool = True,
     beside: bool | None = None,
+    progress: Callable[[str], None] | None = None,
 ) -> TvcResult:
     """The torsional vibration calculation of an installation (module docstring).
 
@@ -673,6 +688,10 @@ def tvc(
         (:class:`crankdyn.forks.Beside`: the same results, computed from the same state); None:
         where two processors are free (:func:`crankdyn.threads.free_cores`) and the memory
         holds a second process this one's size (:func:`crankdyn.forks.room_for_a_copy`).
+    progress : callable or None
+        ``progress(step)`` is called with the step this process begins (e.g. ``"condition 2
+        of 8, cylinder 1 misfiring"``, the wait for the work beside it, the modes), for a
+        front end's progress display; it changes no number.
 
     Returns
     -------
@@ -730,9 +749,11 @@ def tvc(
     if orders is None:
         orders = default_orders(model, base.cycle, engine=base.cylinder_count > 0)
     run = _Run(model, spec, np.asarray(orders, dtype=float), rated, load, {}, notes, engine)
+    say = progress or _silent
     condition_results, verdicts_all, passages_all, found_events = _calculated(
-        run, conds, response_of or _response, passage, events, beside
+        run, conds, response_of or _response, passage, events, beside, say
     )
+    say("the Campbell diagram and the natural modes")
     verdicts_all.extend(v for e in found_events for v in e.verdicts)
     low = min(c.low for c in conds)
     high = max(c.high for c in conds)
