@@ -611,11 +611,13 @@ def _campbell(
     speeds: tuple[float, float],
     excitation: Any,
     notes: list[str],
+    progress: Callable[[str], None],
 ) -> Any:
     """The Campbell diagram of the calculation over the conditions' speeds (rad/s), or None
-    with a note where it cannot be drawn."""
+    with a note where it cannot be drawn (``progress`` told so, with the modes next)."""
     from crankdyn.torsion.campbell import campbell
 
+    progress("the Campbell diagram and the natural modes")
     try:
         return campbell(model, orders, speeds, excitation=excitation)
     except InputError as exc:  # pragma: no cover - the same inputs ran the responses
@@ -689,9 +691,8 @@ def tvc(
         where two processors are free (:func:`crankdyn.threads.free_cores`) and the memory
         holds a second process this one's size (:func:`crankdyn.forks.room_for_a_copy`).
     progress : callable or None
-        ``progress(step)`` is called with the step this process begins (e.g. ``"condition 2
-        of 8, cylinder 1 misfiring"``, the wait for the work beside it, the modes), for a
-        front end's progress display; it changes no number.
+        Told each step this process begins (``"condition 2 of 8, misfire cylinder 1"``, the
+        work beside it, the modes), for a progress display; it changes no number.
 
     Returns
     -------
@@ -753,11 +754,9 @@ def tvc(
     condition_results, verdicts_all, passages_all, found_events = _calculated(
         run, conds, response_of or _response, passage, events, beside, say
     )
-    say("the Campbell diagram and the natural modes")
     verdicts_all.extend(v for e in found_events for v in e.verdicts)
-    low = min(c.low for c in conds)
-    high = max(c.high for c in conds)
-    diagram = _campbell(model, run.orders, (low, high), base, notes)
+    low, high = min(c.low for c in conds), max(c.high for c in conds)
+    diagram = _campbell(model, run.orders, (low, high), base, notes, say)
     if not verdicts_all:
         notes.append("no component has a limit: nothing was checked")
     notes += rule_notes(
