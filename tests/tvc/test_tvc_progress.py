@@ -45,3 +45,29 @@ def test_the_command_shows_the_steps(tmp_path, monkeypatch):
     assert shown[0].startswith(f"{title}condition 1 of ")
     assert f"{title}the Campbell diagram and the natural modes" in shown
     assert shown.index(f"{title}the report") < shown.index(f"{title}the PDF")
+
+
+def test_a_step_is_shown_as_text_not_markup(tmp_path, monkeypatch):
+    """A step's words are shown as they are: square brackets are not rich's markup (a stray
+    closing tag would otherwise end the command)."""
+    from rich.status import Status
+
+    from crankdyn.session.crankshaft import CrankshaftAnalyses
+
+    shown: list[str] = []
+    original_update, original_tvc = Status.update, CrankshaftAnalyses.tvc
+
+    def update(self, status=None, **kwargs):
+        if status is not None:
+            shown.append(str(status))
+        return original_update(self, status, **kwargs)
+
+    def tvc_told(self, **kwargs):
+        kwargs["progress"]("[/] [bold]x[/bold]")
+        return original_tvc(self, **kwargs)
+
+    monkeypatch.setattr(Status, "update", update)
+    monkeypatch.setattr(CrankshaftAnalyses, "tvc", tvc_told)
+    status = main(["tvc", "genset-1500", "--no-passage", "--no-pdf", "-o", str(tmp_path / "r")])
+    assert status in (0, 1)
+    assert shown[0] == "Torsional vibration calculation: [/] [bold]x[/bold]"

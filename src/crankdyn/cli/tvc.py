@@ -55,6 +55,8 @@ def tvc_command(
     Every verdict row cites its rule, edition and clause (--rules chooses the rule set).
     Exit status: 0 when every verdict passed, 1 when one failed (the report is written), 2 on
     an error; --no-fail gives 0 whatever the verdict."""
+    from rich.text import Text
+
     from crankdyn.report.pdf import print_pdf
     from crankdyn.report.tvc import build_tvc_report
     from crankdyn.report.write import write_drawn
@@ -70,8 +72,8 @@ def tvc_command(
     with err.status(title) as status:
 
         def step(text: str) -> None:
-            """The step the calculation is at, beside the spinner."""
-            status.update(f"{title}: {text}")
+            """The step the calculation is at, beside the spinner (as text, never markup)."""
+            status.update(Text(f"{title}: {text}"))
 
         result = session.tvc(passage=not no_passage, progress=step)
         pdf_note: list[str] = []
