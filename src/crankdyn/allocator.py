@@ -4,8 +4,9 @@ The numeric core allocates and frees arrays of a few to a few hundred megabytes 
 speeds or samples (a 1000-mass line's responses, syntheses and time series). GNU libc's
 ``malloc`` serves a request above its *mmap threshold* with a fresh mapping and unmaps it when
 freed, and gives the free memory at the top of its heap back to the system beyond its *trim
-threshold* (both start at 128 KiB and rise, up to 32 MiB, as such blocks are freed: glibc
-manual, "Memory Allocation Tunables"; ``mallopt(3)``). Every fresh page costs a page fault and
+threshold* (the mmap threshold starts at 128 KiB and rises up to 32 MiB as such blocks are
+freed, the trim threshold with it to twice that: glibc manual, "Memory Allocation Tunables";
+``mallopt(3)``). Every fresh page costs a page fault and
 is zeroed by the kernel on its first use: a 1000-mass TVC spent 22 s in the kernel against 84
 s in its own code, most of it zeroing fresh pages (``perf``: ``clear_page_erms`` 12 % of the
 samples), for arrays freed and allocated again a moment later.
@@ -16,8 +17,8 @@ largest ``mallopt`` takes) and the top pad (the extra memory asked for whenever 
 to 256 MiB: an array up to 32 MiB is then served from the heap, whose freed memory is used again
 instead of returned. The peak of the resident memory stays what was in use at the peak; what
 changes is that a process keeps its freed heap, up to 2 GiB, until it ends. Measured on the
-1000-mass line of ``bench/`` (the same run, in turn): 17.5 s -> 14.5 s of system time, 2-3 s of
-the run's 52 s; the forked children (:mod:`crankdyn.forks`) inherit the settings.
+1000-mass line of ``bench/`` (the same run, in turn): about 3 s less system time, 2-3 s of the
+run's 50 s; the forked children (:mod:`crankdyn.forks`) inherit the settings.
 
 Nothing is changed where the user has set the allocator's own variables (``MALLOC_*`` or
 ``GLIBC_TUNABLES``: theirs win) or where the C library is not glibc (musl, macOS, Windows).
