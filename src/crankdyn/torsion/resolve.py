@@ -511,6 +511,7 @@ class Refiner:
         self.values = np.empty((self.speeds.size, y.shape[1]))
         self.values[: s.size] = y
         self.top = np.max(y, axis=0) if s.size else np.zeros(y.shape[1])
+        self.unordered = bool(np.isnan(y).any())  # whether a value is NaN (compares false)
         self.order = np.argsort(s, kind="stable")  # ascending speed -> row
         self.rows = np.zeros(0, dtype=np.intp)  # the local maxima: row and curve
         self.cols = np.zeros(0, dtype=np.intp)
@@ -528,10 +529,17 @@ class Refiner:
         p = np.sort(p[(p >= 1) & (p <= n - 2)])  # the ends are never maxima
         if p.size == 0:
             return
-        y = self.values
-        mid = y[self.order[p]]
-        before, after = y[self.order[p - 1]], y[self.order[p + 1]]
-        peak = (mid >= before) & (mid >= after) & ((mid > before) | (mid > after))
+        # the rows p - 1, p, p + 1 of every p gathered once (a new speed's neighbours are
+        # examined with it: its window of five rows, not nine), compared once per adjacent pair
+        window = np.unique(np.concatenate([p - 1, p, p + 1]))
+        y = self.values[self.order[window]]
+        rising, falling = y[1:] > y[:-1], y[1:] < y[:-1]
+        at = np.searchsorted(window, p)  # p - 1 and p + 1 are its neighbours in the window
+        # mid >= before, mid >= after and one of them strictly: local_maxima's rule
+        peak = ~falling[at - 1] & ~rising[at] & (rising[at - 1] | falling[at])
+        if self.unordered:  # a NaN compares false both ways: no maximum next to it
+            bad = np.isnan(y)
+            peak &= ~(bad[at - 1] | bad[at] | bad[at + 1])
         r, c = np.nonzero(peak)
         self.rows = np.concatenate([self.rows, self.order[p[r]]])
         self.cols = np.concatenate([self.cols, c])
@@ -562,6 +570,7 @@ class Refiner:
         self.values[n : n + s.size] = y
         self.count = n + s.size
         self.top = np.maximum(self.top, np.max(y, axis=0))
+        self.unordered = self.unordered or bool(np.isnan(y).any())
         self.order = np.argsort(self.speeds[: self.count], kind="stable")
         position = np.empty(self.count, dtype=np.intp)
         position[self.order] = np.arange(self.count)
