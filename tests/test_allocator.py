@@ -6,22 +6,19 @@ user's own settings win."""
 from __future__ import annotations
 
 import os
-import platform
 import subprocess
 import sys
 
 import pytest
 
-from crankdyn.allocator import keep_freed_memory
+from crankdyn.allocator import _glibc, keep_freed_memory
 
-glibc = pytest.mark.skipif(
-    platform.system() != "Linux" or platform.libc_ver()[0] != "glibc", reason="glibc only"
-)
+glibc = pytest.mark.skipif(not _glibc(), reason="glibc only")
 
 _FAULTS = """
 import resource, sys
 import numpy as np
-from crankdyn.allocator import keep_freed_memory
+from crankdyn.allocator import _glibc, keep_freed_memory
 set_ = keep_freed_memory() if sys.argv[1] == "1" else False
 def faults():
     return resource.getrusage(resource.RUSAGE_SELF).ru_minflt
@@ -58,7 +55,8 @@ def test_freed_arrays_memory_is_used_again_without_page_faults():
     # thousands of pages (or, with transparent huge pages, dozens of 2 MiB pages) a block
     assert faults < 50, faults
     _, faults_default = _run(False)
-    assert faults_default >= 10 * 40 > faults, (faults_default, faults)
+    # (at least 10 a block even where every page is a 2 MiB one: 40 of them a block)
+    assert faults_default >= 100 > faults, (faults_default, faults)
 
 
 def test_the_users_own_settings_win():

@@ -28,7 +28,6 @@ from __future__ import annotations
 
 import ctypes
 import os
-import platform
 from collections.abc import Mapping
 
 __all__ = ["SETTINGS", "keep_freed_memory"]
@@ -48,6 +47,15 @@ SETTINGS = {
 def _user_set(environ: Mapping[str, str]) -> bool:
     """Whether the user has set the allocator's variables themselves."""
     return "GLIBC_TUNABLES" in environ or any(key.startswith("MALLOC_") for key in environ)
+
+
+def _glibc() -> bool:
+    """Whether this process runs on GNU libc (its version string, as ``getconf
+    GNU_LIBC_VERSION`` gives it: no reading of the executable, as ``platform.libc_ver`` does)."""
+    try:
+        return (os.confstr("CS_GNU_LIBC_VERSION") or "").startswith("glibc")
+    except (AttributeError, ValueError, OSError):  # not a POSIX system, or no such name
+        return False
 
 
 def keep_freed_memory(environ: Mapping[str, str] | None = None) -> bool:
@@ -73,7 +81,7 @@ def keep_freed_memory(environ: Mapping[str, str] | None = None) -> bool:
     """
     if _user_set(os.environ if environ is None else environ):
         return False
-    if platform.system() != "Linux" or platform.libc_ver()[0] != "glibc":
+    if not _glibc():
         return False
     try:
         mallopt = ctypes.CDLL(None).mallopt
